@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# The main job: set up, build, then run the goblet script (exports a mesh, prints its depth-cost report).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=$("$root/scripts/setup.sh" | tail -n 1)
+cd "$root"
+exec "$build/sculpt" scripts/goblet.bsp "$@"

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs whatever Debian packages are missing, then configures and builds sculpt.
+#   scripts/setup.sh [--sanitize]   build dir: build/release, or build/sanitize with ASan+UBSan
+# Prints the build directory on its last line.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+sanitize=OFF
+build="$root/build/release"
+for arg in "$@"; do
+  case "$arg" in
+    --sanitize) sanitize=ON; build="$root/build/sanitize" ;;
+    *) echo "setup.sh: unknown option '$arg'" >&2; exit 2 ;;
+  esac
+done
+
+packages=(g++ make cmake pkg-config libeigen3-dev libboost-dev libopenmesh-dev
+          libgtest-dev libgmock-dev libedit-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo=""; [ "$(id -u)" = 0 ] || sudo="sudo"
+  $sudo apt-get update -qq >&2
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSCULPT_SANITIZE="$sanitize" >&2
+cmake --build "$build" -j "$jobs" >&2
+echo "$build"
