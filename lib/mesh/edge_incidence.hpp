@@ -1,0 +1,30 @@
+#pragma once
+/// \file edge_incidence.hpp
+/// Edge-face incidence of a polygon mesh as a sorted list of half-edge records, shared by
+/// measures and validation (no half-edge structure is built, so non-manifold input is fine).
+
+#include <string_view>
+#include <vector>
+
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt {
+
+/// One face side: the edge between face corners `corner` and `corner + 1`, seen as the
+/// undirected pair lo < hi; `forward` says whether the face runs lo -> hi.
+struct HalfEdgeRecord {
+  int lo = 0;
+  int hi = 0;
+  int face = 0;
+  int corner = 0;
+  bool forward = true;
+};
+
+/// All face sides, sorted by (lo, hi, face, corner) so that the uses of one edge are adjacent.
+/// Sides whose two ends are the same vertex are skipped (see validation: degenerate faces).
+std::vector<HalfEdgeRecord> sorted_edge_records(const PolygonMesh& mesh);
+
+/// \throw InvalidInput naming `who` if a face has fewer than 3 corners or an index is out of range.
+void check_face_indices(const PolygonMesh& mesh, std::string_view who);
+
+}  // namespace sculpt

@@ -1,0 +1,23 @@
+#pragma once
+/// \file mesh_formats.hpp
+/// Encoders and decoders of each file format (internal to the mesh layer; mesh_io.hpp is the
+/// public entry). Decoders throw IoError(name, "line N: ...") on malformed data.
+
+#include <string>
+#include <string_view>
+
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt::mesh_formats {
+
+std::string encode_off(const PolygonMesh& mesh);
+std::string encode_obj(const PolygonMesh& mesh);
+std::string encode_stl(const PolygonMesh& mesh, bool binary);
+std::string encode_ply(const PolygonMesh& mesh, bool binary);
+
+PolygonMesh decode_off(std::string_view data, const std::string& name);
+PolygonMesh decode_obj(std::string_view data, const std::string& name);
+PolygonMesh decode_stl(std::string_view data, const std::string& name);
+PolygonMesh decode_ply(std::string_view data, const std::string& name);
+
+}  // namespace sculpt::mesh_formats

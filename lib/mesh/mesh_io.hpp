@@ -1,0 +1,49 @@
+#pragma once
+/// \file mesh_io.hpp
+/// Reading and writing polygon meshes as OFF, OBJ, STL (ASCII and binary) and PLY (ASCII and
+/// binary). Text formats and binary PLY carry doubles exactly (shortest round-trip decimal
+/// text, IEEE binary64); binary STL carries float32 by definition. Writes are atomic: the
+/// data goes to a temporary file in the target directory that is renamed over the target
+/// only when complete. Nothing is printed. Precision per format: docs/mesh_io.md.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt {
+
+enum class MeshFormat { Auto, Off, Obj, Stl, Ply };
+
+/// Format named by the extension (.off, .obj, .stl, .ply; any case).
+/// \throw IoError naming the path if the extension is none of these.
+MeshFormat mesh_format_from_path(const std::filesystem::path& path);
+
+struct WriteOptions {
+  MeshFormat format = MeshFormat::Auto;  ///< Auto: from the extension
+  bool binary = false;                   ///< STL and PLY only: binary encoding
+};
+
+struct ReadOptions {
+  MeshFormat format = MeshFormat::Auto;  ///< Auto: from the extension (STL: ASCII or binary detected)
+};
+
+/// Writes `mesh` to `path` atomically (temporary file + rename; on failure the previous file
+/// is untouched and the temporary removed). STL gets triangulated faces (triangulate.hpp).
+/// \throw InvalidInput if a face index is out of range or a coordinate is not finite.
+/// \throw IoError naming the path and what failed.
+void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, WriteOptions options = {});
+
+/// Reads a mesh. STL's per-facet vertices are merged when their coordinates are exactly equal
+/// (0 and -0 count as equal); no other merging or repair happens.
+/// \throw IoError naming the path and, for text formats, the line of the first problem.
+PolygonMesh read_mesh(const std::filesystem::path& path, ReadOptions options = {});
+
+/// The bytes write_mesh would write (format must not be Auto).
+std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary = false);
+
+/// Parses bytes as read_mesh would; `name` stands for the path in error messages.
+PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::string& name);
+
+}  // namespace sculpt

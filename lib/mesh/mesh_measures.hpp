@@ -1,0 +1,40 @@
+#pragma once
+/// \file mesh_measures.hpp
+/// Global measures of a polygon mesh: volume (divergence theorem), surface area, bounding
+/// box, Euler characteristic, connected components and genus. Faces may be any planar
+/// polygons (convex or not); sums are compensated (Neumaier) so large meshes keep accuracy.
+
+#include <Eigen/Geometry>
+
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt {
+
+/// Signed volume enclosed by a closed, outward-oriented mesh: sum over faces of the
+/// fan tetrahedra (v0, vi, vi+1) against a reference point, / 6 (divergence theorem).
+/// Positive for outward (counter-clockwise from outside) faces. Meaningless for open meshes.
+double mesh_volume(const PolygonMesh& mesh);
+
+/// Sum of face areas (half the norm of each face's Newell normal; exact for planar faces).
+double mesh_surface_area(const PolygonMesh& mesh);
+
+/// Axis-aligned bounding box of the vertices referenced by faces (empty box if none).
+Eigen::AlignedBox3d mesh_bounding_box(const PolygonMesh& mesh);
+
+/// V - E + F with V = vertices referenced by faces and E = distinct undirected edges.
+int euler_characteristic(const PolygonMesh& mesh);
+
+/// Component id per face (0-based, in order of first appearance); faces sharing a vertex
+/// belong to the same component.
+std::vector<int> face_components(const PolygonMesh& mesh);
+
+/// Number of connected components (faces connected through shared vertices).
+int component_count(const PolygonMesh& mesh);
+
+/// Total genus of a closed orientable mesh: sum over components of (2 - chi_i) / 2,
+/// i.e. (2 C - chi) / 2.
+/// \throw GeometryError if some edge does not have exactly two faces (not closed) or
+/// 2 C - chi is odd.
+int genus(const PolygonMesh& mesh);
+
+}  // namespace sculpt

@@ -1,0 +1,57 @@
+#pragma once
+/// \file mesh_validation.hpp
+/// Checks that a polygon mesh bounds a solid: a closed, consistently oriented 2-manifold
+/// without degenerate faces or self-intersections. Each defect says which elements and
+/// where (vertex coordinates), so a user can find it in their modeling tool.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt {
+
+enum class DefectKind {
+  InvalidIndex,             ///< face with < 3 corners or an index out of range
+  NonFiniteCoordinate,      ///< NaN or infinite vertex coordinate
+  DegenerateFace,           ///< repeated corner or all corners collinear (zero area)
+  OpenEdge,                 ///< edge used by one face only (boundary)
+  NonManifoldEdge,          ///< edge used by more than two faces
+  InconsistentOrientation,  ///< two faces run along their shared edge in the same direction
+  NonManifoldVertex,        ///< faces around a vertex form more than one fan
+  SelfIntersection,         ///< two faces meet away from their shared vertices and edge
+};
+
+/// Short lower-case name of a defect kind ("open edge", ...).
+const char* defect_name(DefectKind kind);
+
+struct Defect {
+  DefectKind kind;
+  std::vector<int> faces;     ///< faces involved
+  std::vector<int> vertices;  ///< vertices involved (edge ends, the vertex, ...)
+  std::string message;        ///< one line: what and where, with coordinates
+};
+
+struct ValidationReport {
+  std::vector<Defect> defects;
+  [[nodiscard]] bool ok() const { return defects.empty(); }
+  [[nodiscard]] size_t count(DefectKind kind) const;
+  /// Counts per kind, then up to `max_lines` defect messages, one per line.
+  [[nodiscard]] std::string summary(size_t max_lines = 10) const;
+};
+
+struct ValidationOptions {
+  bool check_self_intersections = true;
+  size_t max_defects_per_kind = 100;  ///< keep at most this many defects of each kind
+};
+
+/// All defects that keep `mesh` from bounding a solid. Index and coordinate errors stop the
+/// other checks (they could not be trusted).
+ValidationReport check_closed_manifold(const PolygonMesh& mesh, ValidationOptions options = {});
+
+/// Throws if check_closed_manifold finds anything.
+/// \throw GeometryError whose message is "mesh is not a closed manifold: " + summary().
+void validate_closed_manifold(const PolygonMesh& mesh, ValidationOptions options = {});
+
+}  // namespace sculpt

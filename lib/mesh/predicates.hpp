@@ -1,0 +1,21 @@
+#pragma once
+/// \file predicates.hpp
+/// Exact orientation predicates on double coordinates for the mesh layer (validation,
+/// triangulation). A floating-point filter with Shewchuk's static error bounds
+/// ("Adaptive precision floating-point arithmetic and fast robust geometric predicates",
+/// 1997) answers almost every call; the rest fall back to exact rational arithmetic.
+/// The result is the exact sign of the determinant for every finite input.
+
+#include <Eigen/Core>
+
+namespace sculpt::mesh_predicates {
+
+/// Sign (-1, 0, +1) of det[b-a, c-a]: +1 when a, b, c turn counter-clockwise.
+int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
+/// Sign (-1, 0, +1) of det[b-a, c-a, d-a]: +1 when d lies on the side of the plane (a, b, c)
+/// that the normal (b-a) x (c-a) points to.
+int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+             const Eigen::Vector3d& d);
+
+}  // namespace sculpt::mesh_predicates

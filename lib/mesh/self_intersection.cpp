@@ -1,0 +1,176 @@
+#include "mesh/self_intersection.hpp"
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+#include <set>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "mesh/predicates.hpp"
+#include "mesh/triangulate.hpp"
+
+namespace sculpt {
+namespace {
+
+using mesh_predicates::orient2d;
+using mesh_predicates::orient3d;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+struct Tri {
+  std::array<int, 3> canon;  // vertex ids after merging equal positions
+  std::array<Vector3d, 3> p;
+  int face = 0;
+  int axis = 0;  // a coordinate axis along which the triangle projects without degeneracy
+  Eigen::AlignedBox3d box;
+};
+
+Vector2d drop(const Vector3d& v, int axis) { return {v[(axis + 1) % 3], v[(axis + 2) % 3]}; }
+
+/// Closed 2D segments [a,b] and [c,d] meet.
+bool segments_meet_2d(const Vector2d& a, const Vector2d& b, const Vector2d& c, const Vector2d& d) {
+  const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d);
+  const int o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  auto on_segment = [](const Vector2d& s, const Vector2d& t, const Vector2d& q) {
+    return std::min(s.x(), t.x()) <= q.x() && q.x() <= std::max(s.x(), t.x()) &&
+           std::min(s.y(), t.y()) <= q.y() && q.y() <= std::max(s.y(), t.y());
+  };
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
+         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+}
+
+/// Point q in the closed 2D triangle (t0, t1, t2) of either orientation.
+bool point_in_triangle_2d(const Vector2d& q, const Vector2d& t0, const Vector2d& t1,
+                          const Vector2d& t2) {
+  const int a = orient2d(t0, t1, q), b = orient2d(t1, t2, q), c = orient2d(t2, t0, q);
+  return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
+}
+
+/// Closed segment [s0, s1] meets the closed, non-degenerate triangle t.
+bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, const Tri& t) {
+  const int o0 = orient3d(t.p[0], t.p[1], t.p[2], s0);
+  const int o1 = orient3d(t.p[0], t.p[1], t.p[2], s1);
+  if (o0 * o1 > 0) return false;
+  if (o0 == 0 && o1 == 0) {  // coplanar: decide in the projection
+    const Vector2d a = drop(s0, t.axis), b = drop(s1, t.axis);
+    const Vector2d t0 = drop(t.p[0], t.axis), t1 = drop(t.p[1], t.axis), t2 = drop(t.p[2], t.axis);
+    return point_in_triangle_2d(a, t0, t1, t2) || point_in_triangle_2d(b, t0, t1, t2) ||
+           segments_meet_2d(a, b, t0, t1) || segments_meet_2d(a, b, t1, t2) ||
+           segments_meet_2d(a, b, t2, t0);
+  }
+  // The segment reaches the plane: its line must pass through the closed triangle.
+  const int a = orient3d(s0, s1, t.p[0], t.p[1]);
+  const int b = orient3d(s0, s1, t.p[1], t.p[2]);
+  const int c = orient3d(s0, s1, t.p[2], t.p[0]);
+  return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
+}
+
+/// Any edge of `x` (among those listed) meets triangle `y`.
+bool edges_meet(const Tri& x, std::initializer_list<std::pair<int, int>> edges, const Tri& y) {
+  for (auto [i, j] : edges)
+    if (segment_meets_triangle(x.p[i], x.p[j], y)) return true;
+  return false;
+}
+
+/// The two triangles meet beyond the vertices they share (and the edge they share).
+bool triangles_conflict(const Tri& s, const Tri& t) {
+  int shared = 0;
+  int s_shared[3] = {-1, -1, -1};  // index in s of each shared corner, in s order
+  int t_of[3] = {-1, -1, -1};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (s.canon[i] == t.canon[j]) {
+        s_shared[shared] = i;
+        t_of[i] = j;
+        ++shared;
+      }
+  if (shared == 0)
+    return edges_meet(s, {{0, 1}, {1, 2}, {2, 0}}, t) || edges_meet(t, {{0, 1}, {1, 2}, {2, 0}}, s);
+  if (shared == 1) {
+    // Convexity: beyond the shared corner p, the triangles can only meet if the edge opposite
+    // p in one of them meets the other.
+    const int i = s_shared[0], j = t_of[i];
+    return edges_meet(s, {{(i + 1) % 3, (i + 2) % 3}}, t) ||
+           edges_meet(t, {{(j + 1) % 3, (j + 2) % 3}}, s);
+  }
+  if (shared == 2) {
+    // Shared edge pq: conflict only if coplanar with the third corners on the same side.
+    const int i0 = s_shared[0], i1 = s_shared[1];
+    const int ia = 3 - i0 - i1;
+    int jb = 0;
+    for (int j = 0; j < 3; ++j)
+      if (j != t_of[i0] && j != t_of[i1]) jb = j;
+    const Vector3d &p = s.p[i0], &q = s.p[i1], &a = s.p[ia], &b = t.p[jb];
+    if (orient3d(p, q, a, b) != 0) return false;
+    const int sa = orient2d(drop(p, s.axis), drop(q, s.axis), drop(a, s.axis));
+    const int sb = orient2d(drop(p, s.axis), drop(q, s.axis), drop(b, s.axis));
+    return sa == sb;
+  }
+  return true;  // the same triangle twice
+}
+
+}  // namespace
+
+std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
+                                              SelfIntersectionOptions options) {
+  // Canonical ids: vertices with equal coordinates get the same id.
+  const size_t nv = mesh.vertices.size();
+  std::vector<int> order(nv);
+  std::iota(order.begin(), order.end(), 0);
+  auto less = [&](int a, int b) {
+    const Vector3d &u = mesh.vertices[a], &v = mesh.vertices[b];
+    return std::tie(u.x(), u.y(), u.z()) < std::tie(v.x(), v.y(), v.z());
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<int> canon(nv);
+  for (size_t k = 0; k < nv; ++k)
+    canon[order[k]] = (k > 0 && mesh.vertices[order[k]] == mesh.vertices[order[k - 1]])
+                          ? canon[order[k - 1]]
+                          : order[k];
+
+  std::vector<Tri> tris;
+  for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+    for (const IndexTriangle& it : triangulate_polygon(mesh.vertices, mesh.faces[fi])) {
+      Tri t;
+      t.face = static_cast<int>(fi);
+      for (int k = 0; k < 3; ++k) {
+        t.canon[k] = canon[it[k]];
+        t.p[k] = mesh.vertices[it[k]];
+        t.box.extend(t.p[k]);
+      }
+      t.axis = -1;
+      for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
+        if (orient2d(drop(t.p[0], axis), drop(t.p[1], axis), drop(t.p[2], axis)) != 0)
+          t.axis = axis;
+      if (t.axis >= 0) tris.push_back(t);  // collinear corners: degenerate, reported elsewhere
+    }
+  }
+  std::sort(tris.begin(), tris.end(),
+            [](const Tri& a, const Tri& b) { return a.box.min().x() < b.box.min().x(); });
+
+  std::set<std::pair<int, int>> found;
+  for (size_t i = 0; i < tris.size() && found.size() < options.max_pairs; ++i) {
+    const Tri& s = tris[i];
+    for (size_t j = i + 1; j < tris.size() && tris[j].box.min().x() <= s.box.max().x(); ++j) {
+      const Tri& t = tris[j];
+      if (s.face == t.face) continue;
+      if (t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
+          t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())
+        continue;
+      const auto key = std::minmax(s.face, t.face);
+      if (found.count(key)) continue;
+      if (triangles_conflict(s, t)) {
+        found.insert(key);
+        if (found.size() >= options.max_pairs) break;
+      }
+    }
+  }
+  std::vector<FacePair> out;
+  for (auto [a, b] : found) out.push_back({a, b});
+  return out;
+}
+
+}  // namespace sculpt

@@ -1,0 +1,161 @@
+#include "mesh/triangulate.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "base/errors.hpp"
+#include "mesh/predicates.hpp"
+
+namespace sculpt {
+namespace {
+
+using mesh_predicates::orient2d;
+
+/// Ear clipping on a doubly linked ring of polygon corners projected to 2D, counter-clockwise.
+class EarClipper {
+ public:
+  EarClipper(std::vector<Eigen::Vector2d> points, std::span<const int> ids)
+      : p_(std::move(points)), ids_(ids.begin(), ids.end()), next_(p_.size()), prev_(p_.size()) {
+    const int n = static_cast<int>(p_.size());
+    for (int i = 0; i < n; ++i) {
+      next_[i] = (i + 1) % n;
+      prev_[i] = (i + n - 1) % n;
+    }
+    remaining_ = n;
+  }
+
+  std::vector<IndexTriangle> run() {
+    std::vector<IndexTriangle> out;
+    int cur = 0;
+    while (remaining_ > 3) {
+      int tried = 0;
+      while (tried < remaining_ && !is_ear(cur)) {
+        cur = next_[cur];
+        ++tried;
+      }
+      if (tried < remaining_) {
+        cur = clip(cur, out);
+        continue;
+      }
+      // No ear: the rest is degenerate (zero area, spikes) or not simple.
+      if (!drop_spike() && !clip_any_convex(out)) return out;  // zero-area remainder: dropped
+      cur = start_;
+    }
+    const int a = prev_[cur], b = cur, c = next_[cur];
+    if (orient2d(p_[a], p_[b], p_[c]) != 0) out.push_back({ids_[a], ids_[b], ids_[c]});
+    return out;
+  }
+
+ private:
+  bool same_point(int i, int j) const { return p_[i] == p_[j]; }
+
+  /// Strictly convex corner whose closed triangle holds no other remaining corner
+  /// (corners at the same position as one of its three corners excepted).
+  bool is_ear(int b) const {
+    const int a = prev_[b], c = next_[b];
+    if (orient2d(p_[a], p_[b], p_[c]) <= 0) return false;
+    for (int q = next_[c]; q != a; q = next_[q]) {
+      if (same_point(q, a) || same_point(q, b) || same_point(q, c)) continue;
+      if (orient2d(p_[a], p_[b], p_[q]) >= 0 && orient2d(p_[b], p_[c], p_[q]) >= 0 &&
+          orient2d(p_[c], p_[a], p_[q]) >= 0)
+        return false;
+    }
+    return true;
+  }
+
+  int clip(int b, std::vector<IndexTriangle>& out) {
+    const int a = prev_[b], c = next_[b];
+    out.push_back({ids_[a], ids_[b], ids_[c]});
+    return unlink(b);
+  }
+
+  int unlink(int b) {
+    const int a = prev_[b], c = next_[b];
+    next_[a] = c;
+    prev_[c] = a;
+    --remaining_;
+    start_ = a;
+    return a;
+  }
+
+  /// Removes one corner where the boundary turns back on itself (zero area, not on a straight run).
+  bool drop_spike() {
+    int b = start_;
+    for (int k = 0; k < remaining_; ++k, b = next_[b]) {
+      const int a = prev_[b], c = next_[b];
+      if (orient2d(p_[a], p_[b], p_[c]) != 0) continue;
+      const Eigen::Vector2d u = p_[b] - p_[a], v = p_[c] - p_[b];
+      if (u.dot(v) <= 0) {  // reversal (sign of the dot product suffices for collinear vectors)
+        unlink(b);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Last resort for non-simple polygons: clip the first strictly convex corner.
+  bool clip_any_convex(std::vector<IndexTriangle>& out) {
+    int b = start_;
+    for (int k = 0; k < remaining_; ++k, b = next_[b]) {
+      if (orient2d(p_[prev_[b]], p_[b], p_[next_[b]]) > 0) {
+        clip(b, out);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  std::vector<Eigen::Vector2d> p_;
+  std::vector<int> ids_;
+  std::vector<int> next_, prev_;
+  int remaining_ = 0;
+  int start_ = 0;
+};
+
+}  // namespace
+
+std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
+                                          std::span<const int> face) {
+  if (face.size() < 3)
+    throw InvalidInput("triangulate_polygon: a face needs at least 3 vertices, got " +
+                       std::to_string(face.size()));
+  for (int id : face)
+    if (id < 0 || static_cast<size_t>(id) >= vertices.size())
+      throw InvalidInput("triangulate_polygon: vertex index " + std::to_string(id) +
+                         " out of range (mesh has " + std::to_string(vertices.size()) +
+                         " vertices)");
+  if (face.size() == 3) {
+    return {{face[0], face[1], face[2]}};
+  }
+  // Newell normal, relative to the first corner for accuracy.
+  const Eigen::Vector3d origin = vertices[face[0]];
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < face.size(); ++i) {
+    const Eigen::Vector3d a = vertices[face[i]] - origin;
+    const Eigen::Vector3d b = vertices[face[(i + 1) % face.size()]] - origin;
+    normal += a.cross(b);
+  }
+  int axis = 0;
+  normal.cwiseAbs().maxCoeff(&axis);
+  if (normal[axis] == 0) return {};  // zero area: nothing to cover
+  // Project on the two other axes in cyclic order (keeps handedness); mirror if the
+  // polygon runs clockwise there, so that the ring is counter-clockwise.
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const double mirror = normal[axis] > 0 ? 1.0 : -1.0;
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(face.size());
+  for (int id : face) points.emplace_back(mirror * vertices[id][u], vertices[id][v]);
+  return EarClipper(std::move(points), face).run();
+}
+
+PolygonMesh triangulate(const PolygonMesh& mesh) {
+  PolygonMesh out;
+  out.vertices = mesh.vertices;
+  out.faces.reserve(mesh.faces.size());
+  for (const auto& face : mesh.faces)
+    for (const IndexTriangle& t : triangulate_polygon(mesh.vertices, face))
+      out.faces.push_back({t[0], t[1], t[2]});
+  return out;
+}
+
+}  // namespace sculpt
