@@ -1,0 +1,46 @@
+#pragma once
+/// \file optimal_linearization.hpp
+/// Exact solvers for both problems of sec. 2 (Pavlidis & Horowitz), far faster than DYNAMIC.
+///
+/// Feasibility at a tolerance eps is a shortest-path question in the DAG whose edges are the
+/// chords (i, j) with segment error <= eps. Segment errors are not monotone in j, so no greedy
+/// "reach as far as possible" works; instead the DAG is relaxed in index order and an edge is
+/// tested only when it could improve its end vertex (BFS layers with pruning). Two facts keep
+/// the edge set small and the tests cheap:
+///  - cone pruning: a line through p_i is within eps of p_k only inside a double cone of
+///    half-angle asin(eps / |p_k - p_i|) around p_k - p_i; once two such cones are disjoint no
+///    chord from p_i beyond both points can be feasible, which bounds the reach of i;
+///  - SegmentErrorTree answers "error(i, j) <= eps" exactly in about O(log n).
+/// The min-error problem for exactly m segments: the optimum is one of the segment errors, and
+/// feasibility is monotone in eps, so eps is bisected over the doubles (a feasible probe lowers
+/// the upper bound to the error actually reached) until no double lies between the bounds.
+/// "Exactly m" is decided exactly: min-# <= m, then a certificate by splitting segments, and if
+/// that fails a bitset DP over achievable segment counts.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "curves/linearization.hpp"
+
+namespace sculpt::curves {
+
+struct OptimalOptions {
+  /// Allowed break points (sorted indices into points, containing 0 and points.size() - 1);
+  /// empty = all. The result is optimal among approximations using only these.
+  std::vector<int> vertices;
+  /// A known feasible approximation with exactly m segments using allowed vertices (its error
+  /// bounds the search); empty = the solver builds one.
+  std::vector<int> start;
+};
+
+/// Exact min-error approximation with exactly m segments (Problem 1).
+/// .iterations = feasibility probes. \pre 1 <= m <= allowed vertex count - 1.
+[[nodiscard]] Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int m, Norm norm,
+                                              const OptimalOptions& options = {});
+
+/// Exact fewest segments with every segment error <= tolerance (the first problem of sec. 2).
+/// Always solvable: chords of neighbouring points have error 0.
+[[nodiscard]] Linearization optimal_min_count(const std::vector<Eigen::Vector3d>& points, double tolerance,
+                                              Norm norm);
+
+}  // namespace sculpt::curves

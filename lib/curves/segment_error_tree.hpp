@@ -1,0 +1,46 @@
+#pragma once
+/// \file segment_error_tree.hpp
+/// Fast exact segment-error queries for the optimal solvers: a binary tree of bounding spheres
+/// over the point sequence. Distance to a line is 1-Lipschitz, so a sphere (c, r) bounds all its
+/// points' distances to [d(c) - r, d(c) + r]; only spheres straddling the threshold are opened.
+/// Leaves are measured with ChordDistance, so every answer equals the brute-force
+/// segment_error() bit for bit (internal bounds carry a safety slack, they never decide a
+/// borderline point). Under Norm::L2 the queries fall back to exact brute-force sums.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "curves/segment_error.hpp"
+
+namespace sculpt::curves {
+
+class SegmentErrorTree {
+ public:
+  SegmentErrorTree(const std::vector<Eigen::Vector3d>& points, Norm norm);
+
+  /// True iff segment_error(points, i, j, norm) <= eps. `hint` is an index to try first
+  /// (e.g. the violator found for a neighbouring chord); on false, *violator (if given) gets an
+  /// index whose distance exceeds eps (L-inf), or -1.
+  [[nodiscard]] bool within(int i, int j, double eps, int hint = -1, int* violator = nullptr) const;
+
+  /// segment_error(points, i, j, norm), exactly.
+  [[nodiscard]] double error(int i, int j) const;
+
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& points() const { return points_; }
+  [[nodiscard]] Norm norm() const { return norm_; }
+  [[nodiscard]] int size() const { return static_cast<int>(points_.size()); }
+
+ private:
+  struct Node {
+    Eigen::Vector3d center;
+    double radius;
+    int begin, end;     // point range [begin, end)
+    int left, right;    // child nodes, -1 for a leaf
+  };
+  static constexpr int kLeafSize = 8;
+  const std::vector<Eigen::Vector3d>& points_;
+  Norm norm_;
+  std::vector<Node> nodes_;  // nodes_[0] is the root
+};
+
+}  // namespace sculpt::curves
