@@ -12,14 +12,12 @@
 #include <Eigen/Core>
 
 #include "bsp/path_polygon.hpp"
+#include "bsp/solid.hpp"
 
 namespace sculpt {
 
-/// Child references of tree nodes: an index into `nodes`, or one of the two leaf kinds.
-inline constexpr int kInLeaf = -1;
-inline constexpr int kOutLeaf = -2;
-
-/// A 2D BSP tree of lines through path vertices. Line of node k: the directed line from
+/// A 2D BSP tree of lines through path vertices; children are node indices or the leaves
+/// kIn / kOut of solid.hpp. Line of node k: the directed line from
 /// vertex `from` to vertex `to`; its right side (outward for an edge of the counter-clockwise
 /// path) is the positive side, child `outside`; the left side is child `inside`.
 struct PathTree {
@@ -30,9 +28,9 @@ struct PathTree {
     int inside, outside;
   };
   std::vector<Node> nodes;
-  int root = kOutLeaf;
+  int root = kOut;
 
-  /// kInLeaf or kOutLeaf for a point (a point on a line goes inside); walk without recursion.
+  /// kIn or kOut for a point (a point on a line goes inside); walk without recursion.
   [[nodiscard]] int classify(const ConvexPath& path, const Eigen::Vector2d& q) const;
   [[nodiscard]] int height() const;  ///< partitioning nodes on the longest root-to-leaf path
 };

@@ -19,16 +19,18 @@ namespace sculpt {
 
 /// A BSP tree of planes. Node plane (a, b, c, d), (a, b, c) a unit vector: a x + b y + c z + d > 0 is
 /// the positive side (child `above`; outside the solid for a face plane, higher z for a horizontal
-/// one). Children are node indices or kInLeaf / kOutLeaf (path_tree.hpp).
+/// one). Children are node indices or kIn / kOut (path_tree.hpp).
 struct PlaneTree {
   struct Node {
     Eigen::Vector4d plane;
     int below, above;
+    int slab;      ///< -1: the horizontal plane through level `from` (revolve_levels)
+    int from, to;  ///< else the path line from vertex `from` to `to`, lifted into slab `slab`
   };
   std::vector<Node> nodes;
-  int root = kOutLeaf;
+  int root = kOut;
 
-  /// kInLeaf or kOutLeaf (a point on a plane goes below). Walks without recursion.
+  /// kIn or kOut (a point on a plane goes below). Walks without recursion.
   [[nodiscard]] int classify(const Eigen::Vector3d& p) const;
   [[nodiscard]] int height() const;  ///< partitioning nodes on the longest root-to-leaf path
   [[nodiscard]] int leaves() const { return static_cast<int>(nodes.size()) + 1; }
@@ -48,8 +50,10 @@ std::vector<Eigen::Vector2d> monotone_profile(const std::vector<Eigen::Vector2d>
 struct RevolveSlab {
   double z0, z1, r0, r1;
 };
-/// The slabs of a (valid) profile, bottom to top, and the distinct z levels of its vertices.
+/// The slabs of a (valid) profile, bottom to top.
 std::vector<RevolveSlab> revolve_slabs(const std::vector<Eigen::Vector2d>& profile);
+/// The distinct z levels of a (valid) profile's vertices, increasing: slab k lies between levels k and k + 1.
+std::vector<double> revolve_levels(const std::vector<Eigen::Vector2d>& profile);
 
 /// The plane of the path line from vertex `from` to vertex `to`, lifted into a slab (positive side:
 /// the line's right, i.e. outside for a counter-clockwise edge), normalized.

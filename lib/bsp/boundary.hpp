@@ -1,0 +1,32 @@
+#pragma once
+/// \file boundary.hpp
+/// Boundary extraction (Naylor et al. 1990 sec. 5; Thibault & Naylor 1987): each node's
+/// sub-hyperplane is pushed down both subtrees; the fragments with an in-cell on one side and an
+/// out-cell on the other are the faces, oriented with the normal towards the out-cell. Vertices
+/// are exact plane triples, merged by exact equality; vertices lying on other faces' edges are
+/// inserted into those edges (no T-junctions). Where the solid touches itself along an edge or at
+/// a vertex, the vertex is duplicated once per sheet so each sheet is a 2-manifold (as Manifold).
+
+#include <Eigen/Geometry>
+
+#include "bsp/solid.hpp"
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt {
+
+struct MeshOptions {
+  bool triangulate = false;  ///< fan-triangulate the convex faces (no zero-area triangles)
+};
+
+/// Closed, consistently oriented (counter-clockwise from outside) mesh of the solid's boundary,
+/// in world units. The empty solid gives an empty mesh.
+PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options = {});
+
+/// Volume (world units^3) from the boundary faces (divergence theorem on exact vertices).
+double volume(const Solid& solid);
+/// Surface area (world units^2).
+double surface_area(const Solid& solid);
+/// Bounding box of the boundary vertices (empty box for the empty solid).
+Eigen::AlignedBox3d bounding_box(const Solid& solid);
+
+}  // namespace sculpt

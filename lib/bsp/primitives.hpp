@@ -1,0 +1,44 @@
+#pragma once
+/// \file primitives.hpp
+/// Primitive solids built directly as nearly balanced BSP trees (Ihm & Naylor 1990 sec. 6):
+/// horizontal planes through the rings first (a balanced tree over the rings), then, in each
+/// band, planes through the axis (a balanced tree over the sectors), then the face planes.
+/// Curved primitives are exact polyhedra whose faces are planar quadrilaterals between rings
+/// (ring polygons of one solid have parallel edges, so every face plane is exact).
+/// All sizes in world units; coordinates are snapped to the grid (docs/kernel.md).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "bsp/solid.hpp"
+
+namespace sculpt {
+
+/// Axis-aligned box [min, max]. \throw InvalidInput if min >= max in some axis (after snapping).
+Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max);
+
+/// Half-space n.x + offset <= 0 in world units.
+struct HalfSpace {
+  Eigen::Vector3d normal;
+  double offset = 0;
+};
+/// The convex polytope ∩ half-spaces; redundant half-spaces are dropped. \throw InvalidInput if
+/// the intersection is unbounded (it is clipped by the world box otherwise) — empty gives Solid().
+Solid convex_polytope(const std::vector<HalfSpace>& half_spaces);
+
+/// Right prism over a convex polygon (x, y, counter-clockwise) from z0 to z1.
+Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1);
+
+struct CircularOptions {
+  int segments = 32;     ///< edges around the equator / rim (like manifold-3d circularSegments), >= 3
+  bool center = false;   ///< cylinder/cone: centre the height on z = 0 instead of z in [0, h]
+};
+/// Cylinder of radius r around the z axis, z in [0, h]; the polygon has its vertices on the circle.
+Solid cylinder(double radius, double height, const CircularOptions& options = {});
+/// Cone (frustum if top_radius > 0) around the z axis, base radius r at z = 0, apex at z = h.
+Solid cone(double radius, double height, const CircularOptions& options = {}, double top_radius = 0);
+/// Sphere of radius r centred at the origin: segments edges around the equator,
+/// (segments + 1) / 2 rings like OpenSCAD, flat polar caps; vertices on the sphere.
+Solid sphere(double radius, const CircularOptions& options = {});
+
+}  // namespace sculpt

@@ -1,0 +1,26 @@
+#pragma once
+/// \file set_operations.hpp
+/// Regularized set operations by merging BSP trees (Naylor, Amanatides & Thibault 1990):
+/// the smaller tree is partitioned by the planes of the larger one, leaves are combined by the
+/// operation, and subtrees that become a single leaf are collapsed. All decisions are exact.
+
+#include <utility>
+
+#include "bsp/solid.hpp"
+
+namespace sculpt {
+
+Solid unite(const Solid& a, const Solid& b);      ///< a ∪ b
+Solid intersect(const Solid& a, const Solid& b);  ///< a ∩ b
+Solid subtract(const Solid& a, const Solid& b);   ///< a − b
+Solid complement(const Solid& a);                 ///< space − a (unbounded)
+
+inline Solid operator|(const Solid& a, const Solid& b) { return unite(a, b); }
+inline Solid operator&(const Solid& a, const Solid& b) { return intersect(a, b); }
+inline Solid operator-(const Solid& a, const Solid& b) { return subtract(a, b); }
+
+/// The parts of a solid on the negative (f < 0) and positive side of a plane (grid units),
+/// as two solids (Naylor et al. 1990 sec. 3, "partitioning a tree by a plane").
+std::pair<Solid, Solid> partition(const Solid& solid, const kernel::Plane& plane);
+
+}  // namespace sculpt

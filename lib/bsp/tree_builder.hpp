@@ -1,0 +1,37 @@
+#pragma once
+/// \file tree_builder.hpp
+/// Public API to build BSP trees directly (primitives, solids of revolution of Ihm & Naylor
+/// 1990 sec. 6). Add planes, combine them bottom-up into nodes whose children are nodes or
+/// the leaves kIn / kOut, then build(): the builder computes every node's sub-hyperplane
+/// top-down (explicit stack) and removes nodes whose plane does not cut their cell (their one
+/// non-empty side replaces them), so any tree of planes yields a valid solid.
+///
+///   TreeBuilder b;
+///   auto top = b.add_plane(kernel::make_plane(0, 0, 1, -z1));      // z <= z1 inside
+///   TreeRef t = b.add_node(top, kIn, kOut);
+///   Solid s = std::move(b).build(t);
+
+#include "bsp/solid.hpp"
+
+namespace sculpt {
+
+class TreeBuilder {
+ public:
+  TreeBuilder();
+  /// Adds a plane (grid units) and returns its index for add_node.
+  std::int32_t add_plane(const kernel::Plane& plane);
+  /// A node splitting by plane `plane`: `negative` on the side f < 0, `positive` on f > 0.
+  TreeRef add_node(std::int32_t plane, TreeRef negative, TreeRef positive);
+  /// A balanced tree for the convex polytope ∩ (f_i <= 0) of the given planes, as a chain in
+  /// the given order (callers balance by splitting first with non-face planes).
+  TreeRef add_convex_chain(const std::vector<std::int32_t>& face_planes, TreeRef inside = kIn,
+                           TreeRef outside = kOut);
+  /// Finishes the tree rooted at `root` (see file comment). The builder is consumed.
+  Solid build(TreeRef root) &&;
+
+ private:
+  kernel::PlaneTable planes_;
+  std::vector<BspNode> nodes_;
+};
+
+}  // namespace sculpt

@@ -1,0 +1,106 @@
+#include "kernel/convex_polygon.hpp"
+
+#include <cstdlib>
+
+namespace sculpt::kernel {
+
+PlaneTable::PlaneTable() {
+  const Int128 k = kWorld;
+  planes_ = {{1, 0, 0, -k}, {-1, 0, 0, -k}, {0, 1, 0, -k}, {0, -1, 0, -k}, {0, 0, 1, -k}, {0, 0, -1, -k}};
+}
+
+std::int32_t PlaneTable::add(const Plane& p) {
+  planes_.push_back(p);
+  return std::int32_t(planes_.size() - 1);
+}
+
+ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support) {
+  const Plane& s = planes[support];
+  const std::int64_t n[3] = {std::abs(s.a), std::abs(s.b), std::abs(s.c)};
+  const int k = n[0] >= n[1] && n[0] >= n[2] ? 0 : (n[1] >= n[2] ? 1 : 2);
+  const int u = (k + 1) % 3, v = (k + 2) % 3;  // (u, v, k) right-handed
+  const bool up = (k == 0 ? s.a : (k == 1 ? s.b : s.c)) > 0;
+  // Square in (u, v): edges +u, +v, -u, -v, counter-clockwise about +k.
+  std::int32_t edges[4] = {2 * u, 2 * v, 2 * u + 1, 2 * v + 1};
+  if (!up) std::swap(edges[1], edges[3]);  // reversed cycle: +u, -v, -u, +v
+  ConvexPolygon poly;
+  poly.support = support;
+  for (int i = 0; i < 4; ++i) {
+    const std::int32_t prev = edges[(i + 3) % 4], edge = edges[i];
+    poly.corners.push_back({edge, prev, edge, approximate_vertex(s, planes[prev], planes[edge])});
+  }
+  return poly;
+}
+
+namespace {
+
+template <typename F>
+void signs_of(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane, F&& f) {
+  const Plane& s = planes[poly.support];
+  const Plane& cut = planes[plane];
+  for (const Corner& c : poly.corners) f(orient(s, planes[c.p], planes[c.q], c.at, cut));
+}
+
+}  // namespace
+
+Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane) {
+  bool neg = false, pos = false;
+  signs_of(planes, poly, plane, [&](Sign g) {
+    neg |= g == Sign::Negative;
+    pos |= g == Sign::Positive;
+  });
+  return neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
+}
+
+PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
+                   std::int32_t cut_opposite) {
+  PolygonSplit out;
+  const std::size_t k = poly.corners.size();
+  boost::container::small_vector<Sign, 8> s;
+  bool neg = false, pos = false;
+  signs_of(planes, poly, cut, [&](Sign g) {
+    s.push_back(g);
+    neg |= g == Sign::Negative;
+    pos |= g == Sign::Positive;
+  });
+  out.side = neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
+  if (out.side == Side::Negative) out.negative = poly;
+  if (out.side == Side::Positive) out.positive = poly;
+  if (out.side != Side::Both) return out;
+
+  out.negative.support = out.positive.support = poly.support;
+  const Plane& support = planes[poly.support];
+  for (std::size_t i = 0; i < k; ++i) {
+    const Corner& c = poly.corners[i];
+    const Sign si = s[i], sj = s[(i + 1) % k];
+    if (si != Sign::Positive)  // corner kept in the negative part
+      out.negative.corners.push_back(si == Sign::Zero && sj == Sign::Positive
+                                         ? Corner{cut, c.p, c.q, c.at}
+                                         : c);
+    if (si != Sign::Negative)
+      out.positive.corners.push_back(si == Sign::Zero && sj == Sign::Negative
+                                         ? Corner{cut_opposite, c.p, c.q, c.at}
+                                         : c);
+    const bool crosses = (si == Sign::Negative && sj == Sign::Positive) ||
+                         (si == Sign::Positive && sj == Sign::Negative);
+    if (!crosses) continue;
+    const ApproxPoint at = approximate_vertex(support, planes[c.edge], planes[cut]);
+    if (si == Sign::Negative) {
+      out.negative.corners.push_back({cut, c.edge, cut, at});
+      out.positive.corners.push_back({c.edge, c.edge, cut, at});
+    } else {
+      out.positive.corners.push_back({cut_opposite, c.edge, cut, at});
+      out.negative.corners.push_back({c.edge, c.edge, cut, at});
+    }
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3d> approximate_corners(const ConvexPolygon& poly) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(poly.corners.size());
+  for (const Corner& c : poly.corners) out.emplace_back(c.at.x, c.at.y, c.at.z);
+  return out;
+}
+
+}  // namespace sculpt::kernel

@@ -1,0 +1,71 @@
+#pragma once
+/// \file convex_polygon.hpp
+/// Plane-based convex polygons (Bernstein & Fussell 2009, sec. 3; Naylor et al. 1990 "sub-
+/// hyperplanes"): a support plane and a cycle of edge planes, no coordinates. Splitting by a
+/// plane creates no new numbers, only new plane triples, so it is exact and never cracks.
+/// Planes are referred to by index into a PlaneTable shared by all polygons of one tree.
+
+#include <boost/container/small_vector.hpp>
+#include <cstdint>
+#include <vector>
+
+#include "kernel/predicates.hpp"
+
+namespace sculpt::kernel {
+
+/// Planes of one tree (or one operation); indices are stable. Indices 0..5 are the world box.
+class PlaneTable {
+ public:
+  PlaneTable();
+  [[nodiscard]] const Plane& operator[](std::int32_t i) const { return planes_[std::size_t(i)]; }
+  [[nodiscard]] std::int32_t size() const { return std::int32_t(planes_.size()); }
+  std::int32_t add(const Plane& p);
+  [[nodiscard]] const std::vector<Plane>& planes() const { return planes_; }
+  void reserve(std::size_t n) { planes_.reserve(n); }
+
+  /// Half-size of the world box in grid units: 4 * kMaxCoord.
+  static constexpr std::int64_t kWorld = 4 * kMaxCoord;
+
+ private:
+  std::vector<Plane> planes_;
+};
+
+/// Corner i of a polygon: the vertex support ∩ p ∩ q (approximated by `at`) and the edge from
+/// this corner to the next one, which lies on plane `edge` (the polygon is on its negative side).
+struct Corner {
+  std::int32_t edge;
+  std::int32_t p, q;
+  ApproxPoint at;
+};
+
+/// A convex polygon on plane `support`, corners counter-clockwise seen from the support's
+/// positive side. An empty corner list is the empty polygon.
+struct ConvexPolygon {
+  std::int32_t support = -1;
+  boost::container::small_vector<Corner, 5> corners;
+  [[nodiscard]] bool empty() const { return corners.empty(); }
+};
+
+/// The polygon support ∩ world box (a quadrilateral whose edges are world-box planes).
+ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support);
+
+/// Where a polygon lies with respect to a plane.
+enum class Side : std::int8_t { Negative, Positive, Both, On };
+/// Classification only (no new polygons).
+Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane);
+
+/// The two parts of a polygon cut by a plane; `side` tells which are non-empty (Both: both;
+/// Negative/Positive: only that part, equal to the input; On: coplanar, both parts empty).
+struct PolygonSplit {
+  Side side;
+  ConvexPolygon negative, positive;
+};
+/// Splits `poly` by plane `cut`; `cut_opposite` is the index of the opposite plane (used as
+/// the new edge of the positive part).
+PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
+                   std::int32_t cut_opposite);
+
+/// Approximate vertex positions (grid units) of a polygon, for output and measures.
+std::vector<Eigen::Vector3d> approximate_corners(const ConvexPolygon& poly);
+
+}  // namespace sculpt::kernel

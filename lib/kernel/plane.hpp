@@ -1,0 +1,41 @@
+#pragma once
+/// \file plane.hpp
+/// Planes with bounded-bit integer coefficients (Bernstein & Fussell 2009, sec. 3).
+/// f(p) = a x + b y + c z + d with p in grid units; f > 0 is the positive side. A solid's face
+/// plane has the solid on its negative side (the normal (a, b, c) points outwards).
+/// Planes are kept normalized (gcd of the coefficients is 1), so equal planes compare equal.
+
+#include <Eigen/Core>
+
+#include "kernel/exact_int.hpp"
+#include "kernel/grid.hpp"
+
+namespace sculpt::kernel {
+
+struct Plane {
+  std::int64_t a = 0, b = 0, c = 0;  ///< |a|, |b|, |c| <= 2^kNormalBits, not all zero
+  Int128 d = 0;                      ///< |d| <= 2^kOffsetBits
+
+  friend bool operator==(const Plane&, const Plane&) = default;
+  [[nodiscard]] Plane opposite() const { return {-a, -b, -c, -d}; }
+  /// Exact value of f at a grid point (fits Int128 by the bit budget).
+  [[nodiscard]] Int128 eval(const GridPoint& p) const {
+    return Int128(a) * p.x + Int128(b) * p.y + Int128(c) * p.z + d;
+  }
+  [[nodiscard]] Eigen::Vector3d normal() const { return {double(a), double(b), double(c)}; }
+};
+
+/// A plane from integer coefficients, divided by their gcd. \throw RangeError if a coefficient
+/// exceeds the bit budget (or the normal is zero: InvalidInput).
+Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d);
+/// The plane through three grid points, positive side where (p1-p0) x (p2-p0) points
+/// (counter-clockwise seen from the positive side). \throw InvalidInput if they are collinear.
+Plane plane_through(const GridPoint& p0, const GridPoint& p1, const GridPoint& p2);
+/// The nearest representable plane n.x + offset = 0 (world units), with the normal scaled
+/// to kNormalBits - 1 bits before rounding. Used after rotations and for analytic planes;
+/// moves the plane by at most about 2^-50 of the range. \throw RangeError if out of range.
+Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world);
+/// True if p and q are the same plane with the same or with opposite orientation.
+inline bool same_or_opposite(const Plane& p, const Plane& q) { return p == q || p == q.opposite(); }
+
+}  // namespace sculpt::kernel

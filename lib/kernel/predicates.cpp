@@ -1,0 +1,140 @@
+#include "kernel/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sculpt::kernel {
+namespace {
+
+constexpr double kEps = 1.1102230246251565e-16;  // 2^-53, unit roundoff
+
+struct Cross {
+  double x, y, z;
+  double max;  // largest |component| of the computed value
+  double err;  // bound on the error of each component
+};
+
+// Cross product of two normals in double; components are exact integers < 2^107, the
+// computed value has two product roundings and one subtraction rounding.
+Cross cross(const Plane& p, const Plane& q) {
+  const double pa = double(p.a), pb = double(p.b), pc = double(p.c);
+  const double qa = double(q.a), qb = double(q.b), qc = double(q.c);
+  Cross r;
+  r.x = pb * qc - pc * qb;
+  r.y = pc * qa - pa * qc;
+  r.z = pa * qb - pb * qa;
+  r.max = std::max({std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)});
+  const double np = std::max({std::fabs(pa), std::fabs(pb), std::fabs(pc)});
+  const double nq = std::max({std::fabs(qa), std::fabs(qb), std::fabs(qc)});
+  r.err = 4.0 * kEps * 2.0 * np * nq;  // 2 eps (|t1| + |t2|) with |t1|+|t2| <= 2 np nq, doubled
+  return r;
+}
+
+Int128 i128(std::int64_t v) { return Int128(v); }
+
+struct ExactCross {
+  Int128 x, y, z;
+};
+ExactCross exact_cross(const Plane& p, const Plane& q) {
+  return {i128(p.b) * q.c - i128(p.c) * q.b, i128(p.c) * q.a - i128(p.a) * q.c,
+          i128(p.a) * q.b - i128(p.b) * q.a};
+}
+
+Int256 big(Int128 v) {
+  // Boost builds from 64-bit halves portably.
+  const bool neg = v < 0;
+  __extension__ typedef unsigned __int128 U;
+  U m = neg ? U(-v) : U(v);
+  Int256 r = Int256(std::uint64_t(m >> 64));
+  r <<= 64;
+  r += Int256(std::uint64_t(m));
+  return neg ? Int256(-r) : r;
+}
+
+bool trivially_on(const Plane& p, const Plane& q, const Plane& r, const Plane& s) {
+  return same_or_opposite(s, p) || same_or_opposite(s, q) || same_or_opposite(s, r);
+}
+
+}  // namespace
+
+PredicateCounters& predicate_counters() {
+  thread_local PredicateCounters counters;
+  return counters;
+}
+
+ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r) {
+  // x = -(d_p (n_q x n_r) + d_q (n_r x n_p) + d_r (n_p x n_q)) / (n_p . (n_q x n_r))
+  const Cross u = cross(q, r), v = cross(r, p), w = cross(p, q);
+  const double pa = double(p.a), pb = double(p.b), pc = double(p.c);
+  const double W = pa * u.x + pb * u.y + pc * u.z;
+  const double np = std::max({std::fabs(pa), std::fabs(pb), std::fabs(pc)});
+  const double eW = 3.0 * np * u.err + 4.0 * kEps * 3.0 * np * u.max;
+  const double dp = double(p.d), dq = double(q.d), dr = double(r.d);
+  const double vx = dp * u.x + dq * v.x + dr * w.x;
+  const double vy = dp * u.y + dq * v.y + dr * w.y;
+  const double vz = dp * u.z + dq * v.z + dr * w.z;
+  const double adp = std::fabs(dp), adq = std::fabs(dq), adr = std::fabs(dr);
+  const double eV = (1.0 + 4.0 * kEps) * (adp * u.err + adq * v.err + adr * w.err) +
+                    6.0 * kEps * (adp * u.max + adq * v.max + adr * w.max);
+  ApproxPoint a;
+  const double aW = std::fabs(W);
+  if (!(aW > 2.0 * eW)) return a;  // err = -1: nearly dependent planes
+  a.x = -vx / W;
+  a.y = -vy / W;
+  a.z = -vz / W;
+  const double m = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
+  a.err = 1.01 * ((eV + m * eW) / (aW - eW) + 2.0 * kEps * m);
+  return a;
+}
+
+bool independent(const Plane& p, const Plane& q, const Plane& r) {
+  const ExactCross u = exact_cross(q, r);
+  return big(u.x) * p.a + big(u.y) * p.b + big(u.z) * p.c != 0;
+}
+
+HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r) {
+  const ExactCross u = exact_cross(q, r), v = exact_cross(r, p), w = exact_cross(p, q);
+  HomogeneousPoint h;
+  h.w = big(u.x) * p.a + big(u.y) * p.b + big(u.z) * p.c;
+  const Int256 dp = big(p.d), dq = big(q.d), dr = big(r.d);
+  h.x = -(dp * big(u.x) + dq * big(v.x) + dr * big(w.x));
+  h.y = -(dp * big(u.y) + dq * big(v.y) + dr * big(w.y));
+  h.z = -(dp * big(u.z) + dq * big(v.z) + dr * big(w.z));
+  return h;
+}
+
+Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& at, const Plane& s) {
+  PredicateCounters& counters = predicate_counters();
+  if (trivially_on(p, q, r, s)) {
+    ++counters.trivial;
+    return Sign::Zero;
+  }
+  if (at.err >= 0) {
+    const double sa = double(s.a), sb = double(s.b), sc = double(s.c), sd = double(s.d);
+    const double t1 = sa * at.x, t2 = sb * at.y, t3 = sc * at.z;
+    const double value = t1 + t2 + t3 + sd;
+    const double bound =
+        1.001 * ((std::fabs(sa) + std::fabs(sb) + std::fabs(sc)) * at.err +
+                 6.0 * kEps * (std::fabs(t1) + std::fabs(t2) + std::fabs(t3) + std::fabs(sd)));
+    if (value > bound) {
+      ++counters.filtered;
+      return Sign::Positive;
+    }
+    if (value < -bound) {
+      ++counters.filtered;
+      return Sign::Negative;
+    }
+  }
+  ++counters.exact;
+  const HomogeneousPoint h = exact_vertex(p, q, r);
+  const Int256 t = h.x * s.a + h.y * s.b + h.z * s.c + h.w * big(s.d);
+  const int sign = t.sign() * h.w.sign();
+  return sign > 0 ? Sign::Positive : (sign < 0 ? Sign::Negative : Sign::Zero);
+}
+
+Sign orient(const GridPoint& point, const Plane& s) {
+  const Int128 v = s.eval(point);
+  return v > 0 ? Sign::Positive : (v < 0 ? Sign::Negative : Sign::Zero);
+}
+
+}  // namespace sculpt::kernel

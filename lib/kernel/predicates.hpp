@@ -1,0 +1,44 @@
+#pragma once
+/// \file predicates.hpp
+/// Exact predicates on implicit vertices (Bernstein & Fussell 2009, sec. 4): a vertex is the
+/// intersection of three planes and is never rounded; its side of a fourth plane is the sign
+/// of an integer determinant. A floating-point filter with a rigorous error bound decides
+/// almost every case; the exact Int256 evaluation runs only when the filter cannot.
+
+#include <cstdint>
+
+#include "kernel/plane.hpp"
+
+namespace sculpt::kernel {
+
+enum class Sign : std::int8_t { Negative = -1, Zero = 0, Positive = 1 };
+
+/// Floating-point approximation of a vertex with a bound on the error of each coordinate.
+/// err < 0 means "no usable approximation": every test on this vertex goes to the exact path.
+struct ApproxPoint {
+  double x = 0, y = 0, z = 0;
+  double err = -1;
+};
+
+/// Approximation of the vertex p ∩ q ∩ r (grid units). err < 0 if the planes are (nearly) dependent.
+ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r);
+/// True if the three planes meet in exactly one point (exact).
+bool independent(const Plane& p, const Plane& q, const Plane& r);
+/// Side of the vertex p ∩ q ∩ r with respect to plane s: sign of f_s at the vertex (exact).
+/// `approx` must be approximate_vertex(p, q, r). \pre independent(p, q, r).
+Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& approx, const Plane& s);
+/// Side of a grid point with respect to a plane (exact).
+Sign orient(const GridPoint& point, const Plane& s);
+/// Exact homogeneous coordinates (X, Y, Z, W) of p ∩ q ∩ r: the vertex is (X/W, Y/W, Z/W).
+struct HomogeneousPoint { Int256 x, y, z, w; };
+HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r);
+
+/// How often each path of the predicates ran in this thread (visible to tests, cork-style).
+struct PredicateCounters {
+  std::uint64_t filtered = 0;  ///< decided by the floating-point filter
+  std::uint64_t exact = 0;     ///< decided by the exact integer evaluation
+  std::uint64_t trivial = 0;   ///< s equal (or opposite) to one of p, q, r: zero without arithmetic
+};
+PredicateCounters& predicate_counters();
+
+}  // namespace sculpt::kernel
