@@ -37,17 +37,17 @@ class Builder {
       if (subs.size() == 2 && s == 1) {
         // A single edge here lies on the first chord, whose inside is then outside the path.
         if (count == 1)
-          set(slot, kOutLeaf);
+          set(slot, kOut);
         else
           cap(a, count, slot);
         break;
       }
       const int k = add({a, vertex(a + count), count == 1 ? PathTree::Kind::Face : PathTree::Kind::Chord,
-                         kInLeaf, kOutLeaf},
+                         kIn, kOut},
                         slot);
       if (count > 1) cap(a, count, {k, true});
       slot = {k, false};
-      if (s + 1 == subs.size()) set(slot, kInLeaf);
+      if (s + 1 == subs.size()) set(slot, kIn);
     }
     run();
     return std::move(tree_);
@@ -110,7 +110,7 @@ class Builder {
         // Few edges: their own lines, each with an out-cell outside; the last inside is in.
         Slot s = t.slot;
         for (int e = 0; e < t.count; ++e)
-          s = {add({vertex(t.first + e), vertex(t.first + e + 1), PathTree::Kind::Face, kInLeaf, kOutLeaf}, s),
+          s = {add({vertex(t.first + e), vertex(t.first + e + 1), PathTree::Kind::Face, kIn, kOut}, s),
                false};
         continue;
       }
@@ -118,13 +118,13 @@ class Builder {
       // the median edge's start, and from its end to the chain's last vertex; in-cell between.
       const int left = t.count / 2, right = t.count - left - 1;
       const int m0 = vertex(t.first + left), m1 = vertex(t.first + left + 1);
-      const int face = add({m0, m1, PathTree::Kind::Face, kInLeaf, kOutLeaf}, t.slot);
+      const int face = add({m0, m1, PathTree::Kind::Face, kIn, kOut}, t.slot);
       const int c0 = add({vertex(t.first), m0, left == 1 ? PathTree::Kind::Face : PathTree::Kind::Chord,
-                          kInLeaf, kOutLeaf},
+                          kIn, kOut},
                          {face, false});
       if (left > 1) cap(t.first, left, {c0, true});
       const int c1 = add({m1, vertex(t.first + t.count), right == 1 ? PathTree::Kind::Face : PathTree::Kind::Chord,
-                          kInLeaf, kOutLeaf},
+                          kIn, kOut},
                          {c0, false});
       if (right > 1) cap(m1, right, {c1, true});
     }

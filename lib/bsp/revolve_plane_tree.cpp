@@ -45,6 +45,13 @@ std::vector<RevolveSlab> revolve_slabs(const std::vector<Eigen::Vector2d>& profi
   return slabs;
 }
 
+std::vector<double> revolve_levels(const std::vector<Eigen::Vector2d>& profile) {
+  std::vector<double> levels;
+  for (const auto& s : revolve_slabs(profile)) levels.push_back(s.z0);
+  levels.push_back(profile.back().y());
+  return levels;
+}
+
 Eigen::Vector4d lifted_plane(const ConvexPath& path, int from, int to, const RevolveSlab& slab) {
   const Eigen::Vector2d& p = path.vertices[from];
   const Eigen::Vector2d& q = path.vertices[to];
@@ -64,9 +71,7 @@ PlaneTree revolve_plane_tree(const std::vector<Eigen::Vector2d>& profile_in, con
   PlaneTree tree;
   // Levels z_0 < ... < z_K (K = slabs); interval 0 is below z_0, interval k + 1 is slab k,
   // interval K + 1 above z_K. Balanced: each range of planes splits at its median.
-  std::vector<double> levels;
-  for (const auto& s : slabs) levels.push_back(s.z0);
-  levels.push_back(slabs.back().z1);
+  const std::vector<double> levels = revolve_levels(profile);
 
   struct Task {
     int lo, hi;       // planes lo..hi (may be empty: lo > hi), intervals lo..hi+1
@@ -83,11 +88,11 @@ PlaneTree revolve_plane_tree(const std::vector<Eigen::Vector2d>& profile_in, con
   };
   auto lift_slab = [&](int k) -> int {  // the subtree of slab k; returns its root reference
     const RevolveSlab& s = slabs[k];
-    if (s.r0 == 0.0 && s.r1 == 0.0) return kOutLeaf;
+    if (s.r0 == 0.0 && s.r1 == 0.0) return kOut;
     const int base = static_cast<int>(tree.nodes.size());
     auto map = [&](int child) { return child >= 0 ? child + base : child; };
     for (const auto& n : path_tree.nodes)
-      tree.nodes.push_back({lifted_plane(path, n.from, n.to, s), map(n.inside), map(n.outside)});
+      tree.nodes.push_back({lifted_plane(path, n.from, n.to, s), map(n.inside), map(n.outside), k, n.from, n.to});
     return map(path_tree.root);
   };
 
@@ -98,11 +103,11 @@ PlaneTree revolve_plane_tree(const std::vector<Eigen::Vector2d>& profile_in, con
     if (t.lo > t.hi) {
       const int interval = t.lo;  // a single interval remains
       const bool outside = interval == 0 || interval == static_cast<int>(levels.size());
-      attach(t, outside ? kOutLeaf : lift_slab(interval - 1));
+      attach(t, outside ? kOut : lift_slab(interval - 1));
       continue;
     }
     const int mid = (t.lo + t.hi) / 2;
-    tree.nodes.push_back({Eigen::Vector4d(0.0, 0.0, 1.0, -levels[mid]), kOutLeaf, kOutLeaf});
+    tree.nodes.push_back({Eigen::Vector4d(0.0, 0.0, 1.0, -levels[mid]), kOut, kOut, -1, mid, -1});
     const int k = static_cast<int>(tree.nodes.size()) - 1;
     attach(t, k);
     stack.push_back({t.lo, mid - 1, k, false});
