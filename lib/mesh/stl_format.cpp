@@ -6,6 +6,8 @@
 #include <cstring>
 #include <unordered_map>
 
+#include <Eigen/Geometry>
+
 #include "mesh/mesh_formats.hpp"
 #include "mesh/text_scanner.hpp"
 #include "mesh/triangulate.hpp"
@@ -39,8 +41,12 @@ class VertexMerger {
 };
 
 Eigen::Vector3d facet_normal(const PolygonMesh& m, const IndexTriangle& t) {
-  const Eigen::Vector3d n =
-      (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]);
+  // Edges scaled to unit size first, so that huge or tiny coordinates neither overflow nor underflow.
+  Eigen::Vector3d e1 = m.vertices[t[1]] - m.vertices[t[0]];
+  Eigen::Vector3d e2 = m.vertices[t[2]] - m.vertices[t[0]];
+  const double s1 = e1.cwiseAbs().maxCoeff(), s2 = e2.cwiseAbs().maxCoeff();
+  if (!(s1 > 0 && s2 > 0 && std::isfinite(s1) && std::isfinite(s2))) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d n = (e1 / s1).cross(e2 / s2);
   const double len = n.norm();
   return len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }

@@ -1,7 +1,10 @@
 #include "mesh/triangulate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+
+#include <Eigen/Geometry>
 
 #include "base/errors.hpp"
 #include "mesh/predicates.hpp"
@@ -127,12 +130,16 @@ std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d
   if (face.size() == 3) {
     return {{face[0], face[1], face[2]}};
   }
-  // Newell normal, relative to the first corner for accuracy.
+  // Newell normal, relative to the first corner and scaled to unit size (no overflow or
+  // underflow for huge or tiny coordinates).
   const Eigen::Vector3d origin = vertices[face[0]];
+  double scale = 0;
+  for (int id : face) scale = std::max(scale, (vertices[id] - origin).cwiseAbs().maxCoeff());
+  if (!(scale > 0) || !std::isfinite(scale)) scale = 1;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < face.size(); ++i) {
-    const Eigen::Vector3d a = vertices[face[i]] - origin;
-    const Eigen::Vector3d b = vertices[face[(i + 1) % face.size()]] - origin;
+    const Eigen::Vector3d a = (vertices[face[i]] - origin) / scale;
+    const Eigen::Vector3d b = (vertices[face[(i + 1) % face.size()]] - origin) / scale;
     normal += a.cross(b);
   }
   int axis = 0;
