@@ -1,18 +1,138 @@
 // The sculpt executable: runs .bsp scripts or an interactive session.
+//   sculpt FILE.bsp ...   sculpt -   sculpt -e 'code'   sculpt -D name=value   --help --version
+// Exit code 0 on success, 1 on a script error, 2 on a usage error.
+#include <unistd.h>
+
+#include <charconv>
 #include <cstring>
 #include <iostream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "base/errors.hpp"
+#include "interactive.hpp"
+#include "language/interpreter.hpp"
+
+namespace {
+
+using namespace sculpt;
+using namespace sculpt::language;
+
+constexpr const char* kUsage =
+    "usage: sculpt [options] [FILE.bsp ... | -]\n"
+    "Runs sculpt scripts in order, in one shared global scope; with no script and a terminal on\n"
+    "standard input, starts an interactive session (:help inside it).\n"
+    "  FILE.bsp        run a script file\n"
+    "  -               run the script read from standard input\n"
+    "  -e CODE         run CODE (may be repeated; runs in order with the files)\n"
+    "  -D NAME=VALUE   bind NAME before any script runs. VALUE is a number, true, false, a\n"
+    "                  sculpt list or string literal ([1, 2, 3], \"text\"); anything else is\n"
+    "                  bound as a string\n"
+    "  --help          show this help\n"
+    "  --version       show the version\n"
+    "Exit status: 0 on success, 1 on a script error, 2 on a usage error.\n";
+
+int usage_error(const std::string& message) {
+  std::cerr << "sculpt: " << message << "\n" << kUsage;
+  return 2;
+}
+
+struct Job {
+  enum Kind { File, Stdin, Code } kind;
+  std::string text;
+};
+
+SourcePtr code_source(std::string name, std::string text) {
+  auto source = std::make_shared<SourceFile>();
+  source->name = std::move(name);
+  source->text = std::move(text);
+  return source;
+}
+
+bool is_name(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  for (char c : s) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  }
+  return true;
+}
+
+/// The value of `-D name=value` (see kUsage).
+Value definition_value(Interpreter& interpreter, const std::string& text) {
+  double number = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
+  if (ec == std::errc() && end == text.data() + text.size() && !text.empty()) return number;
+  if (text == "true") return true;
+  if (text == "false") return false;
+  if (!text.empty() && (text[0] == '[' || text[0] == '"')) {
+    auto value = interpreter.run(code_source("<-D>", text));
+    return value ? *value : Value();
+  }
+  return text;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
+  std::vector<Job> jobs;
+  std::vector<std::pair<std::string, std::string>> definitions;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--version") == 0) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (arg == "--version") {
       std::cout << "sculpt " << SCULPT_VERSION << "\n";
       return 0;
     }
-    if (std::strcmp(argv[i], "--help") == 0) {
-      std::cout << "usage: sculpt [--help] [--version] [FILE.bsp ...]\n";
-      return 0;
+    if (arg == "-e") {
+      if (i + 1 >= argc) return usage_error("-e needs code");
+      jobs.push_back({Job::Code, argv[++i]});
+    } else if (arg == "-D" || (arg.rfind("-D", 0) == 0 && arg.size() > 2)) {
+      std::string definition = arg.size() > 2 ? arg.substr(2) : (i + 1 < argc ? argv[++i] : "");
+      const auto equals = definition.find('=');
+      if (equals == std::string::npos || !is_name(definition.substr(0, equals))) {
+        return usage_error("-D needs NAME=VALUE, got '" + definition + "'");
+      }
+      definitions.emplace_back(definition.substr(0, equals), definition.substr(equals + 1));
+    } else if (arg == "-") {
+      jobs.push_back({Job::Stdin, ""});
+    } else if (arg.size() > 1 && arg[0] == '-') {
+      return usage_error("unknown option '" + arg + "'");
+    } else {
+      jobs.push_back({Job::File, arg});
     }
   }
-  std::cerr << "sculpt: the language is not built yet; try --help\n";
-  return 2;
+
+  if (jobs.empty() && isatty(STDIN_FILENO) && definitions.empty()) return sculpt::repl::run_interactive();
+  if (jobs.empty()) jobs.push_back({Job::Stdin, ""});
+
+  Interpreter interpreter;
+  try {
+    for (const auto& [name, value] : definitions) interpreter.define(name, definition_value(interpreter, value));
+    for (const Job& job : jobs) {
+      switch (job.kind) {
+        case Job::File:
+          interpreter.run(load_source(job.text));
+          break;
+        case Job::Stdin:
+          interpreter.run(code_source("<stdin>", std::string(std::istreambuf_iterator<char>(std::cin), {})));
+          break;
+        case Job::Code:
+          interpreter.run(code_source("<command line>", job.text));
+          break;
+      }
+    }
+  } catch (const ScriptError& e) {
+    std::cout.flush();
+    std::cerr << format_error(e);
+    return 1;
+  } catch (const IoError& e) {
+    std::cout.flush();
+    std::cerr << "sculpt: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
 }

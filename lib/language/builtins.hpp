@@ -1,0 +1,124 @@
+#pragma once
+/// \file builtins.hpp
+/// The table of built-in functions and constants. One table drives the interpreter, `:help`,
+/// tab completion and the reference (a test checks that docs/language.md documents every entry).
+///
+/// Adding a built-in: write it in the `builtins_<area>.cpp` of its library area, inside that
+/// file's `register_<area>(BuiltinTable&)` function:
+///
+///     table.add({.name = "volume", .signature = "volume(s)", .doc = "Volume of solid s.",
+///                .params = {{"s"}},
+///                .run = [](const Arguments& args) -> Value { return volume(solid_arg(args, 0)); }});
+///
+/// A new area also adds its register function to the list in builtins.cpp.
+
+#include <functional>
+#include <map>
+#include <ostream>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "language/value.hpp"
+
+namespace sculpt::language {
+
+/// A parameter of a built-in. Optional parameters may be left out or given by name.
+struct Param {
+  std::string name{};
+  bool required = true;
+};
+
+/// Settings of a run that built-ins may consult.
+struct RunSettings {
+  std::ostream* out = nullptr;   ///< where print() writes
+  bool allow_files = true;       ///< false: built-ins that touch files raise an error (fuzzing)
+};
+
+/// The arguments of one call, bound to the built-in's parameters, with their script positions
+/// so that errors point at the right place.
+class Arguments {
+ public:
+  Arguments(const Builtin& builtin, SourceRef call, std::vector<const Value*> bound,
+            std::vector<SourceRef> positions, std::vector<Value> rest,
+            std::vector<SourceRef> rest_positions, const RunSettings& settings);
+
+  /// Parameter i was given.
+  [[nodiscard]] bool has(std::size_t i) const { return bound_[i] != nullptr; }
+  /// The value of parameter i (none if not given).
+  [[nodiscard]] const Value& value(std::size_t i) const;
+  [[nodiscard]] double number(std::size_t i) const;
+  /// A whole number in [low, high].
+  [[nodiscard]] long long integer(std::size_t i, long long low, long long high) const;
+  [[nodiscard]] bool boolean(std::size_t i) const;
+  [[nodiscard]] const std::string& string(std::size_t i) const;
+  [[nodiscard]] const List& list(std::size_t i) const;
+  /// A list of exactly n numbers.
+  [[nodiscard]] std::vector<double> vector(std::size_t i, std::size_t n) const;
+  /// The library object of parameter i, which must be of type T (`what` names it in errors).
+  template <typename T>
+  [[nodiscard]] const T& object(std::size_t i, const char* what) const {
+    if (const T* o = value(i).object<T>()) return *o;
+    fail_type(i, what);
+  }
+  /// Values of a variadic built-in beyond its parameters (print).
+  [[nodiscard]] const std::vector<Value>& rest() const { return rest_; }
+
+  /// Error at parameter i's position / at the call.
+  [[noreturn]] void fail(std::size_t i, const std::string& message) const;
+  [[noreturn]] void fail(const std::string& message) const;
+  [[noreturn]] void fail_type(std::size_t i, const char* expected) const;
+  /// Refuses when files are disabled; else `path` resolved against the calling script's folder.
+  [[nodiscard]] std::string file_path(std::size_t i) const;
+
+  [[nodiscard]] std::ostream& out() const { return *settings_.out; }
+  [[nodiscard]] const SourceRef& call() const { return call_; }
+
+ private:
+  const Builtin& builtin_;
+  SourceRef call_;
+  std::vector<const Value*> bound_;
+  std::vector<SourceRef> positions_;
+  std::vector<Value> rest_;
+  std::vector<SourceRef> rest_positions_;
+  const RunSettings& settings_;
+};
+
+struct Builtin {
+  std::string name{};
+  std::string signature{};   ///< as shown by :help, e.g. "box(min, max)"
+  std::string doc{};       ///< one or a few sentences
+  std::vector<Param> params{};
+  bool variadic = false;   ///< takes any number of extra positional values (print)
+  std::string area{};      ///< "core", "curves", "solids", ... (set by the table)
+  /// Empty for constants.
+  std::function<Value(const Arguments&)> run{};
+  /// For constants (pi): the value the name stands for.
+  std::optional<Value> constant{};
+};
+
+class BuiltinTable {
+ public:
+  /// Adds an entry. \throw std::logic_error if the name is already taken.
+  void add(Builtin builtin);
+  void set_area(std::string area) { area_ = std::move(area); }
+  [[nodiscard]] const Builtin* find(const std::string& name) const;
+  [[nodiscard]] const std::map<std::string, Builtin>& entries() const { return entries_; }
+
+ private:
+  std::map<std::string, Builtin> entries_;
+  std::string area_ = "core";
+};
+
+/// The table, built once (thread-safe static initialization) from the register functions.
+const BuiltinTable& builtins();
+
+// One register function per library area (builtins_<area>.cpp).
+void register_core(BuiltinTable& table);
+void register_curves(BuiltinTable& table);
+void register_solids(BuiltinTable& table);
+
+/// Names of the language's keywords (for completion and the docs check).
+std::span<const char* const> keywords();
+
+}  // namespace sculpt::language

@@ -1,0 +1,78 @@
+// The one translation unit that includes Spirit X3: instantiates the grammar and runs it.
+#include "language/grammar_def.hpp"
+#include "language/parser.hpp"
+
+namespace sculpt::language {
+namespace x3 = boost::spirit::x3;
+namespace grammar {
+BOOST_SPIRIT_INSTANTIATE(program_type, iterator_type, context_type)
+}  // namespace grammar
+
+namespace {
+
+/// Depth of bracket nesting at each bracket, skipping strings and comments. Calls `visit`
+/// with (offset, depth after the bracket) and stops when it returns false.
+template <typename Visit>
+void scan_brackets(std::string_view text, Visit&& visit) {
+  int depth = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '#') {
+      while (i < text.size() && text[i] != '\n') ++i;
+    } else if (c == '"') {
+      for (++i; i < text.size() && text[i] != '"' && text[i] != '\n'; ++i) {
+        if (text[i] == '\\' && i + 1 < text.size() && text[i + 1] != '\n') ++i;
+      }
+    } else if (c == '(' || c == '[' || c == '{') {
+      if (!visit(i, ++depth)) return;
+    } else if (c == ')' || c == ']' || c == '}') {
+      if (!visit(i, --depth)) return;
+    }
+  }
+}
+
+}  // namespace
+
+bool is_unfinished(std::string_view text) {
+  int depth = 0;
+  scan_brackets(text, [&](std::size_t, int d) {
+    depth = d;
+    return true;
+  });
+  return depth > 0;
+}
+
+ast::Program parse(const SourcePtr& source) {
+  const std::string& text = source->text;
+  scan_brackets(text, [&](std::size_t offset, int depth) {
+    if (depth > kMaxNesting) {
+      throw ScriptError({source, offset},
+                        "brackets nested deeper than " + std::to_string(kMaxNesting) + " levels");
+    }
+    return true;
+  });
+  if (text.find('\0') != std::string::npos) {
+    throw ScriptError({source, text.find('\0')}, "unexpected NUL character");
+  }
+
+  const char* const begin = text.data();
+  const char* const end = begin + text.size();
+  grammar::PositionTracker tracker{begin};
+  const auto parser = x3::with<grammar::position_tag>(std::ref(tracker))[program_rule()];
+  ast::Program program;
+  const char* position = begin;
+  try {
+    const bool ok = x3::phrase_parse(position, end, parser, skipper_rule(), program);
+    if (!ok || position != end) {
+      throw ScriptError({source, static_cast<std::size_t>(position - begin)}, "syntax error");
+    }
+  } catch (const x3::expectation_failure<grammar::iterator_type>& failure) {
+    const auto offset = static_cast<std::size_t>(failure.where() - begin);
+    std::string message = "expected " + failure.which();
+    message += failure.where() == end ? " at end of input" : " here";
+    throw ScriptError({source, offset}, message);
+  }
+  return program;
+}
+
+}  // namespace sculpt::language

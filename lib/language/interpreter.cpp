@@ -1,0 +1,509 @@
+#include "language/interpreter.hpp"
+
+#include <sys/resource.h>
+
+#include <cmath>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+
+#include "base/errors.hpp"
+#include "language/builtins.hpp"
+#include "language/operators.hpp"
+#include "language/parser.hpp"
+#include "language/suggest.hpp"
+
+namespace sculpt::language {
+
+SourcePtr load_source(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path, "cannot open for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  auto source = std::make_shared<SourceFile>();
+  source->name = path;
+  source->text = text.str();
+  source->directory = std::filesystem::path(path).parent_path().string();
+  return source;
+}
+
+namespace {
+
+/// At most this many "in call to" notes per error (deep recursion would print thousands).
+constexpr std::size_t kMaxNotes = 8;
+
+/// The result of running a statement: its value (for the REPL echo and a function's implicit
+/// result) and whether a `return` is unwinding.
+struct Outcome {
+  std::optional<Value> value;
+  bool returned = false;
+};
+
+struct Frame {
+  std::unordered_map<std::string, Value> locals;
+};
+
+/// Turns errors thrown by library code below the language into script errors at `at`.
+template <typename F>
+auto positioned(const SourceRef& at, const std::string& prefix, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const ScriptError&) {
+    throw;
+  } catch (const OperatorError& e) {
+    throw ScriptError(at, prefix + e.what());
+  } catch (const InvalidInput& e) {
+    throw ScriptError(at, prefix + "invalid input: " + e.what());
+  } catch (const GeometryError& e) {
+    throw ScriptError(at, prefix + "geometry error: " + e.what());
+  } catch (const RangeError& e) {
+    throw ScriptError(at, prefix + "out of range: " + e.what());
+  } catch (const IoError& e) {
+    throw ScriptError(at, prefix + e.what());
+  } catch (const std::bad_alloc&) {
+    throw ScriptError(at, prefix + "out of memory");
+  } catch (const std::exception& e) {
+    throw ScriptError(at, prefix + e.what());
+  }
+}
+
+}  // namespace
+
+struct Interpreter::Impl {
+  InterpreterOptions options;
+  RunSettings settings;
+  std::map<std::string, Value> globals;
+  std::vector<Frame*> frames;  // innermost user-function call last; empty at top level
+  SourcePtr source;            // the script whose syntax tree is being walked
+  std::shared_ptr<const ast::Program> program;
+  std::vector<std::string> includes;  // files being included, to refuse cycles
+  std::uintptr_t stack_base = 0;
+  std::uint64_t steps = 0;
+
+  SourceRef at(std::size_t where) const { return {source, where}; }
+
+  // ---- guards ----
+  void check_stack(std::size_t where) const {
+    char marker = 0;
+    const auto here = reinterpret_cast<std::uintptr_t>(&marker);
+    if (stack_base > here && stack_base - here > options.stack_budget) {
+      throw ScriptError(at(where), "recursion too deep (more than " +
+                                       std::to_string(options.stack_budget >> 10) + " KiB of stack)");
+    }
+  }
+  void count_step(std::size_t where) {
+    if (options.max_steps != 0 && ++steps > options.max_steps) {
+      throw ScriptError(at(where), "step limit of " + std::to_string(options.max_steps) + " exceeded");
+    }
+  }
+
+  /// Swaps in another script (a user function's or an included file's) for a while.
+  struct SourceSwap {
+    Impl& impl;
+    SourcePtr saved_source;
+    std::shared_ptr<const ast::Program> saved_program;
+    SourceSwap(Impl& i, SourcePtr s, std::shared_ptr<const ast::Program> p)
+        : impl(i), saved_source(std::move(i.source)), saved_program(std::move(i.program)) {
+      impl.source = std::move(s);
+      impl.program = std::move(p);
+    }
+    ~SourceSwap() {
+      impl.source = std::move(saved_source);
+      impl.program = std::move(saved_program);
+    }
+    SourceSwap(const SourceSwap&) = delete;
+    SourceSwap& operator=(const SourceSwap&) = delete;
+  };
+
+  // ---- names ----
+  std::vector<std::string> visible_names() const {
+    std::vector<std::string> names;
+    for (const auto& [name, _] : globals) names.push_back(name);
+    if (!frames.empty()) {
+      for (const auto& [name, _] : frames.back()->locals) names.push_back(name);
+    }
+    for (const auto& [name, _] : builtins().entries()) names.push_back(name);
+    return names;
+  }
+
+  Value lookup(const ast::Identifier& id) const {
+    if (!frames.empty()) {
+      auto it = frames.back()->locals.find(id.name);
+      if (it != frames.back()->locals.end()) return it->second;
+    }
+    if (auto it = globals.find(id.name); it != globals.end()) return it->second;
+    if (const Builtin* b = builtins().find(id.name)) return b->constant ? *b->constant : Value(b);
+    std::string message = "unknown name '" + id.name + "'";
+    if (auto guess = closest_name(id.name, visible_names())) message += "; did you mean '" + *guess + "'?";
+    throw ScriptError(at(id.where), message);
+  }
+
+  void assign(const ast::Identifier& id, Value value) {
+    if (builtins().find(id.name)) {
+      throw ScriptError(at(id.where), "cannot assign to '" + id.name + "': it is a built-in");
+    }
+    if (frames.empty()) {
+      globals[id.name] = std::move(value);
+    } else {
+      frames.back()->locals[id.name] = std::move(value);
+    }
+  }
+
+  // ---- expressions ----
+  Value eval(const ast::Expression& e) {
+    check_stack(e.where);
+    Value value = eval(e.first);
+    for (const ast::Operation& operation : e.rest) {
+      if (operation.op == ast::Op::And || operation.op == ast::Op::Or) {
+        const bool left = truth(value, operation.where, operation.op);
+        if (left == (operation.op == ast::Op::Or)) continue;  // decided: skip the right side
+        value = truth(eval(operation.operand), operation.where, operation.op);
+        continue;
+      }
+      Value right = eval(operation.operand);
+      value = positioned(at(operation.where), "", [&] { return apply_binary(operation.op, value, right); });
+    }
+    return value;
+  }
+
+  bool truth(const Value& v, std::size_t where, ast::Op op) const {
+    if (const bool* b = v.get<bool>()) return *b;
+    throw ScriptError(at(where), std::string("'") + ast::spelling(op) + "' needs true or false, got " + type_name(v));
+  }
+
+  Value eval(const ast::Operand& operand) {
+    struct Visitor {
+      Impl& self;
+      Value operator()(const ast::Nil&) const { return {}; }
+      Value operator()(const ast::NumberLiteral& n) const { return n.value; }
+      Value operator()(const ast::StringLiteral& s) const { return s.value; }
+      Value operator()(const ast::BoolLiteral& b) const { return b.value; }
+      Value operator()(const ast::Identifier& id) const { return self.lookup(id); }
+      Value operator()(const ast::ListLiteral& l) const {
+        List items;
+        items.reserve(l.items.size());
+        for (const ast::Expression& item : l.items) items.push_back(self.eval(item));
+        return positioned(self.at(l.where), "", [&] { return Value(std::move(items)); });
+      }
+      Value operator()(const ast::Expression& e) const { return self.eval(e); }
+      Value operator()(const ast::Prefixed& p) const {
+        Value value = self.eval(p.operand);
+        for (auto op = p.ops.rbegin(); op != p.ops.rend(); ++op) {
+          value = positioned(self.at(p.where), "", [&] { return apply_prefix(*op, value); });
+        }
+        return value;
+      }
+      Value operator()(const ast::Postfix& p) const { return self.eval(p); }
+    };
+    return boost::apply_visitor(Visitor{*this}, operand);
+  }
+
+  Value eval(const ast::Postfix& p) {
+    Value value = eval(p.primary);
+    const ast::Identifier* callee_name = boost::get<ast::Identifier>(&p.primary);
+    for (const ast::PostfixOp& op : p.ops) {
+      if (const auto* call_args = boost::get<ast::CallArguments>(&op)) {
+        value = call(value, *call_args, p.where, callee_name);
+      } else {
+        value = subscript(value, boost::get<ast::Subscript>(op));
+      }
+      callee_name = nullptr;
+    }
+    return value;
+  }
+
+  Value subscript(const Value& value, const ast::Subscript& s) {
+    const Value index = eval(s.index);
+    const List* list = value.list();
+    if (!list) throw ScriptError(at(s.where), "cannot index " + type_name(value) + ": only lists have items");
+    const double* d = index.get<double>();
+    if (!d || *d != std::floor(*d)) {
+      throw ScriptError(at(s.index.where), "a list index must be a whole number, got " +
+                                               (d ? format_number(*d) : type_name(index)));
+    }
+    const double n = static_cast<double>(list->size());
+    const double i = *d < 0 ? *d + n : *d;
+    if (i < 0 || i >= n) {
+      throw ScriptError(at(s.index.where), "index " + format_number(*d) + " is out of range for a list of " +
+                                               std::to_string(list->size()) + " items");
+    }
+    return (*list)[static_cast<std::size_t>(i)];
+  }
+
+  // ---- calls ----
+  struct Evaluated {
+    std::vector<Value> values;
+    std::vector<const ast::Argument*> syntax;
+  };
+
+  /// Binds arguments to parameters: positional in order, then by name.
+  /// Returns for each parameter the index into `args.values` (or -1).
+  std::vector<long> bind(const std::string& signature, const std::vector<std::string>& names,
+                         const std::vector<bool>& required, bool variadic, const Evaluated& args,
+                         std::size_t call_where, std::vector<std::size_t>* rest) const {
+    std::vector<long> slot(names.size(), -1);
+    std::size_t position = 0;
+    for (std::size_t a = 0; a < args.values.size(); ++a) {
+      const ast::Argument& syntax = *args.syntax[a];
+      if (!syntax.name) {
+        if (position < names.size()) {
+          slot[position++] = static_cast<long>(a);
+        } else if (variadic) {
+          rest->push_back(a);
+        } else {
+          throw ScriptError(at(syntax.where), signature + " takes at most " + std::to_string(names.size()) +
+                                                  " argument" + (names.size() == 1 ? "" : "s") + ", got " +
+                                                  std::to_string(args.values.size()));
+        }
+        continue;
+      }
+      const std::string& name = syntax.name->name;
+      std::size_t p = 0;
+      while (p < names.size() && names[p] != name) ++p;
+      if (p == names.size()) {
+        std::string message = signature + " has no parameter '" + name + "'";
+        if (auto guess = closest_name(name, names)) message += "; did you mean '" + *guess + "'?";
+        throw ScriptError(at(syntax.where), message);
+      }
+      if (slot[p] >= 0) throw ScriptError(at(syntax.where), signature + ": argument '" + name + "' given twice");
+      slot[p] = static_cast<long>(a);
+    }
+    for (std::size_t p = 0; p < names.size(); ++p) {
+      if (slot[p] < 0 && required[p]) {
+        throw ScriptError(at(call_where), signature + ": missing argument '" + names[p] + "'");
+      }
+    }
+    return slot;
+  }
+
+  Value call(const Value& callee, const ast::CallArguments& call_args, std::size_t where,
+             const ast::Identifier* callee_name) {
+    check_stack(where);
+    count_step(where);
+    Evaluated args;
+    for (const ast::Argument& a : call_args.arguments) {
+      args.values.push_back(eval(a.value));
+      args.syntax.push_back(&a);
+    }
+    if (const auto* builtin = callee.get<const Builtin*>()) return call_builtin(**builtin, args, where);
+    if (const auto* f = callee.get<std::shared_ptr<const UserFunction>>()) return call_user(**f, args, where);
+    const std::string what = callee_name ? "'" + callee_name->name + "' is a " + type_name(callee)
+                                         : "a " + type_name(callee) + " value";
+    throw ScriptError(at(where), what + ", not a function");
+  }
+
+  Value call_builtin(const Builtin& b, const Evaluated& args, std::size_t where) {
+    std::vector<std::string> names;
+    std::vector<bool> required;
+    for (const Param& p : b.params) {
+      names.push_back(p.name);
+      required.push_back(p.required);
+    }
+    std::vector<std::size_t> rest_index;
+    const auto slot = bind(b.signature, names, required, b.variadic, args, where, &rest_index);
+    std::vector<const Value*> bound;
+    std::vector<SourceRef> positions;
+    for (long s : slot) {
+      bound.push_back(s < 0 ? nullptr : &args.values[static_cast<std::size_t>(s)]);
+      positions.push_back(s < 0 ? at(where) : at(args.syntax[static_cast<std::size_t>(s)]->where));
+    }
+    std::vector<Value> rest;
+    std::vector<SourceRef> rest_positions;
+    for (std::size_t i : rest_index) {
+      rest.push_back(args.values[i]);
+      rest_positions.push_back(at(args.syntax[i]->where));
+    }
+    const Arguments arguments(b, at(where), std::move(bound), std::move(positions), std::move(rest),
+                              std::move(rest_positions), settings);
+    return positioned(at(where), b.name + ": ", [&] { return b.run(arguments); });
+  }
+
+  Value call_user(const UserFunction& f, const Evaluated& args, std::size_t where) {
+    const std::string signature = f.name + "()";
+    const std::vector<bool> required(f.parameters.size(), true);
+    const auto slot = bind(f.name, f.parameters, required, false, args, where, nullptr);
+    Frame frame;
+    for (std::size_t p = 0; p < slot.size(); ++p) {
+      frame.locals[f.parameters[p]] = args.values[static_cast<std::size_t>(slot[p])];
+    }
+    const SourceRef call_site = at(where);
+    frames.push_back(&frame);
+    struct PopFrame {
+      std::vector<Frame*>& frames;
+      ~PopFrame() { frames.pop_back(); }
+    } pop{frames};
+    try {
+      SourceSwap swap(*this, f.where.source, f.program);
+      Outcome outcome = exec(f.body->statements);
+      return outcome.value ? std::move(*outcome.value) : Value();
+    } catch (ScriptError& e) {
+      if (e.notes().size() < kMaxNotes) e.add_note({call_site, "in call to '" + f.name + "'"});
+      throw;
+    }
+  }
+
+  // ---- statements ----
+  Outcome exec(const std::vector<ast::Statement>& statements) {
+    Outcome last;
+    for (const ast::Statement& statement : statements) {
+      last = exec(statement);
+      if (last.returned) return last;
+    }
+    return last;
+  }
+
+  Outcome exec(const ast::Statement& statement) {
+    struct Visitor {
+      Impl& self;
+      Outcome operator()(const ast::Expression& e) const { return {self.eval(e)}; }
+      Outcome operator()(const ast::Assignment& a) const {
+        self.assign(a.target, self.eval(a.value));
+        return {};
+      }
+      Outcome operator()(const ast::Return& r) const {
+        if (self.frames.empty()) throw ScriptError(self.at(r.where), "'return' outside a function");
+        return {r.value ? self.eval(*r.value) : Value(), true};
+      }
+      Outcome operator()(const ast::Include& i) const { return self.include(i); }
+      Outcome operator()(const ast::If& i) const {
+        for (const ast::ConditionalBlock& branch : i.branches) {
+          const Value condition = self.eval(branch.condition);
+          const bool* b = condition.get<bool>();
+          if (!b) {
+            throw ScriptError(self.at(branch.condition.where),
+                              "an 'if' condition must be true or false, got " + type_name(condition));
+          }
+          if (*b) return self.exec(branch.body.statements);
+        }
+        if (i.otherwise) return self.exec(i.otherwise->statements);
+        return {};
+      }
+      Outcome operator()(const ast::For& f) const {
+        const Value sequence = self.eval(f.sequence);
+        const List* list = sequence.list();
+        if (!list) {
+          throw ScriptError(self.at(f.sequence.where), "'for' needs a list, got " + type_name(sequence));
+        }
+        const Value keep = sequence;  // the loop body may rebind the name that held the list
+        for (const Value& item : *list) {
+          self.assign(f.variable, item);
+          Outcome outcome = self.exec(f.body.statements);
+          if (outcome.returned) return outcome;
+        }
+        return {};
+      }
+      Outcome operator()(const ast::FunctionDefinition& d) const {
+        auto f = std::make_shared<UserFunction>();
+        f->name = d.name.name;
+        for (const ast::Identifier& p : d.parameters) {
+          for (const std::string& earlier : f->parameters) {
+            if (earlier == p.name) throw ScriptError(self.at(p.where), "parameter '" + p.name + "' appears twice");
+          }
+          f->parameters.push_back(p.name);
+        }
+        f->body = &d.body;
+        f->program = self.program;
+        f->where = self.at(d.where);
+        self.assign(d.name, Value(std::shared_ptr<const UserFunction>(std::move(f))));
+        return {};
+      }
+    };
+    const std::size_t where = boost::apply_visitor([](const auto& s) { return s.where; }, statement);
+    check_stack(where);
+    count_step(where);
+    return boost::apply_visitor(Visitor{*this}, statement);
+  }
+
+  Outcome include(const ast::Include& i) {
+    if (!settings.allow_files) throw ScriptError(at(i.where), "include: file access is disabled in this session");
+    std::filesystem::path path(i.path.value);
+    if (path.is_relative() && source && !source->directory.empty()) path = std::filesystem::path(source->directory) / path;
+    std::error_code ec;
+    const std::string key = std::filesystem::weakly_canonical(path, ec).string();
+    for (const std::string& open : includes) {
+      if (open == key) throw ScriptError(at(i.path.where), "include: '" + path.string() + "' includes itself");
+    }
+    const SourcePtr included = positioned(at(i.path.where), "include: ", [&] { return load_source(path.string()); });
+    auto parsed = std::make_shared<const ast::Program>(parse(included));
+    includes.push_back(key);
+    struct PopInclude {
+      std::vector<std::string>& includes;
+      ~PopInclude() { includes.pop_back(); }
+    } pop{includes};
+    const SourceRef site = at(i.where);
+    try {
+      SourceSwap swap(*this, included, parsed);
+      exec(parsed->statements);
+    } catch (ScriptError& e) {
+      if (e.notes().size() < kMaxNotes) e.add_note({site, "included from here"});
+      throw;
+    }
+    return {};
+  }
+};
+
+Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  impl_->settings.out = options.out ? options.out : &std::cout;
+  impl_->settings.allow_files = options.allow_files;
+  // Keep the budget well inside the real stack limit.
+  rlimit limit{};
+  if (getrlimit(RLIMIT_STACK, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    impl_->options.stack_budget = std::min<std::size_t>(impl_->options.stack_budget, limit.rlim_cur / 2);
+  }
+}
+
+Interpreter::~Interpreter() = default;
+
+std::optional<Value> Interpreter::run(const SourcePtr& source) {
+  Impl& impl = *impl_;
+  char marker = 0;
+  const bool outermost = impl.stack_base == 0;
+  if (outermost) {
+    impl.stack_base = reinterpret_cast<std::uintptr_t>(&marker);
+    impl.steps = 0;
+  }
+  struct ResetBase {
+    Impl& impl;
+    bool outermost;
+    ~ResetBase() {
+      if (outermost) impl.stack_base = 0;
+    }
+  } reset{impl, outermost};
+
+  auto program = std::make_shared<const ast::Program>(parse(source));
+  Impl::SourceSwap swap(impl, source, program);
+  const Outcome outcome = impl.exec(program->statements);
+  if (program->statements.empty()) return std::nullopt;
+  const ast::Statement& last = program->statements.back();
+  if (boost::get<ast::Expression>(&last) || boost::get<ast::If>(&last)) {
+    return outcome.value;
+  }
+  return std::nullopt;
+}
+
+void Interpreter::define(const std::string& name, Value value) {
+  ast::Identifier id;
+  id.name = name;
+  impl_->assign(id, std::move(value));
+}
+
+const Value* Interpreter::global(const std::string& name) const {
+  auto it = impl_->globals.find(name);
+  return it == impl_->globals.end() ? nullptr : &it->second;
+}
+
+std::vector<std::string> Interpreter::global_names() const {
+  std::vector<std::string> names;
+  for (const auto& [name, _] : impl_->globals) names.push_back(name);
+  return names;
+}
+
+}  // namespace sculpt::language

@@ -1,0 +1,58 @@
+#pragma once
+/// \file interpreter.hpp
+/// Runs parsed scripts: a tree-walking interpreter over the syntax tree of ast.hpp, separate
+/// from the parser. Values live in a global scope; a user function call gets its own local
+/// scope (functions see their locals and the globals).
+///
+/// Depth: brackets nest at most kMaxNesting deep (checked by the parser); user recursion and
+/// nested includes are bounded by a stack budget (InterpreterOptions::stack_budget): going
+/// past it is a clean error "recursion too deep", never a crash.
+
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "language/source.hpp"
+#include "language/value.hpp"
+
+namespace sculpt::language {
+
+struct InterpreterOptions {
+  std::ostream* out = nullptr;        ///< print() output; null = std::cout
+  bool allow_files = true;            ///< false: include/curve/import/export raise errors
+  std::uint64_t max_steps = 0;        ///< statements + calls allowed per run(); 0 = no limit
+  std::size_t stack_budget = 2u << 20;  ///< bytes of C++ stack the evaluator may use
+};
+
+class Interpreter {
+ public:
+  explicit Interpreter(InterpreterOptions options = {});
+  ~Interpreter();
+  Interpreter(const Interpreter&) = delete;
+  Interpreter& operator=(const Interpreter&) = delete;
+
+  /// Parses and runs `source` in the global scope. Returns the value of the last statement
+  /// when it is an expression (the REPL echoes it), else nullopt. Bindings made before an
+  /// error are kept.
+  /// \throw ScriptError for syntax and run-time errors, positioned in the script.
+  std::optional<Value> run(const SourcePtr& source);
+
+  /// Binds a global (sculpt -D name=value). \throw ScriptError if `name` is a built-in.
+  void define(const std::string& name, Value value);
+  [[nodiscard]] const Value* global(const std::string& name) const;
+  /// Global names in alphabetical order.
+  [[nodiscard]] std::vector<std::string> global_names() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Reads a whole file into a SourceFile (name = path, directory = its folder).
+/// \throw IoError
+SourcePtr load_source(const std::string& path);
+
+}  // namespace sculpt::language

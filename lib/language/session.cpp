@@ -1,0 +1,159 @@
+#include "language/session.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "base/errors.hpp"
+#include "language/builtins.hpp"
+#include "language/parser.hpp"
+#include "language/suggest.hpp"
+
+namespace sculpt::language {
+namespace {
+
+constexpr const char* kCommands[] = {":help", ":load", ":vars", ":quit"};
+
+const std::map<std::string, std::string>& keyword_help() {
+  static const std::map<std::string, std::string> help = {
+      {"fn", "fn name(a, b) { ... }  defines a function; it returns `return e` or its last expression."},
+      {"if", "if c { ... } else if d { ... } else { ... }  runs the first block whose condition is true."},
+      {"else", "if c { ... } else { ... }"},
+      {"for", "for x in xs { ... }  runs the block once per item of the list xs."},
+      {"in", "for x in xs { ... }"},
+      {"return", "return e  leaves the current function with the value e."},
+      {"include", "include \"file.bsp\"  runs another script here (path relative to this script)."},
+      {"and", "a and b  true when both are true (b is not evaluated when a is false)."},
+      {"or", "a or b  true when either is true (b is not evaluated when a is true)."},
+      {"not", "not a  the opposite of a bool."},
+      {"true", "the bool true"},
+      {"false", "the bool false"},
+  };
+  return help;
+}
+
+std::string first_word(std::string_view text) {
+  const auto begin = text.find_first_not_of(" \t");
+  if (begin == std::string_view::npos) return {};
+  const auto end = text.find_first_of(" \t", begin);
+  return std::string(text.substr(begin, end == std::string_view::npos ? std::string_view::npos : end - begin));
+}
+
+}  // namespace
+
+std::string help_text(std::string_view name) {
+  const BuiltinTable& table = builtins();
+  if (name.empty()) {
+    std::string out =
+        "Commands: :help [name], :load file, :vars, :quit\n"
+        "Keywords: fn if else for in return include and or not true false\n"
+        "Operators: + - * / % (numbers, vectors), == != < <= > >=, | & - (solids: union, "
+        "intersection, difference)\n";
+    std::map<std::string, std::vector<std::string>> by_area;
+    for (const auto& [n, b] : table.entries()) by_area[b.area].push_back(n);
+    for (const auto& [area, names] : by_area) {
+      out += "Built-ins (" + area + "):";
+      for (const std::string& n : names) out += " " + n;
+      out += "\n";
+    }
+    out += "Type :help name for details.\n";
+    return out;
+  }
+  const std::string key(name);
+  if (const Builtin* b = table.find(key)) return b->signature + "\n  " + b->doc + "\n";
+  if (auto it = keyword_help().find(key); it != keyword_help().end()) return it->second + "\n";
+  std::vector<std::string> candidates;
+  for (const auto& [n, _] : table.entries()) candidates.push_back(n);
+  for (const auto& [n, _] : keyword_help()) candidates.push_back(n);
+  std::string out = "no built-in or keyword named '" + key + "'";
+  if (auto guess = closest_name(key, candidates)) out += "; did you mean '" + *guess + "'?";
+  return out + "\n";
+}
+
+Session::Session(std::ostream& out, std::ostream& err)
+    : out_(out), err_(err), interpreter_(InterpreterOptions{.out = &out}) {}
+
+bool Session::feed(const std::string& line) {
+  if (pending_.empty()) {
+    const std::string word = first_word(line);
+    if (word == ":quit" || word == ":q") return false;
+    if (!word.empty() && word[0] == ':') {
+      command(line);
+      return true;
+    }
+  }
+  pending_ += line;
+  pending_ += '\n';
+  if (is_unfinished(pending_)) return true;
+  auto source = std::make_shared<SourceFile>();
+  source->name = "<stdin>";
+  source->text = std::move(pending_);
+  source->first_line = next_line_;
+  pending_.clear();
+  next_line_ += static_cast<int>(std::count(source->text.begin(), source->text.end(), '\n'));
+  run(source);
+  return true;
+}
+
+void Session::run(const SourcePtr& source) {
+  try {
+    if (auto value = interpreter_.run(source); value && !value->is_none()) out_ << to_repr(*value) << "\n";
+  } catch (const ScriptError& e) {
+    err_ << format_error(e);
+  }
+  out_.flush();
+  err_.flush();
+}
+
+void Session::command(const std::string& line) {
+  const auto begin = line.find_first_not_of(" \t");
+  const std::string word = first_word(line);
+  std::string argument = line.substr(begin + word.size());
+  argument.erase(0, argument.find_first_not_of(" \t"));
+  argument.erase(argument.find_last_not_of(" \t\r") + 1);
+  if (word == ":help" || word == ":h") {
+    out_ << help_text(argument);
+  } else if (word == ":vars") {
+    for (const std::string& name : interpreter_.global_names()) {
+      const Value& v = *interpreter_.global(name);
+      std::string shown = to_repr(v);
+      if (shown.size() > 70) shown = shown.substr(0, 67) + "...";
+      out_ << name << " : " << type_name(v) << " = " << shown << "\n";
+    }
+  } else if (word == ":load") {
+    if (argument.empty()) {
+      err_ << "error: :load needs a file name\n";
+    } else {
+      try {
+        run(load_source(argument));
+      } catch (const IoError& e) {
+        err_ << "error: " << e.what() << "\n";
+      }
+    }
+  } else {
+    std::vector<std::string> commands(std::begin(kCommands), std::end(kCommands));
+    err_ << "error: unknown command '" << word << "'";
+    if (auto guess = closest_name(word, commands)) err_ << "; did you mean '" << *guess << "'?";
+    err_ << " (commands: :help, :load, :vars, :quit)\n";
+  }
+  out_.flush();
+  err_.flush();
+}
+
+std::vector<std::string> Session::complete(std::string_view text) const {
+  std::vector<std::string> names;
+  auto consider = [&](const std::string& name) {
+    if (name.compare(0, text.size(), text) == 0) names.push_back(name);
+  };
+  if (!text.empty() && text[0] == ':') {
+    for (const char* c : kCommands) consider(c);
+  } else {
+    for (const char* k : keywords()) consider(k);
+    for (const auto& [name, _] : builtins().entries()) consider(name);
+    for (const std::string& name : interpreter_.global_names()) consider(name);
+  }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
+}  // namespace sculpt::language

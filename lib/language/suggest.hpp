@@ -1,0 +1,19 @@
+#pragma once
+/// \file suggest.hpp
+/// "did you mean ...?" for unknown names: the closest candidate by edit distance.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sculpt::language {
+
+/// Levenshtein distance (insertions, deletions, substitutions; each costs 1).
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+/// The candidate closest to `name`, if it is close enough to be a plausible typo
+/// (distance at most 1 for short names, at most a third of the length for longer ones).
+std::optional<std::string> closest_name(std::string_view name, const std::vector<std::string>& candidates);
+
+}  // namespace sculpt::language
