@@ -78,7 +78,17 @@ ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r) {
                     6.0 * kEps * (adp * u.max + adq * v.max + adr * w.max);
   ApproxPoint a;
   const double aW = std::fabs(W);
-  if (!(aW > 2.0 * eW)) return a;  // err = -1: nearly dependent planes
+  if (!(aW > 2.0 * eW)) {
+    // Nearly dependent planes: round the exact homogeneous coordinates instead.
+    const HomogeneousPoint h = exact_vertex(p, q, r);
+    if (h.w == 0) return a;  // err = -1: dependent planes, no vertex
+    const double hw = h.w.convert_to<double>();
+    a.x = h.x.convert_to<double>() / hw;
+    a.y = h.y.convert_to<double>() / hw;
+    a.z = h.z.convert_to<double>() / hw;
+    a.err = 8.0 * kEps * std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}) + 1e-300;
+    return a;
+  }
   a.x = -vx / W;
   a.y = -vy / W;
   a.z = -vz / W;

@@ -20,7 +20,7 @@ struct ApproxPoint {
   double err = -1;
 };
 
-/// Approximation of the vertex p ∩ q ∩ r (grid units). err < 0 if the planes are (nearly) dependent.
+/// Approximation of the vertex p ∩ q ∩ r (grid units); err < 0 only if the planes are dependent.
 ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r);
 /// True if the three planes meet in exactly one point (exact).
 bool independent(const Plane& p, const Plane& q, const Plane& r);

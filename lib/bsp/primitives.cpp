@@ -1,0 +1,254 @@
+#include "bsp/primitives.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "base/errors.hpp"
+#include "bsp/transform.hpp"
+#include "bsp/tree_builder.hpp"
+
+namespace sculpt {
+
+using kernel::Int128;
+using kernel::Plane;
+
+namespace {
+
+constexpr int kPathNormalBits = 26;  // integer 2D normals of the path edges (docs/kernel.md)
+
+void check_segments(int segments) {
+  if (segments < 3 || segments > 1 << 16)
+    throw InvalidInput("segments must be in [3, 65536], got " + std::to_string(segments));
+}
+
+void check_positive(double v, const char* what) {
+  if (!(v > 0) || !std::isfinite(v))
+    throw InvalidInput(std::string(what) + " must be positive and finite");
+}
+
+// Balanced tree over the faces around the z axis (Ihm & Naylor 1990 sec. 6): planes through the
+// axis split the angle range in halves; small ranges end in a chain of face planes. Face f spans
+// the angles [start[f], start[f + 1]] (increasing, mod 2 pi). Each range is widened by one
+// face on both sides; faces that do not cut their cell are removed by TreeBuilder::build.
+class SectorTree {
+ public:
+  SectorTree(TreeBuilder& b, const std::vector<std::int32_t>& faces, const std::vector<double>& start)
+      : b_(b), faces_(faces), start_(start), n_(int(faces.size())) {}
+
+  TreeRef build() {
+    // First split: the plane through the axis and the middle of face 0.
+    const double a0 = mid(0);
+    const std::int32_t p = axial(a0);
+    return b_.add_node(p, wedge(a0 + std::numbers::pi, a0 + 2 * std::numbers::pi), wedge(a0, a0 + std::numbers::pi));
+  }
+
+ private:
+  double angle(int i) const {  // start angle of face i (any integer i), unwrapped
+    const int k = ((i % n_) + n_) % n_;
+    const double turns = std::floor(double(i) / n_);
+    return start_[std::size_t(k)] + 2 * std::numbers::pi * turns;
+  }
+  double mid(int i) const { return 0.5 * (angle(i) + angle(i + 1)); }
+  std::int32_t axial(double a) {
+    // f = -sin(a) x + cos(a) y: positive for angles in (a, a + pi).
+    return b_.add_plane(kernel::plane_from_normal({-std::sin(a), std::cos(a), 0.0}, 0.0));
+  }
+  // Tree for the wedge of angles (lo, hi), hi - lo <= pi.
+  TreeRef wedge(double lo, double hi) {
+    // Faces overlapping (lo, hi): first index with angle(i+1) > lo, last with angle(i) < hi.
+    int first = int(std::floor((lo - start_[0]) / (2 * std::numbers::pi))) * n_ - n_;
+    while (angle(first + 1) <= lo) ++first;
+    int last = first;
+    while (angle(last + 1) < hi) ++last;
+    if (last - first + 1 <= 4) {
+      std::vector<std::int32_t> chain;
+      for (int i = first - 1; i <= last + 1; ++i) chain.push_back(faces_[std::size_t(((i % n_) + n_) % n_)]);
+      return b_.add_convex_chain(chain);
+    }
+    const double m = mid((first + last) / 2);
+    const std::int32_t p = axial(m);
+    return b_.add_node(p, wedge(lo, m), wedge(m, hi));
+  }
+
+  TreeBuilder& b_;
+  const std::vector<std::int32_t>& faces_;
+  const std::vector<double>& start_;
+  int n_;
+};
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> circle_path(int segments) {
+  check_segments(segments);
+  std::vector<Eigen::Vector2d> p;
+  for (int i = 0; i < segments; ++i) {
+    const double a = 2 * std::numbers::pi * i / segments;
+    p.emplace_back(std::cos(a), std::sin(a));
+  }
+  return p;
+}
+
+Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings) {
+  const int n = int(path.size());
+  if (n < 3) throw InvalidInput("revolution path needs at least 3 vertices");
+  if (rings.size() < 2) throw InvalidInput("revolution needs at least 2 rings");
+  // Path edges: integer outward normals and offsets (the origin must be strictly inside).
+  std::vector<Eigen::Vector2d> normal(static_cast<std::size_t>(n));
+  std::vector<std::int64_t> nx(static_cast<std::size_t>(n)), ny(static_cast<std::size_t>(n));
+  std::vector<double> offset(static_cast<std::size_t>(n)), start(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector2d& v = path[std::size_t(j)];
+    const Eigen::Vector2d& w = path[std::size_t((j + 1) % n)];
+    Eigen::Vector2d e = w - v;
+    if (!(e.norm() > 0)) throw InvalidInput("revolution path has repeated vertices");
+    Eigen::Vector2d m(e.y(), -e.x());
+    m.normalize();
+    normal[std::size_t(j)] = m;
+    nx[std::size_t(j)] = std::llround(std::ldexp(m.x(), kPathNormalBits));
+    ny[std::size_t(j)] = std::llround(std::ldexp(m.y(), kPathNormalBits));
+    offset[std::size_t(j)] = m.dot(v);
+    if (!(offset[std::size_t(j)] > 0))
+      throw InvalidInput("revolution path must be convex, counter-clockwise and contain the axis");
+    start[std::size_t(j)] = std::atan2(v.y(), v.x());
+  }
+  for (int j = 1; j < n; ++j)  // unwrap to increasing angles
+    while (start[std::size_t(j)] <= start[std::size_t(j - 1)]) start[std::size_t(j)] += 2 * std::numbers::pi;
+  if (start[std::size_t(n - 1)] - start[0] >= 2 * std::numbers::pi)
+    throw InvalidInput("revolution path must be convex and counter-clockwise");
+
+  // Rings on the grid: z in grid units, offsets c = scale * offset in grid units * normal scale.
+  const std::size_t r = rings.size();
+  std::vector<std::int64_t> z(r);
+  for (std::size_t k = 0; k < r; ++k) {
+    if (!(rings[k].scale >= 0) || !std::isfinite(rings[k].scale))
+      throw InvalidInput("ring scale must be finite and >= 0");
+    if (rings[k].scale == 0 && k != 0 && k + 1 != r)
+      throw InvalidInput("only the first and the last ring may have scale 0");
+    z[k] = kernel::snap(rings[k].z);
+    if (k > 0 && z[k] <= z[k - 1]) {
+      std::ostringstream s;
+      s << "ring heights must increase by at least one grid step (" << kernel::kGridStep << ")";
+      throw InvalidInput(s.str());
+    }
+  }
+  auto c_of = [&](std::size_t k, int j) -> Int128 {
+    const double c = rings[k].scale * offset[std::size_t(j)] / kernel::kGridStep;
+    if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord))
+      throw RangeError("revolved solid exceeds the exact kernel's range " + kernel::range_text());
+    return Int128(std::llround(std::ldexp(c, kPathNormalBits)));
+  };
+
+  TreeBuilder b;
+  // Ring planes z = z_k: f = z - z_k.
+  std::vector<std::int32_t> ring_plane(r);
+  for (std::size_t k = 0; k < r; ++k) ring_plane[k] = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(z[k])));
+  // Band trees.
+  std::vector<TreeRef> band(r - 1);
+  for (std::size_t k = 0; k + 1 < r; ++k) {
+    const Int128 dz = z[k + 1] - z[k];
+    std::vector<std::int32_t> faces(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      const Int128 c0 = c_of(k, j), c1 = c_of(k + 1, j), dc = c1 - c0;
+      // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside.
+      faces[std::size_t(j)] = b.add_plane(kernel::make_plane(dz * nx[std::size_t(j)], dz * ny[std::size_t(j)], -dc,
+                                                             dc * z[k] - dz * c0));
+    }
+    band[k] = SectorTree(b, faces, start).build();
+  }
+  // Balanced tree over the bands (explicit recursion depth is log2 of the ring count).
+  auto slabs = [&](auto&& self, std::size_t lo, std::size_t hi) -> TreeRef {
+    if (lo == hi) return band[lo];
+    const std::size_t m = (lo + hi + 1) / 2;  // ring between band m - 1 and band m
+    return b.add_node(ring_plane[m], self(self, lo, m - 1), self(self, m, hi));
+  };
+  const TreeRef inner = slabs(slabs, 0, r - 2);
+  const TreeRef top = b.add_node(ring_plane[r - 1], inner, kOut);
+  const TreeRef root = b.add_node(ring_plane[0], kOut, top);
+  return std::move(b).build(root);
+}
+
+Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
+  const kernel::GridPoint lo = kernel::snap(min), hi = kernel::snap(max);
+  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+    throw InvalidInput("box: min must be below max in every axis (after snapping to the grid)");
+  TreeBuilder b;
+  const std::vector<std::int32_t> faces = {
+      b.add_plane(kernel::make_plane(1, 0, 0, -Int128(hi.x))), b.add_plane(kernel::make_plane(-1, 0, 0, Int128(lo.x))),
+      b.add_plane(kernel::make_plane(0, 1, 0, -Int128(hi.y))), b.add_plane(kernel::make_plane(0, -1, 0, Int128(lo.y))),
+      b.add_plane(kernel::make_plane(0, 0, 1, -Int128(hi.z))), b.add_plane(kernel::make_plane(0, 0, -1, Int128(lo.z)))};
+  return std::move(b).build(b.add_convex_chain(faces));
+}
+
+Solid convex_polytope(const std::vector<HalfSpace>& half_spaces) {
+  if (half_spaces.empty()) throw InvalidInput("convex_polytope needs at least one half-space");
+  TreeBuilder b;
+  std::vector<std::int32_t> faces;
+  for (const HalfSpace& h : half_spaces) faces.push_back(b.add_plane(kernel::plane_from_normal(h.normal, h.offset)));
+  return std::move(b).build(b.add_convex_chain(faces));
+}
+
+Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1) {
+  if (polygon.size() < 3) throw InvalidInput("prism: polygon needs at least 3 vertices");
+  if (!(z0 < z1)) throw InvalidInput("prism: z0 must be below z1");
+  // Exact side planes through grid points; a balanced tree needs the axis inside: build around
+  // the snapped centroid, then translate (exact).
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (const auto& p : polygon) centroid += p;
+  centroid /= double(polygon.size());
+  const Eigen::Vector3d shift(kernel::snap(centroid.x()) * kernel::kGridStep,
+                              kernel::snap(centroid.y()) * kernel::kGridStep, 0.0);
+  const std::int64_t gz0 = kernel::snap(z0), gz1 = kernel::snap(z1);
+  if (gz0 >= gz1) throw InvalidInput("prism: height below the grid step");
+  std::vector<kernel::GridPoint> g;
+  for (const auto& p : polygon) g.push_back(kernel::snap(Eigen::Vector3d(p.x() - shift.x(), p.y() - shift.y(), 0.0)));
+  TreeBuilder b;
+  const int n = int(g.size());
+  std::vector<std::int32_t> faces;
+  std::vector<double> start;
+  for (int j = 0; j < n; ++j) {
+    const kernel::GridPoint& v = g[std::size_t(j)];
+    const kernel::GridPoint& w = g[std::size_t((j + 1) % n)];
+    const kernel::GridPoint up{v.x, v.y, v.z + 1};
+    const Plane p = kernel::plane_through(v, w, up);
+    if (!(p.d < 0)) throw InvalidInput("prism: polygon must be convex and counter-clockwise");
+    faces.push_back(b.add_plane(p));
+    start.push_back(std::atan2(double(v.y), double(v.x)));
+  }
+  for (int j = 1; j < n; ++j)
+    while (start[std::size_t(j)] <= start[std::size_t(j - 1)]) start[std::size_t(j)] += 2 * std::numbers::pi;
+  if (start[std::size_t(n - 1)] - start[0] >= 2 * std::numbers::pi)
+    throw InvalidInput("prism: polygon must be convex and counter-clockwise");
+  const TreeRef sides = SectorTree(b, faces, start).build();
+  const std::int32_t bottom = b.add_plane(kernel::make_plane(0, 0, -1, Int128(gz0)));
+  const std::int32_t top = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(gz1)));
+  const TreeRef root = b.add_node(bottom, b.add_node(top, sides, kOut), kOut);
+  return translate(std::move(b).build(root), shift);
+}
+
+Solid cylinder(double radius, double height, const CircularOptions& options) {
+  return cone(radius, height, options, radius);
+}
+
+Solid cone(double radius, double height, const CircularOptions& options, double top_radius) {
+  check_positive(radius, "cone radius");
+  check_positive(height, "cone height");
+  if (!(top_radius >= 0)) throw InvalidInput("cone top radius must be >= 0");
+  const double z0 = options.center ? -height / 2 : 0.0;
+  return revolve_rings(circle_path(options.segments), {{z0, radius}, {z0 + height, top_radius}});
+}
+
+Solid sphere(double radius, const CircularOptions& options) {
+  check_positive(radius, "sphere radius");
+  check_segments(options.segments);
+  const int rings = (options.segments + 1) / 2;
+  std::vector<Ring> r;
+  for (int k = rings - 1; k >= 0; --k) {  // bottom to top
+    const double phi = (k + 0.5) * std::numbers::pi / rings;
+    r.push_back({radius * std::cos(phi), radius * std::sin(phi)});
+  }
+  return revolve_rings(circle_path(options.segments), r);
+}
+
+}  // namespace sculpt

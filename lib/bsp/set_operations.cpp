@@ -1,0 +1,210 @@
+#include "bsp/set_operations.hpp"
+
+#include <utility>
+
+#include "bsp/tree_arena.hpp"
+
+namespace sculpt {
+
+using detail::Arena;
+using kernel::ConvexPolygon;
+using kernel::Side;
+
+namespace {
+
+// Where a partition result goes: a child field of an arena node, or one of two outputs.
+struct Slot {
+  std::int32_t node;  // -1: out[side]
+  int side;
+};
+
+class Merger {
+ public:
+  explicit Merger(Arena& arena) : a_(arena) {}
+
+  void set(Slot s, TreeRef v) {
+    if (s.node < 0)
+      out_[s.side] = v;
+    else if (s.side == 0)
+      a_.nodes[std::size_t(s.node)].negative = v;
+    else
+      a_.nodes[std::size_t(s.node)].positive = v;
+  }
+
+  // Naylor et al. 1990, "partition_bspt": splits subtree t (living in region R) by plane
+  // `cut`, whose part inside R is the polygon `pp`. Uses the invariant that every node's plane
+  // cuts its cell into two parts of positive volume, so when the node's sub-hyperplane S lies on
+  // one side of `cut`, `pp` lies on one side of the node's plane and the other child's region
+  // lies entirely on S's side of `cut`. Subtrees are moved, never shared.
+  std::pair<TreeRef, TreeRef> partition(TreeRef t, ConvexPolygon pp, std::int32_t cut) {
+    const std::int32_t cut_opp = a_.opposite(cut);
+    struct Frame {
+      TreeRef t;
+      ConvexPolygon pp;
+      Slot neg, pos;
+    };
+    std::vector<Frame> stack;
+    stack.push_back({t, std::move(pp), {-1, 0}, {-1, 1}});
+    while (!stack.empty()) {
+      Frame f = std::move(stack.back());
+      stack.pop_back();
+      if (is_leaf(f.t)) {
+        set(f.neg, f.t);
+        set(f.pos, f.t);
+        continue;
+      }
+      const BspNode n = a_.nodes[std::size_t(f.t)];
+      kernel::PolygonSplit s = kernel::split(a_.planes, a_.polygons[std::size_t(f.t)], cut, cut_opp);
+      switch (s.side) {
+        case Side::On: {
+          const bool same = a_.planes[n.plane] == a_.planes[cut];
+          set(f.neg, same ? n.negative : n.positive);
+          set(f.pos, same ? n.positive : n.negative);
+          break;
+        }
+        case Side::Both: {
+          const std::int32_t h_opp = a_.opposite(n.plane);
+          kernel::PolygonSplit ps = kernel::split(a_.planes, f.pp, n.plane, h_opp);
+          const auto m = std::int32_t(a_.nodes.size());
+          a_.nodes.push_back(n);
+          a_.polygons.push_back(std::move(s.positive));
+          a_.polygons[std::size_t(f.t)] = std::move(s.negative);
+          set(f.neg, f.t);
+          set(f.pos, m);
+          if (ps.side == Side::Both) {
+            stack.push_back({n.negative, std::move(ps.negative), {f.t, 0}, {m, 0}});
+            stack.push_back({n.positive, std::move(ps.positive), {f.t, 1}, {m, 1}});
+          } else {
+            // Cannot happen with exact predicates and the invariant; keep the tree valid anyway.
+            stack.push_back({n.negative, f.pp, {f.t, 0}, {m, 0}});
+            stack.push_back({n.positive, std::move(f.pp), {f.t, 1}, {m, 1}});
+          }
+          break;
+        }
+        case Side::Negative:
+        case Side::Positive: {
+          const bool node_neg = s.side == Side::Negative;  // node's region part stays on this side
+          const Side pside = kernel::classify(a_.planes, f.pp, n.plane);
+          const bool recurse_neg = pside != Side::Positive;  // pp in the node's negative half
+          const TreeRef child = recurse_neg ? n.negative : n.positive;
+          const Slot child_slot{f.t, recurse_neg ? 0 : 1};
+          if (node_neg) {
+            set(f.neg, f.t);
+            stack.push_back({child, std::move(f.pp), child_slot, f.pos});
+          } else {
+            set(f.pos, f.t);
+            stack.push_back({child, std::move(f.pp), f.neg, child_slot});
+          }
+          break;
+        }
+      }
+    }
+    return {out_[0], out_[1]};
+  }
+
+  // Naylor et al. 1990, "merge_bspts": the result follows the structure of tree `a`; tree `b`
+  // is partitioned by a's planes, and leaves are combined by the truth table op[in_a][in_b].
+  TreeRef merge(TreeRef a, TreeRef b, const bool op[2][2]) {
+    struct Frame {
+      TreeRef a, b;
+      Slot slot;
+    };
+    std::vector<Frame> stack{{a, b, {-1, 0}}};
+    TreeRef result = kOut;
+    auto put = [&](Slot s, TreeRef v) {
+      if (s.node < 0)
+        result = v;
+      else
+        set(s, v);
+    };
+    while (!stack.empty()) {
+      Frame f = stack.back();
+      stack.pop_back();
+      if (is_leaf(f.a) || is_leaf(f.b)) {
+        put(f.slot, combine(f.a, f.b, op));
+        continue;
+      }
+      const BspNode n = a_.nodes[std::size_t(f.a)];
+      auto [bneg, bpos] = partition(f.b, a_.polygons[std::size_t(f.a)], n.plane);
+      put(f.slot, f.a);  // a's node is reused: its region and sub-hyperplane are unchanged
+      stack.push_back({n.negative, bneg, {f.a, 0}});
+      stack.push_back({n.positive, bpos, {f.a, 1}});
+    }
+    return result;
+  }
+
+ private:
+  TreeRef combine(TreeRef a, TreeRef b, const bool op[2][2]) {
+    if (is_leaf(a)) {
+      const int x = a == kIn;
+      if (op[x][0] == op[x][1]) return op[x][0] ? kIn : kOut;
+      if (op[x][1]) return b;
+      detail::complement_in_place(a_, b);
+      return b;
+    }
+    const int y = b == kIn;
+    if (op[0][y] == op[1][y]) return op[0][y] ? kIn : kOut;
+    if (op[1][y]) return a;
+    detail::complement_in_place(a_, a);
+    return a;
+  }
+
+  Arena& a_;
+  TreeRef out_[2] = {kOut, kOut};
+};
+
+Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
+  // Partition the smaller tree by the planes of the larger one (cost ~ the larger tree's
+  // nodes whose cells meet the smaller solid's cells that are not single leaves).
+  const bool swap = x.nodes().size() < y.nodes().size();
+  const Solid& a = swap ? y : x;
+  const Solid& b = swap ? x : y;
+  bool op[2][2];
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) op[i][j] = swap ? table[j][i] : table[i][j];
+  Arena arena;
+  arena.nodes.reserve(a.nodes().size() + 2 * b.nodes().size());
+  const TreeRef ra = arena.append(a);
+  const TreeRef rb = arena.append(b);
+  Merger m(arena);
+  const TreeRef r = m.merge(ra, rb, op);
+  return detail::compact(arena, r);
+}
+
+constexpr bool kUnion[2][2] = {{false, true}, {true, true}};
+constexpr bool kIntersection[2][2] = {{false, false}, {false, true}};
+constexpr bool kDifference[2][2] = {{false, false}, {true, false}};
+
+}  // namespace
+
+Solid unite(const Solid& a, const Solid& b) { return apply(a, b, kUnion); }
+Solid intersect(const Solid& a, const Solid& b) { return apply(a, b, kIntersection); }
+Solid subtract(const Solid& a, const Solid& b) { return apply(a, b, kDifference); }
+
+Solid complement(const Solid& a) {
+  Arena arena;
+  TreeRef r = arena.append(a);
+  detail::complement_in_place(arena, r);
+  return detail::compact(arena, r);
+}
+
+std::pair<Solid, Solid> partition(const Solid& solid, const kernel::Plane& plane) {
+  Arena arena;
+  TreeRef r = arena.append(solid);
+  const std::int32_t cut = arena.planes.add(plane);
+  ConvexPolygon pp = kernel::world_polygon(arena.planes, cut);
+  Merger m(arena);
+  auto [neg, pos] = m.partition(r, std::move(pp), cut);
+  // Each part is bounded by the cutting plane: add it as the root of each result.
+  const auto id_neg = std::int32_t(arena.nodes.size());
+  arena.nodes.push_back({cut, neg, kOut});
+  arena.polygons.push_back(kernel::world_polygon(arena.planes, cut));
+  const auto id_pos = std::int32_t(arena.nodes.size());
+  arena.nodes.push_back({cut, kOut, pos});
+  arena.polygons.push_back(kernel::world_polygon(arena.planes, cut));
+  // The two trees share no nodes; compact each separately from a copy of the arena.
+  Arena second = arena;
+  return {detail::compact(arena, id_neg), detail::compact(second, id_pos)};
+}
+
+}  // namespace sculpt

@@ -1,0 +1,43 @@
+#include "bsp/solid.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace sculpt {
+
+Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
+             std::vector<kernel::ConvexPolygon> polygons, TreeRef root)
+    : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root) {
+  if (nodes_.size() != polygons_.size() || (!is_leaf(root_) && std::size_t(root_) >= nodes_.size()))
+    throw std::logic_error("Solid: inconsistent tree storage");
+}
+
+Solid Solid::leaf(bool inside) {
+  Solid s;
+  s.root_ = inside ? kIn : kOut;
+  return s;
+}
+
+TreeStats tree_stats(const Solid& solid) {
+  TreeStats st;
+  std::vector<std::pair<TreeRef, int>> stack{{solid.root(), 0}};
+  double depth_sum = 0;
+  while (!stack.empty()) {
+    auto [r, depth] = stack.back();
+    stack.pop_back();
+    if (is_leaf(r)) {
+      (r == kIn ? st.in_leaves : st.out_leaves)++;
+      st.height = std::max(st.height, depth);
+      depth_sum += depth;
+      continue;
+    }
+    ++st.nodes;
+    const BspNode& n = solid.nodes()[std::size_t(r)];
+    stack.push_back({n.negative, depth + 1});
+    stack.push_back({n.positive, depth + 1});
+  }
+  st.mean_leaf_depth = depth_sum / double(st.in_leaves + st.out_leaves);
+  return st;
+}
+
+}  // namespace sculpt

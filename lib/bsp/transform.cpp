@@ -1,0 +1,119 @@
+#include "bsp/transform.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "base/errors.hpp"
+#include "bsp/tree_builder.hpp"
+
+namespace sculpt {
+
+using kernel::Int128;
+using kernel::Plane;
+
+namespace {
+
+// Integer matrix if every entry is within 1e-12 of a small integer (90° rotations, mirrors,
+// integer scales): then planes map exactly through the cofactor matrix.
+std::optional<Eigen::Matrix<std::int64_t, 3, 3>> integer_matrix(const Eigen::Matrix3d& m) {
+  Eigen::Matrix<std::int64_t, 3, 3> r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double v = std::nearbyint(m(i, j));
+      if (std::fabs(m(i, j) - v) > 1e-12 || std::fabs(v) > 1024) return std::nullopt;
+      r(i, j) = std::int64_t(v);
+    }
+  return r;
+}
+
+Solid map_planes(const Solid& solid, auto&& map_plane) {
+  if (is_leaf(solid.root())) return solid;
+  TreeBuilder b;
+  std::vector<std::int32_t> plane_map(std::size_t(solid.planes().size()), -1);
+  auto mapped = [&](std::int32_t p) {
+    if (plane_map[std::size_t(p)] < 0) plane_map[std::size_t(p)] = b.add_plane(map_plane(solid.planes()[p]));
+    return plane_map[std::size_t(p)];
+  };
+  // Children have larger indices than their parents? Not guaranteed: build bottom-up by
+  // an explicit post-order.
+  const auto& nodes = solid.nodes();
+  std::vector<TreeRef> made(nodes.size(), kOut);
+  std::vector<std::pair<TreeRef, bool>> stack{{solid.root(), false}};
+  while (!stack.empty()) {
+    auto [r, expanded] = stack.back();
+    stack.pop_back();
+    const BspNode& n = nodes[std::size_t(r)];
+    if (!expanded) {
+      stack.push_back({r, true});
+      if (!is_leaf(n.negative)) stack.push_back({n.negative, false});
+      if (!is_leaf(n.positive)) stack.push_back({n.positive, false});
+      continue;
+    }
+    auto child = [&](TreeRef c) { return is_leaf(c) ? c : made[std::size_t(c)]; };
+    made[std::size_t(r)] = b.add_node(mapped(n.plane), child(n.negative), child(n.positive));
+  }
+  return std::move(b).build(made[std::size_t(solid.root())]);
+}
+
+}  // namespace
+
+Solid translate(const Solid& solid, const Eigen::Vector3d& v) {
+  const kernel::GridPoint t = kernel::snap(v);
+  return map_planes(solid, [&](const Plane& p) {
+    return kernel::make_plane(p.a, p.b, p.c, p.d - (Int128(p.a) * t.x + Int128(p.b) * t.y + Int128(p.c) * t.z));
+  });
+}
+
+Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
+  const Eigen::Matrix3d m = map.linear();
+  const double det = m.determinant();
+  if (!std::isfinite(det) || std::fabs(det) < 1e-12) throw InvalidInput("transform: singular or non-finite matrix");
+  const Eigen::Vector3d tv = map.translation();
+  const auto exact = integer_matrix(m);
+  if (exact) {
+    // n'' = sign(det) cof(M) n, d'' = |det| d - n'' . t (grid units): f'(M x + t) = |det| f(x).
+    const kernel::GridPoint t = kernel::snap(tv);
+    const Eigen::Matrix<std::int64_t, 3, 3>& im = *exact;
+    Eigen::Matrix<std::int64_t, 3, 3> cof;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+        cof(i, j) = im(i1, j1) * im(i2, j2) - im(i1, j2) * im(i2, j1);
+      }
+    const std::int64_t idet = im(0, 0) * cof(0, 0) + im(0, 1) * cof(0, 1) + im(0, 2) * cof(0, 2);
+    const std::int64_t sgn = idet > 0 ? 1 : -1;
+    return map_planes(solid, [&](const Plane& p) {
+      Int128 n[3];
+      for (int i = 0; i < 3; ++i)
+        n[i] = sgn * (Int128(cof(i, 0)) * p.a + Int128(cof(i, 1)) * p.b + Int128(cof(i, 2)) * p.c);
+      const Int128 d = Int128(idet * sgn) * p.d - (n[0] * t.x + n[1] * t.y + n[2] * t.z);
+      return kernel::make_plane(n[0], n[1], n[2], d);
+    });
+  }
+  // General map: n' = M^-T n, offset' = d * step - n' . t (world units), then re-quantized.
+  const Eigen::Matrix3d inv_t = m.inverse().transpose();
+  return map_planes(solid, [&](const Plane& p) {
+    const Eigen::Vector3d n = inv_t * p.normal();
+    const double scale = n.cwiseAbs().maxCoeff();
+    // Keep magnitudes moderate before quantizing: divide normal and offset by the same factor.
+    const double offset = (double(p.d) * kernel::kGridStep - n.dot(tv)) / scale;
+    return kernel::plane_from_normal(n / scale, offset);
+  });
+}
+
+Solid rotate(const Solid& solid, const Eigen::Vector3d& axis, double degrees) {
+  if (!(axis.norm() > 0) || !std::isfinite(degrees)) throw InvalidInput("rotate: zero axis or non-finite angle");
+  Eigen::Affine3d map = Eigen::Affine3d::Identity();
+  map.linear() = Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, axis.normalized()).toRotationMatrix();
+  return transform(solid, map);
+}
+
+Solid scale(const Solid& solid, const Eigen::Vector3d& factors) {
+  if (factors.cwiseAbs().minCoeff() == 0 || !factors.allFinite()) throw InvalidInput("scale: factors must be non-zero and finite");
+  Eigen::Affine3d map = Eigen::Affine3d::Identity();
+  map.linear() = factors.asDiagonal();
+  return transform(solid, map);
+}
+
+}  // namespace sculpt

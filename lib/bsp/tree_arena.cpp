@@ -1,0 +1,116 @@
+#include "bsp/tree_arena.hpp"
+
+#include <utility>
+
+namespace sculpt::detail {
+
+using kernel::ConvexPolygon;
+
+std::int32_t Arena::opposite(std::int32_t i) {
+  if (opposite_of.size() < std::size_t(planes.size())) opposite_of.resize(planes.size(), -1);
+  if (opposite_of[i] < 0) {
+    const kernel::Plane o = planes[i].opposite();
+    const std::int32_t j = planes.add(o);
+    opposite_of.resize(planes.size(), -1);
+    opposite_of[i] = j;
+    opposite_of[j] = i;
+  }
+  return opposite_of[i];
+}
+
+TreeRef Arena::append(const Solid& solid) {
+  if (is_leaf(solid.root())) return solid.root();
+  const auto& src = solid.planes().planes();
+  const std::int32_t shift = planes.size() - 6;  // the world box planes 0..5 are shared
+  auto map = [shift](std::int32_t p) { return p < 6 ? p : p + shift; };
+  planes.reserve(planes.size() + src.size());
+  for (std::size_t i = 6; i < src.size(); ++i) planes.add(src[i]);
+  const auto node_shift = std::int32_t(nodes.size());
+  for (const BspNode& n : solid.nodes())
+    nodes.push_back({map(n.plane), is_leaf(n.negative) ? n.negative : n.negative + node_shift,
+                     is_leaf(n.positive) ? n.positive : n.positive + node_shift});
+  for (const ConvexPolygon& poly : solid.polygons()) {
+    ConvexPolygon q = poly;
+    q.support = map(q.support);
+    for (auto& c : q.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
+    polygons.push_back(std::move(q));
+  }
+  return solid.root() + node_shift;
+}
+
+void complement_in_place(Arena& arena, TreeRef& root) {
+  auto flip = [](TreeRef& r) { r = r == kIn ? kOut : kIn; };
+  if (is_leaf(root)) return flip(root);
+  std::vector<TreeRef> stack{root};
+  while (!stack.empty()) {
+    BspNode& n = arena.nodes[stack.back()];
+    stack.pop_back();
+    for (TreeRef* c : {&n.negative, &n.positive}) {
+      if (is_leaf(*c))
+        flip(*c);
+      else
+        stack.push_back(*c);
+    }
+  }
+}
+
+Solid compact(Arena& arena, TreeRef root) {
+  if (is_leaf(root)) return Solid::leaf(root == kIn);
+  // Post-order: a node is emitted after both children, so collapses propagate upwards.
+  std::vector<TreeRef> result(arena.nodes.size(), kOut);
+  std::vector<std::int32_t> order;  // arena nodes in post-order that were kept
+  struct Frame {
+    TreeRef node;
+    bool expanded;
+  };
+  std::vector<Frame> stack{{root, false}};
+  std::vector<BspNode> kept;  // children refer to `result` values (new indices or leaves)
+  std::vector<std::int32_t> kept_arena;
+  while (!stack.empty()) {
+    Frame f = stack.back();
+    stack.pop_back();
+    const BspNode& n = arena.nodes[f.node];
+    if (!f.expanded) {
+      stack.push_back({f.node, true});
+      if (!is_leaf(n.positive)) stack.push_back({n.positive, false});
+      if (!is_leaf(n.negative)) stack.push_back({n.negative, false});
+      continue;
+    }
+    const TreeRef neg = is_leaf(n.negative) ? n.negative : result[n.negative];
+    const TreeRef pos = is_leaf(n.positive) ? n.positive : result[n.positive];
+    if (is_leaf(neg) && neg == pos) {
+      result[f.node] = neg;
+      continue;
+    }
+    result[f.node] = TreeRef(kept.size());
+    kept.push_back({n.plane, neg, pos});
+    kept_arena.push_back(f.node);
+  }
+  const TreeRef new_root = result[root];
+  if (is_leaf(new_root)) return Solid::leaf(new_root == kIn);
+
+  // Renumber planes: only those used by nodes and polygons survive.
+  std::vector<std::int32_t> plane_map(std::size_t(arena.planes.size()), -1);
+  kernel::PlaneTable table;
+  for (std::int32_t i = 0; i < 6; ++i) plane_map[i] = i;
+  auto use = [&](std::int32_t p) {
+    if (plane_map[p] < 0) plane_map[p] = table.add(arena.planes[p]);
+    return plane_map[p];
+  };
+  // Post-order puts the root last; reverse to have the root first (index 0).
+  const std::size_t k = kept.size();
+  std::vector<BspNode> nodes(k);
+  std::vector<ConvexPolygon> polygons(k);
+  auto flip = [k](TreeRef r) { return is_leaf(r) ? r : TreeRef(k - 1 - std::size_t(r)); };
+  for (std::size_t i = 0; i < k; ++i) {
+    const std::size_t j = k - 1 - i;
+    nodes[j] = {use(kept[i].plane), flip(kept[i].negative), flip(kept[i].positive)};
+    ConvexPolygon poly = std::move(arena.polygons[kept_arena[i]]);
+    poly.support = use(poly.support);
+    for (auto& c : poly.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
+    polygons[j] = std::move(poly);
+  }
+  return Solid(std::move(table), std::move(nodes), std::move(polygons), flip(new_root));
+}
+
+}  // namespace sculpt::detail

@@ -1,0 +1,31 @@
+#pragma once
+/// \file tree_arena.hpp
+/// Internal: a mutable working copy of one or more trees (planes, nodes, sub-hyperplanes)
+/// used by the tree algorithms, and compaction of a result back into a Solid.
+
+#include <vector>
+
+#include "bsp/solid.hpp"
+
+namespace sculpt::detail {
+
+struct Arena {
+  kernel::PlaneTable planes;
+  std::vector<BspNode> nodes;
+  std::vector<kernel::ConvexPolygon> polygons;
+  std::vector<std::int32_t> opposite_of;  ///< cache: index of the opposite plane, or -1
+
+  /// Index of the plane opposite to plane i (added on first use).
+  std::int32_t opposite(std::int32_t i);
+  /// Appends a solid's tree; returns its root in the arena. Plane indices are shifted.
+  TreeRef append(const Solid& solid);
+};
+
+/// Copies the tree reachable from `root` into a compact Solid (depth-first order), collapsing
+/// nodes whose two children are the same leaf and dropping unused planes.
+Solid compact(Arena& arena, TreeRef root);
+
+/// Flips in and out leaves of the subtree at `root` in place (explicit stack).
+void complement_in_place(Arena& arena, TreeRef& root);
+
+}  // namespace sculpt::detail

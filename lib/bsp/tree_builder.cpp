@@ -1,0 +1,108 @@
+#include "bsp/tree_builder.hpp"
+
+#include <stdexcept>
+
+#include "bsp/tree_arena.hpp"
+
+namespace sculpt {
+
+using kernel::ConvexPolygon;
+using kernel::Side;
+
+TreeBuilder::TreeBuilder() = default;
+
+std::int32_t TreeBuilder::add_plane(const kernel::Plane& plane) { return planes_.add(plane); }
+
+TreeRef TreeBuilder::add_node(std::int32_t plane, TreeRef negative, TreeRef positive) {
+  if (plane < 0 || plane >= planes_.size()) throw std::out_of_range("TreeBuilder: unknown plane");
+  for (TreeRef c : {negative, positive})
+    if (c != kIn && c != kOut && (c < 0 || std::size_t(c) >= nodes_.size()))
+      throw std::out_of_range("TreeBuilder: unknown child");
+  nodes_.push_back({plane, negative, positive});
+  return TreeRef(nodes_.size() - 1);
+}
+
+TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_planes, TreeRef inside,
+                                      TreeRef outside) {
+  TreeRef t = inside;
+  for (auto it = face_planes.rbegin(); it != face_planes.rend(); ++it) t = add_node(*it, t, outside);
+  return t;
+}
+
+Solid TreeBuilder::build(TreeRef root) && {
+  detail::Arena arena;
+  arena.planes = std::move(planes_);
+  if (is_leaf(root)) return Solid::leaf(root == kIn);
+
+  // Top-down: each node's sub-hyperplane is its plane's world polygon clipped by the ancestors'
+  // half-spaces. A node whose polygon is empty does not cut its cell and is replaced by the
+  // child on the cell's side; the witness for that side is the nearest kept ancestor's polygon,
+  // which lies on the cell's boundary (or the origin, inside the world box, at the root).
+  struct Frame {
+    TreeRef source;         // builder node or leaf
+    std::size_t depth;      // constraints inherited from the ancestors
+    std::int32_t add;       // constraint this child adds (plane index), -1 for the root
+    std::int32_t parent;    // arena node whose child receives the result, -1 = the root
+    int side;               // 0 = negative child, 1 = positive child
+  };
+  std::vector<std::int32_t> constraints;  // plane indices; the cell is on their negative side
+  TreeRef result_root = kOut;
+  std::vector<Frame> stack{{root, 0, -1, -1, 0}};
+  while (!stack.empty()) {
+    const Frame f = stack.back();
+    stack.pop_back();
+    constraints.resize(f.depth);
+    if (f.add >= 0) constraints.push_back(f.add);
+    TreeRef src = f.source;
+    TreeRef out = src;
+    while (!is_leaf(src)) {
+      const BspNode n = nodes_[std::size_t(src)];
+      ConvexPolygon poly = kernel::world_polygon(arena.planes, n.plane);
+      int cell_side = 0;  // 0: the plane cuts the cell; -1 / +1: the cell lies on that side
+      bool empty = false;
+      for (std::int32_t c : constraints) {
+        const std::int32_t opp = arena.opposite(c);
+        kernel::PolygonSplit s = kernel::split(arena.planes, poly, c, opp);
+        if (s.side == Side::On) {  // same plane as an ancestor
+          cell_side = arena.planes[c] == arena.planes[n.plane] ? -1 : +1;
+          break;
+        }
+        if (s.side == Side::Positive) {
+          empty = true;
+          break;
+        }
+        if (s.side == Side::Both) poly = std::move(s.negative);
+      }
+      if (empty) {
+        if (f.parent < 0) {
+          cell_side = kernel::orient(kernel::GridPoint{}, arena.planes[n.plane]) == kernel::Sign::Negative ? -1 : 1;
+        } else {
+          const Side ws = kernel::classify(arena.planes, arena.polygons[f.parent], n.plane);
+          cell_side = ws == Side::Negative ? -1 : 1;  // On is impossible: the planes differ
+        }
+      }
+      if (cell_side != 0) {
+        src = cell_side < 0 ? n.negative : n.positive;
+        out = src;
+        continue;
+      }
+      const auto id = std::int32_t(arena.nodes.size());
+      arena.nodes.push_back({n.plane, kOut, kOut});
+      arena.polygons.push_back(std::move(poly));
+      const std::int32_t opp = arena.opposite(n.plane);
+      stack.push_back({n.positive, constraints.size(), opp, id, 1});
+      stack.push_back({n.negative, constraints.size(), n.plane, id, 0});
+      out = id;
+      break;
+    }
+    if (f.parent < 0)
+      result_root = out;
+    else if (f.side == 0)
+      arena.nodes[std::size_t(f.parent)].negative = out;
+    else
+      arena.nodes[std::size_t(f.parent)].positive = out;
+  }
+  return detail::compact(arena, result_root);
+}
+
+}  // namespace sculpt

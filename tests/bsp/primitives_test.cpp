@@ -1,0 +1,44 @@
+#include "bsp/primitives.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "bsp/boundary.hpp"
+#include "bsp/classify.hpp"
+#include "support/mesh_checks.hpp"
+
+namespace sculpt {
+namespace {
+
+using checks::EdgesManifoldAndOriented;
+using checks::GenusIs;
+using checks::VolumeNear;
+
+TEST(Box, MeshIsAClosedCubeWithExactVolume) {
+  const Solid s = box({0, 0, 0}, {1, 2, 3});
+  const PolygonMesh m = to_mesh(s);
+  EXPECT_TRUE(EdgesManifoldAndOriented(m));
+  EXPECT_TRUE(GenusIs(m, 0));
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_EQ(m.faces.size(), 6u);
+  EXPECT_TRUE(VolumeNear(m, 6.0, 1e-15));
+}
+
+TEST(Sphere, MeshIsClosedAndVolumeApproachesTheBall) {
+  for (int n : {8, 16, 32, 64}) {
+    const Solid s = sphere(1.0, {.segments = n});
+    const PolygonMesh m = to_mesh(s);
+    EXPECT_TRUE(EdgesManifoldAndOriented(m)) << n;
+    EXPECT_TRUE(GenusIs(m, 0)) << n;
+    const double v = checks::reference_signed_volume(m);
+    EXPECT_LT(v, 4.0 / 3.0 * std::numbers::pi) << n;
+    EXPECT_GT(v, 4.0 / 3.0 * std::numbers::pi * (1 - 8.0 / (n * n) * 4)) << n;
+    std::printf("n=%d faces=%zu verts=%zu vol=%.9f nodes=%d height=%d\n", n, m.faces.size(), m.vertices.size(), v,
+                tree_stats(s).nodes, tree_stats(s).height);
+  }
+}
+
+}  // namespace
+}  // namespace sculpt
