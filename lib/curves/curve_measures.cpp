@@ -1,5 +1,6 @@
 #include "curves/curve_measures.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 namespace sculpt::curves {
@@ -7,43 +8,41 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 
-Vec unit_or(const Vec& v, const Vec& fallback) {
+Vec unit_or(const Vec& v, const Vec& fallback, double scale = 0.0) {
   const double length = v.norm();
-  return length > 0.0 ? Vec(v / length) : fallback;
+  return length > 1e-12 * scale ? Vec(v / length) : fallback;
 }
 
 // Sec. 4.2: t_k = (beta v_k + alpha v_{k+1}) / (alpha + beta) with alpha = |v_{k-1} x v_k|,
 // beta = |v_{k+1} x v_{k+2}|, v_k = p_k - p_{k-1}; Bessel end conditions for open curves.
 std::vector<Vec> five_point(const std::vector<Vec>& p, bool closed) {
   const int n = static_cast<int>(p.size());
-  // v[k + 2] holds v_k for k = -1 .. n+1 (open) so that every access below is in range.
+  // v[k + 1] holds v_k for k = -1 .. n+1 (n points p_0 .. p_{n-1}).
   std::vector<Vec> v(n + 3, Vec::Zero());
+  const auto at = [&v](int k) -> Vec& { return v[k + 1]; };
   if (closed) {
-    for (int k = -1; k <= n + 1; ++k) {
-      const int a = ((k % n) + n) % n, b = (((k - 1) % n) + n) % n;
-      v[k + 2] = p[a] - p[b];
-    }
-  } else {
-    for (int k = 1; k < n; ++k) v[k + 2] = p[k] - p[k - 1];
-    if (n >= 3) {
-      v[0 + 2] = 2.0 * v[1 + 2] - v[2 + 2];
-      v[-1 + 2] = 2.0 * v[0 + 2] - v[1 + 2];
-      v[n + 2] = 2.0 * v[n - 1 + 2] - v[n - 2 + 2];
-      v[n + 1 + 2] = 2.0 * v[n + 2] - v[n - 1 + 2];
-    } else {  // two points: every difference is the chord
-      for (auto& w : v) w = p[1] - p[0];
-    }
+    for (int k = -1; k <= n + 1; ++k) at(k) = p[((k % n) + n) % n] - p[(((k - 1) % n) + n) % n];
+  } else if (n >= 3) {
+    for (int k = 1; k < n; ++k) at(k) = p[k] - p[k - 1];
+    at(0) = 2.0 * at(1) - at(2);
+    at(-1) = 2.0 * at(0) - at(1);
+    at(n) = 2.0 * at(n - 1) - at(n - 2);
+    at(n + 1) = 2.0 * at(n) - at(n - 1);
+  } else {  // two points: every difference is the chord
+    for (auto& w : v) w = p[1] - p[0];
   }
   std::vector<Vec> t(n);
   for (int k = 0; k < n; ++k) {
-    const Vec& vm1 = v[k - 1 + 2];
-    const Vec& v0 = v[k + 2];
-    const Vec& v1 = v[k + 1 + 2];
-    const Vec& v2 = v[k + 2 + 2];
+    const Vec& vm1 = at(k - 1);
+    const Vec& v0 = at(k);
+    const Vec& v1 = at(k + 1);
+    const Vec& v2 = at(k + 2);
     const double alpha = vm1.cross(v0).norm();
     const double beta = v1.cross(v2).norm();
     const Vec blend = alpha + beta > 0.0 ? Vec((beta * v0 + alpha * v1) / (alpha + beta)) : Vec(0.5 * (v0 + v1));
-    t[k] = unit_or(blend, unit_or(v0 + v1, unit_or(v1, Vec(1, 0, 0))));
+    // A blend that cancels (e.g. Bessel ends extrapolated backwards) falls back to v_{k+1}.
+    const double scale = v0.norm() + v1.norm();
+    t[k] = unit_or(blend, unit_or(v0 + v1, unit_or(v1, unit_or(v0, Vec(1, 0, 0))), scale), scale);
   }
   return t;
 }

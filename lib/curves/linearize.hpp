@@ -35,7 +35,7 @@ enum class Method {
 
 struct LinearizeOptions {
   int segments = 0;                ///< m >= 1; 0 = not given
-  std::optional<double> tolerance; ///< epsilon >= 0 for tolerance-driven methods
+  std::optional<double> tolerance = std::nullopt; ///< epsilon >= 0 for tolerance-driven methods
   Method method = Method::Automatic;
   double alpha = 0.5;              ///< INIT/ITER weight of chord length vs. spherical image, in [0, 1]
   Norm norm = Norm::LInf;

@@ -4,21 +4,29 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 
+#include "curves/curve_measures.hpp"
+#include "curves/heuristic_subdivision.hpp"
 #include "curves/segment_error_tree.hpp"
 
 namespace sculpt::curves {
 namespace {
 
 constexpr int kUnreached = std::numeric_limits<int>::max();
+// Up to this many candidate edges the solver computes all their errors once (stored mode).
+// (memory: 8 bytes each), if evaluating them directly costs at most this many point distances.
+constexpr long long kStoredEdgeLimit = 4'000'000;
+constexpr double kStoredCostLimit = 3e8;
 
 // Shortest paths over the allowed vertices; positions 0..K-1 index `vertex_`.
 class FeasibilitySolver {
  public:
   FeasibilitySolver(const std::vector<Eigen::Vector3d>& points, Norm norm, std::vector<int> vertices)
-      : points_(points), tree_(points, norm), vertex_(std::move(vertices)) {
+      : points_(points), norm_(norm), vertex_(std::move(vertices)) {
     const int count = static_cast<int>(vertex_.size());
     reach_.assign(count, count - 1);
     hint_.assign(count, -1);
@@ -26,7 +34,45 @@ class FeasibilitySolver {
 
   [[nodiscard]] int count() const { return static_cast<int>(vertex_.size()); }
   [[nodiscard]] const std::vector<int>& vertices() const { return vertex_; }
-  [[nodiscard]] double error(int a, int b) const { return tree_.error(vertex_[a], vertex_[b]); }
+  [[nodiscard]] double error(int a, int b) {
+    if (!stored_.empty() && b <= reach_[a]) return stored_[row_[a] + (b - a - 1)];
+    if (vertex_[b] - vertex_[a] <= 256) return segment_error(points_, vertex_[a], vertex_[b], norm_);
+    return tree().error(vertex_[a], vertex_[b]);
+  }
+
+  /// Number of candidate edges (a, b <= reach[a]).
+  [[nodiscard]] long long edge_count() const {
+    long long total = 0;
+    for (int a = 0; a + 1 < count(); ++a) total += reach_[a] - a;
+    return total;
+  }
+  /// Point distances needed to evaluate every candidate edge directly.
+  [[nodiscard]] double evaluation_cost() const {
+    double total = 0;
+    for (int a = 0; a + 1 < count(); ++a)
+      total += 0.5 * static_cast<double>(reach_[a] - a) * (vertex_[reach_[a]] - vertex_[a]);
+    return total;
+  }
+
+  /// Computes and keeps the exact error of every candidate edge; later tests are lookups.
+  /// Short rows are evaluated directly, long ones through the tree.
+  void store_errors() {
+    const int count = this->count();
+    row_.assign(count, 0);
+    std::size_t total = 0;
+    for (int a = 0; a + 1 < count; ++a) {
+      row_[a] = total;
+      total += static_cast<std::size_t>(reach_[a] - a);
+    }
+    std::vector<double> values(total);
+    for (int a = 0; a + 1 < count; ++a)
+      for (int b = a + 1; b <= reach_[a]; ++b)
+        values[row_[a] + (b - a - 1)] = vertex_[b] - vertex_[a] <= 256
+                                            ? segment_error(points_, vertex_[a], vertex_[b], norm_)
+                                            : tree().error(vertex_[a], vertex_[b]);
+    stored_ = std::move(values);
+  }
+  [[nodiscard]] const std::vector<double>& stored_errors() const { return stored_; }
   [[nodiscard]] long long tests() const { return tests_; }
 
   /// Bounds every position's reach for tolerances <= eps by cone pruning.
@@ -38,6 +84,8 @@ class FeasibilitySolver {
       reach_[a] = static_cast<int>(std::upper_bound(vertex_.begin(), vertex_.end(), reach_index) - vertex_.begin()) - 1;
     }
     reach_eps_ = eps;
+    stored_.clear();  // rows depend on the reach
+    row_.clear();
   }
   [[nodiscard]] double reach_eps() const { return reach_eps_; }
 
@@ -89,34 +137,51 @@ class FeasibilitySolver {
   }
 
  private:
+  const SegmentErrorTree& tree() {
+    if (!tree_) tree_.emplace(points_, norm_);
+    return *tree_;
+  }
+
   bool test(int a, int b, double eps) {
     ++tests_;
+    if (!stored_.empty()) return stored_[row_[a] + (b - a - 1)] <= eps;
     int violator = -1;
-    const bool ok = tree_.within(vertex_[a], vertex_[b], eps, hint_[b], &violator);
+    const bool ok = tree().within(vertex_[a], vertex_[b], eps, hint_[b], &violator);
     if (!ok && violator >= 0) hint_[b] = violator;
     return ok;
   }
 
-  // Largest index j such that chord (i, j) may have error <= eps: scan k > i and stop at the
-  // first point whose cone is disjoint from the narrowest cone so far (then every chord
-  // reaching beyond k has one of the two points farther than eps from its line).
+  // Largest index j such that chord (i, j) may have error <= eps. A line through p_i is within
+  // eps of p_k only if its direction lies in the double cone around u_k = (p_k - p_i) / r_k of
+  // half-angle h_k = asin(eps / r_k). Each new point's cone is compared with the cones of the
+  // points at offsets 1, 2, 4, 8, ... from i (for a smooth curve the point at about half the
+  // distance is the one that conflicts first); two disjoint cones end the reach. Cones are
+  // disjoint iff |u_a . u_b| < cos(h_a + h_b) = cos h_a cos h_b - sin h_a sin h_b (no
+  // transcendental functions), decided with a safety margin.
   int cone_reach(int i, int last, double eps) const {
+    struct Cone {
+      Eigen::Vector3d axis;
+      double sin_half, cos_half;
+    };
+    Cone cones[64];
+    int count = 0;
+    int next_sample = 1;
     const Eigen::Vector3d& origin = points_[i];
-    Eigen::Vector3d narrow_axis = Eigen::Vector3d::Zero();
-    double narrow_half = 10.0;  // no cone yet
     for (int k = i + 1; k <= last; ++k) {
       const Eigen::Vector3d w = points_[k] - origin;
       const double r = w.norm();
       if (!(r > eps * (1.0 + 1e-9))) continue;  // the point constrains nothing
-      const double half = std::asin(std::min(1.0, eps / r));
+      const double s = eps / r, c = std::sqrt(std::max(0.0, 1.0 - s * s));
       const Eigen::Vector3d axis = w / r;
-      if (narrow_half < 10.0) {
-        const double angle = std::atan2(axis.cross(narrow_axis).norm(), std::abs(axis.dot(narrow_axis)));
-        if (angle > half + narrow_half + 1e-7) return k;
+      for (int t = 0; t < count; ++t) {
+        const Cone& cone = cones[t];
+        const double cos_sum = c * cone.cos_half - s * cone.sin_half;  // cos(h + h_t)
+        if (cos_sum <= 0.0) continue;  // together at least 90 degrees wide: never disjoint
+        if (std::abs(axis.dot(cone.axis)) < cos_sum * (1.0 - 1e-10) - 1e-12) return k;
       }
-      if (half < narrow_half) {
-        narrow_half = half;
-        narrow_axis = axis;
+      if (k - i >= next_sample && count < 64) {
+        cones[count++] = {axis, s, c};
+        next_sample = 2 * (k - i);
       }
     }
     return last;
@@ -191,7 +256,10 @@ class FeasibilitySolver {
   }
 
   const std::vector<Eigen::Vector3d>& points_;
-  SegmentErrorTree tree_;
+  Norm norm_;
+  std::optional<SegmentErrorTree> tree_;
+  std::vector<std::size_t> row_;   // stored mode: row start of position a
+  std::vector<double> stored_;     // stored mode: error of (a, b) at row_[a] + b - a - 1
   std::vector<int> vertex_;
   std::vector<int> reach_, hint_, dist_, pred_;
   double reach_eps_ = std::numeric_limits<double>::infinity();
@@ -204,7 +272,7 @@ std::vector<int> all_vertices(int n) {
   return v;
 }
 
-double path_error(const FeasibilitySolver& solver, const std::vector<int>& path) {
+double path_error(FeasibilitySolver& solver, const std::vector<int>& path) {
   double e = 0.0;
   for (std::size_t k = 0; k + 1 < path.size(); ++k) e = std::max(e, solver.error(path[k], path[k + 1]));
   return e;
@@ -240,29 +308,76 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   const int n = static_cast<int>(points.size());
   FeasibilitySolver solver(points, norm, options.vertices.empty() ? all_vertices(n) : options.vertices);
   const int count = solver.count();
-  // Upper bound: the given start, or break points spread evenly over the allowed vertices.
+  // Upper bound: the given start, else the better of INIT (alpha = 1/2, Alg. 4.3) and break
+  // points spread evenly over the allowed vertices.
   std::vector<int> best;
+  const std::vector<int>& allowed = solver.vertices();
   if (!options.start.empty()) {
-    const std::vector<int>& allowed = solver.vertices();
     for (int index : options.start)
       best.push_back(static_cast<int>(std::lower_bound(allowed.begin(), allowed.end(), index) - allowed.begin()));
   } else {
     for (int s = 0; s <= m; ++s) best.push_back(static_cast<int>((static_cast<long long>(s) * (count - 1)) / m));
+    if (options.vertices.empty()) {
+      DigitizedCurve open;
+      open.points = points;
+      const Linearization init = weighted_subdivision(points, CurveMeasures(open), m, 0.5, norm);
+      if (init.error < approximation_error(points, best, norm)) best = init.indices;
+    }
   }
+  const bool debug = std::getenv("SCULPT_CURVES_DEBUG") != nullptr;
   double hi = path_error(solver, best);
   const double first_hi = hi;
   double lo = -1.0;  // largest tolerance known infeasible; -1 = none yet
-  solver.prune_reach(hi);
   int probes = 0;
-  while (const std::optional<double> eps = middle(lo, hi, first_hi)) {
+  const auto probe = [&](double eps) {
     ++probes;
-    if (std::optional<std::vector<int>> path = solver.exact_path(*eps, m)) {
+    const long long before = solver.tests();
+    std::optional<std::vector<int>> path = solver.exact_path(eps, m);
+    if (debug)
+      std::fprintf(stderr, "probe %d eps %.17g feasible %d tests %lld minseg %d\n", probes, eps, path.has_value(),
+                   solver.tests() - before, solver.min_segments());
+    if (path) {
       best = std::move(*path);
       hi = path_error(solver, best);  // <= eps: jump to the error actually reached
-      if (hi < 0.6 * solver.reach_eps()) solver.prune_reach(hi);
     } else {
-      lo = *eps;
+      lo = eps;
     }
+    return path.has_value();
+  };
+  // The reach (and so the work per probe) grows with the tolerance: start from a quarter of the
+  // heuristic's error and double until feasible; the last cap bounds every later probe.
+  for (double cap = 0.25 * hi;; cap = std::min(2.0 * cap, hi)) {
+    solver.prune_reach(cap);
+    if (debug)
+      std::fprintf(stderr, "cap %.6g of start %.6g: %lld candidate edges over %d vertices\n", cap, hi,
+                   solver.edge_count(), count);
+    if (solver.evaluation_cost() <= 1e6) solver.store_errors();  // cheap: probe by lookups
+    if (cap >= hi || cap <= lo || probe(cap)) break;
+  }
+  const bool stored = solver.edge_count() <= kStoredEdgeLimit && solver.evaluation_cost() <= kStoredCostLimit;
+  if (stored && solver.stored_errors().empty()) solver.store_errors();
+  if (stored) {
+    // Stored mode: the optimum is one of the stored edge errors in (lo, hi]. Binary search over
+    // them by selection (nth_element); each probe is a DP over stored values.
+    std::vector<double> candidates;
+    for (double e : solver.stored_errors())
+      if (e < hi && e > lo) candidates.push_back(e);
+    while (!candidates.empty()) {
+      auto middle_it = candidates.begin() + static_cast<std::ptrdiff_t>(candidates.size() / 2);
+      std::nth_element(candidates.begin(), middle_it, candidates.end());
+      const double eps = *middle_it;
+      if (probe(eps)) {
+        candidates.erase(std::partition(candidates.begin(), candidates.end(), [&](double e) { return e < hi; }),
+                         candidates.end());
+      } else {
+        candidates.erase(std::partition(candidates.begin(), candidates.end(), [&](double e) { return e > eps; }),
+                         candidates.end());
+      }
+    }
+  } else {
+    // Streaming mode: bisect the tolerance itself; no double between the bounds = done.
+    while (const std::optional<double> eps = middle(lo, hi, first_hi))
+      if (probe(*eps) && hi < 0.6 * solver.reach_eps()) solver.prune_reach(hi);
   }
   Linearization result;
   result.indices = solver.indices(best);

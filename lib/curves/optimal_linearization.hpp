@@ -27,10 +27,10 @@ namespace sculpt::curves {
 struct OptimalOptions {
   /// Allowed break points (sorted indices into points, containing 0 and points.size() - 1);
   /// empty = all. The result is optimal among approximations using only these.
-  std::vector<int> vertices;
+  std::vector<int> vertices = {};
   /// A known feasible approximation with exactly m segments using allowed vertices (its error
   /// bounds the search); empty = the solver builds one.
-  std::vector<int> start;
+  std::vector<int> start = {};
 };
 
 /// Exact min-error approximation with exactly m segments (Problem 1).

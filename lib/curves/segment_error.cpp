@@ -9,8 +9,25 @@ double segment_error(const std::vector<Eigen::Vector3d>& points, int i, int j, N
   const ChordDistance distance(points[i], points[j]);
   double result = 0.0;
   if (norm == Norm::LInf) {
-    for (int k = i + 1; k < j; ++k) result = std::max(result, distance(points[k]));
-    return result;
+    // Only the farthest point needs the full ChordDistance: find it by the squared cross product
+    // (same order, since sqrt and division are monotone), then measure it exactly as everyone does.
+    if (j - i < 2) return 0.0;
+    if (distance.degenerate()) {
+      for (int k = i + 1; k < j; ++k) result = std::max(result, distance(points[k]));
+      return result;
+    }
+    const Eigen::Vector3d& a = points[i];
+    const Eigen::Vector3d d = points[j] - a;
+    int farthest = i + 1;
+    double largest = -1.0;
+    for (int k = i + 1; k < j; ++k) {
+      const double s = (points[k] - a).cross(d).squaredNorm();
+      if (s > largest) {
+        largest = s;
+        farthest = k;
+      }
+    }
+    return distance(points[farthest]);
   }
   for (int k = i + 1; k < j; ++k) {
     const double d = distance(points[k]);

@@ -5,6 +5,7 @@
 /// with ChordDistance, so all of them see bit-identical errors.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
 namespace sculpt::curves {

@@ -1,0 +1,28 @@
+// Scratch timing probe (not part of the documented benchmarks).
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "bench_common.hpp"
+#include "curves/dynamic_programming.hpp"
+#include "curves/fast_linearization.hpp"
+#include "curves/optimal_linearization.hpp"
+#include "curves/test_curves.hpp"
+
+using namespace sculpt::curves;
+
+int main(int argc, char** argv) {
+  const std::string name = argc > 1 ? argv[1] : "folium";
+  const int n = argc > 2 ? std::atoi(argv[2]) : 3000;
+  const int m = argc > 3 ? std::atoi(argv[3]) : 4;
+  const int fast = argc > 4 ? std::atoi(argv[4]) : 0;
+  const auto curve = make_test_curve(*test_curve_from_name(name), {.points = n});
+  const auto points = path_points(curve);
+  Linearization la;
+  const int runs = argc > 5 ? std::atoi(argv[5]) : 1;
+  const double ms = bench::median_ms(runs, [&] {
+    la = fast == 1 ? fast_linearization(points, m, Norm::LInf, {.exact_below = 0}) : fast == 2 ? dynamic_linearization(points, m, Norm::LInf) : optimal_min_error(points, m, Norm::LInf);
+  });
+  std::printf("%s n=%d m=%d %s: %.3f ms error %.9g probes %d\n", name.c_str(), n, m, fast ? "fast" : "optimal", ms,
+              la.error, la.iterations);
+}

@@ -1,0 +1,154 @@
+// The optimal solvers against DYNAMIC (the paper's algorithm) and against brute force.
+#include "curves/optimal_linearization.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "curve_testing.hpp"
+#include "curves/dynamic_programming.hpp"
+#include "curves/fast_linearization.hpp"
+#include "curves/test_curves.hpp"
+
+using namespace sculpt::curves;
+using Vec = Eigen::Vector3d;
+
+namespace {
+
+// Points scattered at random: segment errors jump around, gaps in achievable segment counts.
+std::vector<Vec> scattered(std::mt19937_64& rng, int n, int dimension) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec> p;
+  for (int k = 0; k < n; ++k) p.push_back({u(rng), u(rng), dimension == 3 ? u(rng) : 0.0});
+  return p;
+}
+
+void expect_valid(const Linearization& la, const std::vector<Vec>& points, int m, Norm norm) {
+  ASSERT_EQ(la.segments(), m);
+  ASSERT_EQ(la.indices.front(), 0);
+  ASSERT_EQ(la.indices.back(), static_cast<int>(points.size()) - 1);
+  for (std::size_t k = 0; k + 1 < la.indices.size(); ++k) ASSERT_LT(la.indices[k], la.indices[k + 1]);
+  ASSERT_EQ(la.error, approximation_error(points, la.indices, norm));
+}
+
+}  // namespace
+
+TEST(OptimalMinError, AgreesWithBruteForceAndDynamicOnSmallRandomCurves) {
+  std::mt19937_64 rng(2024);
+  int cases = 0;
+  for (int trial = 0; trial < 240; ++trial) {
+    const int n = 3 + trial % 10;  // 3..12 points
+    const int dimension = trial % 2 ? 3 : 2;
+    const std::vector<Vec> points =
+        trial % 3 == 0 ? scattered(rng, n, dimension) : curve_testing::random_curve(rng, n, dimension).points;
+    const Norm norm = trial % 4 == 3 ? Norm::L2 : Norm::LInf;
+    for (int m = 1; m < n; ++m) {
+      const double brute = curve_testing::brute_force_optimum(points, m, norm);
+      const Linearization optimal = optimal_min_error(points, m, norm);
+      const Linearization dynamic = dynamic_linearization(points, m, norm);
+      expect_valid(optimal, points, m, norm);
+      expect_valid(dynamic, points, m, norm);
+      ASSERT_EQ(optimal.error, brute) << "trial " << trial << " m " << m;
+      ASSERT_EQ(dynamic.error, brute) << "trial " << trial << " m " << m;
+      ++cases;
+    }
+  }
+  EXPECT_GT(cases, 1000);
+}
+
+TEST(OptimalMinError, AgreesWithDynamicOnLargerRandomCurves) {
+  std::mt19937_64 rng(99);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int n = 30 + 7 * trial % 60;
+    const int dimension = trial % 2 ? 3 : 2;
+    const std::vector<Vec> points =
+        trial % 4 == 0 ? scattered(rng, n, dimension) : curve_testing::random_curve(rng, n, dimension).points;
+    for (int m : {1, 2, 3, 5, 8, 13, n / 2, n - 2, n - 1}) {
+      if (m < 1 || m > n - 1) continue;
+      const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
+      expect_valid(optimal, points, m, Norm::LInf);
+      ASSERT_EQ(optimal.error, dynamic_linearization(points, m, Norm::LInf).error) << trial << " " << m;
+    }
+  }
+}
+
+TEST(OptimalMinError, AgreesWithDynamicOnTheTestCurves) {
+  for (TestCurve which : all_test_curves()) {
+    for (double noise : {0.0, 0.01}) {
+      const DigitizedCurve curve = make_test_curve(which, {.points = 120, .noise = noise, .seed = 5});
+      const std::vector<Vec> points = path_points(curve);
+      for (int m : {2, 4, 8, 16, 32, 64}) {
+        const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
+        expect_valid(optimal, points, m, Norm::LInf);
+        EXPECT_EQ(optimal.error, dynamic_linearization(points, m, Norm::LInf).error)
+            << test_curve_name(which) << " m=" << m << " noise=" << noise;
+      }
+    }
+  }
+}
+
+TEST(OptimalMinError, RestrictedVerticesAreOptimalAmongThem) {
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 30; ++trial) {
+    const auto points = curve_testing::random_curve(rng, 11, 3).points;
+    const std::vector<int> allowed{0, 2, 3, 5, 8, 9, 10};
+    for (int m = 1; m <= 6; ++m) {
+      // Brute force over subsets of the allowed interior vertices.
+      double best = 1e300;
+      const int interior = static_cast<int>(allowed.size()) - 2;
+      for (int mask = 0; mask < (1 << interior); ++mask) {
+        if (__builtin_popcount(mask) != m - 1) continue;
+        std::vector<int> q{0};
+        for (int b = 0; b < interior; ++b)
+          if (mask & (1 << b)) q.push_back(allowed[b + 1]);
+        q.push_back(10);
+        best = std::min(best, approximation_error(points, q, Norm::LInf));
+      }
+      const Linearization la = optimal_min_error(points, m, Norm::LInf, {.vertices = allowed, .start = {}});
+      expect_valid(la, points, m, Norm::LInf);
+      for (int index : la.indices) EXPECT_TRUE(std::count(allowed.begin(), allowed.end(), index));
+      EXPECT_EQ(la.error, best);
+    }
+  }
+}
+
+TEST(OptimalMinCount, AgreesWithBruteForce) {
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 150; ++trial) {
+    const int n = 3 + trial % 9;
+    const std::vector<Vec> points =
+        trial % 2 ? scattered(rng, n, 3) : curve_testing::random_curve(rng, n, trial % 3 ? 2 : 3).points;
+    const Norm norm = trial % 5 == 4 ? Norm::L2 : Norm::LInf;
+    for (double tol : {0.0, 0.05, 0.2, 0.5, 1.0, 3.0}) {
+      const Linearization la = optimal_min_count(points, tol, norm);
+      EXPECT_LE(la.error, tol);
+      EXPECT_EQ(la.error, approximation_error(points, la.indices, norm));
+      EXPECT_EQ(la.segments(), curve_testing::brute_force_min_count(points, tol, norm)) << trial << " tol " << tol;
+    }
+  }
+}
+
+TEST(OptimalMinCount, AtTheOptimalErrorOfMNeedsAtMostM) {
+  std::mt19937_64 rng(12);
+  for (int trial = 0; trial < 40; ++trial) {
+    const auto points = trial % 2 ? scattered(rng, 25, 2) : curve_testing::random_curve(rng, 40, 3).points;
+    const int n = static_cast<int>(points.size());
+    for (int m = 1; m < n; m += 3)
+      EXPECT_LE(optimal_min_count(points, optimal_min_error(points, m, Norm::LInf).error, Norm::LInf).segments(), m);
+  }
+}
+
+TEST(FastLinearization, CoarseToFineStaysWithinFivePercentOfOptimum) {
+  // Force the coarse-to-fine path (exact_below = 0) on every test curve.
+  for (TestCurve which : all_test_curves()) {
+    const DigitizedCurve curve = make_test_curve(which, {.points = 1000});
+    const std::vector<Vec> points = path_points(curve);
+    for (int m : {4, 8, 16, 32, 64}) {
+      const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
+      const Linearization fast = fast_linearization(points, m, Norm::LInf, {.exact_below = 0});
+      expect_valid(fast, points, m, Norm::LInf);
+      EXPECT_GE(fast.error, optimal.error);
+      EXPECT_LE(fast.error, 1.05 * optimal.error) << test_curve_name(which) << " m=" << m;
+    }
+  }
+}
