@@ -83,7 +83,7 @@ SnappedRevolution snap_revolution(const std::vector<Eigen::Vector2d>& profile_in
       SnappedRevolution out{profile, polygon_path(std::move(v)), shift};
       // Every plane must fit the kernel's bit budget: compute them once (cheap) to find out.
       const ExactRevolution exact(out.profile, out.path, shift);
-      for (const auto& node : revolve_plane_tree(out.profile, out.path, options).nodes) exact.plane(node);
+      for (const auto& node : revolve_plane_tree(out.profile, out.path, options).nodes) (void)exact.plane(node);
       return out;
     } catch (const InvalidInput&) {  // strict convexity lost on this lattice; coarser is worse
       break;

@@ -1,0 +1,58 @@
+#include "reports/depth_cost.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "base/errors.hpp"
+#include "bsp/boundary.hpp"
+#include "bsp/cells.hpp"
+
+namespace sculpt::reports {
+
+DepthCost depth_cost(const Solid& solid, const DepthCostOptions& options) {
+  DepthCost out;
+  if (options.sample_box) {
+    out.sample_box = *options.sample_box;
+  } else {
+    if (solid.is_empty() || solid.root() == kIn)
+      throw InvalidInput("depth cost: an empty or unbounded solid has no bounding box; give a sample box");
+    out.sample_box = bounding_box(solid);
+  }
+  const Eigen::Vector3d size = out.sample_box.sizes();
+  if (out.sample_box.isEmpty() || !(size.minCoeff() > 0.0) || !size.allFinite())
+    throw InvalidInput("depth cost: the sample box must have positive, finite extent in x, y and z");
+  out.sample_volume = size.prod();
+
+  const TreeStats stats = tree_stats(solid);
+  out.nodes = stats.nodes;
+  out.in_leaves = stats.in_leaves;
+  out.out_leaves = stats.out_leaves;
+  out.leaves = stats.in_leaves + stats.out_leaves;
+  out.height = stats.height;
+
+  std::map<int, DepthBin> bins;
+  for (const LeafCell& cell : leaf_cells(solid, out.sample_box)) {
+    if (!(cell.volume > 0.0)) continue;
+    const double p = cell.volume / out.sample_volume;
+    ++out.cells_in_box;
+    out.cell_volume_sum += cell.volume;
+    out.expected_depth += p * cell.depth;
+    out.entropy_bound -= p * std::log2(p);
+    DepthBin& bin = bins[cell.depth];
+    bin.depth = cell.depth;
+    if (cell.inside) {
+      ++bin.in_cells;
+      bin.in_probability += p;
+      out.in_volume += cell.volume;
+    } else {
+      ++bin.out_cells;
+      bin.out_probability += p;
+    }
+  }
+  out.ratio = out.entropy_bound > 0.0 ? out.expected_depth / out.entropy_bound : 0.0;
+  for (auto& [depth, bin] : bins) out.histogram.push_back(bin);
+  return out;
+}
+
+}  // namespace sculpt::reports
