@@ -1,8 +1,165 @@
-// Built-ins of the solids area (registered from builtins.cpp).
+// Built-ins of the solids area: primitives, transforms, classification, measures, mesh export
+// and import (lib/bsp, lib/mesh; Ihm & Naylor 1990 sec. 6, Naylor et al. 1990).
+#include <filesystem>
+
+#include "bsp/boundary.hpp"
+#include "bsp/classify.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
 #include "language/builtins.hpp"
+#include "language/solid_values.hpp"
+#include "mesh/mesh_io.hpp"
+#include "mesh/mesh_validation.hpp"
+#ifdef SCULPT_HAVE_FROM_MESH
+#include "bsp/from_mesh.hpp"
+#endif
 
 namespace sculpt::language {
+namespace {
 
-void register_solids(BuiltinTable& /*table*/) {}
+Eigen::Vector3d vector3(const Arguments& args, std::size_t i) {
+  const auto v = args.vector(i, 3);
+  return {v[0], v[1], v[2]};
+}
+
+const Solid& solid_arg(const Arguments& args, std::size_t i) { return args.object<SolidValue>(i, "a solid").solid; }
+
+CircularOptions circular(const Arguments& args, std::size_t i) {
+  CircularOptions options;
+  if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
+  return options;
+}
+
+}  // namespace
+
+std::string SolidValue::repr() const {
+  if (solid.is_empty()) return "<solid: empty>";
+  const TreeStats stats = tree_stats(solid);
+  return "<solid: " + std::to_string(stats.nodes) + " nodes, height " + std::to_string(stats.height) + ">";
+}
+
+std::optional<Value> SolidValue::binary(ast::Op op, const Value& other, bool self_on_left) const {
+  const SolidValue* that = other.object<SolidValue>();
+  if (!that) return std::nullopt;
+  const Solid& a = self_on_left ? solid : that->solid;
+  const Solid& b = self_on_left ? that->solid : solid;
+  switch (op) {
+    case ast::Op::Union: return solid_value(unite(a, b));
+    case ast::Op::Intersect: return solid_value(intersect(a, b));
+    case ast::Op::Sub: return solid_value(subtract(a, b));
+    default: return std::nullopt;
+  }
+}
+
+Value solid_value(Solid solid) {
+  return Value(std::shared_ptr<const Object>(std::make_shared<SolidValue>(std::move(solid))));
+}
+
+void register_solids(BuiltinTable& table) {
+  table.add({.name = "box",
+             .signature = "box(min, max)",
+             .doc = "The axis-aligned box with corners min and max ([x, y, z] each, min < max).",
+             .params = {{"min"}, {"max"}},
+             .run = [](const Arguments& args) { return solid_value(box(vector3(args, 0), vector3(args, 1))); }});
+  table.add({.name = "sphere",
+             .signature = "sphere(r, segments=32)",
+             .doc = "Sphere of radius r at the origin: a polyhedron with `segments` edges around the "
+                    "equator and (segments + 1) / 2 rings, its vertices on the sphere.",
+             .params = {{"r"}, {"segments", false}},
+             .run = [](const Arguments& args) { return solid_value(sphere(args.number(0), circular(args, 1))); }});
+  table.add({.name = "cylinder",
+             .signature = "cylinder(r, h, segments=32)",
+             .doc = "Cylinder of radius r around the z axis from z = 0 to z = h (a prism over a "
+                    "regular polygon with `segments` vertices on the circle).",
+             .params = {{"r"}, {"h"}, {"segments", false}},
+             .run = [](const Arguments& args) {
+               return solid_value(cylinder(args.number(0), args.number(1), circular(args, 2)));
+             }});
+  table.add({.name = "cone",
+             .signature = "cone(r, h, segments=32)",
+             .doc = "Cone around the z axis: base of radius r at z = 0, apex at z = h.",
+             .params = {{"r"}, {"h"}, {"segments", false}},
+             .run = [](const Arguments& args) {
+               return solid_value(cone(args.number(0), args.number(1), circular(args, 2)));
+             }});
+  table.add({.name = "translate",
+             .signature = "translate(s, v)",
+             .doc = "Solid s moved by the vector v (exact: v is snapped to the kernel grid).",
+             .params = {{"s"}, {"v"}},
+             .run = [](const Arguments& args) { return solid_value(translate(solid_arg(args, 0), vector3(args, 1))); }});
+  table.add({.name = "rotate",
+             .signature = "rotate(s, axis, degrees)",
+             .doc = "Solid s rotated by `degrees` about `axis` through the origin (right-handed). "
+                    "Multiples of 90 degrees about a coordinate axis are exact.",
+             .params = {{"s"}, {"axis"}, {"degrees"}},
+             .run = [](const Arguments& args) {
+               return solid_value(rotate(solid_arg(args, 0), vector3(args, 1), args.number(2)));
+             }});
+  table.add({.name = "scale",
+             .signature = "scale(s, v)",
+             .doc = "Solid s scaled by the factors [sx, sy, sz] (or one number for all three); "
+                    "non-zero, negative factors mirror. Whole factors are exact.",
+             .params = {{"s"}, {"v"}},
+             .run = [](const Arguments& args) {
+               Eigen::Vector3d factors;
+               if (const double* f = args.value(1).get<double>()) {
+                 factors = Eigen::Vector3d::Constant(*f);
+               } else {
+                 factors = vector3(args, 1);
+               }
+               return solid_value(scale(solid_arg(args, 0), factors));
+             }});
+  table.add({.name = "classify",
+             .signature = "classify(s, p)",
+             .doc = "Where the point p lies with respect to solid s: \"in\", \"out\" or \"on\" (the "
+                    "boundary), decided exactly on the kernel grid.",
+             .params = {{"s"}, {"p"}},
+             .run = [](const Arguments& args) -> Value {
+               switch (classify(solid_arg(args, 0), vector3(args, 1)).location) {
+                 case Location::Inside: return "in";
+                 case Location::Outside: return "out";
+                 case Location::Boundary: return "on";
+               }
+               return "out";
+             }});
+  table.add({.name = "volume",
+             .signature = "volume(s)",
+             .doc = "The volume of solid s (from its exact boundary).",
+             .params = {{"s"}},
+             .run = [](const Arguments& args) -> Value { return volume(solid_arg(args, 0)); }});
+  table.add({.name = "area",
+             .signature = "area(s)",
+             .doc = "The surface area of solid s.",
+             .params = {{"s"}},
+             .run = [](const Arguments& args) -> Value { return surface_area(solid_arg(args, 0)); }});
+  table.add({.name = "export",
+             .signature = "export(s, \"file.off\")",
+             .doc = "Writes the boundary of solid s as a mesh; the format comes from the extension: "
+                    ".off, .obj, .stl, .ply. The file is replaced atomically.",
+             .params = {{"s"}, {"file"}},
+             .run = [](const Arguments& args) -> Value {
+               const Solid& s = solid_arg(args, 0);
+               const std::string path = args.file_path(1);
+               write_mesh(to_mesh(s), path);
+               return {};
+             }});
+  table.add({.name = "import",
+             .signature = "import(\"file.off\")",
+             .doc = "Reads a mesh (.off, .obj, .stl, .ply), checks that it is a closed, oriented, "
+                    "non-self-intersecting 2-manifold, and builds its BSP solid.",
+             .params = {{"file"}},
+             .run = [](const Arguments& args) -> Value {
+               const std::string path = args.file_path(0);
+               const PolygonMesh mesh = read_mesh(path);
+               const ValidationReport report = check_closed_manifold(mesh);
+               if (!report.ok()) args.fail(path + " is not a closed manifold: " + report.summary(3));
+#ifdef SCULPT_HAVE_FROM_MESH
+               return solid_value(from_mesh(mesh));
+#else
+               args.fail("building a solid from a mesh is not available in this build (lib/bsp/from_mesh)");
+#endif
+             }});
+}
 
 }  // namespace sculpt::language

@@ -1,0 +1,29 @@
+#pragma once
+/// \file curve_values.hpp
+/// Script values of the curves area (builtins_curves.cpp).
+
+#include <memory>
+
+#include "curves/digitized_curve.hpp"
+#include "curves/linearization.hpp"
+#include "language/value.hpp"
+
+namespace sculpt::language {
+
+/// A digitized curve (type "curve").
+struct CurveValue final : Object {
+  explicit CurveValue(curves::DigitizedCurve c) : curve(std::move(c)) {}
+  curves::DigitizedCurve curve;
+  [[nodiscard]] std::string type_name() const override { return "curve"; }
+  [[nodiscard]] std::string repr() const override;
+};
+
+/// A linearization together with its curve (type "linearization").
+struct LinearizationValue final : Object {
+  std::shared_ptr<const CurveValue> curve;
+  curves::Linearization result;
+  [[nodiscard]] std::string type_name() const override { return "linearization"; }
+  [[nodiscard]] std::string repr() const override;
+};
+
+}  // namespace sculpt::language

@@ -1,0 +1,24 @@
+#pragma once
+/// \file solid_values.hpp
+/// Script values of the solids area (builtins_solids.cpp): a BSP solid (type "solid") with the
+/// operators `a | b` (union), `a & b` (intersection), `a - b` (difference).
+/// Other areas (revolve, ...) return solids with `solid_value(...)` and read them with
+/// `args.object<SolidValue>(i, "a solid").solid`.
+
+#include "bsp/solid.hpp"
+#include "language/value.hpp"
+
+namespace sculpt::language {
+
+struct SolidValue final : Object {
+  explicit SolidValue(Solid s) : solid(std::move(s)) {}
+  Solid solid;
+  [[nodiscard]] std::string type_name() const override { return "solid"; }
+  [[nodiscard]] std::string repr() const override;
+  [[nodiscard]] std::optional<Value> binary(ast::Op op, const Value& other, bool self_on_left) const override;
+};
+
+/// Wraps a solid as a script value.
+Value solid_value(Solid solid);
+
+}  // namespace sculpt::language
