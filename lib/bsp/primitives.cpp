@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -32,10 +33,14 @@ void check_positive(double v, const char* what) {
 // axis split the angle range in halves; small ranges end in a chain of face planes. Face f spans
 // the angles [start[f], start[f + 1]] (increasing, mod 2 pi). Each range is widened by one
 // face on both sides; faces that do not cut their cell are removed by TreeBuilder::build.
+// The axial planes are moved off the axis by small distinct offsets (below a tenth of the
+// narrowest face) so that no three of them meet in a line: otherwise every vertex on the axis
+// would be an exact degenerate case for every other axial plane.
 class SectorTree {
  public:
-  SectorTree(TreeBuilder& b, const std::vector<std::int32_t>& faces, const std::vector<double>& start)
-      : b_(b), faces_(faces), start_(start), n_(int(faces.size())) {}
+  SectorTree(TreeBuilder& b, const std::vector<std::int32_t>& faces, const std::vector<double>& start,
+             double max_offset = 0)
+      : b_(b), faces_(faces), start_(start), n_(int(faces.size())), max_offset_(max_offset) {}
 
   TreeRef build() {
     // First split: the plane through the axis and the middle of face 0.
@@ -52,8 +57,9 @@ class SectorTree {
   }
   double mid(int i) const { return 0.5 * (angle(i) + angle(i + 1)); }
   std::int32_t axial(double a) {
-    // f = -sin(a) x + cos(a) y: positive for angles in (a, a + pi).
-    return b_.add_plane(kernel::plane_from_normal({-std::sin(a), std::cos(a), 0.0}, 0.0));
+    // f = -sin(a) x + cos(a) y + offset: positive for angles in (a, a + pi) (offset aside).
+    const double offset = max_offset_ * (0.5 + 0.5 * std::fmod(0.6180339887498949 * ++count_, 1.0));
+    return b_.add_plane(kernel::plane_from_normal({-std::sin(a), std::cos(a), 0.0}, offset));
   }
   // Tree for the wedge of angles (lo, hi), hi - lo <= pi.
   TreeRef wedge(double lo, double hi) {
@@ -76,6 +82,8 @@ class SectorTree {
   const std::vector<std::int32_t>& faces_;
   const std::vector<double>& start_;
   int n_;
+  double max_offset_;
+  int count_ = 0;
 };
 
 }  // namespace
@@ -113,6 +121,8 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
       throw InvalidInput("revolution path must be convex, counter-clockwise and contain the axis");
     start[std::size_t(j)] = std::atan2(v.y(), v.x());
   }
+  double min_edge = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < n; ++j) min_edge = std::min(min_edge, (path[std::size_t((j + 1) % n)] - path[std::size_t(j)]).norm());
   for (int j = 1; j < n; ++j)  // unwrap to increasing angles
     while (start[std::size_t(j)] <= start[std::size_t(j - 1)]) start[std::size_t(j)] += 2 * std::numbers::pi;
   if (start[std::size_t(n - 1)] - start[0] >= 2 * std::numbers::pi)
@@ -155,7 +165,8 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
       faces[std::size_t(j)] = b.add_plane(kernel::make_plane(dz * nx[std::size_t(j)], dz * ny[std::size_t(j)], -dc,
                                                              dc * z[k] - dz * c0));
     }
-    band[k] = SectorTree(b, faces, start).build();
+    const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
+    band[k] = SectorTree(b, faces, start, 0.05 * min_scale * min_edge).build();
   }
   // Balanced tree over the bands (explicit recursion depth is log2 of the ring count).
   auto slabs = [&](auto&& self, std::size_t lo, std::size_t hi) -> TreeRef {

@@ -64,8 +64,6 @@ PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int
     pos |= g == Sign::Positive;
   });
   out.side = neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
-  if (out.side == Side::Negative) out.negative = poly;
-  if (out.side == Side::Positive) out.positive = poly;
   if (out.side != Side::Both) return out;
 
   out.negative.support = out.positive.support = poly.support;

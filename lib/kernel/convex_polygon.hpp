@@ -54,8 +54,8 @@ enum class Side : std::int8_t { Negative, Positive, Both, On };
 /// Classification only (no new polygons).
 Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane);
 
-/// The two parts of a polygon cut by a plane; `side` tells which are non-empty (Both: both;
-/// Negative/Positive: only that part, equal to the input; On: coplanar, both parts empty).
+/// The two parts of a polygon cut by a plane, filled only when `side` is Both (otherwise the
+/// whole polygon lies on that side, or on the plane for On, and both parts are left empty).
 struct PolygonSplit {
   Side side;
   ConvexPolygon negative, positive;

@@ -1,5 +1,7 @@
 #include "kernel/predicates.hpp"
 
+#include "kernel/wide_int.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -115,10 +117,6 @@ HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r) {
 
 Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& at, const Plane& s) {
   PredicateCounters& counters = predicate_counters();
-  if (trivially_on(p, q, r, s)) {
-    ++counters.trivial;
-    return Sign::Zero;
-  }
   if (at.err >= 0) {
     const double sa = double(s.a), sb = double(s.b), sc = double(s.c), sd = double(s.d);
     const double t1 = sa * at.x, t2 = sb * at.y, t3 = sc * at.z;
@@ -135,10 +133,22 @@ Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& a
       return Sign::Negative;
     }
   }
+  if (trivially_on(p, q, r, s)) {
+    ++counters.trivial;
+    return Sign::Zero;
+  }
   ++counters.exact;
-  const HomogeneousPoint h = exact_vertex(p, q, r);
-  const Int256 t = h.x * s.a + h.y * s.b + h.z * s.c + h.w * big(s.d);
-  const int sign = t.sign() * h.w.sign();
+  // Exact: with u = n_q x n_r, v = n_r x n_p, w = n_p x n_q (Int128, exact), the vertex is
+  // (X, Y, Z) / W with W = n_p . u, X = -(d_p u + d_q v + d_r w), and
+  // W f_s(vertex) = d_s W - d_p (n_s . u) - d_q (n_s . v) - d_r (n_s . w). Bits: exact_int.hpp.
+  const ExactCross u = exact_cross(q, r), v = exact_cross(r, p), w = exact_cross(p, q);
+  auto dot = [](const Plane& n, const ExactCross& c) {
+    return Wide::mul(n.a, c.x) + Wide::mul(n.b, c.y) + Wide::mul(n.c, c.z);
+  };
+  const Wide W = dot(p, u);
+  const Wide t = W * s.d - (dot(s, u) * p.d + dot(s, v) * q.d + dot(s, w) * r.d);
+  const int sign = t.sign() * W.sign();
+  if (sign == 0) ++counters.exact_zero;
   return sign > 0 ? Sign::Positive : (sign < 0 ? Sign::Negative : Sign::Zero);
 }
 

@@ -37,6 +37,7 @@ HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r);
 struct PredicateCounters {
   std::uint64_t filtered = 0;  ///< decided by the floating-point filter
   std::uint64_t exact = 0;     ///< decided by the exact integer evaluation
+  std::uint64_t exact_zero = 0;  ///< ... of which found the vertex exactly on the plane
   std::uint64_t trivial = 0;   ///< s equal (or opposite) to one of p, q, r: zero without arithmetic
 };
 PredicateCounters& predicate_counters();

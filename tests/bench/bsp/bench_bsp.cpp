@@ -1,0 +1,161 @@
+// BSP set-operation benchmarks (tests/bench/bsp/CASES.md). Prints one parseable line per case:
+//   bench impl=sculpt case=<case> n=<n> runs=<r> warmup=<0|1> time_ms=<median> min_ms=<min>
+//         volume=<v> expected=<v|na> faces=<f> vertices=<v> peak_rss_kb=<k> base_rss_kb=<k>
+//         tree_nodes=<nodes> tree_height=<h> exact_predicates=<count> filtered_predicates=<count>
+// Without arguments it runs every case, each in its own process (so peak RSS is per case):
+//   bench_bsp                 all cases
+//   bench_bsp CASE N [RUNS]   one case (sphere_minus_cube 32|64|128|256, menger 3, boxes 1000)
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "bsp/boundary.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+
+using namespace sculpt;
+
+namespace {
+
+long rss_kb() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
+  return 0;
+}
+
+long peak_rss_kb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+struct Result {
+  Solid solid;
+  PolygonMesh mesh;
+};
+
+// Sphere of radius 1 with n segments minus the unit cube with a corner at the centre.
+Result sphere_minus_cube(int n) {
+  const Solid s = sphere(1.0, {.segments = n}) - box({0, 0, 0}, {1, 1, 1});
+  return {s, to_mesh(s)};
+}
+
+// Menger sponge by 273 differences. 1/27 is not on the kernel grid (2^-15), so the sponge is
+// built in units of 1/27 (integer coordinates, exact) and volumes are reported for the unit cube.
+Result menger(int level) {
+  const double u = std::pow(3.0, level);
+  Solid s = box({0, 0, 0}, {u, u, u});
+  for (int l = 1; l <= level; ++l) {
+    const int m = int(std::pow(3, l));
+    const double w = u / m;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int i = 1; i < m; i += 3)
+        for (int j = 1; j < m; j += 3) {
+          Eigen::Vector3d lo, hi;
+          const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+          lo[axis] = -0.5 * u, hi[axis] = 1.5 * u;
+          lo[a] = i * w, hi[a] = (i + 1) * w;
+          lo[b] = j * w, hi[b] = (j + 1) * w;
+          s = s - box(lo, hi);
+        }
+  }
+  return {s, to_mesh(s)};
+}
+
+// Union of `count` boxes from the 32-bit LCG of CASES.md, accumulated one at a time.
+Result boxes(int count) {
+  std::uint32_t state = 1;
+  auto next = [&] { return state = 1664525u * state + 1013904223u; };
+  Solid s;
+  for (int k = 0; k < count; ++k) {
+    Eigen::Vector3d lo, size;
+    for (int i = 0; i < 3; ++i) lo[i] = (next() >> 16) / 4096.0;
+    for (int i = 0; i < 3; ++i) size[i] = 0.5 + ((next() >> 16) >> 5) / 1024.0;
+    s = s | box(lo, lo + size);
+  }
+  return {s, to_mesh(s)};
+}
+
+double mesh_volume(const PolygonMesh& m) {
+  double v = 0;
+  for (const auto& f : m.faces)
+    for (std::size_t i = 1; i + 1 < f.size(); ++i)
+      v += m.vertices[std::size_t(f[0])].dot(m.vertices[std::size_t(f[i])].cross(m.vertices[std::size_t(f[i + 1])])) / 6.0;
+  return v;
+}
+
+int run_case(const std::string& name, int n, int runs) {
+  std::function<Result()> f;
+  double scale = 1;  // volume factor to unit-cube units
+  std::string expected = "na";
+  if (name == "sphere_minus_cube") {
+    f = [n] { return sphere_minus_cube(n); };
+  } else if (name == "menger") {
+    f = [n] { return menger(n); };
+    scale = 1.0 / std::pow(27.0, n);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.12g", std::pow(20.0 / 27.0, 3 * n / 3.0 * 1.0) );
+    expected = buf;
+  } else if (name == "boxes") {
+    f = [n] { return boxes(n); };
+  } else {
+    std::fprintf(stderr, "unknown case %s\n", name.c_str());
+    return 2;
+  }
+  const long base = rss_kb();
+  std::vector<double> times;
+  Result r;
+  const int warmup = 1;
+  for (int i = 0; i < runs + warmup; ++i) {
+    kernel::predicate_counters() = {};
+    const auto t0 = std::chrono::steady_clock::now();
+    r = f();
+    const auto t1 = std::chrono::steady_clock::now();
+    if (i >= warmup) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+  }
+  std::sort(times.begin(), times.end());
+  const kernel::PredicateCounters pc = kernel::predicate_counters();
+  double volume = mesh_volume(r.mesh);
+  if (name == "menger") volume *= scale;
+  if (name == "sphere_minus_cube") {
+    // Expected: 7/8 of this implementation's own sphere (octant symmetry).
+    const double vs = mesh_volume(to_mesh(sphere(1.0, {.segments = n})));
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.12g", vs * 7.0 / 8.0);
+    expected = buf;
+  }
+  const TreeStats st = tree_stats(r.solid);
+  std::printf("bench impl=sculpt case=%s n=%d runs=%d warmup=%d time_ms=%.3f min_ms=%.3f volume=%.12g expected=%s "
+              "faces=%zu vertices=%zu peak_rss_kb=%ld base_rss_kb=%ld tree_nodes=%d tree_height=%d "
+              "exact_predicates=%llu filtered_predicates=%llu\n",
+              name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), volume, expected.c_str(),
+              r.mesh.faces.size(), r.mesh.vertices.size(), peak_rss_kb(), base, st.nodes, st.height,
+              (unsigned long long)pc.exact, (unsigned long long)pc.filtered);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc >= 3) return run_case(argv[1], std::atoi(argv[2]), argc >= 4 ? std::atoi(argv[3]) : 5);
+  const std::vector<std::pair<std::string, int>> cases = {{"sphere_minus_cube", 32}, {"sphere_minus_cube", 64},
+                                                          {"sphere_minus_cube", 128}, {"sphere_minus_cube", 256},
+                                                          {"menger", 3}, {"boxes", 1000}};
+  int status = 0;
+  for (const auto& [name, n] : cases) {
+    const std::string cmd = std::string("'") + argv[0] + "' " + name + " " + std::to_string(n);
+    std::fflush(stdout);
+    status |= std::system(cmd.c_str());
+  }
+  return status == 0 ? 0 : 1;
+}

@@ -1,0 +1,107 @@
+#include "bsp/set_operations.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "bsp/boundary.hpp"
+#include "bsp/classify.hpp"
+#include "bsp/primitives.hpp"
+#include "support/mesh_checks.hpp"
+
+namespace sculpt {
+namespace {
+
+using checks::EdgesManifoldAndOriented;
+using checks::GenusIs;
+using checks::VolumeNear;
+
+Solid cube(double x, double y, double z, double s) { return box({x, y, z}, {x + s, y + s, z + s}); }
+
+double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s))); }
+
+TEST(SetOperations, DisjointUnionHasTwoComponents) {
+  const Solid u = cube(0, 0, 0, 1) | cube(2, 0, 0, 1);
+  const PolygonMesh m = to_mesh(u);
+  EXPECT_TRUE(GenusIs(m, 0, 2));
+  EXPECT_TRUE(VolumeNear(m, 2.0, 1e-15));
+}
+
+TEST(SetOperations, OverlappingBoxes) {
+  const Solid a = cube(0, 0, 0, 2), b = cube(1, 1, 1, 2);
+  for (const auto& [s, v] : {std::pair{a | b, 15.0}, {a & b, 1.0}, {a - b, 7.0}, {b - a, 7.0}}) {
+    const PolygonMesh m = to_mesh(s);
+    EXPECT_TRUE(EdgesManifoldAndOriented(m));
+    EXPECT_TRUE(GenusIs(m, 0));
+    EXPECT_TRUE(VolumeNear(m, v, 1e-14));
+  }
+}
+
+TEST(SetOperations, SelfSubtractIsEmptyAndSelfUnionIsSame) {
+  const Solid a = sphere(1.0, {.segments = 16});
+  EXPECT_TRUE((a - a).is_empty());
+  const Solid u = a | a;
+  EXPECT_NEAR(vol(u), vol(a), 1e-12);
+  EXPECT_EQ(to_mesh(u).faces.size(), to_mesh(a).faces.size());
+  EXPECT_NEAR(vol(a & a), vol(a), 1e-12);
+}
+
+TEST(SetOperations, AbsorptionAndDeMorgan) {
+  const Solid a = sphere(1.0, {.segments = 12}), b = cube(0, 0, 0, 1.5);
+  EXPECT_NEAR(vol((a | b) & a), vol(a), 1e-12);
+  // De Morgan: complement(a | b) = complement(a) & complement(b); compare through a bounded window.
+  const Solid window = cube(-3, -3, -3, 6);
+  const Solid lhs = window & complement(a | b);
+  const Solid rhs = window & (complement(a) & complement(b));
+  EXPECT_NEAR(vol(lhs), vol(rhs), 1e-12);
+  EXPECT_NEAR(vol(lhs), 216.0 - vol(a | b), 1e-12);
+  EXPECT_TRUE(vol(lhs - rhs) == 0.0 && (lhs - rhs).is_empty());
+}
+
+TEST(SetOperations, SharedFaceUnionIsOneBox) {
+  const PolygonMesh m = to_mesh(cube(0, 0, 0, 1) | cube(1, 0, 0, 1));
+  EXPECT_TRUE(EdgesManifoldAndOriented(m));
+  EXPECT_TRUE(GenusIs(m, 0));
+  EXPECT_TRUE(VolumeNear(m, 2.0, 1e-15));
+}
+
+TEST(SetOperations, SharedEdgeUnionIsTwoSheets) {
+  const PolygonMesh m = to_mesh(cube(0, 0, 0, 1) | cube(1, 1, 0, 1));
+  EXPECT_TRUE(EdgesManifoldAndOriented(m));
+  EXPECT_TRUE(GenusIs(m, 0, 2));  // touching along an edge: vertices duplicated per sheet
+  EXPECT_TRUE(VolumeNear(m, 2.0, 1e-15));
+}
+
+TEST(SetOperations, SharedCornerUnion) {
+  const PolygonMesh m = to_mesh(cube(0, 0, 0, 1) | cube(1, 1, 1, 1));
+  EXPECT_TRUE(EdgesManifoldAndOriented(m));
+  EXPECT_TRUE(GenusIs(m, 0, 2));
+  EXPECT_TRUE(VolumeNear(m, 2.0, 1e-15));
+}
+
+TEST(SetOperations, SphereMinusCornerCube) {
+  for (int n : {16, 32}) {
+    const Solid s = sphere(1.0, {.segments = n});
+    const Solid d = s - cube(0, 0, 0, 1);
+    const PolygonMesh m = to_mesh(d);
+    EXPECT_TRUE(EdgesManifoldAndOriented(m));
+    EXPECT_TRUE(GenusIs(m, 0));
+    // The removed part is exactly one octant by symmetry of the sphere (n divisible by 4).
+    EXPECT_NEAR(vol(d), vol(s) * 7.0 / 8.0, 1e-9);
+  }
+}
+
+TEST(SetOperations, HundredBoxesWithTinyOffsets) {
+  Solid acc;
+  const double step = 1.0 / 32768;  // one grid step
+  for (int i = 0; i < 100; ++i) acc = acc | cube(i * step, (i % 7) * step, (i % 3) * step, 1.0);
+  const PolygonMesh m = to_mesh(acc);
+  EXPECT_TRUE(EdgesManifoldAndOriented(m));
+  EXPECT_TRUE(GenusIs(m, 0));
+  EXPECT_GT(vol(acc), 1.0);
+}
+
+}  // namespace
+}  // namespace sculpt

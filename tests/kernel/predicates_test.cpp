@@ -1,0 +1,100 @@
+#include "kernel/predicates.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "kernel/wide_int.hpp"
+
+namespace sculpt::kernel {
+namespace {
+
+Int256 big(Int128 v) {
+  Int256 r = Int256(std::int64_t(v >> 64));
+  r <<= 64;
+  r += Int256(std::uint64_t(v));
+  return r;
+}
+
+// Reference orientation with Boost's cpp_int straight from Cramer's rule.
+int reference_orient(const Plane& p, const Plane& q, const Plane& r, const Plane& s) {
+  const HomogeneousPoint h = exact_vertex(p, q, r);
+  const Int256 t = h.x * s.a + h.y * s.b + h.z * s.c + h.w * big(s.d);
+  return t.sign() * h.w.sign();
+}
+
+TEST(Wide, MatchesBoostOnRandomProducts) {
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 2000; ++i) {
+    const Int128 a = (Int128(std::int64_t(rng())) << 20) ^ Int128(rng() >> 3);
+    const Int128 b = Int128(std::int64_t(rng()) >> (rng() % 40));
+    const Int128 c = (Int128(std::int64_t(rng())) << 15) + Int128(rng() % 1000);
+    const Wide w = Wide::mul(a, b) * c - Wide::mul(c, a);
+    const Int256 ref = big(a) * big(b) * big(c) - big(c) * big(a);
+    EXPECT_EQ(w.sign(), ref.sign());
+    // Compare all bits through the low and high limbs.
+    Int256 low = ref & Int256(std::uint64_t(-1));
+    EXPECT_EQ(w.limb[0], low.convert_to<std::uint64_t>());
+  }
+}
+
+// Random planes through random grid points: the filtered orientation equals the reference.
+TEST(Orient, FilterAndExactPathAgreeWithBoostReference) {
+  std::mt19937_64 rng(11);
+  auto point = [&](std::int64_t range) {
+    std::uniform_int_distribution<std::int64_t> d(-range, range);
+    return GridPoint{d(rng), d(rng), d(rng)};
+  };
+  predicate_counters() = {};
+  int checked = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const std::int64_t range = i % 2 ? kMaxCoord : 100;
+    const GridPoint v = point(range);  // a common vertex of p, q, r
+    Plane pl[3];
+    for (auto& p : pl) {
+      GridPoint a = point(range), b = point(range);
+      try {
+        p = plane_through(v, a, b);
+      } catch (...) {
+        p = plane_through(v, {v.x + 1, v.y, v.z}, {v.x, v.y + 1, v.z});
+      }
+    }
+    if (!independent(pl[0], pl[1], pl[2])) continue;
+    // s through the vertex (degenerate) half of the time, else through random points.
+    const Plane s = i % 3 == 0 ? plane_through(v, point(range), point(range)) : plane_through(point(range), point(range), point(range));
+    const ApproxPoint at = approximate_vertex(pl[0], pl[1], pl[2]);
+    ASSERT_GE(at.err, 0);
+    EXPECT_EQ(int(orient(pl[0], pl[1], pl[2], at, s)), reference_orient(pl[0], pl[1], pl[2], s));
+    if (i % 3 == 0) {
+      EXPECT_EQ(orient(pl[0], pl[1], pl[2], at, s), Sign::Zero);
+    }
+    const int ref = reference_orient(pl[0], pl[1], pl[2], s);
+    EXPECT_EQ(orient(v, s), ref > 0 ? Sign::Positive : (ref < 0 ? Sign::Negative : Sign::Zero));
+    ++checked;
+  }
+  EXPECT_GT(checked, 2500);
+  // Degenerate cases go to the exact path; the others are filtered.
+  EXPECT_GT(predicate_counters().exact, 500u);
+  EXPECT_GT(predicate_counters().filtered, 1000u);
+}
+
+TEST(Orient, NearlyDegenerateCasesAreDecidedExactly) {
+  // Vertex (0,0,0) of three axis planes; planes passing within one unit of the last bit.
+  const Plane x{1, 0, 0, 0}, y{0, 1, 0, 0}, z{0, 0, 1, 0};
+  const ApproxPoint at = approximate_vertex(x, y, z);
+  const std::int64_t big_n = std::int64_t(1) << 52;
+  EXPECT_EQ(orient(x, y, z, at, Plane{big_n, big_n - 1, 3, 1}), Sign::Positive);
+  EXPECT_EQ(orient(x, y, z, at, Plane{big_n, big_n - 1, 3, -1}), Sign::Negative);
+  EXPECT_EQ(orient(x, y, z, at, Plane{big_n, big_n - 1, 3, 0}), Sign::Zero);
+  // A vertex far away from the origin, made by nearly parallel planes.
+  const Plane p{big_n, 1, 0, 0}, q{big_n, 0, 1, -(Int128(1) << 70)};
+  ASSERT_TRUE(independent(p, q, z));
+  const ApproxPoint far = approximate_vertex(p, q, z);
+  const HomogeneousPoint h = exact_vertex(p, q, z);
+  const Plane through{1, 0, 0, 0};
+  EXPECT_EQ(int(orient(p, q, z, far, through)), reference_orient(p, q, z, through));
+  (void)h;
+}
+
+}  // namespace
+}  // namespace sculpt::kernel
