@@ -1,0 +1,84 @@
+// The exact orientation predicates against an independent rational evaluation, on inputs built
+// to be degenerate or nearly so, with coordinate magnitudes that exercise every exact tier.
+#include "mesh/predicates.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/multiprecision/cpp_int.hpp>
+#include <random>
+
+namespace sculpt {
+namespace {
+
+using boost::multiprecision::cpp_rational;
+using mesh_predicates::orient2d;
+using mesh_predicates::orient3d;
+
+int reference2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const cpp_rational det = (cpp_rational(b.x()) - a.x()) * (cpp_rational(c.y()) - a.y()) -
+                           (cpp_rational(b.y()) - a.y()) * (cpp_rational(c.x()) - a.x());
+  return det.sign();
+}
+
+int reference3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                const Eigen::Vector3d& d) {
+  cpp_rational m[3][3];
+  for (int k = 0; k < 3; ++k) {
+    m[0][k] = cpp_rational(b[k]) - a[k];
+    m[1][k] = cpp_rational(c[k]) - a[k];
+    m[2][k] = cpp_rational(d[k]) - a[k];
+  }
+  // Expansion along the last row (a different order than the code under test).
+  const cpp_rational det = m[2][0] * (m[0][1] * m[1][2] - m[0][2] * m[1][1]) -
+                           m[2][1] * (m[0][0] * m[1][2] - m[0][2] * m[1][0]) +
+                           m[2][2] * (m[0][0] * m[1][1] - m[0][1] * m[1][0]);
+  return det.sign();
+}
+
+TEST(Predicates, SignConventions) {
+  EXPECT_EQ(orient2d({0, 0}, {1, 0}, {0, 1}), 1);
+  EXPECT_EQ(orient2d({0, 0}, {0, 1}, {1, 0}), -1);
+  EXPECT_EQ(orient2d({0, 0}, {1, 1}, {2, 2}), 0);
+  EXPECT_EQ(orient3d({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}), 1);  // d on the normal's side
+  EXPECT_EQ(orient3d({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}), -1);
+  EXPECT_EQ(orient3d({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 7, 0}), 0);
+}
+
+TEST(Predicates, NearlyDegenerateInputsAgreeWithRationals) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> tier(0, 3);
+  int zeros = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    // Spread of magnitudes: small (int256), large (int512) or extreme (rationals).
+    const int spread = std::array<int, 4>{0, 20, 100, 600}[tier(rng)];
+    std::uniform_int_distribution<int> exponent(-spread / 2, spread / 2);
+    auto coord = [&] { return std::ldexp(unit(rng), exponent(rng)); };
+    const Eigen::Vector3d a(coord(), coord(), coord()), b(coord(), coord(), coord()), c(coord(), coord(), coord());
+    // d on the plane abc up to rounding (often exactly on it when t is dyadic).
+    const double s = std::ldexp(std::round(unit(rng) * 8), -3), t = std::ldexp(std::round(unit(rng) * 8), -3);
+    Eigen::Vector3d d = a + s * (b - a) + t * (c - a);
+    if (trial % 3 == 0) d = a + unit(rng) * (b - a) + unit(rng) * (c - a);
+    if (trial % 5 == 0) d = b;  // repeated point: exactly zero
+    const int got3 = orient3d(a, b, c, d);
+    ASSERT_EQ(got3, reference3d(a, b, c, d)) << a.transpose() << " | " << b.transpose() << " | " << c.transpose()
+                                             << " | " << d.transpose();
+    zeros += got3 == 0;
+    const Eigen::Vector2d p = a.head<2>(), q = b.head<2>();
+    const Eigen::Vector2d r = trial % 2 ? Eigen::Vector2d(p + s * (q - p)) : Eigen::Vector2d(p + unit(rng) * (q - p));
+    ASSERT_EQ(orient2d(p, q, r), reference2d(p, q, r));
+  }
+  EXPECT_GT(zeros, 1000);  // the degenerate cases were really reached
+}
+
+TEST(Predicates, ExtremeMagnitudes) {
+  const double tiny = 4.9406564584124654e-324, huge = 1.7976931348623157e308;
+  EXPECT_EQ(orient2d({0, 0}, {tiny, 0}, {0, tiny}), 1);
+  EXPECT_EQ(orient2d({-huge, -huge}, {huge, huge}, {0, 0}), 0);
+  EXPECT_EQ(orient2d({-huge, -huge}, {huge, huge}, {0, tiny}), 1);
+  EXPECT_EQ(orient3d({0, 0, 0}, {huge, 0, 0}, {0, huge, 0}, {0, 0, tiny}), 1);
+  EXPECT_EQ(orient3d({1, 1, 1}, {1 + 1e-16 * 4, 1, 1}, {1, 1 + 4e-16, 1}, {1, 1, 1 - tiny}), 0);  // 1 - tiny == 1
+}
+
+}  // namespace
+}  // namespace sculpt
