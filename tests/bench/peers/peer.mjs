@@ -1,17 +1,21 @@
 // Runs one benchmark case with one peer library and prints one line of key=value pairs:
-//   node peer.mjs <manifold|jscad> <sphere_minus_cube|menger|boxes> <n> [--runs R] [--budget-ms B]
+//   node peer.mjs <manifold|jscad> <sphere_minus_cube|menger|boxes> <n> [--runs R] [--budget-ms B] [--eager]
+// --eager (manifold): evaluate after every operation instead of letting Manifold batch its lazy
+// CSG tree (JSCAD is always eager).
 // time: median over the runs of building the inputs, doing the set operations and getting
 // the result's boundary mesh (Manifold: getMesh(); JSCAD: geom3.toPolygons()).
 // peak_rss_kb is the process's peak resident set (node + the library) and base_rss_kb the
 // same just before the first run, so the case's own peak is roughly their difference.
+import { loadavg } from 'node:os';
 import { mengerBars, randomBoxes, unionVolume } from './cases.mjs';
 
 const [impl, caseName, nText, ...rest] = process.argv.slice(2);
 const n = Number(nText);
-let runs = 5, budgetMs = 30000;
+let runs = 5, budgetMs = 30000, eager = false;
 for (let i = 0; i < rest.length; i += 2) {
   if (rest[i] === '--runs') runs = Number(rest[i + 1]);
   else if (rest[i] === '--budget-ms') budgetMs = Number(rest[i + 1]);
+  else if (rest[i] === '--eager') { eager = true; --i; }  // manifold: evaluate after every operation
 }
 if (!['manifold', 'jscad'].includes(impl) || !['sphere_minus_cube', 'menger', 'boxes'].includes(caseName) || !(n > 0)) {
   console.error('usage: node peer.mjs <manifold|jscad> <sphere_minus_cube|menger|boxes> <n> [--runs R] [--budget-ms B]');
@@ -44,6 +48,7 @@ async function manifoldRunner() {
         for (const b of mengerBars(n)) {
           const bar = box(b);
           const next = result.subtract(bar);
+          if (eager) next.numTri();  // forces evaluation of the lazy CSG tree now
           temps.push(bar, result);
           result = next;
         }
