@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Runs our BSP benchmark and the peers (manifold-3d, JSCAD) on the cases of
 # tests/bench/bsp/CASES.md and prints a table with time and memory ratios.
-#   tests/bench/compare.sh [--ours PROGRAM] [--ours-file FILE] [--peers-file FILE] [peer run.sh options]
+#   tests/bench/compare.sh [--ours PROGRAM] [--ours-file FILE] [--peers-file FILE] [--stat median|min]
+#                          [peer run.sh options]
 # --ours: our bench program (default: the first of build/release/tests/bench/bsp/bench_*);
 #         it must print the "bench key=value ..." lines of CASES.md.
 # --ours-file / --peers-file: use lines saved from an earlier run instead of running.
+# --stat: compare median times (default) or minimum times (less sensitive to a busy machine).
 # Ratios > 1 mean ours is faster (peer time / our time) or smaller (peer rss / our rss).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -12,12 +14,14 @@ root=$(cd "$here/../.." && pwd)
 ours=""
 ours_file=""
 peers_file=""
+stat=median
 peer_args=()
 while (($#)); do
   case "$1" in
     --ours) ours="$2"; shift 2 ;;
     --ours-file) ours_file="$2"; shift 2 ;;
     --peers-file) peers_file="$2"; shift 2 ;;
+    --stat) stat="$2"; shift 2 ;;
     *) peer_args+=("$1"); shift ;;
   esac
 done
@@ -51,7 +55,7 @@ else
 fi
 
 # Table: one row per (case, n); columns per implementation.
-cat "$tmp/ours.txt" "$tmp/peers.txt" | awk '
+cat "$tmp/ours.txt" "$tmp/peers.txt" | awk -v stat="$stat" '
 function val(key,   i, kv) {
   for (i = 2; i <= NF; ++i) { split($i, kv, "="); if (kv[1] == key) return substr($i, length(key) + 2) }
   return ""
@@ -60,7 +64,7 @@ function val(key,   i, kv) {
   impl = val("impl"); if (impl != "manifold-3d" && impl != "jscad") impl = "ours"
   key = val("case") " " val("n")
   if (!(key in seen)) { seen[key] = 1; order[++rows] = key }
-  t[key, impl] = val("time_ms"); v[key, impl] = val("volume"); m[key, impl] = val("peak_rss_kb")
+  t[key, impl] = (stat == "min" && val("min_ms") != "") ? val("min_ms") : val("time_ms"); v[key, impl] = val("volume"); m[key, impl] = val("peak_rss_kb")
   if (val("status") != "") t[key, impl] = val("status")
 }
 function ratio(a, b) { return (a + 0 > 0 && b + 0 > 0) ? sprintf("%.2f", a / b) : "-" }
@@ -75,5 +79,5 @@ END {
            show(v[k, "ours"]), show(v[k, "manifold-3d"]), show(v[k, "jscad"]),
            show(m[k, "ours"]), show(m[k, "manifold-3d"]), show(m[k, "jscad"])
   }
-  print "(times: median ms; *_ms/ours > 1: ours faster; rss: peak resident set, kB, whole process)"
+  print "(times: " stat " ms; man/ours, jscad/ours > 1: ours faster; rss: peak resident set, kB, whole process)"
 }'

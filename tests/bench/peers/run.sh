@@ -29,6 +29,8 @@ fi
 echo "# node $(node --version), manifold-3d $(node -p "require('$here/node_modules/manifold-3d/package.json').version")," \
      "@jscad/modeling $(node -p "require('$here/node_modules/@jscad/modeling/package.json').version"), $(nproc) cores"
 
+node "$here/selftest.mjs"
+
 cases=("sphere_minus_cube 32" "sphere_minus_cube 64" "sphere_minus_cube 128" "sphere_minus_cube 256"
        "menger 3" "boxes 1000")
 for impl in "${impls[@]}"; do
