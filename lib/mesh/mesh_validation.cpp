@@ -227,7 +227,10 @@ ValidationReport check_closed_manifold(const PolygonMesh& mesh, ValidationOption
 
 void validate_closed_manifold(const PolygonMesh& mesh, ValidationOptions options) {
   const ValidationReport report = check_closed_manifold(mesh, options);
-  if (!report.ok()) throw GeometryError("mesh is not a closed manifold: " + report.summary());
+  if (report.ok()) return;
+  std::string message = options.source.empty() ? std::string() : options.source + ": ";
+  message += "mesh is not a closed manifold: " + report.summary();
+  throw GeometryError(message, SourceLocation{.file = options.source});
 }
 
 }  // namespace sculpt

@@ -44,6 +44,7 @@ struct ValidationReport {
 struct ValidationOptions {
   bool check_self_intersections = true;
   size_t max_defects_per_kind = 100;  ///< keep at most this many defects of each kind
+  std::string source = {};  ///< where the mesh came from (a file): put in the message and GeometryError::where()
 };
 
 /// All defects that keep `mesh` from bounding a solid. Index and coordinate errors stop the
@@ -51,7 +52,8 @@ struct ValidationOptions {
 ValidationReport check_closed_manifold(const PolygonMesh& mesh, ValidationOptions options = {});
 
 /// Throws if check_closed_manifold finds anything.
-/// \throw GeometryError whose message is "mesh is not a closed manifold: " + summary().
+/// \throw GeometryError whose message is "[source: ]mesh is not a closed manifold: " + summary(),
+/// with where().file = options.source.
 void validate_closed_manifold(const PolygonMesh& mesh, ValidationOptions options = {});
 
 }  // namespace sculpt

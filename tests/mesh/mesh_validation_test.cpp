@@ -45,6 +45,14 @@ TEST(Validation, OpenEdgeGivesItsCoordinates) {
     FAIL() << "no error";
   } catch (const GeometryError& e) {
     EXPECT_THAT(e.what(), HasSubstr("mesh is not a closed manifold: open edge: 4"));
+    EXPECT_FALSE(e.where().known());
+  }
+  try {
+    validate_closed_manifold(m, {.source = "models/open.stl"});
+    FAIL() << "no error";
+  } catch (const GeometryError& e) {
+    EXPECT_THAT(e.what(), ::testing::StartsWith("models/open.stl: mesh is not a closed manifold"));
+    EXPECT_EQ(e.where().file, "models/open.stl");
   }
 }
 
