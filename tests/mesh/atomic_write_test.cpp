@@ -67,7 +67,8 @@ TEST(AtomicWrite, UnwritableDirectoryKeepsThePreviousFile) {
   const fs::path path = dir / "m.stl";
   { std::ofstream(path) << "previous"; }
   ASSERT_EQ(::chmod(dir.c_str(), 0555), 0);
-  // Root ignores directory permissions: find out whether this process can still create files.
+  // Root ignores directory permissions: find out whether this process can still create files
+  // (then a directory of sysfs stands in; the previous file is covered by FailureDuringWrite).
   const bool bypass = ::access(dir.c_str(), W_OK) == 0;
   if (!bypass) {
     EXPECT_THROW(write_mesh(test_shapes::unit_cube(), path), IoError);
@@ -75,7 +76,17 @@ TEST(AtomicWrite, UnwritableDirectoryKeepsThePreviousFile) {
     EXPECT_EQ(entries(dir), 1u);
   }
   ::chmod(dir.c_str(), 0755);
-  if (bypass) GTEST_SKIP() << "running as root: permissions do not apply (see FailureDuringWrite)";
+  if (bypass) {
+    // Root: sysfs refuses new files to everyone.
+    if (!fs::is_directory("/sys/kernel")) GTEST_SKIP() << "running as root without /sys: nothing refuses writes";
+    try {
+      write_mesh(test_shapes::unit_cube(), "/sys/kernel/sculpt_mesh_test.off");
+      ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+      EXPECT_EQ(e.path(), "/sys/kernel/sculpt_mesh_test.off");
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("cannot create a temporary file in '/sys/kernel'"));
+    }
+  }
 }
 
 TEST(AtomicWrite, FailureDuringWriteKeepsThePreviousFileAndRemovesTheTemporary) {
