@@ -25,8 +25,9 @@ constexpr double kStoredCostLimit = 3e8;
 // Shortest paths over the allowed vertices; positions 0..K-1 index `vertex_`.
 class FeasibilitySolver {
  public:
-  FeasibilitySolver(const std::vector<Eigen::Vector3d>& points, Norm norm, std::vector<int> vertices)
-      : points_(points), norm_(norm), vertex_(std::move(vertices)) {
+  FeasibilitySolver(const std::vector<Eigen::Vector3d>& points, Norm norm, std::vector<int> vertices,
+                    const SegmentErrorTree* shared_tree = nullptr)
+      : points_(points), norm_(norm), shared_tree_(shared_tree), vertex_(std::move(vertices)) {
     const int count = static_cast<int>(vertex_.size());
     reach_.assign(count, count - 1);
     hint_.assign(count, -1);
@@ -46,17 +47,19 @@ class FeasibilitySolver {
     for (int a = 0; a + 1 < count(); ++a) total += reach_[a] - a;
     return total;
   }
-  /// Point distances needed to evaluate every candidate edge directly.
+  /// Rough count of point distances needed to evaluate every candidate edge (directly for
+  /// short chords, through the tree for long ones).
   [[nodiscard]] double evaluation_cost() const {
     double total = 0;
     for (int a = 0; a + 1 < count(); ++a)
-      total += 0.5 * static_cast<double>(reach_[a] - a) * (vertex_[reach_[a]] - vertex_[a]);
+      total += static_cast<double>(reach_[a] - a) * std::min(0.5 * (vertex_[reach_[a]] - vertex_[a]), 128.0);
     return total;
   }
 
-  /// Computes and keeps the exact error of every candidate edge; later tests are lookups.
-  /// Short rows are evaluated directly, long ones through the tree.
-  void store_errors() {
+  /// Computes and keeps the exact error of every candidate edge, or for long chords (evaluated
+  /// through the tree) a value > limit when the error exceeds limit; later tests are lookups.
+  /// \pre no probe above `limit` follows.
+  void store_errors(double limit) {
     const int count = this->count();
     row_.assign(count, 0);
     std::size_t total = 0;
@@ -69,7 +72,7 @@ class FeasibilitySolver {
       for (int b = a + 1; b <= reach_[a]; ++b)
         values[row_[a] + (b - a - 1)] = vertex_[b] - vertex_[a] <= 256
                                             ? segment_error(points_, vertex_[a], vertex_[b], norm_)
-                                            : tree().error(vertex_[a], vertex_[b]);
+                                            : tree().error(vertex_[a], vertex_[b], limit);
     stored_ = std::move(values);
   }
   [[nodiscard]] const std::vector<double>& stored_errors() const { return stored_; }
@@ -138,6 +141,7 @@ class FeasibilitySolver {
 
  private:
   const SegmentErrorTree& tree() {
+    if (shared_tree_) return *shared_tree_;
     if (!tree_) tree_.emplace(points_, norm_);
     return *tree_;
   }
@@ -167,7 +171,9 @@ class FeasibilitySolver {
     int count = 0;
     int next_sample = 1;
     const Eigen::Vector3d& origin = points_[i];
-    for (int k = i + 1; k <= last; ++k) {
+    // Any subset of the interior points gives a valid bound: far from i only every
+    // ((k - i) / 32)-th point is examined, so a scan costs O(32 log(reach)), not O(reach).
+    for (int k = i + 1; k <= last; k += std::max(1, (k - i) / 32)) {
       const Eigen::Vector3d w = points_[k] - origin;
       const double r = w.norm();
       if (!(r > eps * (1.0 + 1e-9))) continue;  // the point constrains nothing
@@ -257,6 +263,7 @@ class FeasibilitySolver {
 
   const std::vector<Eigen::Vector3d>& points_;
   Norm norm_;
+  const SegmentErrorTree* shared_tree_;
   std::optional<SegmentErrorTree> tree_;
   std::vector<std::size_t> row_;   // stored mode: row start of position a
   std::vector<double> stored_;     // stored mode: error of (a, b) at row_[a] + b - a - 1
@@ -306,7 +313,8 @@ std::optional<double> middle(double lo, double hi, double first_hi) {
 Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int m, Norm norm,
                                 const OptimalOptions& options) {
   const int n = static_cast<int>(points.size());
-  FeasibilitySolver solver(points, norm, options.vertices.empty() ? all_vertices(n) : options.vertices);
+  FeasibilitySolver solver(points, norm, options.vertices.empty() ? all_vertices(n) : options.vertices,
+                           options.tree);
   const int count = solver.count();
   // Upper bound: the given start, else the better of INIT (alpha = 1/2, Alg. 4.3) and break
   // points spread evenly over the allowed vertices.
@@ -346,16 +354,17 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   };
   // The reach (and so the work per probe) grows with the tolerance: start from a quarter of the
   // heuristic's error and double until feasible; the last cap bounds every later probe.
-  for (double cap = 0.25 * hi;; cap = std::min(2.0 * cap, hi)) {
+  // A given start is usually near the optimum already: no guessing below it then.
+  for (double cap = options.start.empty() ? 0.25 * hi : hi;; cap = std::min(2.0 * cap, hi)) {
     solver.prune_reach(cap);
     if (debug)
       std::fprintf(stderr, "cap %.6g of start %.6g: %lld candidate edges over %d vertices\n", cap, hi,
                    solver.edge_count(), count);
-    if (solver.evaluation_cost() <= 1e6) solver.store_errors();  // cheap: probe by lookups
+    if (solver.evaluation_cost() <= 1e6) solver.store_errors(cap);  // cheap: probe by lookups
     if (cap >= hi || cap <= lo || probe(cap)) break;
   }
   const bool stored = solver.edge_count() <= kStoredEdgeLimit && solver.evaluation_cost() <= kStoredCostLimit;
-  if (stored && solver.stored_errors().empty()) solver.store_errors();
+  if (stored && solver.stored_errors().empty()) solver.store_errors(hi);
   if (stored) {
     // Stored mode: the optimum is one of the stored edge errors in (lo, hi]. Binary search over
     // them by selection (nth_element); each probe is a DP over stored values.

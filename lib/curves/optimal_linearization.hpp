@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "curves/linearization.hpp"
+#include "curves/segment_error_tree.hpp"
 
 namespace sculpt::curves {
 
@@ -31,6 +32,8 @@ struct OptimalOptions {
   /// A known feasible approximation with exactly m segments using allowed vertices (its error
   /// bounds the search); empty = the solver builds one.
   std::vector<int> start = {};
+  /// A tree built over the same points and norm, to share between calls (optional).
+  const SegmentErrorTree* tree = nullptr;
 };
 
 /// Exact min-error approximation with exactly m segments (Problem 1).

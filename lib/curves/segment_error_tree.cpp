@@ -4,11 +4,21 @@
 #include <cmath>
 
 namespace sculpt::curves {
+
 namespace {
 
-// Safety margin for sphere bounds: far above the rounding error of ChordDistance, far below
-// any distance that matters. Borderline nodes are opened and decided point by point.
-double slack(double distance_scale, double radius) { return 1e-9 * (distance_scale + radius) + 1e-300; }
+double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double length2 = d.squaredNorm();
+  double t = length2 > 0.0 ? (p - a).dot(d) / length2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return (p - (a + t * d)).norm();
+}
+
+// Bounds of the distance to the query line over all points of a node: [low, high].
+struct Bounds {
+  double low, high;
+};
 
 }  // namespace
 
@@ -17,27 +27,21 @@ SegmentErrorTree::SegmentErrorTree(const std::vector<Eigen::Vector3d>& points, N
   const int n = static_cast<int>(points.size());
   if (n == 0 || norm == Norm::L2) return;
   nodes_.reserve(2 * (n / kLeafSize + 1) + 1);
-  nodes_.push_back({Eigen::Vector3d::Zero(), 0.0, 0, n, -1, -1});
+  nodes_.push_back({0.0, 0, n, -1, -1});
   std::vector<int> pending{0};  // explicit stack of nodes to split
   while (!pending.empty()) {
     const int k = pending.back();
     pending.pop_back();
     const int begin = nodes_[k].begin, end = nodes_[k].end;
-    Eigen::Vector3d low = points[begin], high = points[begin];
-    for (int q = begin + 1; q < end; ++q) {
-      low = low.cwiseMin(points[q]);
-      high = high.cwiseMax(points[q]);
-    }
-    const Eigen::Vector3d center = 0.5 * (low + high);
     double radius = 0.0;
-    for (int q = begin; q < end; ++q) radius = std::max(radius, (points[q] - center).norm());
-    nodes_[k].center = center;
-    nodes_[k].radius = radius * (1.0 + 1e-12);
+    for (int q = begin + 1; q < end - 1; ++q)
+      radius = std::max(radius, distance_to_segment(points[q], points[begin], points[end - 1]));
+    nodes_[k].radius = radius * (1.0 + 1e-9);
     if (end - begin > kLeafSize) {
       const int mid = begin + (end - begin) / 2;
       const int left = static_cast<int>(nodes_.size());
-      nodes_.push_back({Eigen::Vector3d::Zero(), 0.0, begin, mid, -1, -1});
-      nodes_.push_back({Eigen::Vector3d::Zero(), 0.0, mid, end, -1, -1});
+      nodes_.push_back({0.0, begin, mid, -1, -1});
+      nodes_.push_back({0.0, mid, end, -1, -1});
       nodes_[k].left = left;
       nodes_[k].right = left + 1;
       pending.push_back(left);
@@ -45,6 +49,30 @@ SegmentErrorTree::SegmentErrorTree(const std::vector<Eigen::Vector3d>& points, N
     }
   }
 }
+
+namespace {
+
+// Distance bounds of a node's points to the query line (or point, for a degenerate chord).
+// u(t) = component of (x(t) - a) orthogonal to the chord, linear along the node's segment.
+template <class Node>
+Bounds node_bounds(const Node& node, const std::vector<Eigen::Vector3d>& points, const ChordDistance& distance,
+                   const Eigen::Vector3d& direction, double inverse_length2) {
+  const Eigen::Vector3d& e0 = points[node.begin];
+  const Eigen::Vector3d& e1 = points[node.end - 1];
+  const Eigen::Vector3d w0 = e0 - distance.origin(), w1 = e1 - distance.origin();
+  const Eigen::Vector3d u0 = w0 - direction * (w0.dot(direction) * inverse_length2);
+  const Eigen::Vector3d u1 = w1 - direction * (w1.dot(direction) * inverse_length2);
+  const Eigen::Vector3d du = u1 - u0;
+  const double du2 = du.squaredNorm();
+  const double t = du2 > 0.0 ? std::clamp(-u0.dot(du) / du2, 0.0, 1.0) : 0.0;
+  const double nearest = (u0 + t * du).norm();
+  const double farthest = std::max(u0.norm(), u1.norm());
+  // Margin far above the rounding of these few operations relative to the coordinates involved.
+  const double margin = 1e-9 * (w0.norm() + w1.norm() + node.radius) + 1e-300;
+  return {nearest - node.radius - margin, farthest + node.radius + margin};
+}
+
+}  // namespace
 
 bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator) const {
   if (violator) *violator = -1;
@@ -63,6 +91,9 @@ bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator)
     if (violator) *violator = hint;
     return false;
   }
+  const Eigen::Vector3d direction = points_[j] - points_[i];
+  const double length2 = direction.squaredNorm();
+  const double inverse_length2 = length2 > 0.0 ? 1.0 / length2 : 0.0;
   const int lo = i + 1, hi = j - 1;  // interior points, inclusive
   int stack[128];
   int top = 0;
@@ -70,11 +101,10 @@ bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator)
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
     if (node.end <= lo || node.begin > hi) continue;
-    const double d = distance(node.center);
-    const double margin = slack((node.center - distance.origin()).norm(), node.radius);
-    if (d + node.radius + margin <= eps) continue;  // every point of the node is within
+    const Bounds bounds = node_bounds(node, points_, distance, direction, inverse_length2);
+    if (bounds.high <= eps) continue;  // every point of the node is within
     const bool inside = node.begin >= lo && node.end - 1 <= hi;
-    if (inside && d - node.radius - margin > eps) {  // every point of the node violates
+    if (inside && bounds.low > eps) {  // every point of the node violates
       if (violator) *violator = node.begin;
       return false;
     }
@@ -87,45 +117,44 @@ bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator)
         }
       continue;
     }
-    // Open the child nearer to violating last, so it is examined first.
-    const double dl = distance(nodes_[node.left].center), dr = distance(nodes_[node.right].center);
-    if (dl > dr) {
-      stack[top++] = node.right;
-      stack[top++] = node.left;
-    } else {
-      stack[top++] = node.left;
-      stack[top++] = node.right;
-    }
+    stack[top++] = node.right;
+    stack[top++] = node.left;
   }
   return true;
 }
 
-double SegmentErrorTree::error(int i, int j) const {
+double SegmentErrorTree::error(int i, int j, double limit) const {
   if (norm_ == Norm::L2 || j - i < 2) return segment_error(points_, i, j, norm_);
   const ChordDistance distance(points_[i], points_[j]);
+  const Eigen::Vector3d direction = points_[j] - points_[i];
+  const double length2 = direction.squaredNorm();
+  const double inverse_length2 = length2 > 0.0 ? 1.0 / length2 : 0.0;
   const int lo = i + 1, hi = j - 1;
+  // Best-first branch and bound: always open the node with the largest upper bound, stop when
+  // that bound cannot beat the largest distance found (or the limit is exceeded).
+  thread_local std::vector<std::pair<double, int>> heap;
+  heap.clear();
   double best = 0.0;
-  int stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (node.end <= lo || node.begin > hi) continue;
-    const double d = distance(node.center);
-    const double margin = slack((node.center - distance.origin()).norm(), node.radius);
-    if (d + node.radius + margin <= best) continue;
+  heap.push_back({std::numeric_limits<double>::infinity(), 0});
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end());
+    const auto [bound, index] = heap.back();
+    heap.pop_back();
+    if (bound <= best) break;
+    const Node& node = nodes_[index];
     if (node.left < 0) {
       const int from = std::max(node.begin, lo), to = std::min(node.end - 1, hi);
       for (int k = from; k <= to; ++k) best = std::max(best, distance(points_[k]));
+      if (best > limit) return best;
       continue;
     }
-    const double dl = distance(nodes_[node.left].center), dr = distance(nodes_[node.right].center);
-    if (dl > dr) {
-      stack[top++] = node.right;
-      stack[top++] = node.left;
-    } else {
-      stack[top++] = node.left;
-      stack[top++] = node.right;
+    for (const int child : {node.left, node.right}) {
+      const Node& c = nodes_[child];
+      if (c.end <= lo || c.begin > hi) continue;
+      const double high = node_bounds(c, points_, distance, direction, inverse_length2).high;
+      if (high <= best) continue;
+      heap.push_back({high, child});
+      std::push_heap(heap.begin(), heap.end());
     }
   }
   return best;

@@ -1,13 +1,16 @@
 #pragma once
 /// \file segment_error_tree.hpp
-/// Fast exact segment-error queries for the optimal solvers: a binary tree of bounding spheres
-/// over the point sequence. Distance to a line is 1-Lipschitz, so a sphere (c, r) bounds all its
-/// points' distances to [d(c) - r, d(c) + r]; only spheres straddling the threshold are opened.
+/// Fast exact segment-error queries for the optimal solvers: a binary tree of capsules over the
+/// point sequence. A node covering points [b, e) stores the largest distance r of its points to
+/// the segment p_b p_{e-1}. Distance to a line is 1-Lipschitz and convex along a segment, so the
+/// node's points lie within [min over the segment - r, max(d(p_b), d(p_{e-1})) + r]; for sampled
+/// smooth curves r is the tiny sagitta, so only nodes straddling the threshold are opened.
 /// Leaves are measured with ChordDistance, so every answer equals the brute-force
 /// segment_error() bit for bit (internal bounds carry a safety slack, they never decide a
 /// borderline point). Under Norm::L2 the queries fall back to exact brute-force sums.
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "curves/segment_error.hpp"
@@ -23,8 +26,9 @@ class SegmentErrorTree {
   /// index whose distance exceeds eps (L-inf), or -1.
   [[nodiscard]] bool within(int i, int j, double eps, int hint = -1, int* violator = nullptr) const;
 
-  /// segment_error(points, i, j, norm), exactly.
-  [[nodiscard]] double error(int i, int j) const;
+  /// segment_error(points, i, j, norm), exactly, if it is <= limit; otherwise some value > limit
+  /// (the search stops at the first point beyond the limit).
+  [[nodiscard]] double error(int i, int j, double limit = std::numeric_limits<double>::infinity()) const;
 
   [[nodiscard]] const std::vector<Eigen::Vector3d>& points() const { return points_; }
   [[nodiscard]] Norm norm() const { return norm_; }
@@ -32,8 +36,7 @@ class SegmentErrorTree {
 
  private:
   struct Node {
-    Eigen::Vector3d center;
-    double radius;
+    double radius;      // max distance of the node's points to segment p_begin p_{end-1}
     int begin, end;     // point range [begin, end)
     int left, right;    // child nodes, -1 for a leaf
   };
