@@ -18,27 +18,30 @@ class Extractor {
   void push_down(TreeRef t, ConvexPolygon poly, Out&& out) {
     stack_.clear();
     stack_.push_back({t, std::move(poly)});
+    // The polygon on top of the stack descends in place; only splits push a second one.
     while (!stack_.empty()) {
-      auto [r, p] = std::move(stack_.back());
-      stack_.pop_back();
+      TreeRef r = stack_.back().first;
       if (is_leaf(r)) {
-        out(std::move(p), r == kIn);
+        out(std::move(stack_.back().second), r == kIn);
+        stack_.pop_back();
         continue;
       }
       const BspNode& n = solid_.nodes()[std::size_t(r)];
       const std::int32_t opp = arena_.opposite(n.plane);
-      kernel::PolygonSplit s = kernel::split(arena_.planes, p, n.plane, opp);
+      kernel::PolygonSplit s = kernel::split(arena_.planes, stack_.back().second, n.plane, opp);
       switch (s.side) {
-        case Side::Negative: stack_.push_back({n.negative, std::move(p)}); break;
-        case Side::Positive: stack_.push_back({n.positive, std::move(p)}); break;
+        case Side::Negative: stack_.back().first = n.negative; break;
+        case Side::Positive: stack_.back().first = n.positive; break;
         case Side::Both:
-          stack_.push_back({n.negative, std::move(s.negative)});
+          stack_.back() = {n.negative, std::move(s.negative)};
           stack_.push_back({n.positive, std::move(s.positive)});
           break;
-        case Side::On:  // a descendant on the same plane violates the invariant; follow both
-          stack_.push_back({n.negative, p});
-          stack_.push_back({n.positive, std::move(p)});
+        case Side::On: {  // a descendant on the same plane violates the invariant; follow both
+          stack_.back().first = n.negative;
+          ConvexPolygon copy = stack_.back().second;
+          stack_.push_back({n.positive, std::move(copy)});
           break;
+        }
       }
     }
   }
@@ -46,7 +49,16 @@ class Extractor {
   Fragments run() {
     Fragments result;
     std::vector<std::pair<ConvexPolygon, bool>> negative_pieces;
-    for (std::size_t i = 0; i < solid_.nodes().size(); ++i) {
+    // Nodes reachable from the root (storage may hold unreachable nodes, see Solid).
+    std::vector<TreeRef> order;
+    if (!is_leaf(solid_.root())) order.push_back(solid_.root());
+    for (std::size_t j = 0; j < order.size(); ++j) {
+      const BspNode& m = solid_.nodes()[std::size_t(order[j])];
+      if (!is_leaf(m.negative)) order.push_back(m.negative);
+      if (!is_leaf(m.positive)) order.push_back(m.positive);
+    }
+    for (const TreeRef node : order) {
+      const std::size_t i = std::size_t(node);
       const BspNode& n = solid_.nodes()[i];
       negative_pieces.clear();
       push_down(n.negative, solid_.polygons()[i],

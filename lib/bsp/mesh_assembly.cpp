@@ -1,8 +1,11 @@
 #include "bsp/mesh_assembly.hpp"
 
+#include "bsp/face_triangulation.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <unordered_map>
 
 #include <Eigen/Geometry>
 
@@ -50,6 +53,8 @@ class Assembler {
     merge_vertices();
     build_faces();
     remove_t_junctions();
+    merge_coplanar_faces();
+    remove_straight_vertices();
     split_non_manifold();
     return output(triangulate);
   }
@@ -155,21 +160,50 @@ class Assembler {
     if (open.empty()) return;
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    std::sort(candidates.begin(), candidates.end(), [&](int a, int b) { return position(a).x() < position(b).x(); });
-    std::vector<double> xs;
-    for (int c : candidates) xs.push_back(position(c).x());
+    // Hash grid over the candidates with the median open-edge length as cell size.
+    std::vector<double> lengths;
+    for (const Open& e : open) {
+      const Face& f = faces_[std::size_t(e.face)];
+      lengths.push_back((position(f.vertices[(std::size_t(e.k) + 1) % f.vertices.size()]) - position(f.vertices[std::size_t(e.k)])).norm());
+    }
+    std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
+    const double cell = std::max(lengths[lengths.size() / 2], 1e-6);
+    auto cell_of = [cell](double x) { return std::int64_t(std::floor(x / cell)); };
+    auto cell_key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+      return std::uint64_t(x * 73856093) ^ std::uint64_t(y * 19349663) ^ std::uint64_t(z * 83492791);
+    };
+    std::unordered_multimap<std::uint64_t, int> grid;
+    for (int c : candidates) {
+      const Eigen::Vector3d p = position(c);
+      grid.emplace(cell_key(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), c);
+    }
 
     // inserts[face] = list of (edge k, t, vertex)
     std::vector<std::vector<std::tuple<int, double, int>>> inserts(faces_.size());
     constexpr double kTol = 1e-3;  // grid units: a cheap prefilter only; the test is exact
+    std::vector<int> near;
     for (const Open& e : open) {
       const Face& f = faces_[std::size_t(e.face)];
       const int u = f.vertices[std::size_t(e.k)], w = f.vertices[(std::size_t(e.k) + 1) % f.vertices.size()];
       const Eigen::Vector3d pu = position(u), pw = position(w), d = pw - pu;
       const double len2 = d.squaredNorm();
-      const double lo = std::min(pu.x(), pw.x()) - kTol, hi = std::max(pu.x(), pw.x()) + kTol;
-      for (auto it = std::lower_bound(xs.begin(), xs.end(), lo); it != xs.end() && *it <= hi; ++it) {
-        const int c = candidates[std::size_t(it - xs.begin())];
+      const Eigen::Vector3d lo = pu.cwiseMin(pw).array() - kTol, hi = pu.cwiseMax(pw).array() + kTol;
+      near.clear();
+      const std::int64_t x0 = cell_of(lo.x()), x1 = cell_of(hi.x()), y0 = cell_of(lo.y()), y1 = cell_of(hi.y()),
+                         z0 = cell_of(lo.z()), z1 = cell_of(hi.z());
+      if ((x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1) > std::int64_t(candidates.size())) {
+        near = candidates;
+      } else {
+        for (std::int64_t x = x0; x <= x1; ++x)
+          for (std::int64_t y = y0; y <= y1; ++y)
+            for (std::int64_t z = z0; z <= z1; ++z) {
+              auto range = grid.equal_range(cell_key(x, y, z));
+              for (auto it = range.first; it != range.second; ++it) near.push_back(it->second);
+            }
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+      }
+      for (const int c : near) {
         if (c == u || c == w) continue;
         const Eigen::Vector3d pc = position(c);
         const double t = (pc - pu).dot(d) / len2;
@@ -197,6 +231,124 @@ class Assembler {
         }
       }
       f = std::move(g);
+    }
+  }
+
+  // Fragments of one oriented plane that share edges become one face when their union is a
+  // simple polygon (one boundary loop); unions with holes keep their convex fragments.
+  void merge_coplanar_faces() {
+    struct PlaneKey {
+      kernel::Plane p;
+      bool operator==(const PlaneKey&) const = default;
+    };
+    struct PlaneHash {
+      std::size_t operator()(const PlaneKey& k) const {
+        std::size_t h = std::hash<std::int64_t>()(k.p.a);
+        h = h * 1000003u ^ std::hash<std::int64_t>()(k.p.b);
+        h = h * 1000003u ^ std::hash<std::int64_t>()(k.p.c);
+        return h * 1000003u ^ std::hash<std::int64_t>()(std::int64_t(k.p.d));
+      }
+    };
+    std::unordered_map<PlaneKey, std::vector<int>, PlaneHash> groups;
+    for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
+      const kernel::Plane& p = planes_[faces_[fi].support];
+      groups[{faces_[fi].flip ? p.opposite() : p}].push_back(int(fi));
+    }
+    std::vector<bool> removed(faces_.size(), false);
+    std::vector<Face> added;
+    for (auto& [plane, members] : groups) {
+      if (members.size() < 2) continue;
+      std::unordered_map<std::uint64_t, std::pair<int, int>> edge;  // (u, w) -> (face, k)
+      for (int fi : members) {
+        const auto& v = faces_[std::size_t(fi)].vertices;
+        for (std::size_t k = 0; k < v.size(); ++k) edge[key(v[k], v[(k + 1) % v.size()])] = {fi, int(k)};
+      }
+      std::unordered_map<int, int> local;  // face -> index in members
+      for (std::size_t i = 0; i < members.size(); ++i) local[members[i]] = int(i);
+      UnionFind uf(members.size());
+      for (int fi : members) {
+        const auto& v = faces_[std::size_t(fi)].vertices;
+        for (std::size_t k = 0; k < v.size(); ++k) {
+          auto it = edge.find(key(v[(k + 1) % v.size()], v[k]));
+          if (it != edge.end()) uf.unite(local[fi], local[it->second.first]);
+        }
+      }
+      std::unordered_map<int, std::vector<int>> components;
+      for (std::size_t i = 0; i < members.size(); ++i) components[uf.find(int(i))].push_back(members[i]);
+      for (auto& [root, comp] : components) {
+        if (comp.size() < 2) continue;
+        // Boundary half-edges of the component: vertex -> (next vertex, edge line).
+        std::unordered_map<int, std::pair<int, std::int32_t>> next;
+        bool simple = true;
+        std::size_t count = 0;
+        for (int fi : comp) {
+          const Face& f = faces_[std::size_t(fi)];
+          for (std::size_t k = 0; k < f.vertices.size() && simple; ++k) {
+            const int u = f.vertices[k], w = f.vertices[(k + 1) % f.vertices.size()];
+            if (edge.count(key(w, u))) continue;
+            simple = next.emplace(u, std::pair{w, f.edge_line[k]}).second;
+            ++count;
+          }
+        }
+        if (!simple || count < 3) continue;
+        Face g;
+        g.support = faces_[std::size_t(comp[0])].support;
+        g.flip = faces_[std::size_t(comp[0])].flip;
+        const int first = next.begin()->first;
+        int u = first;
+        do {
+          const auto& [w, line] = next.at(u);
+          g.vertices.push_back(u);
+          g.edge_line.push_back(line);
+          u = w;
+        } while (u != first && g.vertices.size() <= count);
+        if (g.vertices.size() != count) continue;  // several loops: a face with holes
+        for (int fi : comp) removed[std::size_t(fi)] = true;
+        added.push_back(std::move(g));
+      }
+    }
+    std::vector<Face> kept;
+    for (std::size_t fi = 0; fi < faces_.size(); ++fi)
+      if (!removed[fi]) kept.push_back(std::move(faces_[fi]));
+    for (Face& g : added) kept.push_back(std::move(g));
+    faces_ = std::move(kept);
+  }
+
+  // A vertex with exactly two neighbours, lying exactly on the line of its two edges, is a
+  // leftover of fragmentation: removed from both faces that use it.
+  void remove_straight_vertices() {
+    std::vector<std::vector<int>> neighbours(rep_.size());
+    for (const Face& f : faces_)
+      for (std::size_t k = 0; k < f.vertices.size(); ++k) {
+        const int u = f.vertices[k], w = f.vertices[(k + 1) % f.vertices.size()];
+        neighbours[std::size_t(u)].push_back(w);
+        neighbours[std::size_t(w)].push_back(u);
+      }
+    std::vector<bool> removable(rep_.size(), false);
+    for (std::size_t v = 0; v < rep_.size(); ++v) {
+      auto& nb = neighbours[v];
+      std::sort(nb.begin(), nb.end());
+      nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+      removable[v] = nb.size() == 2;
+    }
+    for (Face& f : faces_) {
+      const std::size_t m = f.vertices.size();
+      Face g;
+      g.support = f.support;
+      g.flip = f.flip;
+      for (std::size_t k = 0; k < m; ++k) {
+        const int v = f.vertices[k];
+        if (removable[std::size_t(v)] && m > 3) {
+          // Straight iff the next vertex lies on the incoming edge's line (exact).
+          const int w = f.vertices[(k + 1) % m];
+          const std::int32_t in_line = f.edge_line[(k + m - 1) % m];
+          const Occurrence& o = occ_[std::size_t(rep_[std::size_t(w)])];
+          if (on_plane(o, in_line) && on_plane(o, f.support)) continue;  // drop v; the incoming edge line goes on
+        }
+        g.vertices.push_back(v);
+        g.edge_line.push_back(f.edge_line[k]);
+      }
+      if (g.vertices.size() >= 3) f = std::move(g);
     }
   }
 
@@ -320,31 +472,21 @@ class Assembler {
 
   PolygonMesh output(bool triangulate) const {
     PolygonMesh mesh;
-    mesh.vertices.reserve(rep_.size());
-    for (std::size_t v = 0; v < rep_.size(); ++v) mesh.vertices.push_back(position(int(v)) * kernel::kGridStep);
-    for (const Face& f : faces_) {
+    std::vector<int> index(rep_.size(), -1);  // only referenced vertices are written
+    for (const Face& f : faces_)
+      for (int v : f.vertices)
+        if (index[std::size_t(v)] < 0) {
+          index[std::size_t(v)] = int(mesh.vertices.size());
+          mesh.vertices.push_back(position(v) * kernel::kGridStep);
+        }
+    for (Face f : faces_) {
+      for (int& v : f.vertices) v = index[std::size_t(v)];
       if (!triangulate || f.vertices.size() == 3) {
         mesh.faces.push_back(f.vertices);
         continue;
       }
-      // Convex polygon, possibly with collinear vertices: clip strictly convex ears only.
-      const Eigen::Vector3d n = outward_normal(f);
-      std::vector<int> poly = f.vertices;
-      while (poly.size() > 3) {
-        bool clipped = false;
-        for (std::size_t i = 0; i < poly.size() && !clipped; ++i) {
-          const std::size_t m = poly.size();
-          const Eigen::Vector3d a = position(poly[(i + m - 1) % m]), b = position(poly[i]), c = position(poly[(i + 1) % m]);
-          const Eigen::Vector3d cr = (b - a).cross(c - b);
-          if (cr.dot(n) > 1e-9 * (b - a).norm() * (c - b).norm()) {
-            mesh.faces.push_back({poly[(i + m - 1) % m], poly[i], poly[(i + 1) % m]});
-            poly.erase(poly.begin() + std::ptrdiff_t(i));
-            clipped = true;
-          }
-        }
-        if (!clipped) break;
-      }
-      mesh.faces.push_back(poly);
+      for (const auto& t : triangulate_face(mesh.vertices, f.vertices, outward_normal(f)))
+        mesh.faces.push_back({t[0], t[1], t[2]});
     }
     return mesh;
   }

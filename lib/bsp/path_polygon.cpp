@@ -63,7 +63,7 @@ double ConvexPath::area() const {
   return 0.5 * twice;
 }
 
-ConvexPath circle_path(int n, double radius) {
+ConvexPath circular_path(int n, double radius) {
   if (!std::isfinite(radius) || !(radius > 0.0)) throw InvalidInput("circle path: radius must be finite and > 0");
   return ellipse_path(radius, radius, n);
 }

@@ -21,7 +21,7 @@ struct ConvexPath {
 
 /// The regular n-gon inscribed in the circle of radius r, first vertex at (r, 0).
 /// \pre n >= 3, r finite and > 0   \throw InvalidInput
-ConvexPath circle_path(int n, double radius = 1.0);
+ConvexPath circular_path(int n, double radius = 1.0);
 /// The n-gon inscribed in the ellipse x^2/a^2 + y^2/b^2 = 1, vertex k at (a cos 2pi k/n, b sin 2pi k/n).
 /// \pre n >= 3, a, b finite and > 0   \throw InvalidInput
 ConvexPath ellipse_path(double a, double b, int n);

@@ -2,7 +2,7 @@
 /// \file revolve.hpp
 /// Solids of revolution as nearly balanced BSP trees (Ihm & Naylor 1990, section 6).
 ///
-///   Solid goblet = revolve(profile, circle_path(32));             // profile: (r, z) points
+///   Solid goblet = revolve(profile, circular_path(32));             // profile: (r, z) points
 ///   Solid head = revolve(face, ellipse_path(1.0, 0.8, 32));
 ///
 /// The profile is a polyline in the half-plane r >= 0, monotone in z (see monotone_profile); it

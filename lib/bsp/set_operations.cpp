@@ -44,6 +44,7 @@ class Merger {
       Slot neg, pos;
     };
     std::vector<Frame> stack;
+    std::vector<std::pair<TreeRef, Slot>> touched;  // nodes placed in a result, pre-order
     stack.push_back({t, std::move(pp), {-1, 0}, {-1, 1}});
     while (!stack.empty()) {
       Frame f = std::move(stack.back());
@@ -71,6 +72,8 @@ class Merger {
           a_.polygons[std::size_t(f.t)] = std::move(s.negative);
           set(f.neg, f.t);
           set(f.pos, m);
+          touched.push_back({f.t, f.neg});
+          touched.push_back({m, f.pos});
           if (ps.side == Side::Both) {
             stack.push_back({n.negative, std::move(ps.negative), {f.t, 0}, {m, 0}});
             stack.push_back({n.positive, std::move(ps.positive), {f.t, 1}, {m, 1}});
@@ -88,6 +91,7 @@ class Merger {
           const bool recurse_neg = pside != Side::Positive;  // pp in the node's negative half
           const TreeRef child = recurse_neg ? n.negative : n.positive;
           const Slot child_slot{f.t, recurse_neg ? 0 : 1};
+          touched.push_back({f.t, node_neg ? f.neg : f.pos});
           if (node_neg) {
             set(f.neg, f.t);
             stack.push_back({child, std::move(f.pp), child_slot, f.pos});
@@ -98,6 +102,11 @@ class Merger {
           break;
         }
       }
+    }
+    // A node whose two children became the same leaf is replaced by that leaf.
+    for (auto it = touched.rbegin(); it != touched.rend(); ++it) {
+      const BspNode& n = a_.nodes[std::size_t(it->first)];
+      if (is_leaf(n.negative) && n.negative == n.positive) set(it->second, n.negative);
     }
     return {out_[0], out_[1]};
   }
@@ -110,6 +119,7 @@ class Merger {
       Slot slot;
     };
     std::vector<Frame> stack{{a, b, {-1, 0}}};
+    std::vector<std::pair<TreeRef, Slot>> visited;  // result nodes taken from a, pre-order
     TreeRef result = kOut;
     auto put = [&](Slot s, TreeRef v) {
       if (s.node < 0)
@@ -127,8 +137,14 @@ class Merger {
       const BspNode n = a_.nodes[std::size_t(f.a)];
       auto [bneg, bpos] = partition(f.b, a_.polygons[std::size_t(f.a)], n.plane);
       put(f.slot, f.a);  // a's node is reused: its region and sub-hyperplane are unchanged
+      visited.push_back({f.a, f.slot});
       stack.push_back({n.negative, bneg, {f.a, 0}});
       stack.push_back({n.positive, bpos, {f.a, 1}});
+    }
+    // Collapse nodes whose children became the same leaf, children before parents.
+    for (auto it = visited.rbegin(); it != visited.rend(); ++it) {
+      const BspNode& n = a_.nodes[std::size_t(it->first)];
+      if (is_leaf(n.negative) && n.negative == n.positive) put(it->second, n.negative);
     }
     return result;
   }
@@ -171,6 +187,20 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   return detail::compact(arena, r);
 }
 
+// In place: the larger operand's storage is reused; the result is compacted only when the
+// storage has doubled since the last compaction (amortized O(touched nodes) per operation).
+Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
+  if (x.nodes().size() < y.nodes().size()) return apply(x, y, table);
+  Arena arena;
+  const TreeRef ra = arena.adopt(std::move(x));
+  const TreeRef rb = arena.append(y);
+  Merger m(arena);
+  const TreeRef r = m.merge(ra, rb, table);
+  if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64)) return detail::compact(arena, r);
+  const std::size_t compacted = arena.compacted_size;
+  return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted);
+}
+
 constexpr bool kUnion[2][2] = {{false, true}, {true, true}};
 constexpr bool kIntersection[2][2] = {{false, false}, {false, true}};
 constexpr bool kDifference[2][2] = {{false, false}, {true, false}};
@@ -178,8 +208,23 @@ constexpr bool kDifference[2][2] = {{false, false}, {true, false}};
 }  // namespace
 
 Solid unite(const Solid& a, const Solid& b) { return apply(a, b, kUnion); }
+Solid unite(Solid&& a, const Solid& b) { return apply_in_place(std::move(a), b, kUnion); }
+Solid intersect(Solid&& a, const Solid& b) { return apply_in_place(std::move(a), b, kIntersection); }
+Solid subtract(Solid&& a, const Solid& b) { return apply_in_place(std::move(a), b, kDifference); }
 Solid intersect(const Solid& a, const Solid& b) { return apply(a, b, kIntersection); }
 Solid subtract(const Solid& a, const Solid& b) { return apply(a, b, kDifference); }
+
+Solid unite_all(std::vector<Solid> solids) {
+  if (solids.empty()) return Solid();
+  while (solids.size() > 1) {
+    std::vector<Solid> next;
+    next.reserve((solids.size() + 1) / 2);
+    for (std::size_t i = 0; i + 1 < solids.size(); i += 2) next.push_back(unite(std::move(solids[i]), solids[i + 1]));
+    if (solids.size() % 2) next.push_back(std::move(solids.back()));
+    solids = std::move(next);
+  }
+  return std::move(solids.front());
+}
 
 Solid complement(const Solid& a) {
   Arena arena;

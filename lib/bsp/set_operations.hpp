@@ -5,6 +5,7 @@
 /// operation, and subtrees that become a single leaf are collapsed. All decisions are exact.
 
 #include <utility>
+#include <vector>
 
 #include "bsp/solid.hpp"
 
@@ -14,10 +15,22 @@ Solid unite(const Solid& a, const Solid& b);      ///< a ∪ b
 Solid intersect(const Solid& a, const Solid& b);  ///< a ∩ b
 Solid subtract(const Solid& a, const Solid& b);   ///< a − b
 Solid complement(const Solid& a);                 ///< space − a (unbounded)
+/// Union of many solids by a balanced reduction (pairs, then pairs of pairs): each solid's tree
+/// is copied O(log n) times instead of n times as in a left-to-right fold.
+Solid unite_all(std::vector<Solid> solids);
+
+/// In-place variants: `a` is consumed and its storage reused when it is the larger tree, so
+/// accumulating `acc = unite(std::move(acc), part)` costs what the merge touches, not |acc|.
+Solid unite(Solid&& a, const Solid& b);
+Solid intersect(Solid&& a, const Solid& b);
+Solid subtract(Solid&& a, const Solid& b);
 
 inline Solid operator|(const Solid& a, const Solid& b) { return unite(a, b); }
 inline Solid operator&(const Solid& a, const Solid& b) { return intersect(a, b); }
 inline Solid operator-(const Solid& a, const Solid& b) { return subtract(a, b); }
+inline Solid operator|(Solid&& a, const Solid& b) { return unite(std::move(a), b); }
+inline Solid operator&(Solid&& a, const Solid& b) { return intersect(std::move(a), b); }
+inline Solid operator-(Solid&& a, const Solid& b) { return subtract(std::move(a), b); }
 
 /// The parts of a solid on the negative (f < 0) and positive side of a plane (grid units),
 /// as two solids (Naylor et al. 1990 sec. 3, "partitioning a tree by a plane").

@@ -6,10 +6,21 @@
 namespace sculpt {
 
 Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-             std::vector<kernel::ConvexPolygon> polygons, TreeRef root)
-    : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root) {
+             std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size)
+    : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
+      compacted_size_(compacted_size ? compacted_size : nodes_.size()) {
   if (nodes_.size() != polygons_.size() || (!is_leaf(root_) && std::size_t(root_) >= nodes_.size()))
     throw std::logic_error("Solid: inconsistent tree storage");
+}
+
+Solid::Storage Solid::release() && {
+  Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, compacted_size_};
+  planes_ = kernel::PlaneTable();
+  nodes_.clear();
+  polygons_.clear();
+  root_ = kOut;
+  compacted_size_ = 0;
+  return s;
 }
 
 Solid Solid::leaf(bool inside) {

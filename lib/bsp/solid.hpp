@@ -43,15 +43,28 @@ class Solid {
   /// Sub-hyperplane of node i (same index as nodes()).
   [[nodiscard]] const std::vector<kernel::ConvexPolygon>& polygons() const { return polygons_; }
 
-  /// Low-level constructor used by the tree algorithms; checks sizes only.
+  /// Low-level constructor used by the tree algorithms; checks sizes only. The storage may
+  /// hold nodes that are not reachable from the root (left over by in-place operations);
+  /// algorithms only follow the tree from root().
   Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-        std::vector<kernel::ConvexPolygon> polygons, TreeRef root);
+        std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size = 0);
+
+  /// Storage moved out of a solid (which becomes empty), for in-place operations.
+  struct Storage {
+    kernel::PlaneTable planes;
+    std::vector<BspNode> nodes;
+    std::vector<kernel::ConvexPolygon> polygons;
+    TreeRef root;
+    std::size_t compacted_size;  ///< node count after the last compaction
+  };
+  Storage release() &&;
 
  private:
   kernel::PlaneTable planes_;
   std::vector<BspNode> nodes_;
   std::vector<kernel::ConvexPolygon> polygons_;
   TreeRef root_ = kOut;
+  std::size_t compacted_size_ = 0;
 };
 
 /// Size and shape of a tree.

@@ -38,6 +38,16 @@ TreeRef Arena::append(const Solid& solid) {
   return solid.root() + node_shift;
 }
 
+TreeRef Arena::adopt(Solid&& solid) {
+  Solid::Storage s = std::move(solid).release();
+  planes = std::move(s.planes);
+  nodes = std::move(s.nodes);
+  polygons = std::move(s.polygons);
+  opposite_of.clear();
+  compacted_size = s.compacted_size;
+  return s.root;
+}
+
 void complement_in_place(Arena& arena, TreeRef& root) {
   auto flip = [](TreeRef& r) { r = r == kIn ? kOut : kIn; };
   if (is_leaf(root)) return flip(root);

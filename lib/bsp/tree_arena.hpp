@@ -19,6 +19,9 @@ struct Arena {
   std::int32_t opposite(std::int32_t i);
   /// Appends a solid's tree; returns its root in the arena. Plane indices are shifted.
   TreeRef append(const Solid& solid);
+  /// Takes over the storage of a solid (the arena must be empty); returns its root.
+  TreeRef adopt(Solid&& solid);
+  std::size_t compacted_size = 0;  ///< of an adopted solid
 };
 
 /// Copies the tree reachable from `root` into a compact Solid (depth-first order), collapsing

@@ -60,7 +60,10 @@ Solid TreeBuilder::build(TreeRef root) && {
       ConvexPolygon poly = kernel::world_polygon(arena.planes, n.plane);
       int cell_side = 0;  // 0: the plane cuts the cell; -1 / +1: the cell lies on that side
       bool empty = false;
-      for (std::int32_t c : constraints) {
+      // Nearest ancestors first: they bound the cell most tightly, so the polygon shrinks to the
+      // cell's size at once and the far ancestors usually only classify a few corners.
+      for (auto it = constraints.rbegin(); it != constraints.rend(); ++it) {
+        const std::int32_t c = *it;
         const std::int32_t opp = arena.opposite(c);
         kernel::PolygonSplit s = kernel::split(arena.planes, poly, c, opp);
         if (s.side == Side::On) {  // same plane as an ancestor

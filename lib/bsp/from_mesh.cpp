@@ -1,0 +1,183 @@
+#include "bsp/from_mesh.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#include "base/errors.hpp"
+#include "bsp/face_triangulation.hpp"
+#include "bsp/tree_builder.hpp"
+
+namespace sculpt {
+
+using kernel::ConvexPolygon;
+using kernel::GridPoint;
+using kernel::Int128;
+using kernel::Plane;
+using kernel::Side;
+
+namespace {
+
+GridPoint sub(const GridPoint& a, const GridPoint& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+
+// Convex plane-based polygon of the triangle a, b, c on plane `support` (index in `t`): each edge
+// plane contains the edge and a grid point off the support plane (transverse to it).
+ConvexPolygon triangle_polygon(kernel::PlaneTable& t, std::int32_t support, const GridPoint* v) {
+  const Plane s = t[support];
+  const std::int64_t n[3] = {std::abs(s.a), std::abs(s.b), std::abs(s.c)};
+  const int k = n[0] >= n[1] && n[0] >= n[2] ? 0 : (n[1] >= n[2] ? 1 : 2);
+  const GridPoint off{k == 0, k == 1, k == 2};
+  std::int32_t edge[3];
+  for (int i = 0; i < 3; ++i) {
+    const GridPoint& a = v[i];
+    const GridPoint& b = v[(i + 1) % 3];
+    const GridPoint lifted{a.x + off.x, a.y + off.y, a.z + off.z};
+    Plane e = kernel::plane_through(a, b, lifted);
+    if (kernel::orient(v[(i + 2) % 3], e) == kernel::Sign::Positive) e = e.opposite();
+    edge[i] = t.add(e);
+  }
+  ConvexPolygon poly;
+  poly.support = support;
+  for (int i = 0; i < 3; ++i) {
+    const std::int32_t prev = edge[(i + 2) % 3];
+    poly.corners.push_back({edge[i], prev, edge[i], kernel::approximate_vertex(s, t[prev], t[edge[i]])});
+  }
+  return poly;
+}
+
+}  // namespace
+
+Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
+  if (mesh.faces.empty()) return Solid();
+  std::vector<GridPoint> g;
+  g.reserve(mesh.vertices.size());
+  for (const auto& v : mesh.vertices) g.push_back(kernel::snap(v));
+
+  kernel::PlaneTable table;
+  std::vector<ConvexPolygon> polys;
+  for (std::size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+    const auto& f = mesh.faces[fi];
+    if (f.size() < 3) throw InvalidInput("from_mesh: face " + std::to_string(fi) + " has fewer than 3 vertices");
+    for (int i : f)
+      if (i < 0 || std::size_t(i) >= g.size())
+        throw InvalidInput("from_mesh: face " + std::to_string(fi) + " has a vertex index out of range");
+    // Face plane: the corner triple with the largest normal (robust for nearly straight corners).
+    Plane best{};
+    Int128 best_len = 0;
+    const std::size_t m = f.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      const GridPoint& a = g[std::size_t(f[(i + m - 1) % m])];
+      const GridPoint& b = g[std::size_t(f[i])];
+      const GridPoint& c = g[std::size_t(f[(i + 1) % m])];
+      const GridPoint u = sub(b, a), w = sub(c, b);
+      const Int128 nx = Int128(u.y) * w.z - Int128(u.z) * w.y, ny = Int128(u.z) * w.x - Int128(u.x) * w.z,
+                   nz = Int128(u.x) * w.y - Int128(u.y) * w.x;
+      const Int128 len = (nx < 0 ? -nx : nx) + (ny < 0 ? -ny : ny) + (nz < 0 ? -nz : nz);
+      if (len > best_len) {
+        best_len = len;
+        best = kernel::plane_through(a, b, c);
+      }
+    }
+    if (best_len == 0) throw InvalidInput("from_mesh: face " + std::to_string(fi) + " is degenerate (collinear vertices)");
+    const std::int32_t support = table.add(best);
+    // Triangulate (faces may be non-convex); every triangle is a convex plane-based polygon.
+    std::vector<Eigen::Vector3d> pts;
+    std::vector<int> local;
+    for (std::size_t i = 0; i < m; ++i) {
+      pts.push_back(kernel::to_world(g[std::size_t(f[i])]));
+      local.push_back(int(i));
+    }
+    for (const auto& tri : detail::triangulate_face(pts, local, best.normal())) {
+      const GridPoint v[3] = {g[std::size_t(f[std::size_t(tri[0])])], g[std::size_t(f[std::size_t(tri[1])])],
+                              g[std::size_t(f[std::size_t(tri[2])])]};
+      const GridPoint u = sub(v[1], v[0]), w = sub(v[2], v[0]);
+      if (Int128(u.y) * w.z - Int128(u.z) * w.y == 0 && Int128(u.z) * w.x - Int128(u.x) * w.z == 0 &&
+          Int128(u.x) * w.y - Int128(u.y) * w.x == 0)
+        continue;  // zero-area triangle after snapping
+      polys.push_back(triangle_polygon(table, support, v));
+    }
+  }
+
+  // Thibault & Naylor 1987: pick the splitting plane among sampled candidates by score, keep
+  // the polygons on it, partition the rest; an empty side is an in-cell behind, out-cell in front.
+  struct Node {
+    std::int32_t plane;
+    TreeRef neg = kOut, pos = kOut;
+  };
+  std::vector<Node> nodes;
+  struct Frame {
+    std::vector<ConvexPolygon> polys;
+    std::int32_t parent;  // -1: root
+    int side;
+  };
+  TreeRef root = kOut;
+  std::vector<Frame> stack;
+  stack.push_back({std::move(polys), -1, 0});
+  std::vector<std::int32_t> opposite(std::size_t(table.size()), -1);
+  while (!stack.empty()) {
+    Frame f = std::move(stack.back());
+    stack.pop_back();
+    const std::size_t n = f.polys.size();
+    std::size_t best = 0;
+    double best_score = 1e300;
+    const std::size_t k = std::min<std::size_t>(n, std::size_t(std::max(1, options.candidates)));
+    for (std::size_t c = 0; c < k; ++c) {
+      const std::size_t i = c * n / k;
+      int neg = 0, pos = 0, both = 0;
+      for (const auto& p : f.polys) {
+        const Side s = kernel::classify(table, p, f.polys[i].support);
+        neg += s == Side::Negative;
+        pos += s == Side::Positive;
+        both += s == Side::Both;
+      }
+      const double score = options.split_weight * both + std::abs((neg + both) - (pos + both));
+      if (score < best_score) best_score = score, best = i;
+    }
+    const std::int32_t plane = f.polys[best].support;
+    const Plane pv = table[plane];
+    if (opposite.size() < std::size_t(table.size())) opposite.resize(std::size_t(table.size()), -1);
+    if (opposite[std::size_t(plane)] < 0) {
+      opposite[std::size_t(plane)] = table.add(pv.opposite());
+      opposite.resize(std::size_t(table.size()), -1);
+    }
+    const std::int32_t opp = opposite[std::size_t(plane)];
+    std::vector<ConvexPolygon> neg, pos;
+    for (auto& p : f.polys) {
+      if (table[p.support] == pv || table[p.support] == pv.opposite()) continue;  // on the plane: consumed
+      kernel::PolygonSplit s = kernel::split(table, p, plane, opp);
+      switch (s.side) {
+        case Side::Negative: neg.push_back(std::move(p)); break;
+        case Side::Positive: pos.push_back(std::move(p)); break;
+        case Side::Both:
+          neg.push_back(std::move(s.negative));
+          pos.push_back(std::move(s.positive));
+          break;
+        case Side::On: break;
+      }
+    }
+    const auto id = TreeRef(nodes.size());
+    nodes.push_back({plane});
+    if (f.parent < 0)
+      root = id;
+    else
+      (f.side == 0 ? nodes[std::size_t(f.parent)].neg : nodes[std::size_t(f.parent)].pos) = id;
+    nodes[std::size_t(id)].neg = neg.empty() ? kIn : kOut;
+    nodes[std::size_t(id)].pos = kOut;
+    if (!neg.empty()) stack.push_back({std::move(neg), id, 0});
+    if (!pos.empty()) stack.push_back({std::move(pos), id, 1});
+  }
+
+  // Hand the tree to the builder bottom-up (children first), which computes sub-hyperplanes.
+  TreeBuilder b;
+  std::vector<std::int32_t> plane_map(std::size_t(table.size()), -1);
+  std::vector<TreeRef> made(nodes.size(), kOut);
+  for (std::size_t i = nodes.size(); i-- > 0;) {  // children have larger indices than parents
+    const Node& nd = nodes[i];
+    if (plane_map[std::size_t(nd.plane)] < 0) plane_map[std::size_t(nd.plane)] = b.add_plane(table[nd.plane]);
+    auto child = [&](TreeRef c) { return is_leaf(c) ? c : made[std::size_t(c)]; };
+    made[i] = b.add_node(plane_map[std::size_t(nd.plane)], child(nd.neg), child(nd.pos));
+  }
+  return std::move(b).build(made[std::size_t(root)]);
+}
+
+}  // namespace sculpt
