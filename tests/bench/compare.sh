@@ -55,7 +55,7 @@ else
 fi
 
 # Table: one row per (case, n); columns per implementation.
-cat "$tmp/ours.txt" "$tmp/peers.txt" | awk -v stat="$stat" '
+cat "$tmp/peers.txt" "$tmp/ours.txt" | awk -v stat="$stat" '
 function val(key,   i, kv) {
   for (i = 2; i <= NF; ++i) { split($i, kv, "="); if (kv[1] == key) return substr($i, length(key) + 2) }
   return ""
@@ -66,6 +66,7 @@ function val(key,   i, kv) {
   if (!(key in seen)) { seen[key] = 1; order[++rows] = key }
   t[key, impl] = (stat == "min" && val("min_ms") != "") ? val("min_ms") : val("time_ms"); v[key, impl] = val("volume"); m[key, impl] = val("peak_rss_kb")
   if (val("status") != "") t[key, impl] = val("status")
+  if (impl == "ours" && val("tree_nodes") != "") nodes[key] = val("tree_nodes")
 }
 function ratio(a, b) { return (a + 0 > 0 && b + 0 > 0) ? sprintf("%.2f", a / b) : "-" }
 function show(x) { return x == "" ? "-" : x }
@@ -79,5 +80,6 @@ END {
            show(v[k, "ours"]), show(v[k, "manifold-3d"]), show(v[k, "jscad"]),
            show(m[k, "ours"]), show(m[k, "manifold-3d"]), show(m[k, "jscad"])
   }
+  for (r = 1; r <= rows; ++r) if (order[r] in nodes) printf "tree_nodes %s: %s\n", order[r], nodes[order[r]]
   print "(times: " stat " ms; man/ours, jscad/ours > 1: ours faster; rss: peak resident set, kB, whole process)"
 }'
