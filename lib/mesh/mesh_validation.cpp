@@ -134,21 +134,24 @@ class Validator {
       while (j < records.size() && records[j].lo == records[i].lo && records[j].hi == records[i].hi)
         ++j;
       const HalfEdgeRecord& r = records[i];
-      const std::string edge = "edge " + point(m_, r.lo) + " - " + point(m_, r.hi) +
-                               " (vertices " + std::to_string(r.lo) + ", " +
-                               std::to_string(r.hi) + ")";
-      std::vector<int> faces;
-      for (size_t k = i; k < j; ++k) faces.push_back(records[k].face);
-      if (j - i == 1) {
-        add(DefectKind::OpenEdge, faces, {r.lo, r.hi},
-            "open " + edge + " has only face " + std::to_string(r.face));
-      } else if (j - i > 2) {
-        add(DefectKind::NonManifoldEdge, faces, {r.lo, r.hi},
-            "non-manifold " + edge + " has " + std::to_string(j - i) + " faces");
-      } else if (records[i].forward == records[i + 1].forward) {
-        add(DefectKind::InconsistentOrientation, faces, {r.lo, r.hi},
-            "faces " + std::to_string(faces[0]) + " and " + std::to_string(faces[1]) +
-                " run the same way along " + edge);
+      const bool bad = j - i != 2 || records[i].forward == records[i + 1].forward;
+      if (bad) {  // messages only for defects: formatting every edge would dominate the time
+        const std::string edge = "edge " + point(m_, r.lo) + " - " + point(m_, r.hi) +
+                                 " (vertices " + std::to_string(r.lo) + ", " +
+                                 std::to_string(r.hi) + ")";
+        std::vector<int> faces;
+        for (size_t k = i; k < j; ++k) faces.push_back(records[k].face);
+        if (j - i == 1) {
+          add(DefectKind::OpenEdge, faces, {r.lo, r.hi},
+              "open " + edge + " has only face " + std::to_string(r.face));
+        } else if (j - i > 2) {
+          add(DefectKind::NonManifoldEdge, faces, {r.lo, r.hi},
+              "non-manifold " + edge + " has " + std::to_string(j - i) + " faces");
+        } else {
+          add(DefectKind::InconsistentOrientation, faces, {r.lo, r.hi},
+              "faces " + std::to_string(faces[0]) + " and " + std::to_string(faces[1]) +
+                  " run the same way along " + edge);
+        }
       }
       for (size_t k = i + 1; k < j; ++k)
         for (int v : {r.lo, r.hi}) parent[find(corner_at(records[k], v))] = find(corner_at(r, v));
