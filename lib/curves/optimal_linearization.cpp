@@ -31,6 +31,7 @@ class FeasibilitySolver {
     const int count = static_cast<int>(vertex_.size());
     reach_.assign(count, count - 1);
     hint_.assign(count, -1);
+    planar_ = std::all_of(points.begin(), points.end(), [](const Eigen::Vector3d& p) { return p.z() == 0.0; });
   }
 
   [[nodiscard]] int count() const { return static_cast<int>(vertex_.size()); }
@@ -149,46 +150,71 @@ class FeasibilitySolver {
   bool test(int a, int b, double eps) {
     ++tests_;
     if (!stored_.empty()) return stored_[row_[a] + (b - a - 1)] <= eps;
+    const int h = hint_[b];
+    if (norm_ == Norm::LInf && h > vertex_[a] && h < vertex_[b]) {
+      // Cheap rejection by the last violator of chords ending at b: squared distances with a
+      // margin far above rounding, so it never rejects a chord the exact test would accept.
+      const Eigen::Vector3d d = points_[vertex_[b]] - points_[vertex_[a]];
+      const double cross2 = (points_[h] - points_[vertex_[a]]).cross(d).squaredNorm();
+      if (cross2 > eps * eps * d.squaredNorm() * (1.0 + 1e-9) + 1e-300) return false;
+    }
     int violator = -1;
     const bool ok = tree().within(vertex_[a], vertex_[b], eps, hint_[b], &violator);
     if (!ok && violator >= 0) hint_[b] = violator;
     return ok;
   }
 
-  // Largest index j such that chord (i, j) may have error <= eps. A line through p_i is within
-  // eps of p_k only if its direction lies in the double cone around u_k = (p_k - p_i) / r_k of
-  // half-angle h_k = asin(eps / r_k). Each new point's cone is compared with the cones of the
-  // points at offsets 1, 2, 4, 8, ... from i (for a smooth curve the point at about half the
-  // distance is the one that conflicts first); two disjoint cones end the reach. Cones are
-  // disjoint iff |u_a . u_b| < cos(h_a + h_b) = cos h_a cos h_b - sin h_a sin h_b (no
-  // transcendental functions), decided with a safety margin.
+  // Largest index j such that chord (i, j) may have error <= eps. Projection onto a plane is
+  // 1-Lipschitz and maps lines to lines, so if no line in the plane through the projected p_i is
+  // within eps of the projected points i+1..k, no chord from p_i beyond k is feasible. In the
+  // plane (basis u, v; x along u) the lines y = sigma x within eps of (x, y), x > eps, form the
+  // slope interval [xy -+ eps sqrt(x^2 + y^2 - eps^2)] / (x^2 - eps^2); the reach ends where
+  // the intersection of these intervals becomes empty (with a safety margin). The plane is the
+  // curve's own plane for planar data, else the plane of the first two well-separated chords
+  // (near the osculating plane, which keeps most of the bending). Points behind or within 2 eps
+  // along u add no constraint (still sound). Far from i only every ((k - i) / 32)-th point is
+  // examined, so a scan costs O(32 log(reach)), not O(reach).
   int cone_reach(int i, int last, double eps) const {
-    struct Cone {
-      Eigen::Vector3d axis;
-      double sin_half, cos_half;
-    };
-    Cone cones[64];
-    int count = 0;
-    int next_sample = 1;
     const Eigen::Vector3d& origin = points_[i];
-    // Any subset of the interior points gives a valid bound: far from i only every
-    // ((k - i) / 32)-th point is examined, so a scan costs O(32 log(reach)), not O(reach).
+    Eigen::Vector3d u = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
+    bool have_u = false, have_v = false;
+    double low = -std::numeric_limits<double>::infinity(), high = std::numeric_limits<double>::infinity();
+    int u_offset = 0;
     for (int k = i + 1; k <= last; k += std::max(1, (k - i) / 32)) {
       const Eigen::Vector3d w = points_[k] - origin;
-      const double r = w.norm();
-      if (!(r > eps * (1.0 + 1e-9))) continue;  // the point constrains nothing
-      const double s = eps / r, c = std::sqrt(std::max(0.0, 1.0 - s * s));
-      const Eigen::Vector3d axis = w / r;
-      for (int t = 0; t < count; ++t) {
-        const Cone& cone = cones[t];
-        const double cos_sum = c * cone.cos_half - s * cone.sin_half;  // cos(h + h_t)
-        if (cos_sum <= 0.0) continue;  // together at least 90 degrees wide: never disjoint
-        if (std::abs(axis.dot(cone.axis)) < cos_sum * (1.0 - 1e-10) - 1e-12) return k;
+      if (!have_u) {
+        const double r = w.norm();
+        if (!(r > 16.0 * eps)) continue;
+        u = w / r;
+        have_u = true;
+        u_offset = k - i;
+        if (planar_) {
+          v = Eigen::Vector3d(-u.y(), u.x(), 0.0);
+          have_v = true;
+        }
+        continue;  // (the points before this one constrain little)
       }
-      if (k - i >= next_sample && count < 64) {
-        cones[count++] = {axis, s, c};
-        next_sample = 2 * (k - i);
+      if (!have_v) {
+        if (k - i < 2 * u_offset) continue;
+        const Eigen::Vector3d across = w - u * w.dot(u);
+        const double length = across.norm();
+        if (length > 1e-6 * w.norm()) {
+          v = across / length;
+        } else {  // straight so far: any direction perpendicular to u
+          v = (std::abs(u.x()) < 0.9 ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0)).cross(u).normalized();
+        }
+        have_v = true;
+        // Restart the scan in this plane from the first point.
+        k = i;
+        continue;
       }
+      const double x = w.dot(u), y = w.dot(v);
+      if (!(x > 2.0 * eps)) continue;
+      const double denominator = x * x - eps * eps;
+      const double root = eps * std::sqrt(std::max(0.0, x * x + y * y - eps * eps));
+      low = std::max(low, (x * y - root) / denominator);
+      high = std::min(high, (x * y + root) / denominator);
+      if (low > high + 1e-9 * (1.0 + std::abs(low) + std::abs(high))) return k;
     }
     return last;
   }
@@ -264,6 +290,7 @@ class FeasibilitySolver {
   const std::vector<Eigen::Vector3d>& points_;
   Norm norm_;
   const SegmentErrorTree* shared_tree_;
+  bool planar_ = false;
   std::optional<SegmentErrorTree> tree_;
   std::vector<std::size_t> row_;   // stored mode: row start of position a
   std::vector<double> stored_;     // stored mode: error of (a, b) at row_[a] + b - a - 1
@@ -399,6 +426,7 @@ Linearization optimal_min_count(const std::vector<Eigen::Vector3d>& points, doub
   FeasibilitySolver solver(points, norm, all_vertices(static_cast<int>(points.size())));
   solver.prune_reach(tolerance);
   solver.min_count(tolerance);
+
   const std::vector<int> path = solver.min_path();
   Linearization result;
   result.indices = solver.indices(path);

@@ -91,6 +91,10 @@ bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator)
     if (violator) *violator = hint;
     return false;
   }
+  if (const int middle = i + (j - i) / 2; distance(points_[middle]) > eps) {  // often the farthest
+    if (violator) *violator = middle;
+    return false;
+  }
   const Eigen::Vector3d direction = points_[j] - points_[i];
   const double length2 = direction.squaredNorm();
   const double inverse_length2 = length2 > 0.0 ? 1.0 / length2 : 0.0;

@@ -1,0 +1,81 @@
+// Optimal solver benchmarks (docs/benchmarks.md, "Curves"):
+//  1. the paper's case n = 404, m = 64 (and the other Appendix-B curves at their n, m = 64):
+//     DYNAMIC vs the optimal solver in the same run, errors compared;
+//  2. n = 5000, m = 300 on every test curve;
+//  3. growth of the optimal solver's time with n (1e3 .. 1e5) and m, cases predicted to take
+//     longer than 20 s are skipped and marked.
+//   curves_optimal [quick]
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "bench_common.hpp"
+#include "curves/linearize.hpp"
+#include "curves/test_curves.hpp"
+
+using namespace sculpt::curves;
+
+int main(int argc, char** argv) {
+  const bool quick = argc > 1 && std::string(argv[1]) == "quick";
+  std::printf("## 1. DYNAMIC vs optimal, m = 64, paper point counts\n\n");
+  std::printf("| curve | n | DYNAMIC ms | optimal ms | speed-up | equal error |\n|---|---|---|---|---|---|\n");
+  for (TestCurve which : all_test_curves()) {
+    const DigitizedCurve curve = make_test_curve(which);
+    Linearization dynamic, optimal;
+    const double t_dynamic = bench::median_ms(quick ? 1 : 3, [&] {
+      dynamic = linearize(curve, {.segments = 64, .method = Method::Dynamic});
+    });
+    const double t_optimal = bench::median_ms(quick ? 5 : 51, [&] {
+      optimal = linearize(curve, {.segments = 64, .method = Method::Optimal});
+    });
+    std::printf("| %s | %zu | %.1f | %.3f | %.0fx | %s (%.6g) |\n", test_curve_name(which).c_str(), curve.points.size(),
+                t_dynamic, t_optimal, t_dynamic / t_optimal, dynamic.error == optimal.error ? "yes" : "NO",
+                optimal.error);
+  }
+
+  std::printf("\n## 2. optimal, n = 5000, m = 300\n\n| curve | ms (median of 5) | error | probes |\n|---|---|---|---|\n");
+  for (TestCurve which : all_test_curves()) {
+    const DigitizedCurve curve = make_test_curve(which, {.points = 5000});
+    Linearization la;
+    const double t = bench::median_ms(quick ? 1 : 5, [&] { la = linearize(curve, {.segments = 300}); });
+    std::printf("| %s | %.1f | %.6g | %d |\n", test_curve_name(which).c_str(), t, la.error, la.iterations);
+  }
+
+  std::printf("\n## 3. growth (cubic and helix), ms of one run\n\n");
+  const int sizes[] = {1000, 3000, 10000, 30000, 100000};
+  for (TestCurve which : {TestCurve::Cubic, TestCurve::Helix}) {
+    std::printf("%s:\n\n| n | m=16 | m=64 | m=300 | m=1000 | m=n/20 |\n|---|---|---|---|---|---|\n",
+                test_curve_name(which).c_str());
+    std::map<int, std::pair<int, double>> previous;  // column -> (n, ms)
+    for (int n : sizes) {
+      if (quick && n > 10000) break;
+      const DigitizedCurve curve = make_test_curve(which, {.points = n});
+      std::printf("| %d |", n);
+      const int columns[] = {16, 64, 300, 1000, n / 20};
+      for (int c = 0; c < 5; ++c) {
+        const int m = columns[c];
+        if (m >= n) {
+          std::printf(" - |");
+          continue;
+        }
+        if (const auto it = previous.find(c); it != previous.end()) {
+          const double ratio = static_cast<double>(n) / it->second.first;
+          const double predicted = it->second.second * ratio * ratio;
+          if (it->second.second < 0 || predicted > 20000.0) {
+            std::printf(" skipped (> 20 s predicted) |");
+            previous[c] = {n, -1.0};
+            continue;
+          }
+        }
+        Linearization la;
+        const double t = bench::median_ms(1, [&] { la = linearize(curve, {.segments = m}); });
+        std::printf(" %.0f |", t);
+        std::fflush(stdout);
+        previous[c] = {n, t};
+      }
+      std::printf("\n");
+    }
+    std::printf("\n");
+  }
+}
