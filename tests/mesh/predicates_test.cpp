@@ -49,7 +49,7 @@ TEST(Predicates, NearlyDegenerateInputsAgreeWithRationals) {
   std::uniform_real_distribution<double> unit(-1, 1);
   std::uniform_int_distribution<int> tier(0, 3);
   int zeros = 0;
-  for (int trial = 0; trial < 20000; ++trial) {
+  for (int trial = 0; trial < 4000; ++trial) {
     // Spread of magnitudes: small (int256), large (int512) or extreme (rationals).
     const int spread = std::array<int, 4>{0, 20, 100, 600}[tier(rng)];
     std::uniform_int_distribution<int> exponent(-spread / 2, spread / 2);
@@ -68,7 +68,7 @@ TEST(Predicates, NearlyDegenerateInputsAgreeWithRationals) {
     const Eigen::Vector2d r = trial % 2 ? Eigen::Vector2d(p + s * (q - p)) : Eigen::Vector2d(p + unit(rng) * (q - p));
     ASSERT_EQ(orient2d(p, q, r), reference2d(p, q, r));
   }
-  EXPECT_GT(zeros, 1000);  // the degenerate cases were really reached
+  EXPECT_GT(zeros, 200);  // the degenerate cases were really reached
 }
 
 TEST(Predicates, ExtremeMagnitudes) {
