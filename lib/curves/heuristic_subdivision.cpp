@@ -17,8 +17,9 @@ Linearization weighted_subdivision(const std::vector<Eigen::Vector3d>& points, c
   result.indices.push_back(0);
   int q = 0;
   for (int i = 0; i < m - 1; ++i) {
-    // Largest j with W(q, j) < segsum (Alg. 4.3), then clamped to leave room for the rest.
-    const auto it = std::lower_bound(weight.begin() + q, weight.end(), weight[q] + segsum);
+    // Largest j with W(0, j) < (i + 1) segsum (Alg. 4.3 measured from the start, so that the
+    // shortfall of each step does not pile up in the last segment), clamped to leave room.
+    const auto it = std::lower_bound(weight.begin() + q, weight.end(), (i + 1) * segsum);
     int j = static_cast<int>(it - weight.begin()) - 1;
     j = std::clamp(j, q + 1, last - (m - 1 - i));
     result.indices.push_back(j);

@@ -14,7 +14,9 @@ namespace sculpt::curves {
 /// INIT(alpha): greedy subdivision into exactly m segments of (about) equal weight
 /// alpha * L_seg + (1 - alpha) * I_seg. alpha = 1 is LENGTH, alpha = 0 is IMAGE.
 /// Differences to the paper's text: segsum = total / m (the paper's ceil() would make segsum 1
-/// for any curve shorter than m units), and breakpoints are clamped so that exactly m
+/// for any curve shorter than m units); break point i is the largest j with W(0, j) < i segsum
+/// (the paper measures W(q_{i-1}, j) < segsum, whose per-step shortfall piles up in the last
+/// segment when segments hold few points); break points are clamped so that exactly m
 /// non-empty segments result. \pre 1 <= m <= points.size() - 1, 0 <= alpha <= 1.
 [[nodiscard]] Linearization weighted_subdivision(const std::vector<Eigen::Vector3d>& points,
                                                  const CurveMeasures& measures, int m, double alpha, Norm norm);
