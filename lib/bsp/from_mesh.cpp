@@ -79,6 +79,10 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       }
     }
     if (best_len == 0) throw InvalidInput("from_mesh: face " + std::to_string(fi) + " is degenerate (collinear vertices)");
+    // A face whose snapped vertices are not exactly coplanar is split into triangles, each on
+    // its own plane, so that the polygons still close up exactly.
+    bool planar = true;
+    for (int i : f) planar = planar && best.eval(g[std::size_t(i)]) == 0;
     const std::int32_t support = table.add(best);
     // Triangulate (faces may be non-convex); every triangle is a convex plane-based polygon.
     std::vector<Eigen::Vector3d> pts;
@@ -94,7 +98,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       if (Int128(u.y) * w.z - Int128(u.z) * w.y == 0 && Int128(u.z) * w.x - Int128(u.x) * w.z == 0 &&
           Int128(u.x) * w.y - Int128(u.y) * w.x == 0)
         continue;  // zero-area triangle after snapping
-      polys.push_back(triangle_polygon(table, support, v));
+      polys.push_back(triangle_polygon(table, planar ? support : table.add(kernel::plane_through(v[0], v[1], v[2])), v));
     }
   }
 

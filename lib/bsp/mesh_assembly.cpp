@@ -131,6 +131,27 @@ class Assembler {
     return {a.x, a.y, a.z};
   }
 
+  double err(int v) const { return occ_[std::size_t(rep_[std::size_t(v)])].at.err; }
+
+  // Exact test that collinear, distinct vertices satisfy u < c < w along the line's main axis.
+  bool exactly_between(int u, int c, int w, const Eigen::Vector3d& direction) const {
+    int axis = 0;
+    direction.cwiseAbs().maxCoeff(&axis);
+    auto coordinate = [&](int v) {
+      const Occurrence& o = occ_[std::size_t(rep_[std::size_t(v)])];
+      const kernel::HomogeneousPoint h = kernel::exact_vertex(planes_[o.s], planes_[o.p], planes_[o.q]);
+      return std::pair{axis == 0 ? h.x : (axis == 1 ? h.y : h.z), h.w};
+    };
+    using Big = boost::multiprecision::int512_t;
+    auto less = [](const std::pair<kernel::Int256, kernel::Int256>& a, const std::pair<kernel::Int256, kernel::Int256>& b) {
+      // a.x / a.w < b.x / b.w
+      const Big l = Big(a.first) * Big(b.second), r = Big(b.first) * Big(a.second);
+      return (a.second.sign() * b.second.sign() > 0) ? l < r : l > r;
+    };
+    const auto pu = coordinate(u), pc = coordinate(c), pw = coordinate(w);
+    return less(pu, pw) ? (less(pu, pc) && less(pc, pw)) : (less(pw, pc) && less(pc, pu));
+  }
+
   static std::uint64_t key(int u, int w) { return (std::uint64_t(std::uint32_t(u)) << 32) | std::uint32_t(w); }
 
   // A vertex lying inside another face's edge is an endpoint of an unmatched half-edge on the
@@ -207,10 +228,14 @@ class Assembler {
         if (c == u || c == w) continue;
         const Eigen::Vector3d pc = position(c);
         const double t = (pc - pu).dot(d) / len2;
-        if (!(t > 0 && t < 1) || (pu + t * d - pc).norm() > kTol) continue;
+        const double slack = 4 * (err(u) + err(w) + err(c)) / std::sqrt(len2) + 1e-12;
+        if (t <= -slack || t >= 1 + slack || (pu + t * d - pc).norm() > kTol) continue;
         const Occurrence& o = occ_[std::size_t(rep_[std::size_t(c)])];
-        if (on_plane(o, f.support) && on_plane(o, f.edge_line[std::size_t(e.k)]))
-          inserts[std::size_t(e.face)].emplace_back(e.k, t, c);
+        if (!on_plane(o, f.support) || !on_plane(o, f.edge_line[std::size_t(e.k)])) continue;
+        // On the line and distinct from u and w (exactly); strictly between them? Decide
+        // exactly when the approximation is too close to call.
+        if ((t <= slack || t >= 1 - slack) && !exactly_between(u, c, w, d)) continue;
+        inserts[std::size_t(e.face)].emplace_back(e.k, t, c);
       }
     }
     for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
