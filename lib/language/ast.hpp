@@ -99,7 +99,7 @@ struct Postfix : Node {
   std::vector<PostfixOp> ops;
 };
 
-/// `- not - x`: prefix operators applied right to left.
+/// Prefix operators applied right to left: signs (`- + x`), or `not` (its own, looser level).
 struct Prefixed : Node {
   std::vector<Op> ops;
   Operand operand;

@@ -77,6 +77,12 @@ std::vector<double> Arguments::vector(std::size_t i, std::size_t n) const {
   return out;
 }
 
+void Arguments::charge(std::uint64_t n) const {
+  if (settings_.steps == nullptr || settings_.max_steps == 0) return;
+  *settings_.steps += n;
+  if (*settings_.steps > settings_.max_steps) fail("step limit of " + std::to_string(settings_.max_steps) + " exceeded");
+}
+
 std::string Arguments::file_path(std::size_t i) const {
   const std::string& path = string(i);
   if (!settings_.allow_files) fail(i, "file access is disabled in this session");

@@ -12,6 +12,7 @@
 ///
 /// A new area also adds its register function to the list in builtins.cpp.
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <ostream>
@@ -33,6 +34,8 @@ struct Param {
 struct RunSettings {
   std::ostream* out = nullptr;   ///< where print() writes
   bool allow_files = true;       ///< false: built-ins that touch files raise an error (fuzzing)
+  std::uint64_t* steps = nullptr;  ///< the run's step counter (see InterpreterOptions::max_steps)
+  std::uint64_t max_steps = 0;     ///< 0 = no limit
 };
 
 /// The arguments of one call, bound to the built-in's parameters, with their script positions
@@ -68,6 +71,8 @@ class Arguments {
   [[noreturn]] void fail(std::size_t i, const std::string& message) const;
   [[noreturn]] void fail(const std::string& message) const;
   [[noreturn]] void fail_type(std::size_t i, const char* expected) const;
+  /// Counts `n` steps of work (items made) against the run's step limit.
+  void charge(std::uint64_t n) const;
   /// Refuses when files are disabled; else `path` resolved against the calling script's folder.
   [[nodiscard]] std::string file_path(std::size_t i) const;
 

@@ -76,6 +76,7 @@ void register_core(BuiltinTable& table) {
                if (step == 0) args.fail(2, "step must not be 0");
                const double count = std::max(0.0, std::ceil((b - a) / step));
                if (!(count <= kMaxRangeItems)) args.fail("more than 10^7 items");
+               args.charge(static_cast<std::uint64_t>(count));
                List items;
                items.reserve(static_cast<std::size_t>(count));
                for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
@@ -88,6 +89,7 @@ void register_core(BuiltinTable& table) {
              .doc = "A new list: the items of xs followed by x.",
              .params = {{"xs"}, {"x"}},
              .run = [](const Arguments& args) -> Value {
+               args.charge(args.list(0).size());
                List items = args.list(0);
                items.push_back(args.value(1));
                return items;
@@ -97,6 +99,7 @@ void register_core(BuiltinTable& table) {
              .doc = "A new list: the items of xs followed by the items of ys.",
              .params = {{"xs"}, {"ys"}},
              .run = [](const Arguments& args) -> Value {
+               args.charge(args.list(0).size() + args.list(1).size());
                List items = args.list(0);
                const List& more = args.list(1);
                items.insert(items.end(), more.begin(), more.end());

@@ -67,9 +67,21 @@ ast::Program parse(const SourcePtr& source) {
       throw ScriptError({source, static_cast<std::size_t>(position - begin)}, "syntax error");
     }
   } catch (const x3::expectation_failure<grammar::iterator_type>& failure) {
-    const auto offset = static_cast<std::size_t>(failure.where() - begin);
+    // Point at the next token, not at the blanks before it.
+    const char* at = failure.where();
+    while (at != end && (*at == ' ' || *at == '\t' || *at == '\r' || *at == '#')) {
+      if (*at == '#') {
+        while (at != end && *at != '\n') ++at;
+      } else {
+        ++at;
+      }
+    }
+    // At the end, point just after the last thing written (not at a blank line below it).
+    const bool at_end = at == end;
+    while (at_end && at != begin && (at[-1] == ' ' || at[-1] == '\t' || at[-1] == '\r' || at[-1] == '\n')) --at;
+    const auto offset = static_cast<std::size_t>(at - begin);
     std::string message = "expected " + failure.which();
-    message += failure.where() == end ? " at end of input" : " here";
+    message += at_end ? " at end of input" : " here";
     throw ScriptError({source, offset}, message);
   }
   return program;

@@ -64,6 +64,7 @@ struct intersect_class : annotate_position {};
 struct union_class : annotate_position {};
 struct compare_class : annotate_position {};
 struct and_class : annotate_position {};
+struct negation_class : annotate_position {};
 struct expression_class : annotate_position {};
 struct assignment_class : annotate_position {};
 struct return_class : annotate_position {};
@@ -110,6 +111,7 @@ const x3::rule<additive_class, ast::Expression> additive = "expression";
 const x3::rule<intersect_class, ast::Expression> intersection = "expression";
 const x3::rule<union_class, ast::Expression> union_ = "expression";
 const x3::rule<compare_class, ast::Expression> comparison = "expression";
+const x3::rule<negation_class, ast::Prefixed> negation = "expression";
 const x3::rule<and_class, ast::Expression> conjunction = "expression";
 const x3::rule<expression_class, ast::Expression> expression = "expression";
 const x3::rule<assignment_class, ast::Assignment> assignment = "assignment";
@@ -193,7 +195,9 @@ const auto subscript_def = (mark >> lit('[') > lb > expression > lb > lit(']'))[
 const auto postfix_def = primary >> *(call | subscript);
 
 const x3::symbols<Op> sign_ops({{"-", Op::Neg}, {"+", Op::Pos}}, "sign");
-const auto prefix_op_def = sign_ops | (keyword("not") >> x3::attr(Op::Not));
+const auto prefix_op_def = sign_ops;
+// `not` binds looser than comparisons: `not a == b` is `not (a == b)`.
+const auto negation_def = *(keyword("not") >> x3::attr(Op::Not)) >> comparison;
 const auto prefixed_def = *prefix_op >> postfix;
 
 const x3::symbols<Op> multiplicative_ops({{"*", Op::Mul}, {"/", Op::Div}, {"%", Op::Mod}}, "'*', '/' or '%'");
@@ -211,14 +215,14 @@ const auto additive_operation_def = (additive_ops >> lb) > multiplicative;
 const auto intersect_operation_def = (intersect_op >> lb) > additive;
 const auto union_operation_def = (union_op >> lb) > intersection;
 const auto compare_operation_def = (compare_ops >> lb) > union_;
-const auto and_operation_def = (and_op >> lb) > comparison;
+const auto and_operation_def = (and_op >> lb) > negation;
 const auto or_operation_def = (or_op >> lb) > conjunction;
 const auto multiplicative_def = prefixed >> *multiplicative_operation;
 const auto additive_def = multiplicative >> *additive_operation;
 const auto intersection_def = additive >> *intersect_operation;
 const auto union__def = intersection >> *union_operation;
 const auto comparison_def = union_ >> *compare_operation;
-const auto conjunction_def = comparison >> *and_operation;
+const auto conjunction_def = negation >> *and_operation;
 const auto expression_def = conjunction >> *or_operation;
 
 // ---- statements ----
@@ -242,7 +246,7 @@ const auto program_def = (mark >> as<std::vector<ast::Statement>>(separators >> 
 
 BOOST_SPIRIT_DEFINE(identifier, number, string, escape, boolean, list, parenthesized, primary,
                     argument, named_argument, positional_argument, call, subscript, postfix, prefix_op, prefixed, multiplicative,
-                    additive, intersection, union_, comparison, conjunction, expression)
+                    additive, intersection, union_, comparison, negation, conjunction, expression)
 BOOST_SPIRIT_DEFINE(multiplicative_operation, additive_operation, intersect_operation,
                     union_operation, compare_operation, and_operation, or_operation)
 BOOST_SPIRIT_DEFINE(assignment, return_statement, include_statement, block, conditional,

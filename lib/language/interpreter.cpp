@@ -98,8 +98,9 @@ struct Interpreter::Impl {
                                        std::to_string(options.stack_budget >> 10) + " KiB of stack)");
     }
   }
-  void count_step(std::size_t where) {
-    if (options.max_steps != 0 && ++steps > options.max_steps) {
+  void count_step(std::size_t where) { charge(1, where); }
+  void charge(std::uint64_t n, std::size_t where) {
+    if (options.max_steps != 0 && (steps += n) > options.max_steps) {
       throw ScriptError(at(where), "step limit of " + std::to_string(options.max_steps) + " exceeded");
     }
   }
@@ -123,13 +124,20 @@ struct Interpreter::Impl {
   };
 
   // ---- names ----
+  const Builtin* find_builtin(const std::string& name) const {
+    const Builtin* b = builtins().find(name);
+    return b && (!options.core_only || b->area == "core") ? b : nullptr;
+  }
+
   std::vector<std::string> visible_names() const {
     std::vector<std::string> names;
     for (const auto& [name, _] : globals) names.push_back(name);
     if (!frames.empty()) {
       for (const auto& [name, _] : frames.back()->locals) names.push_back(name);
     }
-    for (const auto& [name, _] : builtins().entries()) names.push_back(name);
+    for (const auto& [name, b] : builtins().entries()) {
+      if (find_builtin(name)) names.push_back(name);
+    }
     return names;
   }
 
@@ -139,14 +147,14 @@ struct Interpreter::Impl {
       if (it != frames.back()->locals.end()) return it->second;
     }
     if (auto it = globals.find(id.name); it != globals.end()) return it->second;
-    if (const Builtin* b = builtins().find(id.name)) return b->constant ? *b->constant : Value(b);
+    if (const Builtin* b = find_builtin(id.name)) return b->constant ? *b->constant : Value(b);
     std::string message = "unknown name '" + id.name + "'";
     if (auto guess = closest_name(id.name, visible_names())) message += "; did you mean '" + *guess + "'?";
     throw ScriptError(at(id.where), message);
   }
 
   void assign(const ast::Identifier& id, Value value) {
-    if (builtins().find(id.name)) {
+    if (find_builtin(id.name)) {
       throw ScriptError(at(id.where), "cannot assign to '" + id.name + "': it is a built-in");
     }
     if (frames.empty()) {
@@ -169,6 +177,8 @@ struct Interpreter::Impl {
       }
       Value right = eval(operation.operand);
       value = positioned(at(operation.where), "", [&] { return apply_binary(operation.op, value, right); });
+      if (const std::string* text = value.get<std::string>()) charge(text->size(), operation.where);
+      if (const List* list = value.list()) charge(list->size(), operation.where);
     }
     return value;
   }
@@ -453,6 +463,8 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
   impl_->options = options;
   impl_->settings.out = options.out ? options.out : &std::cout;
   impl_->settings.allow_files = options.allow_files;
+  impl_->settings.steps = &impl_->steps;
+  impl_->settings.max_steps = options.max_steps;
   // Keep the budget well inside the real stack limit.
   rlimit limit{};
   if (getrlimit(RLIMIT_STACK, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {

@@ -23,8 +23,9 @@ namespace sculpt::language {
 struct InterpreterOptions {
   std::ostream* out = nullptr;        ///< print() output; null = std::cout
   bool allow_files = true;            ///< false: include/curve/import/export raise errors
-  std::uint64_t max_steps = 0;        ///< statements + calls allowed per run(); 0 = no limit
+  std::uint64_t max_steps = 0;        ///< statements, calls and items made per run(); 0 = no limit
   std::size_t stack_budget = 2u << 20;  ///< bytes of C++ stack the evaluator may use
+  bool core_only = false;             ///< hide the built-ins of the library areas (fuzzing)
 };
 
 class Interpreter {

@@ -31,6 +31,19 @@ const std::map<std::string, std::string>& keyword_help() {
   return help;
 }
 
+/// The entry stops in the middle of a construct (after an operator, `else`, ...): the parser
+/// fails at the very end of the text. The REPL then waits for more; an empty line ends it.
+bool ends_early(const std::string& text) {
+  auto source = std::make_shared<SourceFile>();
+  source->text = text;
+  try {
+    parse(source);
+  } catch (const ScriptError& e) {
+    return text.find_first_not_of(" \t\r\n", e.where().offset) == std::string::npos;
+  }
+  return false;
+}
+
 std::string first_word(std::string_view text) {
   const auto begin = text.find_first_not_of(" \t");
   if (begin == std::string_view::npos) return {};
@@ -81,9 +94,11 @@ bool Session::feed(const std::string& line) {
       return true;
     }
   }
+  const bool ending = !pending_.empty() && line.find_first_not_of(" \t\r") == std::string::npos;
   pending_ += line;
   pending_ += '\n';
   if (is_unfinished(pending_)) return true;
+  if (!ending && ends_early(pending_)) return true;
   auto source = std::make_shared<SourceFile>();
   source->name = "<stdin>";
   source->text = std::move(pending_);

@@ -1,8 +1,8 @@
 #pragma once
 /// \file session.hpp
 /// An interactive session without the terminal: lines in, output out. The REPL (repl/) puts
-/// libedit in front of it; tests drive it directly. Entries that leave brackets open continue
-/// on the next line; `:help [name]`, `:load file`, `:vars`, `:quit` are commands. An error is
+/// libedit in front of it; tests drive it directly. Entries that leave brackets open, or stop
+/// right after an operator, continue on the next line (an empty line ends the latter); `:help [name]`, `:load file`, `:vars`, `:quit` are commands. An error is
 /// printed and the session goes on with every binding intact.
 
 #include <ostream>

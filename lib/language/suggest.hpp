@@ -9,7 +9,7 @@
 
 namespace sculpt::language {
 
-/// Levenshtein distance (insertions, deletions, substitutions; each costs 1).
+/// Edit distance: insertions, deletions, substitutions and swaps of adjacent letters cost 1.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
 /// The candidate closest to `name`, if it is close enough to be a plausible typo

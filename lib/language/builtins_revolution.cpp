@@ -1,0 +1,119 @@
+// Built-ins of the revolution area: convex paths, solids of revolution as nearly balanced BSP
+// trees, and the profile models of Figure 5 (Ihm & Naylor 1990, sec. 6; lib/bsp/revolve.hpp,
+// lib/curves/profiles.hpp). See docs/revolution.md.
+#include <cmath>
+#include <string>
+
+#include "bsp/revolve.hpp"
+#include "curves/linearization.hpp"
+#include "curves/profiles.hpp"
+#include "language/builtins.hpp"
+#include "language/curve_values.hpp"
+#include "language/solid_values.hpp"
+
+namespace sculpt::language {
+namespace {
+
+/// A convex path of revolution (type "path").
+struct PathValue final : Object {
+  explicit PathValue(ConvexPath p) : path(std::move(p)) {}
+  ConvexPath path;
+  [[nodiscard]] std::string type_name() const override { return "path"; }
+  [[nodiscard]] std::string repr() const override {
+    return "<path: convex polygon of " + std::to_string(path.edges()) + " edges>";
+  }
+};
+
+Value path_value(ConvexPath p) { return Value(std::shared_ptr<const Object>(std::make_shared<PathValue>(std::move(p)))); }
+
+int edge_count(const Arguments& args, std::size_t i) { return static_cast<int>(args.integer(i, 3, 100000)); }
+
+/// A list of [x, y] (or [x, y, z], z ignored) pairs.
+std::vector<Eigen::Vector2d> point_pairs(const Arguments& args, std::size_t i, const char* what) {
+  std::vector<Eigen::Vector2d> out;
+  for (const Value& item : args.list(i)) {
+    const List* xy = item.list();
+    if (!xy || xy->size() < 2 || xy->size() > 3 || !(*xy)[0].get<double>() || !(*xy)[1].get<double>())
+      args.fail(i, std::string(what) + " must be a list of [x, y] number pairs");
+    out.emplace_back(*(*xy)[0].get<double>(), *(*xy)[1].get<double>());
+  }
+  return out;
+}
+
+/// The profile polyline of a curve (its points), a linearization (its vertices) or a list of [r, z].
+std::vector<Eigen::Vector2d> profile_arg(const Arguments& args, std::size_t i) {
+  if (const auto* c = args.value(i).object<CurveValue>()) return curves::planar_points(c->curve.points);
+  if (const auto* la = args.value(i).object<LinearizationValue>())
+    return curves::planar_points(curves::linearization_points(la->curve->curve, la->result));
+  if (args.value(i).list()) return point_pairs(args, i, "a profile");
+  args.fail_type(i, "a curve, a linearization or a list of [r, z] points");
+}
+
+}  // namespace
+
+void register_revolution(BuiltinTable& table) {
+  table.add({.name = "circle",
+             .signature = "circle(n) or circle(r, n)",
+             .doc = "Path of revolution: the regular n-gon inscribed in the circle of radius r "
+                    "(default 1) around the z axis, its first vertex on +x.",
+             .params = {{"a"}, {"b", false}},
+             .run = [](const Arguments& args) {
+               if (!args.has(1)) return path_value(circular_path(edge_count(args, 0)));
+               return path_value(circular_path(edge_count(args, 1), args.number(0)));
+             }});
+  table.add({.name = "ellipse",
+             .signature = "ellipse(a, b, n)",
+             .doc = "Path of revolution: the n-gon inscribed in the ellipse with semi-axes a (x) and "
+                    "b (y), vertex k at (a cos 2 pi k/n, b sin 2 pi k/n).",
+             .params = {{"a"}, {"b"}, {"n"}},
+             .run = [](const Arguments& args) {
+               return path_value(ellipse_path(args.number(0), args.number(1), edge_count(args, 2)));
+             }});
+  table.add({.name = "convex_path",
+             .signature = "convex_path(vertices)",
+             .doc = "Path of revolution through the given [x, y] vertices, which must form a strictly "
+                    "convex polygon (checked exactly; clockwise order is reversed).",
+             .params = {{"vertices"}},
+             .run = [](const Arguments& args) {
+               return path_value(polygon_path(point_pairs(args, 0, "the vertices")));
+             }});
+  table.add({.name = "revolve",
+             .signature = "revolve(profile, path, face_only_below=6)",
+             .doc = "Solid of revolution: the profile (a curve, a linearization, or a list of [r, z] "
+                    "with r >= 0 and z monotone) revolved along the convex path; profile point (r, z) and "
+                    "path vertex (u, v) give (r u, r v, z); flat caps close it where the profile does not "
+                    "end on the axis. The BSP tree is section 6's: balanced horizontal planes, then per "
+                    "slab a nearly balanced tree of the path (face planes only below face_only_below edges).",
+             .params = {{"profile"}, {"path"}, {"face_only_below", false}},
+             .run = [](const Arguments& args) {
+               const auto profile = profile_arg(args, 0);
+               const auto& path = args.object<PathValue>(1, "a path (circle, ellipse, convex_path)").path;
+               RevolveOptions options;
+               if (args.has(2)) options.face_only_below = static_cast<int>(args.integer(2, 2, 1000000));
+               return solid_value(revolve(profile, path, options));
+             }});
+  table.add({.name = "profile",
+             .signature = "profile(name, points=237, noise=0, seed=1)",
+             .doc = "A profile model of Figure 5 as a 2D curve (x = r, y = z), sampled at `points` points "
+                    "equally spaced in arc length, disturbed by seeded uniform noise of amplitude `noise` "
+                    "(z stays monotone). name: \"goblet\", \"cavity\" (the goblet's bowl), \"human\", "
+                    "\"ball\" (radius 1.5 about z = 6.8). Our designs: Piegl's 1987 data is not available.",
+             .params = {{"name"}, {"points", false}, {"noise", false}, {"seed", false}},
+             .run = [](const Arguments& args) -> Value {
+               const std::string& name = args.string(0);
+               curves::ProfileDesign design;
+               if (name == "goblet") design = curves::goblet_profile();
+               else if (name == "cavity") design = curves::goblet_cavity_profile();
+               else if (name == "human") design = curves::human_profile();
+               else if (name == "ball") design = curves::ball_profile(1.5, 6.8);
+               else args.fail(0, "unknown profile \"" + name + "\" (goblet, cavity, human, ball)");
+               curves::SampleOptions options;
+               if (args.has(1)) options.points = static_cast<int>(args.integer(1, 2, 10'000'000));
+               if (args.has(2)) options.noise = args.number(2);
+               if (args.has(3)) options.seed = static_cast<std::uint64_t>(args.integer(3, 0, 1LL << 53));
+               return Value(std::shared_ptr<const Object>(
+                   std::make_shared<CurveValue>(curves::sample_profile(design, options))));
+             }});
+}
+
+}  // namespace sculpt::language

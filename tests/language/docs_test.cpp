@@ -1,0 +1,47 @@
+// docs/language.md documents every built-in and keyword: each has a heading line "### name"
+// (built-ins) or appears in backquotes (keywords), so the reference cannot drift from the table.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "language/builtins.hpp"
+
+namespace sculpt::language {
+namespace {
+
+std::string reference() {
+  std::ifstream in(std::string(SCULPT_SOURCE_DIR) + "/docs/language.md");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(Docs, ReferenceCoversEveryBuiltin) {
+  const std::string doc = reference();
+  ASSERT_FALSE(doc.empty()) << "docs/language.md is missing";
+  for (const auto& [name, b] : builtins().entries()) {
+    EXPECT_NE(doc.find("\n### `" + b.signature + "`"), std::string::npos)
+        << "docs/language.md needs a heading ### `" << b.signature << "`";
+  }
+}
+
+TEST(Docs, ReferenceMentionsEveryKeyword) {
+  const std::string doc = reference();
+  for (const char* k : keywords()) EXPECT_NE(doc.find(std::string("`") + k), std::string::npos) << k;
+}
+
+TEST(Docs, ReferenceHasNoStaleBuiltins) {
+  // Every "### `name(...)`" heading in the built-in sections names an existing built-in.
+  const std::string doc = reference();
+  std::istringstream lines(doc);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("### `", 0) != 0) continue;
+    const std::string signature = line.substr(5, line.rfind('`') - 5);
+    const std::string name = signature.substr(0, signature.find('('));
+    EXPECT_NE(builtins().find(name), nullptr) << "docs/language.md documents unknown built-in " << name;
+  }
+}
+
+}  // namespace
+}  // namespace sculpt::language

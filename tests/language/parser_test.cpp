@@ -1,0 +1,117 @@
+// Parser: good inputs give the expected tree shape; bad inputs give the exact message and
+// position ("file:line:col: error: ...", the line, a caret).
+#include <gtest/gtest.h>
+
+#include "language/parser.hpp"
+#include "script_runner.hpp"
+
+namespace sculpt::language {
+namespace {
+
+using testing::text_source;
+
+std::string parse_error(const std::string& text) {
+  try {
+    parse(text_source(text));
+  } catch (const ScriptError& e) {
+    return format_error(e);
+  }
+  return "";
+}
+
+TEST(Parser, AcceptsTheLanguageSummary) {
+  const char* good[] = {
+      "",
+      "\n\n# only a comment\n",
+      "x = 1; y = 2\n",
+      "x = -1.5e3 + .5 * 2 % 3 / 4",
+      "s = \"a\\tb\\n\\\\\\\"\"",
+      "v = [1, 2, [3, [4]]]\nw = []",
+      "f(1, b = 2, c=[3])",
+      "fn f(a, b) { return a + b }",
+      "fn g() {}\nfn h(\n  a,\n  b\n) {\n  a\n}",
+      "if a { b } else if c { d } else { e }",
+      "if a {\n  b\n}\nelse {\n  c\n}",
+      "for x in range(0, 10, 2) { print(x) }",
+      "include \"other.bsp\"",
+      "c = a | b & d - e",
+      "c = not a and b or c == d != e < f <= g > h >= i",
+      "x = f(1)(2)[3][4]",
+      "x = (1 +\n 2 *\n 3)",
+      "x = not - - + y",
+      "return",
+      "iffy = 1; format = 2; inside = 3",
+      "x = 1 # trailing comment\n",
+  };
+  for (const char* text : good) EXPECT_EQ(parse_error(text), "") << text;
+}
+
+TEST(Parser, FlatOperatorChainsAndPositions) {
+  const ast::Program program = parse(text_source("x = 1 + 2 - 3\n  y = a(b)"));
+  ASSERT_EQ(program.statements.size(), 2u);
+  const auto& assignment = boost::get<ast::Assignment>(program.statements[0]);
+  EXPECT_EQ(assignment.target.name, "x");
+  EXPECT_EQ(assignment.where, 0u);
+  EXPECT_EQ(assignment.value.where, 4u);
+  const auto& second = boost::get<ast::Assignment>(program.statements[1]);
+  EXPECT_EQ(second.where, 16u);  // after the indentation
+  EXPECT_EQ(second.target.where, 16u);
+}
+
+TEST(Parser, LongChainsAreLoopsNotRecursion) {
+  std::string sum = "x = 0";
+  for (int i = 0; i < 100000; ++i) sum += "+1";
+  EXPECT_EQ(parse_error(sum), "");
+  EXPECT_EQ(parse_error("x = " + std::string(100000, '-') + "1"), "");
+  std::string chain = "if a {}";
+  for (int i = 0; i < 20000; ++i) chain += " else if a {}";
+  EXPECT_EQ(parse_error(chain), "");
+}
+
+TEST(Parser, NestingLimitIsACleanError) {
+  const std::string ok = "x = " + std::string(kMaxNesting, '(') + "1" + std::string(kMaxNesting, ')');
+  EXPECT_EQ(parse_error(ok), "");
+  const std::string deep = "x = " + std::string(100000, '(');
+  const std::string error = parse_error(deep);
+  EXPECT_EQ(error.substr(0, error.find('\n')), "t.bsp:1:69: error: brackets nested deeper than 64 levels");
+  // Brackets inside strings and comments do not count.
+  EXPECT_EQ(parse_error("x = \"" + std::string(1000, '(') + "\" # " + std::string(1000, '[')), "");
+}
+
+TEST(Parser, ExactMessagesForBadInput) {
+  EXPECT_EQ(parse_error("x = (1 + 2"), "t.bsp:1:11: error: expected ')' at end of input\nx = (1 + 2\n          ^\n");
+  EXPECT_EQ(parse_error("x = 1 2"), "t.bsp:1:7: error: expected newline or ';' here\nx = 1 2\n      ^\n");
+  EXPECT_EQ(parse_error("y = 1\nprint(1 +)"), "t.bsp:2:10: error: expected expression here\nprint(1 +)\n         ^\n");
+  EXPECT_EQ(parse_error("fn (a) {}"), "t.bsp:1:4: error: expected name here\nfn (a) {}\n   ^\n");
+  EXPECT_EQ(parse_error("for x in xs print(x)"),
+            "t.bsp:1:13: error: expected '{' here\nfor x in xs print(x)\n            ^\n");
+  EXPECT_EQ(parse_error("for x xs {}"), "t.bsp:1:7: error: expected 'in' here\nfor x xs {}\n      ^\n");
+  EXPECT_EQ(parse_error("s = \"abc"), "t.bsp:1:9: error: expected '\"' at end of input\ns = \"abc\n        ^\n");
+  EXPECT_EQ(parse_error("s = \"a\\qb\""),
+            "t.bsp:1:8: error: expected escape sequence (\\n, \\t, \\\\ or \\\") here\ns = \"a\\qb\"\n       ^\n");
+  EXPECT_EQ(parse_error("f(1, )"), "t.bsp:1:6: error: expected argument here\nf(1, )\n     ^\n");
+  EXPECT_EQ(parse_error(")"), "t.bsp:1:1: error: expected statement here\n)\n^\n");
+  EXPECT_EQ(parse_error("if a { x = }"), "t.bsp:1:12: error: expected expression here\nif a { x = }\n           ^\n");
+  EXPECT_EQ(parse_error("if a { b c }"), "t.bsp:1:10: error: expected newline or ';' here\nif a { b c }\n         ^\n");
+  EXPECT_EQ(parse_error("x = [1, 2"), "t.bsp:1:10: error: expected ']' at end of input\nx = [1, 2\n         ^\n");
+  EXPECT_EQ(parse_error("include x"), "t.bsp:1:9: error: expected string here\ninclude x\n        ^\n");
+  EXPECT_EQ(parse_error("x = nan"), "");  // a name, not a number
+  EXPECT_EQ(parse_error("fn = 3"), "t.bsp:1:4: error: expected name here\nfn = 3\n   ^\n");
+}
+
+TEST(Parser, CaretKeepsTabs) {
+  EXPECT_EQ(parse_error("\tx = 1 2"), "t.bsp:1:8: error: expected newline or ';' here\n\tx = 1 2\n\t      ^\n");
+}
+
+TEST(Parser, UnfinishedInputForTheRepl) {
+  EXPECT_TRUE(is_unfinished("fn f(a) {"));
+  EXPECT_TRUE(is_unfinished("x = [1,"));
+  EXPECT_TRUE(is_unfinished("f(\n  1"));
+  EXPECT_FALSE(is_unfinished("fn f(a) { a }"));
+  EXPECT_FALSE(is_unfinished("x = \"{\""));
+  EXPECT_FALSE(is_unfinished("x = 1 # {"));
+  EXPECT_FALSE(is_unfinished("x = )"));
+}
+
+}  // namespace
+}  // namespace sculpt::language

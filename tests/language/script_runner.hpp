@@ -1,0 +1,37 @@
+#pragma once
+// Runs script text through the interpreter and returns what it printed and the formatted
+// error (empty if none), as the sculpt executable would show them.
+#include <sstream>
+#include <string>
+
+#include "language/interpreter.hpp"
+
+namespace sculpt::language::testing {
+
+struct RunResult {
+  std::string out;
+  std::string error;
+};
+
+inline SourcePtr text_source(const std::string& text, const std::string& name = "t.bsp") {
+  auto source = std::make_shared<SourceFile>();
+  source->name = name;
+  source->text = text;
+  return source;
+}
+
+inline RunResult run_script(const std::string& text, InterpreterOptions options = {}) {
+  std::ostringstream out;
+  options.out = &out;
+  Interpreter interpreter(options);
+  RunResult result;
+  try {
+    interpreter.run(text_source(text));
+  } catch (const ScriptError& e) {
+    result.error = format_error(e);
+  }
+  result.out = out.str();
+  return result;
+}
+
+}  // namespace sculpt::language::testing

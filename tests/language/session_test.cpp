@@ -1,0 +1,90 @@
+// The REPL session without a terminal: echo of values, errors that keep bindings, multi-line
+// entries, commands, completion, line numbers that run on across entries.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "language/builtins.hpp"
+#include "language/session.hpp"
+
+namespace sculpt::language {
+namespace {
+
+struct Fixture {
+  std::ostringstream out, err;
+  Session session{out, err};
+};
+
+TEST(Session, EchoesExpressionsNotAssignments) {
+  Fixture f;
+  f.session.feed("x = 6");
+  f.session.feed("x * 7");
+  f.session.feed("\"text\"");
+  f.session.feed("print(1)");
+  EXPECT_EQ(f.out.str(), "42\n\"text\"\n1\n");
+  EXPECT_EQ(f.err.str(), "");
+}
+
+TEST(Session, ErrorsKeepBindingsAndNumberLinesOn) {
+  Fixture f;
+  f.session.feed("a = 1");
+  f.session.feed("b = a + )");
+  f.session.feed("a + 1");
+  f.session.feed("b = a +");  // ends with an operator: the entry goes on
+  EXPECT_TRUE(f.session.continuing());
+  f.session.feed("  1");
+  f.session.feed("b");
+  f.session.feed("c = 1 -");
+  f.session.feed("");  // an empty line ends it
+  EXPECT_FALSE(f.session.continuing());
+  EXPECT_EQ(f.err.str(),
+            "<stdin>:2:9: error: expected expression here\nb = a + )\n        ^\n"
+            "<stdin>:7:8: error: expected expression at end of input\nc = 1 -\n       ^\n");
+  EXPECT_EQ(f.out.str(), "2\n2\n");
+}
+
+TEST(Session, MultiLineEntries) {
+  Fixture f;
+  EXPECT_TRUE(f.session.feed("fn twice(x) {"));
+  EXPECT_TRUE(f.session.continuing());
+  f.session.feed("  2 * x");
+  f.session.feed("}");
+  EXPECT_FALSE(f.session.continuing());
+  f.session.feed("twice(21)");
+  EXPECT_EQ(f.out.str(), "42\n");
+}
+
+TEST(Session, Commands) {
+  Fixture f;
+  f.session.feed("r = 2");
+  f.session.feed(":vars");
+  f.session.feed(":help sqrt");
+  f.session.feed(":help sqtr");
+  f.session.feed(":halp");
+  EXPECT_EQ(f.out.str(),
+            "r : number = 2\nsqrt(x)\n  Square root of x >= 0.\nno built-in or keyword named 'sqtr'; did you mean 'sqrt'?\n");
+  EXPECT_EQ(f.err.str(), "error: unknown command ':halp'; did you mean ':help'? (commands: :help, :load, :vars, :quit)\n");
+  EXPECT_FALSE(f.session.feed(":quit"));
+}
+
+TEST(Session, HelpOverviewListsEveryBuiltin) {
+  const std::string overview = help_text("");
+  for (const auto& [name, _] : builtins().entries()) EXPECT_NE(overview.find(" " + name), std::string::npos) << name;
+}
+
+TEST(Session, Completion) {
+  Fixture f;
+  f.session.feed("cylinder_height = 3");
+  EXPECT_EQ(f.session.complete("cyl"), (std::vector<std::string>{"cylinder", "cylinder_height"}));
+  EXPECT_EQ(f.session.complete("for"), (std::vector<std::string>{"for"}));
+  EXPECT_EQ(f.session.complete(":l"), (std::vector<std::string>{":load"}));
+}
+
+TEST(Session, LoadRunsAFile) {
+  Fixture f;
+  f.session.feed(":load /nonexistent/file.bsp");
+  EXPECT_EQ(f.err.str(), "error: /nonexistent/file.bsp: cannot open for reading\n");
+}
+
+}  // namespace
+}  // namespace sculpt::language
