@@ -6,7 +6,12 @@
 
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
+#include "kernel/grid.hpp"
+#ifdef SCULPT_HAVE_LEAF_CELLS
 #include "bsp/cells.hpp"
+#else
+#include "reports/cell_clipper.hpp"
+#endif
 
 namespace sculpt::reports {
 
@@ -19,6 +24,11 @@ DepthCost depth_cost(const Solid& solid, const DepthCostOptions& options) {
       throw InvalidInput("depth cost: an empty or unbounded solid has no bounding box; give a sample box");
     out.sample_box = bounding_box(solid);
   }
+  // Snapped to the kernel grid (nearest), as bsp/cells.hpp clips to the snapped box: the sample
+  // space is then exactly the union of the cells.
+  if (!out.sample_box.isEmpty() && out.sample_box.min().allFinite() && out.sample_box.max().allFinite())
+    out.sample_box = Eigen::AlignedBox3d(kernel::to_world(kernel::snap(out.sample_box.min())),
+                                         kernel::to_world(kernel::snap(out.sample_box.max())));
   const Eigen::Vector3d size = out.sample_box.sizes();
   if (out.sample_box.isEmpty() || !(size.minCoeff() > 0.0) || !size.allFinite())
     throw InvalidInput("depth cost: the sample box must have positive, finite extent in x, y and z");
@@ -32,7 +42,13 @@ DepthCost depth_cost(const Solid& solid, const DepthCostOptions& options) {
   out.height = stats.height;
 
   std::map<int, DepthBin> bins;
+#ifdef SCULPT_HAVE_LEAF_CELLS
+  out.cell_volumes = "exact (bsp/cells.hpp)";
   for (const LeafCell& cell : leaf_cells(solid, out.sample_box)) {
+#else
+  out.cell_volumes = "floating-point clipping (reports/cell_clipper.hpp)";
+  for (const ClippedCell& cell : clipped_cells(solid, out.sample_box)) {
+#endif
     if (!(cell.volume > 0.0)) continue;
     const double p = cell.volume / out.sample_volume;
     ++out.cells_in_box;

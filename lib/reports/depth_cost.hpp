@@ -5,9 +5,11 @@
 /// p_C = v_C / V at cost d_C, so the expected depth is sum p_C d_C. No binary tree with these
 /// leaf probabilities can do better than the entropy H = -sum p_C log2 p_C (Shannon; Kraft's
 /// inequality), so the ratio expected depth / H measures how far the tree is from optimal.
-/// Volumes are exact: each leaf cell is clipped to the sample box (bsp/cells.hpp).
+/// Each leaf cell is clipped to the sample box: exactly by bsp/cells.hpp where that is built, else
+/// in floating point by reports/cell_clipper.hpp (DepthCost::cell_volumes says which).
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -36,11 +38,13 @@ struct DepthCost {
   int cells_in_box = 0;         ///< leaf cells with positive volume in the box
   double in_volume = 0;         ///< volume of the in-cells within the box (the solid's, if it fits)
   std::vector<DepthBin> histogram;  ///< by depth, only depths that occur in the box
+  std::string cell_volumes;         ///< how the cell volumes were computed
 };
 
 struct DepthCostOptions {
-  /// The sample space; default: the solid's bounding box.
-  std::optional<Eigen::AlignedBox3d> sample_box;
+  /// The sample space; default: the solid's bounding box. Its corners are snapped to the kernel
+  /// grid (nearest point; \throw RangeError outside the world range).
+  std::optional<Eigen::AlignedBox3d> sample_box = std::nullopt;
 };
 
 /// \throw InvalidInput if the box is empty or flat, or no box is given for an empty solid

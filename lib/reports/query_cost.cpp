@@ -42,8 +42,8 @@ std::pair<int, int> visit(const PointClassifier& tree, const Eigen::Vector3d& ce
     const auto& n = tree.nodes()[static_cast<std::size_t>(k)];
     const double f = n.a * centre.x() + n.b * centre.y() + n.c * centre.z() + n.d;
     const double r = reach(n);
-    if (f - r <= 0.0) stack.push_back(n.negative);
-    if (f + r > 0.0) stack.push_back(n.positive);
+    if (f - r <= 0.0) stack.push_back(n.child[0]);
+    if (f + r > 0.0) stack.push_back(n.child[1]);
   }
   return {nodes, leaves};
 }

@@ -29,7 +29,7 @@ struct QueryCostOptions {
   int samples = 10000;            ///< number of random queries, >= 2
   std::uint64_t seed = 1;         ///< std::mt19937_64 seed (portable mapping to doubles)
   double confidence = 0.95;       ///< of the interval, in (0, 1)
-  std::optional<Eigen::AlignedBox3d> sample_box;  ///< default: the solid's bounding box
+  std::optional<Eigen::AlignedBox3d> sample_box = std::nullopt;  ///< default: the solid's bounding box
 };
 
 struct QueryCost {

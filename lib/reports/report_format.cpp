@@ -97,6 +97,7 @@ std::string report_text(const std::vector<TreeReport>& reports) {
     for (std::size_t i = 0; i < cells.size(); ++i) line += std::string(widths[i] - cells[i].size() + 2, ' ') + cells[i];
     out += line + "\n";
   }
+  out += "(cell volumes: " + d0.cell_volumes + ")\n";
   if (shapes > 0)
     out += "(Monte Carlo: " + std::to_string(reports.front().queries.front().samples) + " queries per shape, " +
            fmt("%.0f", 100 * reports.front().queries.front().confidence) + "% confidence half-widths)\n";
@@ -128,7 +129,8 @@ std::string report_json(const std::vector<TreeReport>& reports) {
            ", \"in_leaves\": " + std::to_string(d.in_leaves) + ", \"out_leaves\": " + std::to_string(d.out_leaves) +
            ", \"height\": " + std::to_string(d.height) + ", \"cells_in_box\": " + std::to_string(d.cells_in_box) +
            ", \"in_volume\": " + num(d.in_volume) + ", \"expected_depth\": " + num(d.expected_depth) +
-           ", \"entropy_bound\": " + num(d.entropy_bound) + ", \"ratio\": " + num(d.ratio) + ", \"histogram\": [";
+           ", \"entropy_bound\": " + num(d.entropy_bound) + ", \"ratio\": " + num(d.ratio) + ", \"cell_volumes\": " + json_string(d.cell_volumes) +
+           ", \"histogram\": [";
     for (std::size_t k = 0; k < d.histogram.size(); ++k) {
       const DepthBin& b = d.histogram[k];
       out += (k ? ", " : "") + std::string("{\"depth\": ") + std::to_string(b.depth) +

@@ -20,7 +20,7 @@
 namespace sculpt::reports {
 
 struct ReportOptions {
-  std::optional<Eigen::AlignedBox3d> sample_box;  ///< default: the solid's bounding box
+  std::optional<Eigen::AlignedBox3d> sample_box = std::nullopt;  ///< default: the solid's bounding box
   int query_samples = 2000;   ///< Monte Carlo queries per shape (point, segment, box); 0: none
   double segment_length = 0;  ///< 0: a tenth of the sample box's diagonal
   double box_size = 0;        ///< cube edge; 0: a tenth of the diagonal

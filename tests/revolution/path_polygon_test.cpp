@@ -10,7 +10,7 @@
 using namespace sculpt;
 
 TEST(PathPolygon, CircleIsTheInscribedRegularPolygonStartingOnPlusX) {
-  const ConvexPath p = circle_path(32);
+  const ConvexPath p = circular_path(32);
   ASSERT_EQ(p.edges(), 32);
   EXPECT_EQ(p.vertices[0], Eigen::Vector2d(1, 0));
   for (int k = 0; k < 32; ++k) {
@@ -20,7 +20,7 @@ TEST(PathPolygon, CircleIsTheInscribedRegularPolygonStartingOnPlusX) {
   }
   // Area of the inscribed regular n-gon: n/2 sin(2 pi / n).
   EXPECT_NEAR(p.area(), 16 * std::sin(2 * std::numbers::pi / 32), 1e-14);
-  EXPECT_NEAR(circle_path(6, 2.0).area(), 3 * 4 * std::sin(std::numbers::pi / 3), 1e-13);
+  EXPECT_NEAR(circular_path(6, 2.0).area(), 3 * 4 * std::sin(std::numbers::pi / 3), 1e-13);
 }
 
 TEST(PathPolygon, EllipseVerticesLieOnTheEllipse) {
@@ -48,8 +48,8 @@ TEST(PathPolygon, RejectsNonConvexAndDegeneratePolygons) {
     star.emplace_back(std::cos(t), std::sin(t));
   }
   EXPECT_THROW(polygon_path(star), InvalidInput);
-  EXPECT_THROW(circle_path(2), InvalidInput);
-  EXPECT_THROW(circle_path(8, 0.0), InvalidInput);
+  EXPECT_THROW(circular_path(2), InvalidInput);
+  EXPECT_THROW(circular_path(8, 0.0), InvalidInput);
   EXPECT_THROW(ellipse_path(1, -1, 8), InvalidInput);
 }
 

@@ -57,7 +57,7 @@ void check_classification(const ConvexPath& path, const PathTree& tree, std::mt1
 TEST(PathTree, ClassifiesLikeTheConvexPolygon) {
   std::mt19937_64 rng(42);
   for (int n : {3, 4, 5, 6, 7, 8, 13, 16, 31, 32, 33, 64, 100, 257})
-    check_classification(circle_path(n), build_path_tree(circle_path(n)), rng, 20000);
+    check_classification(circular_path(n), build_path_tree(circular_path(n)), rng, 20000);
   for (int trial = 0; trial < 60; ++trial) {
     const ConvexPath p = random_convex(3 + trial * 3, rng);
     check_classification(p, build_path_tree(p), rng, 5000);
@@ -68,7 +68,7 @@ TEST(PathTree, ClassifiesLikeTheConvexPolygon) {
 TEST(PathTree, EveryEdgeIsAFaceExactlyOnce) {
   std::mt19937_64 rng(7);
   for (int n : {3, 4, 9, 32, 77, 500}) {
-    const ConvexPath p = n % 2 ? random_convex(n, rng) : circle_path(n);
+    const ConvexPath p = n % 2 ? random_convex(n, rng) : circular_path(n);
     const PathTree t = build_path_tree(p);
     std::map<int, int> faces;
     for (const auto& node : t.nodes)
@@ -89,7 +89,7 @@ TEST(PathTree, EveryEdgeIsAFaceExactlyOnce) {
 TEST(PathTree, SizeBelowThreeNAndLogarithmicHeight) {
   std::mt19937_64 rng(9);
   for (int n = 3; n <= 2100; n += (n < 100 ? 1 : 97)) {
-    for (const ConvexPath& p : {circle_path(n), random_convex(n, rng)}) {
+    for (const ConvexPath& p : {circular_path(n), random_convex(n, rng)}) {
       const PathTree t = build_path_tree(p);
       const int partitioning = static_cast<int>(t.nodes.size());
       EXPECT_LT(partitioning, 1.5 * n + 4) << "n = " << n;
@@ -103,7 +103,7 @@ TEST(PathTree, SizeBelowThreeNAndLogarithmicHeight) {
 }
 
 TEST(PathTree, FaceOnlyThresholdTradesSizeForHeight) {
-  const ConvexPath p = circle_path(256);
+  const ConvexPath p = circular_path(256);
   const PathTree faces_only = build_path_tree(p, {.face_only_below = 1000});
   const PathTree balanced = build_path_tree(p, {.face_only_below = 2});
   EXPECT_EQ(faces_only.nodes.size(), 4u + 256u);  // the four quadrant chords, then every face

@@ -19,7 +19,7 @@ std::vector<Eigen::Vector2d> sampled(const curves::ProfileDesign& d, int points)
 TEST(RevolveBoundary, CylinderConeAndFrustumHaveTheirClosedFormVolumes) {
   const double pi = std::numbers::pi;
   for (int n : {3, 4, 7, 32}) {
-    const ConvexPath path = circle_path(n);
+    const ConvexPath path = circular_path(n);
     const double area = n / 2.0 * std::sin(2 * pi / n);
     EXPECT_NEAR(revolved_volume({{1, 0}, {1, 2}}, path), 2 * area, 1e-14);                 // prism
     EXPECT_NEAR(revolved_volume({{1, 0}, {0, 3}}, path), area, 1e-14);                     // pyramid: A h / 3
@@ -35,7 +35,7 @@ TEST(RevolveBoundary, MeshesAreClosedSpheresWithTheAnalyticVolume) {
       sampled(curves::goblet_cavity_profile(), 12), sampled(curves::ball_profile(1.5, 6.8), 17),
       {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {1.5, 2}, {1.5, 3}, {0, 3.5}}};
   for (const auto& profile : profiles)
-    for (const ConvexPath& path : {circle_path(32), ellipse_path(1.0, 0.6, 32), polygon_path({{0, -1}, {1, 1}, {-1, 0.5}})}) {
+    for (const ConvexPath& path : {circular_path(32), ellipse_path(1.0, 0.6, 32), polygon_path({{0, -1}, {1, 1}, {-1, 0.5}})}) {
       const PolygonMesh m = revolve_boundary(profile, path);
       EXPECT_TRUE(checks::GenusIs(m, 0));
       EXPECT_TRUE(checks::NoDegenerateFaces(m, 1e-12));
@@ -45,8 +45,8 @@ TEST(RevolveBoundary, MeshesAreClosedSpheresWithTheAnalyticVolume) {
 
 TEST(RevolveBoundary, FaceCountIsPathEdgesTimesSlabsPlusCaps) {
   const auto profile = sampled(curves::goblet_profile(), 21);  // neither end on the axis: two caps
-  const PolygonMesh m = revolve_boundary(profile, circle_path(32));
+  const PolygonMesh m = revolve_boundary(profile, circular_path(32));
   EXPECT_EQ(m.faces.size(), 20u * 32u + 2u);
   const auto face = sampled(curves::human_profile(), 33);  // ends on the axis at the top: one cap
-  EXPECT_EQ(revolve_boundary(face, circle_path(32)).faces.size(), 32u * 32u + 1u);
+  EXPECT_EQ(revolve_boundary(face, circular_path(32)).faces.size(), 32u * 32u + 1u);
 }

@@ -65,7 +65,7 @@ void check_against_analytic(const std::vector<Eigen::Vector2d>& profile, const C
 }  // namespace
 
 TEST(RevolvePlaneTree, ClassifiesLikeTheRevolvedPolytope) {
-  check_against_analytic(goblet(21), circle_path(32), {}, 200000);
+  check_against_analytic(goblet(21), circular_path(32), {}, 200000);
   check_against_analytic(goblet(33), ellipse_path(1.0, 0.6, 32), {}, 100000);
   const auto face = curves::planar_points(curves::sample_profile(curves::human_profile(), {.points = 33}).points);
   check_against_analytic(face, ellipse_path(1.0, 0.8, 32), {}, 100000);
@@ -77,12 +77,12 @@ TEST(RevolvePlaneTree, ClassifiesLikeTheRevolvedPolytope) {
 TEST(RevolvePlaneTree, HandlesStepsAxisPointsAndDecreasingProfiles) {
   // A stepped profile (horizontal runs), ending on the axis at both ends; then reversed.
   const std::vector<Eigen::Vector2d> steps{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {1.5, 2}, {1.5, 3}, {0, 3.5}};
-  check_against_analytic(steps, circle_path(16), {}, 100000);
+  check_against_analytic(steps, circular_path(16), {}, 100000);
   const std::vector<Eigen::Vector2d> reversed(steps.rbegin(), steps.rend());
-  check_against_analytic(reversed, circle_path(16), {}, 50000);
+  check_against_analytic(reversed, circular_path(16), {}, 50000);
   // A profile running along the axis for a while: that slab is empty.
   const std::vector<Eigen::Vector2d> pinched{{1, 0}, {0, 1}, {0, 2}, {1, 3}};
-  check_against_analytic(pinched, circle_path(12), {}, 50000);
+  check_against_analytic(pinched, circular_path(12), {}, 50000);
 }
 
 // Section 6: "If the revolved curve has m segments, then the number of faces is nm and the bsp
@@ -91,8 +91,8 @@ TEST(RevolvePlaneTree, SizeIsSlabsTimesPathTreeAndHeightIsTheSumOfLogs) {
   for (int m : {1, 2, 5, 20, 32, 100})
     for (int n : {3, 8, 32, 64}) {
       const auto profile = goblet(m + 1);
-      const PathTree path_tree = build_path_tree(circle_path(n));
-      const PlaneTree tree = revolve_plane_tree(profile, circle_path(n));
+      const PathTree path_tree = build_path_tree(circular_path(n));
+      const PlaneTree tree = revolve_plane_tree(profile, circular_path(n));
       // m slabs of one lifted path tree each, m + 1 horizontal planes.
       EXPECT_EQ(tree.nodes.size(), m * path_tree.nodes.size() + (m + 1)) << n << " " << m;
       EXPECT_EQ(tree.height(), static_cast<int>(std::ceil(std::log2(m + 2))) + path_tree.height()) << n << " " << m;
@@ -101,7 +101,7 @@ TEST(RevolvePlaneTree, SizeIsSlabsTimesPathTreeAndHeightIsTheSumOfLogs) {
 }
 
 TEST(RevolvePlaneTree, RejectsProfilesItCannotRevolve) {
-  const ConvexPath path = circle_path(8);
+  const ConvexPath path = circular_path(8);
   EXPECT_THROW(revolve_plane_tree({{1, 0}}, path), InvalidInput);
   EXPECT_THROW(revolve_plane_tree({{1, 0}, {2, 0}}, path), InvalidInput);              // flat
   EXPECT_THROW(revolve_plane_tree({{1, 0}, {-1, 1}}, path), InvalidInput);             // r < 0

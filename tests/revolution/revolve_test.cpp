@@ -38,21 +38,21 @@ Solid revolve_and_check(const std::vector<Eigen::Vector2d>& profile, const Conve
 }  // namespace
 
 TEST(Revolve, VolumeEqualsTheAnalyticPolytopeVolumeAndTheMeshIsClosed) {
-  revolve_and_check(sampled(curves::goblet_profile(), 21), circle_path(32));
+  revolve_and_check(sampled(curves::goblet_profile(), 21), circular_path(32));
   revolve_and_check(sampled(curves::human_profile(), 33), ellipse_path(1.0, 0.75, 32));
-  revolve_and_check(sampled(curves::ball_profile(1.5, 6.8), 17), circle_path(32));
-  revolve_and_check({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {1.5, 2}, {1.5, 3}, {0, 3.5}}, circle_path(12));
+  revolve_and_check(sampled(curves::ball_profile(1.5, 6.8), 17), circular_path(32));
+  revolve_and_check({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {1.5, 2}, {1.5, 3}, {0, 3.5}}, circular_path(12));
   revolve_and_check({{1, 0}, {1, 2}}, polygon_path({{0, -1}, {1, 1}, {-1, 0.5}}));
 }
 
 TEST(Revolve, BoundaryHasGenusZeroAndLiesOnTheFacesOfTheDirectConstruction) {
   const auto profile = sampled(curves::goblet_profile(), 21);
-  const Solid s = revolve(profile, circle_path(32));
+  const Solid s = revolve(profile, circular_path(32));
   const PolygonMesh mesh = to_mesh(s);
   EXPECT_TRUE(checks::GenusIs(mesh, 0));
   // Exact planes: every face of the extracted boundary lies in the plane of a trapezoid or cap of
   // the polytope built directly (no crack or sliver faces between slabs), and the areas agree.
-  const SnappedRevolution snapped = snap_revolution(profile, circle_path(32));
+  const SnappedRevolution snapped = snap_revolution(profile, circular_path(32));
   const PolygonMesh direct = revolve_boundary(snapped.profile, snapped.path);
   auto plane_of = [](const PolygonMesh& m, const std::vector<int>& f) {
     Eigen::Vector3d n = Eigen::Vector3d::Zero(), c = Eigen::Vector3d::Zero();
@@ -104,18 +104,18 @@ TEST(Revolve, TreeSizeAndHeightMeetTheSectionSixBounds) {
   // Size counts partitioning nodes and leaves; below 3n per slab once n >= 10 (path_tree_test).
   for (int m : {4, 20, 32})
     for (int n : {16, 32, 64}) {
-      const Solid s = revolve(sampled(curves::goblet_profile(), m + 1), circle_path(n));
+      const Solid s = revolve(sampled(curves::goblet_profile(), m + 1), circular_path(n));
       const TreeStats st = tree_stats(s);
       EXPECT_LE(st.nodes + st.in_leaves + st.out_leaves, 3 * n * m) << n << " " << m;
       EXPECT_LE(st.height, std::ceil(std::log2(m + 2)) + 3 * std::log2(n) + 4) << n << " " << m;
     }
   // The Figure 11 goblet: at most 3 x 20 x 32 nodes before set operations.
-  const TreeStats goblet = tree_stats(revolve(sampled(curves::goblet_profile(), 21), circle_path(32)));
+  const TreeStats goblet = tree_stats(revolve(sampled(curves::goblet_profile(), 21), circular_path(32)));
   EXPECT_LE(goblet.nodes + goblet.in_leaves + goblet.out_leaves, 3 * 20 * 32);
 }
 
 TEST(Revolve, CarvedCupAndBallSatisfyTheSetIdentities) {
-  const ConvexPath path = circle_path(32);
+  const ConvexPath path = circular_path(32);
   const Solid outer = revolve(sampled(curves::goblet_profile(), 21), path);
   const Solid cavity = revolve(sampled(curves::goblet_cavity_profile(), 13), path);
   const Solid ball = revolve(sampled(curves::ball_profile(1.5, 6.8), 17), path);
@@ -129,8 +129,8 @@ TEST(Revolve, CarvedCupAndBallSatisfyTheSetIdentities) {
 }
 
 TEST(Revolve, ReportsUnrepresentableInput) {
-  EXPECT_THROW(revolve({{0, 0}, {1, 1}, {0, 2}, {1, 1.5}}, circle_path(8)), InvalidInput);
-  EXPECT_THROW(revolve({{600, 0}, {600, 1}}, circle_path(8, 2.0)), RangeError);  // reaches 1200
-  EXPECT_THROW(revolve({{1, 0}, {1, 1e-9}}, circle_path(8)), InvalidInput);     // flat on the grid
-  EXPECT_THROW(revolve({{1, 0}, {1, 1}}, circle_path(4000)), GeometryError);    // too fine to stay convex
+  EXPECT_THROW(revolve({{0, 0}, {1, 1}, {0, 2}, {1, 1.5}}, circular_path(8)), InvalidInput);
+  EXPECT_THROW(revolve({{600, 0}, {600, 1}}, circular_path(8, 2.0)), RangeError);  // reaches 1200
+  EXPECT_THROW(revolve({{1, 0}, {1, 1e-9}}, circular_path(8)), InvalidInput);     // flat on the grid
+  EXPECT_THROW(revolve({{1, 0}, {1, 1}}, circular_path(4000)), GeometryError);    // too fine to stay convex
 }
