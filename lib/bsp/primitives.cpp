@@ -45,6 +45,13 @@ class SectorTree {
   TreeRef build() {
     // First split: the plane through the axis and the middle of face 0.
     const double a0 = mid(0);
+    // Every later split is at a face middle; the first plane's opposite ray may pass near a
+    // vertex (odd counts, irregular paths): then widen the chains by one face.
+    const double opposite = a0 + std::numbers::pi;
+    int f = 0;
+    while (angle(f + 1) <= opposite) ++f;
+    const double width = angle(f + 1) - angle(f);
+    widen_ = std::min(opposite - angle(f), angle(f + 1) - opposite) < 0.25 * width ? 1 : 0;
     const std::int32_t p = axial(a0);
     return b_.add_node(p, wedge(a0 + std::numbers::pi, a0 + 2 * std::numbers::pi), wedge(a0, a0 + std::numbers::pi));
   }
@@ -70,7 +77,9 @@ class SectorTree {
     while (angle(last + 1) < hi) ++last;
     if (last - first + 1 <= 4) {
       std::vector<std::int32_t> chain;
-      for (int i = first - 1; i <= last + 1; ++i) chain.push_back(faces_[std::size_t(((i % n_) + n_) % n_)]);
+      // Widened by one face on each side only where a wedge bound may pass near a vertex
+      // (first split, prisms); between face middles the chain is exactly first..last.
+      for (int i = first - widen_; i <= last + widen_; ++i) chain.push_back(faces_[std::size_t(((i % n_) + n_) % n_)]);
       return b_.add_convex_chain(chain);
     }
     const double m = mid((first + last) / 2);
@@ -84,6 +93,7 @@ class SectorTree {
   int n_;
   double max_offset_;
   int count_ = 0;
+  int widen_ = 1;
 };
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "kernel/convex_polygon.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 namespace sculpt::kernel {
@@ -34,6 +36,36 @@ ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support) {
 
 namespace {
 
+constexpr double kUnit = 1.1102230246251565e-16;  // 2^-53
+
+// Quick exact-safe test: the plane's largest and smallest values over the bounding box of the
+// corners' error boxes. If both are strictly negative (positive) beyond the rounding error of
+// this evaluation, every corner is, and no per-corner predicate is needed.
+Side box_side(const ConvexPolygon& poly, const Plane& s) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (const Corner& c : poly.corners) {
+    if (c.at.err < 0) return Side::Both;  // unknown: use the predicates
+    const double v[3] = {c.at.x, c.at.y, c.at.z};
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], v[i] - c.at.err);
+      hi[i] = std::max(hi[i], v[i] + c.at.err);
+    }
+  }
+  const double n[3] = {double(s.a), double(s.b), double(s.c)};
+  const double d = double(s.d);
+  double vmax = d, vmin = d, mag = std::fabs(d);
+  for (int i = 0; i < 3; ++i) {
+    const double p = n[i] * lo[i], q = n[i] * hi[i];
+    vmax += std::max(p, q);
+    vmin += std::min(p, q);
+    mag += std::max(std::fabs(p), std::fabs(q));
+  }
+  const double tol = 16.0 * kUnit * mag;  // rounding of the sums, products and conversions
+  if (vmax < -tol) return Side::Negative;
+  if (vmin > tol) return Side::Positive;
+  return Side::Both;
+}
+
 template <typename F>
 void signs_of(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane, F&& f) {
   const Plane& s = planes[poly.support];
@@ -44,6 +76,8 @@ void signs_of(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t 
 }  // namespace
 
 Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane) {
+  const Side quick = box_side(poly, planes[plane]);
+  if (quick != Side::Both) return quick;
   bool neg = false, pos = false;
   signs_of(planes, poly, plane, [&](Sign g) {
     neg |= g == Sign::Negative;
@@ -55,6 +89,8 @@ Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t 
 PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
                    std::int32_t cut_opposite) {
   PolygonSplit out;
+  out.side = box_side(poly, planes[cut]);
+  if (out.side != Side::Both) return out;
   const std::size_t k = poly.corners.size();
   boost::container::small_vector<Sign, 8> s;
   bool neg = false, pos = false;
