@@ -21,6 +21,9 @@ constexpr int kUnreached = std::numeric_limits<int>::max();
 // (memory: 8 bytes each), if evaluating them directly costs at most this many point distances.
 constexpr long long kStoredEdgeLimit = 4'000'000;
 constexpr double kStoredCostLimit = 3e8;
+// First reach cap as a fraction of the start's error (INIT is usually within 2x of the optimum,
+// and a cap that turns out infeasible costs a second pruning pass).
+constexpr double kFirstCap = 1.0;
 
 // Shortest paths over the allowed vertices; positions 0..K-1 index `vertex_`.
 class FeasibilitySolver {
@@ -72,7 +75,7 @@ class FeasibilitySolver {
     for (int a = 0; a + 1 < count; ++a)
       for (int b = a + 1; b <= reach_[a]; ++b)
         values[row_[a] + (b - a - 1)] = vertex_[b] - vertex_[a] <= 256
-                                            ? segment_error(points_, vertex_[a], vertex_[b], norm_)
+                                            ? bounded_error(vertex_[a], vertex_[b], limit)
                                             : tree().error(vertex_[a], vertex_[b], limit);
     stored_ = std::move(values);
   }
@@ -141,6 +144,28 @@ class FeasibilitySolver {
   }
 
  private:
+  // segment_error(i, j) if it is <= limit, else some value > limit (L-inf: the scan stops at the
+  // first point clearly beyond the limit; the margin keeps borderline points exact).
+  double bounded_error(int i, int j, double limit) const {
+    if (norm_ != Norm::LInf || j - i < 2 || !(limit < std::numeric_limits<double>::infinity()))
+      return segment_error(points_, i, j, norm_);
+    const Eigen::Vector3d& a = points_[i];
+    const Eigen::Vector3d d = points_[j] - a;
+    if (d.squaredNorm() == 0.0) return segment_error(points_, i, j, norm_);
+    const double bound = limit * limit * d.squaredNorm() * (1.0 + 1e-9) + 1e-300;
+    int farthest = i + 1;
+    double largest = -1.0;
+    for (int k = i + 1; k < j; ++k) {
+      const double s = (points_[k] - a).cross(d).squaredNorm();
+      if (s > largest) {
+        largest = s;
+        farthest = k;
+        if (s > bound) break;
+      }
+    }
+    return ChordDistance(a, points_[j])(points_[farthest]);  // as segment_error() measures it
+  }
+
   const SegmentErrorTree& tree() {
     if (shared_tree_) return *shared_tree_;
     if (!tree_) tree_.emplace(points_, norm_);
@@ -382,13 +407,17 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   // The reach (and so the work per probe) grows with the tolerance: start from a quarter of the
   // heuristic's error and double until feasible; the last cap bounds every later probe.
   // A given start is usually near the optimum already: no guessing below it then.
-  for (double cap = options.start.empty() ? 0.25 * hi : hi;; cap = std::min(2.0 * cap, hi)) {
+  // After an infeasible cap needing k > m segments the next cap grows by (k / m)^2 (errors of
+  // smooth curves scale with the square of the segment length), at least by 1.25.
+  for (double cap = options.start.empty() ? kFirstCap * hi : hi;;) {
     solver.prune_reach(cap);
     if (debug)
       std::fprintf(stderr, "cap %.6g of start %.6g: %lld candidate edges over %d vertices\n", cap, hi,
                    solver.edge_count(), count);
     if (solver.evaluation_cost() <= 1e6) solver.store_errors(cap);  // cheap: probe by lookups
     if (cap >= hi || cap <= lo || probe(cap)) break;
+    const double ratio = static_cast<double>(solver.min_segments()) / m;
+    cap = std::min(hi, cap * std::clamp(1.05 * ratio * ratio, 1.25, 4.0));
   }
   const bool stored = solver.edge_count() <= kStoredEdgeLimit && solver.evaluation_cost() <= kStoredCostLimit;
   if (stored && solver.stored_errors().empty()) solver.store_errors(hi);
