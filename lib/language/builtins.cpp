@@ -116,6 +116,10 @@ const BuiltinTable& builtins() {
     register_curves(t);
     t.set_area("solids");
     register_solids(t);
+    t.set_area("revolution");
+    register_revolution(t);
+    t.set_area("reports");
+    register_reports(t);
     return t;
   }();
   return table;

@@ -122,6 +122,8 @@ const BuiltinTable& builtins();
 void register_core(BuiltinTable& table);
 void register_curves(BuiltinTable& table);
 void register_solids(BuiltinTable& table);
+void register_revolution(BuiltinTable& table);
+void register_reports(BuiltinTable& table);
 
 /// Names of the language's keywords (for completion and the docs check).
 std::span<const char* const> keywords();
