@@ -3,6 +3,7 @@
 #include "bsp/face_triangulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -75,27 +76,44 @@ class Assembler {
     start_.push_back(int(occ_.size()));
   }
 
-  // Exact vertex merging: candidates by a sweep over x within the approximation error bounds,
-  // equality decided exactly (the first vertex lies on the three planes of the second).
+  // Exact vertex merging. Candidates share a cell of a fine grid (1/64 grid unit, far above the
+  // approximation errors; an occurrence within its error of a cell boundary is entered in every
+  // cell it may belong to); equality is decided exactly (the first vertex lies on the three
+  // planes of the second).
   void merge_vertices() {
     const std::size_t n = occ_.size();
-    std::vector<int> order(n);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return occ_[std::size_t(a)].at.x < occ_[std::size_t(b)].at.x; });
-    double max_err = 0;
-    for (const auto& o : occ_) max_err = std::max(max_err, o.at.err);
-    UnionFind uf(n);
-    for (std::size_t ii = 0; ii < n; ++ii) {
-      const Occurrence& a = occ_[std::size_t(order[ii])];
-      for (std::size_t jj = ii + 1; jj < n; ++jj) {
-        const Occurrence& b = occ_[std::size_t(order[jj])];
-        const double tol = a.at.err + b.at.err;
-        if (b.at.x - a.at.x > a.at.err + max_err) break;
-        if (std::fabs(b.at.x - a.at.x) > tol || std::fabs(b.at.y - a.at.y) > tol || std::fabs(b.at.z - a.at.z) > tol)
-          continue;
-        if (uf.find(order[ii]) == uf.find(order[jj])) continue;
-        if (same_point(a, b)) uf.unite(order[ii], order[jj]);
+    constexpr double kCell = 1.0 / 64;
+    std::vector<std::pair<std::array<std::int64_t, 3>, int>> keyed;
+    keyed.reserve(n + n / 8);
+    for (std::size_t i = 0; i < n; ++i) {
+      const ApproxPoint& a = occ_[i].at;
+      const double v[3] = {a.x, a.y, a.z};
+      std::int64_t lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::int64_t(std::floor((v[k] - a.err) / kCell));
+        hi[k] = std::int64_t(std::floor((v[k] + a.err) / kCell));
       }
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) keyed.push_back({{x, y, z}, int(i)});
+    }
+    std::sort(keyed.begin(), keyed.end());
+    UnionFind uf(n);
+    for (std::size_t i = 0; i < keyed.size();) {
+      std::size_t j = i;
+      while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+      for (std::size_t a = i; a < j; ++a)
+        for (std::size_t b = a + 1; b < j; ++b) {
+          const int ia = keyed[a].second, ib = keyed[b].second;
+          if (uf.find(ia) == uf.find(ib)) continue;
+          const Occurrence& oa = occ_[std::size_t(ia)];
+          const Occurrence& ob = occ_[std::size_t(ib)];
+          const double tol = oa.at.err + ob.at.err;
+          if (std::fabs(ob.at.x - oa.at.x) > tol || std::fabs(ob.at.y - oa.at.y) > tol || std::fabs(ob.at.z - oa.at.z) > tol)
+            continue;
+          if (same_point(oa, ob)) uf.unite(ia, ib);
+        }
+      i = j;
     }
     vertex_of_.assign(n, -1);
     for (std::size_t i = 0; i < n; ++i) {
