@@ -51,6 +51,12 @@ struct Frame {
 };
 
 /// Turns errors thrown by library code below the language into script errors at `at`.
+/// The library's message without the prefix we add anyway ("box: box: ..." reads badly).
+std::string without(const std::string& prefix, const char* message) {
+  const std::string text(message);
+  return !prefix.empty() && text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
+}
+
 template <typename F>
 auto positioned(const SourceRef& at, const std::string& prefix, F&& f) -> decltype(f()) {
   try {
@@ -60,17 +66,17 @@ auto positioned(const SourceRef& at, const std::string& prefix, F&& f) -> declty
   } catch (const OperatorError& e) {
     throw ScriptError(at, prefix + e.what());
   } catch (const InvalidInput& e) {
-    throw ScriptError(at, prefix + "invalid input: " + e.what());
+    throw ScriptError(at, prefix + "invalid input: " + without(prefix, e.what()));
   } catch (const GeometryError& e) {
-    throw ScriptError(at, prefix + "geometry error: " + e.what());
+    throw ScriptError(at, prefix + "geometry error: " + without(prefix, e.what()));
   } catch (const RangeError& e) {
-    throw ScriptError(at, prefix + "out of range: " + e.what());
+    throw ScriptError(at, prefix + "out of range: " + without(prefix, e.what()));
   } catch (const IoError& e) {
     throw ScriptError(at, prefix + e.what());
   } catch (const std::bad_alloc&) {
     throw ScriptError(at, prefix + "out of memory");
   } catch (const std::exception& e) {
-    throw ScriptError(at, prefix + e.what());
+    throw ScriptError(at, prefix + without(prefix, e.what()));
   }
 }
 

@@ -112,7 +112,7 @@ TEST(Builtins, SolidOperatorsNeedSolids) {
 }
 
 TEST(Builtins, LibraryErrorsAtTheCall) {
-  EXPECT_EQ(first_error_line("b = 1\nx = box([0, 0, 0],\n  [0, 1, 1])").substr(0, 43), "t.bsp:2:5: error: box: invalid input: box: ");
+  EXPECT_EQ(first_error_line("b = 1\nx = box([0, 0, 0],\n  [0, 1, 1])").substr(0, 46), "t.bsp:2:5: error: box: invalid input: min must");
   EXPECT_EQ(first_error_line("x = sphere(1, 2)"),
             "t.bsp:1:15: error: sphere: argument 'segments' must be a whole number from 3 to 100000, got 2");
   EXPECT_EQ(first_error_line("x = box([0, 0], [1, 1, 1])"),

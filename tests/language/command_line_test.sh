@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The sculpt executable's command line: -e, -, -D, --help, --version, files, exit codes 0/1/2.
+set -u
+sculpt=$1
+failures=0
+check() {  # check NAME EXPECTED_STATUS EXPECTED_OUTPUT COMMAND...
+  local name=$1 want_status=$2 want_output=$3
+  shift 3
+  local output status
+  output=$("$@" 2>&1)
+  status=$?
+  if [ "$status" != "$want_status" ] || [ "$output" != "$want_output" ]; then
+    echo "FAIL $name: status $status (want $want_status)"
+    echo "--- got:"; echo "$output"; echo "--- want:"; echo "$want_output"
+    failures=$((failures + 1))
+  fi
+}
+first_line() {  # first_line COMMAND...: the first line of its output, with its exit status
+  local output status
+  output=$("$@" 2>&1)
+  status=$?
+  printf '%s\n' "${output%%$'\n'*}"
+  return $status
+}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+check e_code 0 "3" "$sculpt" -e 'print(1 + 2)'
+check e_twice_shared_scope 0 "5" "$sculpt" -e 'x = 5' -e 'print(x)'
+check define_number 0 "4 number" "$sculpt" -D n=2 -e 'print(n * 2, type(n))'
+check define_forms 0 "abc [1, 2] true q string" "$sculpt" -D s=abc -Dv='[1, 2]' -D b=true -D 'q="q"' -e 'print(s, v, b, q, type(q))'
+check stdin_dash 0 "7" bash -c "echo 'print(3 + 4)' | '$sculpt' -"
+check stdin_implicit 0 "8" bash -c "echo 'print(4 * 2)' | '$sculpt'"
+check script_error 1 "<command line>:1:7: error: unknown name 'y'
+print(y)
+      ^" "$sculpt" -e 'print(y)'
+check output_before_error 1 "1
+<command line>:2:1: error: 'return' outside a function
+return 2
+^" "$sculpt" -e 'print(1)
+return 2'
+check missing_file 1 "sculpt: $tmp/none.bsp: cannot open for reading" "$sculpt" "$tmp/none.bsp"
+check unknown_option 2 "sculpt: unknown option '--frobnicate'" first_line "$sculpt" --frobnicate
+check e_without_code 2 "sculpt: -e needs code" first_line "$sculpt" -e
+check bad_define 2 "sculpt: -D needs NAME=VALUE, got '1x=2'" first_line "$sculpt" -D 1x=2
+check help 0 "usage: sculpt [options] [FILE.bsp ... | -]" first_line "$sculpt" --help
+check version 0 "sculpt 0.1.0" "$sculpt" --version
+
+# Files run in order; include and relative paths resolve against the including script's folder.
+mkdir -p "$tmp/lib"
+echo 'fn double(x) { 2 * x }' > "$tmp/lib/helpers.bsp"
+echo 'include "lib/helpers.bsp"
+print(double(21))' > "$tmp/main.bsp"
+echo 'print(double(1))' > "$tmp/second.bsp"
+check include_relative 0 "42
+2" bash -c "cd / && '$sculpt' '$tmp/main.bsp' '$tmp/second.bsp'"
+echo 'include "self.bsp"' > "$tmp/self.bsp"
+check include_cycle 1 "$tmp/self.bsp:1:9: error: include: '$tmp/self.bsp' includes itself
+include \"self.bsp\"
+        ^
+$tmp/self.bsp:1:1: note: included from here" "$sculpt" "$tmp/self.bsp"
+echo 'export(box([0, 0, 0], [1, 1, 1]), "cube.off")' > "$tmp/export.bsp"
+check export_relative 0 "" bash -c "cd / && '$sculpt' '$tmp/export.bsp' && test -s '$tmp/cube.off'"
+
+# Deeply nested input is an error, not a crash.
+python3 -c "print('x = ' + '(' * 100000)" > "$tmp/deep.bsp"
+check deep_nesting 1 "$tmp/deep.bsp:1:69: error: brackets nested deeper than 64 levels" first_line "$sculpt" "$tmp/deep.bsp"
+
+if [ "$failures" != 0 ]; then
+  echo "$failures command-line checks failed"
+  exit 1
+fi
+echo "all command-line checks passed"
