@@ -3,7 +3,8 @@
 /// Exact orientation predicates on double coordinates for the mesh layer (validation,
 /// triangulation). A floating-point filter with Shewchuk's static error bounds
 /// ("Adaptive precision floating-point arithmetic and fast robust geometric predicates",
-/// 1997) answers almost every call; the rest fall back to exact rational arithmetic.
+/// 1997) answers almost every call; the rest are computed exactly in 256- or 512-bit integers
+/// (inputs rescaled to a common exponent), or in rationals for extreme exponent spreads.
 /// The result is the exact sign of the determinant for every finite input.
 
 #include <Eigen/Core>
