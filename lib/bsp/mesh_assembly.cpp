@@ -374,21 +374,25 @@ class Assembler {
       nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
       removable[v] = nb.size() == 2;
     }
-    for (Face& f : faces_) {
+    // A vertex goes only if it is straight in every face that uses it (both faces agree).
+    auto straight = [&](const Face& f, std::size_t k) {
       const std::size_t m = f.vertices.size();
+      if (m <= 3) return false;
+      const int w = f.vertices[(k + 1) % m];
+      const std::int32_t in_line = f.edge_line[(k + m - 1) % m];
+      const Occurrence& o = occ_[std::size_t(rep_[std::size_t(w)])];
+      return on_plane(o, in_line) && on_plane(o, f.support);
+    };
+    for (const Face& f : faces_)
+      for (std::size_t k = 0; k < f.vertices.size(); ++k)
+        if (removable[std::size_t(f.vertices[k])] && !straight(f, k)) removable[std::size_t(f.vertices[k])] = false;
+    for (Face& f : faces_) {
       Face g;
       g.support = f.support;
       g.flip = f.flip;
-      for (std::size_t k = 0; k < m; ++k) {
-        const int v = f.vertices[k];
-        if (removable[std::size_t(v)] && m > 3) {
-          // Straight iff the next vertex lies on the incoming edge's line (exact).
-          const int w = f.vertices[(k + 1) % m];
-          const std::int32_t in_line = f.edge_line[(k + m - 1) % m];
-          const Occurrence& o = occ_[std::size_t(rep_[std::size_t(w)])];
-          if (on_plane(o, in_line) && on_plane(o, f.support)) continue;  // drop v; the incoming edge line goes on
-        }
-        g.vertices.push_back(v);
+      for (std::size_t k = 0; k < f.vertices.size(); ++k) {
+        if (removable[std::size_t(f.vertices[k])]) continue;  // the incoming edge line goes on
+        g.vertices.push_back(f.vertices[k]);
         g.edge_line.push_back(f.edge_line[k]);
       }
       if (g.vertices.size() >= 3) f = std::move(g);
