@@ -17,6 +17,9 @@ constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;  // unit rou
 // Shewchuk's first-stage bounds (ccwerrboundA, o3derrboundA).
 constexpr double kOrient2dBound = (3.0 + 16.0 * kEps) * kEps;
 constexpr double kOrient3dBound = (7.0 + 56.0 * kEps) * kEps;
+// The bounds assume no underflow; below this magnitude the exact path decides (each underflow
+// loses at most 2^-1074, far below kOrient*Bound * 1e-280).
+constexpr double kNoUnderflow = 1e-280;
 
 /// Finite doubles as integers times a common power of two: x_i = m_i * 2^(e_i) with |m_i| < 2^53,
 /// and `shift` = max e_i - min e_i over the non-zero inputs. All inputs scaled by 2^-min(e) are
@@ -104,7 +107,7 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   const double det = detleft - detright;
   const double detsum = std::abs(detleft) + std::abs(detright);
   const double bound = kOrient2dBound * detsum;
-  if (std::isfinite(det) && std::isfinite(bound) && (det > bound || -det > bound))
+  if (std::isfinite(det) && std::isfinite(bound) && detsum > kNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? 1 : -1;
   return orient2d_exact(a, b, c);
 }
@@ -123,7 +126,7 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
                            (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bdz) +
                            (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
   const double bound = kOrient3dBound * permanent;
-  if (std::isfinite(det) && std::isfinite(bound) && (det > bound || -det > bound))
+  if (std::isfinite(det) && std::isfinite(bound) && permanent > kNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? -1 : 1;
   return orient3d_exact(a, b, c, d);
 }

@@ -78,6 +78,19 @@ TEST(Predicates, ExtremeMagnitudes) {
   EXPECT_EQ(orient2d({-huge, -huge}, {huge, huge}, {0, tiny}), 1);
   EXPECT_EQ(orient3d({0, 0, 0}, {huge, 0, 0}, {0, huge, 0}, {0, 0, tiny}), 1);
   EXPECT_EQ(orient3d({1, 1, 1}, {1 + 1e-16 * 4, 1, 1}, {1, 1 + 4e-16, 1}, {1, 1, 1 - tiny}), 0);  // 1 - tiny == 1
+  // Tiny magnitudes whose products underflow (the filter then defers to the exact path).
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double s = std::ldexp(1.0, -520 - trial % 40);
+    const Eigen::Vector2d a(s * unit(rng), s * unit(rng)), b(s * unit(rng), s * unit(rng));
+    const Eigen::Vector2d c = a + std::ldexp(unit(rng), -(trial % 30)) * (b - a);
+    ASSERT_EQ(orient2d(a, b, c), reference2d(a, b, c)) << trial;
+    const Eigen::Vector3d p(s * unit(rng), s * unit(rng), s * unit(rng)), q(s * unit(rng), s * unit(rng), s * unit(rng));
+    const Eigen::Vector3d r(s * unit(rng), s * unit(rng), s * unit(rng));
+    const Eigen::Vector3d d = p + unit(rng) * (q - p) + unit(rng) * (r - p);
+    ASSERT_EQ(orient3d(p, q, r, d), reference3d(p, q, r, d)) << trial;
+  }
 }
 
 }  // namespace
