@@ -1,9 +1,12 @@
 #include "mesh/mesh_validation.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
 #include <numeric>
+
+#include <Eigen/Geometry>
 
 #include "base/errors.hpp"
 #include "mesh/edge_incidence.hpp"
@@ -59,6 +62,7 @@ class Validator {
   ValidationReport run() {
     if (!check_indices() || !check_coordinates()) return std::move(report_);
     check_degenerate_faces();
+    check_face_shapes();
     check_edges_and_vertices();
     if (opt_.check_self_intersections) check_self_intersections();
     return std::move(report_);
@@ -110,6 +114,40 @@ class Validator {
             "face " + std::to_string(fi) + " has zero area (corners collinear), first corner " +
                 point(m_, f[0]));
     }
+  }
+
+  /// Planarity (relative tolerance) and self-crossing boundaries of faces with > 3 corners.
+  void check_face_shapes() {
+    for (size_t fi = 0; fi < m_.faces.size(); ++fi) {
+      const auto& f = m_.faces[fi];
+      if (f.size() <= 3) continue;
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (int v : f) centroid += m_.vertices[v];
+      centroid /= static_cast<double>(f.size());
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      double radius = 0;
+      for (size_t k = 0; k < f.size(); ++k) {
+        const Eigen::Vector3d a = m_.vertices[f[k]] - centroid;
+        normal += a.cross(m_.vertices[f[(k + 1) % f.size()]] - centroid);
+        radius = std::max(radius, a.norm());
+      }
+      if (normal.norm() == 0) continue;  // zero area: degenerate, reported above
+      normal.normalize();
+      int worst = f[0];
+      double distance = 0;
+      for (int v : f) {
+        const double d = std::abs(normal.dot(m_.vertices[v] - centroid));
+        if (d > distance) distance = d, worst = v;
+      }
+      if (distance > opt_.planarity_tolerance * radius)
+        add(DefectKind::NonPlanarFace, {static_cast<int>(fi)}, {worst},
+            "face " + std::to_string(fi) + " is not planar: " + vertex(m_, worst) + " is " +
+                number(distance) + " from its plane (face radius " + number(radius) + ")");
+    }
+    for (int fi : find_self_crossing_faces(m_, opt_.max_defects_per_kind))
+      add(DefectKind::SelfCrossingFace, {fi}, {},
+          "the boundary of face " + std::to_string(fi) + " (first corner " + point(m_, m_.faces[fi][0]) +
+              ") crosses itself");
   }
 
   void check_edges_and_vertices() {
@@ -196,6 +234,8 @@ const char* defect_name(DefectKind kind) {
     case DefectKind::InvalidIndex: return "invalid index";
     case DefectKind::NonFiniteCoordinate: return "non-finite coordinate";
     case DefectKind::DegenerateFace: return "degenerate face";
+    case DefectKind::NonPlanarFace: return "non-planar face";
+    case DefectKind::SelfCrossingFace: return "self-crossing face";
     case DefectKind::OpenEdge: return "open edge";
     case DefectKind::NonManifoldEdge: return "non-manifold edge";
     case DefectKind::InconsistentOrientation: return "inconsistent orientation";

@@ -16,6 +16,8 @@ enum class DefectKind {
   InvalidIndex,             ///< face with < 3 corners or an index out of range
   NonFiniteCoordinate,      ///< NaN or infinite vertex coordinate
   DegenerateFace,           ///< repeated corner or all corners collinear (zero area)
+  NonPlanarFace,            ///< a corner farther from the face's plane than the tolerance
+  SelfCrossingFace,         ///< the boundary of one face crosses or touches itself
   OpenEdge,                 ///< edge used by one face only (boundary)
   NonManifoldEdge,          ///< edge used by more than two faces
   InconsistentOrientation,  ///< two faces run along their shared edge in the same direction
@@ -44,6 +46,9 @@ struct ValidationReport {
 struct ValidationOptions {
   bool check_self_intersections = true;
   size_t max_defects_per_kind = 100;  ///< keep at most this many defects of each kind
+  /// A face is non-planar when a corner lies farther than planarity_tolerance * (the face's
+  /// radius around its centroid) from the plane through the centroid normal to the Newell normal.
+  double planarity_tolerance = 1e-9;
   std::string source = {};  ///< where the mesh came from (a file): put in the message and GeometryError::where()
 };
 

@@ -112,7 +112,48 @@ bool triangles_conflict(const Tri& s, const Tri& t) {
   return true;  // the same triangle twice
 }
 
+/// Coordinate axis along which the polygon's projection has the largest area (Newell normal, or
+/// the widest corner triangle when the net area is zero); -1 when all corners are collinear.
+int projection_axis(const PolygonMesh& mesh, const std::vector<int>& face) {
+  const Vector3d origin = mesh.vertices[face[0]];
+  Vector3d normal = Vector3d::Zero();
+  for (size_t i = 0; i < face.size(); ++i)
+    normal += (mesh.vertices[face[i]] - origin).cross(mesh.vertices[face[(i + 1) % face.size()]] - origin);
+  if (normal.cwiseAbs().maxCoeff() == 0) {
+    // Zero net area (a symmetric bow tie, say): take the plane of the widest corner triangle.
+    for (size_t i = 1; i < face.size(); ++i)
+      for (size_t k = i + 1; k < face.size(); ++k) {
+        const Vector3d n = (mesh.vertices[face[i]] - origin).cross(mesh.vertices[face[k]] - origin);
+        if (n.squaredNorm() > normal.squaredNorm()) normal = n;
+      }
+  }
+  int axis = 0;
+  normal.cwiseAbs().maxCoeff(&axis);
+  return normal[axis] == 0 ? -1 : axis;
+}
+
 }  // namespace
+
+std::vector<int> find_self_crossing_faces(const PolygonMesh& mesh, size_t max_faces) {
+  std::vector<int> out;
+  for (size_t fi = 0; fi < mesh.faces.size() && out.size() < max_faces; ++fi) {
+    const auto& f = mesh.faces[fi];
+    const size_t n = f.size();
+    if (n <= 3) continue;
+    const int axis = projection_axis(mesh, f);
+    if (axis < 0) continue;
+    std::vector<Vector2d> p;
+    for (int v : f) p.push_back(drop(mesh.vertices[v], axis));
+    bool crossing = false;
+    for (size_t i = 0; i < n && !crossing; ++i)
+      for (size_t j = i + 2; j < n && !crossing; ++j) {
+        if (i == 0 && j == n - 1) continue;  // neighbours through the closing edge
+        crossing = segments_meet_2d(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]);
+      }
+    if (crossing) out.push_back(static_cast<int>(fi));
+  }
+  return out;
+}
 
 std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
                                               SelfIntersectionOptions options) {

@@ -30,4 +30,11 @@ struct SelfIntersectionOptions {
 std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
                                               SelfIntersectionOptions options = {});
 
+/// Faces with more than three corners whose boundary crosses or touches itself (two edges that
+/// are not neighbours meet), decided exactly in the projection on the coordinate plane where the
+/// face's Newell normal is largest (for a zero net area, of its widest corner triangle). Faces with
+/// all corners collinear are skipped (degenerate, reported elsewhere).
+/// \pre face indices are valid.
+std::vector<int> find_self_crossing_faces(const PolygonMesh& mesh, size_t max_faces = 100);
+
 }  // namespace sculpt

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <limits>
 
 #include "base/errors.hpp"
@@ -88,6 +89,31 @@ TEST(Validation, DegenerateFaces) {
   const ValidationReport r = check_closed_manifold(rep);
   EXPECT_EQ(r.count(DefectKind::DegenerateFace), 1u);
   EXPECT_THAT(r.summary(), HasSubstr("face 3 visits vertex 2 (0, 1, 0) twice"));
+}
+
+TEST(Validation, NonPlanarFaces) {
+  PolygonMesh m = test_shapes::unit_cube();
+  m.vertices[7] += Eigen::Vector3d(1e-3, 1e-3, 1e-3);  // corner (1, 1, 1) pulled out: its three quads bend
+  const ValidationReport r = check_closed_manifold(m);
+  EXPECT_EQ(r.count(DefectKind::NonPlanarFace), 3u) << r.summary();
+  EXPECT_EQ(r.defects.size(), 3u) << r.summary();
+  EXPECT_THAT(r.summary(), HasSubstr("is not planar: vertex"));
+  // Rounding-level deviations pass: the cube rotated by an arbitrary rotation.
+  PolygonMesh rotated = test_shapes::unit_cube();
+  const Eigen::Matrix3d rot = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (auto& p : rotated.vertices) p = rot * p;
+  EXPECT_TRUE(check_closed_manifold(rotated).ok()) << check_closed_manifold(rotated).summary();
+  EXPECT_TRUE(check_closed_manifold(m, {.planarity_tolerance = 1e-2}).ok());
+}
+
+TEST(Validation, SelfCrossingFace) {
+  // A prism whose top face is listed as a bow tie (0 1 3 2 order of a square).
+  PolygonMesh m = test_shapes::unit_cube();
+  m.faces[1] = {4, 5, 6, 7};  // correct order is 4 5 7 6: edges 5-6 and 7-4 cross
+  const ValidationReport r = check_closed_manifold(m);
+  EXPECT_EQ(r.count(DefectKind::SelfCrossingFace), 1u) << r.summary();
+  EXPECT_THAT(r.summary(), HasSubstr("the boundary of face 1 (first corner (0, 0, 1)) crosses itself"));
+  EXPECT_GE(r.count(DefectKind::OpenEdge), 1u);  // and its edges no longer match the sides
 }
 
 TEST(Validation, BowtieVertexIsNonManifold) {
