@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "base/errors.hpp"
 #include "bsp/transform.hpp"
@@ -63,6 +64,18 @@ class SectorTree {
     return start_[std::size_t(k)] + 2 * std::numbers::pi * turns;
   }
   double mid(int i) const { return 0.5 * (angle(i) + angle(i + 1)); }
+  // Smallest index i with angle(i) > a (angle is increasing in i): binary search.
+  int first_above(double a) const {
+    int lo = int(std::floor((a - start_[0]) / (2 * std::numbers::pi))) * n_ - n_, hi = lo + 3 * n_;
+    while (lo < hi) {
+      const int m = lo + (hi - lo) / 2;
+      if (angle(m) > a)
+        hi = m;
+      else
+        lo = m + 1;
+    }
+    return lo;
+  }
   std::int32_t axial(double a) {
     // f = -sin(a) x + cos(a) y + offset: positive for angles in (a, a + pi) (offset aside).
     const double offset = max_offset_ * (0.5 + 0.5 * std::fmod(0.6180339887498949 * ++count_, 1.0));
@@ -71,10 +84,9 @@ class SectorTree {
   // Tree for the wedge of angles (lo, hi), hi - lo <= pi.
   TreeRef wedge(double lo, double hi) {
     // Faces overlapping (lo, hi): first index with angle(i+1) > lo, last with angle(i) < hi.
-    int first = int(std::floor((lo - start_[0]) / (2 * std::numbers::pi))) * n_ - n_;
-    while (angle(first + 1) <= lo) ++first;
-    int last = first;
-    while (angle(last + 1) < hi) ++last;
+    const int first = first_above(lo) - 1;  // angle(first + 1) > lo >= angle(first)
+    const int last = first_above(hi) - 1;   // last face starting below hi (angle(i) < hi)
+    if (angle(last) >= hi) throw std::logic_error("SectorTree: empty wedge");
     if (last - first + 1 <= 4) {
       std::vector<std::int32_t> chain;
       // Widened by one face on each side only where a wedge bound may pass near a vertex
