@@ -9,6 +9,7 @@
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
 #include "bsp/primitives.hpp"
+#include "bsp/transform.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
@@ -101,6 +102,27 @@ TEST(SetOperations, HundredBoxesWithTinyOffsets) {
   EXPECT_TRUE(EdgesManifoldAndOriented(m));
   EXPECT_TRUE(GenusIs(m, 0));
   EXPECT_GT(vol(acc), 1.0);
+}
+
+}  // namespace
+}  // namespace sculpt
+
+namespace sculpt {
+namespace {
+
+TEST(SetOperations, AlmostCoplanarFacesFromATinyRotation) {
+  const Solid a = box({-1, -1, -1}, {1, 1, 1});
+  for (double degrees : {1e-3, 1e-6}) {
+    const Solid b = rotate(a, {0, 0, 1}, degrees);
+    for (const Solid& s : {a | b, a & b, a - b}) {
+      const PolygonMesh m = to_mesh(s);
+      if (m.faces.empty()) continue;
+      EXPECT_TRUE(checks::EdgesManifoldAndOriented(m)) << degrees;
+    }
+    // Volumes: |a ∪ b| + |a ∩ b| = |a| + |b| (inclusion-exclusion, independent of the mesh).
+    EXPECT_NEAR(volume(a | b) + volume(a & b), volume(a) + volume(b), 1e-9) << degrees;
+    EXPECT_NEAR(volume(a - b), volume(a) - volume(a & b), 1e-9) << degrees;
+  }
 }
 
 }  // namespace
