@@ -1,5 +1,6 @@
 // The shared checkers in tests/support/mesh_checks.hpp must fail on broken meshes.
 #include "support/mesh_checks.hpp"
+#include "support/mesh_validity.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,6 +18,7 @@ TEST(MeshChecks, AcceptGoodMeshes) {
   EXPECT_TRUE(checks::NoDuplicateVertices(c));
   EXPECT_TRUE(checks::NoDegenerateFaces(c));
   EXPECT_TRUE(checks::VolumeNear(c, 1, 1e-15));
+  EXPECT_TRUE(checks::ValidSolidMesh(c));
 }
 
 TEST(MeshChecks, RejectBrokenMeshes) {
@@ -44,6 +46,8 @@ TEST(MeshChecks, RejectBrokenMeshes) {
   PolygonMesh bad = test_shapes::unit_cube();
   bad.faces[1][2] = 99;
   EXPECT_FALSE(checks::VolumeNear(bad, 1, 1));
+  EXPECT_FALSE(checks::ValidSolidMesh(open));
+  EXPECT_FALSE(checks::ValidSolidMesh(test_shapes::merged(test_shapes::unit_cube(), test_shapes::unit_cube())));
 }
 
 }  // namespace
