@@ -190,7 +190,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 // In place: the larger operand's storage is reused; the result is compacted only when the
 // storage has doubled since the last compaction (amortized O(touched nodes) per operation).
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
-  if (x.nodes().size() < y.nodes().size()) return apply(x, y, table);
+  if (&x == &y || x.nodes().size() < y.nodes().size()) return apply(x, y, table);
   Arena arena;
   const TreeRef ra = arena.adopt(std::move(x));
   const TreeRef rb = arena.append(y);

@@ -127,3 +127,26 @@ TEST(SetOperations, AlmostCoplanarFacesFromATinyRotation) {
 
 }  // namespace
 }  // namespace sculpt
+
+namespace sculpt {
+namespace {
+
+TEST(SetOperations, InPlaceOperationsMatchTheCopyingOnesEvenWhenAliased) {
+  Solid acc = box({0, 0, 0}, {1, 1, 1});
+  Solid copy = acc;
+  for (int i = 1; i < 20; ++i) {
+    const Solid b = box({i * 0.25, 0, 0}, {i * 0.25 + 1, 1, 1 + i * 0.125});
+    copy = copy | b;
+    acc = std::move(acc) | b;
+  }
+  EXPECT_EQ(volume(acc), volume(copy));
+  EXPECT_EQ(tree_stats(acc).nodes, tree_stats(copy).nodes);
+  Solid self = sphere(1.0, {.segments = 8});
+  const double v = volume(self);
+  self = unite(std::move(self), self);  // aliased operands
+  EXPECT_NEAR(volume(self), v, 1e-12);
+  EXPECT_NEAR(volume(unite_all({box({0, 0, 0}, {1, 1, 1}), box({2, 0, 0}, {3, 1, 1}), box({0.5, 0, 0}, {2.5, 1, 1})})), 3.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace sculpt
