@@ -195,46 +195,33 @@ class FeasibilitySolver {
   // plane (basis u, v; x along u) the lines y = sigma x within eps of (x, y), x > eps, form the
   // slope interval [xy -+ eps sqrt(x^2 + y^2 - eps^2)] / (x^2 - eps^2); the reach ends where
   // the intersection of these intervals becomes empty (with a safety margin). The plane is the
-  // curve's own plane for planar data, else the plane of the first two well-separated chords
-  // (near the osculating plane, which keeps most of the bending). Points behind or within 2 eps
+  // curve's own plane for planar data, else the plane of the first two chords from p_i (the
+  // discrete osculating plane, which keeps most of the bending). Points behind or within 2 eps
   // along u add no constraint (still sound). Far from i only every ((k - i) / 32)-th point is
   // examined, so a scan costs O(32 log(reach)), not O(reach).
   int cone_reach(int i, int last, double eps) const {
     const Eigen::Vector3d& origin = points_[i];
-    Eigen::Vector3d u = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
-    bool have_u = false, have_v = false;
+    if (i + 1 > last) return last;
+    // The plane: u along the first chord, v across it towards the second (the discrete
+    // osculating plane), or within the curve's plane for planar data.
+    const Eigen::Vector3d first = points_[i + 1] - origin;
+    Eigen::Vector3d u = first.norm() > 0.0 ? Eigen::Vector3d(first.normalized()) : Eigen::Vector3d(1, 0, 0);
+    Eigen::Vector3d v;
+    if (planar_) {
+      if (u.z() != 0.0) u = Eigen::Vector3d(1, 0, 0);
+      v = Eigen::Vector3d(-u.y(), u.x(), 0.0);
+    } else {
+      const Eigen::Vector3d second = points_[std::min(i + 2, last)] - origin;
+      const Eigen::Vector3d across = second - u * second.dot(u);
+      v = across.norm() > 1e-9 * second.norm() && across.norm() > 0.0
+              ? Eigen::Vector3d(across.normalized())
+              : (std::abs(u.x()) < 0.9 ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0)).cross(u).normalized();
+    }
     double low = -std::numeric_limits<double>::infinity(), high = std::numeric_limits<double>::infinity();
-    int u_offset = 0;
     for (int k = i + 1; k <= last; k += std::max(1, (k - i) / 32)) {
       const Eigen::Vector3d w = points_[k] - origin;
-      if (!have_u) {
-        const double r = w.norm();
-        if (!(r > 16.0 * eps)) continue;
-        u = w / r;
-        have_u = true;
-        u_offset = k - i;
-        if (planar_) {
-          v = Eigen::Vector3d(-u.y(), u.x(), 0.0);
-          have_v = true;
-        }
-        continue;  // (the points before this one constrain little)
-      }
-      if (!have_v) {
-        if (k - i < 2 * u_offset) continue;
-        const Eigen::Vector3d across = w - u * w.dot(u);
-        const double length = across.norm();
-        if (length > 1e-6 * w.norm()) {
-          v = across / length;
-        } else {  // straight so far: any direction perpendicular to u
-          v = (std::abs(u.x()) < 0.9 ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0)).cross(u).normalized();
-        }
-        have_v = true;
-        // Restart the scan in this plane from the first point.
-        k = i;
-        continue;
-      }
       const double x = w.dot(u), y = w.dot(v);
-      if (!(x > 2.0 * eps)) continue;
+      if (!(x > 2.0 * eps)) continue;  // behind or too near: no constraint (sound)
       const double denominator = x * x - eps * eps;
       const double root = eps * std::sqrt(std::max(0.0, x * x + y * y - eps * eps));
       low = std::max(low, (x * y - root) / denominator);
