@@ -1,4 +1,6 @@
-// Scratch timing probe (not part of the documented benchmarks).
+// Timing probe for one case (used while tuning; not part of the documented tables):
+//   curves_probe <curve> <n> <m> <mode> [runs]   mode 0 = optimal, 1 = fast (exact_below = 0),
+//   2 = DYNAMIC. SCULPT_CURVES_DEBUG=1 prints the solver's probes to stderr.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
