@@ -57,16 +57,26 @@ class Extractor {
       if (!is_leaf(m.negative)) order.push_back(m.negative);
       if (!is_leaf(m.positive)) order.push_back(m.positive);
     }
+    // Subtree sizes (children come after parents in `order`): the polygon goes first into the
+    // smaller subtree, so fewer pieces travel through the larger one.
+    std::vector<std::int32_t> size(solid_.nodes().size(), 0);
+    auto size_of = [&](TreeRef r) { return is_leaf(r) ? 0 : size[std::size_t(r)]; };
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+      const BspNode& m = solid_.nodes()[std::size_t(*it)];
+      size[std::size_t(*it)] = 1 + size_of(m.negative) + size_of(m.positive);
+    }
     for (const TreeRef node : order) {
       const std::size_t i = std::size_t(node);
       const BspNode& n = solid_.nodes()[i];
+      const bool neg_first = size_of(n.negative) <= size_of(n.positive);
+      const TreeRef first = neg_first ? n.negative : n.positive, second = neg_first ? n.positive : n.negative;
       negative_pieces.clear();
-      push_down(n.negative, solid_.polygons()[i],
+      push_down(first, solid_.polygons()[i],
                 [&](ConvexPolygon p, bool in) { negative_pieces.emplace_back(std::move(p), in); });
-      for (auto& [piece, neg_in] : negative_pieces) {
-        const bool ni = neg_in;
-        push_down(n.positive, std::move(piece), [&](ConvexPolygon p, bool pos_in) {
-          if (ni != pos_in) result.fragments.push_back({std::move(p), pos_in});
+      for (auto& [piece, first_in] : negative_pieces) {
+        const bool fi = first_in;
+        push_down(second, std::move(piece), [&](ConvexPolygon p, bool second_in) {
+          if (fi != second_in) result.fragments.push_back({std::move(p), neg_first ? second_in : fi});
         });
       }
     }

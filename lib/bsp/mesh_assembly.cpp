@@ -82,16 +82,16 @@ class Assembler {
   // planes of the second).
   void merge_vertices() {
     const std::size_t n = occ_.size();
-    constexpr double kCell = 1.0 / 64;
+    constexpr double kCell = 1.0 / 64, kShift = 0.3711 / 64;
     std::vector<std::pair<std::array<std::int64_t, 3>, int>> keyed;
     keyed.reserve(n + n / 8);
     for (std::size_t i = 0; i < n; ++i) {
       const ApproxPoint& a = occ_[i].at;
       const double v[3] = {a.x, a.y, a.z};
       std::int64_t lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::int64_t(std::floor((v[k] - a.err) / kCell));
-        hi[k] = std::int64_t(std::floor((v[k] + a.err) / kCell));
+      for (int k = 0; k < 3; ++k) {  // shifted so that grid points never sit on a cell boundary
+        lo[k] = std::int64_t(std::floor((v[k] - a.err + kShift) / kCell));
+        hi[k] = std::int64_t(std::floor((v[k] + a.err + kShift) / kCell));
       }
       for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
         for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
