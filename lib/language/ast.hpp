@@ -5,10 +5,11 @@
 /// read or walk a tree. Every node records `where`, the byte offset of its first character in
 /// the source text, from which errors compute `file:line:col`.
 ///
-/// Binary operators are stored flat, one `Expression` per precedence level (first operand and a
-/// list of (operator, operand) pairs), prefix operators as a list: a long chain such as
-/// `1+1+...+1` or `- - - x` is a loop, not a deep tree. Only brackets nest, and the parser limits
-/// their depth (see kMaxNesting in parser.hpp).
+/// Binary operators are stored flat, one `Expression` per precedence level that has operators
+/// (first operand and a list of (operator, operand) pairs; levels without operators are left
+/// out), prefix operators as a list: a long chain such as `1+1+...+1` or `- - - x` is a loop,
+/// not a deep tree. Only brackets nest, and the parser limits their depth (kMaxNesting in
+/// parser.hpp).
 
 #include <boost/optional.hpp>
 #include <boost/variant.hpp>
@@ -35,7 +36,7 @@ enum class Op {
 /// The operator as written in scripts ("+", "and", ...).
 const char* spelling(Op op);
 
-struct Nil {};
+struct Nil : Node {};
 struct Identifier : Node {
   std::string name;
 };

@@ -95,9 +95,9 @@ const x3::rule<named_argument_class, ast::Argument> named_argument = "argument";
 const x3::rule<positional_argument_class, ast::Argument> positional_argument = "argument";
 const x3::rule<call_class, ast::CallArguments> call = "call";
 const x3::rule<subscript_class, ast::Subscript> subscript = "subscript";
-const x3::rule<postfix_class, ast::Postfix> postfix = "value";
+const x3::rule<postfix_class, ast::Operand> postfix = "value";
 const x3::rule<prefix_op_class, ast::Op> prefix_op = "prefix operator";
-const x3::rule<prefixed_class, ast::Prefixed> prefixed = "expression";
+const x3::rule<prefixed_class, ast::Operand> prefixed = "expression";
 // One rule per level for `operator operand`, so that each Operation records the operator's position.
 const x3::rule<multiplicative_operation_class, ast::Operation> multiplicative_operation = "operation";
 const x3::rule<additive_operation_class, ast::Operation> additive_operation = "operation";
@@ -106,13 +106,13 @@ const x3::rule<union_operation_class, ast::Operation> union_operation = "operati
 const x3::rule<compare_operation_class, ast::Operation> compare_operation = "operation";
 const x3::rule<and_operation_class, ast::Operation> and_operation = "operation";
 const x3::rule<or_operation_class, ast::Operation> or_operation = "operation";
-const x3::rule<multiplicative_class, ast::Expression> multiplicative = "expression";
-const x3::rule<additive_class, ast::Expression> additive = "expression";
-const x3::rule<intersect_class, ast::Expression> intersection = "expression";
-const x3::rule<union_class, ast::Expression> union_ = "expression";
-const x3::rule<compare_class, ast::Expression> comparison = "expression";
-const x3::rule<negation_class, ast::Prefixed> negation = "expression";
-const x3::rule<and_class, ast::Expression> conjunction = "expression";
+const x3::rule<multiplicative_class, ast::Operand> multiplicative = "expression";
+const x3::rule<additive_class, ast::Operand> additive = "expression";
+const x3::rule<intersect_class, ast::Operand> intersection = "expression";
+const x3::rule<union_class, ast::Operand> union_ = "expression";
+const x3::rule<compare_class, ast::Operand> comparison = "expression";
+const x3::rule<negation_class, ast::Operand> negation = "expression";
+const x3::rule<and_class, ast::Operand> conjunction = "expression";
 const x3::rule<expression_class, ast::Expression> expression = "expression";
 const x3::rule<assignment_class, ast::Assignment> assignment = "assignment";
 const x3::rule<return_class, ast::Return> return_statement = "return";
@@ -155,6 +155,39 @@ auto as_impl(Parser parser) {
 template <typename T>
 constexpr auto as = [](auto parser) { return as_impl<T>(parser); };
 
+/// Where an operand starts.
+inline std::size_t where_of(const ast::Operand& operand) {
+  return boost::apply_visitor([](const auto& node) { return node.where; }, operand);
+}
+
+/// Builds `Node{first, list}` from a sequence (first, list), or passes the operand through
+/// unchanged when the list is empty: a plain `1` stays a NumberLiteral instead of nine nested
+/// one-operand levels (which made parsing slow and the tree deep). `operand_at` is the index of
+/// the operand in the sequence (Expression, Postfix: 0; Prefixed: 1, after its operators).
+template <typename Node, int operand_at>
+const auto collapse = [](auto& context) {
+  auto& attribute = x3::_attr(context);
+  auto& operand = boost::fusion::at_c<operand_at>(attribute);
+  auto& items = boost::fusion::at_c<1 - operand_at>(attribute);
+  if (items.empty()) {
+    x3::_val(context) = std::move(operand);
+    return;
+  }
+  Node node;
+  node.where = where_of(operand);
+  if constexpr (std::is_same_v<Node, ast::Expression>) {
+    node.first = std::move(operand);
+    node.rest = std::move(items);
+  } else if constexpr (std::is_same_v<Node, ast::Postfix>) {
+    node.primary = std::move(operand);
+    node.ops = std::move(items);
+  } else {
+    node.ops = std::move(items);
+    node.operand = std::move(operand);
+  }
+  x3::_val(context) = std::move(node);
+};
+
 // ---- lexical parts ----
 const auto name_char = alnum | char_('_');
 auto keyword(const char* word) { return lexeme[lit(word) >> !name_char]; }
@@ -192,13 +225,13 @@ const auto positional_argument_def = (mark >> expression)[([](auto& context) {
 const auto argument_def = named_argument | positional_argument;
 const auto call_def = (mark >> lit('(') > lb > as<std::vector<ast::Argument>>(-(argument >> *((lit(',') >> lb) > argument))) > lb > lit(')'))[into(&ast::CallArguments::arguments)];
 const auto subscript_def = (mark >> lit('[') > lb > expression > lb > lit(']'))[into(&ast::Subscript::index)];
-const auto postfix_def = primary >> *(call | subscript);
+const auto postfix_def = (primary >> *(call | subscript))[collapse<ast::Postfix, 0>];
 
 const x3::symbols<Op> sign_ops({{"-", Op::Neg}, {"+", Op::Pos}}, "sign");
 const auto prefix_op_def = sign_ops;
 // `not` binds looser than comparisons: `not a == b` is `not (a == b)`.
-const auto negation_def = *(keyword("not") >> x3::attr(Op::Not)) >> comparison;
-const auto prefixed_def = *prefix_op >> postfix;
+const auto negation_def = (*(keyword("not") >> x3::attr(Op::Not)) >> comparison)[collapse<ast::Prefixed, 1>];
+const auto prefixed_def = (*prefix_op >> postfix)[collapse<ast::Prefixed, 1>];
 
 const x3::symbols<Op> multiplicative_ops({{"*", Op::Mul}, {"/", Op::Div}, {"%", Op::Mod}}, "'*', '/' or '%'");
 const x3::symbols<Op> additive_ops({{"+", Op::Add}, {"-", Op::Sub}}, "'+' or '-'");
@@ -217,12 +250,12 @@ const auto union_operation_def = (union_op >> lb) > intersection;
 const auto compare_operation_def = (compare_ops >> lb) > union_;
 const auto and_operation_def = (and_op >> lb) > negation;
 const auto or_operation_def = (or_op >> lb) > conjunction;
-const auto multiplicative_def = prefixed >> *multiplicative_operation;
-const auto additive_def = multiplicative >> *additive_operation;
-const auto intersection_def = additive >> *intersect_operation;
-const auto union__def = intersection >> *union_operation;
-const auto comparison_def = union_ >> *compare_operation;
-const auto conjunction_def = negation >> *and_operation;
+const auto multiplicative_def = (prefixed >> *multiplicative_operation)[collapse<ast::Expression, 0>];
+const auto additive_def = (multiplicative >> *additive_operation)[collapse<ast::Expression, 0>];
+const auto intersection_def = (additive >> *intersect_operation)[collapse<ast::Expression, 0>];
+const auto union__def = (intersection >> *union_operation)[collapse<ast::Expression, 0>];
+const auto comparison_def = (union_ >> *compare_operation)[collapse<ast::Expression, 0>];
+const auto conjunction_def = (negation >> *and_operation)[collapse<ast::Expression, 0>];
 const auto expression_def = conjunction >> *or_operation;
 
 // ---- statements ----

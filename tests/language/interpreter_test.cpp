@@ -75,7 +75,7 @@ TEST(Interpreter, TypeErrorsAtTheOperator) {
   EXPECT_EQ(error("x = 1 +\n \"a\""), "t.bsp:1:7: error: cannot apply '+' to number and string");
   EXPECT_EQ(error("x = [1, 2] + [1, 2, 3]"), "t.bsp:1:12: error: cannot apply '+' to vectors of lengths 2 and 3");
   EXPECT_EQ(error("x = 1 / 0"), "t.bsp:1:7: error: division by zero");
-  EXPECT_EQ(error("x = -\"a\""), "t.bsp:1:5: error: cannot apply prefix '-' to string");
+  EXPECT_EQ(error("x = -\"a\""), "t.bsp:1:6: error: cannot apply prefix '-' to string");
   EXPECT_EQ(error("if 1 { }"), "t.bsp:1:4: error: an 'if' condition must be true or false, got number");
   EXPECT_EQ(error("x = 1 and true"), "t.bsp:1:7: error: 'and' needs true or false, got number");
   EXPECT_EQ(error("for x in 3 { }"), "t.bsp:1:10: error: 'for' needs a list, got number");
