@@ -197,6 +197,75 @@ class Assembler {
       }
     }
     if (open.empty()) return;
+    std::vector<std::vector<std::tuple<int, double, int>>> inserts(faces_.size());  // (edge k, t, vertex)
+
+    // First, walk the other side: the T-vertices of u -> w are the chain w -> x1 -> ... -> u of
+    // open half-edges of other faces along the same line (exact on-line tests).
+    std::vector<std::pair<int, int>> out_edges;  // (start vertex, index in open)
+    for (std::size_t i = 0; i < open.size(); ++i) {
+      const Face& f = faces_[std::size_t(open[i].face)];
+      out_edges.push_back({f.vertices[std::size_t(open[i].k)], int(i)});
+    }
+    std::sort(out_edges.begin(), out_edges.end());
+    std::vector<Open> unresolved;
+    for (const Open& e : open) {
+      const Face& f = faces_[std::size_t(e.face)];
+      const int u = f.vertices[std::size_t(e.k)], w = f.vertices[(std::size_t(e.k) + 1) % f.vertices.size()];
+      const Eigen::Vector3d pu = position(u), d = position(w) - pu;
+      const double len2 = d.squaredNorm();
+      std::vector<std::pair<double, int>> chain;
+      int cur = w;
+      double cur_t = 1;
+      bool reached = false;
+      for (std::size_t steps = 0; steps < 64 && !reached; ++steps) {
+        int next = -1;
+        double next_t = 0;
+        auto range = std::equal_range(out_edges.begin(), out_edges.end(), std::pair{cur, -1},
+                                      [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (auto it = range.first; it != range.second && next < 0; ++it) {
+          const Open& o = open[std::size_t(it->second)];
+          if (o.face == e.face) continue;
+          const Face& g = faces_[std::size_t(o.face)];
+          const int y = g.vertices[(std::size_t(o.k) + 1) % g.vertices.size()];
+          if (y == u) {
+            next = u;
+            break;
+          }
+          const double t = (position(y) - pu).dot(d) / len2;
+          const double slack = 4 * (err(u) + err(w) + err(y)) / std::sqrt(len2) + 1e-12;
+          if (t >= cur_t + slack || t <= -slack) continue;  // must move towards u
+          const Occurrence& oc = occ_[std::size_t(rep_[std::size_t(y)])];
+          if (!on_plane(oc, f.support) || !on_plane(oc, f.edge_line[std::size_t(e.k)])) continue;
+          if ((t <= slack || t >= 1 - slack) && !exactly_between(u, y, w, d)) continue;
+          next = y;
+          next_t = t;
+        }
+        if (next < 0) break;
+        if (next == u) {
+          reached = true;
+          break;
+        }
+        chain.push_back({next_t, next});
+        cur = next;
+        cur_t = next_t;
+      }
+      if (reached) {
+        for (const auto& [t, v] : chain) inserts[std::size_t(e.face)].emplace_back(e.k, t, v);
+      } else {
+        unresolved.push_back(e);
+      }
+    }
+    open = std::move(unresolved);
+    if (open.empty()) {
+      apply_inserts(inserts);
+      return;
+    }
+    candidates.clear();
+    for (const Open& e : open) {
+      const Face& f = faces_[std::size_t(e.face)];
+      candidates.push_back(f.vertices[std::size_t(e.k)]);
+      candidates.push_back(f.vertices[(std::size_t(e.k) + 1) % f.vertices.size()]);
+    }
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     // Hash grid over the candidates with the median open-edge length as cell size.
@@ -217,8 +286,6 @@ class Assembler {
       grid.emplace(cell_key(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), c);
     }
 
-    // inserts[face] = list of (edge k, t, vertex)
-    std::vector<std::vector<std::tuple<int, double, int>>> inserts(faces_.size());
     constexpr double kTol = 1e-3;  // grid units: a cheap prefilter only; the test is exact
     std::vector<int> near;
     for (const Open& e : open) {
@@ -256,25 +323,7 @@ class Assembler {
         inserts[std::size_t(e.face)].emplace_back(e.k, t, c);
       }
     }
-    for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
-      auto& ins = inserts[fi];
-      if (ins.empty()) continue;
-      std::sort(ins.begin(), ins.end());
-      Face& f = faces_[fi];
-      Face g;
-      g.support = f.support;
-      g.flip = f.flip;
-      std::size_t next = 0;
-      for (std::size_t k = 0; k < f.vertices.size(); ++k) {
-        g.vertices.push_back(f.vertices[k]);
-        g.edge_line.push_back(f.edge_line[k]);
-        for (; next < ins.size() && std::get<0>(ins[next]) == int(k); ++next) {
-          g.vertices.push_back(std::get<2>(ins[next]));
-          g.edge_line.push_back(f.edge_line[k]);
-        }
-      }
-      f = std::move(g);
-    }
+    apply_inserts(inserts);
   }
 
   // Fragments of one oriented plane that share edges become one face when their union is a
@@ -396,6 +445,28 @@ class Assembler {
         g.edge_line.push_back(f.edge_line[k]);
       }
       if (g.vertices.size() >= 3) f = std::move(g);
+    }
+  }
+
+  void apply_inserts(std::vector<std::vector<std::tuple<int, double, int>>>& inserts) {
+    for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
+      auto& ins = inserts[fi];
+      if (ins.empty()) continue;
+      std::sort(ins.begin(), ins.end());
+      Face& f = faces_[fi];
+      Face g;
+      g.support = f.support;
+      g.flip = f.flip;
+      std::size_t next = 0;
+      for (std::size_t k = 0; k < f.vertices.size(); ++k) {
+        g.vertices.push_back(f.vertices[k]);
+        g.edge_line.push_back(f.edge_line[k]);
+        for (; next < ins.size() && std::get<0>(ins[next]) == int(k); ++next) {
+          g.vertices.push_back(std::get<2>(ins[next]));
+          g.edge_line.push_back(f.edge_line[k]);
+        }
+      }
+      f = std::move(g);
     }
   }
 
