@@ -33,7 +33,8 @@ constexpr const char* kLight[] = {"#9fc3ea", "#f0b39c", "#a5dbab", "#d2b5e6", "#
 }  // namespace
 
 std::string depth_chart_svg(const std::vector<TreeReport>& reports) {
-  const double width = 760, height = 380, left = 60, right = 20, top = 40, bottom = 60;
+  const double legend = 16.0 * static_cast<double>(reports.size());
+  const double width = 760, height = 340 + legend, left = 60, right = 20, top = 40, bottom = 50 + legend;
   int max_depth = 1;
   double max_p = 0;
   for (const auto& r : reports)
@@ -57,7 +58,12 @@ std::string depth_chart_svg(const std::vector<TreeReport>& reports) {
        f(top + plot_h) + "\" stroke=\"black\"/>\n";
   s += "<line x1=\"" + f(left) + "\" y1=\"" + f(top) + "\" x2=\"" + f(left) + "\" y2=\"" + f(top + plot_h) +
        "\" stroke=\"black\"/>\n";
-  const int step = max_depth > 40 ? 5 : (max_depth > 20 ? 2 : 1);
+  int step = 1;  // at most about 16 depth labels
+  for (int nice : {1, 2, 5, 10, 20, 50, 100, 200, 500, 1000})
+    if (max_depth / nice <= 16) {
+      step = nice;
+      break;
+    }
   for (int d = 0; d <= max_depth; d += step)
     s += "<text x=\"" + f(x_of(d)) + "\" y=\"" + f(top + plot_h + 14) + "\" text-anchor=\"middle\">" +
          std::to_string(d) + "</text>\n";
@@ -83,13 +89,13 @@ std::string depth_chart_svg(const std::vector<TreeReport>& reports) {
          "\" stroke=\"" + dark + "\" stroke-width=\"2\"/>\n";
     s += "<line x1=\"" + f(xh) + "\" y1=\"" + f(top) + "\" x2=\"" + f(xh) + "\" y2=\"" + f(top + plot_h) +
          "\" stroke=\"" + dark + "\" stroke-width=\"1.5\" stroke-dasharray=\"5,4\"/>\n";
-    char legend[160];
-    std::snprintf(legend, sizeof legend, ": expected depth %.3f, entropy bound %.3f, ratio %.3f",
+    char label[160];
+    std::snprintf(label, sizeof label, ": expected depth %.3f, entropy bound %.3f, ratio %.3f",
                   r.depth.expected_depth, r.depth.entropy_bound, r.depth.ratio);
-    s += "<rect x=\"" + f(left) + "\" y=\"" + f(height - 22 + 0.0 - 14.0 * (reports.size() - 1 - i)) +
-         "\" width=\"10\" height=\"10\" fill=\"" + dark + "\"/>\n";
-    s += "<text x=\"" + f(left + 14) + "\" y=\"" + f(height - 13 - 14.0 * (reports.size() - 1 - i)) + "\">" +
-         escape(r.name) + legend + "</text>\n";
+    const double y_legend = top + plot_h + 44 + 16.0 * static_cast<double>(i);
+    s += "<rect x=\"" + f(left) + "\" y=\"" + f(y_legend - 9) + "\" width=\"10\" height=\"10\" fill=\"" + dark +
+         "\"/>\n";
+    s += "<text x=\"" + f(left + 14) + "\" y=\"" + f(y_legend) + "\">" + escape(r.name) + label + "</text>\n";
   }
   return s + "</svg>\n";
 }

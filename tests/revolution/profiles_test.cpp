@@ -101,3 +101,30 @@ TEST(Profiles, RejectsBadOptions) {
   EXPECT_THROW(sample_profile(broken), InvalidInput);
   EXPECT_THROW(ball_profile(-1, 0), InvalidInput);
 }
+
+// The model files are what the designs, the seeded noise and the optimal linearization give
+// (tests/bench/revolution/make_profile_models.cpp wrote them): nobody edited them by hand.
+TEST(Profiles, ModelFilesAreReproducible) {
+  struct Model {
+    const char* file;
+    ProfileDesign design;
+    int points;
+  };
+  for (const Model& m : {Model{"goblet_profile", goblet_profile(), 237}, Model{"human_profile", human_profile(), 169},
+                         Model{"goblet_cavity_profile", goblet_cavity_profile(), 120}}) {
+    const DigitizedCurve file = load_curve(std::string(SCULPT_MODELS_DIR) + "/" + m.file + ".txt");
+    const DigitizedCurve made = sample_profile(m.design, {.points = m.points, .noise = 0.004, .seed = 1990});
+    ASSERT_EQ(file.points.size(), made.points.size()) << m.file;
+    for (std::size_t i = 0; i < made.points.size(); ++i) EXPECT_EQ(file.points[i], made.points[i]) << m.file << " " << i;
+  }
+  // The 20-segment goblet: 21 of the sampled points, in order, z increasing.
+  const DigitizedCurve sampled = load_curve(std::string(SCULPT_MODELS_DIR) + "/goblet_profile.txt");
+  const DigitizedCurve lin = load_curve(std::string(SCULPT_MODELS_DIR) + "/goblet_profile_20.txt");
+  ASSERT_EQ(lin.points.size(), 21u);
+  std::size_t at = 0;
+  for (const auto& p : lin.points) {
+    while (at < sampled.points.size() && sampled.points[at] != p) ++at;
+    EXPECT_LT(at, sampled.points.size()) << "vertex " << p.transpose() << " is not a sample, in order";
+  }
+  for (std::size_t i = 1; i < lin.points.size(); ++i) EXPECT_GT(lin.points[i].y(), lin.points[i - 1].y());
+}
