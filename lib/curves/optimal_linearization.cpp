@@ -21,6 +21,9 @@ constexpr int kUnreached = std::numeric_limits<int>::max();
 // (memory: 8 bytes each), if evaluating them directly costs at most this many point distances.
 constexpr long long kStoredEdgeLimit = 4'000'000;
 constexpr double kStoredCostLimit = 3e8;
+// Chords spanning up to this many points are evaluated directly (the tree's bounds are weak on
+// rough data such as scattered points; direct scans with early exit are predictable).
+constexpr int kDirectSpan = 1024;
 // First reach cap as a fraction of the start's error (INIT is usually within 2x of the optimum,
 // and a cap that turns out infeasible costs a second pruning pass).
 constexpr double kFirstCap = 1.0;
@@ -56,7 +59,8 @@ class FeasibilitySolver {
   [[nodiscard]] double evaluation_cost() const {
     double total = 0;
     for (int a = 0; a + 1 < count(); ++a)
-      total += static_cast<double>(reach_[a] - a) * std::min(0.5 * (vertex_[reach_[a]] - vertex_[a]), 128.0);
+      total += static_cast<double>(reach_[a] - a) *
+               (vertex_[reach_[a]] - vertex_[a] <= kDirectSpan ? 0.5 * (vertex_[reach_[a]] - vertex_[a]) : 128.0);
     return total;
   }
 
@@ -74,9 +78,7 @@ class FeasibilitySolver {
     std::vector<double> values(total);
     for (int a = 0; a + 1 < count; ++a)
       for (int b = a + 1; b <= reach_[a]; ++b)
-        values[row_[a] + (b - a - 1)] = vertex_[b] - vertex_[a] <= 256
-                                            ? bounded_error(vertex_[a], vertex_[b], limit)
-                                            : tree().error(vertex_[a], vertex_[b], limit);
+        values[row_[a] + (b - a - 1)] = stored_error(vertex_[a], vertex_[b], limit);
     stored_ = std::move(values);
   }
   [[nodiscard]] const std::vector<double>& stored_errors() const { return stored_; }
@@ -164,6 +166,21 @@ class FeasibilitySolver {
       }
     }
     return ChordDistance(a, points_[j])(points_[farthest]);  // as segment_error() measures it
+  }
+
+  // For store_errors: short chords directly; long ones first against 32 evenly spread points
+  // (rejects most infeasible chords, also where the tree's bounds are weak, e.g. scattered
+  // points), then through the tree.
+  double stored_error(int i, int j, double limit) {
+    if (j - i <= kDirectSpan) return bounded_error(i, j, limit);
+    if (norm_ == Norm::LInf && limit < std::numeric_limits<double>::infinity()) {
+      const ChordDistance distance(points_[i], points_[j]);
+      for (int t = 1; t <= 32; ++t) {
+        const int k = i + static_cast<int>((static_cast<long long>(j - i) * t) / 33);
+        if (const double d = distance(points_[k]); d > limit) return d;
+      }
+    }
+    return tree().error(i, j, limit);
   }
 
   const SegmentErrorTree& tree() {

@@ -3,12 +3,15 @@
 //     DYNAMIC vs the optimal solver in the same run, errors compared;
 //  2. n = 5000, m = 300 on every test curve;
 //  3. growth of the optimal solver's time with n (1e3 .. 1e5) and m, cases predicted to take
-//     longer than 20 s are skipped and marked.
+//     longer than 20 s are skipped and marked;
+//  4. the worst case we know: points scattered uniformly at random (no smoothness to prune by).
 //   curves_optimal [quick]
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <random>
 #include <string>
+#include <tuple>
 
 #include "bench_common.hpp"
 #include "curves/linearize.hpp"
@@ -77,5 +80,20 @@ int main(int argc, char** argv) {
       std::printf("\n");
     }
     std::printf("\n");
+  }
+
+  std::printf("## 4. worst case: scattered points, one run\n\n| points | n | m | DYNAMIC ms | optimal ms | equal error |\n"
+              "|---|---|---|---|---|---|\n");
+  for (const auto& [n, m, dimension] : {std::tuple{400, 64, 2}, std::tuple{400, 64, 3}, std::tuple{1000, 100, 2}}) {
+    std::mt19937_64 rng(1);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    DigitizedCurve curve;
+    curve.dimension = dimension;
+    for (int k = 0; k < n; ++k) curve.points.push_back({u(rng), u(rng), dimension == 3 ? u(rng) : 0.0});
+    Linearization dynamic, optimal;
+    const double t_dynamic = bench::median_ms(1, [&] { dynamic = linearize(curve, {.segments = m, .method = Method::Dynamic}); });
+    const double t_optimal = bench::median_ms(1, [&] { optimal = linearize(curve, {.segments = m}); });
+    std::printf("| uniform in [-1,1]^%d | %d | %d | %.0f | %.0f | %s |\n", dimension, n, m, t_dynamic, t_optimal,
+                dynamic.error == optimal.error ? "yes" : "NO");
   }
 }
