@@ -9,6 +9,9 @@
 
 #include <boost/spirit/home/x3.hpp>
 
+#include <cstdlib>
+#include <string>
+
 #include "language/ast.hpp"
 #include "language/ast_adapted.hpp"
 #include "language/config.hpp"
@@ -26,14 +29,18 @@ using x3::lexeme;
 using x3::lit;
 using ast::Op;
 
-/// Unsigned decimals without "nan"/"inf": `-` is an operator and `inf` a name.
-struct number_policies : x3::ureal_policies<double> {
-  template <typename Iterator, typename Attribute>
-  static bool parse_nan(Iterator&, const Iterator&, Attribute&) { return false; }
-  template <typename Iterator, typename Attribute>
-  static bool parse_inf(Iterator&, const Iterator&, Attribute&) { return false; }
+/// Unsigned decimals (`-` is an operator; `nan` and `inf` are names): digits with an optional
+/// fraction and exponent, or a fraction alone (`.5`). The text is converted by strtod, so a
+/// literal too large for a double becomes infinity and the interpreter reports it (a real
+/// parser would just fail here, and the message would be a puzzling "expected expression").
+const auto digits = +x3::digit;
+const auto number_text = x3::raw[lexeme[((digits >> -(lit('.') >> *x3::digit)) | (lit('.') >> digits)) >>
+                                         -(x3::no_case[lit('e')] >> -(lit('+') | lit('-')) >> digits)]];
+const auto to_double = [](auto& context) {
+  const auto& range = x3::_attr(context);
+  const std::string text(range.begin(), range.end());
+  x3::_val(context).value = std::strtod(text.c_str(), nullptr);
 };
-const x3::real_parser<double, number_policies> unsigned_number{};
 
 // ---- rule IDs: each tags its node with a source position ----
 struct identifier_class : annotate_position {};
@@ -201,7 +208,7 @@ const auto separators = *(eol | ';');
 const auto skipper_def = char_(" \t\r") | (lit('#') >> *(~char_('\n')));
 
 const auto identifier_def = (mark >> !reserved >> lexeme[as<std::string>((alpha | char_('_')) >> *name_char)])[into(&ast::Identifier::name)];
-const auto number_def = (mark >> unsigned_number)[into(&ast::NumberLiteral::value)];
+const auto number_def = (mark >> number_text)[to_double];
 const x3::symbols<char> escapes({{"n", '\n'}, {"t", '\t'}, {"\\", '\\'}, {"\"", '"'}}, "escape sequence (\\n, \\t, \\\\ or \\\")");
 const auto escape_def = lit('\\') > escapes;
 const auto string_def = (mark >> lexeme[lit('"') > as<std::string>(*(escape | ~char_("\"\\\n"))) > lit('"')])[into(&ast::StringLiteral::value)];

@@ -198,7 +198,10 @@ struct Interpreter::Impl {
     struct Visitor {
       Impl& self;
       Value operator()(const ast::Nil&) const { return {}; }
-      Value operator()(const ast::NumberLiteral& n) const { return n.value; }
+      Value operator()(const ast::NumberLiteral& n) const {
+        if (!std::isfinite(n.value)) throw ScriptError(self.at(n.where), "number too large for a double");
+        return n.value;
+      }
       Value operator()(const ast::StringLiteral& s) const { return s.value; }
       Value operator()(const ast::BoolLiteral& b) const { return b.value; }
       Value operator()(const ast::Identifier& id) const { return self.lookup(id); }

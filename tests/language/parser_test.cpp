@@ -115,3 +115,17 @@ TEST(Parser, UnfinishedInputForTheRepl) {
 
 }  // namespace
 }  // namespace sculpt::language
+
+namespace sculpt::language {
+namespace {
+
+TEST(Parser, NumberLiterals) {
+  const auto r = testing::run_script("print(1, 2.5, .5, 1., 1e3, 2.5E-2, 1e+2, 007)");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.out, "1 2.5 0.5 1 1000 0.025 100 7\n");
+  EXPECT_EQ(testing::run_script("x = 1e400").error, "t.bsp:1:5: error: number too large for a double\nx = 1e400\n    ^\n");
+  EXPECT_EQ(testing::run_script("print(1e-400)").out, "0\n");
+}
+
+}  // namespace
+}  // namespace sculpt::language
