@@ -47,8 +47,14 @@ std::string history_path() {
 
 }  // namespace
 
-int run_interactive() {
+int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
   language::Session session(std::cout, std::cerr);
+  try {
+    setup(session.interpreter());
+  } catch (const language::ScriptError& e) {
+    std::cerr << language::format_error(e);
+    return 1;
+  }
   std::cout << "sculpt " << SCULPT_VERSION << " - :help for help, :quit to leave\n" << std::flush;
 #ifdef SCULPT_HAVE_LIBEDIT
   completing_session = &session;

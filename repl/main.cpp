@@ -106,12 +106,15 @@ int main(int argc, char** argv) {
     }
   }
 
-  if (jobs.empty() && isatty(STDIN_FILENO) && definitions.empty()) return sculpt::repl::run_interactive();
+  auto define_all = [&](Interpreter& interpreter) {
+    for (const auto& [name, value] : definitions) interpreter.define(name, definition_value(interpreter, value));
+  };
+  if (jobs.empty() && isatty(STDIN_FILENO)) return sculpt::repl::run_interactive(define_all);
   if (jobs.empty()) jobs.push_back({Job::Stdin, ""});
 
   Interpreter interpreter;
   try {
-    for (const auto& [name, value] : definitions) interpreter.define(name, definition_value(interpreter, value));
+    define_all(interpreter);
     for (const Job& job : jobs) {
       switch (job.kind) {
         case Job::File:
