@@ -363,7 +363,10 @@ struct Interpreter::Impl {
       Outcome outcome = exec(f.body->statements);
       return outcome.value ? std::move(*outcome.value) : Value();
     } catch (ScriptError& e) {
-      if (e.notes().size() < kMaxNotes) e.add_note({call_site, "in call to '" + f.name + "'"});
+      // Recursion repeats the same call site: note each site once.
+      const bool repeated = !e.notes().empty() && e.notes().back().where.offset == call_site.offset &&
+                            e.notes().back().where.source == call_site.source;
+      if (!repeated && e.notes().size() < kMaxNotes) e.add_note({call_site, "in call to '" + f.name + "'"});
       throw;
     }
   }
@@ -410,7 +413,7 @@ struct Interpreter::Impl {
         if (!list) {
           throw ScriptError(self.at(f.sequence.where), "'for' needs a list, got " + type_name(sequence));
         }
-        const Value keep = sequence;  // the loop body may rebind the name that held the list
+        // `sequence` holds the list alive even if the body rebinds the name it came from.
         for (const Value& item : *list) {
           self.assign(f.variable, item);
           Outcome outcome = self.exec(f.body.statements);
