@@ -152,3 +152,28 @@ TEST(FastLinearization, CoarseToFineStaysWithinFivePercentOfOptimum) {
     }
   }
 }
+
+TEST(FastLinearization, GreedyCoversWithManySegmentsStayNearOptimum) {
+  // m > 64: only the greedy covers and the layered passes run (no coarse optimum).
+  for (TestCurve which : {TestCurve::Cubic, TestCurve::Helix, TestCurve::Rose}) {
+    const DigitizedCurve curve = make_test_curve(which, {.points = 12000});
+    const std::vector<Vec> points = path_points(curve);
+    const Linearization optimal = optimal_min_error(points, 400, Norm::LInf);
+    const Linearization fast = fast_linearization(points, 400, Norm::LInf, {.exact_below = 0});
+    expect_valid(fast, points, 400, Norm::LInf);
+    EXPECT_GE(fast.error, optimal.error);
+    EXPECT_LE(fast.error, 1.05 * optimal.error) << test_curve_name(which);
+  }
+}
+
+TEST(FastLinearization, NoisyCurvesKeepTheContract) {
+  for (TestCurve which : all_test_curves()) {
+    const DigitizedCurve curve = make_test_curve(which, {.points = 400, .noise = 0.01, .seed = 2});
+    const std::vector<Vec> points = path_points(curve);
+    for (int m : {3, 50, 200}) {
+      const Linearization fast = fast_linearization(points, m, Norm::LInf, {.exact_below = 0});
+      expect_valid(fast, points, m, Norm::LInf);
+      EXPECT_GE(fast.error, optimal_min_error(points, m, Norm::LInf).error);
+    }
+  }
+}
