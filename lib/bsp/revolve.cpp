@@ -63,6 +63,8 @@ struct ExactRevolution {
 
 SnappedRevolution snap_revolution(const std::vector<Eigen::Vector2d>& profile_in, const ConvexPath& path,
                                   const RevolveOptions& options) {
+  if (options.face_only_below < 2)
+    throw InvalidInput("revolve: face_only_below must be >= 2, got " + std::to_string(options.face_only_below));
   std::vector<Eigen::Vector2d> profile = monotone_profile(profile_in);
   double reach = 0.0;
   for (const auto& v : path.vertices) reach = std::max(reach, v.cwiseAbs().maxCoeff());

@@ -133,4 +133,5 @@ TEST(Revolve, ReportsUnrepresentableInput) {
   EXPECT_THROW(revolve({{600, 0}, {600, 1}}, circular_path(8, 2.0)), RangeError);  // reaches 1200
   EXPECT_THROW(revolve({{1, 0}, {1, 1e-9}}, circular_path(8)), InvalidInput);     // flat on the grid
   EXPECT_THROW(revolve({{1, 0}, {1, 1}}, circular_path(4000)), GeometryError);    // too fine to stay convex
+  EXPECT_THROW(revolve({{1, 0}, {1, 1}}, circular_path(8), {.face_only_below = 1}), InvalidInput);
 }
