@@ -329,81 +329,113 @@ class Assembler {
   // Fragments of one oriented plane that share edges become one face when their union is a
   // simple polygon (one boundary loop); unions with holes keep their convex fragments.
   void merge_coplanar_faces() {
-    struct PlaneKey {
-      kernel::Plane p;
-      bool operator==(const PlaneKey&) const = default;
-    };
-    struct PlaneHash {
-      std::size_t operator()(const PlaneKey& k) const {
-        std::size_t h = std::hash<std::int64_t>()(k.p.a);
-        h = h * 1000003u ^ std::hash<std::int64_t>()(k.p.b);
-        h = h * 1000003u ^ std::hash<std::int64_t>()(k.p.c);
-        return h * 1000003u ^ std::hash<std::int64_t>()(std::int64_t(k.p.d));
-      }
-    };
-    std::unordered_map<PlaneKey, std::vector<int>, PlaneHash> groups;
+    // Group faces by oriented plane (sorted, no hashing).
+    std::vector<std::pair<kernel::Plane, int>> by_plane;
+    by_plane.reserve(faces_.size());
     for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
       const kernel::Plane& p = planes_[faces_[fi].support];
-      groups[{faces_[fi].flip ? p.opposite() : p}].push_back(int(fi));
+      by_plane.push_back({faces_[fi].flip ? p.opposite() : p, int(fi)});
     }
+    auto plane_less = [](const kernel::Plane& a, const kernel::Plane& b) {
+      if (a.a != b.a) return a.a < b.a;
+      if (a.b != b.b) return a.b < b.b;
+      if (a.c != b.c) return a.c < b.c;
+      return a.d < b.d;
+    };
+    std::sort(by_plane.begin(), by_plane.end(),
+              [&](const auto& x, const auto& y) { return plane_less(x.first, y.first) || (!plane_less(y.first, x.first) && x.second < y.second); });
     std::vector<bool> removed(faces_.size(), false);
     std::vector<Face> added;
-    for (auto& [plane, members] : groups) {
-      if (members.size() < 2) continue;
-      std::unordered_map<std::uint64_t, std::pair<int, int>> edge;  // (u, w) -> (face, k)
-      for (int fi : members) {
-        const auto& v = faces_[std::size_t(fi)].vertices;
-        for (std::size_t k = 0; k < v.size(); ++k) edge[key(v[k], v[(k + 1) % v.size()])] = {fi, int(k)};
+    std::vector<std::pair<std::uint64_t, int>> edge;  // (u, w) -> local member index
+    std::vector<int> members;
+    for (std::size_t i = 0; i < by_plane.size();) {
+      std::size_t j = i;
+      while (j < by_plane.size() && by_plane[j].first == by_plane[i].first) ++j;
+      if (j - i >= 2) {
+        members.clear();
+        for (std::size_t m = i; m < j; ++m) members.push_back(by_plane[m].second);
+        merge_group(members, edge, removed, added);
       }
-      std::unordered_map<int, int> local;  // face -> index in members
-      for (std::size_t i = 0; i < members.size(); ++i) local[members[i]] = int(i);
-      UnionFind uf(members.size());
-      for (int fi : members) {
-        const auto& v = faces_[std::size_t(fi)].vertices;
-        for (std::size_t k = 0; k < v.size(); ++k) {
-          auto it = edge.find(key(v[(k + 1) % v.size()], v[k]));
-          if (it != edge.end()) uf.unite(local[fi], local[it->second.first]);
-        }
-      }
-      std::unordered_map<int, std::vector<int>> components;
-      for (std::size_t i = 0; i < members.size(); ++i) components[uf.find(int(i))].push_back(members[i]);
-      for (auto& [root, comp] : components) {
-        if (comp.size() < 2) continue;
-        // Boundary half-edges of the component: vertex -> (next vertex, edge line).
-        std::unordered_map<int, std::pair<int, std::int32_t>> next;
-        bool simple = true;
-        std::size_t count = 0;
-        for (int fi : comp) {
-          const Face& f = faces_[std::size_t(fi)];
-          for (std::size_t k = 0; k < f.vertices.size() && simple; ++k) {
-            const int u = f.vertices[k], w = f.vertices[(k + 1) % f.vertices.size()];
-            if (edge.count(key(w, u))) continue;
-            simple = next.emplace(u, std::pair{w, f.edge_line[k]}).second;
-            ++count;
-          }
-        }
-        if (!simple || count < 3) continue;
-        Face g;
-        g.support = faces_[std::size_t(comp[0])].support;
-        g.flip = faces_[std::size_t(comp[0])].flip;
-        const int first = next.begin()->first;
-        int u = first;
-        do {
-          const auto& [w, line] = next.at(u);
-          g.vertices.push_back(u);
-          g.edge_line.push_back(line);
-          u = w;
-        } while (u != first && g.vertices.size() <= count);
-        if (g.vertices.size() != count) continue;  // several loops: a face with holes
-        for (int fi : comp) removed[std::size_t(fi)] = true;
-        added.push_back(std::move(g));
-      }
+      i = j;
     }
     std::vector<Face> kept;
+    kept.reserve(faces_.size());
     for (std::size_t fi = 0; fi < faces_.size(); ++fi)
       if (!removed[fi]) kept.push_back(std::move(faces_[fi]));
     for (Face& g : added) kept.push_back(std::move(g));
     faces_ = std::move(kept);
+  }
+
+  void merge_group(const std::vector<int>& members, std::vector<std::pair<std::uint64_t, int>>& edge,
+                   std::vector<bool>& removed, std::vector<Face>& added) {
+    edge.clear();
+    for (std::size_t l = 0; l < members.size(); ++l) {
+      const auto& v = faces_[std::size_t(members[l])].vertices;
+      for (std::size_t k = 0; k < v.size(); ++k) edge.push_back({key(v[k], v[(k + 1) % v.size()]), int(l)});
+    }
+    std::sort(edge.begin(), edge.end());
+    auto find = [&](std::uint64_t k) {
+      auto it = std::lower_bound(edge.begin(), edge.end(), std::pair{k, -1});
+      return it != edge.end() && it->first == k ? it->second : -1;
+    };
+    UnionFind uf(members.size());
+    bool any = false;
+    for (std::size_t l = 0; l < members.size(); ++l) {
+      const auto& v = faces_[std::size_t(members[l])].vertices;
+      for (std::size_t k = 0; k < v.size(); ++k) {
+        const int other = find(key(v[(k + 1) % v.size()], v[k]));
+        if (other >= 0) {
+          uf.unite(int(l), other);
+          any = true;
+        }
+      }
+    }
+    if (!any) return;
+    std::vector<std::pair<int, int>> by_root;  // (root, local index)
+    for (std::size_t l = 0; l < members.size(); ++l) by_root.push_back({uf.find(int(l)), int(l)});
+    std::sort(by_root.begin(), by_root.end());
+    struct Boundary {
+      int u, w;
+      std::int32_t line;
+      bool operator<(const Boundary& o) const { return u < o.u; }
+    };
+    std::vector<Boundary> next;
+    for (std::size_t a = 0; a < by_root.size();) {
+      std::size_t b = a;
+      while (b < by_root.size() && by_root[b].first == by_root[a].first) ++b;
+      if (b - a >= 2) {
+        next.clear();
+        for (std::size_t c = a; c < b; ++c) {
+          const Face& f = faces_[std::size_t(members[std::size_t(by_root[c].second)])];
+          for (std::size_t k = 0; k < f.vertices.size(); ++k) {
+            const int u = f.vertices[k], w = f.vertices[(k + 1) % f.vertices.size()];
+            if (find(key(w, u)) < 0) next.push_back({u, w, f.edge_line[k]});
+          }
+        }
+        std::sort(next.begin(), next.end());
+        bool simple = next.size() >= 3;
+        for (std::size_t c = 1; c < next.size() && simple; ++c) simple = next[c].u != next[c - 1].u;
+        if (simple) {
+          const Face& first_face = faces_[std::size_t(members[std::size_t(by_root[a].second)])];
+          Face g;
+          g.support = first_face.support;
+          g.flip = first_face.flip;
+          int u = next.front().u;
+          do {
+            const auto it = std::lower_bound(next.begin(), next.end(), Boundary{u, 0, 0});
+            if (it == next.end() || it->u != u) break;
+            g.vertices.push_back(u);
+            g.edge_line.push_back(it->line);
+            u = it->w;
+          } while (u != next.front().u && g.vertices.size() <= next.size());
+          if (g.vertices.size() == next.size()) {  // one loop: a simple polygon
+            for (std::size_t c = a; c < b; ++c) removed[std::size_t(members[std::size_t(by_root[c].second)])] = true;
+            added.push_back(std::move(g));
+          }
+        }
+      }
+      a = b;
+    }
   }
 
   // A vertex with exactly two neighbours, lying exactly on the line of its two edges, is a
