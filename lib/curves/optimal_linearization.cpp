@@ -108,8 +108,16 @@ class FeasibilitySolver {
     for (int a = 0; a + 1 < count; ++a) {
       if (dist_[a] == kUnreached) continue;
       const int next = dist_[a] + 1;
+      bool filtered = false;
       for (int b = a + 1; b <= reach_[a]; ++b) {
         if (dist_[b] <= next) continue;
+        if (stored_.empty() && vertex_[b] - vertex_[a] > 64) {  // long chords: O(1) slope filter first
+          if (!filtered) {
+            build_slope_filter(vertex_[a], vertex_[reach_[a]], eps);
+            filtered = true;
+          }
+          if (slope_rejects(vertex_[a], vertex_[b])) continue;
+        }
         if (test(a, b, eps)) {
           dist_[b] = next;
           pred_[b] = a;
@@ -216,24 +224,29 @@ class FeasibilitySolver {
   // discrete osculating plane, which keeps most of the bending). Points behind or within 2 eps
   // along u add no constraint (still sound). Far from i only every ((k - i) / 32)-th point is
   // examined, so a scan costs O(32 log(reach)), not O(reach).
-  int cone_reach(int i, int last, double eps) const {
+  // The projection plane at p_i: u along the first chord, v across it towards the second (the
+  // discrete osculating plane), or within the curve's plane for planar data.
+  void plane(int i, int last, Eigen::Vector3d& u, Eigen::Vector3d& v) const {
     const Eigen::Vector3d& origin = points_[i];
-    if (i + 1 > last) return last;
-    // The plane: u along the first chord, v across it towards the second (the discrete
-    // osculating plane), or within the curve's plane for planar data.
-    const Eigen::Vector3d first = points_[i + 1] - origin;
-    Eigen::Vector3d u = first.norm() > 0.0 ? Eigen::Vector3d(first.normalized()) : Eigen::Vector3d(1, 0, 0);
-    Eigen::Vector3d v;
+    const Eigen::Vector3d first = points_[std::min(i + 1, last)] - origin;
+    u = first.norm() > 0.0 ? Eigen::Vector3d(first.normalized()) : Eigen::Vector3d(1, 0, 0);
     if (planar_) {
       if (u.z() != 0.0) u = Eigen::Vector3d(1, 0, 0);
       v = Eigen::Vector3d(-u.y(), u.x(), 0.0);
-    } else {
-      const Eigen::Vector3d second = points_[std::min(i + 2, last)] - origin;
-      const Eigen::Vector3d across = second - u * second.dot(u);
-      v = across.norm() > 1e-9 * second.norm() && across.norm() > 0.0
-              ? Eigen::Vector3d(across.normalized())
-              : (std::abs(u.x()) < 0.9 ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0)).cross(u).normalized();
+      return;
     }
+    const Eigen::Vector3d second = points_[std::min(i + 2, last)] - origin;
+    const Eigen::Vector3d across = second - u * second.dot(u);
+    v = across.norm() > 1e-9 * second.norm() && across.norm() > 0.0
+            ? Eigen::Vector3d(across.normalized())
+            : (std::abs(u.x()) < 0.9 ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0)).cross(u).normalized();
+  }
+
+  int cone_reach(int i, int last, double eps) const {
+    const Eigen::Vector3d& origin = points_[i];
+    if (i + 1 > last) return last;
+    Eigen::Vector3d u, v;
+    plane(i, last, u, v);
     double low = -std::numeric_limits<double>::infinity(), high = std::numeric_limits<double>::infinity();
     for (int k = i + 1; k <= last; k += std::max(1, (k - i) / 32)) {
       const Eigen::Vector3d w = points_[k] - origin;
@@ -246,6 +259,39 @@ class FeasibilitySolver {
       if (low > high + 1e-9 * (1.0 + std::abs(low) + std::abs(high))) return k;
     }
     return last;
+  }
+
+  // Necessary condition for chord (i, j) within eps, in O(1) per chord: projected to the plane
+  // of cone_reach, the chord's slope y_j / x_j must lie in the slope interval of every sampled
+  // interior point (the intervals are exact mathematics; the test keeps a safety margin, so it
+  // only rejects chords the exact test would reject as well).
+  void build_slope_filter(int i, int last, double eps) {
+    plane(i, last, filter_u_, filter_v_);
+    checkpoints_.clear();
+    double low = -std::numeric_limits<double>::infinity(), high = std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d& origin = points_[i];
+    for (int k = i + 1; k <= last; k += std::max(1, (k - i) / 64)) {
+      const Eigen::Vector3d w = points_[k] - origin;
+      const double x = w.dot(filter_u_), y = w.dot(filter_v_);
+      if (!(x > 2.0 * eps)) continue;
+      const double denominator = x * x - eps * eps;
+      const double root = eps * std::sqrt(std::max(0.0, x * x + y * y - eps * eps));
+      low = std::max(low, (x * y - root) / denominator);
+      high = std::min(high, (x * y + root) / denominator);
+      checkpoints_.push_back({k, low, high});
+    }
+    checkpoint_at_ = 0;
+  }
+  bool slope_rejects(int i, int j) {
+    // Last checkpoint from a point strictly inside (i, j); b increases, so the index only grows.
+    while (checkpoint_at_ + 1 < checkpoints_.size() && checkpoints_[checkpoint_at_ + 1].index < j) ++checkpoint_at_;
+    if (checkpoints_.empty() || checkpoints_[checkpoint_at_].index >= j) return false;
+    const Checkpoint& c = checkpoints_[checkpoint_at_];
+    const Eigen::Vector3d w = points_[j] - points_[i];
+    const double x = w.dot(filter_u_), y = w.dot(filter_v_);
+    if (!(x > 0.0)) return false;
+    const double margin = 1e-9 * (std::abs(y) + x * (1.0 + std::abs(c.low) + std::abs(c.high)));
+    return y < c.low * x - margin || y > c.high * x + margin;
   }
 
   // Certificate for "exactly m": split segments of `path` (positions) into two within eps.
@@ -320,6 +366,13 @@ class FeasibilitySolver {
   Norm norm_;
   const SegmentErrorTree* shared_tree_;
   bool planar_ = false;
+  struct Checkpoint {
+    int index;
+    double low, high;
+  };
+  std::vector<Checkpoint> checkpoints_;  // slope filter of the current row
+  std::size_t checkpoint_at_ = 0;
+  Eigen::Vector3d filter_u_, filter_v_;
   std::optional<SegmentErrorTree> tree_;
   std::vector<std::size_t> row_;   // stored mode: row start of position a
   std::vector<double> stored_;     // stored mode: error of (a, b) at row_[a] + b - a - 1
@@ -418,12 +471,13 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
     if (debug)
       std::fprintf(stderr, "cap %.6g of start %.6g: %lld candidate edges over %d vertices\n", cap, hi,
                    solver.edge_count(), count);
-    if (solver.evaluation_cost() <= 1e6) solver.store_errors(cap);  // cheap: probe by lookups
+    if (!options.streaming && solver.evaluation_cost() <= 1e6) solver.store_errors(cap);  // probe by lookups
     if (cap >= hi || cap <= lo || probe(cap)) break;
     const double ratio = static_cast<double>(solver.min_segments()) / m;
     cap = std::min(hi, cap * std::clamp(1.05 * ratio * ratio, 1.25, 4.0));
   }
-  const bool stored = solver.edge_count() <= kStoredEdgeLimit && solver.evaluation_cost() <= kStoredCostLimit;
+  const bool stored = !options.streaming && solver.edge_count() <= kStoredEdgeLimit &&
+                      solver.evaluation_cost() <= kStoredCostLimit;
   if (stored && solver.stored_errors().empty()) solver.store_errors(hi);
   if (stored) {
     // Stored mode: the optimum is one of the stored edge errors in (lo, hi]. Binary search over

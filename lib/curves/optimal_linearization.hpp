@@ -34,6 +34,9 @@ struct OptimalOptions {
   std::vector<int> start = {};
   /// A tree built over the same points and norm, to share between calls (optional).
   const SegmentErrorTree* tree = nullptr;
+  /// Never store candidate errors: bisect the tolerance with streamed edge tests (the mode used
+  /// for large inputs; exposed so that tests can check it on small ones).
+  bool streaming = false;
 };
 
 /// Exact min-error approximation with exactly m segments (Problem 1).

@@ -177,3 +177,54 @@ TEST(FastLinearization, NoisyCurvesKeepTheContract) {
     }
   }
 }
+
+TEST(OptimalMinCount, AgreesWithDirectDynamicProgrammingOnLongSegments) {
+  // Long segments (> 64 points) exercise the slope filter and the tree; the reference is the
+  // plain O(n^2) DP over segment_error().
+  std::mt19937_64 rng(21);
+  std::vector<std::vector<Vec>> curves;
+  for (TestCurve which : all_test_curves()) {
+    curves.push_back(path_points(make_test_curve(which, {.points = 400})));
+    curves.push_back(path_points(make_test_curve(which, {.points = 400, .noise = 0.003, .seed = 4})));
+  }
+  curves.push_back(curve_testing::random_curve(rng, 400, 2).points);
+  curves.push_back(curve_testing::random_curve(rng, 400, 3).points);
+  for (const auto& points : curves) {
+    const int n = static_cast<int>(points.size());
+    for (double fraction : {0.002, 0.01, 0.05}) {
+      Eigen::Vector3d low = points[0], high = points[0];
+      for (const auto& p : points) {
+        low = low.cwiseMin(p);
+        high = high.cwiseMax(p);
+      }
+      const double tol = fraction * (high - low).norm();
+      std::vector<int> dist(n, 1 << 29);
+      dist[0] = 0;
+      for (int b = 1; b < n; ++b)
+        for (int a = 0; a < b; ++a)
+          if (dist[a] + 1 < dist[b] && segment_error(points, a, b) <= tol) dist[b] = dist[a] + 1;
+      const Linearization la = optimal_min_count(points, tol, Norm::LInf);
+      EXPECT_EQ(la.segments(), dist[n - 1]) << "tol " << tol;
+      EXPECT_LE(la.error, tol);
+    }
+  }
+}
+
+TEST(OptimalMinError, StreamingModeAgreesWithDynamic) {
+  std::mt19937_64 rng(31);
+  std::vector<std::vector<Vec>> curves;
+  for (TestCurve which : all_test_curves())
+    curves.push_back(path_points(make_test_curve(which, {.points = 200, .noise = 0.002, .seed = 8})));
+  for (int trial = 0; trial < 6; ++trial) {
+    curves.push_back(scattered(rng, 60, trial % 2 ? 3 : 2));
+    curves.push_back(curve_testing::random_curve(rng, 150, trial % 2 ? 3 : 2).points);
+  }
+  for (const auto& points : curves)
+    for (int m : {1, 3, 7, 20, 45}) {
+      if (m >= static_cast<int>(points.size())) continue;
+      const Linearization streamed =
+          optimal_min_error(points, m, Norm::LInf, {.vertices = {}, .start = {}, .tree = nullptr, .streaming = true});
+      expect_valid(streamed, points, m, Norm::LInf);
+      EXPECT_EQ(streamed.error, dynamic_linearization(points, m, Norm::LInf).error) << "m=" << m;
+    }
+}
