@@ -83,9 +83,25 @@ SnappedRevolution snap_revolution(const std::vector<Eigen::Vector2d>& profile_in
     for (const auto& p : path.vertices) v.emplace_back(std::round(p.x() * scale) / scale, std::round(p.y() * scale) / scale);
     try {
       SnappedRevolution out{profile, polygon_path(std::move(v)), shift};
-      // Every plane must fit the kernel's bit budget: compute them once (cheap) to find out.
+      // Every plane must fit the kernel's bit budget. The largest coefficients come from the
+      // largest path-line and slab factors (a = h 2^shift N, c = C dR, d = C (R0 Z1 - R1 Z0)):
+      // one plane built from those maxima (before dividing by a gcd: conservative) decides.
       const ExactRevolution exact(out.profile, out.path, shift);
-      for (const auto& node : revolve_plane_tree(out.profile, out.path, options).nodes) (void)exact.plane(node);
+      Int128 n_max = 0, c_max = 0, h_max = 0, dr_max = 0, e_max = 0;
+      for (const auto& line : build_path_tree(out.path, {.face_only_below = options.face_only_below}).nodes) {
+        const Int128 nx = exact.lattice.y[line.to] - exact.lattice.y[line.from];
+        const Int128 ny = exact.lattice.x[line.from] - exact.lattice.x[line.to];
+        const Int128 c = nx * exact.lattice.x[line.from] + ny * exact.lattice.y[line.from];
+        n_max = std::max({n_max, nx < 0 ? -nx : nx, ny < 0 ? -ny : ny});
+        c_max = std::max(c_max, c < 0 ? -c : c);
+      }
+      for (const auto& [z0, z1, r0, r1] : exact.slabs) {
+        const Int128 e = Int128(r0) * z1 - Int128(r1) * z0;
+        h_max = std::max(h_max, Int128(z1 - z0));
+        dr_max = std::max(dr_max, Int128(r1 > r0 ? r1 - r0 : r0 - r1));
+        e_max = std::max(e_max, e < 0 ? -e : e);
+      }
+      (void)kernel::make_plane((h_max << shift) * n_max, (h_max << shift) * n_max, c_max * dr_max, c_max * e_max);
       return out;
     } catch (const InvalidInput&) {  // strict convexity lost on this lattice; coarser is worse
       break;

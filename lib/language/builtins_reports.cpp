@@ -85,6 +85,7 @@ void register_reports(BuiltinTable& table) {
                if (args.has(5)) options.seed = static_cast<std::uint64_t>(args.integer(5, 0, 1LL << 53));
                const std::string format = args.has(1) ? args.string(1) : "text";
                if (format != "text" && format != "json") args.fail(1, "format must be \"text\" or \"json\"");
+               args.charge(static_cast<std::uint64_t>(options.query_samples) * solids.size());
                const auto reports = reports::compare_trees(solids, options);
                const std::string text = format == "json" ? reports::report_json(reports) : reports::report_text(reports);
                if (args.has(6) && !args.string(6).empty()) write_text(args, 6, reports::depth_chart_svg(reports));

@@ -90,6 +90,8 @@ void register_revolution(BuiltinTable& table) {
                const auto& path = args.object<PathValue>(1, "a path (circle, ellipse, convex_path)").path;
                RevolveOptions options;
                if (args.has(2)) options.face_only_below = static_cast<int>(args.integer(2, 2, 1000000));
+               // About 1.4 nodes per profile segment and path edge (docs/revolution.md).
+               args.charge(static_cast<std::uint64_t>(profile.size()) * static_cast<std::uint64_t>(path.edges()));
                return solid_value(revolve(profile, path, options));
              }});
   table.add({.name = "profile",
@@ -119,7 +121,8 @@ void register_revolution(BuiltinTable& table) {
                } else {
                  args.fail(0, "unknown profile \"" + name + "\" (goblet, cavity, human, ball)");
                }
-               if (args.has(1)) options.points = static_cast<int>(args.integer(1, 2, 10'000'000));
+               if (args.has(1)) options.points = static_cast<int>(args.integer(1, 2, 1'000'000));
+               args.charge(static_cast<std::uint64_t>(options.points));
                if (args.has(2)) options.noise = args.number(2);
                if (args.has(3)) options.seed = static_cast<std::uint64_t>(args.integer(3, 0, 1LL << 53));
                return Value(std::shared_ptr<const Object>(
