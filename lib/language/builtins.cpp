@@ -112,6 +112,7 @@ const BuiltinTable& builtins() {
     BuiltinTable t;
     t.set_area("core");
     register_core(t);
+#ifndef SCULPT_LANGUAGE_CORE_ONLY  // the fuzz target builds the language without the geometry areas
     t.set_area("curves");
     register_curves(t);
     t.set_area("solids");
@@ -120,6 +121,7 @@ const BuiltinTable& builtins() {
     register_revolution(t);
     t.set_area("reports");
     register_reports(t);
+#endif
     return t;
   }();
   return table;
