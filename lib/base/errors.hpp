@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sculpt {
 
@@ -19,8 +20,10 @@ struct SourceLocation {
   /// "file:line:col", "file:line" or "file", as much as is known.
   [[nodiscard]] std::string str() const {
     std::string s = file;
-    if (line > 0) s += ":" + std::to_string(line);
-    if (line > 0 && column > 0) s += ":" + std::to_string(column);
+    if (line > 0) {
+      s.append(":").append(std::to_string(line));
+      if (column > 0) s.append(":").append(std::to_string(column));
+    }
     return s;
   }
 };
