@@ -15,7 +15,7 @@ for arg in "$@"; do
 done
 
 packages=(g++ make cmake pkg-config libeigen3-dev libboost-dev libopenmesh-dev
-          libgtest-dev libgmock-dev libedit-dev)
+          libgtest-dev libgmock-dev libedit-dev python3)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
