@@ -46,9 +46,23 @@ class Terminal:
         """Forget what was shown so far (the next read_until looks at new output only)."""
         self.screen = ""
 
-    def close(self):
-        _, status = os.waitpid(self.pid, 0)
-        return os.waitstatus_to_exitcode(status)
+    def close(self, timeout=20.0):
+        """Reads what is left (a child blocked on a full terminal buffer would never exit) and
+        waits for the exit status; kills the child and fails after `timeout` seconds."""
+        end = time.time() + timeout
+        while time.time() < end:
+            pid, status = os.waitpid(self.pid, os.WNOHANG)
+            if pid == self.pid:
+                return os.waitstatus_to_exitcode(status)
+            ready, _, _ = select.select([self.fd], [], [], 0.1)
+            if ready:
+                try:
+                    self.screen += os.read(self.fd, 4096).decode("utf-8", "replace")
+                except OSError:
+                    pass
+        os.kill(self.pid, 9)
+        os.waitpid(self.pid, 0)
+        raise AssertionError("sculpt did not exit; screen:\n" + self.screen)
 
 
 def main():
@@ -90,7 +104,8 @@ def main():
     t = Terminal(home)
     t.read_until("sculpt> ")
     t.mark(); t.type("\x1b[A\x1b[A\x1b[A\r")  # three entries back: ':help box' of the first session
-    t.read_until("box(min, max)")
+    t.read_until("min < max).\r\nsculpt> ")  # the help text, then the next prompt
+    time.sleep(0.3)
     t.type("\x04")  # end of input leaves the session
     status = t.close()
     assert status == 0, "exit status %d" % status
