@@ -2,6 +2,6 @@
 # The main job: set up, build, then run the goblet script (exports a mesh, prints its depth-cost report).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=$("$root/scripts/setup.sh" | tail -n 1)
+build=$("$root/scripts/setup.sh" --target sculpt | tail -n 1)
 cd "$root"
 exec "$build/sculpt" scripts/goblet.bsp "$@"

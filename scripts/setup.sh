@@ -1,17 +1,21 @@
 #!/usr/bin/env bash
 # Installs whatever Debian packages are missing, then configures and builds sculpt.
-#   scripts/setup.sh [--sanitize]   build dir: build/release, or build/sanitize with ASan+UBSan
+#   scripts/setup.sh [--sanitize] [--target NAME]
+#   build dir: build/release, or build/sanitize with ASan+UBSan; --target builds only that target
 # Prints the build directory on its last line.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 sanitize=OFF
 build="$root/build/release"
-for arg in "$@"; do
-  case "$arg" in
+target=()
+while (($#)); do
+  case "$1" in
     --sanitize) sanitize=ON; build="$root/build/sanitize" ;;
-    *) echo "setup.sh: unknown option '$arg'" >&2; exit 2 ;;
+    --target) shift; target=(--target "${1:?--target needs a name}") ;;
+    *) echo "setup.sh: unknown option '$1'" >&2; exit 2 ;;
   esac
+  shift
 done
 
 packages=(g++ make cmake pkg-config libeigen3-dev libboost-dev libopenmesh-dev
@@ -29,5 +33,5 @@ fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSCULPT_SANITIZE="$sanitize" >&2
-cmake --build "$build" -j "$jobs" >&2
+cmake --build "$build" -j "$jobs" "${target[@]}" >&2
 echo "$build"
