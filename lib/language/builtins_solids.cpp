@@ -139,9 +139,9 @@ void register_solids(BuiltinTable& table) {
                     ".off, .obj, .stl, .ply. The file is replaced atomically.",
              .params = {{"s"}, {"file"}},
              .run = [](const Arguments& args) -> Value {
-               const Solid& s = solid_arg(args, 0);
+               const auto& s = args.object<SolidValue>(0, "a solid");
                const std::string path = args.file_path(1);
-               write_mesh(to_mesh(s), path);
+               write_mesh(s.boundary(), path);
                return {};
              }});
   table.add({.name = "import",

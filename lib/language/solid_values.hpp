@@ -5,6 +5,9 @@
 /// Other areas (revolve, ...) return solids with `solid_value(...)` and read them with
 /// `args.object<SolidValue>(i, "a solid").solid`.
 
+#include <optional>
+
+#include "bsp/boundary.hpp"
 #include "bsp/solid.hpp"
 #include "language/value.hpp"
 
@@ -13,9 +16,18 @@ namespace sculpt::language {
 struct SolidValue final : Object {
   explicit SolidValue(Solid s) : solid(std::move(s)) {}
   Solid solid;
+  /// The boundary mesh, extracted once per value (solids are immutable script values), so
+  /// exporting one solid to several files extracts its boundary only once.
+  [[nodiscard]] const PolygonMesh& boundary() const {
+    if (!boundary_cache_) boundary_cache_ = to_mesh(solid);
+    return *boundary_cache_;
+  }
   [[nodiscard]] std::string type_name() const override { return "solid"; }
   [[nodiscard]] std::string repr() const override;
   [[nodiscard]] std::optional<Value> binary(ast::Op op, const Value& other, bool self_on_left) const override;
+
+ private:
+  mutable std::optional<PolygonMesh> boundary_cache_;
 };
 
 /// Wraps a solid as a script value.
