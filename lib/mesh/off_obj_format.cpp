@@ -35,14 +35,7 @@ std::string encode_off(const PolygonMesh& mesh) {
     append_point(out, p);
     out += '\n';
   }
-  for (const auto& f : mesh.faces) {
-    append_number(out, static_cast<long long>(f.size()));
-    for (int v : f) {
-      out += ' ';
-      append_number(out, static_cast<long long>(v));
-    }
-    out += '\n';
-  }
+  for (const auto& f : mesh.faces) append_face_line(out, f);
   return out;
 }
 

@@ -152,12 +152,7 @@ std::string encode_ply(const PolygonMesh& mesh, bool binary) {
       else put(out, static_cast<uint8_t>(f.size()));
       for (int v : f) put(out, static_cast<int32_t>(v));
     } else {
-      append_number(out, static_cast<long long>(f.size()));
-      for (int v : f) {
-        out += ' ';
-        append_number(out, static_cast<long long>(v));
-      }
-      out += '\n';
+      append_face_line(out, f);
     }
   }
   return out;

@@ -111,4 +111,14 @@ inline void append_number(std::string& out, long long x) {
   out.append(buf, res.ptr);
 }
 
+/// One face as text, as OFF and ASCII PLY both write it: the corner count, then the indices.
+inline void append_face_line(std::string& out, const std::vector<int>& face) {
+  append_number(out, static_cast<long long>(face.size()));
+  for (int v : face) {
+    out += ' ';
+    append_number(out, static_cast<long long>(v));
+  }
+  out += '\n';
+}
+
 }  // namespace sculpt::mesh_formats
