@@ -151,23 +151,44 @@ class Assembler {
 
   double err(int v) const { return occ_[std::size_t(rep_[std::size_t(v)])].at.err; }
 
-  // Exact test that collinear, distinct vertices satisfy u < c < w along the line's main axis.
-  bool exactly_between(int u, int c, int w, const Eigen::Vector3d& direction) const {
+  // The axis along which the line support ∩ edge changes most, from the exact direction
+  // n_support x n_edge (integers below 2^107, so the double of the largest is non-zero): two
+  // distinct points of the line always differ in this coordinate.
+  int line_axis(std::int32_t support, std::int32_t edge) const {
+    const kernel::Plane& p = planes_[support];
+    const kernel::Plane& q = planes_[edge];
+    using kernel::Int128;
+    const Int128 c[3] = {Int128(p.b) * q.c - Int128(p.c) * q.b, Int128(p.c) * q.a - Int128(p.a) * q.c,
+                         Int128(p.a) * q.b - Int128(p.b) * q.a};
     int axis = 0;
-    direction.cwiseAbs().maxCoeff(&axis);
+    for (int k = 1; k < 3; ++k)
+      if ((c[k] < 0 ? -c[k] : c[k]) > (c[axis] < 0 ? -c[axis] : c[axis])) axis = k;
+    return axis;
+  }
+
+  // Exact comparison of two vertices' coordinate `axis`: the approximations decide when their
+  // error boxes are apart, the exact homogeneous coordinates otherwise.
+  bool less_along(int a, int b, int axis) const {
+    const Eigen::Vector3d pa = position(a), pb = position(b);
+    const double gap = err(a) + err(b);
+    if (pa[axis] + gap < pb[axis]) return true;
+    if (pb[axis] + gap < pa[axis]) return false;
     auto coordinate = [&](int v) {
       const Occurrence& o = occ_[std::size_t(rep_[std::size_t(v)])];
       const kernel::HomogeneousPoint h = kernel::exact_vertex(planes_[o.s], planes_[o.p], planes_[o.q]);
       return std::pair{axis == 0 ? h.x : (axis == 1 ? h.y : h.z), h.w};
     };
     using Big = boost::multiprecision::int512_t;
-    auto less = [](const std::pair<kernel::Int256, kernel::Int256>& a, const std::pair<kernel::Int256, kernel::Int256>& b) {
-      // a.x / a.w < b.x / b.w
-      const Big l = Big(a.first) * Big(b.second), r = Big(b.first) * Big(a.second);
-      return (a.second.sign() * b.second.sign() > 0) ? l < r : l > r;
-    };
-    const auto pu = coordinate(u), pc = coordinate(c), pw = coordinate(w);
-    return less(pu, pw) ? (less(pu, pc) && less(pc, pw)) : (less(pw, pc) && less(pc, pu));
+    const auto x = coordinate(a), y = coordinate(b);
+    // x.first / x.second < y.first / y.second
+    const Big l = Big(x.first) * Big(y.second), r = Big(y.first) * Big(x.second);
+    return (x.second.sign() * y.second.sign() > 0) ? l < r : l > r;
+  }
+
+  // Exact test that collinear, distinct vertices satisfy u < c < w (or w < c < u) along `axis`.
+  bool exactly_between(int u, int c, int w, int axis) const {
+    return less_along(u, w, axis) ? (less_along(u, c, axis) && less_along(c, w, axis))
+                                  : (less_along(w, c, axis) && less_along(c, u, axis));
   }
 
   static std::uint64_t key(int u, int w) { return (std::uint64_t(std::uint32_t(u)) << 32) | std::uint32_t(w); }
@@ -236,7 +257,7 @@ class Assembler {
           if (t >= cur_t + slack || t <= -slack) continue;  // must move towards u
           const Occurrence& oc = occ_[std::size_t(rep_[std::size_t(y)])];
           if (!on_plane(oc, f.support) || !on_plane(oc, f.edge_line[std::size_t(e.k)])) continue;
-          if ((t <= slack || t >= 1 - slack) && !exactly_between(u, y, w, d)) continue;
+          if (!(t > slack && t < 1 - slack) && !exactly_between(u, y, w, line_axis(f.support, f.edge_line[std::size_t(e.k)]))) continue;
           next = y;
           next_t = t;
         }
@@ -319,7 +340,7 @@ class Assembler {
         if (!on_plane(o, f.support) || !on_plane(o, f.edge_line[std::size_t(e.k)])) continue;
         // On the line and distinct from u and w (exactly); strictly between them? Decide
         // exactly when the approximation is too close to call.
-        if ((t <= slack || t >= 1 - slack) && !exactly_between(u, c, w, d)) continue;
+        if (!(t > slack && t < 1 - slack) && !exactly_between(u, c, w, line_axis(f.support, f.edge_line[std::size_t(e.k)]))) continue;
         inserts[std::size_t(e.face)].emplace_back(e.k, t, c);
       }
     }
@@ -484,8 +505,21 @@ class Assembler {
     for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
       auto& ins = inserts[fi];
       if (ins.empty()) continue;
-      std::sort(ins.begin(), ins.end());
       Face& f = faces_[fi];
+      // Order along each edge exactly (vertices closer than their approximation errors occur
+      // with re-quantized planes): by edge, then by the coordinate along the line's main axis.
+      std::sort(ins.begin(), ins.end(), [&](const auto& x, const auto& y) {
+        const int kx = std::get<0>(x), ky = std::get<0>(y);
+        if (kx != ky) return kx < ky;
+        const int vx = std::get<2>(x), vy = std::get<2>(y);
+        if (vx == vy) return false;
+        const int axis = line_axis(f.support, f.edge_line[std::size_t(kx)]);
+        const int u = f.vertices[std::size_t(kx)], w = f.vertices[(std::size_t(kx) + 1) % f.vertices.size()];
+        return less_along(u, w, axis) ? less_along(vx, vy, axis) : less_along(vy, vx, axis);
+      });
+      ins.erase(std::unique(ins.begin(), ins.end(), [](const auto& x, const auto& y) {
+                  return std::get<0>(x) == std::get<0>(y) && std::get<2>(x) == std::get<2>(y);
+                }), ins.end());
       Face g;
       g.support = f.support;
       g.flip = f.flip;
