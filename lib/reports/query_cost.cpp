@@ -7,7 +7,7 @@
 
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
-#include "reports/point_classifier.hpp"
+#include "reports/range_query_tree.hpp"
 
 namespace sculpt::reports {
 namespace {
@@ -27,7 +27,7 @@ double normal_quantile(double confidence) {
 /// Partitioning nodes and leaves visited by a query whose extent on each plane is the range
 /// [f(centre) - reach(plane), f(centre) + reach(plane)]; explicit stack.
 template <class Reach>
-std::pair<int, int> visit(const PointClassifier& tree, const Eigen::Vector3d& centre, Reach reach,
+std::pair<int, int> visit(const RangeQueryTree& tree, const Eigen::Vector3d& centre, Reach reach,
                           std::vector<std::int32_t>& stack) {
   int nodes = 0, leaves = 0;
   stack.assign(1, tree.root());
@@ -81,7 +81,7 @@ QueryCost query_cost(const Solid& solid, const QueryCostOptions& options) {
   out.samples = options.samples;
   out.confidence = options.confidence;
 
-  const PointClassifier tree(solid);
+  const RangeQueryTree tree(solid);
   std::mt19937_64 rng(options.seed);
   std::vector<std::int32_t> stack;
   double sum = 0, sum_sq = 0, leaf_sum = 0;
@@ -92,7 +92,7 @@ QueryCost query_cost(const Solid& solid, const QueryCostOptions& options) {
     std::pair<int, int> cost{0, 1};
     switch (options.shape) {
       case QueryShape::Point:
-        cost.first = tree.classify(centre).depth;
+        cost = visit(tree, centre, [](const auto&) { return 0.0; }, stack);  // a point reaches no plane
         break;
       case QueryShape::Segment: {
         // Uniform direction: z uniform in [-1, 1], azimuth uniform (Archimedes).

@@ -6,7 +6,6 @@
 #include "bsp/revolve.hpp"
 #include "curves/profiles.hpp"
 #include "reports/depth_cost.hpp"
-#include "reports/point_classifier.hpp"
 #include "bsp/classify.hpp"
 
 #include <random>
@@ -47,21 +46,6 @@ TEST(QueryCost, LargerQueriesVisitMoreNodes) {
   const QueryCost all = query_cost(s, {.shape = QueryShape::Box, .size = 100, .samples = 10});
   EXPECT_DOUBLE_EQ(all.mean_nodes, tree_stats(s).nodes);
   EXPECT_DOUBLE_EQ(all.std_dev, 0.0);
-}
-
-TEST(QueryCost, FastClassifierAgreesWithTheExactOne) {
-  const Solid s = goblet();
-  const PointClassifier fast(s);
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> U(-4, 4), Z(-1, 11);
-  for (int i = 0; i < 20000; ++i) {
-    const Eigen::Vector3d p(U(rng), U(rng), Z(rng));
-    const Classification exact = classify(s, p);
-    if (exact.location == Location::Boundary) continue;
-    const PointResult r = fast.classify(p);
-    EXPECT_EQ(r.inside, exact.location == Location::Inside);
-    EXPECT_EQ(r.depth, exact.path_length);
-  }
 }
 
 TEST(QueryCost, RejectsBadOptions) {
