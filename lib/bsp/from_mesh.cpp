@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <sstream>
 #include <string>
+
+#include <Eigen/Geometry>
 
 #include "base/errors.hpp"
 #include "bsp/face_triangulation.hpp"
@@ -45,6 +48,14 @@ ConvexPolygon triangle_polygon(kernel::PlaneTable& t, std::int32_t support, cons
   return poly;
 }
 
+std::string folded_message(std::size_t face, const Eigen::Vector3d& near) {
+  std::ostringstream s;
+  s << "from_mesh: face " << face << " near (" << near.x() << ", " << near.y() << ", " << near.z()
+    << ") folds when its vertices are snapped to the exact kernel's grid (step 2^-" << kernel::kGridShift
+    << "): the mesh has features smaller than the grid step";
+  return s.str();
+}
+
 }  // namespace
 
 Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
@@ -79,6 +90,23 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       }
     }
     if (best_len == 0) throw InvalidInput("from_mesh: face " + std::to_string(fi) + " is degenerate (collinear vertices)");
+    // The largest corner may be a reflex corner of a non-convex face: orient the plane by the
+    // face's area vector (Newell's method, exact on the snapped grid points) instead.
+    Int128 area[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < m; ++i) {
+      const GridPoint& a = g[std::size_t(f[i])];
+      const GridPoint& b = g[std::size_t(f[(i + 1) % m])];
+      area[0] += Int128(a.y) * b.z - Int128(a.z) * b.y;
+      area[1] += Int128(a.z) * b.x - Int128(a.x) * b.z;
+      area[2] += Int128(a.x) * b.y - Int128(a.y) * b.x;
+    }
+    const Int128 along = area[0] * best.a + area[1] * best.b + area[2] * best.c;
+    if (along == 0) throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[0])]));
+    if (along < 0) best = best.opposite();
+    // Orientation of the face before snapping: a snapped triangle turned against it is a fold.
+    Eigen::Vector3d original = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < m; ++i)
+      original += mesh.vertices[std::size_t(f[i])].cross(mesh.vertices[std::size_t(f[(i + 1) % m])]);
     // A face whose snapped vertices are not exactly coplanar is split into triangles, each on
     // its own plane, so that the polygons still close up exactly.
     bool planar = true;
@@ -98,6 +126,10 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       if (Int128(u.y) * w.z - Int128(u.z) * w.y == 0 && Int128(u.z) * w.x - Int128(u.x) * w.z == 0 &&
           Int128(u.x) * w.y - Int128(u.y) * w.x == 0)
         continue;  // zero-area triangle after snapping
+      const Eigen::Vector3d tn(double(Int128(u.y) * w.z - Int128(u.z) * w.y), double(Int128(u.z) * w.x - Int128(u.x) * w.z),
+                               double(Int128(u.x) * w.y - Int128(u.y) * w.x));
+      if (!(tn.dot(original) > 0))
+        throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[std::size_t(tri[0])])]));
       polys.push_back(triangle_polygon(table, planar ? support : table.add(kernel::plane_through(v[0], v[1], v[2])), v));
     }
   }
