@@ -27,6 +27,14 @@ constexpr int kDirectSpan = 1024;
 // First reach cap as a fraction of the start's error (INIT is usually within 2x of the optimum,
 // and a cap that turns out infeasible costs a second pruning pass).
 constexpr double kFirstCap = 1.0;
+// Inputs up to this many allowed vertices build their stored rows in one pass (build_rows), if
+// that takes at most this many point distances (else the general path below).
+constexpr int kSmallCount = 4096;
+constexpr double kSmallBudget = 2e7;
+// Stored mode: guesses by the 1 / k^2 scaling before the binary search; the first guess as a
+// fraction of the start's error (INIT is within 1.0-1.7x of the optimum on the Appendix-B curves).
+constexpr int kGuesses = 3;
+constexpr double kFirstGuess = 0.8;
 
 // Shortest paths over the allowed vertices; positions 0..K-1 index `vertex_`.
 class FeasibilitySolver {
@@ -82,6 +90,39 @@ class FeasibilitySolver {
     stored_ = std::move(values);
   }
   [[nodiscard]] const std::vector<double>& stored_errors() const { return stored_; }
+  /// Stored mode in one pass, for small inputs: every row's end (reach) and its edges' errors,
+  /// exact if <= limit, else some value > limit. A row from p_i ends at the first chord with two
+  /// interior points that no line through p_i passes within limit of (pair_excludes: weaker
+  /// than cone_reach but sqrt-free, checked while the row grows), so every chord beyond it has
+  /// error > limit. Each chord is tried first against the previous chord's violator (smooth
+  /// curves: beyond the feasible chords of a row, one distance rejects each).
+  /// False (and nothing stored) once more than `budget` point distances would be needed.
+  bool build_rows(double limit, double budget) {
+    const int count = this->count();
+    std::vector<std::size_t> rows(count, 0);
+    std::vector<int> reach(count, count - 1);
+    std::vector<double> values;
+    values.reserve(static_cast<std::size_t>(count) * 16);
+    double spent = 0.0;
+    for (int a = 0; a + 1 < count; ++a) {
+      rows[a] = values.size();
+      const int i = vertex_[a];
+      int violator = -1, b = a + 1;
+      for (; b < count; ++b) {
+        const int j = vertex_[b];
+        if (j - i >= 3 && pair_excludes(i, j - 1, i + (j - i) / 2, limit)) break;
+        values.push_back(hinted_error(i, j, limit, violator));
+        if ((spent += j - i) > budget) return false;
+      }
+      reach[a] = b - 1;
+    }
+    row_ = std::move(rows);
+    reach_ = std::move(reach);
+    stored_ = std::move(values);
+    reach_eps_ = limit;
+    return true;
+  }
+
   [[nodiscard]] long long tests() const { return tests_; }
 
   /// Bounds every position's reach for tolerances <= eps by cone pruning.
@@ -105,6 +146,21 @@ class FeasibilitySolver {
     dist_.assign(count, kUnreached);
     pred_.assign(count, -1);
     dist_[0] = 0;
+    if (!stored_.empty()) {  // stored mode: every test is a lookup
+      for (int a = 0; a + 1 < count; ++a) {
+        if (dist_[a] == kUnreached) continue;
+        const int next = dist_[a] + 1;
+        const double* row = stored_.data() + row_[a];
+        for (int b = a + 1; b <= reach_[a]; ++b) {
+          if (row[b - a - 1] <= eps && dist_[b] > next) {
+            dist_[b] = next;
+            pred_[b] = a;
+          }
+        }
+      }
+      tests_ += edge_count();
+      return;
+    }
     for (int a = 0; a + 1 < count; ++a) {
       if (dist_[a] == kUnreached) continue;
       const int next = dist_[a] + 1;
@@ -136,10 +192,44 @@ class FeasibilitySolver {
     return path;
   }
 
-  /// A path of exactly m edges with every edge within eps, or nullopt if none exists.
-  std::optional<std::vector<int>> exact_path(double eps, int m) {
+  /// Stored mode: among the paths with the fewest edges within eps, one whose largest edge
+  /// error is smallest (DAG relaxation by (count, bottleneck) in lexicographic order).
+  void min_count_bottleneck(double eps) {
+    const int count = this->count();
+    dist_.assign(count, kUnreached);
+    pred_.assign(count, -1);
+    std::vector<double> bottleneck(count, std::numeric_limits<double>::infinity());
+    dist_[0] = 0;
+    bottleneck[0] = 0.0;
+    for (int a = 0; a + 1 < count; ++a) {
+      if (dist_[a] == kUnreached) continue;
+      const int next = dist_[a] + 1;
+      const double* row = stored_.data() + row_[a];
+      for (int b = a + 1; b <= reach_[a]; ++b) {
+        const double e = row[b - a - 1];
+        if (e > eps || dist_[b] < next) continue;
+        const double through = std::max(bottleneck[a], e);
+        if (dist_[b] > next || through < bottleneck[b]) {
+          dist_[b] = next;
+          pred_[b] = a;
+          bottleneck[b] = through;
+        }
+      }
+    }
+  }
+
+  /// A path of exactly m edges with every edge within eps, or nullopt if none exists. In stored
+  /// mode, if m is the fewest edges within eps, the path is optimal (*optimal = true): every
+  /// path of m edges with error <= eps is then a fewest-edge path, and the bottleneck
+  /// relaxation returns the best of them.
+  std::optional<std::vector<int>> exact_path(double eps, int m, bool* optimal = nullptr) {
     min_count(eps);
     if (dist_.back() > m) return std::nullopt;
+    if (dist_.back() == m && !stored_.empty() && optimal) {
+      min_count_bottleneck(eps);
+      *optimal = true;
+      return min_path();
+    }
     std::vector<int> path = min_path();
     if (split_to(path, eps, m)) return path;
     return bitset_path(eps, m);
@@ -156,7 +246,7 @@ class FeasibilitySolver {
  private:
   // segment_error(i, j) if it is <= limit, else some value > limit (L-inf: the scan stops at the
   // first point clearly beyond the limit; the margin keeps borderline points exact).
-  double bounded_error(int i, int j, double limit) const {
+  double bounded_error(int i, int j, double limit, int* farthest_out = nullptr) const {
     if (norm_ != Norm::LInf || j - i < 2 || !(limit < std::numeric_limits<double>::infinity()))
       return segment_error(points_, i, j, norm_);
     const Eigen::Vector3d& a = points_[i];
@@ -173,7 +263,37 @@ class FeasibilitySolver {
         if (s > bound) break;
       }
     }
+    if (farthest_out) *farthest_out = farthest;
     return ChordDistance(a, points_[j])(points_[farthest]);  // as segment_error() measures it
+  }
+
+  // No line through p_i passes within eps of both p_k and p_l: with p = p_k - p_i, q = p_l - p_i,
+  // such a line makes angles t_p, t_q with sin t_p <= eps / |p|, sin t_q <= eps / |q|, and the
+  // angle g between the lines of p and q is at most t_p + t_q, so |p x q| = |p||q| sin g <=
+  // eps (|p| + |q|) (sin(t_p + t_q) <= sin t_p + sin t_q, and both sides >= 1 beyond pi/2).
+  // Tested squared with (|p| + |q|)^2 <= 2 (|p|^2 + |q|^2) and a margin far above rounding.
+  bool pair_excludes(int i, int k, int l, double eps) const {
+    const Eigen::Vector3d p = points_[k] - points_[i], q = points_[l] - points_[i];
+    return p.cross(q).squaredNorm() > 2.0 * eps * eps * (p.squaredNorm() + q.squaredNorm()) * (1.0 + 1e-9) + 1e-300;
+  }
+
+  // bounded_error(i, j, limit), but first against point `violator` (if inside the chord); on
+  // return `violator` is the farthest point found when the error exceeds limit, else -1.
+  double hinted_error(int i, int j, double limit, int& violator) {
+    if (norm_ == Norm::LInf && violator > i && violator < j) {
+      const Eigen::Vector3d d = points_[j] - points_[i];
+      const double s = (points_[violator] - points_[i]).cross(d).squaredNorm();
+      if (s > limit * limit * d.squaredNorm() * (1.0 + 1e-9) + 1e-300 && d.squaredNorm() > 0.0)
+        return ChordDistance(points_[i], points_[j])(points_[violator]);
+    }
+    if (j - i > kDirectSpan) {
+      violator = -1;
+      return tree().error(i, j, limit);
+    }
+    int farthest = -1;
+    const double e = bounded_error(i, j, limit, &farthest);
+    violator = e > limit ? farthest : -1;
+    return e;
   }
 
   // For store_errors: short chords directly; long ones first against 32 evenly spread points
@@ -449,15 +569,17 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   const auto probe = [&](double eps) {
     ++probes;
     const long long before = solver.tests();
-    std::optional<std::vector<int>> path = solver.exact_path(eps, m);
+    bool optimal = false;
+    std::optional<std::vector<int>> path = solver.exact_path(eps, m, &optimal);
     if (debug)
-      std::fprintf(stderr, "probe %d eps %.17g feasible %d tests %lld minseg %d\n", probes, eps, path.has_value(),
-                   solver.tests() - before, solver.min_segments());
+      std::fprintf(stderr, "probe %d eps %.17g feasible %d optimal %d tests %lld minseg %d\n", probes, eps,
+                   path.has_value(), optimal, solver.tests() - before, solver.min_segments());
     if (path) {
       best = std::move(*path);
       hi = path_error(solver, best);  // <= eps: jump to the error actually reached
+      if (optimal) lo = std::nextafter(hi, 0.0);  // nothing below hi is feasible: done
     } else {
-      lo = eps;
+      lo = std::max(lo, eps);
     }
     return path.has_value();
   };
@@ -466,7 +588,10 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   // A given start is usually near the optimum already: no guessing below it then.
   // After an infeasible cap needing k > m segments the next cap grows by (k / m)^2 (errors of
   // smooth curves scale with the square of the segment length), at least by 1.25.
-  for (double cap = options.start.empty() ? kFirstCap * hi : hi;;) {
+  // Small inputs: rows and errors in one pass under the start's error (one probe's worth of work).
+  const bool small = !options.streaming && count <= kSmallCount && solver.build_rows(hi, kSmallBudget);
+  if (debug && small) std::fprintf(stderr, "rows: %lld candidate edges over %d vertices\n", solver.edge_count(), count);
+  for (double cap = options.start.empty() ? kFirstCap * hi : hi; !small;) {
     solver.prune_reach(cap);
     if (debug)
       std::fprintf(stderr, "cap %.6g of start %.6g: %lld candidate edges over %d vertices\n", cap, hi,
@@ -476,12 +601,28 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
     const double ratio = static_cast<double>(solver.min_segments()) / m;
     cap = std::min(hi, cap * std::clamp(1.05 * ratio * ratio, 1.25, 4.0));
   }
-  const bool stored = !options.streaming && solver.edge_count() <= kStoredEdgeLimit &&
-                      solver.evaluation_cost() <= kStoredCostLimit;
+  const bool stored = small || (!options.streaming && solver.edge_count() <= kStoredEdgeLimit &&
+                                solver.evaluation_cost() <= kStoredCostLimit);
   if (stored && solver.stored_errors().empty()) solver.store_errors(hi);
   if (stored) {
-    // Stored mode: the optimum is one of the stored edge errors in (lo, hi]. Binary search over
-    // them by selection (nth_element); each probe is a DP over stored values.
+    // Stored mode: the optimum is one of the stored edge errors in (lo, hi].
+    // First a few guesses by the scaling of smooth curves (the error of the best k segments
+    // falls like 1 / k^2, sec. 4), each a probe anywhere in (lo, hi): after a probe at eps that
+    // needs k segments, the optimum for m is near eps ((k - 1/2) / m)^2. A guess at or above hi
+    // probes just below hi (infeasible there = hi is optimal).
+    double guess = kFirstGuess * hi;
+    for (int step = 0; step < kGuesses && lo < hi; ++step) {
+      double eps = guess < hi ? guess : std::nextafter(hi, 0.0);
+      if (!(eps > lo)) eps = lo + 0.5 * (hi - lo);
+      if (!(eps > lo && eps < hi)) break;
+      probe(eps);
+      const int k = solver.min_segments();
+      if (k == kUnreached) break;
+      const double scale = (k - 0.5) / m;
+      guess = eps * scale * scale;
+    }
+    // Then binary search over the stored errors left in (lo, hi), by selection (nth_element);
+    // each probe is a DP over stored values.
     std::vector<double> candidates;
     for (double e : solver.stored_errors())
       if (e < hi && e > lo) candidates.push_back(e);
@@ -490,8 +631,9 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
       std::nth_element(candidates.begin(), middle_it, candidates.end());
       const double eps = *middle_it;
       if (probe(eps)) {
-        candidates.erase(std::partition(candidates.begin(), candidates.end(), [&](double e) { return e < hi; }),
-                         candidates.end());
+        candidates.erase(
+            std::partition(candidates.begin(), candidates.end(), [&](double e) { return e < hi && e > lo; }),
+            candidates.end());
       } else {
         candidates.erase(std::partition(candidates.begin(), candidates.end(), [&](double e) { return e > eps; }),
                          candidates.end());
