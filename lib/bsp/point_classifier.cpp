@@ -16,7 +16,12 @@ constexpr double kScale = double(std::int64_t(1) << kernel::kGridShift);  // wor
 bool to_grid(const Eigen::Vector3d& p, double g[3]) {
   for (int a = 0; a < 3; ++a) {
     if (!(std::fabs(p[a]) <= kernel::kMaxWorld)) return false;
-    g[a] = std::round(p[a] * kScale);
+    // |t| <= 2^25: adding and subtracting 1.5 * 2^52 rounds to the nearest integer, ties to
+    // even (default rounding mode); ties then go away from zero as in std::llround.
+    const double t = p[a] * kScale;
+    double r = (t + 0x1.8p52) - 0x1.8p52;
+    if (std::fabs(t - r) == 0.5) r = t + std::copysign(0.5, t);
+    g[a] = r;
   }
   return true;
 }

@@ -72,6 +72,20 @@ TEST(PointClassifier, AgreesOnRotatedAndScaledSolidsWithLargePlaneCoefficients) 
   EXPECT_GT(t.boundary, 0);
 }
 
+TEST(PointClassifier, SnapsHalfwayCoordinatesAwayFromZeroLikeTheKernel) {
+  // Faces on odd grid coordinates (+-32767 steps) and coordinates exactly halfway between grid
+  // points: kernel::snap rounds them away from zero (ties to even would differ at 32766.5).
+  const double step = 1.0 / 32768, h = 0.5 * step, f = 1 - step;
+  const Solid s = box({-f, -f, -f}, {f, f, f});
+  std::vector<Eigen::Vector3d> points;
+  for (const double x : {f - h, f + h, -f + h, -f - h, h, -h, 3 * h, -3 * h})
+    for (const double y : {0.0, f - h, -f + h}) points.emplace_back(x, y, 0.25);
+  const Tally t = expect_same_as_classify(s, points);
+  EXPECT_GT(t.boundary, 8);
+  EXPECT_EQ(PointClassifier(s).classify({f - h, 0, 0}).location, Location::Boundary);
+  EXPECT_EQ(PointClassifier(s).classify({-f + h, 0, 0}).location, Location::Boundary);
+}
+
 TEST(PointClassifier, LeafSolids) {
   const std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {1, 2, 3}, {-1000, 1000, 0.5}};
   for (const bool inside : {false, true}) {
