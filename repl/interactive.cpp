@@ -1,5 +1,7 @@
 #include "interactive.hpp"
 
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -17,6 +19,35 @@ namespace {
 
 constexpr const char* kPrompt = "sculpt> ";
 constexpr const char* kContinuation = "   ...> ";
+
+// Ctrl-C: the handler only raises this flag. At a prompt the line editor returns (the handler
+// is installed without SA_RESTART) and the unfinished entry is dropped; while an entry runs,
+// the interpreter stops at its next step with "interrupted". Either way the session goes on.
+std::atomic<bool> interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the flag is set from a signal handler");
+
+extern "C" void on_interrupt(int) { interrupted.store(true, std::memory_order_relaxed); }
+
+struct InterruptHandler {
+  struct sigaction previous {};
+  InterruptHandler() {
+    struct sigaction action {};
+    action.sa_handler = on_interrupt;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = 0;  // no SA_RESTART: a blocking read returns EINTR
+    sigaction(SIGINT, &action, &previous);
+  }
+  ~InterruptHandler() { sigaction(SIGINT, &previous, nullptr); }
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+};
+
+/// After Ctrl-C at a prompt: drop the unfinished entry and say so.
+void cancel_entry(language::Session& session) {
+  interrupted.store(false);
+  session.discard_pending();
+  std::cout << "^C (entry cancelled)\n" << std::flush;
+}
 
 #ifdef SCULPT_HAVE_LIBEDIT
 // libedit's completion callbacks are plain C functions: they reach the session through this
@@ -48,7 +79,7 @@ std::string history_path() {
 }  // namespace
 
 int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
-  language::Session session(std::cout, std::cerr);
+  language::Session session(std::cout, std::cerr, &interrupted);
   try {
     setup(session.interpreter());
   } catch (const language::ScriptError& e) {
@@ -56,6 +87,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
     return 1;
   }
   std::cout << "sculpt " << SCULPT_VERSION << " - :help for help, :quit to leave\n" << std::flush;
+  const InterruptHandler handler;
 #ifdef SCULPT_HAVE_LIBEDIT
   completing_session = &session;
   rl_readline_name = "sculpt";
@@ -65,7 +97,13 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
   using_history();
   if (!history.empty()) read_history(history.c_str());
   while (true) {
+    interrupted.store(false);
     char* line = readline(session.continuing() ? kContinuation : kPrompt);
+    if (interrupted.load()) {
+      std::free(line);
+      cancel_entry(session);
+      continue;
+    }
     if (!line) {
       std::cout << "\n";
       break;
@@ -82,8 +120,15 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
 #else
   std::string text;
   while (true) {
+    interrupted.store(false);
     std::cout << (session.continuing() ? kContinuation : kPrompt) << std::flush;
-    if (!std::getline(std::cin, text)) {
+    const bool got = static_cast<bool>(std::getline(std::cin, text));
+    if (interrupted.load()) {
+      std::cin.clear();
+      cancel_entry(session);
+      continue;
+    }
+    if (!got) {
       std::cout << "\n";
       break;
     }

@@ -106,6 +106,7 @@ struct Interpreter::Impl {
   }
   void count_step(std::size_t where) { charge(1, where); }
   void charge(std::uint64_t n, std::size_t where) {
+    if (options.interrupt && options.interrupt->load(std::memory_order_relaxed)) throw ScriptError(at(where), "interrupted");
     if (options.max_steps != 0 && (steps += n) > options.max_steps) {
       throw ScriptError(at(where), "step limit of " + std::to_string(options.max_steps) + " exceeded");
     }

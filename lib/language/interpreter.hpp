@@ -8,6 +8,7 @@
 /// nested includes are bounded by a stack budget (InterpreterOptions::stack_budget): going
 /// past it is a clean error "recursion too deep", never a crash.
 
+#include <atomic>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
@@ -26,6 +27,10 @@ struct InterpreterOptions {
   std::uint64_t max_steps = 0;        ///< statements, calls and items made per run(); 0 = no limit
   std::size_t stack_budget = 2u << 20;  ///< bytes of C++ stack the evaluator may use
   bool core_only = false;             ///< hide the built-ins of the library areas (fuzzing)
+  /// When set and true, the run stops at its next step (statement, call or item made) with the
+  /// error "interrupted"; the REPL points it at a flag its SIGINT handler sets. A built-in that
+  /// is working (a set operation, say) finishes first.
+  const std::atomic<bool>* interrupt = nullptr;
 };
 
 class Interpreter {

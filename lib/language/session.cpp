@@ -82,8 +82,14 @@ std::string help_text(std::string_view name) {
   return out + "\n";
 }
 
-Session::Session(std::ostream& out, std::ostream& err)
-    : out_(out), err_(err), interpreter_(InterpreterOptions{.out = &out}) {}
+Session::Session(std::ostream& out, std::ostream& err, const std::atomic<bool>* interrupt)
+    : out_(out), err_(err), interpreter_(InterpreterOptions{.out = &out, .interrupt = interrupt}) {}
+
+bool Session::discard_pending() {
+  const bool had = !pending_.empty();
+  pending_.clear();
+  return had;
+}
 
 bool Session::feed(const std::string& line) {
   if (pending_.empty()) {

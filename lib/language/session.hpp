@@ -17,12 +17,16 @@ namespace sculpt::language {
 class Session {
  public:
   /// `out` receives printed values and command output, `err` the error messages.
-  Session(std::ostream& out, std::ostream& err);
+  /// `interrupt` (optional) stops a running entry with an "interrupted" error when it turns true
+  /// (see InterpreterOptions::interrupt); the session goes on.
+  Session(std::ostream& out, std::ostream& err, const std::atomic<bool>* interrupt = nullptr);
 
   /// Feeds one typed line. Returns false when the session is over (:quit).
   bool feed(const std::string& line);
   /// True while an unfinished entry waits for more lines (show the continuation prompt).
   [[nodiscard]] bool continuing() const { return !pending_.empty(); }
+  /// Drops the unfinished entry, if any (Ctrl-C at a prompt). Returns whether there was one.
+  bool discard_pending();
   /// Names (keywords, built-ins, globals, and commands when `text` starts with ':') that
   /// start with `text`, sorted.
   [[nodiscard]] std::vector<std::string> complete(std::string_view text) const;

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Drives the sculpt REPL through a pseudo-terminal, as a user would: typed lines, an error,
 a multi-line function, tab completion, history recall with the up arrow (also across
-sessions through ~/.sculpt_history), :help and :quit. Reads what the terminal shows."""
+sessions through ~/.sculpt_history), Ctrl-C at a prompt and during a run, :help and :quit. Reads what the terminal shows."""
 import os
 import pty
 import select
@@ -91,6 +91,17 @@ def main():
     # History recall: the up arrow brings back the last entry.
     t.mark(); t.type("print(\"again\", x)\r"); t.read_until("again 42")
     t.mark(); t.type("\x1b[A\r"); t.read_until("again 42")
+
+    # Ctrl-C at a continuation prompt drops the unfinished entry; the session goes on.
+    t.mark(); t.type("y = [1,\r"); t.read_until("...> ")
+    t.mark(); t.type("\x03"); t.read_until("entry cancelled"); t.read_until("sculpt> ")
+    t.mark(); t.type("y = 5\r"); t.read_until("sculpt> ")
+    t.mark(); t.type("y + x\r"); t.read_until("47")
+    # Ctrl-C while an entry runs (10^8 loop steps) stops it with an error; bindings stay.
+    t.mark(); t.type("for i in range(0, 10000) { for j in range(0, 10000) { z = j } }\r")
+    time.sleep(0.5)
+    t.type("\x03"); t.read_until("error: interrupted"); t.read_until("sculpt> ")
+    t.mark(); t.type("x\r"); t.read_until("42")
 
     t.mark(); t.type(":help box\r"); t.read_until("box(min, max)")
     t.mark(); t.type(":vars\r"); t.read_until("x : number = 42")
