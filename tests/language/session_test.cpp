@@ -2,6 +2,7 @@
 // entries, commands, completion, line numbers that run on across entries.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <sstream>
 
 #include "language/builtins.hpp"
@@ -23,6 +24,24 @@ TEST(Session, EchoesExpressionsNotAssignments) {
   f.session.feed("print(1)");
   EXPECT_EQ(f.out.str(), "42\n\"text\"\n1\n");
   EXPECT_EQ(f.err.str(), "");
+}
+
+TEST(Session, InterruptStopsARunAndDiscardDropsAnUnfinishedEntry) {
+  std::ostringstream out, err;
+  std::atomic<bool> flag{false};
+  Session session(out, err, &flag);
+  session.feed("a = 1");
+  flag = true;
+  session.feed("a = 2");  // stopped before its first step: a keeps its value
+  EXPECT_NE(err.str().find("<stdin>:2:1: error: interrupted"), std::string::npos) << err.str();
+  flag = false;
+  session.feed("b = [a,");
+  EXPECT_TRUE(session.continuing());
+  EXPECT_TRUE(session.discard_pending());
+  EXPECT_FALSE(session.continuing());
+  EXPECT_FALSE(session.discard_pending());
+  session.feed("a");
+  EXPECT_EQ(out.str(), "1\n");
 }
 
 TEST(Session, ErrorsKeepBindingsAndNumberLinesOn) {
