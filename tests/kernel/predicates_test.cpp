@@ -78,6 +78,72 @@ TEST(Orient, FilterAndExactPathAgreeWithBoostReference) {
   EXPECT_GT(predicate_counters().filtered, 1000u);
 }
 
+// Planes with offsets below 2^72 (the fast 4x4-determinant path of the exact stage) and above
+// it (the general path): both agree with the Boost reference, degenerate cases included.
+TEST(Orient, FastAndGeneralExactPathsAgreeWithBoostReference) {
+  std::mt19937_64 rng(5);
+  for (const std::int64_t range : {std::int64_t(1) << 15, std::int64_t(1) << 18, kMaxCoord}) {
+    std::uniform_int_distribution<std::int64_t> d(-range, range);
+    auto point = [&] { return GridPoint{d(rng), d(rng), d(rng)}; };
+    predicate_counters() = {};
+    int zeros = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const GridPoint v = point();
+      Plane pl[3];
+      bool ok = true;
+      for (auto& p : pl) {
+        try {
+          p = plane_through(v, point(), point());
+        } catch (...) {
+          ok = false;
+        }
+      }
+      if (!ok || !independent(pl[0], pl[1], pl[2])) continue;
+      // Through the vertex (exact zero), or through a point one grid step away from it.
+      GridPoint w = v;
+      w.x += i % 3 == 1 ? 1 : 0;
+      Plane s;
+      try {
+        s = plane_through(w, point(), point());
+      } catch (...) {
+        continue;
+      }
+      const ApproxPoint at = approximate_vertex(pl[0], pl[1], pl[2]);
+      const int ref = reference_orient(pl[0], pl[1], pl[2], s);
+      EXPECT_EQ(int(orient(pl[0], pl[1], pl[2], at, s)), ref);
+      zeros += ref == 0;
+    }
+    EXPECT_GT(zeros, 500) << range;
+    EXPECT_GT(predicate_counters().exact_zero, 500u) << range;
+    // Non-zero values the filter cannot decide: s misses the grid vertex v by f_s(v) = -1 or +1
+    // with a 52-bit normal (relative size 2^-70), or passes through it.
+    predicate_counters() = {};
+    std::uniform_int_distribution<std::int64_t> big_n(std::int64_t(1) << 50, std::int64_t(1) << 52);
+    std::uniform_int_distribution<std::int64_t> small(-9, 9);
+    for (int i = 0; i < 600; ++i) {
+      const GridPoint v = point();
+      auto near = [&] { return GridPoint{v.x + small(rng), v.y + small(rng), v.z + small(rng)}; };
+      Plane pl[3];
+      bool ok = true;
+      for (auto& p : pl) {
+        try {
+          p = plane_through(v, near(), near());
+        } catch (...) {
+          ok = false;
+        }
+      }
+      if (!ok || !independent(pl[0], pl[1], pl[2])) continue;
+      const std::int64_t a = big_n(rng), b = -big_n(rng), c = big_n(rng) / 3;
+      const Int128 offset = -(Int128(a) * v.x + Int128(b) * v.y + Int128(c) * v.z) + (i % 3) - 1;
+      const Plane s{a, b, c, offset};
+      const ApproxPoint at = approximate_vertex(pl[0], pl[1], pl[2]);
+      EXPECT_EQ(int(orient(pl[0], pl[1], pl[2], at, s)), reference_orient(pl[0], pl[1], pl[2], s));
+      EXPECT_EQ(int(orient(pl[0], pl[1], pl[2], at, s)), (i % 3) - 1);
+    }
+    EXPECT_GT(predicate_counters().exact, 500u) << range;
+  }
+}
+
 TEST(Orient, NearlyDegenerateCasesAreDecidedExactly) {
   // Vertex (0,0,0) of three axis planes; planes passing within one unit of the last bit.
   const Plane x{1, 0, 0, 0}, y{0, 1, 0, 0}, z{0, 0, 1, 0};
