@@ -8,7 +8,9 @@
 #include <cstdlib>
 #include <limits>
 #include <optional>
+#include <utility>
 
+#include "curves/chord_scan.hpp"
 #include "curves/curve_measures.hpp"
 #include "curves/heuristic_subdivision.hpp"
 #include "curves/segment_error_tree.hpp"
@@ -17,6 +19,8 @@ namespace sculpt::curves {
 namespace {
 
 constexpr int kUnreached = std::numeric_limits<int>::max();
+// Stored value of an edge whose error exceeds the limit it was measured under.
+constexpr double kBeyond = std::numeric_limits<double>::infinity();
 // Up to this many candidate edges the solver computes all their errors once (stored mode).
 // (memory: 8 bytes each), if evaluating them directly costs at most this many point distances.
 constexpr long long kStoredEdgeLimit = 4'000'000;
@@ -104,17 +108,30 @@ class FeasibilitySolver {
     std::vector<double> values;
     values.reserve(static_cast<std::size_t>(count) * 16);
     double spent = 0.0;
+    if (!columns_) columns_.emplace(points_);
     for (int a = 0; a + 1 < count; ++a) {
       rows[a] = values.size();
       const int i = vertex_[a];
       int violator = -1, b = a + 1;
+      bool rejected = false;
+      cross2_.clear();
+      length2_.clear();
       for (; b < count; ++b) {
         const int j = vertex_[b];
-        if (j - i >= 3 && pair_excludes(i, j - 1, i + (j - i) / 2, limit)) break;
-        values.push_back(hinted_error(i, j, limit, violator));
+        // (only after a rejected chord: while chords pass, the row certainly goes on)
+        if (rejected && j - i >= 3 && pair_excludes(i, j - 1, i + (j - i) / 2, limit)) break;
+        rejected = hinted_scan(i, j, limit, violator);
         if ((spent += j - i) > budget) return false;
       }
       reach[a] = b - 1;
+      // The distances of the row's farthest points, sqrt(cross2) / sqrt(length2) exactly as
+      // ChordDistance computes them, in a loop of independent square roots and divisions.
+      const std::size_t start = values.size();
+      values.resize(start + cross2_.size());
+      for (std::size_t t = 0; t < cross2_.size(); ++t)
+        values[start + t] = cross2_[t] < 0.0 ? kBeyond : std::sqrt(cross2_[t]) / std::sqrt(length2_[t]);
+      for (const auto& [t, value] : exact_) values[start + t] = value;
+      exact_.clear();
     }
     row_ = std::move(rows);
     reach_ = std::move(reach);
@@ -275,6 +292,37 @@ class FeasibilitySolver {
   bool pair_excludes(int i, int k, int l, double eps) const {
     const Eigen::Vector3d p = points_[k] - points_[i], q = points_[l] - points_[i];
     return p.cross(q).squaredNorm() > 2.0 * eps * eps * (p.squaredNorm() + q.squaredNorm()) * (1.0 + 1e-9) + 1e-300;
+  }
+
+  // For build_rows: appends to cross2_, length2_ the squared cross product of chord (i, j) with
+  // its farthest point and |p_j - p_i|^2, or -1 if the error exceeds limit (found by a point
+  // beyond limit, tried first `violator`, which is updated); chords not measured that way
+  // (degenerate, long, L2) get their exact error in exact_. True if the error exceeds limit.
+  bool hinted_scan(int i, int j, double limit, int& violator) {
+    const Eigen::Vector3d& a = points_[i];
+    const Eigen::Vector3d d = points_[j] - a;
+    const double length2 = d.squaredNorm();
+    if (norm_ != Norm::LInf || length2 == 0.0 || j - i > kDirectSpan) {
+      const double e = hinted_error(i, j, limit, violator);
+      exact_.push_back({cross2_.size(), e});
+      cross2_.push_back(0.0);
+      length2_.push_back(1.0);
+      return e > limit;
+    }
+    const double bound = limit * limit * length2 * (1.0 + 1e-9) + 1e-300;
+    if (violator > i && violator < j) {
+      const double s = (points_[violator] - a).cross(d).squaredNorm();
+      if (s > bound) {
+        cross2_.push_back(-1.0);  // beyond limit
+        length2_.push_back(length2);
+        return true;
+      }
+    }
+    const ChordScan scan = scan_chord(*columns_, i, j, bound);
+    violator = scan.beyond;
+    cross2_.push_back(violator >= 0 ? -1.0 : scan.cross2);
+    length2_.push_back(length2);
+    return violator >= 0;
   }
 
   // bounded_error(i, j, limit), but first against point `violator` (if inside the chord); on
@@ -491,6 +539,9 @@ class FeasibilitySolver {
     double low, high;
   };
   std::vector<Checkpoint> checkpoints_;  // slope filter of the current row
+  std::vector<double> cross2_, length2_;  // build_rows: the current row's farthest distances
+  std::optional<PointColumns> columns_;   // build_rows: the points as coordinate columns
+  std::vector<std::pair<std::size_t, double>> exact_;  // build_rows: errors measured otherwise
   std::size_t checkpoint_at_ = 0;
   Eigen::Vector3d filter_u_, filter_v_;
   std::optional<SegmentErrorTree> tree_;
@@ -557,7 +608,8 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
     if (options.vertices.empty()) {
       DigitizedCurve open;
       open.points = points;
-      const Linearization init = weighted_subdivision(points, CurveMeasures(open), m, 0.5, norm);
+      const Linearization init =
+          weighted_subdivision(points, CurveMeasures(open, TangentMethod::CentralDifference), m, 0.5, norm);
       if (init.error < approximation_error(points, best, norm)) best = init.indices;
     }
   }
