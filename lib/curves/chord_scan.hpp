@@ -11,6 +11,10 @@
 #include <cstring>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace sculpt::curves {
 
 /// Points as three coordinate columns.
@@ -73,6 +77,22 @@ struct ChordScan {
     if (s > largest) largest = s;
   }
   return {largest, -1};
+}
+
+/// out[t] = sqrt(cross2[t]) / sqrt(length2[t]) (the distance ChordDistance reports for a point
+/// with that squared cross product), or `beyond` where cross2[t] < 0; two at a time.
+inline void chord_distances(const double* cross2, const double* length2, std::size_t count, double beyond,
+                            double* out) {
+  std::size_t t = 0;
+#if defined(__GNUC__) && defined(__SSE2__)
+  for (; t + 1 < count; t += 2) {
+    const __m128d c = _mm_loadu_pd(cross2 + t), l = _mm_loadu_pd(length2 + t);
+    _mm_storeu_pd(out + t, _mm_div_pd(_mm_sqrt_pd(c), _mm_sqrt_pd(l)));
+    if (cross2[t] < 0.0) out[t] = beyond;
+    if (cross2[t + 1] < 0.0) out[t + 1] = beyond;
+  }
+#endif
+  for (; t < count; ++t) out[t] = cross2[t] < 0.0 ? beyond : std::sqrt(cross2[t]) / std::sqrt(length2[t]);
 }
 
 }  // namespace sculpt::curves

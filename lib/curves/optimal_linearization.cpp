@@ -38,7 +38,10 @@ constexpr double kSmallBudget = 2e7;
 // Stored mode: guesses by the 1 / k^2 scaling before the binary search; the first guess as a
 // fraction of the start's error (INIT is within 1.0-1.7x of the optimum on the Appendix-B curves).
 constexpr int kGuesses = 3;
-constexpr double kFirstGuess = 0.8;
+constexpr double kFirstGuess = 1.0;
+// A feasible stored-mode probe that needs at least m - kWindow segments ends the search
+// (best_exact_path, kWindow + 1 layers).
+constexpr int kWindow = 6;
 
 // Shortest paths over the allowed vertices; positions 0..K-1 index `vertex_`.
 class FeasibilitySolver {
@@ -128,8 +131,7 @@ class FeasibilitySolver {
       // ChordDistance computes them, in a loop of independent square roots and divisions.
       const std::size_t start = values.size();
       values.resize(start + cross2_.size());
-      for (std::size_t t = 0; t < cross2_.size(); ++t)
-        values[start + t] = cross2_[t] < 0.0 ? kBeyond : std::sqrt(cross2_[t]) / std::sqrt(length2_[t]);
+      chord_distances(cross2_.data(), length2_.data(), cross2_.size(), kBeyond, values.data() + start);
       for (const auto& [t, value] : exact_) values[start + t] = value;
       exact_.clear();
     }
@@ -209,43 +211,57 @@ class FeasibilitySolver {
     return path;
   }
 
-  /// Stored mode: among the paths with the fewest edges within eps, one whose largest edge
-  /// error is smallest (DAG relaxation by (count, bottleneck) in lexicographic order).
-  void min_count_bottleneck(double eps) {
+  /// Stored mode, after min_count(eps) found k <= m edges: among the paths of exactly m edges
+  /// within eps, one whose largest edge error is smallest, or nullopt if there is none. A path
+  /// through position b with c edges needs c >= dist[b], and c <= dist[b] + m - k (the rest of
+  /// the path needs at least k - dist[b] edges), so the DAG relaxation by bottleneck keeps
+  /// m - k + 1 layers per position. Cost: (m - k + 1) lookups per edge.
+  std::optional<std::vector<int>> best_exact_path(double eps, int m) {
     const int count = this->count();
-    dist_.assign(count, kUnreached);
-    pred_.assign(count, -1);
-    std::vector<double> bottleneck(count, std::numeric_limits<double>::infinity());
-    dist_[0] = 0;
+    const int width = m - dist_.back() + 1;
+    const double none = std::numeric_limits<double>::infinity();
+    std::vector<double> bottleneck(static_cast<std::size_t>(count) * width, none);
+    std::vector<int> from(static_cast<std::size_t>(count) * width, -1);
     bottleneck[0] = 0.0;
     for (int a = 0; a + 1 < count; ++a) {
       if (dist_[a] == kUnreached) continue;
-      const int next = dist_[a] + 1;
       const double* row = stored_.data() + row_[a];
+      const std::size_t state = static_cast<std::size_t>(a) * width;
       for (int b = a + 1; b <= reach_[a]; ++b) {
         const double e = row[b - a - 1];
-        if (e > eps || dist_[b] < next) continue;
-        const double through = std::max(bottleneck[a], e);
-        if (dist_[b] > next || through < bottleneck[b]) {
-          dist_[b] = next;
-          pred_[b] = a;
-          bottleneck[b] = through;
+        if (e > eps) continue;
+        const int shift = dist_[a] + 1 - dist_[b];  // layer l of a reaches layer l + shift of b
+        const std::size_t target = static_cast<std::size_t>(b) * width;
+        for (int l = 0; l + shift < width; ++l) {
+          const double through = std::max(bottleneck[state + l], e);
+          if (through < bottleneck[target + l + shift]) {
+            bottleneck[target + l + shift] = through;
+            from[target + l + shift] = static_cast<int>(state + l);
+          }
         }
       }
     }
+    std::size_t state = static_cast<std::size_t>(count - 1) * width + (width - 1);
+    if (bottleneck[state] == none) return std::nullopt;
+    std::vector<int> path{count - 1};
+    while (from[state] >= 0) {
+      state = static_cast<std::size_t>(from[state]);
+      path.push_back(static_cast<int>(state / width));
+    }
+    std::reverse(path.begin(), path.end());
+    return path;
   }
 
   /// A path of exactly m edges with every edge within eps, or nullopt if none exists. In stored
-  /// mode, if m is the fewest edges within eps, the path is optimal (*optimal = true): every
-  /// path of m edges with error <= eps is then a fewest-edge path, and the bottleneck
-  /// relaxation returns the best of them.
+  /// mode, if the fewest edges within eps are at least m - kWindow, the path is the best of all
+  /// paths of m edges (*optimal = true; best_exact_path).
   std::optional<std::vector<int>> exact_path(double eps, int m, bool* optimal = nullptr) {
     min_count(eps);
     if (dist_.back() > m) return std::nullopt;
-    if (dist_.back() == m && !stored_.empty() && optimal) {
-      min_count_bottleneck(eps);
-      *optimal = true;
-      return min_path();
+    if (m - dist_.back() <= kWindow && !stored_.empty() && optimal) {
+      std::optional<std::vector<int>> path = best_exact_path(eps, m);
+      *optimal = path.has_value();
+      return path;
     }
     std::vector<int> path = min_path();
     if (split_to(path, eps, m)) return path;
@@ -596,22 +612,22 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   FeasibilitySolver solver(points, norm, options.vertices.empty() ? all_vertices(n) : options.vertices,
                            options.tree);
   const int count = solver.count();
-  // Upper bound: the given start, else the better of INIT (alpha = 1/2, Alg. 4.3) and break
-  // points spread evenly over the allowed vertices.
+  // Upper bound: the given start, else INIT (alpha = 1/2, Alg. 4.3; tangents by central
+  // differences, which is cheaper and as good a start), or with restricted vertices break
+  // points spread evenly over them.
   std::vector<int> best;
   const std::vector<int>& allowed = solver.vertices();
   if (!options.start.empty()) {
     for (int index : options.start)
       best.push_back(static_cast<int>(std::lower_bound(allowed.begin(), allowed.end(), index) - allowed.begin()));
+  } else if (options.vertices.empty()) {
+    DigitizedCurve open;
+    open.points = points;
+    const Linearization init =
+        weighted_subdivision(points, CurveMeasures(open, TangentMethod::CentralDifference), m, 0.5, norm);
+    best = init.indices;
   } else {
     for (int s = 0; s <= m; ++s) best.push_back(static_cast<int>((static_cast<long long>(s) * (count - 1)) / m));
-    if (options.vertices.empty()) {
-      DigitizedCurve open;
-      open.points = points;
-      const Linearization init =
-          weighted_subdivision(points, CurveMeasures(open, TangentMethod::CentralDifference), m, 0.5, norm);
-      if (init.error < approximation_error(points, best, norm)) best = init.indices;
-    }
   }
   const bool debug = std::getenv("SCULPT_CURVES_DEBUG") != nullptr;
   double hi = path_error(solver, best);
