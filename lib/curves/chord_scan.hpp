@@ -80,19 +80,21 @@ struct ChordScan {
 }
 
 /// out[t] = sqrt(cross2[t]) / sqrt(length2[t]) (the distance ChordDistance reports for a point
-/// with that squared cross product), or `beyond` where cross2[t] < 0; two at a time.
+/// with that squared cross product), two at a time; markers pass through: cross2[t] = -1 gives
+/// `beyond`, -2 gives `below`.
 inline void chord_distances(const double* cross2, const double* length2, std::size_t count, double beyond,
-                            double* out) {
+                            double below, double* out) {
+  const auto marker = [&](double c) { return c == -1.0 ? beyond : below; };
   std::size_t t = 0;
 #if defined(__GNUC__) && defined(__SSE2__)
   for (; t + 1 < count; t += 2) {
     const __m128d c = _mm_loadu_pd(cross2 + t), l = _mm_loadu_pd(length2 + t);
     _mm_storeu_pd(out + t, _mm_div_pd(_mm_sqrt_pd(c), _mm_sqrt_pd(l)));
-    if (cross2[t] < 0.0) out[t] = beyond;
-    if (cross2[t + 1] < 0.0) out[t + 1] = beyond;
+    if (cross2[t] < 0.0) out[t] = marker(cross2[t]);
+    if (cross2[t + 1] < 0.0) out[t + 1] = marker(cross2[t + 1]);
   }
 #endif
-  for (; t < count; ++t) out[t] = cross2[t] < 0.0 ? beyond : std::sqrt(cross2[t]) / std::sqrt(length2[t]);
+  for (; t < count; ++t) out[t] = cross2[t] < 0.0 ? marker(cross2[t]) : std::sqrt(cross2[t]) / std::sqrt(length2[t]);
 }
 
 }  // namespace sculpt::curves

@@ -21,6 +21,8 @@ namespace {
 constexpr int kUnreached = std::numeric_limits<int>::max();
 // Stored value of an edge whose error exceeds the limit it was measured under.
 constexpr double kBeyond = std::numeric_limits<double>::infinity();
+// Stored value of an edge whose error is below the floor it was measured under (build_rows).
+constexpr double kBelow = -1.0;
 // Up to this many candidate edges the solver computes all their errors once (stored mode).
 // (memory: 8 bytes each), if evaluating them directly costs at most this many point distances.
 constexpr long long kStoredEdgeLimit = 4'000'000;
@@ -34,6 +36,10 @@ constexpr double kFirstCap = 1.0;
 // Inputs up to this many allowed vertices build their stored rows in one pass (build_rows), if
 // that takes at most this many point distances (else the general path below).
 constexpr int kSmallCount = 4096;
+// build_rows' first cap: this factor times the estimate of the optimum from the start's errors.
+constexpr double kCapMargin = 1.25;
+// ... and its floor (errors below are not measured, only known to be below) this fraction of it.
+constexpr double kFloorFraction = 0.5;
 constexpr double kSmallBudget = 2e7;
 // Stored mode: guesses by the 1 / k^2 scaling before the binary search; the first guess as a
 // fraction of the start's error (INIT is within 1.0-1.7x of the optimum on the Appendix-B curves).
@@ -58,7 +64,8 @@ class FeasibilitySolver {
   [[nodiscard]] int count() const { return static_cast<int>(vertex_.size()); }
   [[nodiscard]] const std::vector<int>& vertices() const { return vertex_; }
   [[nodiscard]] double error(int a, int b) {
-    if (!stored_.empty() && b <= reach_[a]) return stored_[row_[a] + (b - a - 1)];
+    if (!stored_.empty() && b <= reach_[a] && stored_[row_[a] + (b - a - 1)] >= 0.0)
+      return stored_[row_[a] + (b - a - 1)];
     if (vertex_[b] - vertex_[a] <= 256) return segment_error(points_, vertex_[a], vertex_[b], norm_);
     return tree().error(vertex_[a], vertex_[b]);
   }
@@ -103,8 +110,10 @@ class FeasibilitySolver {
   /// than cone_reach but sqrt-free, checked while the row grows), so every chord beyond it has
   /// error > limit. Each chord is tried first against the previous chord's violator (smooth
   /// curves: beyond the feasible chords of a row, one distance rejects each).
+  /// Errors certainly below `floor` are stored as kBelow (no square roots: most chords of a row);
+  /// no probe may go below floor() until materialize() has measured them.
   /// False (and nothing stored) once more than `budget` point distances would be needed.
-  bool build_rows(double limit, double budget) {
+  bool build_rows(double limit, double budget, double floor = 0.0) {
     const int count = this->count();
     std::vector<std::size_t> rows(count, 0);
     std::vector<int> reach(count, count - 1);
@@ -123,7 +132,7 @@ class FeasibilitySolver {
         const int j = vertex_[b];
         // (only after a rejected chord: while chords pass, the row certainly goes on)
         if (rejected && j - i >= 3 && pair_excludes(i, j - 1, i + (j - i) / 2, limit)) break;
-        rejected = hinted_scan(i, j, limit, violator);
+        rejected = hinted_scan(i, j, limit, floor, violator);
         if ((spent += j - i) > budget) return false;
       }
       reach[a] = b - 1;
@@ -131,7 +140,7 @@ class FeasibilitySolver {
       // ChordDistance computes them, in a loop of independent square roots and divisions.
       const std::size_t start = values.size();
       values.resize(start + cross2_.size());
-      chord_distances(cross2_.data(), length2_.data(), cross2_.size(), kBeyond, values.data() + start);
+      chord_distances(cross2_.data(), length2_.data(), cross2_.size(), kBeyond, kBelow, values.data() + start);
       for (const auto& [t, value] : exact_) values[start + t] = value;
       exact_.clear();
     }
@@ -139,7 +148,20 @@ class FeasibilitySolver {
     reach_ = std::move(reach);
     stored_ = std::move(values);
     reach_eps_ = limit;
+    floor_ = floor;
     return true;
+  }
+
+  /// Errors below floor() are stored as kBelow; probes must stay at or above it.
+  [[nodiscard]] double floor() const { return floor_; }
+  /// Measures every edge stored as kBelow exactly (floor() becomes 0).
+  void materialize() {
+    if (floor_ <= 0.0) return;
+    for (int a = 0; a + 1 < count(); ++a)
+      for (int b = a + 1; b <= reach_[a]; ++b)
+        if (double& value = stored_[row_[a] + (b - a - 1)]; value < 0.0)
+          value = segment_error(points_, vertex_[a], vertex_[b], norm_);
+    floor_ = 0.0;
   }
 
   [[nodiscard]] long long tests() const { return tests_; }
@@ -242,6 +264,7 @@ class FeasibilitySolver {
       }
     }
     std::size_t state = static_cast<std::size_t>(count - 1) * width + (width - 1);
+    best_bottleneck_ = bottleneck[state];
     if (bottleneck[state] == none) return std::nullopt;
     std::vector<int> path{count - 1};
     while (from[state] >= 0) {
@@ -260,6 +283,10 @@ class FeasibilitySolver {
     if (dist_.back() > m) return std::nullopt;
     if (m - dist_.back() <= kWindow && !stored_.empty() && optimal) {
       std::optional<std::vector<int>> path = best_exact_path(eps, m);
+      if (path && floor_ > 0.0 && best_bottleneck_ < floor_) {  // errors below the floor decide it
+        materialize();
+        path = best_exact_path(eps, m);
+      }
       *optimal = path.has_value();
       return path;
     }
@@ -314,7 +341,7 @@ class FeasibilitySolver {
   // its farthest point and |p_j - p_i|^2, or -1 if the error exceeds limit (found by a point
   // beyond limit, tried first `violator`, which is updated); chords not measured that way
   // (degenerate, long, L2) get their exact error in exact_. True if the error exceeds limit.
-  bool hinted_scan(int i, int j, double limit, int& violator) {
+  bool hinted_scan(int i, int j, double limit, double floor, int& violator) {
     const Eigen::Vector3d& a = points_[i];
     const Eigen::Vector3d d = points_[j] - a;
     const double length2 = d.squaredNorm();
@@ -336,7 +363,9 @@ class FeasibilitySolver {
     }
     const ChordScan scan = scan_chord(*columns_, i, j, bound);
     violator = scan.beyond;
-    cross2_.push_back(violator >= 0 ? -1.0 : scan.cross2);
+    // below floor for certain: sqrt(cross2) / sqrt(length2) < floor with a margin far above rounding
+    const bool below = scan.cross2 < floor * floor * length2 * (1.0 - 1e-9);
+    cross2_.push_back(violator >= 0 ? -1.0 : below ? -2.0 : scan.cross2);
     length2_.push_back(length2);
     return violator >= 0;
   }
@@ -557,6 +586,8 @@ class FeasibilitySolver {
   std::vector<Checkpoint> checkpoints_;  // slope filter of the current row
   std::vector<double> cross2_, length2_;  // build_rows: the current row's farthest distances
   std::optional<PointColumns> columns_;   // build_rows: the points as coordinate columns
+  double floor_ = 0.0;                    // stored errors below it are kBelow
+  double best_bottleneck_ = 0.0;          // of the last best_exact_path
   std::vector<std::pair<std::size_t, double>> exact_;  // build_rows: errors measured otherwise
   std::size_t checkpoint_at_ = 0;
   Eigen::Vector3d filter_u_, filter_v_;
@@ -612,20 +643,18 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   FeasibilitySolver solver(points, norm, options.vertices.empty() ? all_vertices(n) : options.vertices,
                            options.tree);
   const int count = solver.count();
-  // Upper bound: the given start, else INIT (alpha = 1/2, Alg. 4.3; tangents by central
-  // differences, which is cheaper and as good a start), or with restricted vertices break
-  // points spread evenly over them.
+  // Upper bound: the given start, else for large inputs INIT (alpha = 1/2, Alg. 4.3), else break
+  // points spread evenly over the allowed vertices (small inputs only need the estimate of the
+  // optimum below, which is as good from these and costs no tangents).
   std::vector<int> best;
   const std::vector<int>& allowed = solver.vertices();
   if (!options.start.empty()) {
     for (int index : options.start)
       best.push_back(static_cast<int>(std::lower_bound(allowed.begin(), allowed.end(), index) - allowed.begin()));
-  } else if (options.vertices.empty()) {
+  } else if (options.vertices.empty() && count > kSmallCount) {
     DigitizedCurve open;
     open.points = points;
-    const Linearization init =
-        weighted_subdivision(points, CurveMeasures(open, TangentMethod::CentralDifference), m, 0.5, norm);
-    best = init.indices;
+    best = weighted_subdivision(points, CurveMeasures(open), m, 0.5, norm).indices;
   } else {
     for (int s = 0; s <= m; ++s) best.push_back(static_cast<int>((static_cast<long long>(s) * (count - 1)) / m));
   }
@@ -634,11 +663,16 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   const double first_hi = hi;
   double lo = -1.0;  // largest tolerance known infeasible; -1 = none yet
   int probes = 0;
+  double last_eps = 0.0;  // the last probe and the segments it needed (0 = none yet)
+  int last_segments = 0;
   const auto probe = [&](double eps) {
     ++probes;
     const long long before = solver.tests();
     bool optimal = false;
+    if (eps < solver.floor()) solver.materialize();
     std::optional<std::vector<int>> path = solver.exact_path(eps, m, &optimal);
+    last_eps = eps;
+    last_segments = solver.min_segments();
     if (debug)
       std::fprintf(stderr, "probe %d eps %.17g feasible %d optimal %d tests %lld minseg %d\n", probes, eps,
                    path.has_value(), optimal, solver.tests() - before, solver.min_segments());
@@ -656,9 +690,27 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   // A given start is usually near the optimum already: no guessing below it then.
   // After an infeasible cap needing k > m segments the next cap grows by (k / m)^2 (errors of
   // smooth curves scale with the square of the segment length), at least by 1.25.
-  // Small inputs: rows and errors in one pass under the start's error (one probe's worth of work).
-  const bool small = !options.streaming && count <= kSmallCount && solver.build_rows(hi, kSmallBudget);
-  if (debug && small) std::fprintf(stderr, "rows: %lld candidate edges over %d vertices\n", solver.edge_count(), count);
+  // Small inputs: rows and errors in one pass (build_rows) under a cap from the start's segment
+  // errors e_s: on a smooth curve a segment's error grows like its length squared, so segments
+  // within eps number about sum_s sqrt(e_s / eps), and the optimum for m is near
+  // (sum_s sqrt(e_s) / m)^2. The cap is a margin above that (never above the start's error);
+  // a probe at the cap that fails raises it like the loop below and builds again.
+  bool small = !options.streaming && count <= kSmallCount;
+  if (small) {
+    double root_sum = 0.0;
+    for (std::size_t k = 0; k + 1 < best.size(); ++k) root_sum += std::sqrt(solver.error(best[k], best[k + 1]));
+    const double estimate = (root_sum / m) * (root_sum / m);  // <= hi (power means)
+    double cap = std::min(hi, kCapMargin * estimate);
+    for (;;) {
+      small = solver.build_rows(cap, kSmallBudget, kFloorFraction * estimate);
+      if (debug)
+        std::fprintf(stderr, "rows under %.6g (start %.6g): %lld candidate edges over %d vertices%s\n", cap, hi,
+                     solver.edge_count(), count, small ? "" : ", over budget");
+      if (!small || cap >= hi || probe(cap)) break;
+      const double ratio = static_cast<double>(solver.min_segments()) / m;
+      cap = std::min(hi, cap * std::clamp(1.05 * ratio * ratio, 1.25, 4.0));
+    }
+  }
   for (double cap = options.start.empty() ? kFirstCap * hi : hi; !small;) {
     solver.prune_reach(cap);
     if (debug)
@@ -679,6 +731,10 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
     // needs k segments, the optimum for m is near eps ((k - 1/2) / m)^2. A guess at or above hi
     // probes just below hi (infeasible there = hi is optimal).
     double guess = kFirstGuess * hi;
+    if (last_segments > 0 && last_segments != kUnreached) {
+      const double scale = (last_segments - 0.5) / m;
+      guess = last_eps * scale * scale;
+    }
     for (int step = 0; step < kGuesses && lo < hi; ++step) {
       double eps = guess < hi ? guess : std::nextafter(hi, 0.0);
       if (!(eps > lo)) eps = lo + 0.5 * (hi - lo);
@@ -692,6 +748,7 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
     // Then binary search over the stored errors left in (lo, hi), by selection (nth_element);
     // each probe is a DP over stored values.
     std::vector<double> candidates;
+    if (lo < solver.floor()) solver.materialize();
     for (double e : solver.stored_errors())
       if (e < hi && e > lo) candidates.push_back(e);
     while (!candidates.empty()) {

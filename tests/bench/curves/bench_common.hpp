@@ -19,4 +19,12 @@ inline double median_ms(int runs, const std::function<void()>& work) {
   return times[times.size() / 2];
 }
 
+/// Wall time since construction, in milliseconds.
+struct Stopwatch {
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  [[nodiscard]] double ms() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+};
+
 }  // namespace sculpt::curves::bench
