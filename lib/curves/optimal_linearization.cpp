@@ -33,17 +33,22 @@ constexpr int kDirectSpan = 1024;
 // First reach cap as a fraction of the start's error (INIT is usually within 2x of the optimum,
 // and a cap that turns out infeasible costs a second pruning pass).
 constexpr double kFirstCap = 1.0;
-// Inputs up to this many allowed vertices build their stored rows in one pass (build_rows), if
-// that takes at most this many point distances (else the general path below).
-constexpr int kSmallCount = 4096;
+// Inputs up to this many allowed vertices and this many per segment on average build their
+// stored rows in one pass (build_rows: full scans, fast for short chords), if that takes at most
+// kSmallBudget point distances (else the general path, whose tree answers long chords).
+constexpr int kSmallCount = 20000;
+constexpr int kSmallSpan = 64;
+// build_rows measures chords spanning more points through the tree (nearly straight stretches,
+// e.g. around an inflection, make long rows).
+constexpr int kRowTreeSpan = 512;
 // build_rows' first cap: this factor times the estimate of the optimum from the start's errors.
 constexpr double kCapMargin = 1.25;
 // ... and its floor (errors below are not measured, only known to be below) this fraction of it.
 constexpr double kFloorFraction = 0.5;
-constexpr double kSmallBudget = 2e7;
+constexpr double kSmallBudget = 6e7;
 // Stored mode: guesses by the 1 / k^2 scaling before the binary search; the first guess as a
 // fraction of the start's error (INIT is within 1.0-1.7x of the optimum on the Appendix-B curves).
-constexpr int kGuesses = 3;
+constexpr int kGuesses = 4;
 constexpr double kFirstGuess = 1.0;
 // A feasible stored-mode probe that needs at least m - kWindow segments ends the search
 // (best_exact_path, kWindow + 1 layers).
@@ -133,7 +138,7 @@ class FeasibilitySolver {
         // (only after a rejected chord: while chords pass, the row certainly goes on)
         if (rejected && j - i >= 3 && pair_excludes(i, j - 1, i + (j - i) / 2, limit)) break;
         rejected = hinted_scan(i, j, limit, floor, violator);
-        if ((spent += j - i) > budget) return false;
+        if ((spent += std::min(j - i, kRowTreeSpan)) > budget) return false;
       }
       reach[a] = b - 1;
       // The distances of the row's farthest points, sqrt(cross2) / sqrt(length2) exactly as
@@ -345,7 +350,7 @@ class FeasibilitySolver {
     const Eigen::Vector3d& a = points_[i];
     const Eigen::Vector3d d = points_[j] - a;
     const double length2 = d.squaredNorm();
-    if (norm_ != Norm::LInf || length2 == 0.0 || j - i > kDirectSpan) {
+    if (norm_ != Norm::LInf || length2 == 0.0 || j - i > kRowTreeSpan) {
       const double e = hinted_error(i, j, limit, violator);
       exact_.push_back({cross2_.size(), e});
       cross2_.push_back(0.0);
@@ -379,7 +384,7 @@ class FeasibilitySolver {
       if (s > limit * limit * d.squaredNorm() * (1.0 + 1e-9) + 1e-300 && d.squaredNorm() > 0.0)
         return ChordDistance(points_[i], points_[j])(points_[violator]);
     }
-    if (j - i > kDirectSpan) {
+    if (j - i > kRowTreeSpan) {
       violator = -1;
       return tree().error(i, j, limit);
     }
@@ -643,6 +648,7 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   FeasibilitySolver solver(points, norm, options.vertices.empty() ? all_vertices(n) : options.vertices,
                            options.tree);
   const int count = solver.count();
+  const bool small_input = !options.streaming && count <= kSmallCount && count <= static_cast<long long>(kSmallSpan) * m;
   // Upper bound: the given start, else for large inputs INIT (alpha = 1/2, Alg. 4.3), else break
   // points spread evenly over the allowed vertices (small inputs only need the estimate of the
   // optimum below, which is as good from these and costs no tangents).
@@ -651,7 +657,7 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   if (!options.start.empty()) {
     for (int index : options.start)
       best.push_back(static_cast<int>(std::lower_bound(allowed.begin(), allowed.end(), index) - allowed.begin()));
-  } else if (options.vertices.empty() && count > kSmallCount) {
+  } else if (options.vertices.empty() && !small_input) {
     DigitizedCurve open;
     open.points = points;
     best = weighted_subdivision(points, CurveMeasures(open), m, 0.5, norm).indices;
@@ -663,16 +669,19 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   const double first_hi = hi;
   double lo = -1.0;  // largest tolerance known infeasible; -1 = none yet
   int probes = 0;
-  double last_eps = 0.0;  // the last probe and the segments it needed (0 = none yet)
-  int last_segments = 0;
+  struct Probe {
+    double eps;
+    int segments;  // fewest segments within eps (0 = no such probe yet)
+  };
+  Probe last{0.0, 0}, feasible{0.0, 0}, infeasible{0.0, 0};
   const auto probe = [&](double eps) {
     ++probes;
     const long long before = solver.tests();
     bool optimal = false;
     if (eps < solver.floor()) solver.materialize();
     std::optional<std::vector<int>> path = solver.exact_path(eps, m, &optimal);
-    last_eps = eps;
-    last_segments = solver.min_segments();
+    last = {eps, solver.min_segments()};
+    (path ? feasible : infeasible) = last;
     if (debug)
       std::fprintf(stderr, "probe %d eps %.17g feasible %d optimal %d tests %lld minseg %d\n", probes, eps,
                    path.has_value(), optimal, solver.tests() - before, solver.min_segments());
@@ -695,7 +704,7 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   // within eps number about sum_s sqrt(e_s / eps), and the optimum for m is near
   // (sum_s sqrt(e_s) / m)^2. The cap is a margin above that (never above the start's error);
   // a probe at the cap that fails raises it like the loop below and builds again.
-  bool small = !options.streaming && count <= kSmallCount;
+  bool small = small_input;
   if (small) {
     double root_sum = 0.0;
     for (std::size_t k = 0; k + 1 < best.size(); ++k) root_sum += std::sqrt(solver.error(best[k], best[k + 1]));
@@ -726,24 +735,32 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   if (stored && solver.stored_errors().empty()) solver.store_errors(hi);
   if (stored) {
     // Stored mode: the optimum is one of the stored edge errors in (lo, hi].
-    // First a few guesses by the scaling of smooth curves (the error of the best k segments
-    // falls like 1 / k^2, sec. 4), each a probe anywhere in (lo, hi): after a probe at eps that
-    // needs k segments, the optimum for m is near eps ((k - 1/2) / m)^2. A guess at or above hi
-    // probes just below hi (infeasible there = hi is optimal).
-    double guess = kFirstGuess * hi;
-    if (last_segments > 0 && last_segments != kUnreached) {
-      const double scale = (last_segments - 0.5) / m;
-      guess = last_eps * scale * scale;
-    }
+    // First a few guesses aimed at m - kWindow / 2 segments (a probe needing m - kWindow .. m
+    // segments ends the search). The segments needed at eps fall like eps^(-1/2) on smooth
+    // curves (a segment's error grows like its length squared, sec. 4): from a probe at eps
+    // needing k, the target is near eps (k / target)^2; between a feasible probe and an
+    // infeasible one, log eps is interpolated linearly in log k. A guess at or above hi probes
+    // just below hi (infeasible there = hi is optimal).
+    const double target = std::max(1.0, m - kWindow / 2.0);
+    const auto next_guess = [&] {
+      if (feasible.segments > 0 && infeasible.segments > feasible.segments && feasible.eps > 0.0 &&
+          infeasible.eps > 0.0) {
+        const double t = std::clamp((std::log(infeasible.segments) - std::log(target)) /
+                                        (std::log(infeasible.segments) - std::log(feasible.segments)),
+                                    0.1, 0.9);
+        return infeasible.eps * std::pow(feasible.eps / infeasible.eps, t);
+      }
+      if (last.segments <= 0 || last.segments == kUnreached) return kFirstGuess * hi;
+      const double scale = last.segments / target;
+      return last.eps * scale * scale;
+    };
     for (int step = 0; step < kGuesses && lo < hi; ++step) {
-      double eps = guess < hi ? guess : std::nextafter(hi, 0.0);
+      double eps = next_guess();
+      if (!(eps < hi)) eps = std::nextafter(hi, 0.0);
       if (!(eps > lo)) eps = lo + 0.5 * (hi - lo);
       if (!(eps > lo && eps < hi)) break;
       probe(eps);
-      const int k = solver.min_segments();
-      if (k == kUnreached) break;
-      const double scale = (k - 0.5) / m;
-      guess = eps * scale * scale;
+      if (last.segments == kUnreached) break;
     }
     // Then binary search over the stored errors left in (lo, hi), by selection (nth_element);
     // each probe is a DP over stored values.
