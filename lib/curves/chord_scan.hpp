@@ -32,6 +32,13 @@ struct PointColumns {
   }
 };
 
+/// |(p_k - p_i) x d|^2 for the chord direction d = (dx, dy, dz), as scan_chord computes it.
+[[nodiscard]] inline double cross2_to(const PointColumns& c, int i, int k, double dx, double dy, double dz) {
+  const double wx = c.x[k] - c.x[i], wy = c.y[k] - c.y[i], wz = c.z[k] - c.z[i];
+  const double c0 = wy * dz - wz * dy, c1 = wz * dx - wx * dz, c2 = wx * dy - wy * dx;
+  return (c0 * c0 + c1 * c1) + c2 * c2;
+}
+
 /// Result of scan_chord: `cross2` = |(p_k - p_i) x (p_j - p_i)|^2 of the farthest interior point
 /// (0 if none), or, if some point has cross2 > bound, `beyond` = such an index (else -1) and
 /// cross2 is not the maximum.

@@ -126,29 +126,28 @@ class FeasibilitySolver {
     values.reserve(static_cast<std::size_t>(count) * 16);
     double spent = 0.0;
     if (!columns_) columns_.emplace(points_);
+    measured_.clear();
+    cross2_.clear();
+    length2_.clear();
     for (int a = 0; a + 1 < count; ++a) {
       rows[a] = values.size();
       const int i = vertex_[a];
       int violator = -1, b = a + 1;
       bool rejected = false;
-      cross2_.clear();
-      length2_.clear();
       for (; b < count; ++b) {
         const int j = vertex_[b];
         // (only after a rejected chord: while chords pass, the row certainly goes on)
         if (rejected && j - i >= 3 && pair_excludes(i, j - 1, i + (j - i) / 2, limit)) break;
-        rejected = hinted_scan(i, j, limit, floor, violator);
+        rejected = hinted_scan(i, j, limit, floor, violator, values);
         if ((spent += std::min(j - i, kRowTreeSpan)) > budget) return false;
       }
       reach[a] = b - 1;
-      // The distances of the row's farthest points, sqrt(cross2) / sqrt(length2) exactly as
-      // ChordDistance computes them, in a loop of independent square roots and divisions.
-      const std::size_t start = values.size();
-      values.resize(start + cross2_.size());
-      chord_distances(cross2_.data(), length2_.data(), cross2_.size(), kBeyond, kBelow, values.data() + start);
-      for (const auto& [t, value] : exact_) values[start + t] = value;
-      exact_.clear();
     }
+    // The distances of the measured chords' farthest points, sqrt(cross2) / sqrt(length2)
+    // exactly as ChordDistance computes them, in a loop of independent roots and divisions.
+    std::vector<double> distances(measured_.size());
+    chord_distances(cross2_.data(), length2_.data(), measured_.size(), kBeyond, kBelow, distances.data());
+    for (std::size_t t = 0; t < measured_.size(); ++t) values[measured_[t]] = distances[t];
     row_ = std::move(rows);
     reach_ = std::move(reach);
     stored_ = std::move(values);
@@ -342,37 +341,40 @@ class FeasibilitySolver {
     return p.cross(q).squaredNorm() > 2.0 * eps * eps * (p.squaredNorm() + q.squaredNorm()) * (1.0 + 1e-9) + 1e-300;
   }
 
-  // For build_rows: appends to cross2_, length2_ the squared cross product of chord (i, j) with
-  // its farthest point and |p_j - p_i|^2, or -1 if the error exceeds limit (found by a point
-  // beyond limit, tried first `violator`, which is updated); chords not measured that way
-  // (degenerate, long, L2) get their exact error in exact_. True if the error exceeds limit.
-  bool hinted_scan(int i, int j, double limit, double floor, int& violator) {
-    const Eigen::Vector3d& a = points_[i];
-    const Eigen::Vector3d d = points_[j] - a;
-    const double length2 = d.squaredNorm();
+  // For build_rows: appends the error of chord (i, j) to values: kBeyond if it exceeds limit
+  // (found by a point beyond limit, tried first `violator`, which is updated), kBelow if it is
+  // certainly below floor, else a placeholder, with the squared cross product of the farthest
+  // point and |p_j - p_i|^2 queued in cross2_, length2_ (measured_ = its place). Degenerate,
+  // long and L2 chords are measured at once. True if the error exceeds limit.
+  bool hinted_scan(int i, int j, double limit, double floor, int& violator, std::vector<double>& values) {
+    const PointColumns& c = *columns_;
+    const double dx = c.x[j] - c.x[i], dy = c.y[j] - c.y[i], dz = c.z[j] - c.z[i];
+    const double length2 = (dx * dx + dy * dy) + dz * dz;  // = (p_j - p_i).squaredNorm()
     if (norm_ != Norm::LInf || length2 == 0.0 || j - i > kRowTreeSpan) {
-      const double e = hinted_error(i, j, limit, violator);
-      exact_.push_back({cross2_.size(), e});
-      cross2_.push_back(0.0);
-      length2_.push_back(1.0);
-      return e > limit;
+      values.push_back(hinted_error(i, j, limit, violator));
+      return values.back() > limit;
     }
     const double bound = limit * limit * length2 * (1.0 + 1e-9) + 1e-300;
-    if (violator > i && violator < j) {
-      const double s = (points_[violator] - a).cross(d).squaredNorm();
-      if (s > bound) {
-        cross2_.push_back(-1.0);  // beyond limit
-        length2_.push_back(length2);
-        return true;
-      }
+    if (violator > i && violator < j && cross2_to(c, i, violator, dx, dy, dz) > bound) {
+      values.push_back(kBeyond);
+      return true;
     }
-    const ChordScan scan = scan_chord(*columns_, i, j, bound);
+    const ChordScan scan = scan_chord(c, i, j, bound);
     violator = scan.beyond;
+    if (violator >= 0) {
+      values.push_back(kBeyond);
+      return true;
+    }
     // below floor for certain: sqrt(cross2) / sqrt(length2) < floor with a margin far above rounding
-    const bool below = scan.cross2 < floor * floor * length2 * (1.0 - 1e-9);
-    cross2_.push_back(violator >= 0 ? -1.0 : below ? -2.0 : scan.cross2);
+    if (scan.cross2 < floor * floor * length2 * (1.0 - 1e-9)) {
+      values.push_back(kBelow);
+      return false;
+    }
+    measured_.push_back(values.size());
+    values.push_back(0.0);
+    cross2_.push_back(scan.cross2);
     length2_.push_back(length2);
-    return violator >= 0;
+    return false;
   }
 
   // bounded_error(i, j, limit), but first against point `violator` (if inside the chord); on
@@ -589,11 +591,11 @@ class FeasibilitySolver {
     double low, high;
   };
   std::vector<Checkpoint> checkpoints_;  // slope filter of the current row
-  std::vector<double> cross2_, length2_;  // build_rows: the current row's farthest distances
+  std::vector<double> cross2_, length2_;  // build_rows: chords to measure (farthest point, length)
+  std::vector<std::size_t> measured_;     // build_rows: their places in the stored errors
   std::optional<PointColumns> columns_;   // build_rows: the points as coordinate columns
   double floor_ = 0.0;                    // stored errors below it are kBelow
   double best_bottleneck_ = 0.0;          // of the last best_exact_path
-  std::vector<std::pair<std::size_t, double>> exact_;  // build_rows: errors measured otherwise
   std::size_t checkpoint_at_ = 0;
   Eigen::Vector3d filter_u_, filter_v_;
   std::optional<SegmentErrorTree> tree_;
@@ -765,9 +767,11 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
     // Then binary search over the stored errors left in (lo, hi), by selection (nth_element);
     // each probe is a DP over stored values.
     std::vector<double> candidates;
-    if (lo < solver.floor()) solver.materialize();
-    for (double e : solver.stored_errors())
-      if (e < hi && e > lo) candidates.push_back(e);
+    if (lo < hi && std::nextafter(lo, hi) < hi) {  // else no double lies in between: done
+      if (lo < solver.floor()) solver.materialize();
+      for (double e : solver.stored_errors())
+        if (e < hi && e > lo) candidates.push_back(e);
+    }
     while (!candidates.empty()) {
       auto middle_it = candidates.begin() + static_cast<std::ptrdiff_t>(candidates.size() / 2);
       std::nth_element(candidates.begin(), middle_it, candidates.end());
