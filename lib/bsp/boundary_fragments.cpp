@@ -17,29 +17,40 @@ class Extractor {
   template <typename Out>
   void push_down(TreeRef t, ConvexPolygon poly, Out&& out) {
     stack_.clear();
-    stack_.push_back({t, std::move(poly)});
-    // The polygon on top of the stack descends in place; only splits push a second one.
+    const kernel::CornerBox box = kernel::corner_box(poly);
+    stack_.push_back({t, std::move(poly), box});
+    // The polygon on top of the stack descends in place; only splits push a second one. Its
+    // corner box is kept with it, so most nodes are passed with one quick box test.
     while (!stack_.empty()) {
-      TreeRef r = stack_.back().first;
+      Piece& top = stack_.back();
+      const TreeRef r = top.at;
       if (is_leaf(r)) {
-        out(std::move(stack_.back().second), r == kIn);
+        out(std::move(top.polygon), r == kIn);
         stack_.pop_back();
         continue;
       }
       const BspNode& n = solid_.nodes()[std::size_t(r)];
+      const Side quick = kernel::box_side(top.box, solid_.planes()[n.plane]);
+      if (quick == Side::Negative || quick == Side::Positive) {
+        top.at = quick == Side::Negative ? n.negative : n.positive;
+        continue;
+      }
       const std::int32_t opp = arena_.opposite(n.plane);
-      kernel::PolygonSplit s = kernel::split(arena_.planes, stack_.back().second, n.plane, opp);
+      kernel::PolygonSplit s = kernel::split(arena_.planes, top.polygon, n.plane, opp);
       switch (s.side) {
-        case Side::Negative: stack_.back().first = n.negative; break;
-        case Side::Positive: stack_.back().first = n.positive; break;
-        case Side::Both:
-          stack_.back() = {n.negative, std::move(s.negative)};
-          stack_.push_back({n.positive, std::move(s.positive)});
+        case Side::Negative: top.at = n.negative; break;
+        case Side::Positive: top.at = n.positive; break;
+        case Side::Both: {
+          const kernel::CornerBox nb = kernel::corner_box(s.negative), pb = kernel::corner_box(s.positive);
+          top = {n.negative, std::move(s.negative), nb};
+          stack_.push_back({n.positive, std::move(s.positive), pb});
           break;
+        }
         case Side::On: {  // a descendant on the same plane violates the invariant; follow both
-          stack_.back().first = n.negative;
-          ConvexPolygon copy = stack_.back().second;
-          stack_.push_back({n.positive, std::move(copy)});
+          top.at = n.negative;
+          Piece copy = top;
+          copy.at = n.positive;
+          stack_.push_back(std::move(copy));
           break;
         }
       }
@@ -87,7 +98,12 @@ class Extractor {
  private:
   const Solid& solid_;
   Arena arena_;
-  std::vector<std::pair<TreeRef, ConvexPolygon>> stack_;
+  struct Piece {
+    TreeRef at;
+    ConvexPolygon polygon;
+    kernel::CornerBox box;
+  };
+  std::vector<Piece> stack_;
 };
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
+#include <limits>
 
 #include <Eigen/Geometry>
 
@@ -301,11 +301,13 @@ class Assembler {
     auto cell_key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
       return std::uint64_t(x * 73856093) ^ std::uint64_t(y * 19349663) ^ std::uint64_t(z * 83492791);
     };
-    std::unordered_multimap<std::uint64_t, int> grid;
+    std::vector<std::pair<std::uint64_t, int>> grid;  // (cell key, vertex), sorted
+    grid.reserve(candidates.size());
     for (int c : candidates) {
       const Eigen::Vector3d p = position(c);
-      grid.emplace(cell_key(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), c);
+      grid.push_back({cell_key(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), c});
     }
+    std::sort(grid.begin(), grid.end());
 
     constexpr double kTol = 1e-3;  // grid units: a cheap prefilter only; the test is exact
     std::vector<int> near;
@@ -324,8 +326,10 @@ class Assembler {
         for (std::int64_t x = x0; x <= x1; ++x)
           for (std::int64_t y = y0; y <= y1; ++y)
             for (std::int64_t z = z0; z <= z1; ++z) {
-              auto range = grid.equal_range(cell_key(x, y, z));
-              for (auto it = range.first; it != range.second; ++it) near.push_back(it->second);
+              const std::uint64_t ck = cell_key(x, y, z);
+              for (auto it = std::lower_bound(grid.begin(), grid.end(), std::pair{ck, std::numeric_limits<int>::min()});
+                   it != grid.end() && it->first == ck; ++it)
+                near.push_back(it->second);
             }
         std::sort(near.begin(), near.end());
         near.erase(std::unique(near.begin(), near.end()), near.end());
@@ -462,20 +466,20 @@ class Assembler {
   // A vertex with exactly two neighbours, lying exactly on the line of its two edges, is a
   // leftover of fragmentation: removed from both faces that use it.
   void remove_straight_vertices() {
-    std::vector<std::vector<int>> neighbours(rep_.size());
+    // Distinct neighbours per vertex: sorted (vertex, neighbour) keys, counted per vertex.
+    std::vector<std::uint64_t> links;
     for (const Face& f : faces_)
       for (std::size_t k = 0; k < f.vertices.size(); ++k) {
         const int u = f.vertices[k], w = f.vertices[(k + 1) % f.vertices.size()];
-        neighbours[std::size_t(u)].push_back(w);
-        neighbours[std::size_t(w)].push_back(u);
+        links.push_back(key(u, w));
+        links.push_back(key(w, u));
       }
+    std::sort(links.begin(), links.end());
+    links.erase(std::unique(links.begin(), links.end()), links.end());
+    std::vector<int> degree(rep_.size(), 0);
+    for (const std::uint64_t l : links) ++degree[std::size_t(l >> 32)];
     std::vector<bool> removable(rep_.size(), false);
-    for (std::size_t v = 0; v < rep_.size(); ++v) {
-      auto& nb = neighbours[v];
-      std::sort(nb.begin(), nb.end());
-      nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-      removable[v] = nb.size() == 2;
-    }
+    for (std::size_t v = 0; v < rep_.size(); ++v) removable[v] = degree[v] == 2;
     // A vertex goes only if it is straight in every face that uses it (both faces agree).
     auto straight = [&](const Face& f, std::size_t k) {
       const std::size_t m = f.vertices.size();
@@ -489,6 +493,7 @@ class Assembler {
       for (std::size_t k = 0; k < f.vertices.size(); ++k)
         if (removable[std::size_t(f.vertices[k])] && !straight(f, k)) removable[std::size_t(f.vertices[k])] = false;
     for (Face& f : faces_) {
+      if (std::none_of(f.vertices.begin(), f.vertices.end(), [&](int v) { return removable[std::size_t(v)]; })) continue;
       Face g;
       g.support = f.support;
       g.flip = f.flip;

@@ -62,8 +62,15 @@ Solid TreeBuilder::build(TreeRef root) && {
       bool empty = false;
       // Nearest ancestors first: they bound the cell most tightly, so the polygon shrinks to the
       // cell's size at once and the far ancestors usually only classify a few corners.
+      kernel::CornerBox box = kernel::corner_box(poly);  // kept while the polygon is unchanged
       for (auto it = constraints.rbegin(); it != constraints.rend(); ++it) {
         const std::int32_t c = *it;
+        const Side quick = kernel::box_side(box, arena.planes[c]);
+        if (quick == Side::Negative) continue;  // inside this half-space: unchanged
+        if (quick == Side::Positive) {
+          empty = true;
+          break;
+        }
         const std::int32_t opp = arena.opposite(c);
         kernel::PolygonSplit s = kernel::split(arena.planes, poly, c, opp);
         if (s.side == Side::On) {  // same plane as an ancestor
@@ -74,7 +81,10 @@ Solid TreeBuilder::build(TreeRef root) && {
           empty = true;
           break;
         }
-        if (s.side == Side::Both) poly = std::move(s.negative);
+        if (s.side == Side::Both) {
+          poly = std::move(s.negative);
+          box = kernel::corner_box(poly);
+        }
       }
       if (empty) {
         if (f.parent < 0) {

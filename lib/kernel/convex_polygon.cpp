@@ -38,24 +38,33 @@ namespace {
 
 constexpr double kUnit = 1.1102230246251565e-16;  // 2^-53
 
-// Quick exact-safe test: the plane's largest and smallest values over the bounding box of the
-// corners' error boxes. If both are strictly negative (positive) beyond the rounding error of
-// this evaluation, every corner is, and no per-corner predicate is needed.
-Side box_side(const ConvexPolygon& poly, const Plane& s) {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+}  // namespace
+
+CornerBox corner_box(const ConvexPolygon& poly) {
+  CornerBox b;
+  if (poly.corners.empty()) return b;
+  for (int i = 0; i < 3; ++i) b.lo[i] = 1e300, b.hi[i] = -1e300;
   for (const Corner& c : poly.corners) {
-    if (c.at.err < 0) return Side::Both;  // unknown: use the predicates
+    if (c.at.err < 0) return CornerBox{};  // unknown: use the predicates
     const double v[3] = {c.at.x, c.at.y, c.at.z};
     for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], v[i] - c.at.err);
-      hi[i] = std::max(hi[i], v[i] + c.at.err);
+      b.lo[i] = std::min(b.lo[i], v[i] - c.at.err);
+      b.hi[i] = std::max(b.hi[i], v[i] + c.at.err);
     }
   }
+  b.valid = true;
+  return b;
+}
+
+// The plane's largest and smallest values over the box: if both are strictly negative
+// (positive) beyond the rounding error of this evaluation, every corner is.
+Side box_side(const CornerBox& box, const Plane& s) {
+  if (!box.valid) return Side::Both;
   const double n[3] = {double(s.a), double(s.b), double(s.c)};
-  const double d = double(s.d);
+  const double d = s.d_nearest;
   double vmax = d, vmin = d, mag = std::fabs(d);
   for (int i = 0; i < 3; ++i) {
-    const double p = n[i] * lo[i], q = n[i] * hi[i];
+    const double p = n[i] * box.lo[i], q = n[i] * box.hi[i];
     vmax += std::max(p, q);
     vmin += std::min(p, q);
     mag += std::max(std::fabs(p), std::fabs(q));
@@ -65,6 +74,10 @@ Side box_side(const ConvexPolygon& poly, const Plane& s) {
   if (vmin > tol) return Side::Positive;
   return Side::Both;
 }
+
+namespace {
+
+Side box_side(const ConvexPolygon& poly, const Plane& s) { return box_side(corner_box(poly), s); }
 
 template <typename F>
 void signs_of(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane, F&& f) {

@@ -51,6 +51,18 @@ ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support);
 
 /// Where a polygon lies with respect to a plane.
 enum class Side : std::int8_t { Negative, Positive, Both, On };
+
+/// Bounding box of a polygon's corners widened by their approximation errors (grid units), for a
+/// quick exact-safe side test that callers can keep while a polygon is tested against many
+/// planes. `valid` is false for an empty polygon or a corner without a usable approximation.
+struct CornerBox {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  bool valid = false;
+};
+CornerBox corner_box(const ConvexPolygon& poly);
+/// Negative or Positive if the whole box lies strictly on that side of the plane (beyond the
+/// rounding error of the evaluation), else Both (undecided: use classify or split).
+Side box_side(const CornerBox& box, const Plane& plane);
 /// Classification only (no new polygons).
 Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane);
 

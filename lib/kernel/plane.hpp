@@ -14,7 +14,13 @@ namespace sculpt::kernel {
 
 struct Plane {
   std::int64_t a = 0, b = 0, c = 0;  ///< |a|, |b|, |c| <= 2^kNormalBits, not all zero
+  double d_nearest = 0;              ///< d rounded to the nearest double, for the filters
+                                     ///< (converting an Int128 is slow; this fills padding)
   Int128 d = 0;                      ///< |d| <= 2^kOffsetBits
+
+  Plane() = default;
+  Plane(std::int64_t a_, std::int64_t b_, std::int64_t c_, Int128 d_)
+      : a(a_), b(b_), c(c_), d_nearest(double(d_)), d(d_) {}
 
   friend bool operator==(const Plane&, const Plane&) = default;
   [[nodiscard]] Plane opposite() const { return {-a, -b, -c, -d}; }

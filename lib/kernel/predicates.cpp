@@ -53,6 +53,38 @@ Int256 big(Int128 v) {
   return neg ? Int256(-r) : r;
 }
 
+// Signed 256-bit accumulator for sums of products of two Int128 values (the fast exact path):
+// two's complement split into a low and a high unsigned 128-bit half. Straight-line code: four
+// 64 x 64 -> 128-bit multiplications per product, no loops.
+struct Accumulator {
+  __extension__ typedef unsigned __int128 U128;
+  U128 lo = 0, hi = 0;
+
+  void add_product(Int128 a, Int128 b, bool subtract) {
+    const bool negative = ((a < 0) != (b < 0)) != subtract;
+    const U128 ua = a < 0 ? U128(0) - U128(a) : U128(a), ub = b < 0 ? U128(0) - U128(b) : U128(b);
+    const std::uint64_t a0 = std::uint64_t(ua), a1 = std::uint64_t(ua >> 64);
+    const std::uint64_t b0 = std::uint64_t(ub), b1 = std::uint64_t(ub >> 64);
+    const U128 p00 = U128(a0) * b0, p01 = U128(a0) * b1, p10 = U128(a1) * b0, p11 = U128(a1) * b1;
+    const U128 mid = (p00 >> 64) + std::uint64_t(p01) + std::uint64_t(p10);
+    const U128 plo = (mid << 64) | std::uint64_t(p00);
+    const U128 phi = p11 + (p01 >> 64) + (p10 >> 64) + (mid >> 64);
+    if (negative) {
+      const U128 nlo = lo - plo;
+      hi = hi - phi - (nlo > lo ? 1 : 0);
+      lo = nlo;
+    } else {
+      const U128 nlo = lo + plo;
+      hi = hi + phi + (nlo < lo ? 1 : 0);
+      lo = nlo;
+    }
+  }
+  [[nodiscard]] int sign() const {
+    if ((hi >> 127) != 0) return -1;
+    return (hi | lo) != 0 ? 1 : 0;
+  }
+};
+
 bool trivially_on(const Plane& p, const Plane& q, const Plane& r, const Plane& s) {
   return same_or_opposite(s, p) || same_or_opposite(s, q) || same_or_opposite(s, r);
 }
@@ -71,7 +103,7 @@ ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r) {
   const double W = pa * u.x + pb * u.y + pc * u.z;
   const double np = std::max({std::fabs(pa), std::fabs(pb), std::fabs(pc)});
   const double eW = 3.0 * np * u.err + 4.0 * kEps * 3.0 * np * u.max;
-  const double dp = double(p.d), dq = double(q.d), dr = double(r.d);
+  const double dp = p.d_nearest, dq = q.d_nearest, dr = r.d_nearest;
   const double vx = dp * u.x + dq * v.x + dr * w.x;
   const double vy = dp * u.y + dq * v.y + dr * w.y;
   const double vz = dp * u.z + dq * v.z + dr * w.z;
@@ -118,7 +150,7 @@ HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r) {
 Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& at, const Plane& s) {
   PredicateCounters& counters = predicate_counters();
   if (at.err >= 0) {
-    const double sa = double(s.a), sb = double(s.b), sc = double(s.c), sd = double(s.d);
+    const double sa = double(s.a), sb = double(s.b), sc = double(s.c), sd = s.d_nearest;
     const double t1 = sa * at.x, t2 = sb * at.y, t3 = sc * at.z;
     const double value = t1 + t2 + t3 + sd;
     const double bound =
@@ -150,9 +182,16 @@ Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& a
     auto m = [&](int i, int j) { return i128(rows[i]->a) * rows[j]->b - i128(rows[j]->a) * rows[i]->b; };
     auto n = [&](int i, int j) { return i128(rows[i]->c) * rows[j]->d - i128(rows[j]->c) * rows[i]->d; };
     const Int128 m01 = m(0, 1), m02 = m(0, 2), m12 = m(1, 2);
-    const Wide det = Wide::mul(m01, n(2, 3)) - Wide::mul(m02, n(1, 3)) + Wide::mul(m(0, 3), n(1, 2)) +
-                     Wide::mul(m12, n(0, 3)) - Wide::mul(m(1, 3), n(0, 2)) + Wide::mul(m(2, 3), n(0, 1));
-    const Wide W = Wide::mul(m12, p.c) - Wide::mul(m02, q.c) + Wide::mul(m01, r.c);
+    Accumulator det, W;
+    det.add_product(m01, n(2, 3), false);
+    det.add_product(m02, n(1, 3), true);
+    det.add_product(m(0, 3), n(1, 2), false);
+    det.add_product(m12, n(0, 3), false);
+    det.add_product(m(1, 3), n(0, 2), true);
+    det.add_product(m(2, 3), n(0, 1), false);
+    W.add_product(m12, p.c, false);
+    W.add_product(m02, q.c, true);
+    W.add_product(m01, r.c, false);
     const int sign = det.sign() * W.sign();
     if (sign == 0) ++counters.exact_zero;
     return sign > 0 ? Sign::Positive : (sign < 0 ? Sign::Negative : Sign::Zero);
