@@ -5,11 +5,15 @@
 namespace sculpt {
 
 Classification classify(const Solid& solid, const Eigen::Vector3d& point) {
-  const kernel::GridPoint g = kernel::snap(point);
+  return classify(kernel::snap(point), solid.root(), solid.nodes(), solid.planes());
+}
+
+Classification classify(const kernel::GridPoint& g, TreeRef root, std::span<const BspNode> nodes,
+                        const kernel::PlaneTable& planes) {
   // Depth-first over the nodes the point reaches; a point on a plane takes both sides.
   int visited = 0;
   bool any_in = false, any_out = false;
-  std::vector<TreeRef> stack{solid.root()};
+  std::vector<TreeRef> stack{root};
   while (!stack.empty()) {
     const TreeRef r = stack.back();
     stack.pop_back();
@@ -18,8 +22,8 @@ Classification classify(const Solid& solid, const Eigen::Vector3d& point) {
       continue;
     }
     ++visited;
-    const BspNode& n = solid.nodes()[std::size_t(r)];
-    const kernel::Sign s = kernel::orient(g, solid.planes()[n.plane]);
+    const BspNode& n = nodes[std::size_t(r)];
+    const kernel::Sign s = kernel::orient(g, planes[n.plane]);
     if (s != kernel::Sign::Positive) stack.push_back(n.negative);
     if (s != kernel::Sign::Negative) stack.push_back(n.positive);
   }

@@ -4,7 +4,6 @@
 #include <limits>
 
 #include "kernel/grid.hpp"
-#include "kernel/predicates.hpp"
 
 namespace sculpt {
 namespace {
@@ -28,7 +27,8 @@ bool to_grid(const Eigen::Vector3d& p, double g[3]) {
 
 }  // namespace
 
-PointClassifier::PointClassifier(const Solid& solid) : root_(solid.root()) {
+PointClassifier::PointClassifier(const Solid& solid)
+    : root_(solid.root()), tree_(solid.nodes()), planes_(solid.planes()) {
   // Error bound (Higham, Accuracy and Stability, sec. 3.1): with |X|, |Y|, |Z| <= M (grid units,
   // exact), a, b, c exact and d rounded once, the left-to-right evaluation of aX + bY + cZ + d
   // errs by at most gamma_4 (|a| + |b| + |c|) M + (gamma_4 + u) |d| < 5.001 u S with
@@ -37,35 +37,16 @@ PointClassifier::PointClassifier(const Solid& solid) : root_(solid.root()) {
   constexpr double u = std::numeric_limits<double>::epsilon() / 2;
   const double m = double(kernel::kMaxCoord);
   nodes_.reserve(solid.nodes().size());
-  planes_.reserve(solid.nodes().size());
   for (const BspNode& n : solid.nodes()) {
     const kernel::Plane& p = solid.planes()[std::size_t(n.plane)];
     const double a = double(p.a), b = double(p.b), c = double(p.c), d = double(p.d);
     const double s = (std::fabs(a) + std::fabs(b) + std::fabs(c)) * m + std::fabs(d);
     nodes_.push_back({a, b, c, d, 8 * u * s, {n.negative, n.positive}});
-    planes_.push_back(p);
   }
 }
 
 Classification PointClassifier::exact(const Eigen::Vector3d& point) const {
-  const kernel::GridPoint g = kernel::snap(point);  // throws RangeError with the range
-  int visited = 0;
-  bool any_in = false, any_out = false;
-  std::vector<TreeRef> stack{root_};
-  while (!stack.empty()) {
-    const TreeRef r = stack.back();
-    stack.pop_back();
-    if (is_leaf(r)) {
-      (r == kIn ? any_in : any_out) = true;
-      continue;
-    }
-    ++visited;
-    const Node& n = nodes_[std::size_t(r)];
-    const kernel::Sign s = kernel::orient(g, planes_[std::size_t(r)]);
-    if (s != kernel::Sign::Positive) stack.push_back(n.child[0]);
-    if (s != kernel::Sign::Negative) stack.push_back(n.child[1]);
-  }
-  return {any_in && any_out ? Location::Boundary : (any_in ? Location::Inside : Location::Outside), visited};
+  return sculpt::classify(kernel::snap(point), root_, tree_, planes_);  // snap throws RangeError
 }
 
 Classification PointClassifier::classify(const Eigen::Vector3d& point) const {

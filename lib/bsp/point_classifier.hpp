@@ -39,12 +39,13 @@ class PointClassifier {
     double bound;          ///< |computed f - exact f| < bound for every grid point in range
     std::int32_t child[2]; ///< negative side, positive side: node index, kIn or kOut
   };
-  /// The walk of bsp/classify.hpp with exact sides, both children on a plane.
+  /// The exact walk of bsp/classify.hpp (both children of a plane through the point).
   Classification exact(const Eigen::Vector3d& point) const;
 
   std::vector<Node> nodes_;
-  std::vector<kernel::Plane> planes_;  ///< exact plane of each node
   TreeRef root_ = kOut;
+  std::vector<BspNode> tree_;  ///< the solid's nodes and planes, for the exact walk
+  kernel::PlaneTable planes_;
 };
 
 }  // namespace sculpt
