@@ -64,6 +64,15 @@ class Assembler {
   bool on_plane(const Occurrence& o, std::int32_t plane) const {
     return kernel::orient(planes_[o.s], planes_[o.p], planes_[o.q], o.at, planes_[plane]) == Sign::Zero;
   }
+  // Vertex v lies on `plane`: known without arithmetic when one of the occurrences merged into
+  // v was made with that plane, else decided exactly.
+  bool vertex_on_plane(int v, std::int32_t plane) const {
+    for (int i = occ_start_[std::size_t(v)]; i < occ_start_[std::size_t(v) + 1]; ++i) {
+      const Occurrence& o = occ_[std::size_t(occ_list_[std::size_t(i)])];
+      if (o.s == plane || o.p == plane || o.q == plane) return true;
+    }
+    return on_plane(occ_[std::size_t(rep_[std::size_t(v)])], plane);
+  }
   bool same_point(const Occurrence& a, const Occurrence& b) const {
     return on_plane(a, b.s) && on_plane(a, b.p) && on_plane(a, b.q);
   }
@@ -124,6 +133,13 @@ class Assembler {
       }
       vertex_of_[i] = vertex_of_[std::size_t(r)];
     }
+    // Occurrences of each vertex (counting sort), for vertex_on_plane.
+    occ_start_.assign(rep_.size() + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++occ_start_[std::size_t(vertex_of_[i]) + 1];
+    for (std::size_t v = 0; v < rep_.size(); ++v) occ_start_[v + 1] += occ_start_[v];
+    occ_list_.resize(n);
+    std::vector<int> fill(occ_start_.begin(), occ_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) occ_list_[std::size_t(fill[std::size_t(vertex_of_[i])]++)] = int(i);
   }
 
   void build_faces() {
@@ -255,8 +271,7 @@ class Assembler {
           const double t = (position(y) - pu).dot(d) / len2;
           const double slack = 4 * (err(u) + err(w) + err(y)) / std::sqrt(len2) + 1e-12;
           if (t >= cur_t + slack || t <= -slack) continue;  // must move towards u
-          const Occurrence& oc = occ_[std::size_t(rep_[std::size_t(y)])];
-          if (!on_plane(oc, f.support) || !on_plane(oc, f.edge_line[std::size_t(e.k)])) continue;
+          if (!vertex_on_plane(y, f.support) || !vertex_on_plane(y, f.edge_line[std::size_t(e.k)])) continue;
           if (!(t > slack && t < 1 - slack) && !exactly_between(u, y, w, line_axis(f.support, f.edge_line[std::size_t(e.k)]))) continue;
           next = y;
           next_t = t;
@@ -340,8 +355,7 @@ class Assembler {
         const double t = (pc - pu).dot(d) / len2;
         const double slack = 4 * (err(u) + err(w) + err(c)) / std::sqrt(len2) + 1e-12;
         if (t <= -slack || t >= 1 + slack || (pu + t * d - pc).norm() > kTol) continue;
-        const Occurrence& o = occ_[std::size_t(rep_[std::size_t(c)])];
-        if (!on_plane(o, f.support) || !on_plane(o, f.edge_line[std::size_t(e.k)])) continue;
+        if (!vertex_on_plane(c, f.support) || !vertex_on_plane(c, f.edge_line[std::size_t(e.k)])) continue;
         // On the line and distinct from u and w (exactly); strictly between them? Decide
         // exactly when the approximation is too close to call.
         if (!(t > slack && t < 1 - slack) && !exactly_between(u, c, w, line_axis(f.support, f.edge_line[std::size_t(e.k)]))) continue;
@@ -466,28 +480,34 @@ class Assembler {
   // A vertex with exactly two neighbours, lying exactly on the line of its two edges, is a
   // leftover of fragmentation: removed from both faces that use it.
   void remove_straight_vertices() {
-    // Distinct neighbours per vertex: sorted (vertex, neighbour) keys, counted per vertex.
-    std::vector<std::uint64_t> links;
+    // Exactly two distinct neighbours per vertex: keep the first two seen, mark a third.
+    std::vector<std::array<int, 2>> seen(rep_.size(), {-1, -1});
+    std::vector<bool> more(rep_.size(), false);
+    auto link = [&](int v, int w) {
+      auto& sv = seen[std::size_t(v)];
+      if (sv[0] == w || sv[1] == w) return;
+      if (sv[0] < 0)
+        sv[0] = w;
+      else if (sv[1] < 0)
+        sv[1] = w;
+      else
+        more[std::size_t(v)] = true;
+    };
     for (const Face& f : faces_)
       for (std::size_t k = 0; k < f.vertices.size(); ++k) {
         const int u = f.vertices[k], w = f.vertices[(k + 1) % f.vertices.size()];
-        links.push_back(key(u, w));
-        links.push_back(key(w, u));
+        link(u, w);
+        link(w, u);
       }
-    std::sort(links.begin(), links.end());
-    links.erase(std::unique(links.begin(), links.end()), links.end());
-    std::vector<int> degree(rep_.size(), 0);
-    for (const std::uint64_t l : links) ++degree[std::size_t(l >> 32)];
     std::vector<bool> removable(rep_.size(), false);
-    for (std::size_t v = 0; v < rep_.size(); ++v) removable[v] = degree[v] == 2;
+    for (std::size_t v = 0; v < rep_.size(); ++v) removable[v] = seen[v][1] >= 0 && !more[v];
     // A vertex goes only if it is straight in every face that uses it (both faces agree).
     auto straight = [&](const Face& f, std::size_t k) {
       const std::size_t m = f.vertices.size();
       if (m <= 3) return false;
       const int w = f.vertices[(k + 1) % m];
       const std::int32_t in_line = f.edge_line[(k + m - 1) % m];
-      const Occurrence& o = occ_[std::size_t(rep_[std::size_t(w)])];
-      return on_plane(o, in_line) && on_plane(o, f.support);
+      return vertex_on_plane(w, in_line) && vertex_on_plane(w, f.support);
     };
     for (const Face& f : faces_)
       for (std::size_t k = 0; k < f.vertices.size(); ++k)
@@ -686,6 +706,7 @@ class Assembler {
   std::vector<int> start_;
   std::vector<int> vertex_of_;  // occurrence -> vertex
   std::vector<int> rep_;        // vertex -> representative occurrence
+  std::vector<int> occ_start_, occ_list_;  // occurrences of each vertex (before duplication)
   std::vector<Face> faces_;
   std::vector<int> corner_start_;
   int unpaired_ = 0;
