@@ -184,8 +184,10 @@ class FeasibilitySolver {
   }
   [[nodiscard]] double reach_eps() const { return reach_eps_; }
 
-  /// Fewest segments to every position at tolerance eps (DAG relaxation in index order; an edge
-  /// is tested only if it would improve its end). Fills dist_/pred_.
+  /// Fewest segments to the last position at tolerance eps. Fills dist_/pred_ (stored mode:
+  /// DAG relaxation in index order, every position; otherwise breadth-first by layers, which
+  /// tests each edge at most once and skips the positions already reached in O(1) amortized,
+  /// and leaves positions not reached before the last one at kUnreached).
   void min_count(double eps) {
     const int count = this->count();
     dist_.assign(count, kUnreached);
@@ -206,24 +208,41 @@ class FeasibilitySolver {
       tests_ += edge_count();
       return;
     }
-    for (int a = 0; a + 1 < count; ++a) {
-      if (dist_[a] == kUnreached) continue;
-      const int next = dist_[a] + 1;
-      bool filtered = false;
-      for (int b = a + 1; b <= reach_[a]; ++b) {
-        if (dist_[b] <= next) continue;
-        if (stored_.empty() && vertex_[b] - vertex_[a] > 64) {  // long chords: O(1) slope filter first
-          if (!filtered) {
-            build_slope_filter(vertex_[a], vertex_[reach_[a]], eps);
-            filtered = true;
+    // Layer by layer: every position of the current layer, in index order, claims the positions
+    // it reaches that no earlier one has (found by `unclaimed`, a disjoint-set forest: the
+    // smallest unclaimed position >= x, iterative with path halving).
+    std::vector<int>& unclaimed = unclaimed_;
+    unclaimed.resize(static_cast<std::size_t>(count) + 1);
+    for (int b = 0; b <= count; ++b) unclaimed[b] = b;
+    const auto find = [&](int x) {
+      while (unclaimed[x] != x) x = unclaimed[x] = unclaimed[unclaimed[x]];
+      return x;
+    };
+    unclaimed[0] = 1;
+    std::vector<int> layer{0}, next_layer;
+    while (!layer.empty() && dist_[count - 1] == kUnreached) {
+      next_layer.clear();
+      for (int a : layer) {
+        const int next = dist_[a] + 1;
+        bool filtered = false;
+        for (int b = find(a + 1); b <= reach_[a]; b = find(b + 1)) {
+          if (vertex_[b] - vertex_[a] > 64) {  // long chords: O(1) slope filter first
+            if (!filtered) {
+              build_slope_filter(vertex_[a], vertex_[reach_[a]], eps);
+              filtered = true;
+            }
+            if (slope_rejects(vertex_[a], vertex_[b])) continue;
           }
-          if (slope_rejects(vertex_[a], vertex_[b])) continue;
-        }
-        if (test(a, b, eps)) {
-          dist_[b] = next;
-          pred_[b] = a;
+          if (test(a, b, eps)) {
+            dist_[b] = next;
+            pred_[b] = a;
+            unclaimed[b] = b + 1;
+            next_layer.push_back(b);
+          }
         }
       }
+      std::sort(next_layer.begin(), next_layer.end());
+      layer.swap(next_layer);
     }
   }
   [[nodiscard]] int min_segments() const { return dist_.back(); }
@@ -603,6 +622,7 @@ class FeasibilitySolver {
   std::vector<double> stored_;     // stored mode: error of (a, b) at row_[a] + b - a - 1
   std::vector<int> vertex_;
   std::vector<int> reach_, hint_, dist_, pred_;
+  std::vector<int> unclaimed_;  // min_count: disjoint-set forest over positions
   double reach_eps_ = std::numeric_limits<double>::infinity();
   long long tests_ = 0;
 };
