@@ -228,3 +228,58 @@ TEST(OptimalMinError, StreamingModeAgreesWithDynamic) {
       EXPECT_EQ(streamed.error, dynamic_linearization(points, m, Norm::LInf).error) << "m=" << m;
     }
 }
+
+// The small-input path (rows built under a cap from an estimate, errors below a floor not
+// measured, the layered bottleneck DP that ends the search) on the Appendix-B curves at the
+// paper's point counts, where symmetric curves give many chord errors equal up to rounding.
+TEST(OptimalMinError, AgreesWithDynamicAtThePapersPointCounts) {
+  for (TestCurve which : {TestCurve::Cubic, TestCurve::Helix, TestCurve::Folium, TestCurve::Sextic}) {
+    const std::vector<Vec> points = path_points(make_test_curve(which));
+    for (int m : {8, 64}) {
+      const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
+      expect_valid(optimal, points, m, Norm::LInf);
+      EXPECT_EQ(optimal.error, dynamic_linearization(points, m, Norm::LInf).error) << test_curve_name(which) << " m=" << m;
+    }
+  }
+}
+
+// A densely sampled polygon: the optimum is 0 (up to rounding) once the corners can be break points, far
+// below the estimate from evenly spaced break points (whose segments cut corners), so the
+// search goes below the floor and must measure the chords it had only bounded.
+TEST(OptimalMinError, PolygonWithCornersReachesZero) {
+  const Vec corners[] = {{0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {1, 5, 0}, {0, 2, 0}};
+  std::vector<Vec> points;
+  for (int side = 0; side < 4; ++side)
+    for (int t = 0; t < 25; ++t) points.push_back(corners[side] + (corners[side + 1] - corners[side]) * (t / 25.0));
+  points.push_back(corners[4]);
+  const int n = static_cast<int>(points.size());
+  for (int m : {3, 4, 5, 9, 20}) {
+    const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
+    expect_valid(optimal, points, m, Norm::LInf);
+    const double dynamic = dynamic_linearization(points, m, Norm::LInf).error;
+    EXPECT_EQ(optimal.error, dynamic) << "m=" << m;
+    if (m >= 4) {
+      EXPECT_LT(optimal.error, 1e-12) << "m=" << m;  // 0 up to the rounding of the samples
+    } else {
+      EXPECT_GT(optimal.error, 0.1) << "m=" << m;
+    }
+    EXPECT_LT(m, n);
+  }
+}
+
+// Many segments per point (rows of one or two chords) and the L2 norm through the same path.
+TEST(OptimalMinError, ShortRowsAndL2AgreeWithDynamic) {
+  std::mt19937_64 rng(41);
+  for (int trial = 0; trial < 12; ++trial) {
+    const std::vector<Vec> points = trial % 3 == 0 ? scattered(rng, 40, trial % 2 ? 3 : 2)
+                                                   : curve_testing::random_curve(rng, 60, trial % 2 ? 3 : 2).points;
+    const int n = static_cast<int>(points.size());
+    for (int m : {n / 3, n / 2, n - 3}) {
+      for (Norm norm : {Norm::LInf, Norm::L2}) {
+        const Linearization optimal = optimal_min_error(points, m, norm);
+        expect_valid(optimal, points, m, norm);
+        EXPECT_EQ(optimal.error, dynamic_linearization(points, m, norm).error) << "trial " << trial << " m=" << m;
+      }
+    }
+  }
+}
