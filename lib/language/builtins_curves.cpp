@@ -2,6 +2,7 @@
 // their piecewise linear approximation (Ihm & Naylor 1990, sections 2-4; lib/curves).
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include "curves/digitized_curve.hpp"
 #include "curves/linearize.hpp"
@@ -41,11 +42,44 @@ std::string LinearizationValue::repr() const {
 
 void register_curves(BuiltinTable& table) {
   table.add({.name = "curve",
-             .signature = "curve(\"file\")",
-             .doc = "Loads a digitized curve: one point per line, `x y` or `x y z`, `#` comments. "
-                    "A relative path is relative to the script's folder.",
-             .params = {{"file"}},
-             .run = [](const Arguments& args) { return make_curve(curves::load_curve(args.file_path(0))); }});
+             .signature = "curve(\"file\" or points, closed=false)",
+             .doc = "A digitized curve: loaded from a file (one point per line, `x y` or `x y z`, "
+                    "`#` comments; a relative path is relative to the script's folder), or made from "
+                    "a list of [x, y] or [x, y, z] points (all of one kind). closed=true joins the "
+                    "last point back to the first.",
+             .params = {{"source"}, {"closed", false}},
+             .run = [](const Arguments& args) {
+               DigitizedCurve curve;
+               if (args.value(0).get<std::string>()) {
+                 curve = curves::load_curve(args.file_path(0));
+               } else if (const List* items = args.value(0).list()) {
+                 curve.name = "list";
+                 curve.dimension = items->empty() ? 3 : 0;
+                 for (const Value& item : *items) {
+                   const List* xyz = item.list();
+                   const std::size_t k = xyz ? xyz->size() : 0;
+                   bool numbers = k == 2 || k == 3;
+                   for (std::size_t a = 0; numbers && a < k; ++a) {
+                     const double* x = (*xyz)[a].get<double>();
+                     numbers = x && std::isfinite(*x);
+                   }
+                   if (!numbers) args.fail(0, "point " + std::to_string(curve.points.size() + 1) +
+                                                  " must be [x, y] or [x, y, z] with finite numbers");
+                   if (curve.dimension != 0 && curve.dimension != int(k))
+                     args.fail(0, "point " + std::to_string(curve.points.size() + 1) + " has " +
+                                      std::to_string(k) + " coordinates, the first had " +
+                                      std::to_string(curve.dimension) + " (all points must be 2D or all 3D)");
+                   curve.dimension = int(k);
+                   curve.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(),
+                                             k == 3 ? *(*xyz)[2].get<double>() : 0.0);
+                 }
+                 args.charge(curve.points.size());
+               } else {
+                 args.fail_type(0, "a file name or a list of points");
+               }
+               if (args.has(1)) curve.closed = args.boolean(1);
+               return make_curve(std::move(curve));
+             }});
 
   for (curves::TestCurve which : curves::all_test_curves()) {
     const std::string name = curves::test_curve_name(which);

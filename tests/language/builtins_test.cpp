@@ -158,6 +158,27 @@ TEST(Builtins, CurveFileRoundTrip) {
   EXPECT_EQ(r.out, "[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]\n[0, 1, 2, 3]\n");
 }
 
+TEST(Builtins, CurveFromAListOfPoints) {
+  // The same square as a list: same points; closed joins the last point to the first, so the
+  // closed square's two-segment optimum (a diagonal, error: half the diagonal) differs from the
+  // open polyline's (exactly representable: error 0 with 3 segments).
+  const auto r = run_script(
+      "c = curve([[0, 0], [1, 0], [1, 1], [0, 1]])\nprint(points(c))\nprint(error(linearize(c, 3)))");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.out, "[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]\n0\n");
+  const auto v = numbers("d = curve([[0, 0], [1, 0], [1, 1], [0, 1]], closed=true)\n"
+                         "print(len(indices(linearize(d, 2))), error(linearize(d, 2)))");
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_EQ(v[0], 3);
+  EXPECT_NEAR(v[1], std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(first_error_line("x = curve([[0, 0, 0], [1, 1]])"),
+            "t.bsp:1:11: error: curve: point 2 has 2 coordinates, the first had 3 (all points must be 2D or all 3D)");
+  EXPECT_EQ(first_error_line("x = curve([[0, 0], [1, \"a\"]])"),
+            "t.bsp:1:11: error: curve: point 2 must be [x, y] or [x, y, z] with finite numbers");
+  EXPECT_EQ(first_error_line("x = curve(5)"),
+            "t.bsp:1:11: error: curve: argument 'source' must be a file name or a list of points, got number");
+}
+
 TEST(Builtins, ExportWritesAClosedMeshThatImportReads) {
   const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
   std::filesystem::create_directories(dir);
