@@ -138,6 +138,11 @@ class FeasibilitySolver {
         const int j = vertex_[b];
         // (only after a rejected chord: while chords pass, the row certainly goes on)
         if (rejected && j - i >= 3 && pair_excludes(i, j - 1, i + (j - i) / 2, limit)) break;
+        if (j - i == 1) {  // no interior point: error 0
+          values.push_back(floor > 0.0 ? kBelow : 0.0);
+          rejected = false;
+          continue;
+        }
         rejected = hinted_scan(i, j, limit, floor, violator, values);
         if ((spent += std::min(j - i, kRowTreeSpan)) > budget) return false;
       }
@@ -687,7 +692,9 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
     for (int s = 0; s <= m; ++s) best.push_back(static_cast<int>((static_cast<long long>(s) * (count - 1)) / m));
   }
   const bool debug = std::getenv("SCULPT_CURVES_DEBUG") != nullptr;
-  double hi = path_error(solver, best);
+  std::vector<double> start_errors(best.size() - 1);
+  for (std::size_t k = 0; k + 1 < best.size(); ++k) start_errors[k] = solver.error(best[k], best[k + 1]);
+  double hi = *std::max_element(start_errors.begin(), start_errors.end());
   const double first_hi = hi;
   double lo = -1.0;  // largest tolerance known infeasible; -1 = none yet
   int probes = 0;
@@ -729,7 +736,7 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
   bool small = small_input;
   if (small) {
     double root_sum = 0.0;
-    for (std::size_t k = 0; k + 1 < best.size(); ++k) root_sum += std::sqrt(solver.error(best[k], best[k + 1]));
+    for (double e : start_errors) root_sum += std::sqrt(e);
     const double estimate = (root_sum / m) * (root_sum / m);  // <= hi (power means)
     double cap = std::min(hi, kCapMargin * estimate);
     for (;;) {
