@@ -92,7 +92,15 @@ class Assembler {
   void merge_vertices() {
     const std::size_t n = occ_.size();
     constexpr double kCell = 1.0 / 64, kShift = 0.3711 / 64;
-    std::vector<std::pair<std::array<std::int64_t, 3>, int>> keyed;
+    // Cells are hashed to 64 bits: a collision only adds candidate pairs (tested exactly).
+    auto cell_hash = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+      std::uint64_t h = std::uint64_t(x) * 0x9E3779B97F4A7C15ull;
+      h = (h ^ (h >> 29)) + std::uint64_t(y) * 0xBF58476D1CE4E5B9ull;
+      h = (h ^ (h >> 31)) + std::uint64_t(z) * 0x94D049BB133111EBull;
+      return h ^ (h >> 32);
+    };
+    std::vector<std::pair<std::uint64_t, int>> keyed;
+    std::vector<int> wide;
     keyed.reserve(n + n / 8);
     for (std::size_t i = 0; i < n; ++i) {
       const ApproxPoint& a = occ_[i].at;
@@ -102,12 +110,26 @@ class Assembler {
         lo[k] = std::int64_t(std::floor((v[k] - a.err + kShift) / kCell));
         hi[k] = std::int64_t(std::floor((v[k] + a.err + kShift) / kCell));
       }
+      if (hi[0] - lo[0] > 2 || hi[1] - lo[1] > 2 || hi[2] - lo[2] > 2) {
+        wide.push_back(int(i));  // a large error bound (nearly dependent planes): brute force
+        continue;
+      }
       for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
         for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) keyed.push_back({{x, y, z}, int(i)});
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) keyed.push_back({cell_hash(x, y, z), int(i)});
     }
     std::sort(keyed.begin(), keyed.end());
     UnionFind uf(n);
+    for (const int ia : wide)
+      for (std::size_t ib = 0; ib < n; ++ib) {
+        const Occurrence& oa = occ_[std::size_t(ia)];
+        const Occurrence& ob = occ_[ib];
+        const double tol = oa.at.err + ob.at.err;
+        if (std::size_t(ia) == ib || uf.find(ia) == uf.find(int(ib)) || std::fabs(ob.at.x - oa.at.x) > tol ||
+            std::fabs(ob.at.y - oa.at.y) > tol || std::fabs(ob.at.z - oa.at.z) > tol)
+          continue;
+        if (same_point(oa, ob)) uf.unite(ia, int(ib));
+      }
     for (std::size_t i = 0; i < keyed.size();) {
       std::size_t j = i;
       while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
@@ -130,6 +152,7 @@ class Assembler {
       if (vertex_of_[std::size_t(r)] < 0) {
         vertex_of_[std::size_t(r)] = int(rep_.size());
         rep_.push_back(r);
+        at_.push_back(occ_[std::size_t(r)].at);
       }
       vertex_of_[i] = vertex_of_[std::size_t(r)];
     }
@@ -161,11 +184,11 @@ class Assembler {
   }
 
   Eigen::Vector3d position(int v) const {
-    const ApproxPoint& a = occ_[std::size_t(rep_[std::size_t(v)])].at;
+    const ApproxPoint& a = at_[std::size_t(v)];
     return {a.x, a.y, a.z};
   }
 
-  double err(int v) const { return occ_[std::size_t(rep_[std::size_t(v)])].at.err; }
+  double err(int v) const { return at_[std::size_t(v)].err; }
 
   // The axis along which the line support ∩ edge changes most, from the exact direction
   // n_support x n_edge (integers below 2^107, so the double of the largest is non-zero): two
@@ -623,6 +646,7 @@ class Assembler {
           } else {
             class_vertex[std::size_t(root)] = int(rep_.size());
             rep_.push_back(rep_[std::size_t(v[k])]);
+            at_.push_back(at_[std::size_t(v[k])]);
           }
         }
         v[k] = class_vertex[std::size_t(root)];
@@ -706,6 +730,7 @@ class Assembler {
   std::vector<int> start_;
   std::vector<int> vertex_of_;  // occurrence -> vertex
   std::vector<int> rep_;        // vertex -> representative occurrence
+  std::vector<ApproxPoint> at_;  // vertex -> approximation (that of its representative)
   std::vector<int> occ_start_, occ_list_;  // occurrences of each vertex (before duplication)
   std::vector<Face> faces_;
   std::vector<int> corner_start_;
