@@ -117,14 +117,15 @@ class FeasibilitySolver {
   /// curves: beyond the feasible chords of a row, one distance rejects each).
   /// Errors certainly below `floor` are stored as kBelow (no square roots: most chords of a row);
   /// no probe may go below floor() until materialize() has measured them.
-  /// False (and nothing stored) once more than `budget` point distances would be needed.
+  /// False (and nothing stored) once the rows so far took more than 2e6 point distances plus
+  /// `budget` per row.
   bool build_rows(double limit, double budget, double floor = 0.0) {
     const int count = this->count();
     std::vector<std::size_t> rows(count, 0);
     std::vector<int> reach(count, count - 1);
     std::vector<double> values;
     values.reserve(static_cast<std::size_t>(count) * 16);
-    double spent = 0.0;
+    scanned_ = 0.0;
     if (!columns_) columns_.emplace(points_);
     measured_.clear();
     cross2_.clear();
@@ -144,7 +145,7 @@ class FeasibilitySolver {
           continue;
         }
         rejected = hinted_scan(i, j, limit, floor, violator, values);
-        if ((spent += std::min(j - i, kRowTreeSpan)) > budget) return false;
+        if ((scanned_ += 1.0) > 2e6 + budget * (a + 1)) return false;
       }
       reach[a] = b - 1;
     }
@@ -376,6 +377,7 @@ class FeasibilitySolver {
     const double length2 = (dx * dx + dy * dy) + dz * dz;  // = (p_j - p_i).squaredNorm()
     if (norm_ != Norm::LInf || length2 == 0.0 || j - i > kRowTreeSpan) {
       values.push_back(hinted_error(i, j, limit, violator));
+      scanned_ += std::min(j - i, kRowTreeSpan);
       return values.back() > limit;
     }
     const double bound = limit * limit * length2 * (1.0 + 1e-9) + 1e-300;
@@ -385,6 +387,7 @@ class FeasibilitySolver {
     }
     const ChordScan scan = scan_chord(c, i, j, bound);
     violator = scan.beyond;
+    scanned_ += violator >= 0 ? violator - i : j - i;
     if (violator >= 0) {
       values.push_back(kBeyond);
       return true;
@@ -617,6 +620,7 @@ class FeasibilitySolver {
   std::vector<Checkpoint> checkpoints_;  // slope filter of the current row
   std::vector<double> cross2_, length2_;  // build_rows: chords to measure (farthest point, length)
   std::vector<std::size_t> measured_;     // build_rows: their places in the stored errors
+  double scanned_ = 0.0;                  // build_rows: point distances so far (work budget)
   std::optional<PointColumns> columns_;   // build_rows: the points as coordinate columns
   double floor_ = 0.0;                    // stored errors below it are kBelow
   double best_bottleneck_ = 0.0;          // of the last best_exact_path
@@ -739,8 +743,12 @@ Linearization optimal_min_error(const std::vector<Eigen::Vector3d>& points, int 
     for (double e : start_errors) root_sum += std::sqrt(e);
     const double estimate = (root_sum / m) * (root_sum / m);  // <= hi (power means)
     double cap = std::min(hi, kCapMargin * estimate);
+    // Work budget per row: smooth curves need about (1.3 n / m)^2 / 2 point distances a row;
+    // data without smoothness (rows that never end) gives up early and takes the general path.
+    const double span = static_cast<double>(count) / m;
+    const double budget = std::min(kSmallBudget / count, 2.5e4 + 16.0 * span * span);
     for (;;) {
-      small = solver.build_rows(cap, kSmallBudget, kFloorFraction * estimate);
+      small = solver.build_rows(cap, budget, kFloorFraction * estimate);
       if (debug)
         std::fprintf(stderr, "rows under %.6g (start %.6g): %lld candidate edges over %d vertices%s\n", cap, hi,
                      solver.edge_count(), count, small ? "" : ", over budget");
