@@ -391,12 +391,17 @@ class Assembler {
   // Fragments of one oriented plane that share edges become one face when their union is a
   // simple polygon (one boundary loop); unions with holes keep their convex fragments.
   void merge_coplanar_faces() {
-    // Group faces by oriented plane (sorted, no hashing).
-    std::vector<std::pair<kernel::Plane, int>> by_plane;
-    by_plane.reserve(faces_.size());
-    for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
-      const kernel::Plane& p = planes_[faces_[fi].support];
-      by_plane.push_back({faces_[fi].flip ? p.opposite() : p, int(fi)});
+    // Group faces by oriented plane: equal planes may have several indices, so each plane index
+    // gets a canonical id (planes sorted by value, the sign fixed by the first non-zero normal
+    // coefficient) once, and faces are sorted by (id, orientation).
+    const std::int32_t np = planes_.size();
+    std::vector<kernel::Plane> normalized(static_cast<std::size_t>(np));
+    std::vector<bool> negated(static_cast<std::size_t>(np), false);
+    for (std::int32_t i = 0; i < np; ++i) {
+      const kernel::Plane& p = planes_[i];
+      const bool neg = p.a < 0 || (p.a == 0 && (p.b < 0 || (p.b == 0 && p.c < 0)));
+      normalized[std::size_t(i)] = neg ? p.opposite() : p;
+      negated[std::size_t(i)] = neg;
     }
     auto plane_less = [](const kernel::Plane& a, const kernel::Plane& b) {
       if (a.a != b.a) return a.a < b.a;
@@ -404,8 +409,23 @@ class Assembler {
       if (a.c != b.c) return a.c < b.c;
       return a.d < b.d;
     };
-    std::sort(by_plane.begin(), by_plane.end(),
-              [&](const auto& x, const auto& y) { return plane_less(x.first, y.first) || (!plane_less(y.first, x.first) && x.second < y.second); });
+    std::vector<std::int32_t> order(static_cast<std::size_t>(np));
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::int32_t x, std::int32_t y) {
+      return plane_less(normalized[std::size_t(x)], normalized[std::size_t(y)]);
+    });
+    std::vector<std::uint32_t> canonical(static_cast<std::size_t>(np), 0);
+    for (std::size_t k = 1; k < order.size(); ++k)
+      canonical[std::size_t(order[k])] = canonical[std::size_t(order[k - 1])] +
+          (normalized[std::size_t(order[k])] == normalized[std::size_t(order[k - 1])] ? 0 : 1);
+    std::vector<std::pair<std::uint64_t, int>> by_plane;  // (2 id + orientation, face)
+    by_plane.reserve(faces_.size());
+    for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
+      const auto sp = std::size_t(faces_[fi].support);
+      const bool orientation = negated[sp] != faces_[fi].flip;
+      by_plane.push_back({2 * std::uint64_t(canonical[sp]) + (orientation ? 1 : 0), int(fi)});
+    }
+    std::sort(by_plane.begin(), by_plane.end());
     std::vector<bool> removed(faces_.size(), false);
     std::vector<Face> added;
     std::vector<std::pair<std::uint64_t, int>> edge;  // (u, w) -> local member index
