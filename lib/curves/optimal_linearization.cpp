@@ -273,21 +273,26 @@ class FeasibilitySolver {
     const double none = std::numeric_limits<double>::infinity();
     std::vector<double> bottleneck(static_cast<std::size_t>(count) * width, none);
     std::vector<int> from(static_cast<std::size_t>(count) * width, -1);
+    std::vector<int>& top = top_;  // highest layer reached so far, per position (-1: none)
+    top.assign(count, -1);
     bottleneck[0] = 0.0;
+    top[0] = 0;
     for (int a = 0; a + 1 < count; ++a) {
-      if (dist_[a] == kUnreached) continue;
+      if (top[a] < 0) continue;
       const double* row = stored_.data() + row_[a];
       const std::size_t state = static_cast<std::size_t>(a) * width;
       for (int b = a + 1; b <= reach_[a]; ++b) {
         const double e = row[b - a - 1];
         if (e > eps) continue;
         const int shift = dist_[a] + 1 - dist_[b];  // layer l of a reaches layer l + shift of b
-        const std::size_t target = static_cast<std::size_t>(b) * width;
-        for (int l = 0; l + shift < width; ++l) {
+        const int layers = std::min(top[a] + 1, width - shift);
+        const std::size_t target = static_cast<std::size_t>(b) * width + shift;
+        for (int l = 0; l < layers; ++l) {
           const double through = std::max(bottleneck[state + l], e);
-          if (through < bottleneck[target + l + shift]) {
-            bottleneck[target + l + shift] = through;
-            from[target + l + shift] = static_cast<int>(state + l);
+          if (through < bottleneck[target + l]) {
+            bottleneck[target + l] = through;
+            from[target + l] = static_cast<int>(state + l);
+            top[b] = std::max(top[b], l + shift);
           }
         }
       }
@@ -632,6 +637,7 @@ class FeasibilitySolver {
   std::vector<int> vertex_;
   std::vector<int> reach_, hint_, dist_, pred_;
   std::vector<int> unclaimed_;  // min_count: disjoint-set forest over positions
+  std::vector<int> top_;        // best_exact_path: highest layer reached per position
   double reach_eps_ = std::numeric_limits<double>::infinity();
   long long tests_ = 0;
 };
