@@ -44,7 +44,7 @@ constexpr int kRowTreeSpan = 512;
 // build_rows' first cap: this factor times the estimate of the optimum from the start's errors.
 constexpr double kCapMargin = 1.25;
 // ... and its floor (errors below are not measured, only known to be below) this fraction of it.
-constexpr double kFloorFraction = 0.5;
+constexpr double kFloorFraction = 0.75;
 constexpr double kSmallBudget = 6e7;
 // Stored mode: guesses by the 1 / k^2 scaling before the binary search; the first guess as a
 // fraction of the start's error (INIT is within 1.0-1.7x of the optimum on the Appendix-B curves).
