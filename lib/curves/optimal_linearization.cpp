@@ -125,11 +125,13 @@ class FeasibilitySolver {
     std::vector<int> reach(count, count - 1);
     std::vector<double> values;
     values.reserve(static_cast<std::size_t>(count) * 16);
-    scanned_ = 0.0;
     if (!columns_) columns_.emplace(points_);
     measured_.clear();
     cross2_.clear();
     length2_.clear();
+    // squared thresholds with margins far above rounding: beyond limit / certainly below floor
+    const Thresholds squared{limit * limit * (1.0 + 1e-9), floor * floor * (1.0 - 1e-9), limit, floor};
+    double scanned = 0.0;  // point distances so far (work budget)
     for (int a = 0; a + 1 < count; ++a) {
       rows[a] = values.size();
       const int i = vertex_[a];
@@ -144,8 +146,8 @@ class FeasibilitySolver {
           rejected = false;
           continue;
         }
-        rejected = hinted_scan(i, j, limit, floor, violator, values);
-        if ((scanned_ += 1.0) > 2e6 + budget * (a + 1)) return false;
+        rejected = hinted_scan(i, j, squared, violator, values, scanned);
+        if ((scanned += 1.0) > 2e6 + budget * (a + 1)) return false;
       }
       reach[a] = b - 1;
     }
@@ -376,29 +378,33 @@ class FeasibilitySolver {
   // certainly below floor, else a placeholder, with the squared cross product of the farthest
   // point and |p_j - p_i|^2 queued in cross2_, length2_ (measured_ = its place). Degenerate,
   // long and L2 chords are measured at once. True if the error exceeds limit.
-  bool hinted_scan(int i, int j, double limit, double floor, int& violator, std::vector<double>& values) {
+  struct Thresholds {
+    double beyond2, below2;  // limit^2 (1 + 1e-9), floor^2 (1 - 1e-9)
+    double limit, floor;
+  };
+  bool hinted_scan(int i, int j, const Thresholds& t, int& violator, std::vector<double>& values, double& scanned) {
     const PointColumns& c = *columns_;
     const double dx = c.x[j] - c.x[i], dy = c.y[j] - c.y[i], dz = c.z[j] - c.z[i];
     const double length2 = (dx * dx + dy * dy) + dz * dz;  // = (p_j - p_i).squaredNorm()
     if (norm_ != Norm::LInf || length2 == 0.0 || j - i > kRowTreeSpan) {
-      values.push_back(hinted_error(i, j, limit, violator));
-      scanned_ += std::min(j - i, kRowTreeSpan);
-      return values.back() > limit;
+      values.push_back(hinted_error(i, j, t.limit, violator));
+      scanned += std::min(j - i, kRowTreeSpan);
+      return values.back() > t.limit;
     }
-    const double bound = limit * limit * length2 * (1.0 + 1e-9) + 1e-300;
+    const double bound = t.beyond2 * length2 + 1e-300;
     if (violator > i && violator < j && cross2_to(c, i, violator, dx, dy, dz) > bound) {
       values.push_back(kBeyond);
       return true;
     }
     const ChordScan scan = scan_chord(c, i, j, bound);
     violator = scan.beyond;
-    scanned_ += violator >= 0 ? violator - i : j - i;
+    scanned += violator >= 0 ? violator - i : j - i;
     if (violator >= 0) {
       values.push_back(kBeyond);
       return true;
     }
-    // below floor for certain: sqrt(cross2) / sqrt(length2) < floor with a margin far above rounding
-    if (scan.cross2 < floor * floor * length2 * (1.0 - 1e-9)) {
+    // below floor for certain: sqrt(cross2) / sqrt(length2) < floor
+    if (scan.cross2 < t.below2 * length2) {
       values.push_back(kBelow);
       return false;
     }
@@ -625,7 +631,6 @@ class FeasibilitySolver {
   std::vector<Checkpoint> checkpoints_;  // slope filter of the current row
   std::vector<double> cross2_, length2_;  // build_rows: chords to measure (farthest point, length)
   std::vector<std::size_t> measured_;     // build_rows: their places in the stored errors
-  double scanned_ = 0.0;                  // build_rows: point distances so far (work budget)
   std::optional<PointColumns> columns_;   // build_rows: the points as coordinate columns
   double floor_ = 0.0;                    // stored errors below it are kBelow
   double best_bottleneck_ = 0.0;          // of the last best_exact_path
