@@ -86,6 +86,21 @@ struct ChordScan {
   return {largest, -1};
 }
 
+/// scan_chord for points with z = 0: the cross product has only its z component, (0 + 0) + c2^2
+/// is c2^2 exactly (x 0 = +-0, and +-0 - +-0 = +-0), so the values are the same bits.
+[[nodiscard]] inline ChordScan scan_chord_planar(const PointColumns& c, int i, int j, double bound) {
+  const double ax = c.x[i], ay = c.y[i];
+  const double dx = c.x[j] - ax, dy = c.y[j] - ay;
+  double largest = 0.0;
+  for (int k = i + 1; k < j; ++k) {
+    const double c2 = (c.x[k] - ax) * dy - (c.y[k] - ay) * dx;
+    const double s = c2 * c2;
+    if (s > bound) return {s, k};
+    if (s > largest) largest = s;
+  }
+  return {largest, -1};
+}
+
 /// out[t] = sqrt(cross2[t]) / sqrt(length2[t]) (the distance ChordDistance reports for a point
 /// with that squared cross product), two at a time; markers pass through: cross2[t] = -1 gives
 /// `beyond`, -2 gives `below`.

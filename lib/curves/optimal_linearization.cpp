@@ -396,7 +396,7 @@ class FeasibilitySolver {
       values.push_back(kBeyond);
       return true;
     }
-    const ChordScan scan = scan_chord(c, i, j, bound);
+    const ChordScan scan = planar_ ? scan_chord_planar(c, i, j, bound) : scan_chord(c, i, j, bound);
     violator = scan.beyond;
     scanned += violator >= 0 ? violator - i : j - i;
     if (violator >= 0) {
