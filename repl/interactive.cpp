@@ -12,6 +12,10 @@
 
 #ifdef SCULPT_HAVE_LIBEDIT
 #include <editline/readline.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <cerrno>
 #endif
 
 namespace sculpt::repl {
@@ -70,6 +74,33 @@ char** complete(const char* text, int /*start*/, int /*end*/) {
   return rl_completion_matches(text, completion_generator);
 }
 
+/// libedit's character source. A Ctrl-C that arrives before libedit blocks in read() would be
+/// lost (the read would not be interrupted), so SIGINT stays blocked except inside ppoll(),
+/// which unblocks it atomically while waiting; a raised flag ends the line as end of input.
+int read_key(FILE* in) {
+  sigset_t interrupt_only, previous;
+  sigemptyset(&interrupt_only);
+  sigaddset(&interrupt_only, SIGINT);
+  sigprocmask(SIG_BLOCK, &interrupt_only, &previous);
+  sigset_t waiting = previous;
+  sigdelset(&waiting, SIGINT);
+  const int fd = fileno(in);
+  int key = EOF;
+  while (!interrupted.load()) {
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ppoll(&p, 1, nullptr, &waiting);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready < 0) break;
+    unsigned char c = 0;
+    const ssize_t n = read(fd, &c, 1);
+    if (n == 1) key = c;
+    if (n < 0 && errno == EINTR) continue;
+    break;
+  }
+  sigprocmask(SIG_SETMASK, &previous, nullptr);
+  return key;
+}
+
 std::string history_path() {
   const char* home = std::getenv("HOME");
   return home && *home ? std::string(home) + "/.sculpt_history" : std::string();
@@ -92,6 +123,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
   completing_session = &session;
   rl_readline_name = "sculpt";
   rl_attempted_completion_function = complete;
+  rl_getc_function = read_key;
   rl_basic_word_break_characters = const_cast<char*>(" \t\n\"\\'`@$><=;|&{([,+-*/%");
   const std::string history = history_path();
   using_history();
