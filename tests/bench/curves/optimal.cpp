@@ -5,7 +5,7 @@
 //  3. growth of the optimal solver's time with n (1e3 .. 1e5) and m, cases predicted to take
 //     longer than 20 s are skipped and marked;
 //  4. the worst case we know: points scattered uniformly at random (no smoothness to prune by).
-//   curves_optimal [quick]
+//   curves_optimal [quick | paper]   (paper: part 1 only, full run counts; for repeated runs)
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -21,6 +21,7 @@ using namespace sculpt::curves;
 
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::string(argv[1]) == "quick";
+  const bool paper_only = argc > 1 && std::string(argv[1]) == "paper";
   std::printf("## 1. DYNAMIC vs optimal, m = 64, paper point counts\n\n");
   std::printf("| curve | n | DYNAMIC ms | optimal ms | speed-up | equal error |\n|---|---|---|---|---|---|\n");
   for (TestCurve which : all_test_curves()) {
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
                 optimal.error);
   }
 
+  if (paper_only) return 0;
   std::printf("\n## 2. optimal, n = 5000, m = 300\n\n| curve | ms (median of 5) | error | probes |\n|---|---|---|---|\n");
   for (TestCurve which : all_test_curves()) {
     const DigitizedCurve curve = make_test_curve(which, {.points = 5000});
