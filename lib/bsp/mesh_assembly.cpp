@@ -92,14 +92,7 @@ class Assembler {
   void merge_vertices() {
     const std::size_t n = occ_.size();
     constexpr double kCell = 1.0 / 64, kShift = 0.3711 / 64;
-    // Cells are hashed to 64 bits: a collision only adds candidate pairs (tested exactly).
-    auto cell_hash = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-      std::uint64_t h = std::uint64_t(x) * 0x9E3779B97F4A7C15ull;
-      h = (h ^ (h >> 29)) + std::uint64_t(y) * 0xBF58476D1CE4E5B9ull;
-      h = (h ^ (h >> 31)) + std::uint64_t(z) * 0x94D049BB133111EBull;
-      return h ^ (h >> 32);
-    };
-    std::vector<std::pair<std::uint64_t, int>> keyed;
+    std::vector<std::pair<std::array<std::int64_t, 3>, int>> keyed;  // sorted: spatially coherent
     std::vector<int> wide;
     keyed.reserve(n + n / 8);
     for (std::size_t i = 0; i < n; ++i) {
@@ -116,7 +109,7 @@ class Assembler {
       }
       for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
         for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) keyed.push_back({cell_hash(x, y, z), int(i)});
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) keyed.push_back({{x, y, z}, int(i)});
     }
     std::sort(keyed.begin(), keyed.end());
     UnionFind uf(n);
