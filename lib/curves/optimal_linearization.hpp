@@ -12,10 +12,15 @@
 ///    chord from p_i beyond both points can be feasible, which bounds the reach of i;
 ///  - SegmentErrorTree answers "error(i, j) <= eps" exactly in about O(log n).
 /// The min-error problem for exactly m segments: the optimum is one of the segment errors, and
-/// feasibility is monotone in eps, so eps is bisected over the doubles (a feasible probe lowers
-/// the upper bound to the error actually reached) until no double lies between the bounds.
-/// "Exactly m" is decided exactly: min-# <= m, then a certificate by splitting segments, and if
-/// that fails a bitset DP over achievable segment counts.
+/// feasibility is monotone in eps. Small inputs (<= 64 points per segment on average) store every
+/// candidate edge's error, built in one pass under a cap from an estimate of the optimum
+/// ((sum_s sqrt(e_s) / m)^2 over evenly spaced break points: errors grow like length squared on
+/// smooth curves, sec. 4). A probe needing k <= m segments with m - k <= 6 ends the search: a
+/// DAG relaxation with m - k + 1 layers per vertex finds the best path of exactly m edges within
+/// eps, which is the optimum. Otherwise guesses by the same scaling, then binary search over
+/// the stored errors, or bisection of eps over the doubles when nothing is stored. "Exactly m"
+/// is otherwise decided by splitting segments of a min-# path, or a bitset DP over achievable
+/// segment counts. docs/curves.md has the details.
 
 #include <Eigen/Core>
 #include <vector>
