@@ -339,6 +339,24 @@ class Assembler {
       grid.push_back({cell_key(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), c});
     }
     std::sort(grid.begin(), grid.end());
+    // Open-addressing index: cell key -> its run [begin, end) in `grid` (one probe per cell
+    // instead of a binary search through the whole grid).
+    struct Slot {
+      std::uint64_t key;
+      std::uint32_t begin, end;  // end == 0: empty slot
+    };
+    std::size_t slots = 16;
+    while (slots < 2 * grid.size()) slots *= 2;
+    std::vector<Slot> index(slots, Slot{0, 0, 0});
+    auto slot_of = [&](std::uint64_t k) { return std::size_t((k * 0x9E3779B97F4A7C15ull) >> 20) & (slots - 1); };
+    for (std::size_t i = 0; i < grid.size();) {
+      std::size_t j = i;
+      while (j < grid.size() && grid[j].first == grid[i].first) ++j;
+      std::size_t h = slot_of(grid[i].first);
+      while (index[h].end != 0) h = (h + 1) & (slots - 1);
+      index[h] = {grid[i].first, std::uint32_t(i), std::uint32_t(j)};
+      i = j;
+    }
 
     constexpr double kTol = 1e-3;  // grid units: a cheap prefilter only; the test is exact
     std::vector<int> near;
@@ -358,9 +376,11 @@ class Assembler {
           for (std::int64_t y = y0; y <= y1; ++y)
             for (std::int64_t z = z0; z <= z1; ++z) {
               const std::uint64_t ck = cell_key(x, y, z);
-              for (auto it = std::lower_bound(grid.begin(), grid.end(), std::pair{ck, std::numeric_limits<int>::min()});
-                   it != grid.end() && it->first == ck; ++it)
-                near.push_back(it->second);
+              for (std::size_t h = slot_of(ck); index[h].end != 0; h = (h + 1) & (slots - 1))
+                if (index[h].key == ck) {
+                  for (std::uint32_t g = index[h].begin; g < index[h].end; ++g) near.push_back(grid[g].second);
+                  break;
+                }
             }
         std::sort(near.begin(), near.end());
         near.erase(std::unique(near.begin(), near.end()), near.end());
@@ -402,8 +422,13 @@ class Assembler {
       if (a.c != b.c) return a.c < b.c;
       return a.d < b.d;
     };
-    std::vector<std::int32_t> order(static_cast<std::size_t>(np));
-    std::iota(order.begin(), order.end(), 0);
+    std::vector<std::int32_t> order;  // the planes that support faces, by value
+    {
+      std::vector<bool> used(static_cast<std::size_t>(np), false);
+      for (const Face& f : faces_) used[std::size_t(f.support)] = true;
+      for (std::int32_t i = 0; i < np; ++i)
+        if (used[std::size_t(i)]) order.push_back(i);
+    }
     std::sort(order.begin(), order.end(), [&](std::int32_t x, std::int32_t y) {
       return plane_less(normalized[std::size_t(x)], normalized[std::size_t(y)]);
     });
