@@ -273,39 +273,42 @@ class FeasibilitySolver {
     const int count = this->count();
     const int width = m - dist_.back() + 1;
     const double none = std::numeric_limits<double>::infinity();
-    std::vector<double> bottleneck(static_cast<std::size_t>(count) * width, none);
-    std::vector<int> from(static_cast<std::size_t>(count) * width, -1);
-    std::vector<int>& top = top_;  // highest layer reached so far, per position (-1: none)
-    top.assign(count, -1);
+    std::vector<double>& bottleneck = bottleneck_;
+    bottleneck.assign(static_cast<std::size_t>(count) * width, none);
     bottleneck[0] = 0.0;
-    top[0] = 0;
+    // Branch-free relaxation (min of max, no predecessor bookkeeping); the path is recovered
+    // afterwards by matching values, which are copies of stored errors, so exactly equal.
     for (int a = 0; a + 1 < count; ++a) {
-      if (top[a] < 0) continue;
+      if (dist_[a] == kUnreached) continue;
       const double* row = stored_.data() + row_[a];
-      const std::size_t state = static_cast<std::size_t>(a) * width;
+      const double* from = bottleneck.data() + static_cast<std::size_t>(a) * width;
       for (int b = a + 1; b <= reach_[a]; ++b) {
         const double e = row[b - a - 1];
         if (e > eps) continue;
         const int shift = dist_[a] + 1 - dist_[b];  // layer l of a reaches layer l + shift of b
-        const int layers = std::min(top[a] + 1, width - shift);
-        const std::size_t target = static_cast<std::size_t>(b) * width + shift;
-        for (int l = 0; l < layers; ++l) {
-          const double through = std::max(bottleneck[state + l], e);
-          if (through < bottleneck[target + l]) {
-            bottleneck[target + l] = through;
-            from[target + l] = static_cast<int>(state + l);
-            top[b] = std::max(top[b], l + shift);
-          }
-        }
+        double* to = bottleneck.data() + static_cast<std::size_t>(b) * width + shift;
+        for (int l = 0; l + shift < width; ++l) to[l] = std::min(to[l], std::max(from[l], e));
       }
     }
-    std::size_t state = static_cast<std::size_t>(count - 1) * width + (width - 1);
-    best_bottleneck_ = bottleneck[state];
-    if (bottleneck[state] == none) return std::nullopt;
+    best_bottleneck_ = bottleneck[static_cast<std::size_t>(count) * width - 1];
+    if (best_bottleneck_ == none) return std::nullopt;
     std::vector<int> path{count - 1};
-    while (from[state] >= 0) {
-      state = static_cast<std::size_t>(from[state]);
-      path.push_back(static_cast<int>(state / width));
+    for (int b = count - 1, layer = width - 1; b > 0;) {
+      const double value = bottleneck[static_cast<std::size_t>(b) * width + layer];
+      int previous = -1, previous_layer = -1;
+      for (int a = b - 1; a >= 0 && previous < 0; --a) {
+        if (dist_[a] == kUnreached || reach_[a] < b) continue;
+        const double e = stored_[row_[a] + (b - a - 1)];
+        const int l = layer - (dist_[a] + 1 - dist_[b]);
+        if (e > eps || l < 0 || l >= width) continue;
+        if (std::max(bottleneck[static_cast<std::size_t>(a) * width + l], e) == value) {
+          previous = a;
+          previous_layer = l;
+        }
+      }
+      b = previous;  // exists: value was relaxed from some such state
+      layer = previous_layer;
+      path.push_back(b);
     }
     std::reverse(path.begin(), path.end());
     return path;
@@ -642,7 +645,7 @@ class FeasibilitySolver {
   std::vector<int> vertex_;
   std::vector<int> reach_, hint_, dist_, pred_;
   std::vector<int> unclaimed_;  // min_count: disjoint-set forest over positions
-  std::vector<int> top_;        // best_exact_path: highest layer reached per position
+  std::vector<double> bottleneck_;  // best_exact_path: per position and layer
   double reach_eps_ = std::numeric_limits<double>::infinity();
   long long tests_ = 0;
 };
