@@ -79,6 +79,9 @@ class Extractor {
     for (const TreeRef node : order) {
       const std::size_t i = std::size_t(node);
       const BspNode& n = solid_.nodes()[i];
+      // An auxiliary plane carries no face of any operand, hence no boundary (the boundary of
+      // a regularized set operation lies on its operands' boundaries).
+      if (solid_.planes().auxiliary(n.plane)) continue;
       const bool neg_first = size_of(n.negative) <= size_of(n.positive);
       const TreeRef first = neg_first ? n.negative : n.positive, second = neg_first ? n.positive : n.negative;
       negative_pieces.clear();

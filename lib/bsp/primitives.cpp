@@ -79,7 +79,7 @@ class SectorTree {
   std::int32_t axial(double a) {
     // f = -sin(a) x + cos(a) y + offset: positive for angles in (a, a + pi) (offset aside).
     const double offset = max_offset_ * (0.5 + 0.5 * std::fmod(0.6180339887498949 * ++count_, 1.0));
-    return b_.add_plane(kernel::plane_from_normal({-std::sin(a), std::cos(a), 0.0}, offset));
+    return b_.add_plane(kernel::plane_from_normal({-std::sin(a), std::cos(a), 0.0}, offset), /*auxiliary=*/true);
   }
   // Tree for the wedge of angles (lo, hi), hi - lo <= pi.
   TreeRef wedge(double lo, double hi) {
@@ -175,7 +175,9 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   TreeBuilder b;
   // Ring planes z = z_k: f = z - z_k.
   std::vector<std::int32_t> ring_plane(r);
-  for (std::size_t k = 0; k < r; ++k) ring_plane[k] = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(z[k])));
+  // Inner rings only separate bands (auxiliary); the first and last ring planes are the caps.
+  for (std::size_t k = 0; k < r; ++k)
+    ring_plane[k] = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(z[k])), k > 0 && k + 1 < r);
   // Band trees.
   std::vector<TreeRef> band(r - 1);
   for (std::size_t k = 0; k + 1 < r; ++k) {

@@ -57,8 +57,12 @@ class Merger {
       const BspNode n = a_.nodes[std::size_t(f.t)];
       kernel::PolygonSplit s = kernel::split(a_.planes, a_.polygons[std::size_t(f.t)], cut, cut_opp);
       switch (s.side) {
-        case Side::On: {
+        case Side::On: {  // the node is absorbed by `cut`, which takes over its faces
           const bool same = a_.planes[n.plane] == a_.planes[cut];
+          if (!a_.planes.auxiliary(n.plane)) {
+            a_.planes.set_auxiliary(cut, false);
+            a_.planes.set_auxiliary(cut_opp, false);
+          }
           set(f.neg, same ? n.negative : n.positive);
           set(f.pos, same ? n.positive : n.negative);
           break;

@@ -27,12 +27,16 @@ std::optional<Eigen::Matrix<std::int64_t, 3, 3>> integer_matrix(const Eigen::Mat
   return r;
 }
 
-Solid map_planes(const Solid& solid, auto&& map_plane) {
+// `exact`: the map is exact, so the image of a plane that carries no face carries none either
+// and the auxiliary marks are kept. Re-quantized planes no longer meet where they did, and the
+// image tree can have sliver faces on any plane: then no plane is auxiliary.
+Solid map_planes(const Solid& solid, auto&& map_plane, bool exact) {
   if (is_leaf(solid.root())) return solid;
   TreeBuilder b;
   std::vector<std::int32_t> plane_map(std::size_t(solid.planes().size()), -1);
   auto mapped = [&](std::int32_t p) {
-    if (plane_map[std::size_t(p)] < 0) plane_map[std::size_t(p)] = b.add_plane(map_plane(solid.planes()[p]));
+    if (plane_map[std::size_t(p)] < 0)
+      plane_map[std::size_t(p)] = b.add_plane(map_plane(solid.planes()[p]), exact && solid.planes().auxiliary(p));
     return plane_map[std::size_t(p)];
   };
   // Children have larger indices than their parents? Not guaranteed: build bottom-up by
@@ -62,7 +66,7 @@ Solid translate(const Solid& solid, const Eigen::Vector3d& v) {
   const kernel::GridPoint t = kernel::snap(v);
   return map_planes(solid, [&](const Plane& p) {
     return kernel::make_plane(p.a, p.b, p.c, p.d - (Int128(p.a) * t.x + Int128(p.b) * t.y + Int128(p.c) * t.z));
-  });
+  }, true);
 }
 
 Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
@@ -89,7 +93,7 @@ Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
         n[i] = sgn * (Int128(cof(i, 0)) * p.a + Int128(cof(i, 1)) * p.b + Int128(cof(i, 2)) * p.c);
       const Int128 d = Int128(idet * sgn) * p.d - (n[0] * t.x + n[1] * t.y + n[2] * t.z);
       return kernel::make_plane(n[0], n[1], n[2], d);
-    });
+    }, true);
   }
   // General map: n' = M^-T n, offset' = d * step - n' . t (world units), then re-quantized.
   const Eigen::Matrix3d inv_t = m.inverse().transpose();
@@ -99,7 +103,7 @@ Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
     // Keep magnitudes moderate before quantizing: divide normal and offset by the same factor.
     const double offset = (double(p.d) * kernel::kGridStep - n.dot(tv)) / scale;
     return kernel::plane_from_normal(n / scale, offset);
-  });
+  }, false);
 }
 
 Solid rotate(const Solid& solid, const Eigen::Vector3d& axis, double degrees) {

@@ -10,7 +10,7 @@ std::int32_t Arena::opposite(std::int32_t i) {
   if (opposite_of.size() < std::size_t(planes.size())) opposite_of.resize(planes.size(), -1);
   if (opposite_of[i] < 0) {
     const kernel::Plane o = planes[i].opposite();
-    const std::int32_t j = planes.add(o);
+    const std::int32_t j = planes.add(o, planes.auxiliary(i));
     opposite_of.resize(planes.size(), -1);
     opposite_of[i] = j;
     opposite_of[j] = i;
@@ -24,7 +24,7 @@ TreeRef Arena::append(const Solid& solid) {
   const std::int32_t shift = planes.size() - 6;  // the world box planes 0..5 are shared
   auto map = [shift](std::int32_t p) { return p < 6 ? p : p + shift; };
   planes.reserve(planes.size() + src.size());
-  for (std::size_t i = 6; i < src.size(); ++i) planes.add(src[i]);
+  for (std::size_t i = 6; i < src.size(); ++i) planes.add(src[i], solid.planes().auxiliary(std::int32_t(i)));
   const auto node_shift = std::int32_t(nodes.size());
   for (const BspNode& n : solid.nodes())
     nodes.push_back({map(n.plane), is_leaf(n.negative) ? n.negative : n.negative + node_shift,
@@ -104,7 +104,7 @@ Solid compact(Arena& arena, TreeRef root) {
   kernel::PlaneTable table;
   for (std::int32_t i = 0; i < 6; ++i) plane_map[i] = i;
   auto use = [&](std::int32_t p) {
-    if (plane_map[p] < 0) plane_map[p] = table.add(arena.planes[p]);
+    if (plane_map[p] < 0) plane_map[p] = table.add(arena.planes[p], arena.planes.auxiliary(p));
     return plane_map[p];
   };
   // Post-order puts the root last; reverse to have the root first (index 0).

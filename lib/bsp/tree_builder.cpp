@@ -11,7 +11,7 @@ using kernel::Side;
 
 TreeBuilder::TreeBuilder() = default;
 
-std::int32_t TreeBuilder::add_plane(const kernel::Plane& plane) { return planes_.add(plane); }
+std::int32_t TreeBuilder::add_plane(const kernel::Plane& plane, bool auxiliary) { return planes_.add(plane, auxiliary); }
 
 TreeRef TreeBuilder::add_node(std::int32_t plane, TreeRef negative, TreeRef positive) {
   if (plane < 0 || plane >= planes_.size()) throw std::out_of_range("TreeBuilder: unknown plane");
@@ -73,8 +73,12 @@ Solid TreeBuilder::build(TreeRef root) && {
         }
         const std::int32_t opp = arena.opposite(c);
         kernel::PolygonSplit s = kernel::split(arena.planes, poly, c, opp);
-        if (s.side == Side::On) {  // same plane as an ancestor
+        if (s.side == Side::On) {  // same plane as an ancestor, which takes over its faces
           cell_side = arena.planes[c] == arena.planes[n.plane] ? -1 : +1;
+          if (!arena.planes.auxiliary(n.plane)) {
+            arena.planes.set_auxiliary(c, false);
+            arena.planes.set_auxiliary(opp, false);
+          }
           break;
         }
         if (s.side == Side::Positive) {

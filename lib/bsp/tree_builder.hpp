@@ -18,8 +18,10 @@ namespace sculpt {
 class TreeBuilder {
  public:
   TreeBuilder();
-  /// Adds a plane (grid units) and returns its index for add_node.
-  std::int32_t add_plane(const kernel::Plane& plane);
+  /// Adds a plane (grid units) and returns its index for add_node. `auxiliary`: the plane only
+  /// splits space and carries no face of the solid (see kernel::PlaneTable); boundary extraction
+  /// skips it. Leave it false unless that is certain.
+  std::int32_t add_plane(const kernel::Plane& plane, bool auxiliary = false);
   /// A node splitting by plane `plane`: `negative` on the side f < 0, `positive` on f > 0.
   TreeRef add_node(std::int32_t plane, TreeRef negative, TreeRef positive);
   /// A balanced tree for the convex polytope ∩ (f_i <= 0) of the given planes, as a chain in

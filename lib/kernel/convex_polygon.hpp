@@ -14,20 +14,30 @@
 namespace sculpt::kernel {
 
 /// Planes of one tree (or one operation); indices are stable. Indices 0..5 are the world box.
+/// A plane may be marked *auxiliary*: a splitting plane that carries no face of the solid
+/// (the axial and inner ring planes of a solid of revolution). The boundary of a regularized
+/// set operation lies on its operands' boundaries, so boundary extraction skips such planes;
+/// tree algorithms clear the mark when a face plane of another tree turns out to coincide.
 class PlaneTable {
  public:
   PlaneTable();
   [[nodiscard]] const Plane& operator[](std::int32_t i) const { return planes_[std::size_t(i)]; }
   [[nodiscard]] std::int32_t size() const { return std::int32_t(planes_.size()); }
-  std::int32_t add(const Plane& p);
+  std::int32_t add(const Plane& p, bool auxiliary = false);
   [[nodiscard]] const std::vector<Plane>& planes() const { return planes_; }
-  void reserve(std::size_t n) { planes_.reserve(n); }
+  [[nodiscard]] bool auxiliary(std::int32_t i) const { return auxiliary_[std::size_t(i)]; }
+  void set_auxiliary(std::int32_t i, bool auxiliary) { auxiliary_[std::size_t(i)] = auxiliary; }
+  void reserve(std::size_t n) {
+    planes_.reserve(n);
+    auxiliary_.reserve(n);
+  }
 
   /// Half-size of the world box in grid units: 4 * kMaxCoord.
   static constexpr std::int64_t kWorld = 4 * kMaxCoord;
 
  private:
   std::vector<Plane> planes_;
+  std::vector<bool> auxiliary_;
 };
 
 /// Corner i of a polygon: the vertex support ∩ p ∩ q (approximated by `at`) and the edge from

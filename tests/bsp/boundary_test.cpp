@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "base/errors.hpp"
 #include "bsp/from_mesh.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
+#include "kernel/grid.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
@@ -135,6 +137,47 @@ TEST(Boundary, FromMeshRejectsAMeshThatFoldsWhenSnapped) {
     ADD_FAILURE() << "expected GeometryError";
   } catch (const GeometryError& e) {
     EXPECT_NE(std::string(e.what()).find("folds when its vertices are snapped"), std::string::npos) << e.what();
+  }
+}
+
+// Inner ring planes and axial planes of a solid of revolution are auxiliary (they carry no face,
+// so boundary extraction skips them). A box face on the same plane as a ring must still appear:
+// the merge hands the face over to the ring node and clears its mark. Both merge directions
+// (the sphere's tree larger, then the boxes' tree larger) and the complement.
+TEST(Boundary, FaceOnAnAuxiliaryRingPlaneIsKept) {
+  constexpr int kSegments = 16;
+  const int rings = (kSegments + 1) / 2;
+  for (int k : {2, 4, 5}) {  // ring heights as in primitives.cpp (snapped by box() as well)
+    const double z = std::cos((k + 0.5) * std::numbers::pi / rings);
+    const Solid s = sphere(1.0, {.segments = kSegments});
+    const Solid below = box({-2, -2, -2}, {2, 2, z});
+    const double v_below = 16.0 * (kernel::snap(z) * kernel::kGridStep + 2.0);
+    const double cap = volume(s & box({-2, -2, z}, {2, 2, 2}));  // the sphere above the ring
+    ASSERT_GT(cap, 0.0);
+    for (const Solid& u : {s | below, below | s}) {
+      const PolygonMesh m = to_mesh(u);
+      EXPECT_TRUE(EdgesManifoldAndOriented(m)) << k;
+      EXPECT_TRUE(GenusIs(m, 0)) << k;
+      EXPECT_NEAR(double(checks::reference_signed_volume(m)), v_below + cap, 1e-9) << k;
+    }
+    // The boxes' tree larger than the sphere's: many small boxes stacked under the ring plane.
+    Solid stack = box({-2, -2, z - 0.25}, {2, 2, z});
+    for (int i = 0; i < 40; ++i) stack = std::move(stack) | box({-2 + 0.1 * i, -2, z - 0.5}, {-1.95 + 0.1 * i, 2, z - 0.2});
+    const Solid small = sphere(1.0, {.segments = 8});
+    const int small_rings = 4;
+    const double zs = std::cos((k % small_rings + 0.5) * std::numbers::pi / small_rings);
+    Solid stack2 = box({-2, -2, zs - 0.25}, {2, 2, zs});
+    for (int i = 0; i < 40; ++i) stack2 = std::move(stack2) | box({-2 + 0.1 * i, -2, zs - 0.5}, {-1.95 + 0.1 * i, 2, zs - 0.2});
+    ASSERT_GT(stack2.nodes().size(), small.nodes().size());
+    const Solid u2 = stack2 | small;
+    const PolygonMesh m2 = to_mesh(u2);
+    EXPECT_TRUE(EdgesManifoldAndOriented(m2)) << k;
+    EXPECT_NEAR(double(checks::reference_signed_volume(m2)),
+                volume(stack2) + volume(small) - volume(stack2 & small), 1e-9) << k;
+    const PolygonMesh mc = to_mesh(complement(complement(s) & complement(below)));
+    EXPECT_TRUE(EdgesManifoldAndOriented(mc)) << k;
+    EXPECT_NEAR(double(checks::reference_signed_volume(mc)), v_below + cap, 1e-9) << k;
+    (void)stack;
   }
 }
 
