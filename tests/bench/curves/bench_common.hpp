@@ -19,6 +19,12 @@ inline double median_ms(int runs, const std::function<void()>& work) {
   return times[times.size() / 2];
 }
 
+/// Median of a non-empty list of times.
+inline double median(std::vector<double> times) {
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
 /// Wall time since construction, in milliseconds.
 struct Stopwatch {
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
