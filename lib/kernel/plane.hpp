@@ -15,7 +15,8 @@ namespace sculpt::kernel {
 struct Plane {
   std::int64_t a = 0, b = 0, c = 0;  ///< |a|, |b|, |c| <= 2^kNormalBits, not all zero
   double d_nearest = 0;              ///< d rounded to the nearest double, for the filters
-                                     ///< (converting an Int128 is slow; this fills padding)
+                                     ///< (converting an Int128 is slow; this fills padding).
+                                     ///< Set by the constructor: build planes, never assign d.
   Int128 d = 0;                      ///< |d| <= 2^kOffsetBits
 
   Plane() = default;
