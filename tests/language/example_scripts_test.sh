@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The example scripts without a .expect (scripts/*.bsp: the goblet of the README's main job, the
+# head profile, the tree comparison) run to completion on a copy of scripts/ and models/, and
+# every mesh they export reads back (import refuses open or non-manifold meshes) with a positive
+# volume.   example_scripts_test.sh SCULPT SOURCE_DIR
+set -u
+sculpt=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cp -r "$source_dir/scripts" "$source_dir/models" "$work/"
+failures=0
+ran=0
+for script in "$work"/scripts/*.bsp; do
+  [ -e "${script%.bsp}.expect" ] && continue
+  ran=$((ran + 1))
+  if ! output=$("$sculpt" "$script" 2>&1); then
+    echo "FAIL $(basename "$script"): exit status $?"; echo "$output" | tail -n 5
+    failures=$((failures + 1))
+  fi
+done
+meshes=0
+for mesh in "$work"/out/*.off "$work"/out/*.obj "$work"/out/*.stl "$work"/out/*.ply; do
+  [ -e "$mesh" ] || continue
+  meshes=$((meshes + 1))
+  volume=$("$sculpt" -e "print(volume(import(\"$mesh\")))" 2>&1)
+  if ! awk -v v="$volume" 'BEGIN { exit !(v + 0 > 0) }'; then
+    echo "FAIL $(basename "$mesh"): $volume"
+    failures=$((failures + 1))
+  fi
+done
+for svg in "$work"/out/*.svg; do
+  [ -e "$svg" ] || continue
+  grep -q "</svg>" "$svg" || { echo "FAIL $(basename "$svg"): not a complete SVG"; failures=$((failures + 1)); }
+done
+echo "$ran scripts, $meshes meshes read back, $failures failures"
+[ "$ran" -ge 3 ] && [ "$meshes" -ge 3 ] || { echo "FAIL: expected at least 3 scripts and 3 meshes"; exit 1; }
+[ "$failures" -eq 0 ]
