@@ -14,8 +14,10 @@ ran=0
 for script in "$work"/scripts/*.bsp; do
   [ -e "${script%.bsp}.expect" ] && continue
   ran=$((ran + 1))
-  if ! output=$("$sculpt" "$script" 2>&1); then
-    echo "FAIL $(basename "$script"): exit status $?"; echo "$output" | tail -n 5
+  output=$("$sculpt" "$script" 2>&1)
+  status=$?
+  if [ "$status" -ne 0 ]; then
+    echo "FAIL $(basename "$script"): exit status $status"; echo "$output" | tail -n 5
     failures=$((failures + 1))
   fi
 done
