@@ -14,31 +14,13 @@
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "mesh/triangulate.hpp"
+#include "mesh/shapes.hpp"  // tests/mesh: the test meshes
 
 namespace {
 
 using sculpt::PolygonMesh;
 
-PolygonMesh uv_sphere(int segments) {
-  PolygonMesh s;
-  const int rings = segments / 2;
-  s.vertices.emplace_back(0, 0, -1);
-  for (int i = 1; i < rings; ++i) {
-    const double phi = std::numbers::pi * i / rings - std::numbers::pi / 2;
-    for (int j = 0; j < segments; ++j) {
-      const double th = 2 * std::numbers::pi * j / segments;
-      s.vertices.emplace_back(std::cos(phi) * std::cos(th), std::cos(phi) * std::sin(th), std::sin(phi));
-    }
-  }
-  s.vertices.emplace_back(0, 0, 1);
-  const int top = static_cast<int>(s.vertices.size()) - 1;
-  auto id = [&](int ring, int j) { return 1 + (ring - 1) * segments + (j % segments); };
-  for (int j = 0; j < segments; ++j) s.faces.push_back({0, id(1, j + 1), id(1, j)});
-  for (int i = 1; i + 1 < rings; ++i)
-    for (int j = 0; j < segments; ++j) s.faces.push_back({id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j)});
-  for (int j = 0; j < segments; ++j) s.faces.push_back({top, id(rings - 1, j), id(rings - 1, j + 1)});
-  return s;
-}
+using sculpt::test_shapes::uv_sphere;
 
 double median_ms(const std::function<void()>& f) {
   std::vector<double> t;
