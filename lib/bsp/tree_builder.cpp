@@ -32,6 +32,8 @@ TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_plan
 Solid TreeBuilder::build(TreeRef root) && {
   detail::Arena arena;
   arena.planes = std::move(planes_);
+  arena.nodes.reserve(nodes_.size());  // every builder node is kept at most once (unless shared)
+  arena.polygons.reserve(nodes_.size());
   if (is_leaf(root)) return Solid::leaf(root == kIn);
 
   // Top-down: each node's sub-hyperplane is its plane's world polygon clipped by the ancestors'
@@ -62,32 +64,22 @@ Solid TreeBuilder::build(TreeRef root) && {
       bool empty = false;
       // Nearest ancestors first: they bound the cell most tightly, so the polygon shrinks to the
       // cell's size at once and the far ancestors usually only classify a few corners.
-      kernel::CornerBox box = kernel::corner_box(poly);  // kept while the polygon is unchanged
+      kernel::CornerBox box = kernel::corner_box(poly);  // kept equal to corner_box(poly)
       for (auto it = constraints.rbegin(); it != constraints.rend(); ++it) {
         const std::int32_t c = *it;
-        const Side quick = kernel::box_side(box, arena.planes[c]);
-        if (quick == Side::Negative) continue;  // inside this half-space: unchanged
-        if (quick == Side::Positive) {
-          empty = true;
-          break;
-        }
-        const std::int32_t opp = arena.opposite(c);
-        kernel::PolygonSplit s = kernel::split(arena.planes, poly, c, opp);
-        if (s.side == Side::On) {  // same plane as an ancestor, which takes over its faces
+        const Side s = kernel::clip_to_negative(arena.planes, poly, box, c);
+        if (s == Side::On) {  // same plane as an ancestor, which takes over its faces
           cell_side = arena.planes[c] == arena.planes[n.plane] ? -1 : +1;
           if (!arena.planes.auxiliary(n.plane)) {
+            const std::int32_t opp = arena.opposite(c);
             arena.planes.set_auxiliary(c, false);
             arena.planes.set_auxiliary(opp, false);
           }
           break;
         }
-        if (s.side == Side::Positive) {
+        if (s == Side::Positive) {
           empty = true;
           break;
-        }
-        if (s.side == Side::Both) {
-          poly = std::move(s.negative);
-          box = kernel::corner_box(poly);
         }
       }
       if (empty) {

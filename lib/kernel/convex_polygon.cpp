@@ -145,6 +145,65 @@ PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int
   return out;
 }
 
+namespace {
+
+void extend(CornerBox& b, const ApproxPoint& at) {
+  const double v[3] = {at.x, at.y, at.z};
+  for (int i = 0; i < 3; ++i) {
+    b.lo[i] = std::min(b.lo[i], v[i] - at.err);
+    b.hi[i] = std::max(b.hi[i], v[i] + at.err);
+  }
+}
+
+}  // namespace
+
+Side clip_to_negative(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut) {
+  const Side quick = box_side(box, planes[cut]);
+  if (quick != Side::Both) return quick;
+  const std::size_t k = poly.corners.size();
+  boost::container::small_vector<Sign, 8> s(k);
+  bool neg = false, pos = false;
+  {
+    const Plane& support = planes[poly.support];
+    const Plane& c = planes[cut];
+    for (std::size_t i = 0; i < k; ++i) {
+      const Corner& corner = poly.corners[i];
+      const Sign g = orient(support, planes[corner.p], planes[corner.q], corner.at, c);
+      s[i] = g;
+      neg |= g == Sign::Negative;
+      pos |= g == Sign::Positive;
+    }
+  }
+  if (!(neg && pos)) return neg ? Side::Negative : (pos ? Side::Positive : Side::On);
+
+  // The negative part of split(), same order and labels; the box follows the kept corners.
+  decltype(poly.corners) out;
+  CornerBox b;
+  for (int i = 0; i < 3; ++i) b.lo[i] = 1e300, b.hi[i] = -1e300;
+  bool valid = true;
+  auto push = [&](const Corner& c) {
+    out.push_back(c);
+    if (c.at.err < 0)
+      valid = false;
+    else
+      extend(b, c.at);
+  };
+  const Plane& support = planes[poly.support];
+  for (std::size_t i = 0; i < k; ++i) {
+    const Corner& c = poly.corners[i];
+    const Sign si = s[i], sj = s[i + 1 == k ? 0 : i + 1];
+    if (si != Sign::Positive) push(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, c.p, c.q, c.at} : c);
+    if (si == Sign::Negative ? sj == Sign::Positive : (si == Sign::Positive && sj == Sign::Negative)) {
+      const ApproxPoint at = approximate_vertex(support, planes[c.edge], planes[cut]);
+      push(si == Sign::Negative ? Corner{cut, c.edge, cut, at} : Corner{c.edge, c.edge, cut, at});
+    }
+  }
+  poly.corners = std::move(out);
+  b.valid = valid;
+  box = valid ? b : CornerBox{};
+  return Side::Both;
+}
+
 std::vector<Eigen::Vector3d> approximate_corners(const ConvexPolygon& poly) {
   std::vector<Eigen::Vector3d> out;
   out.reserve(poly.corners.size());

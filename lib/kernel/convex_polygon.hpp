@@ -87,6 +87,12 @@ struct PolygonSplit {
 PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
                    std::int32_t cut_opposite);
 
+/// The negative part of split() computed in place, for loops that clip one polygon by many
+/// planes (TreeBuilder): `box` must be corner_box(poly) and is kept equal to it. Returns the
+/// side as split() would; only for Both does `poly` change (to exactly split().negative, corner
+/// for corner). Positive and On leave `poly` unchanged: the caller decides what they mean.
+Side clip_to_negative(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut);
+
 /// Approximate vertex positions (grid units) of a polygon, for output and measures.
 std::vector<Eigen::Vector3d> approximate_corners(const ConvexPolygon& poly);
 

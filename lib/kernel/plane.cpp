@@ -1,6 +1,7 @@
 #include "kernel/plane.hpp"
 
 #include <cmath>
+#include <numeric>
 #include <sstream>
 
 #include "base/errors.hpp"
@@ -13,12 +14,14 @@ __extension__ typedef unsigned __int128 UInt128;
 UInt128 magnitude(Int128 v) { return v < 0 ? UInt128(-v) : UInt128(v); }
 
 UInt128 gcd(UInt128 a, UInt128 b) {
-  while (b != 0) {
+  // 128-bit remainders only while a value needs them, then the 64-bit binary gcd.
+  while (b != 0 && ((a | b) >> 64) != 0) {
     UInt128 t = a % b;
     a = b;
     b = t;
   }
-  return a;
+  if (b == 0) return a;
+  return std::gcd(std::uint64_t(a), std::uint64_t(b));
 }
 
 bool fits(Int128 v, int bits) { return magnitude(v) <= (UInt128(1) << bits); }
@@ -28,7 +31,7 @@ bool fits(Int128 v, int bits) { return magnitude(v) <= (UInt128(1) << bits); }
 Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d) {
   if (a == 0 && b == 0 && c == 0) throw InvalidInput("plane with a zero normal");
   UInt128 g = gcd(gcd(magnitude(a), magnitude(b)), gcd(magnitude(c), magnitude(d)));
-  a /= Int128(g), b /= Int128(g), c /= Int128(g), d /= Int128(g);
+  if (g != 1) a /= Int128(g), b /= Int128(g), c /= Int128(g), d /= Int128(g);
   if (!fits(a, kNormalBits) || !fits(b, kNormalBits) || !fits(c, kNormalBits) ||
       !fits(d, kOffsetBits)) {
     std::ostringstream s;

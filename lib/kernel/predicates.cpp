@@ -16,19 +16,23 @@ struct Cross {
   double err;  // bound on the error of each component
 };
 
+// A plane's normal in double (exact: |a|, |b|, |c| <= 2^53) and its largest |component|.
+struct Normal {
+  double a, b, c, n;
+  explicit Normal(const Plane& p) : a(double(p.a)), b(double(p.b)), c(double(p.c)) {
+    n = std::max(std::max(std::fabs(a), std::fabs(b)), std::fabs(c));
+  }
+};
+
 // Cross product of two normals in double; components are exact integers < 2^107, the
 // computed value has two product roundings and one subtraction rounding.
-Cross cross(const Plane& p, const Plane& q) {
-  const double pa = double(p.a), pb = double(p.b), pc = double(p.c);
-  const double qa = double(q.a), qb = double(q.b), qc = double(q.c);
+Cross cross(const Normal& p, const Normal& q) {
   Cross r;
-  r.x = pb * qc - pc * qb;
-  r.y = pc * qa - pa * qc;
-  r.z = pa * qb - pb * qa;
-  r.max = std::max({std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)});
-  const double np = std::max({std::fabs(pa), std::fabs(pb), std::fabs(pc)});
-  const double nq = std::max({std::fabs(qa), std::fabs(qb), std::fabs(qc)});
-  r.err = 4.0 * kEps * 2.0 * np * nq;  // 2 eps (|t1| + |t2|) with |t1|+|t2| <= 2 np nq, doubled
+  r.x = p.b * q.c - p.c * q.b;
+  r.y = p.c * q.a - p.a * q.c;
+  r.z = p.a * q.b - p.b * q.a;
+  r.max = std::max(std::max(std::fabs(r.x), std::fabs(r.y)), std::fabs(r.z));
+  r.err = 4.0 * kEps * 2.0 * p.n * q.n;  // 2 eps (|t1| + |t2|) with |t1|+|t2| <= 2 np nq, doubled
   return r;
 }
 
@@ -98,10 +102,11 @@ PredicateCounters& predicate_counters() {
 
 ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r) {
   // x = -(d_p (n_q x n_r) + d_q (n_r x n_p) + d_r (n_p x n_q)) / (n_p . (n_q x n_r))
-  const Cross u = cross(q, r), v = cross(r, p), w = cross(p, q);
-  const double pa = double(p.a), pb = double(p.b), pc = double(p.c);
+  const Normal pn(p), qn(q), rn(r);
+  const Cross u = cross(qn, rn), v = cross(rn, pn), w = cross(pn, qn);
+  const double pa = pn.a, pb = pn.b, pc = pn.c;
   const double W = pa * u.x + pb * u.y + pc * u.z;
-  const double np = std::max({std::fabs(pa), std::fabs(pb), std::fabs(pc)});
+  const double np = pn.n;
   const double eW = 3.0 * np * u.err + 4.0 * kEps * 3.0 * np * u.max;
   const double dp = p.d_nearest, dq = q.d_nearest, dr = r.d_nearest;
   const double vx = dp * u.x + dq * v.x + dr * w.x;
@@ -120,13 +125,13 @@ ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r) {
     a.x = h.x.convert_to<double>() / hw;
     a.y = h.y.convert_to<double>() / hw;
     a.z = h.z.convert_to<double>() / hw;
-    a.err = 8.0 * kEps * std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}) + 1e-300;
+    a.err = 8.0 * kEps * std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::fabs(a.z)) + 1e-300;
     return a;
   }
   a.x = -vx / W;
   a.y = -vy / W;
   a.z = -vz / W;
-  const double m = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
+  const double m = std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::fabs(a.z));
   a.err = 1.01 * ((eV + m * eW) / (aW - eW) + 2.0 * kEps * m);
   return a;
 }

@@ -1,0 +1,79 @@
+// Tree-building micro-benchmark: sphere(1, {.segments = n}) only (TreeBuilder::build on a solid
+// of revolution), no set operation, no boundary. Prints one parseable line per n:
+//   bench impl=sculpt case=sphere_build n=<n> runs=<r> time_ms=<median> min_ms=<min>
+//         tree_nodes=<nodes> planes=<planes> exact_predicates=<count> trivial_predicates=<count>
+//         filtered_predicates=<count> checksum=<hash of the tree>
+// The checksum (nodes, their planes and children) lets two builds of the builder be compared
+// for identical output.
+//   bench_build              n = 32, 64, 128, 256, 15 runs each
+//   bench_build N [RUNS]     one n
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "bsp/primitives.hpp"
+
+using namespace sculpt;
+
+namespace {
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+  h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+  return h;
+}
+
+// Hash of the tree reachable from the root (depth-first, planes by value).
+std::uint64_t tree_hash(const Solid& s) {
+  std::uint64_t h = 0;
+  std::vector<TreeRef> stack{s.root()};
+  while (!stack.empty()) {
+    const TreeRef t = stack.back();
+    stack.pop_back();
+    if (is_leaf(t)) {
+      h = mix(h, std::uint64_t(t));
+      continue;
+    }
+    const BspNode& n = s.nodes()[std::size_t(t)];
+    const kernel::Plane& p = s.planes()[n.plane];
+    h = mix(mix(mix(mix(h, std::uint64_t(p.a)), std::uint64_t(p.b)), std::uint64_t(p.c)), std::uint64_t(p.d));
+    h = mix(h, s.planes().auxiliary(n.plane) ? 1 : 0);
+    h = mix(h, s.polygons()[std::size_t(t)].corners.size());
+    stack.push_back(n.positive);
+    stack.push_back(n.negative);
+  }
+  return h;
+}
+
+void run(int n, int runs) {
+  std::vector<double> times;
+  Solid s;
+  kernel::PredicateCounters pc;
+  for (int i = 0; i < runs + 1; ++i) {  // one warm-up run
+    kernel::predicate_counters() = {};
+    const auto t0 = std::chrono::steady_clock::now();
+    s = sphere(1.0, {.segments = n});
+    const auto t1 = std::chrono::steady_clock::now();
+    pc = kernel::predicate_counters();
+    if (i > 0) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+  }
+  std::sort(times.begin(), times.end());
+  std::printf("bench impl=sculpt case=sphere_build n=%d runs=%d time_ms=%.3f min_ms=%.3f tree_nodes=%d planes=%d "
+              "exact_predicates=%llu trivial_predicates=%llu filtered_predicates=%llu checksum=%016llx\n",
+              n, runs, times[times.size() / 2], times.front(), tree_stats(s).nodes, s.planes().size(),
+              (unsigned long long)pc.exact, (unsigned long long)pc.trivial, (unsigned long long)pc.filtered,
+              (unsigned long long)tree_hash(s));
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc >= 2) {
+    run(std::atoi(argv[1]), argc >= 3 ? std::atoi(argv[2]) : 15);
+    return 0;
+  }
+  for (int n : {32, 64, 128, 256}) run(n, 15);
+  return 0;
+}

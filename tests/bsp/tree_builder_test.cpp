@@ -1,0 +1,273 @@
+// TreeBuilder::build against the straightforward builder it replaced (kept here as the
+// reference): every node's sub-hyperplane is its plane's world polygon split by the ancestors'
+// half-spaces with kernel::split, nearest ancestor first; a node whose polygon is empty or lies
+// on an ancestor's plane is dropped. Same recipe in, the same tree must come out: nodes, planes
+// (by value), auxiliary marks, leaves, and the polygons corner for corner (labels and the bits
+// of the approximations), on sphere recipes and on random recipes full of redundant planes.
+#include "bsp/tree_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "bsp/primitives.hpp"
+
+namespace sculpt {
+namespace {
+
+using kernel::ConvexPolygon;
+using kernel::Plane;
+using kernel::PlaneTable;
+using kernel::Side;
+
+/// A tree of planes before building: what TreeBuilder::add_plane / add_node receive.
+struct Recipe {
+  std::vector<Plane> planes;
+  std::vector<bool> auxiliary;
+  std::vector<BspNode> nodes;  // plane = index into `planes`, children may be leaves
+  TreeRef root = kOut;
+};
+
+/// The result of the reference builder, before any compaction.
+struct Built {
+  PlaneTable planes;
+  std::vector<BspNode> nodes;
+  std::vector<ConvexPolygon> polygons;
+  TreeRef root = kOut;
+};
+
+// The builder logic before the in-place clipping (TreeBuilder::build as of commit 6963a4e).
+Built reference_build(const Recipe& r) {
+  Built out;
+  std::vector<std::int32_t> index;
+  for (std::size_t i = 0; i < r.planes.size(); ++i) index.push_back(out.planes.add(r.planes[i], r.auxiliary[i]));
+  std::vector<std::int32_t> opposite_of;
+  auto opposite = [&](std::int32_t i) {
+    if (std::size_t(i) >= opposite_of.size()) opposite_of.resize(std::size_t(out.planes.size()), -1);
+    if (opposite_of[std::size_t(i)] < 0) {
+      const std::int32_t o = out.planes.add(out.planes[i].opposite(), out.planes.auxiliary(i));
+      opposite_of.resize(std::size_t(out.planes.size()), -1);
+      opposite_of[std::size_t(i)] = o;
+      opposite_of[std::size_t(o)] = i;
+    }
+    return opposite_of[std::size_t(i)];
+  };
+  if (is_leaf(r.root)) {
+    out.root = r.root;
+    return out;
+  }
+  struct Frame {
+    TreeRef source;
+    std::size_t depth;
+    std::int32_t add, parent;
+    int side;
+  };
+  std::vector<std::int32_t> constraints;
+  std::vector<Frame> stack{{r.root, 0, -1, -1, 0}};
+  while (!stack.empty()) {
+    const Frame f = stack.back();
+    stack.pop_back();
+    constraints.resize(f.depth);
+    if (f.add >= 0) constraints.push_back(f.add);
+    TreeRef src = f.source, result = src;
+    while (!is_leaf(src)) {
+      const BspNode n{index[std::size_t(r.nodes[std::size_t(src)].plane)], r.nodes[std::size_t(src)].negative,
+                      r.nodes[std::size_t(src)].positive};
+      ConvexPolygon poly = kernel::world_polygon(out.planes, n.plane);
+      int cell_side = 0;
+      bool empty = false;
+      for (auto it = constraints.rbegin(); it != constraints.rend(); ++it) {
+        const std::int32_t c = *it;
+        kernel::PolygonSplit s = kernel::split(out.planes, poly, c, opposite(c));
+        if (s.side == Side::On) {
+          cell_side = out.planes[c] == out.planes[n.plane] ? -1 : +1;
+          if (!out.planes.auxiliary(n.plane)) {
+            out.planes.set_auxiliary(c, false);
+            out.planes.set_auxiliary(opposite(c), false);
+          }
+          break;
+        }
+        if (s.side == Side::Positive) {
+          empty = true;
+          break;
+        }
+        if (s.side == Side::Both) poly = std::move(s.negative);
+      }
+      if (empty) {
+        const Side ws = f.parent < 0 ? (kernel::orient(kernel::GridPoint{}, out.planes[n.plane]) == kernel::Sign::Negative
+                                            ? Side::Negative
+                                            : Side::Positive)
+                                     : kernel::classify(out.planes, out.polygons[std::size_t(f.parent)], n.plane);
+        cell_side = ws == Side::Negative ? -1 : 1;
+      }
+      if (cell_side != 0) {
+        src = cell_side < 0 ? n.negative : n.positive;
+        result = src;
+        continue;
+      }
+      const auto id = std::int32_t(out.nodes.size());
+      out.nodes.push_back({n.plane, kOut, kOut});
+      out.polygons.push_back(std::move(poly));
+      stack.push_back({n.positive, constraints.size(), opposite(n.plane), id, 1});
+      stack.push_back({n.negative, constraints.size(), n.plane, id, 0});
+      result = id;
+      break;
+    }
+    if (f.parent < 0)
+      out.root = result;
+    else
+      (f.side == 0 ? out.nodes[std::size_t(f.parent)].negative : out.nodes[std::size_t(f.parent)].positive) = result;
+  }
+  return out;
+}
+
+Solid build(const Recipe& r) {
+  TreeBuilder b;
+  std::vector<std::int32_t> index;
+  for (std::size_t i = 0; i < r.planes.size(); ++i) index.push_back(b.add_plane(r.planes[i], r.auxiliary[i]));
+  std::vector<TreeRef> ref(r.nodes.size(), kOut);
+  auto child = [&](TreeRef c) { return is_leaf(c) ? c : ref[std::size_t(c)]; };
+  for (std::size_t k = r.nodes.size(); k-- > 0;)  // children have larger indices
+    ref[k] = b.add_node(index[std::size_t(r.nodes[k].plane)], child(r.nodes[k].negative), child(r.nodes[k].positive));
+  return std::move(b).build(child(r.root));
+}
+
+// A built solid's tree as a recipe (children after parents).
+Recipe recipe_of(const Solid& s) {
+  Recipe r;
+  for (std::int32_t i = 6; i < s.planes().size(); ++i) {
+    r.planes.push_back(s.planes()[i]);
+    r.auxiliary.push_back(s.planes().auxiliary(i));
+  }
+  std::vector<TreeRef> order;
+  std::vector<TreeRef> id(s.nodes().size(), kOut);
+  std::vector<TreeRef> stack{s.root()};
+  while (!stack.empty()) {
+    const TreeRef t = stack.back();
+    stack.pop_back();
+    if (is_leaf(t)) continue;
+    id[std::size_t(t)] = TreeRef(order.size());
+    order.push_back(t);
+    stack.push_back(s.nodes()[std::size_t(t)].positive);
+    stack.push_back(s.nodes()[std::size_t(t)].negative);
+  }
+  for (TreeRef t : order) {
+    const BspNode& n = s.nodes()[std::size_t(t)];
+    EXPECT_GE(n.plane, 6) << "world planes do not split solids";
+    auto map = [&](TreeRef c) { return is_leaf(c) ? c : id[std::size_t(c)]; };
+    r.nodes.push_back({n.plane - 6, map(n.negative), map(n.positive)});
+  }
+  r.root = is_leaf(s.root()) ? s.root() : 0;
+  return r;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Walks both trees together; the reference's nodes whose two children are the same leaf
+// collapse to that leaf (as compaction does). Returns the number of nodes compared.
+int expect_same_tree(const Built& ref, const Solid& s) {
+  std::vector<TreeRef> collapsed(ref.nodes.size(), kOut);
+  // Children are created after parents: a reverse pass sees children first.
+  for (std::size_t k = ref.nodes.size(); k-- > 0;) {
+    auto c = [&](TreeRef t) { return is_leaf(t) ? t : collapsed[std::size_t(t)]; };
+    const TreeRef neg = c(ref.nodes[k].negative), pos = c(ref.nodes[k].positive);
+    collapsed[k] = is_leaf(neg) && neg == pos ? neg : TreeRef(k);
+  }
+  auto canon = [&](TreeRef t) { return is_leaf(t) ? t : collapsed[std::size_t(t)]; };
+  int compared = 0;
+  std::vector<std::pair<TreeRef, TreeRef>> stack{{canon(ref.root), s.root()}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    EXPECT_EQ(is_leaf(a), is_leaf(b));
+    if (is_leaf(a) || is_leaf(b)) {
+      EXPECT_EQ(a, b);
+      continue;
+    }
+    ++compared;
+    const BspNode& na = ref.nodes[std::size_t(a)];
+    const BspNode& nb = s.nodes()[std::size_t(b)];
+    EXPECT_EQ(ref.planes[na.plane], s.planes()[nb.plane]);
+    EXPECT_EQ(ref.planes.auxiliary(na.plane), s.planes().auxiliary(nb.plane));
+    const ConvexPolygon& pa = ref.polygons[std::size_t(a)];
+    const ConvexPolygon& pb = s.polygons()[std::size_t(b)];
+    EXPECT_EQ(ref.planes[pa.support], s.planes()[pb.support]);
+    EXPECT_EQ(pa.corners.size(), pb.corners.size());
+    if (pa.corners.size() == pb.corners.size()) {
+      for (std::size_t i = 0; i < pa.corners.size(); ++i) {
+        const auto& ca = pa.corners[i];
+        const auto& cb = pb.corners[i];
+        EXPECT_EQ(ref.planes[ca.edge], s.planes()[cb.edge]);
+        EXPECT_EQ(ref.planes[ca.p], s.planes()[cb.p]);
+        EXPECT_EQ(ref.planes[ca.q], s.planes()[cb.q]);
+        EXPECT_TRUE(same_bits(ca.at.x, cb.at.x) && same_bits(ca.at.y, cb.at.y) && same_bits(ca.at.z, cb.at.z) &&
+                    same_bits(ca.at.err, cb.at.err));
+      }
+    }
+    if (::testing::Test::HasFailure()) return compared;  // one report, not thousands
+    stack.push_back({canon(na.positive), nb.positive});
+    stack.push_back({canon(na.negative), nb.negative});
+  }
+  return compared;
+}
+
+TEST(TreeBuilder, SphereTreesEqualTheReferenceBuilder) {
+  for (int n : {3, 5, 8, 17, 32, 64}) {
+    SCOPED_TRACE(n);
+    const Solid s = sphere(1.0, {.segments = n});
+    const Recipe r = recipe_of(s);
+    const Built ref = reference_build(r);
+    const Solid again = build(r);
+    EXPECT_EQ(expect_same_tree(ref, again), tree_stats(s).nodes);
+    EXPECT_EQ(expect_same_tree(ref, s), tree_stats(s).nodes);
+  }
+}
+
+TEST(TreeBuilder, ConeAndCylinderTreesEqualTheReferenceBuilder) {
+  for (const Solid& s : {cylinder(0.5, 2.0, {.segments = 48}), cone(1.0, 1.0, {.segments = 31}, 0.25),
+                         cone(2.0, 0.5, {.segments = 9, .center = true})}) {
+    const Built ref = reference_build(recipe_of(s));
+    EXPECT_EQ(expect_same_tree(ref, s), tree_stats(s).nodes);
+  }
+}
+
+// Random trees over a few planes with many coincident, opposite and parallel ones: most nodes
+// do not cut their cells (empty polygons and planes equal to an ancestor's), which exercises
+// dropping, the choice of the surviving child and the auxiliary marks.
+TEST(TreeBuilder, RandomRedundantTreesEqualTheReferenceBuilder) {
+  std::mt19937 rng(7);
+  std::vector<Plane> pool;
+  for (int a = -1; a <= 1; ++a)
+    for (int b = -1; b <= 1; ++b)
+      for (int c = -1; c <= 1; ++c)
+        if (a != 0 || b != 0 || c != 0)
+          for (int d : {-3, 0, 2}) pool.push_back(kernel::make_plane(a, b, c, kernel::Int128(d) << 15));
+  int total = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    Recipe r;
+    const int planes = 3 + int(rng() % 10);
+    for (int i = 0; i < planes; ++i) {
+      r.planes.push_back(pool[rng() % pool.size()]);
+      r.auxiliary.push_back(rng() % 3 == 0);
+    }
+    // Breadth-first random tree: each node's children are leaves or later nodes.
+    const int count = 1 + int(rng() % 60);
+    for (int k = 0; k < count; ++k) r.nodes.push_back({std::int32_t(rng() % std::uint32_t(planes)), kOut, kIn});
+    int next = 1;
+    for (int k = 0; k < count; ++k)
+      for (TreeRef* c : {&r.nodes[std::size_t(k)].negative, &r.nodes[std::size_t(k)].positive})
+        *c = next < count && rng() % 4 != 0 ? TreeRef(next++) : (rng() % 2 ? kIn : kOut);
+    r.root = 0;
+    SCOPED_TRACE(trial);
+    const Built ref = reference_build(r);
+    const Solid s = build(r);
+    total += expect_same_tree(ref, s);
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(total, 300);  // the trees are not all trivial
+}
+
+}  // namespace
+}  // namespace sculpt
