@@ -11,7 +11,9 @@ namespace sculpt {
 
 PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
   if (is_leaf(solid.root())) return {};
-  detail::Fragments f = detail::boundary_fragments(solid);
+  // A carried boundary (set operation results) is used as is; otherwise it is extracted.
+  detail::Fragments f = solid.has_boundary() ? detail::Fragments{solid.planes(), solid.boundary()}
+                                             : detail::boundary_fragments(solid);
   return detail::assemble_mesh(f, {.triangulate = options.triangulate});
 }
 

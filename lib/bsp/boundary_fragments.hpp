@@ -10,10 +10,8 @@
 
 namespace sculpt::detail {
 
-struct Fragment {
-  kernel::ConvexPolygon polygon;  ///< on a node plane, corners counter-clockwise about its normal
-  bool flip;                      ///< true: the outward normal is the plane's negative normal
-};
+/// A boundary piece on a node plane, corners counter-clockwise about its normal.
+using Fragment = BoundaryFragment;
 
 struct Fragments {
   kernel::PlaneTable planes;  ///< the solid's planes plus opposites created while splitting

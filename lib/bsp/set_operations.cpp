@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "bsp/boundary_fragments.hpp"
+#include "bsp/boundary_merge.hpp"
 #include "bsp/tree_arena.hpp"
 
 namespace sculpt {
@@ -185,7 +187,10 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   Arena arena;
   arena.nodes.reserve(a.nodes().size() + 2 * b.nodes().size());
   const TreeRef ra = arena.append(a);
+  std::vector<BoundaryFragment> fa = arena.boundary_of(a);
   const TreeRef rb = arena.append(b);
+  const std::vector<BoundaryFragment> fb = arena.boundary_of(b);
+  detail::merge_boundaries(arena, ra, std::move(fa), a.boundary_boxes(), rb, fb, op);
   Merger m(arena);
   const TreeRef r = m.merge(ra, rb, op);
   return detail::compact(arena, r);
@@ -195,14 +200,40 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 // storage has doubled since the last compaction (amortized O(touched nodes) per operation).
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < y.nodes().size()) return apply(x, y, table);
+  // The boundary of x must be known before its storage moves into the arena.
+  std::optional<detail::Fragments> extracted;
+  if (!x.has_boundary()) extracted = detail::boundary_fragments(x);
   Arena arena;
   const TreeRef ra = arena.adopt(std::move(x));
+  std::vector<BoundaryFragment> fa;
+  if (extracted) {
+    const std::int32_t own = arena.planes.size();
+    std::vector<std::int32_t> extra;
+    auto map = [&](std::int32_t p) {  // indices beyond x's planes are opposites added by extraction
+      if (p < own) return p;
+      const auto k = std::size_t(p - own);
+      if (extra.size() <= k) extra.resize(k + 1, -1);
+      if (extra[k] < 0) extra[k] = arena.planes.add(extracted->planes[p], extracted->planes.auxiliary(p));
+      return extra[k];
+    };
+    fa = std::move(extracted->fragments);
+    for (BoundaryFragment& f : fa) {
+      f.polygon.support = map(f.polygon.support);
+      for (auto& c : f.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
+    }
+  } else {
+    fa = std::move(*arena.boundary);
+  }
   const TreeRef rb = arena.append(y);
+  const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
+  detail::merge_boundaries(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
   Merger m(arena);
   const TreeRef r = m.merge(ra, rb, table);
   if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64)) return detail::compact(arena, r);
   const std::size_t compacted = arena.compacted_size;
-  return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted);
+  if (is_leaf(r)) return Solid::leaf(r == kIn);
+  return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted,
+               std::move(arena.boundary), std::move(arena.boundary_boxes));
 }
 
 constexpr bool kUnion[2][2] = {{false, true}, {true, true}};
@@ -233,6 +264,10 @@ Solid unite_all(std::vector<Solid> solids) {
 Solid complement(const Solid& a) {
   Arena arena;
   TreeRef r = arena.append(a);
+  if (a.has_boundary()) {
+    arena.boundary = arena.boundary_of(a);
+    for (BoundaryFragment& f : *arena.boundary) f.flip = !f.flip;
+  }
   detail::complement_in_place(arena, r);
   return detail::compact(arena, r);
 }

@@ -1,26 +1,53 @@
 #include "bsp/solid.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 #include <stdexcept>
 
 namespace sculpt {
 
 Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-             std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size)
+             std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size,
+             std::optional<std::vector<BoundaryFragment>> boundary, std::vector<FragmentBox> boundary_boxes)
     : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
-      compacted_size_(compacted_size ? compacted_size : nodes_.size()) {
+      compacted_size_(compacted_size ? compacted_size : nodes_.size()), boundary_(std::move(boundary)),
+      boundary_boxes_(std::move(boundary_boxes)) {
+  if (!boundary_ || boundary_boxes_.size() != boundary_->size()) boundary_boxes_.clear();
   if (nodes_.size() != polygons_.size() || (!is_leaf(root_) && std::size_t(root_) >= nodes_.size()))
     throw std::logic_error("Solid: inconsistent tree storage");
 }
 
 Solid::Storage Solid::release() && {
-  Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, compacted_size_};
+  Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, compacted_size_, std::move(boundary_),
+            std::move(boundary_boxes_)};
   planes_ = kernel::PlaneTable();
   nodes_.clear();
   polygons_.clear();
   root_ = kOut;
   compacted_size_ = 0;
+  boundary_ = std::vector<BoundaryFragment>{};
+  boundary_boxes_.clear();
   return s;
+}
+
+FragmentBox fragment_box(const kernel::ConvexPolygon& polygon) {
+  const kernel::CornerBox b = kernel::corner_box(polygon);
+  FragmentBox f{};
+  f.valid = b.valid;
+  if (!b.valid) return f;
+  for (int k = 0; k < 3; ++k) {  // outwards: float(x) may round either way
+    f.lo[k] = float(b.lo[k]);
+    if (double(f.lo[k]) > b.lo[k]) f.lo[k] = std::nextafter(f.lo[k], -HUGE_VALF);
+    f.hi[k] = float(b.hi[k]);
+    if (double(f.hi[k]) < b.hi[k]) f.hi[k] = std::nextafter(f.hi[k], HUGE_VALF);
+  }
+  return f;
+}
+
+const std::vector<BoundaryFragment>& Solid::boundary() const {
+  static const std::vector<BoundaryFragment> none;
+  return boundary_ ? *boundary_ : none;
 }
 
 Solid Solid::leaf(bool inside) {

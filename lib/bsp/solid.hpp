@@ -9,8 +9,14 @@
 /// polygon plane ∩ cell (the cell clipped to the world box), used by partitioning and boundary
 /// extraction. Invariant: every node's plane cuts its cell into two parts of positive volume
 /// (no empty cells), which the builder and the set operations maintain exactly.
+///
+/// A solid may also carry its boundary: convex plane-based fragments on its planes that tile
+/// the surface between in- and out-cells. Set operations compute the result's boundary from the
+/// operands' boundaries (each operand's fragments clipped by the other tree), so boundary
+/// extraction from the whole tree is needed only for solids built without one.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "kernel/convex_polygon.hpp"
@@ -29,6 +35,20 @@ struct BspNode {
   TreeRef positive;     ///< subtree on the side f > 0
 };
 
+/// A convex piece of a solid's boundary on one of its planes (corners counter-clockwise about the
+/// plane's normal) and the side its outward normal points to.
+struct BoundaryFragment {
+  kernel::ConvexPolygon polygon;
+  bool flip = false;  ///< true: the outward normal is the plane's negative normal
+};
+
+/// Box around a boundary fragment (grid units, rounded outwards to float), for quick culling.
+struct FragmentBox {
+  float lo[3], hi[3];
+  bool valid;  ///< false: unknown (a corner without a usable approximation)
+};
+FragmentBox fragment_box(const kernel::ConvexPolygon& polygon);
+
 class Solid {
  public:
   /// The empty solid (a single out leaf).
@@ -43,11 +63,21 @@ class Solid {
   /// Sub-hyperplane of node i (same index as nodes()).
   [[nodiscard]] const std::vector<kernel::ConvexPolygon>& polygons() const { return polygons_; }
 
+  /// True if the solid carries its boundary fragments (results of set operations, leaves).
+  [[nodiscard]] bool has_boundary() const { return boundary_.has_value(); }
+  /// The carried boundary fragments (planes of planes()); empty unless has_boundary().
+  [[nodiscard]] const std::vector<BoundaryFragment>& boundary() const;
+  /// Boxes of boundary() (same order), or empty if not computed.
+  [[nodiscard]] const std::vector<FragmentBox>& boundary_boxes() const { return boundary_boxes_; }
+
   /// Low-level constructor used by the tree algorithms; checks sizes only. The storage may
   /// hold nodes that are not reachable from the root (left over by in-place operations);
-  /// algorithms only follow the tree from root().
+  /// algorithms only follow the tree from root(). `boundary`, when given, must tile the
+  /// solid's boundary exactly.
   Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-        std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size = 0);
+        std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size = 0,
+        std::optional<std::vector<BoundaryFragment>> boundary = std::nullopt,
+        std::vector<FragmentBox> boundary_boxes = {});
 
   /// Storage moved out of a solid (which becomes empty), for in-place operations.
   struct Storage {
@@ -56,6 +86,8 @@ class Solid {
     std::vector<kernel::ConvexPolygon> polygons;
     TreeRef root;
     std::size_t compacted_size;  ///< node count after the last compaction
+    std::optional<std::vector<BoundaryFragment>> boundary;
+    std::vector<FragmentBox> boundary_boxes;
   };
   Storage release() &&;
 
@@ -65,6 +97,8 @@ class Solid {
   std::vector<kernel::ConvexPolygon> polygons_;
   TreeRef root_ = kOut;
   std::size_t compacted_size_ = 0;
+  std::optional<std::vector<BoundaryFragment>> boundary_ = std::vector<BoundaryFragment>{};
+  std::vector<FragmentBox> boundary_boxes_;
 };
 
 /// Size and shape of a tree.

@@ -1,5 +1,7 @@
 #include "bsp/tree_arena.hpp"
 
+#include "bsp/boundary_fragments.hpp"
+
 #include <utility>
 
 namespace sculpt::detail {
@@ -22,6 +24,7 @@ TreeRef Arena::append(const Solid& solid) {
   if (is_leaf(solid.root())) return solid.root();
   const auto& src = solid.planes().planes();
   const std::int32_t shift = planes.size() - 6;  // the world box planes 0..5 are shared
+  last_shift_ = shift;
   auto map = [shift](std::int32_t p) { return p < 6 ? p : p + shift; };
   planes.reserve(planes.size() + src.size());
   for (std::size_t i = 6; i < src.size(); ++i) planes.add(src[i], solid.planes().auxiliary(std::int32_t(i)));
@@ -45,7 +48,38 @@ TreeRef Arena::adopt(Solid&& solid) {
   polygons = std::move(s.polygons);
   opposite_of.clear();
   compacted_size = s.compacted_size;
+  boundary = std::move(s.boundary);
+  boundary_boxes = std::move(s.boundary_boxes);
+  last_shift_ = 0;
   return s.root;
+}
+
+std::vector<BoundaryFragment> Arena::boundary_of(const Solid& solid) {
+  const std::int32_t shift = last_shift_;
+  const std::int32_t own = solid.planes().size();
+  std::vector<std::int32_t> extra;  // extracted fragments may use opposites beyond the solid's planes
+  auto remap = [&](std::vector<BoundaryFragment>& fragments, const kernel::PlaneTable& from) {
+    auto map = [&](std::int32_t p) {
+      if (p < 6) return p;
+      if (p < own) return p + shift;
+      const auto k = std::size_t(p - own);
+      if (extra.size() <= k) extra.resize(k + 1, -1);
+      if (extra[k] < 0) extra[k] = planes.add(from[p], from.auxiliary(p));
+      return extra[k];
+    };
+    for (BoundaryFragment& f : fragments) {
+      f.polygon.support = map(f.polygon.support);
+      for (auto& c : f.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
+    }
+  };
+  if (solid.has_boundary()) {
+    std::vector<BoundaryFragment> out = solid.boundary();
+    if (shift != 0) remap(out, solid.planes());
+    return out;
+  }
+  Fragments f = boundary_fragments(solid);
+  remap(f.fragments, f.planes);
+  return std::move(f.fragments);
 }
 
 void complement_in_place(Arena& arena, TreeRef& root) {
@@ -120,7 +154,18 @@ Solid compact(Arena& arena, TreeRef root) {
     for (auto& c : poly.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
     polygons[j] = std::move(poly);
   }
-  return Solid(std::move(table), std::move(nodes), std::move(polygons), flip(new_root));
+  std::optional<std::vector<BoundaryFragment>> boundary;
+  std::vector<FragmentBox> boxes = std::move(arena.boundary_boxes);
+  if (arena.boundary) {
+    boundary = std::move(*arena.boundary);
+    arena.boundary.reset();
+    for (BoundaryFragment& f : *boundary) {
+      f.polygon.support = use(f.polygon.support);
+      for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
+    }
+  }
+  return Solid(std::move(table), std::move(nodes), std::move(polygons), flip(new_root), 0, std::move(boundary),
+               std::move(boxes));
 }
 
 }  // namespace sculpt::detail

@@ -19,9 +19,19 @@ struct Arena {
   std::int32_t opposite(std::int32_t i);
   /// Appends a solid's tree; returns its root in the arena. Plane indices are shifted.
   TreeRef append(const Solid& solid);
-  /// Takes over the storage of a solid (the arena must be empty); returns its root.
+  /// Takes over the storage of a solid (the arena must be empty); returns its root. Its carried
+  /// boundary, if any, moves to `boundary`.
   TreeRef adopt(Solid&& solid);
+  /// The boundary fragments of a solid already appended (or adopted) last, on arena planes: the
+  /// carried ones, or extracted from its tree (boundary_fragments) when it carries none.
+  std::vector<BoundaryFragment> boundary_of(const Solid& solid);
   std::size_t compacted_size = 0;  ///< of an adopted solid
+  /// Boundary of the tree being built, when known; compact() keeps it (and its planes).
+  std::optional<std::vector<BoundaryFragment>> boundary;
+  std::vector<FragmentBox> boundary_boxes;  ///< of `boundary`, same order, or empty
+
+ private:
+  std::int32_t last_shift_ = 0;  ///< plane index shift of the last append (0 after adopt)
 };
 
 /// Copies the tree reachable from `root` into a compact Solid (depth-first order), collapsing

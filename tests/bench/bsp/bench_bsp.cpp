@@ -2,6 +2,7 @@
 //   bench impl=sculpt case=<case> n=<n> runs=<r> warmup=<0|1> time_ms=<median> min_ms=<min>
 //         volume=<v> expected=<v|na> faces=<f> vertices=<v> peak_rss_kb=<k> base_rss_kb=<k>
 //         tree_nodes=<nodes> tree_height=<h> exact_predicates=<count> filtered_predicates=<count>
+//         boundary_fragments=<count carried by the result solid>
 // Without arguments it runs every case, each in its own process (so peak RSS is per case):
 //   bench_bsp                 all cases
 //   bench_bsp CASE N [RUNS]   one case (sphere_minus_cube 32|64|128|256, menger 3, boxes 1000)
@@ -138,10 +139,10 @@ int run_case(const std::string& name, int n, int runs) {
   const TreeStats st = tree_stats(r.solid);
   std::printf("bench impl=sculpt case=%s n=%d runs=%d warmup=%d time_ms=%.3f min_ms=%.3f volume=%.12g expected=%s "
               "faces=%zu vertices=%zu peak_rss_kb=%ld base_rss_kb=%ld tree_nodes=%d tree_height=%d "
-              "exact_predicates=%llu filtered_predicates=%llu\n",
+              "exact_predicates=%llu filtered_predicates=%llu boundary_fragments=%zu\n",
               name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), volume, expected.c_str(),
               r.mesh.faces.size(), r.mesh.vertices.size(), peak_rss_kb(), base, st.nodes, st.height,
-              (unsigned long long)pc.exact, (unsigned long long)pc.filtered);
+              (unsigned long long)pc.exact, (unsigned long long)pc.filtered, r.solid.boundary().size());
   return 0;
 }
 
