@@ -59,7 +59,7 @@ Solid TreeBuilder::build(TreeRef root) && {
     TreeRef out = src;
     while (!is_leaf(src)) {
       const BspNode n = nodes_[std::size_t(src)];
-      ConvexPolygon poly = kernel::world_polygon(arena.planes, n.plane);
+      ConvexPolygon poly = kernel::world_polygon(arena.planes, n.plane, {.quick_corners = true});
       int cell_side = 0;  // 0: the plane cuts the cell; -1 / +1: the cell lies on that side
       bool empty = false;
       // Nearest ancestors first: they bound the cell most tightly, so the polygon shrinks to the
@@ -95,6 +95,7 @@ Solid TreeBuilder::build(TreeRef root) && {
         out = src;
         continue;
       }
+      kernel::refresh_world_corners(arena.planes, poly);  // the usual bits on kept world corners
       const auto id = std::int32_t(arena.nodes.size());
       arena.nodes.push_back({n.plane, kOut, kOut});
       arena.polygons.push_back(std::move(poly));

@@ -18,7 +18,27 @@ std::int32_t PlaneTable::add(const Plane& p, bool auxiliary) {
   return std::int32_t(planes_.size() - 1);
 }
 
-ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support) {
+namespace {
+
+constexpr double kUnit = 1.1102230246251565e-16;  // 2^-53
+
+// The corner of the world polygon on support s where axis u is at U and axis v at V (world box
+// faces, exact in double): x_k = -(s_u U + s_v V + d) / s_k. The products are exact (U, V are
+// powers of two), the two sums, d_nearest and the quotient round once each.
+ApproxPoint quick_world_corner(const Plane& s, int u, int v, int k, double U, double V) {
+  const double n[3] = {double(s.a), double(s.b), double(s.c)};
+  const double t1 = n[u] * U, t2 = n[v] * V, d = s.d_nearest;
+  const double num = t1 + t2 + d;
+  const double z = -num / n[k];
+  const double e_num = 3.0 * kUnit * (std::fabs(t1) + std::fabs(t2) + std::fabs(d));
+  double x[3];
+  x[u] = U, x[v] = V, x[k] = z;
+  return {x[0], x[1], x[2], 1.01 * (e_num / std::fabs(n[k]) + 2.0 * kUnit * std::fabs(z))};
+}
+
+}  // namespace
+
+ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support, const WorldPolygonOptions& options) {
   const Plane& s = planes[support];
   const std::int64_t n[3] = {std::abs(s.a), std::abs(s.b), std::abs(s.c)};
   const int k = n[0] >= n[1] && n[0] >= n[2] ? 0 : (n[1] >= n[2] ? 1 : 2);
@@ -29,18 +49,25 @@ ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support) {
   if (!up) std::swap(edges[1], edges[3]);  // reversed cycle: +u, -v, -u, +v
   ConvexPolygon poly;
   poly.support = support;
+  const double w = double(PlaneTable::kWorld);
   for (int i = 0; i < 4; ++i) {
     const std::int32_t prev = edges[(i + 3) % 4], edge = edges[i];
-    poly.corners.push_back({edge, prev, edge, approximate_vertex(s, planes[prev], planes[edge])});
+    if (options.quick_corners) {
+      // World plane 2 a is x_a = +w, 2 a + 1 is x_a = -w; prev and edge are one u and one v plane.
+      const std::int32_t pu = prev / 2 == u ? prev : edge, pv = prev / 2 == u ? edge : prev;
+      poly.corners.push_back({edge, prev, edge, quick_world_corner(s, u, v, k, pu % 2 ? -w : w, pv % 2 ? -w : w)});
+    } else {
+      poly.corners.push_back({edge, prev, edge, approximate_vertex(s, planes[prev], planes[edge])});
+    }
   }
   return poly;
 }
 
-namespace {
-
-constexpr double kUnit = 1.1102230246251565e-16;  // 2^-53
-
-}  // namespace
+void refresh_world_corners(const PlaneTable& planes, ConvexPolygon& poly) {
+  for (Corner& c : poly.corners)
+    if (c.p < kWorldPlanes && c.q < kWorldPlanes)
+      c.at = approximate_vertex(planes[poly.support], planes[c.p], planes[c.q]);
+}
 
 CornerBox corner_box(const ConvexPolygon& poly) {
   CornerBox b;
@@ -158,47 +185,51 @@ void extend(CornerBox& b, const ApproxPoint& at) {
 }  // namespace
 
 Side clip_to_negative(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut) {
-  const Side quick = box_side(box, planes[cut]);
+  const Plane& c = planes[cut];
+  const Side quick = box_side(box, c);
   if (quick != Side::Both) return quick;
   const std::size_t k = poly.corners.size();
-  boost::container::small_vector<Sign, 8> s(k);
+  boost::container::small_vector<Sign, 12> s(k);
   bool neg = false, pos = false;
-  {
-    const Plane& support = planes[poly.support];
-    const Plane& c = planes[cut];
-    for (std::size_t i = 0; i < k; ++i) {
-      const Corner& corner = poly.corners[i];
-      const Sign g = orient(support, planes[corner.p], planes[corner.q], corner.at, c);
-      s[i] = g;
-      neg |= g == Sign::Negative;
-      pos |= g == Sign::Positive;
-    }
+  std::uint64_t decided = 0;
+  const Plane& support = planes[poly.support];
+  for (std::size_t i = 0; i < k; ++i) {
+    const Corner& corner = poly.corners[i];
+    Sign g = filtered_orient(corner.at, c);
+    if (g != Sign::Zero)
+      ++decided;
+    else
+      g = orient(support, planes[corner.p], planes[corner.q], corner.at, c);
+    s[i] = g;
+    neg |= g == Sign::Negative;
+    pos |= g == Sign::Positive;
   }
+  predicate_counters().filtered += decided;
   if (!(neg && pos)) return neg ? Side::Negative : (pos ? Side::Positive : Side::On);
 
   // The negative part of split(), same order and labels; the box follows the kept corners.
-  decltype(poly.corners) out;
+  boost::container::small_vector<Corner, 12> out;
   CornerBox b;
   for (int i = 0; i < 3; ++i) b.lo[i] = 1e300, b.hi[i] = -1e300;
   bool valid = true;
-  auto push = [&](const Corner& c) {
-    out.push_back(c);
-    if (c.at.err < 0)
+  auto push = [&](const Corner& corner) {
+    out.push_back(corner);
+    if (corner.at.err < 0)
       valid = false;
     else
-      extend(b, c.at);
+      extend(b, corner.at);
   };
-  const Plane& support = planes[poly.support];
   for (std::size_t i = 0; i < k; ++i) {
-    const Corner& c = poly.corners[i];
+    const Corner& corner = poly.corners[i];
     const Sign si = s[i], sj = s[i + 1 == k ? 0 : i + 1];
-    if (si != Sign::Positive) push(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, c.p, c.q, c.at} : c);
+    if (si != Sign::Positive)
+      push(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, corner.p, corner.q, corner.at} : corner);
     if (si == Sign::Negative ? sj == Sign::Positive : (si == Sign::Positive && sj == Sign::Negative)) {
-      const ApproxPoint at = approximate_vertex(support, planes[c.edge], planes[cut]);
-      push(si == Sign::Negative ? Corner{cut, c.edge, cut, at} : Corner{c.edge, c.edge, cut, at});
+      const ApproxPoint at = approximate_vertex(support, planes[corner.edge], c);
+      push(si == Sign::Negative ? Corner{cut, corner.edge, cut, at} : Corner{corner.edge, corner.edge, cut, at});
     }
   }
-  poly.corners = std::move(out);
+  poly.corners.assign(out.begin(), out.end());
   b.valid = valid;
   box = valid ? b : CornerBox{};
   return Side::Both;

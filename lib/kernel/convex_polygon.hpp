@@ -56,8 +56,20 @@ struct ConvexPolygon {
   [[nodiscard]] bool empty() const { return corners.empty(); }
 };
 
+/// Number of world-box planes: indices 0..5 of every PlaneTable (+x, -x, +y, -y, +z, -z faces).
+inline constexpr std::int32_t kWorldPlanes = 6;
+
+struct WorldPolygonOptions {
+  /// Corner approximations from a cheaper closed formula: rigorous error bounds, but not the
+  /// bits approximate_vertex gives. For polygons about to be clipped (most world corners are
+  /// cut away); refresh_world_corners() then restores the usual values on the survivors.
+  bool quick_corners = false;
+};
 /// The polygon support ∩ world box (a quadrilateral whose edges are world-box planes).
-ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support);
+ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support, const WorldPolygonOptions& options = {});
+/// Recomputes the approximation of every corner made of two world-box planes as
+/// approximate_vertex(support, p, q): what world_polygon() without quick corners gives.
+void refresh_world_corners(const PlaneTable& planes, ConvexPolygon& poly);
 
 /// Where a polygon lies with respect to a plane.
 enum class Side : std::int8_t { Negative, Positive, Both, On };

@@ -154,21 +154,9 @@ HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r) {
 
 Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& at, const Plane& s) {
   PredicateCounters& counters = predicate_counters();
-  if (at.err >= 0) {
-    const double sa = double(s.a), sb = double(s.b), sc = double(s.c), sd = s.d_nearest;
-    const double t1 = sa * at.x, t2 = sb * at.y, t3 = sc * at.z;
-    const double value = t1 + t2 + t3 + sd;
-    const double bound =
-        1.001 * ((std::fabs(sa) + std::fabs(sb) + std::fabs(sc)) * at.err +
-                 6.0 * kEps * (std::fabs(t1) + std::fabs(t2) + std::fabs(t3) + std::fabs(sd)));
-    if (value > bound) {
-      ++counters.filtered;
-      return Sign::Positive;
-    }
-    if (value < -bound) {
-      ++counters.filtered;
-      return Sign::Negative;
-    }
+  if (const Sign quick = filtered_orient(at, s); quick != Sign::Zero) {
+    ++counters.filtered;
+    return quick;
   }
   if (trivially_on(p, q, r, s)) {
     ++counters.trivial;

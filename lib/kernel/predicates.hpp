@@ -5,6 +5,7 @@
 /// of an integer determinant. A floating-point filter with a rigorous error bound decides
 /// almost every case; the exact Int256 evaluation runs only when the filter cannot.
 
+#include <cmath>
 #include <cstdint>
 
 #include "kernel/plane.hpp"
@@ -27,6 +28,19 @@ bool independent(const Plane& p, const Plane& q, const Plane& r);
 /// Side of the vertex p ∩ q ∩ r with respect to plane s: sign of f_s at the vertex (exact).
 /// `approx` must be approximate_vertex(p, q, r). \pre independent(p, q, r).
 Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& approx, const Plane& s);
+/// The floating-point filter of orient() alone, for callers that test many corners inline:
+/// the sign of f_s at the vertex if `approx` decides it, else Zero (undecided: call orient).
+/// Does not count; callers add their decided tests to predicate_counters().filtered.
+inline Sign filtered_orient(const ApproxPoint& at, const Plane& s) {
+  if (!(at.err >= 0)) return Sign::Zero;
+  constexpr double kUnit = 1.1102230246251565e-16;  // 2^-53
+  const double sa = double(s.a), sb = double(s.b), sc = double(s.c), sd = s.d_nearest;
+  const double t1 = sa * at.x, t2 = sb * at.y, t3 = sc * at.z;
+  const double value = t1 + t2 + t3 + sd;
+  const double bound = 1.001 * ((std::fabs(sa) + std::fabs(sb) + std::fabs(sc)) * at.err +
+                                6.0 * kUnit * (std::fabs(t1) + std::fabs(t2) + std::fabs(t3) + std::fabs(sd)));
+  return value > bound ? Sign::Positive : (value < -bound ? Sign::Negative : Sign::Zero);
+}
 /// Side of a grid point with respect to a plane (exact).
 Sign orient(const GridPoint& point, const Plane& s);
 /// Exact homogeneous coordinates (X, Y, Z, W) of p ∩ q ∩ r: the vertex is (X/W, Y/W, Z/W).
