@@ -1,0 +1,146 @@
+#include "bsp/assembly_coplanar.hpp"
+
+#include <algorithm>
+#include <array>
+
+namespace sculpt::detail {
+
+FaceList merge_coplanar_faces(const FaceList& faces, int vertex_count, const PlaneIds& ids) {
+  const int nf = faces.size();
+  const std::size_t corners = std::size_t(faces.corners());
+  // Oriented plane of each face: equal planes share a canonical id, the outward side one bit.
+  std::vector<std::uint64_t> plane(static_cast<std::size_t>(nf));
+  std::vector<int> face_of(corners);
+  const OutgoingEdges index(faces, vertex_count);
+  for (int f = 0; f < nf; ++f) {
+    const auto s = std::size_t(faces.support[std::size_t(f)]);
+    plane[std::size_t(f)] = 2 * std::uint64_t(ids.id[s]) + ((ids.negated[s] != 0) != (faces.flip[std::size_t(f)] != 0) ? 1 : 0);
+    for (int c = faces.begin(f); c < faces.end(f); ++c) face_of[std::size_t(c)] = f;
+  }
+  // Faces of one oriented plane joined through an edge (u, w) / (w, u) form one candidate union;
+  // such edges are interior to it.
+  UnionFind uf(static_cast<std::size_t>(nf));
+  std::vector<std::uint8_t> interior(corners, 0);
+  bool any = false;
+  for (int f = 0; f < nf; ++f)
+    for (int c = faces.begin(f); c < faces.end(f); ++c) {
+      index.for_each(faces.vertex[std::size_t(faces.next(f, c))], faces.vertex[std::size_t(c)], [&](int r) {
+        const int g = face_of[std::size_t(r)];
+        if (plane[std::size_t(g)] != plane[std::size_t(f)]) return;
+        interior[std::size_t(c)] = 1;
+        if (g != f) uf.unite(f, g), any = true;
+      });
+    }
+  if (!any) return faces;
+  // Members of each union (the root is its smallest face), by counting sort.
+  std::vector<int> member_start(std::size_t(nf) + 1, 0);
+  for (int f = 0; f < nf; ++f) ++member_start[std::size_t(uf.find(f)) + 1];
+  for (std::size_t f = 0; f < std::size_t(nf); ++f) member_start[f + 1] += member_start[f];
+  std::vector<int> members(static_cast<std::size_t>(nf));
+  {
+    std::vector<int> fill(member_start.begin(), member_start.end() - 1);
+    for (int f = 0; f < nf; ++f) members[std::size_t(fill[std::size_t(uf.find(f))]++)] = f;
+  }
+  struct Boundary {
+    int u, w;
+    std::int32_t line;
+  };
+  std::vector<Boundary> boundary;
+  std::vector<std::uint8_t> removed(std::size_t(nf), 0);
+  FaceList added;
+  for (int r = 0; r < nf; ++r) {
+    const int b = member_start[std::size_t(r)], e = member_start[std::size_t(r) + 1];
+    if (e - b < 2) continue;
+    boundary.clear();
+    for (int m = b; m < e; ++m) {
+      const int f = members[std::size_t(m)];
+      for (int c = faces.begin(f); c < faces.end(f); ++c)
+        if (interior[std::size_t(c)] == 0)
+          boundary.push_back({faces.vertex[std::size_t(c)], faces.vertex[std::size_t(faces.next(f, c))], faces.line[std::size_t(c)]});
+    }
+    std::sort(boundary.begin(), boundary.end(), [](const Boundary& x, const Boundary& y) { return x.u < y.u; });
+    bool simple = boundary.size() >= 3;
+    for (std::size_t c = 1; c < boundary.size() && simple; ++c) simple = boundary[c].u != boundary[c - 1].u;
+    if (!simple) continue;
+    // One loop through every boundary edge: a simple polygon.
+    const std::size_t mark = added.vertex.size();
+    added.open_face(faces.support[std::size_t(r)], faces.flip[std::size_t(r)] != 0);
+    int u = boundary.front().u;
+    do {
+      const auto it = std::lower_bound(boundary.begin(), boundary.end(), u, [](const Boundary& x, int v) { return x.u < v; });
+      if (it == boundary.end() || it->u != u) break;
+      added.add_corner(u, it->line);
+      u = it->w;
+    } while (u != boundary.front().u && added.vertex.size() - mark <= boundary.size());
+    if (added.vertex.size() - mark == boundary.size()) {
+      for (int m = b; m < e; ++m) removed[std::size_t(members[std::size_t(m)])] = 1;
+    } else {  // several loops or a broken one: keep the fragments
+      added.vertex.resize(mark);
+      added.line.resize(mark);
+      added.start.pop_back();
+      added.support.pop_back();
+      added.flip.pop_back();
+    }
+  }
+  FaceList out;
+  out.reserve(std::size_t(nf), corners);
+  for (int f = 0; f < nf; ++f)
+    if (removed[std::size_t(f)] == 0) out.copy_face(faces, f);
+  for (int g = 0; g < added.size(); ++g) out.copy_face(added, g);
+  return out;
+}
+
+FaceList remove_straight_vertices(const FaceList& faces, int vertex_count, const VertexGeometry& geometry) {
+  const std::size_t nv = std::size_t(vertex_count);
+  // Exactly two distinct neighbours per vertex: keep the first two seen, mark a third.
+  std::vector<std::array<int, 2>> seen(nv, {-1, -1});
+  std::vector<std::uint8_t> more(nv, 0);
+  auto link = [&](int v, int w) {
+    auto& sv = seen[std::size_t(v)];
+    if (sv[0] == w || sv[1] == w) return;
+    if (sv[0] < 0)
+      sv[0] = w;
+    else if (sv[1] < 0)
+      sv[1] = w;
+    else
+      more[std::size_t(v)] = 1;
+  };
+  for (int f = 0; f < faces.size(); ++f)
+    for (int c = faces.begin(f); c < faces.end(f); ++c) {
+      const int u = faces.vertex[std::size_t(c)], w = faces.vertex[std::size_t(faces.next(f, c))];
+      link(u, w);
+      link(w, u);
+    }
+  std::vector<std::uint8_t> removable(nv, 0);
+  bool any = false;
+  for (std::size_t v = 0; v < nv; ++v) any |= (removable[v] = seen[v][1] >= 0 && more[v] == 0) != 0;
+  if (!any) return faces;
+  // A vertex goes only if it is straight in every face that uses it: the next vertex lies on
+  // the line of the incoming edge (support ∩ that edge's plane), decided exactly.
+  for (int f = 0; f < faces.size(); ++f) {
+    const int m = faces.count(f);
+    for (int c = faces.begin(f); c < faces.end(f); ++c) {
+      const auto v = std::size_t(faces.vertex[std::size_t(c)]);
+      if (removable[v] == 0) continue;
+      const int w = faces.vertex[std::size_t(faces.next(f, c))];
+      const std::int32_t in_line = faces.line[std::size_t(c == faces.begin(f) ? faces.end(f) - 1 : c - 1)];
+      if (m <= 3 || !geometry.on_plane(w, in_line) || !geometry.on_plane(w, faces.support[std::size_t(f)])) removable[v] = 0;
+    }
+  }
+  FaceList out;
+  out.reserve(std::size_t(faces.size()), std::size_t(faces.corners()));
+  for (int f = 0; f < faces.size(); ++f) {
+    int kept = 0;
+    for (int c = faces.begin(f); c < faces.end(f); ++c) kept += removable[std::size_t(faces.vertex[std::size_t(c)])] == 0;
+    if (kept == faces.count(f) || kept < 3) {
+      out.copy_face(faces, f);
+      continue;
+    }
+    out.open_face(faces.support[std::size_t(f)], faces.flip[std::size_t(f)] != 0);
+    for (int c = faces.begin(f); c < faces.end(f); ++c)  // the incoming edge's line goes on
+      if (removable[std::size_t(faces.vertex[std::size_t(c)])] == 0) out.add_corner(faces.vertex[std::size_t(c)], faces.line[std::size_t(c)]);
+  }
+  return out;
+}
+
+}  // namespace sculpt::detail

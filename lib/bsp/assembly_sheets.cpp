@@ -1,0 +1,157 @@
+#include "bsp/assembly_sheets.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "bsp/face_triangulation.hpp"
+
+namespace sculpt::detail {
+
+namespace {
+
+Eigen::Vector3d position(const AssemblyVertices& v, int i) {
+  const kernel::ApproxPoint& a = v.at[std::size_t(i)];
+  return {a.x, a.y, a.z};
+}
+
+Eigen::Vector3d outward_normal(const FaceList& faces, int f, const kernel::PlaneTable& planes) {
+  const Eigen::Vector3d n = planes[faces.support[std::size_t(f)]].normal().normalized();
+  return faces.flip[std::size_t(f)] != 0 ? Eigen::Vector3d(-n) : n;
+}
+
+struct HalfEdge {
+  std::uint64_t undirected;
+  int face, corner;
+  bool forward;  // from the smaller to the larger vertex id
+};
+
+class SheetSplitter {
+ public:
+  SheetSplitter(FaceList& faces, const AssemblyVertices& vertices, const kernel::PlaneTable& planes)
+      : f_(faces), v_(vertices), planes_(planes), uf_(std::size_t(faces.corners())) {}
+
+  std::vector<int> run() {
+    std::vector<HalfEdge> hs;
+    hs.reserve(std::size_t(f_.corners()));
+    for (int f = 0; f < f_.size(); ++f)
+      for (int c = f_.begin(f); c < f_.end(f); ++c) {
+        const int u = f_.vertex[std::size_t(c)], w = f_.vertex[std::size_t(f_.next(f, c))];
+        hs.push_back({edge_key(std::min(u, w), std::max(u, w)), f, c, u < w});
+      }
+    std::sort(hs.begin(), hs.end(), [](const HalfEdge& a, const HalfEdge& b) { return a.undirected < b.undirected; });
+    for (std::size_t i = 0; i < hs.size();) {
+      std::size_t j = i;
+      while (j < hs.size() && hs[j].undirected == hs[i].undirected) ++j;
+      if (j - i == 2 && hs[i].forward != hs[i + 1].forward)
+        pair(hs[i], hs[i + 1]);
+      else if (j - i > 2)
+        pair_around_edge(std::vector<HalfEdge>(hs.begin() + std::ptrdiff_t(i), hs.begin() + std::ptrdiff_t(j)));
+      i = j;
+    }
+    // One vertex per (vertex, corner class): the first class keeps the vertex id.
+    std::vector<int> original(v_.at.size());
+    for (std::size_t i = 0; i < original.size(); ++i) original[i] = int(i);
+    std::vector<int> class_vertex(std::size_t(f_.corners()), -1);
+    std::vector<std::uint8_t> taken(v_.at.size(), 0);
+    for (std::size_t c = 0; c < f_.vertex.size(); ++c) {
+      int& v = f_.vertex[c];
+      int& mine = class_vertex[std::size_t(uf_.find(int(c)))];
+      if (mine < 0) {
+        if (taken[std::size_t(v)] == 0) {
+          taken[std::size_t(v)] = 1;
+          mine = v;
+        } else {
+          mine = int(original.size());
+          original.push_back(v);
+        }
+      }
+      v = mine;
+    }
+    return original;
+  }
+
+ private:
+  void pair(const HalfEdge& a, const HalfEdge& b) {  // a: u -> w, b: w -> u
+    uf_.unite(a.corner, f_.next(b.face, b.corner));
+    uf_.unite(f_.next(a.face, a.corner), b.corner);
+  }
+
+  void pair_around_edge(const std::vector<HalfEdge>& group) {
+    // Axis from the smaller to the larger vertex id.
+    const HalfEdge& h0 = group[0];
+    const int a = f_.vertex[std::size_t(h0.corner)], b = f_.vertex[std::size_t(f_.next(h0.face, h0.corner))];
+    const Eigen::Vector3d p = position(v_, std::min(a, b)), axis = (position(v_, std::max(a, b)) - p).normalized();
+    const Eigen::Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+    struct Item {
+      double angle;
+      bool in_after;
+      std::size_t index;
+    };
+    std::vector<Item> items;
+    for (std::size_t i = 0; i < group.size(); ++i) {
+      const int f = group[i].face;
+      const Eigen::Vector3d n = outward_normal(f_, f, planes_);
+      Eigen::Vector3d r = axis.cross(n);  // in the face plane, perpendicular to the edge
+      // Orient r into the face: the face interior is to the left of its directed edge.
+      const Eigen::Vector3d dir = position(v_, f_.vertex[std::size_t(f_.next(f, group[i].corner))]) -
+                                  position(v_, f_.vertex[std::size_t(group[i].corner)]);
+      if (r.dot(n.cross(dir)) < 0) r = -r;
+      const double angle = std::atan2(r.dot(e2), r.dot(e1));
+      items.push_back({angle, n.dot(axis.cross(r)) < 0, i});
+    }
+    std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.angle < y.angle; });
+    const std::size_t m = items.size();
+    std::vector<bool> used(m, false);
+    for (std::size_t i = 0; i < m; ++i) {
+      if (!items[i].in_after || used[i]) continue;
+      const std::size_t j = (i + 1) % m;
+      if (used[j] || items[j].in_after) continue;
+      const HalfEdge& x = group[items[i].index];
+      const HalfEdge& y = group[items[j].index];
+      if (x.forward == y.forward) continue;
+      used[i] = used[j] = true;
+      pair(x, y);
+    }
+  }
+
+  FaceList& f_;
+  const AssemblyVertices& v_;
+  const kernel::PlaneTable& planes_;
+  UnionFind uf_;  // over corners
+};
+
+}  // namespace
+
+Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, const kernel::PlaneTable& planes) {
+  std::vector<int> original = SheetSplitter(faces, vertices, planes).run();
+  return {std::move(faces), std::move(original)};
+}
+
+PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
+                        bool triangulate) {
+  const FaceList& faces = sheets.faces;
+  PolygonMesh mesh;
+  std::vector<int> index(sheets.original.size(), -1);  // only referenced vertices are written
+  for (const int v : faces.vertex)
+    if (index[std::size_t(v)] < 0) {
+      index[std::size_t(v)] = int(mesh.vertices.size());
+      mesh.vertices.push_back(position(vertices, sheets.original[std::size_t(v)]) * kernel::kGridStep);
+    }
+  mesh.faces.reserve(std::size_t(faces.size()));
+  std::vector<int> face;
+  for (int f = 0; f < faces.size(); ++f) {
+    face.clear();
+    for (int c = faces.begin(f); c < faces.end(f); ++c) face.push_back(index[std::size_t(faces.vertex[std::size_t(c)])]);
+    if (!triangulate || face.size() == 3) {
+      mesh.faces.push_back(face);
+      continue;
+    }
+    for (const auto& t : triangulate_face(mesh.vertices, face, outward_normal(faces, f, planes)))
+      mesh.faces.push_back({t[0], t[1], t[2]});
+  }
+  return mesh;
+}
+
+}  // namespace sculpt::detail

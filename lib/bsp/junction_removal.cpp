@@ -1,0 +1,282 @@
+#include "bsp/junction_removal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <Eigen/Core>
+
+namespace sculpt::detail {
+
+namespace {
+
+struct OpenEdge {
+  int face, corner;    // the half-edge leaves corner `corner` of face `face`
+  int u, w;            // from u to w
+  std::uint64_t line;  // canonical ids of the support and the edge plane, sorted: the same key is the same line
+};
+
+class JunctionRemover {
+ public:
+  JunctionRemover(const FaceList& faces, const VertexGeometry& geometry, const PlaneIds& ids)
+      : f_(faces), g_(geometry), ids_(ids), index_(faces, geometry.vertex_count()) {}
+
+  // Finds the inserts; false if every half-edge has an opposite (nothing to do).
+  bool run(const JunctionOptions& options, JunctionResult& result) {
+    find_open();
+    result.open = int(open_.size());
+    if (open_.empty()) return false;
+    ins_begin_.assign(open_.size(), 0);
+    ins_end_.assign(open_.size(), 0);
+    if (options.group_by_lines) group_by_lines();
+    const std::vector<int> failing = unmatched_pieces();
+    result.by_search = int(failing.size());
+    result.by_lines = result.open - result.by_search;
+    if (!failing.empty()) search(failing);
+    return true;
+  }
+
+  // The faces with the inserted vertices.
+  FaceList apply() const {
+    FaceList out;
+    out.reserve(std::size_t(f_.size()), f_.vertex.size() + ins_.size());
+    std::size_t o = 0;  // open edges are in corner order
+    for (int f = 0; f < f_.size(); ++f) {
+      out.open_face(f_.support[std::size_t(f)], f_.flip[std::size_t(f)] != 0);
+      for (int c = f_.begin(f); c < f_.end(f); ++c) {
+        out.add_corner(f_.vertex[std::size_t(c)], f_.line[std::size_t(c)]);
+        if (o < open_.size() && open_[o].corner == c) {
+          for (int k = ins_begin_[o]; k < ins_end_[o]; ++k) out.add_corner(ins_[std::size_t(k)], f_.line[std::size_t(c)]);
+          ++o;
+        }
+      }
+    }
+    return out;
+  }
+
+ private:
+  int next_vertex(int f, int c) const { return f_.vertex[std::size_t(f_.next(f, c))]; }
+
+  void find_open() {
+    for (int f = 0; f < f_.size(); ++f)
+      for (int c = f_.begin(f); c < f_.end(f); ++c) {
+        const int u = f_.vertex[std::size_t(c)], w = next_vertex(f, c);
+        if (index_.find(w, u) >= 0) continue;
+        std::uint32_t a = ids_.id[std::size_t(f_.support[std::size_t(f)])], b = ids_.id[std::size_t(f_.line[std::size_t(c)])];
+        if (a > b) std::swap(a, b);
+        open_.push_back({f, c, u, w, std::uint64_t(a) << 32 | b});
+      }
+  }
+
+  // Exact: the far endpoint x of another half-edge lies on the line of open edge e.
+  bool on_line(const OpenEdge& e, int x) const {
+    return g_.on_plane(x, f_.line[std::size_t(e.corner)]) && g_.on_plane(x, f_.support[std::size_t(e.face)]);
+  }
+
+  // Groups of collinear open edges; each edge gets the group's vertices strictly inside it.
+  void group_by_lines() {
+    const std::size_t n = open_.size();
+    UnionFind uf(n);
+    {  // the same pair of planes: the same line
+      EdgeIndex by_line(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const int first = by_line.find(open_[i].line);
+        if (first >= 0) uf.unite(first, int(i));
+        by_line.insert(open_[i].line, int(i));
+      }
+    }
+    // Open edges at a common vertex on different plane pairs: joined when exactly collinear.
+    const std::size_t nv = std::size_t(g_.vertex_count());
+    std::vector<int> at_start(nv + 1, 0);
+    for (const OpenEdge& e : open_) ++at_start[std::size_t(e.u) + 1], ++at_start[std::size_t(e.w) + 1];
+    for (std::size_t v = 0; v < nv; ++v) at_start[v + 1] += at_start[v];
+    std::vector<int> at(static_cast<std::size_t>(at_start[nv]));
+    {
+      std::vector<int> fill(at_start.begin(), at_start.end() - 1);
+      for (std::size_t i = 0; i < n; ++i) {
+        at[std::size_t(fill[std::size_t(open_[i].u)]++)] = int(i);
+        at[std::size_t(fill[std::size_t(open_[i].w)]++)] = int(i);
+      }
+    }
+    for (std::size_t v = 0; v < nv; ++v)
+      for (int a = at_start[v]; a < at_start[v + 1]; ++a)
+        for (int b = a + 1; b < at_start[v + 1]; ++b) {
+          const OpenEdge& x = open_[std::size_t(at[std::size_t(a)])];
+          const OpenEdge& y = open_[std::size_t(at[std::size_t(b)])];
+          if (x.line == y.line || uf.find(at[std::size_t(a)]) == uf.find(at[std::size_t(b)])) continue;
+          const int far = y.u == int(v) ? y.w : y.u;
+          if (on_line(x, far)) uf.unite(at[std::size_t(a)], at[std::size_t(b)]);
+        }
+    // Each group: its vertices sorted along the line (exactly), then the inserts of its edges.
+    std::vector<int> member_start(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++member_start[std::size_t(uf.find(int(i))) + 1];
+    for (std::size_t i = 0; i < n; ++i) member_start[i + 1] += member_start[i];
+    std::vector<int> members(n);
+    {
+      std::vector<int> fill(member_start.begin(), member_start.end() - 1);
+      for (std::size_t i = 0; i < n; ++i) members[std::size_t(fill[std::size_t(uf.find(int(i)))]++)] = int(i);
+    }
+    std::vector<int> rank(nv, -1), verts;
+    for (std::size_t r = 0; r < n; ++r) {
+      const int b = member_start[r], e = member_start[r + 1];
+      if (e - b < 2) continue;
+      verts.clear();
+      for (int m = b; m < e; ++m) {
+        const OpenEdge& x = open_[std::size_t(members[std::size_t(m)])];
+        for (const int v : {x.u, x.w})
+          if (rank[std::size_t(v)] < 0) {
+            rank[std::size_t(v)] = 0;
+            verts.push_back(v);
+          }
+      }
+      const OpenEdge& first = open_[std::size_t(members[std::size_t(b)])];
+      const int axis = g_.line_axis(f_.support[std::size_t(first.face)], f_.line[std::size_t(first.corner)]);
+      std::sort(verts.begin(), verts.end(), [&](int x, int y) { return g_.less_along(x, y, axis); });
+      for (std::size_t k = 0; k < verts.size(); ++k) rank[std::size_t(verts[k])] = int(k);
+      for (int m = b; m < e; ++m) {
+        const int i = members[std::size_t(m)];
+        const int ru = rank[std::size_t(open_[std::size_t(i)].u)], rw = rank[std::size_t(open_[std::size_t(i)].w)];
+        ins_begin_[std::size_t(i)] = int(ins_.size());
+        if (ru < rw)
+          for (int k = ru + 1; k < rw; ++k) ins_.push_back(verts[std::size_t(k)]);
+        else
+          for (int k = ru - 1; k > rw; --k) ins_.push_back(verts[std::size_t(k)]);
+        ins_end_[std::size_t(i)] = int(ins_.size());
+      }
+      for (const int v : verts) rank[std::size_t(v)] = -1;
+    }
+  }
+
+  // Open edges whose pieces (after the inserts) do not all have an opposite half-edge.
+  std::vector<int> unmatched_pieces() const {
+    std::size_t pieces = 0;
+    for (std::size_t i = 0; i < open_.size(); ++i) pieces += std::size_t(ins_end_[i] - ins_begin_[i] + 1);
+    EdgeIndex sub(pieces);
+    int id = 0;
+    auto for_pieces = [&](std::size_t i, auto&& fn) {
+      int a = open_[i].u;
+      for (int k = ins_begin_[i]; k < ins_end_[i]; ++k) {
+        fn(a, ins_[std::size_t(k)]);
+        a = ins_[std::size_t(k)];
+      }
+      fn(a, open_[i].w);
+    };
+    for (std::size_t i = 0; i < open_.size(); ++i) for_pieces(i, [&](int a, int b) { sub.insert(edge_key(a, b), id++); });
+    std::vector<int> failing;
+    for (std::size_t i = 0; i < open_.size(); ++i) {
+      bool ok = true;
+      for_pieces(i, [&](int a, int b) {
+        ok = ok && (index_.find(b, a) >= 0 || sub.find(edge_key(b, a)) >= 0);
+      });
+      if (!ok) failing.push_back(int(i));
+    }
+    return failing;
+  }
+
+  Eigen::Vector3d position(int v) const {
+    const kernel::ApproxPoint& a = g_.at(v);
+    return {a.x, a.y, a.z};
+  }
+  double err(int v) const { return g_.at(v).err; }
+
+  // Spatial search for the failing edges: every endpoint of an open edge near the edge (hash
+  // grid, the median open-edge length as cell size) is tested exactly for lying on its line
+  // strictly between its endpoints.
+  void search(const std::vector<int>& failing) {
+    std::vector<int> candidates;
+    std::vector<double> lengths;
+    for (const OpenEdge& e : open_) candidates.push_back(e.u), candidates.push_back(e.w);
+    for (const int i : failing) lengths.push_back((position(open_[std::size_t(i)].w) - position(open_[std::size_t(i)].u)).norm());
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
+    const double cell = std::max(lengths[lengths.size() / 2], 1e-6);
+    auto cell_of = [cell](double x) { return std::int64_t(std::floor(x / cell)); };
+    auto cell_key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+      return std::uint64_t(x * 73856093) ^ std::uint64_t(y * 19349663) ^ std::uint64_t(z * 83492791);
+    };
+    std::vector<std::pair<std::uint64_t, int>> grid;  // (cell key, vertex), sorted
+    grid.reserve(candidates.size());
+    for (int c : candidates) {
+      const Eigen::Vector3d p = position(c);
+      grid.push_back({cell_key(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), c});
+    }
+    std::sort(grid.begin(), grid.end());
+    EdgeIndex runs(grid.size());  // cell key -> first entry of its run in `grid`
+    for (std::size_t i = 0; i < grid.size(); ++i)
+      if (i == 0 || grid[i].first != grid[i - 1].first) runs.insert(grid[i].first, int(i));
+
+    constexpr double kTol = 1e-3;  // grid units: a cheap prefilter only; the test is exact
+    std::vector<int> near;
+    std::vector<std::pair<double, int>> found;
+    for (const int i : failing) {
+      const OpenEdge& e = open_[std::size_t(i)];
+      const std::int32_t support = f_.support[std::size_t(e.face)], line = f_.line[std::size_t(e.corner)];
+      const Eigen::Vector3d pu = position(e.u), pw = position(e.w), d = pw - pu;
+      const double len2 = d.squaredNorm();
+      const Eigen::Vector3d lo = pu.cwiseMin(pw).array() - kTol, hi = pu.cwiseMax(pw).array() + kTol;
+      near.clear();
+      const std::int64_t x0 = cell_of(lo.x()), x1 = cell_of(hi.x()), y0 = cell_of(lo.y()), y1 = cell_of(hi.y()),
+                         z0 = cell_of(lo.z()), z1 = cell_of(hi.z());
+      if ((x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1) > std::int64_t(candidates.size())) {
+        near = candidates;
+      } else {
+        for (std::int64_t x = x0; x <= x1; ++x)
+          for (std::int64_t y = y0; y <= y1; ++y)
+            for (std::int64_t z = z0; z <= z1; ++z) {
+              const std::uint64_t ck = cell_key(x, y, z);
+              const int first = runs.find(ck);
+              if (first < 0) continue;
+              for (std::size_t k = std::size_t(first); k < grid.size() && grid[k].first == ck; ++k) near.push_back(grid[k].second);
+            }
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+      }
+      found.clear();
+      int axis = -1;
+      for (const int c : near) {
+        if (c == e.u || c == e.w) continue;
+        const Eigen::Vector3d pc = position(c);
+        const double t = (pc - pu).dot(d) / len2;
+        const double slack = 4 * (err(e.u) + err(e.w) + err(c)) / std::sqrt(len2) + 1e-12;
+        if (t <= -slack || t >= 1 + slack || (pu + t * d - pc).norm() > kTol) continue;
+        if (!on_line(e, c)) continue;
+        // On the line and distinct from u and w (exactly); strictly between them? Decided
+        // exactly when the approximation is too close to call.
+        if (axis < 0) axis = g_.line_axis(support, line);
+        if (!(t > slack && t < 1 - slack) && !g_.between(e.u, c, e.w, axis)) continue;
+        found.push_back({t, c});
+      }
+      if (found.empty() && ins_begin_[std::size_t(i)] == ins_end_[std::size_t(i)]) continue;
+      // Order along the edge exactly (vertices closer than their approximation errors occur
+      // with re-quantized planes), from u to w.
+      if (axis < 0) axis = g_.line_axis(support, line);
+      const bool ascending = g_.less_along(e.u, e.w, axis);
+      std::sort(found.begin(), found.end(), [&](const auto& x, const auto& y) {
+        return ascending ? g_.less_along(x.second, y.second, axis) : g_.less_along(y.second, x.second, axis);
+      });
+      ins_begin_[std::size_t(i)] = int(ins_.size());
+      for (const auto& [t, c] : found) ins_.push_back(c);
+      ins_end_[std::size_t(i)] = int(ins_.size());
+    }
+  }
+
+  const FaceList& f_;
+  const VertexGeometry& g_;
+  const PlaneIds& ids_;
+  OutgoingEdges index_;          // every half-edge by (u, w)
+  std::vector<OpenEdge> open_;   // half-edges without an opposite, in corner order
+  std::vector<int> ins_begin_, ins_end_, ins_;  // inserted vertices of each open edge, from u to w
+};
+
+}  // namespace
+
+JunctionResult remove_t_junctions(FaceList faces, const VertexGeometry& geometry, const PlaneIds& ids,
+                                  const JunctionOptions& options) {
+  JunctionResult result;
+  JunctionRemover remover(faces, geometry, ids);
+  result.faces = remover.run(options, result) ? remover.apply() : std::move(faces);
+  return result;
+}
+
+}  // namespace sculpt::detail

@@ -1,0 +1,150 @@
+// Mesh assembly alone (lib/bsp/mesh_assembly.hpp): builds each benchmark solid once, extracts
+// its boundary fragments once (detail::boundary_fragments), then times only assemble_mesh.
+// Prints one parseable line per case:
+//   bench impl=sculpt stage=assembly case=<case> n=<n> runs=<r> time_ms=<median> min_ms=<min>
+//         fragments=<f> occurrences=<corners> vertices=<v> faces=<f> volume=<v> area=<a>
+//   bench_assembly                 sphere_minus_cube 32, 128, 256, menger 3, boxes 1000
+//   bench_assembly CASE N [RUNS]   one case (solids as in bench_bsp.cpp, CASES.md)
+//   bench_assembly CASE N RUNS DUMP  also writes the mesh in a canonical text form to DUMP
+//                                  (faces as coordinate cycles starting at the smallest, sorted),
+//                                  to compare two builds' output independently of numbering
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "bsp/boundary_fragments.hpp"
+#include "bsp/mesh_assembly.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+
+using namespace sculpt;
+
+namespace {
+
+Solid sphere_minus_cube(int n) { return sphere(1.0, {.segments = n}) - box({0, 0, 0}, {1, 1, 1}); }
+
+Solid menger(int level) {  // in units of 1/27 as in bench_bsp.cpp
+  const double u = std::pow(3.0, level);
+  Solid s = box({0, 0, 0}, {u, u, u});
+  for (int l = 1; l <= level; ++l) {
+    const int m = int(std::pow(3, l));
+    const double w = u / m;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int i = 1; i < m; i += 3)
+        for (int j = 1; j < m; j += 3) {
+          Eigen::Vector3d lo, hi;
+          const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+          lo[axis] = -0.5 * u, hi[axis] = 1.5 * u;
+          lo[a] = i * w, hi[a] = (i + 1) * w;
+          lo[b] = j * w, hi[b] = (j + 1) * w;
+          s = std::move(s) - box(lo, hi);
+        }
+  }
+  return s;
+}
+
+Solid boxes(int count) {  // the LCG boxes of CASES.md, united one at a time as in bench_bsp.cpp
+  std::uint32_t state = 1;
+  auto next = [&] { return state = 1664525u * state + 1013904223u; };
+  Solid s;
+  for (int k = 0; k < count; ++k) {
+    Eigen::Vector3d lo, size;
+    for (int i = 0; i < 3; ++i) lo[i] = (next() >> 16) / 4096.0;
+    for (int i = 0; i < 3; ++i) size[i] = 0.5 + ((next() >> 16) >> 5) / 1024.0;
+    s = std::move(s) | box(lo, lo + size);
+  }
+  return s;
+}
+
+struct Measures {
+  long double volume = 0, area = 0;
+};
+
+Measures measure(const PolygonMesh& m) {
+  Measures r;
+  for (const auto& f : m.faces)
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) {
+      const Eigen::Vector3d a = m.vertices[std::size_t(f[0])], b = m.vertices[std::size_t(f[i])],
+                            c = m.vertices[std::size_t(f[i + 1])];
+      r.volume += a.dot(b.cross(c)) / 6.0;
+      r.area += 0.5 * (b - a).cross(c - a).norm();
+    }
+  return r;
+}
+
+void dump(const PolygonMesh& mesh, const std::string& path) {
+  std::vector<std::string> faces;
+  for (const auto& f : mesh.faces) {
+    std::vector<std::string> corners;
+    for (int v : f) {
+      char buf[128];
+      const Eigen::Vector3d& p = mesh.vertices[std::size_t(v)];
+      std::snprintf(buf, sizeof buf, "(%.17g %.17g %.17g)", p.x(), p.y(), p.z());
+      corners.emplace_back(buf);
+    }
+    std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
+    std::string line;
+    for (const auto& c : corners) line += c;
+    faces.push_back(line);
+  }
+  std::sort(faces.begin(), faces.end());
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (out == nullptr) return;
+  std::fprintf(out, "vertices %zu faces %zu\n", mesh.vertices.size(), mesh.faces.size());
+  for (const auto& line : faces) std::fprintf(out, "%s\n", line.c_str());
+  std::fclose(out);
+}
+
+int run_case(const std::string& name, int n, int runs, const std::string& dump_path) {
+  Solid solid;
+  if (name == "sphere_minus_cube") {
+    solid = sphere_minus_cube(n);
+  } else if (name == "menger") {
+    solid = menger(n);
+  } else if (name == "boxes") {
+    solid = boxes(n);
+  } else {
+    std::fprintf(stderr, "unknown case %s\n", name.c_str());
+    return 2;
+  }
+  const detail::Fragments fragments = detail::boundary_fragments(solid);
+  std::size_t corners = 0;
+  for (const auto& f : fragments.fragments) corners += f.polygon.corners.size();
+  std::vector<double> times;
+  PolygonMesh mesh;
+  for (int i = 0; i < runs + 1; ++i) {  // the first run is a discarded warm-up
+    const auto t0 = std::chrono::steady_clock::now();
+    mesh = detail::assemble_mesh(fragments, {});
+    const auto t1 = std::chrono::steady_clock::now();
+    if (i > 0) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+  }
+  std::sort(times.begin(), times.end());
+  if (!dump_path.empty()) dump(mesh, dump_path);
+  const Measures m = measure(mesh);
+  std::printf("bench impl=sculpt stage=assembly case=%s n=%d runs=%d time_ms=%.3f min_ms=%.3f fragments=%zu "
+              "occurrences=%zu vertices=%zu faces=%zu volume=%.17Lg area=%.17Lg\n",
+              name.c_str(), n, runs, times[times.size() / 2], times.front(), fragments.fragments.size(), corners,
+              mesh.vertices.size(), mesh.faces.size(), m.volume, m.area);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc >= 3)
+    return run_case(argv[1], std::atoi(argv[2]), argc >= 4 ? std::max(1, std::atoi(argv[3])) : 7, argc >= 5 ? argv[4] : "");
+  const std::vector<std::pair<std::string, int>> cases = {{"sphere_minus_cube", 32},
+                                                          {"sphere_minus_cube", 128},
+                                                          {"sphere_minus_cube", 256},
+                                                          {"menger", 3},
+                                                          {"boxes", 1000}};
+  int status = 0;
+  for (const auto& [name, n] : cases) status |= run_case(name, n, name == "boxes" ? 5 : 11, "");
+  return status == 0 ? 0 : 1;
+}

@@ -1,0 +1,288 @@
+// Mesh assembly (lib/bsp/mesh_assembly.hpp and its stages): the exact shortcuts checked against
+// brute-force references computed here with unbounded integers.
+#include "bsp/mesh_assembly.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <boost/multiprecision/cpp_int.hpp>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <random>
+#include <set>
+
+#include "bsp/assembly_faces.hpp"
+#include "bsp/boundary.hpp"
+#include "bsp/boundary_fragments.hpp"
+#include "bsp/junction_removal.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/vertex_merge.hpp"
+#include "support/mesh_checks.hpp"
+
+namespace sculpt {
+namespace {
+
+using Big = boost::multiprecision::cpp_int;
+using kernel::Plane;
+
+Big big(kernel::Int128 v) {
+  const bool neg = v < 0;
+  __extension__ typedef unsigned __int128 U;
+  const U m = neg ? U(0) - U(v) : U(v);
+  Big r = Big(std::uint64_t(m >> 64));
+  r <<= 64;
+  r += Big(std::uint64_t(m));
+  return neg ? Big(-r) : r;
+}
+
+// The vertex p ∩ q ∩ r by Cramer's rule in unbounded integers: (x, y, z) / w (w = 0: none).
+struct Homogeneous {
+  Big x, y, z, w;
+  friend bool operator==(const Homogeneous& a, const Homogeneous& b) {
+    return a.x * b.w == b.x * a.w && a.y * b.w == b.y * a.w && a.z * b.w == b.z * a.w;
+  }
+  Eigen::Vector3d world() const {
+    const double dw = w.convert_to<double>();
+    return Eigen::Vector3d(x.convert_to<double>() / dw, y.convert_to<double>() / dw, z.convert_to<double>() / dw) *
+           kernel::kGridStep;
+  }
+};
+
+Big det3(const Big m[3][3]) {
+  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+Homogeneous cramer(const Plane& p, const Plane& q, const Plane& r) {
+  const Plane* rows[3] = {&p, &q, &r};
+  Big a[3][3], col[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i][0] = rows[i]->a, a[i][1] = rows[i]->b, a[i][2] = rows[i]->c;
+    col[i] = -big(rows[i]->d);
+  }
+  Homogeneous h;
+  h.w = det3(a);
+  Big* out[3] = {&h.x, &h.y, &h.z};
+  for (int k = 0; k < 3; ++k) {
+    Big m[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[i][j] = j == k ? col[i] : a[i][j];
+    *out[k] = det3(m);
+  }
+  return h;
+}
+
+// Sign of plane s at the vertex h (exact).
+int side(const Homogeneous& h, const Plane& s) {
+  const Big v = s.a * h.x + s.b * h.y + s.c * h.z + big(s.d) * h.w;
+  return v.sign() * h.w.sign();
+}
+
+// Vertices of the convex polytope ∩ {s <= 0}, by brute force over all plane triples.
+std::vector<Homogeneous> polytope_vertices(const std::vector<Plane>& planes) {
+  std::vector<Homogeneous> out;
+  const std::size_t n = planes.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const Homogeneous h = cramer(planes[i], planes[j], planes[k]);
+        if (h.w == 0) continue;
+        if (std::any_of(planes.begin(), planes.end(), [&](const Plane& s) { return side(h, s) > 0; })) continue;
+        if (std::find(out.begin(), out.end(), h) == out.end()) out.push_back(h);
+      }
+  return out;
+}
+
+std::vector<Plane> kernel_planes(const std::vector<HalfSpace>& half_spaces) {
+  std::vector<Plane> planes;
+  for (const HalfSpace& h : half_spaces) planes.push_back(kernel::plane_from_normal(h.normal, h.offset));
+  return planes;
+}
+
+// The assembled mesh has exactly the polytope's vertices: as many, each within 1e-9 of one.
+void expect_polytope_vertices(const PolygonMesh& mesh, const std::vector<Homogeneous>& reference) {
+  EXPECT_EQ(mesh.vertices.size(), reference.size());
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    double best = INFINITY;
+    for (const Homogeneous& h : reference) best = std::min(best, (h.world() - v).norm());
+    EXPECT_LT(best, 1e-9) << v.transpose();
+  }
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(mesh));
+  EXPECT_TRUE(checks::EulerCharacteristicIs(mesh, 2));
+}
+
+// Largest number of different plane triples (as sets of planes up to orientation) among the
+// fragments' corners at one point: > 1 means the exact comparison across triples is exercised.
+int most_triples_at_one_point(const detail::Fragments& f) {
+  struct Corner {
+    Homogeneous at;
+    std::set<int> planes;  // one representative index per plane up to orientation
+  };
+  auto representative = [&](std::int32_t i) {
+    for (std::int32_t j = 0; j <= i; ++j)
+      if (kernel::same_or_opposite(f.planes[j], f.planes[i])) return int(j);
+    return int(i);
+  };
+  std::vector<Corner> corners;
+  for (const auto& fr : f.fragments)
+    for (const auto& c : fr.polygon.corners)
+      corners.push_back({cramer(f.planes[fr.polygon.support], f.planes[c.p], f.planes[c.q]),
+                         {representative(fr.polygon.support), representative(c.p), representative(c.q)}});
+  int most = 0;
+  for (const Corner& a : corners) {
+    std::set<std::set<int>> triples;
+    for (const Corner& b : corners)
+      if (b.at == a.at) triples.insert(b.planes);
+    most = std::max(most, int(triples.size()));
+  }
+  return most;
+}
+
+TEST(MeshAssembly, EqualPointsFromDifferentPlaneTriplesAreOneVertex) {
+  // Octahedron |x| + |y| + |z| <= 1: four face planes meet exactly at each vertex, so corners of
+  // one vertex come with different plane triples and are merged by the exact test only.
+  std::vector<HalfSpace> hs;
+  for (int sx = -1; sx <= 1; sx += 2)
+    for (int sy = -1; sy <= 1; sy += 2)
+      for (int sz = -1; sz <= 1; sz += 2) hs.push_back({Eigen::Vector3d(sx, sy, sz), -1.0});
+  const Solid s = convex_polytope(hs);
+  const detail::Fragments f = detail::boundary_fragments(s);
+  ASSERT_GE(most_triples_at_one_point(f), 2);
+  const std::vector<Homogeneous> reference = polytope_vertices(kernel_planes(hs));
+  ASSERT_EQ(reference.size(), 6u);
+  const PolygonMesh mesh = detail::assemble_mesh(f, {});
+  expect_polytope_vertices(mesh, reference);
+  EXPECT_EQ(mesh.faces.size(), 8u);
+  EXPECT_TRUE(checks::VolumeNear(mesh, 4.0 / 3.0, 1e-12));
+}
+
+TEST(MeshAssembly, FivePlanesThroughOneApexGiveOneVertex) {
+  // Pentagonal pyramid: the normals (cos, sin, 1) are rounded, but c = 2^52 and d = -2^67 stay
+  // exact, so all five side planes pass exactly through the apex (0, 0, 1).
+  std::vector<HalfSpace> hs = {{Eigen::Vector3d(0, 0, -1), 0.0}};
+  for (int k = 0; k < 5; ++k) {
+    const double a = 2 * std::numbers::pi * k / 5 + 0.1;
+    hs.push_back({Eigen::Vector3d(std::cos(a), std::sin(a), 1.0), -1.0});
+  }
+  const std::vector<Homogeneous> reference = polytope_vertices(kernel_planes(hs));
+  ASSERT_EQ(reference.size(), 6u);
+  const Solid s = convex_polytope(hs);
+  const detail::Fragments f = detail::boundary_fragments(s);
+  ASSERT_GE(most_triples_at_one_point(f), 2);
+  expect_polytope_vertices(detail::assemble_mesh(f, {}), reference);
+}
+
+TEST(MeshAssembly, NearlyCoincidentDistinctVerticesStayApart) {
+  // Side planes through a nominal apex at height 0.7 whose rounded coefficients miss it by
+  // less than 1e-12: the planes meet in a cluster of distinct vertices far closer than the
+  // vertex merge's grid cell; each must stay a vertex of its own.
+  std::vector<HalfSpace> hs = {{Eigen::Vector3d(0, 0, -1), 0.0}};
+  for (int k = 0; k < 7; ++k) {
+    const double a = 2 * std::numbers::pi * k / 7 + 0.3;
+    const Eigen::Vector3d n(std::cos(a), std::sin(a), 0.7 + 0.01 * k);
+    hs.push_back({n, -n.z() * 0.7});  // n . (0, 0, 0.7) + offset = 0 before rounding
+  }
+  const std::vector<Homogeneous> reference = polytope_vertices(kernel_planes(hs));
+  int near_apex = 0;
+  for (const Homogeneous& h : reference) near_apex += (h.world() - Eigen::Vector3d(0, 0, 0.7)).norm() < 1e-9;
+  ASSERT_GE(near_apex, 2) << "the rounded planes met in one point: the case is not exercised";
+  const PolygonMesh mesh = to_mesh(convex_polytope(hs));
+  expect_polytope_vertices(mesh, reference);
+}
+
+// After T-junction removal every half-edge u -> w has a half-edge w -> u, as many times.
+::testing::AssertionResult EveryHalfEdgeHasAnOpposite(const detail::FaceList& faces) {
+  std::map<std::pair<int, int>, int> count;
+  for (int f = 0; f < faces.size(); ++f)
+    for (int c = faces.begin(f); c < faces.end(f); ++c)
+      ++count[{faces.vertex[std::size_t(c)], faces.vertex[std::size_t(faces.next(f, c))]}];
+  for (const auto& [edge, n] : count) {
+    const auto it = count.find({edge.second, edge.first});
+    if (it == count.end() || it->second != n)
+      return ::testing::AssertionFailure() << "half-edge " << edge.first << " -> " << edge.second << " unmatched";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+TEST(MeshAssembly, JunctionRemovalByLinesAndBySearchAgree) {
+  // Boundaries with many T-junctions; the line groups and the spatial search (two independent
+  // ways to find the vertices inside an edge) must insert the same vertices in the same order.
+  std::vector<Solid> solids;
+  solids.push_back(sphere(1.0, {.segments = 24}) - box({0, 0, 0}, {1, 1, 1}));
+  {
+    Solid u;
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<int> d(0, 40);
+    for (int k = 0; k < 25; ++k) {
+      const Eigen::Vector3d lo(d(rng) / 16.0, d(rng) / 16.0, d(rng) / 16.0);
+      u = std::move(u) | box(lo, lo + Eigen::Vector3d(0.5 + d(rng) / 64.0, 0.5 + d(rng) / 64.0, 0.5 + d(rng) / 64.0));
+    }
+    solids.push_back(std::move(u));
+  }
+  solids.push_back(box({0, 0, 0}, {3, 3, 3}) - box({1, -1, 1}, {2, 4, 2}) - box({-1, 1, 1}, {4, 2, 2}));
+  for (std::size_t i = 0; i < solids.size(); ++i) {
+    SCOPED_TRACE(i);
+    const detail::Fragments f = detail::boundary_fragments(solids[i]);
+    const detail::PlaneIds ids = detail::canonical_plane_ids(f.planes);
+    const detail::MergedVertices merged = detail::merge_vertices(f, ids);
+    const detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
+    const detail::FaceList faces = detail::fragment_faces(f, merged.vertex_of);
+    const detail::JunctionResult by_lines = detail::remove_t_junctions(faces, geometry, ids);
+    const detail::JunctionResult by_search = detail::remove_t_junctions(faces, geometry, ids, {.group_by_lines = false});
+    EXPECT_GT(by_lines.open, 0);
+    EXPECT_GT(by_lines.by_lines, 0);
+    EXPECT_EQ(by_search.by_search, by_search.open);
+    EXPECT_TRUE(EveryHalfEdgeHasAnOpposite(by_lines.faces));
+    EXPECT_TRUE(EveryHalfEdgeHasAnOpposite(by_search.faces));
+    EXPECT_EQ(by_lines.faces.vertex, by_search.faces.vertex);
+    EXPECT_EQ(by_lines.faces.start, by_search.faces.start);
+  }
+}
+
+TEST(MeshAssembly, CanonicalPlaneIdsMatchEqualOrOppositePlanes) {
+  const Solid s = sphere(1.0, {.segments = 12}) - box({0, 0, 0}, {1, 1, 1});
+  const detail::Fragments f = detail::boundary_fragments(s);
+  const detail::PlaneIds ids = detail::canonical_plane_ids(f.planes);
+  ASSERT_EQ(ids.id.size(), std::size_t(f.planes.size()));
+  for (std::int32_t i = 0; i < f.planes.size(); ++i)
+    for (std::int32_t j = 0; j < f.planes.size(); ++j) {
+      const bool same = f.planes[i] == f.planes[j], opposite = f.planes[i] == f.planes[j].opposite();
+      ASSERT_EQ(ids.id[std::size_t(i)] == ids.id[std::size_t(j)], same || opposite) << i << " " << j;
+      if (same || opposite) {
+        ASSERT_EQ(ids.negated[std::size_t(i)] == ids.negated[std::size_t(j)], same) << i << " " << j;
+      }
+    }
+}
+
+TEST(MeshAssembly, HalfEdgeIndexesFindEveryEdgeAndNoOther) {
+  // A small random face list against a plain multimap.
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> vertex(0, 29), size(3, 6);
+  detail::FaceList faces;
+  for (int f = 0; f < 200; ++f) {
+    faces.open_face(0, false);
+    for (int k = size(rng); k > 0; --k) faces.add_corner(vertex(rng), 0);
+  }
+  std::multimap<std::pair<int, int>, int> reference;
+  for (int f = 0; f < faces.size(); ++f)
+    for (int c = faces.begin(f); c < faces.end(f); ++c)
+      reference.insert({{faces.vertex[std::size_t(c)], faces.vertex[std::size_t(faces.next(f, c))]}, c});
+  const detail::OutgoingEdges out(faces, 30);
+  detail::EdgeIndex index(std::size_t(faces.corners()));
+  for (const auto& [edge, c] : reference) index.insert(detail::edge_key(edge.first, edge.second), c);
+  for (int u = 0; u < 30; ++u)
+    for (int w = 0; w < 30; ++w) {
+      std::multiset<int> expected, by_vertex, by_hash;
+      for (auto [it, end] = reference.equal_range({u, w}); it != end; ++it) expected.insert(it->second);
+      out.for_each(u, w, [&](int c) { by_vertex.insert(c); });
+      for (int c = index.find(detail::edge_key(u, w)); c >= 0; c = index.next(c)) by_hash.insert(c);
+      ASSERT_EQ(by_vertex, expected) << u << " -> " << w;
+      ASSERT_EQ(by_hash, expected) << u << " -> " << w;
+      ASSERT_EQ(out.find(u, w) >= 0, !expected.empty());
+    }
+}
+
+}  // namespace
+}  // namespace sculpt
