@@ -32,8 +32,11 @@ TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_plan
 Solid TreeBuilder::build(TreeRef root) && {
   detail::Arena arena;
   arena.planes = std::move(planes_);
-  arena.nodes.reserve(nodes_.size());  // every builder node is kept at most once (unless shared)
+  // Every builder node is kept at most once (unless shared) and adds its plane's opposite.
+  arena.nodes.reserve(nodes_.size());
   arena.polygons.reserve(nodes_.size());
+  arena.planes.reserve(std::size_t(arena.planes.size()) + nodes_.size());
+  arena.opposite_of.reserve(std::size_t(arena.planes.size()) + nodes_.size());
   if (is_leaf(root)) return Solid::leaf(root == kIn);
 
   // Top-down: each node's sub-hyperplane is its plane's world polygon clipped by the ancestors'

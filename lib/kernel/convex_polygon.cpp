@@ -85,25 +85,6 @@ CornerBox corner_box(const ConvexPolygon& poly) {
   return b;
 }
 
-// The plane's largest and smallest values over the box: if both are strictly negative
-// (positive) beyond the rounding error of this evaluation, every corner is.
-Side box_side(const CornerBox& box, const Plane& s) {
-  if (!box.valid) return Side::Both;
-  const double n[3] = {double(s.a), double(s.b), double(s.c)};
-  const double d = s.d_nearest;
-  double vmax = d, vmin = d, mag = std::fabs(d);
-  for (int i = 0; i < 3; ++i) {
-    const double p = n[i] * box.lo[i], q = n[i] * box.hi[i];
-    vmax += std::max(p, q);
-    vmin += std::min(p, q);
-    mag += std::max(std::fabs(p), std::fabs(q));
-  }
-  const double tol = 16.0 * kUnit * mag;  // rounding of the sums, products and conversions
-  if (vmax < -tol) return Side::Negative;
-  if (vmin > tol) return Side::Positive;
-  return Side::Both;
-}
-
 namespace {
 
 Side box_side(const ConvexPolygon& poly, const Plane& s) { return box_side(corner_box(poly), s); }
@@ -184,10 +165,8 @@ void extend(CornerBox& b, const ApproxPoint& at) {
 
 }  // namespace
 
-Side clip_to_negative(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut) {
-  const Plane& c = planes[cut];
-  const Side quick = box_side(box, c);
-  if (quick != Side::Both) return quick;
+Side clip_to_negative_exact(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut) {
+  const Plane c = planes[cut];  // a copy: the sign stores below may alias a reference
   const std::size_t k = poly.corners.size();
   boost::container::small_vector<Sign, 12> s(k);
   bool neg = false, pos = false;

@@ -5,7 +5,9 @@
 /// plane creates no new numbers, only new plane triples, so it is exact and never cracks.
 /// Planes are referred to by index into a PlaneTable shared by all polygons of one tree.
 
+#include <algorithm>
 #include <boost/container/small_vector.hpp>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -84,7 +86,24 @@ struct CornerBox {
 CornerBox corner_box(const ConvexPolygon& poly);
 /// Negative or Positive if the whole box lies strictly on that side of the plane (beyond the
 /// rounding error of the evaluation), else Both (undecided: use classify or split).
-Side box_side(const CornerBox& box, const Plane& plane);
+/// The plane's largest and smallest values over the box are compared with the bound of the
+/// rounding error of their evaluation.
+inline Side box_side(const CornerBox& box, const Plane& plane) {
+  if (!box.valid) return Side::Both;
+  const double n[3] = {double(plane.a), double(plane.b), double(plane.c)};
+  const double d = plane.d_nearest;
+  double vmax = d, vmin = d, mag = std::fabs(d);
+  for (int i = 0; i < 3; ++i) {
+    const double p = n[i] * box.lo[i], q = n[i] * box.hi[i];
+    vmax += std::max(p, q);
+    vmin += std::min(p, q);
+    mag += std::max(std::fabs(p), std::fabs(q));
+  }
+  const double tol = 16.0 * 1.1102230246251565e-16 * mag;  // 16 units of roundoff (2^-53)
+  if (vmax < -tol) return Side::Negative;
+  if (vmin > tol) return Side::Positive;
+  return Side::Both;
+}
 /// Classification only (no new polygons).
 Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane);
 
@@ -103,7 +122,12 @@ PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int
 /// planes (TreeBuilder): `box` must be corner_box(poly) and is kept equal to it. Returns the
 /// side as split() would; only for Both does `poly` change (to exactly split().negative, corner
 /// for corner). Positive and On leave `poly` unchanged: the caller decides what they mean.
-Side clip_to_negative(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut);
+/// clip_to_negative_exact skips the box test (for callers that made it).
+Side clip_to_negative_exact(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut);
+inline Side clip_to_negative(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut) {
+  const Side quick = box_side(box, planes[cut]);  // most far planes end here
+  return quick != Side::Both ? quick : clip_to_negative_exact(planes, poly, box, cut);
+}
 
 /// Approximate vertex positions (grid units) of a polygon, for output and measures.
 std::vector<Eigen::Vector3d> approximate_corners(const ConvexPolygon& poly);

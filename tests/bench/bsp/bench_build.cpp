@@ -1,14 +1,16 @@
 // Tree-building micro-benchmark: sphere(1, {.segments = n}) only (TreeBuilder::build on a solid
 // of revolution), no set operation, no boundary. Prints one parseable line per n:
-//   bench impl=sculpt case=sphere_build n=<n> runs=<r> time_ms=<median> min_ms=<min>
+//   bench impl=sculpt case=sphere_build n=<n> runs=<r> time_ms=<median> min_ms=<min> cpu_ms=<median>
 //         tree_nodes=<nodes> planes=<planes> exact_predicates=<count> trivial_predicates=<count>
 //         filtered_predicates=<count> checksum=<hash of the tree>
+// cpu_ms is the thread's CPU time (less disturbed than wall time on a shared machine).
 // The checksum (nodes, their planes and children) lets two builds of the builder be compared
 // for identical output.
 //   bench_build              n = 32, 64, 128, 256, 15 runs each
 //   bench_build N [RUNS]     one n
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
@@ -46,22 +48,32 @@ std::uint64_t tree_hash(const Solid& s) {
   return h;
 }
 
+double cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 void run(int n, int runs) {
-  std::vector<double> times;
+  std::vector<double> times, cpu;
   Solid s;
   kernel::PredicateCounters pc;
   for (int i = 0; i < runs + 1; ++i) {  // one warm-up run
     kernel::predicate_counters() = {};
+    const double c0 = cpu_ms();
     const auto t0 = std::chrono::steady_clock::now();
     s = sphere(1.0, {.segments = n});
     const auto t1 = std::chrono::steady_clock::now();
+    const double c1 = cpu_ms();
     pc = kernel::predicate_counters();
     if (i > 0) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    if (i > 0) cpu.push_back(c1 - c0);
   }
   std::sort(times.begin(), times.end());
-  std::printf("bench impl=sculpt case=sphere_build n=%d runs=%d time_ms=%.3f min_ms=%.3f tree_nodes=%d planes=%d "
+  std::sort(cpu.begin(), cpu.end());
+  std::printf("bench impl=sculpt case=sphere_build n=%d runs=%d time_ms=%.3f min_ms=%.3f cpu_ms=%.3f tree_nodes=%d planes=%d "
               "exact_predicates=%llu trivial_predicates=%llu filtered_predicates=%llu checksum=%016llx\n",
-              n, runs, times[times.size() / 2], times.front(), tree_stats(s).nodes, s.planes().size(),
+              n, runs, times[times.size() / 2], times.front(), cpu[cpu.size() / 2], tree_stats(s).nodes, s.planes().size(),
               (unsigned long long)pc.exact, (unsigned long long)pc.trivial, (unsigned long long)pc.filtered,
               (unsigned long long)tree_hash(s));
   std::fflush(stdout);
