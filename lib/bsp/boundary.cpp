@@ -30,13 +30,16 @@ Measures measure(const PolygonMesh& m) {
   for (const auto& v : m.vertices) c += v;
   c /= double(m.vertices.size());
   for (const auto& face : m.faces) {
+    // Faces may be non-convex: the area is the norm of the summed (signed) fan vector areas.
     const Eigen::Vector3d a = m.vertices[std::size_t(face[0])] - c;
+    Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
     for (std::size_t i = 1; i + 1 < face.size(); ++i) {
       const Eigen::Vector3d b = m.vertices[std::size_t(face[i])] - c;
       const Eigen::Vector3d d = m.vertices[std::size_t(face[i + 1])] - c;
       r.volume += a.dot(b.cross(d)) / 6.0;
-      r.area += 0.5 * (b - a).cross(d - a).norm();
+      vector_area += (b - a).cross(d - a);
     }
+    r.area += 0.5 * vector_area.norm();
   }
   return r;
 }

@@ -1,0 +1,145 @@
+// The boundary a set operation carries (computed from its operands' boundaries) against the
+// boundary extracted from the result's whole tree, and against independent volumes. Degenerate
+// contacts (shared faces, edges, corners, coplanar faces of both orientations) are the point.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bsp/boundary.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
+#include "support/mesh_checks.hpp"
+
+namespace sculpt {
+namespace {
+
+Solid cube(double x, double y, double z, double s) { return box({x, y, z}, {x + s, y + s, z + s}); }
+
+// The same tree without its carried boundary: to_mesh extracts it from the tree.
+Solid without_boundary(const Solid& s) {
+  if (is_leaf(s.root())) return s;
+  return Solid(s.planes(), s.nodes(), s.polygons(), s.root());
+}
+
+// The carried boundary gives a closed, oriented mesh with the extracted one's volume, area,
+// Euler characteristic, component count and bounding box.
+::testing::AssertionResult CarriedMatchesExtracted(const Solid& s) {
+  if (!s.has_boundary()) return ::testing::AssertionFailure() << "no carried boundary";
+  const Solid e = without_boundary(s);
+  if (!is_leaf(s.root()) && e.has_boundary()) return ::testing::AssertionFailure() << "copy still carries a boundary";
+  const PolygonMesh carried = to_mesh(s), extracted = to_mesh(e);
+  if (auto r = checks::EdgesManifoldAndOriented(carried); !r) return r << " (carried)";
+  if (auto r = checks::EdgesManifoldAndOriented(extracted); !r) return r << " (extracted)";
+  const long double vc = checks::reference_signed_volume(carried), ve = checks::reference_signed_volume(extracted);
+  if (std::fabs(double(vc - ve)) > 1e-12 * std::max(1.0, std::fabs(double(ve))))
+    return ::testing::AssertionFailure() << "volume " << double(vc) << " carried vs " << double(ve) << " extracted";
+  const double ac = surface_area(s), ae = surface_area(e);
+  if (std::fabs(ac - ae) > 1e-12 * std::max(1.0, ae))
+    return ::testing::AssertionFailure() << "area " << ac << " carried vs " << ae << " extracted";
+  if (checks::reference_euler_characteristic(carried) != checks::reference_euler_characteristic(extracted))
+    return ::testing::AssertionFailure() << "Euler characteristic differs";
+  if (checks::reference_component_count(carried) != checks::reference_component_count(extracted))
+    return ::testing::AssertionFailure() << "component count differs";
+  if (!bounding_box(s).isApprox(bounding_box(e))) return ::testing::AssertionFailure() << "bounding box differs";
+  return ::testing::AssertionSuccess();
+}
+
+double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s))); }
+
+TEST(BoundaryMerge, ResultsCarryTheirBoundary) {
+  const Solid a = cube(0, 0, 0, 2), b = cube(1, 1, 1, 2);
+  EXPECT_FALSE(without_boundary(a | b).has_boundary());
+  for (const Solid& s : {a | b, a & b, a - b, b - a, complement(a | b)}) EXPECT_TRUE(CarriedMatchesExtracted(s));
+  EXPECT_NEAR(vol(a | b), 15.0, 1e-14);
+  EXPECT_NEAR(vol(a - b), 7.0, 1e-14);
+  // Areas by hand: each box loses the 3 unit squares inside the other (merged faces are L-shaped).
+  EXPECT_NEAR(surface_area(a | b), 42.0, 1e-12);
+  EXPECT_NEAR(surface_area(a - b), 24.0, 1e-12);
+  EXPECT_NEAR(surface_area(a & b), 6.0, 1e-12);
+}
+
+TEST(BoundaryMerge, SharedFacesEdgesAndCorners) {
+  const Solid a = cube(0, 0, 0, 1);
+  struct Case {
+    Solid b;
+    double union_volume;
+  };
+  const Case cases[] = {
+      {cube(1, 0, 0, 1), 2.0},          // a whole shared face (opposite orientations)
+      {cube(1, 0.5, 0, 1), 2.0},        // part of a face
+      {cube(1, 1, 0, 1), 2.0},          // an edge
+      {cube(1, 1, 1, 1), 2.0},          // a corner
+      {cube(0, 0, 0, 1), 1.0},          // the same solid (every face coplanar, same orientation)
+      {box({0, 0, 0}, {1, 1, 0.5}), 1.0},  // inside, three faces coplanar with a's
+      {box({0.25, 0, 0}, {0.75, 1, 2}), 1.5},  // through a's top, two coplanar faces
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(testing::Message() << "union volume " << c.union_volume);
+    const Solid u = a | c.b, i = a & c.b, d = a - c.b, e = c.b - a;
+    for (const Solid* s : {&u, &i, &d, &e}) EXPECT_TRUE(CarriedMatchesExtracted(*s));
+    EXPECT_NEAR(vol(u), c.union_volume, 1e-14);
+    EXPECT_NEAR(vol(i) + vol(u), vol(a) + vol(c.b), 1e-14);
+    EXPECT_NEAR(vol(d) + vol(i), vol(a), 1e-14);
+  }
+}
+
+TEST(BoundaryMerge, ChainsOfOperationsInPlaceAndNot) {
+  const Solid s = sphere(1.0, {.segments = 16});
+  const Solid c = cube(0, 0, 0, 1);
+  const Solid ref = (s - c) | cube(0.25, 0.25, 0.25, 1);
+  Solid acc = s;
+  acc = std::move(acc) - c;
+  acc = std::move(acc) | cube(0.25, 0.25, 0.25, 1);
+  EXPECT_TRUE(CarriedMatchesExtracted(ref));
+  EXPECT_TRUE(CarriedMatchesExtracted(acc));
+  EXPECT_NEAR(vol(acc), vol(ref), 1e-12);
+  // Rotated operands (planes with large coefficients) and a face of one on a ring plane of the other.
+  const Solid r = rotate(cube(-0.5, -0.5, -0.5, 1), {1, 2, 3}, 17.0);
+  EXPECT_TRUE(CarriedMatchesExtracted(s - r));
+  EXPECT_TRUE(CarriedMatchesExtracted((s & r) | cube(0, 0, 0, 0.5)));
+}
+
+TEST(BoundaryMerge, ComplementedOperandFarFromTheOther) {
+  // An unbounded operand (a box's complement): fragments far from its boundary are decided by its
+  // status far away, which is "in".
+  const Solid big = cube(0, 0, 0, 8), small = cube(1, 1, 1, 1);
+  Solid acc = big;
+  acc = std::move(acc) - complement(small);  // = big & small
+  EXPECT_TRUE(CarriedMatchesExtracted(acc));
+  EXPECT_NEAR(vol(acc), 1.0, 1e-14);
+  Solid acc2 = big;
+  acc2 = std::move(acc2) & complement(small);  // = big - small
+  EXPECT_TRUE(CarriedMatchesExtracted(acc2));
+  EXPECT_NEAR(vol(acc2), 511.0, 1e-12);
+  Solid acc3 = big;
+  acc3 = std::move(acc3) | complement(small);  // unbounded: compare in a window
+  const Solid w = std::move(acc3) & cube(-1, -1, -1, 10);
+  EXPECT_TRUE(CarriedMatchesExtracted(w));
+  EXPECT_NEAR(vol(w), 1000.0, 1e-12);
+}
+
+TEST(BoundaryMerge, RandomGridBoxesMatchAVoxelCount) {
+  // Unions and differences of boxes on an integer grid, accumulated in place; the volume is an
+  // exact count of unit voxels.
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> pos(0, 11), len(1, 5);
+  constexpr int N = 16;
+  std::vector<bool> voxel(N * N * N, false);
+  Solid acc;
+  for (int k = 0; k < 60; ++k) {
+    const int x = pos(rng), y = pos(rng), z = pos(rng), dx = len(rng), dy = len(rng), dz = len(rng);
+    const bool add = k % 4 != 3;
+    const Solid b = box({double(x), double(y), double(z)}, {double(x + dx), double(y + dy), double(z + dz)});
+    acc = add ? std::move(acc) | b : std::move(acc) - b;
+    for (int i = x; i < x + dx; ++i)
+      for (int j = y; j < y + dy; ++j)
+        for (int l = z; l < z + dz; ++l) voxel[std::size_t((i * N + j) * N + l)] = add;
+  }
+  const double count = double(std::count(voxel.begin(), voxel.end(), true));
+  EXPECT_TRUE(CarriedMatchesExtracted(acc));
+  EXPECT_NEAR(vol(acc), count, 1e-12 * count);
+}
+
+}  // namespace
+}  // namespace sculpt
