@@ -62,16 +62,20 @@ Solid TreeBuilder::build(TreeRef root) && {
     TreeRef out = src;
     while (!is_leaf(src)) {
       const BspNode n = nodes_[std::size_t(src)];
-      ConvexPolygon poly = kernel::world_polygon(arena.planes, n.plane, {.quick_corners = true});
+      // Two buffers: each clip writes the other one (no copy back).
+      ConvexPolygon buffers[2] = {kernel::world_polygon(arena.planes, n.plane, {.quick_corners = true}), {}};
+      int current = 0;
       int cell_side = 0;  // 0: the plane cuts the cell; -1 / +1: the cell lies on that side
       bool empty = false;
       // Nearest ancestors first: they bound the cell most tightly, so the polygon shrinks to the
       // cell's size at once and the far ancestors usually only classify a few corners.
-      kernel::CornerBox box = kernel::corner_box(poly);  // kept equal to corner_box(poly)
+      kernel::CornerBox box = kernel::corner_box(buffers[0]);  // kept equal to the current polygon's
       for (auto it = constraints.rbegin(); it != constraints.rend(); ++it) {
         const std::int32_t c = *it;
-        const Side s = kernel::clip_to_negative(arena.planes, poly, box, c);
-        if (s == Side::On) {  // same plane as an ancestor, which takes over its faces
+        const Side s = kernel::clip_to_negative(arena.planes, buffers[current], buffers[1 - current], box, c);
+        if (s == Side::Both) {
+          current = 1 - current;
+        } else if (s == Side::On) {  // same plane as an ancestor, which takes over its faces
           cell_side = arena.planes[c] == arena.planes[n.plane] ? -1 : +1;
           if (!arena.planes.auxiliary(n.plane)) {
             const std::int32_t opp = arena.opposite(c);
@@ -79,12 +83,12 @@ Solid TreeBuilder::build(TreeRef root) && {
             arena.planes.set_auxiliary(opp, false);
           }
           break;
-        }
-        if (s == Side::Positive) {
+        } else if (s == Side::Positive) {
           empty = true;
           break;
         }
       }
+      ConvexPolygon& poly = buffers[current];
       if (empty) {
         if (f.parent < 0) {
           cell_side = kernel::orient(kernel::GridPoint{}, arena.planes[n.plane]) == kernel::Sign::Negative ? -1 : 1;

@@ -165,15 +165,16 @@ void extend(CornerBox& b, const ApproxPoint& at) {
 
 }  // namespace
 
-Side clip_to_negative_exact(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut) {
+Side clip_to_negative_exact(const PlaneTable& planes, const ConvexPolygon& in, ConvexPolygon& out, CornerBox& box,
+                            std::int32_t cut) {
   const Plane c = planes[cut];  // a copy: the sign stores below may alias a reference
-  const std::size_t k = poly.corners.size();
-  boost::container::small_vector<Sign, 12> s(k);
+  const std::size_t k = in.corners.size();
+  boost::container::small_vector<Sign, 16> s(k);
   bool neg = false, pos = false;
   std::uint64_t decided = 0;
-  const Plane& support = planes[poly.support];
+  const Plane& support = planes[in.support];
   for (std::size_t i = 0; i < k; ++i) {
-    const Corner& corner = poly.corners[i];
+    const Corner& corner = in.corners[i];
     Sign g = filtered_orient(corner.at, c);
     if (g != Sign::Zero)
       ++decided;
@@ -187,19 +188,20 @@ Side clip_to_negative_exact(const PlaneTable& planes, ConvexPolygon& poly, Corne
   if (!(neg && pos)) return neg ? Side::Negative : (pos ? Side::Positive : Side::On);
 
   // The negative part of split(), same order and labels; the box follows the kept corners.
-  boost::container::small_vector<Corner, 12> out;
+  out.support = in.support;
+  out.corners.clear();
   CornerBox b;
   for (int i = 0; i < 3; ++i) b.lo[i] = 1e300, b.hi[i] = -1e300;
   bool valid = true;
   auto push = [&](const Corner& corner) {
-    out.push_back(corner);
+    out.corners.push_back(corner);
     if (corner.at.err < 0)
       valid = false;
     else
       extend(b, corner.at);
   };
   for (std::size_t i = 0; i < k; ++i) {
-    const Corner& corner = poly.corners[i];
+    const Corner& corner = in.corners[i];
     const Sign si = s[i], sj = s[i + 1 == k ? 0 : i + 1];
     if (si != Sign::Positive)
       push(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, corner.p, corner.q, corner.at} : corner);
@@ -208,7 +210,6 @@ Side clip_to_negative_exact(const PlaneTable& planes, ConvexPolygon& poly, Corne
       push(si == Sign::Negative ? Corner{cut, corner.edge, cut, at} : Corner{corner.edge, corner.edge, cut, at});
     }
   }
-  poly.corners.assign(out.begin(), out.end());
   b.valid = valid;
   box = valid ? b : CornerBox{};
   return Side::Both;

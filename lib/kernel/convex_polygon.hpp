@@ -118,15 +118,18 @@ struct PolygonSplit {
 PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
                    std::int32_t cut_opposite);
 
-/// The negative part of split() computed in place, for loops that clip one polygon by many
-/// planes (TreeBuilder): `box` must be corner_box(poly) and is kept equal to it. Returns the
-/// side as split() would; only for Both does `poly` change (to exactly split().negative, corner
-/// for corner). Positive and On leave `poly` unchanged: the caller decides what they mean.
+/// The negative part of split() for loops that clip one polygon by many planes (TreeBuilder):
+/// `in` clipped to the closed negative side of plane `cut`. `box` must be corner_box(in). Returns
+/// the side as split() would; only for Both is `out` written (exactly split().negative, corner
+/// for corner) and `box` set to corner_box(out). Negative, Positive and On leave both alone:
+/// `in` is the result (the caller decides what Positive and On mean). `out` must not be `in`.
 /// clip_to_negative_exact skips the box test (for callers that made it).
-Side clip_to_negative_exact(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut);
-inline Side clip_to_negative(const PlaneTable& planes, ConvexPolygon& poly, CornerBox& box, std::int32_t cut) {
+Side clip_to_negative_exact(const PlaneTable& planes, const ConvexPolygon& in, ConvexPolygon& out, CornerBox& box,
+                            std::int32_t cut);
+inline Side clip_to_negative(const PlaneTable& planes, const ConvexPolygon& in, ConvexPolygon& out, CornerBox& box,
+                             std::int32_t cut) {
   const Side quick = box_side(box, planes[cut]);  // most far planes end here
-  return quick != Side::Both ? quick : clip_to_negative_exact(planes, poly, box, cut);
+  return quick != Side::Both ? quick : clip_to_negative_exact(planes, in, out, box, cut);
 }
 
 /// Approximate vertex positions (grid units) of a polygon, for output and measures.

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <boost/multiprecision/cpp_int.hpp>
+#include <cstring>
+#include <random>
 
 namespace sculpt::kernel {
 namespace {
@@ -58,6 +61,91 @@ TEST(ConvexPolygon, CutThroughTwoCornersMakesTwoTriangles) {
   EXPECT_EQ(r.negative.corners.size(), 3u);
   EXPECT_EQ(r.positive.corners.size(), 3u);
   EXPECT_DOUBLE_EQ(area(r.negative), area(r.positive));
+}
+
+
+bool same_corners(const ConvexPolygon& a, const ConvexPolygon& b) {
+  if (a.support != b.support || a.corners.size() != b.corners.size()) return false;
+  for (std::size_t i = 0; i < a.corners.size(); ++i) {
+    const Corner &x = a.corners[i], &y = b.corners[i];
+    if (x.edge != y.edge || x.p != y.p || x.q != y.q || std::memcmp(&x.at, &y.at, sizeof x.at) != 0) return false;
+  }
+  return true;
+}
+
+// A random plane through a random grid point, with small integer normals (many exact ties).
+Plane random_plane(std::mt19937& rng) {
+  std::uniform_int_distribution<int> n(-3, 3), p(-40, 40);
+  std::int64_t a = 0, b = 0, c = 0;
+  while (a == 0 && b == 0 && c == 0) a = n(rng), b = n(rng), c = n(rng);
+  const Int128 d = -(Int128(a) * p(rng) + Int128(b) * p(rng) + Int128(c) * p(rng));
+  return make_plane(a, b, c, d);
+}
+
+// clip_to_negative repeats split().negative corner for corner (labels and approximation bits)
+// and keeps the box equal to corner_box; the other sides leave everything alone.
+TEST(ConvexPolygon, ClipToNegativeEqualsTheNegativePartOfSplit) {
+  std::mt19937 rng(11);
+  int both = 0, ties = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    PlaneTable t;
+    const std::int32_t s = t.add(random_plane(rng));
+    ConvexPolygon poly = world_polygon(t, s);
+    CornerBox box = corner_box(poly);
+    for (int step = 0; step < 8 && !poly.empty(); ++step) {
+      const std::int32_t cut = t.add(random_plane(rng));
+      const std::int32_t opp = t.add(t[cut].opposite());
+      const PolygonSplit ref = split(t, poly, cut, opp);
+      ConvexPolygon out;
+      const CornerBox before = box;
+      const Side side = clip_to_negative(t, poly, out, box, cut);
+      if (side == Side::Negative && ref.side != Side::Negative) ++ties;  // box decided: must be strict
+      EXPECT_TRUE(side == ref.side || (side == Side::Negative && ref.side == Side::Negative));
+      if (side != Side::Both) {
+        EXPECT_TRUE(out.empty());
+        EXPECT_EQ(std::memcmp(&before, &box, sizeof box), 0);
+        if (side == Side::Positive || side == Side::On) break;
+        continue;
+      }
+      ++both;
+      ASSERT_TRUE(same_corners(out, ref.negative));
+      const CornerBox expect = corner_box(out);
+      EXPECT_EQ(std::memcmp(&expect, &box, sizeof box), 0);
+      poly = std::move(out);
+    }
+  }
+  EXPECT_EQ(ties, 0);
+  EXPECT_GT(both, 500);
+}
+
+// Quick world corners: the exact vertex lies within the stated error of the approximation, and
+// refresh_world_corners restores approximate_vertex's bits.
+TEST(ConvexPolygon, QuickWorldCornersBoundTheExactVertex) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<std::int64_t> big(-(std::int64_t(1) << 52), std::int64_t(1) << 52);
+  for (int trial = 0; trial < 500; ++trial) {
+    PlaneTable t;
+    const Plane p = trial % 2 ? random_plane(rng)
+                              : make_plane(big(rng), big(rng), big(rng) | 1, Int128(big(rng)) << (trial % 27));
+    const std::int32_t s = t.add(p);
+    ConvexPolygon quick = world_polygon(t, s, {.quick_corners = true});
+    const ConvexPolygon usual = world_polygon(t, s);
+    for (const Corner& c : quick.corners) {
+      const HomogeneousPoint h = exact_vertex(t[s], t[c.p], t[c.q]);
+      // Exact rational comparison: |X / W - x| <= err for each coordinate.
+      using boost::multiprecision::cpp_rational;
+      const double xs[3] = {c.at.x, c.at.y, c.at.z};
+      const Int256* X[3] = {&h.x, &h.y, &h.z};
+      for (int i = 0; i < 3; ++i) {
+        const cpp_rational exact(cpp_rational(boost::multiprecision::cpp_int(*X[i])) /
+                                 cpp_rational(boost::multiprecision::cpp_int(h.w)));
+        EXPECT_LE(abs(exact - cpp_rational(xs[i])), cpp_rational(c.at.err)) << "corner off its bound";
+      }
+      EXPECT_GE(c.at.err, 0);
+    }
+    refresh_world_corners(t, quick);
+    EXPECT_TRUE(same_corners(quick, usual));
+  }
 }
 
 }  // namespace
