@@ -92,8 +92,18 @@ Side box_side(const ConvexPolygon& poly, const Plane& s) { return box_side(corne
 template <typename F>
 void signs_of(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane, F&& f) {
   const Plane& s = planes[poly.support];
-  const Plane& cut = planes[plane];
-  for (const Corner& c : poly.corners) f(orient(s, planes[c.p], planes[c.q], c.at, cut));
+  const Plane cut = planes[plane];  // a copy: f's stores may alias a reference
+  std::uint64_t decided = 0;  // filter decisions inline (orient's own filter, counted at the end)
+  for (const Corner& c : poly.corners) {
+    const Sign quick = filtered_orient(c.at, cut);
+    if (quick != Sign::Zero) {
+      ++decided;
+      f(quick);
+    } else {
+      f(orient(s, planes[c.p], planes[c.q], c.at, cut));
+    }
+  }
+  predicate_counters().filtered += decided;
 }
 
 }  // namespace
