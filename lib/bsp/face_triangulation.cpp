@@ -42,10 +42,41 @@ std::vector<std::array<int, 3>> triangulate_face(const std::vector<Eigen::Vector
       idx.erase(idx.begin() + std::ptrdiff_t(i));
       clipped = true;
     }
-    if (!clipped) break;  // numerically stuck: emit the rest as a fan (never expected)
+    if (!clipped) break;  // every convex ear holds a vertex on its diagonal (collinear runs)
   }
-  for (std::size_t i = 1; i + 1 < idx.size(); ++i)
-    out.push_back({face[std::size_t(idx[0])], face[std::size_t(idx[i])], face[std::size_t(idx[i + 1])]});
+  // The rest as a fan, from an apex that sees every other edge with positive area when there is
+  // one (a reflex vertex where collinear runs meet, as in a disc with a quadrant cut out).
+  const std::size_t m = idx.size();
+  std::size_t apex = 0;
+  for (std::size_t r = 0; r < m; ++r) {
+    bool good = true;
+    for (std::size_t i = 1; i + 1 < m && good; ++i) good = cross(idx[r], idx[(r + i) % m], idx[(r + i + 1) % m]) > tiny;
+    if (good) {
+      apex = r;
+      break;
+    }
+  }
+  if (m == 3 && out.size() > 0) {
+    // A last triangle with a straight vertex b (ears were clipped around a collinear run): the
+    // diagonal c -> a belongs to an emitted triangle (a, c, x); split it at b instead, as (a, b, x)
+    // and (b, c, x), and drop the flat one.
+    for (std::size_t r = 0; r < 3; ++r) {
+      const int a = idx[r], b = idx[(r + 1) % 3], c = idx[(r + 2) % 3];
+      if (cross(a, b, c) > tiny) continue;
+      const Eigen::Vector2d ab = p[std::size_t(b)] - p[std::size_t(a)], bc = p[std::size_t(c)] - p[std::size_t(b)];
+      if (ab.dot(bc) <= 0) continue;  // b is not between a and c
+      for (auto& t : out)
+        for (int k = 0; k < 3; ++k)
+          if (t[std::size_t(k)] == face[std::size_t(a)] && t[std::size_t((k + 1) % 3)] == face[std::size_t(c)]) {
+            const int x = t[std::size_t((k + 2) % 3)];
+            t = {face[std::size_t(a)], face[std::size_t(b)], x};
+            out.push_back({face[std::size_t(b)], face[std::size_t(c)], x});
+            return out;
+          }
+    }
+  }
+  for (std::size_t i = 1; i + 1 < m; ++i)
+    out.push_back({face[std::size_t(idx[apex])], face[std::size_t(idx[(apex + i) % m])], face[std::size_t(idx[(apex + i + 1) % m])]});
   return out;
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <tuple>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -85,8 +87,9 @@ class SectorTree {
   TreeRef wedge(double lo, double hi) {
     // Faces overlapping (lo, hi): first index with angle(i+1) > lo, last with angle(i) < hi.
     const int first = first_above(lo) - 1;  // angle(first + 1) > lo >= angle(first)
-    const int last = first_above(hi) - 1;   // last face starting below hi (angle(i) < hi)
-    if (angle(last) >= hi) throw std::logic_error("SectorTree: empty wedge");
+    int last = first_above(hi) - 1;         // last face starting below hi (angle(i) < hi)
+    while (last >= first && angle(last) >= hi) --last;  // a face starting exactly at hi (odd n)
+    if (last < first) throw std::logic_error("SectorTree: empty wedge");
     if (last - first + 1 <= 4) {
       std::vector<std::int32_t> chain;
       // Widened by one face on each side only where a wedge bound may pass near a vertex
@@ -118,6 +121,65 @@ std::vector<Eigen::Vector2d> circle_path(int segments) {
     p.emplace_back(std::cos(a), std::sin(a));
   }
   return p;
+}
+
+// The boundary of a ring revolution, known exactly: band k's face j is the quadrilateral between
+// rings k and k + 1 under path edge j (a triangle at a ring of scale 0), and the end rings of
+// positive scale are caps. Its vertices are plane triples, exactly those the tree's cells meet in
+// (each face plane contains the scaled path edge of both its rings). Carried by the solid, so set
+// operations need not extract it from the tree. Plane indices are looked up by value in the
+// solid's table (the builder renumbers); missing ones (the ring planes' opposites) are added.
+Solid with_ring_boundary(Solid solid, const std::vector<Plane>& ring, const std::vector<std::vector<Plane>>& band,
+                         const std::vector<double>& scale) {
+  if (is_leaf(solid.root())) return solid;
+  Solid::Storage st = std::move(solid).release();
+  std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t, Int128>, std::int32_t> index;
+  for (std::int32_t i = 0; i < st.planes.size(); ++i) {
+    const Plane& p = st.planes[i];
+    index.emplace(std::tuple{p.a, p.b, p.c, p.d}, i);
+  }
+  auto id = [&](const Plane& p) {
+    const auto [it, added] = index.emplace(std::tuple{p.a, p.b, p.c, p.d}, st.planes.size());
+    if (added) st.planes.add(p);
+    return it->second;
+  };
+  const std::size_t r = ring.size();
+  const int n = int(band[0].size());
+  std::vector<BoundaryFragment> faces;
+  auto corner = [&](kernel::ConvexPolygon& poly, std::int32_t prev, std::int32_t edge) {
+    poly.corners.push_back({edge, prev, edge, kernel::approximate_vertex(st.planes[poly.support], st.planes[prev], st.planes[edge])});
+  };
+  for (std::size_t k = 0; k + 1 < r; ++k) {
+    const std::int32_t below = id(ring[k].opposite()), above = id(ring[k + 1]);
+    for (int j = 0; j < n; ++j) {
+      const std::int32_t prev = id(band[k][std::size_t((j + n - 1) % n)]), next = id(band[k][std::size_t((j + 1) % n)]);
+      kernel::ConvexPolygon poly;
+      poly.support = id(band[k][std::size_t(j)]);
+      // Counter-clockwise seen from outside: along ring k, up, back along ring k + 1, down.
+      if (scale[k] > 0) {
+        corner(poly, prev, below);
+        corner(poly, below, next);
+      } else {
+        corner(poly, prev, next);  // the apex
+      }
+      if (scale[k + 1] > 0) {
+        corner(poly, next, above);
+        corner(poly, above, prev);
+      } else {
+        corner(poly, next, prev);
+      }
+      faces.push_back({std::move(poly), false});
+    }
+  }
+  for (const std::size_t k : {std::size_t(0), r - 1}) {  // caps: counter-clockwise about +z
+    if (!(scale[k] > 0)) continue;
+    const std::vector<Plane>& sides = band[k == 0 ? 0 : r - 2];
+    kernel::ConvexPolygon poly;
+    poly.support = id(ring[k]);
+    for (int j = 0; j < n; ++j) corner(poly, id(sides[std::size_t((j + n - 1) % n)]), id(sides[std::size_t(j)]));
+    faces.push_back({std::move(poly), k == 0});
+  }
+  return Solid(std::move(st.planes), std::move(st.nodes), std::move(st.polygons), st.root, 0, std::move(faces));
 }
 
 Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings) {
@@ -175,9 +237,13 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   TreeBuilder b;
   // Ring planes z = z_k: f = z - z_k.
   std::vector<std::int32_t> ring_plane(r);
+  std::vector<Plane> ring_value(r);
+  std::vector<std::vector<Plane>> face_value(r - 1);
   // Inner rings only separate bands (auxiliary); the first and last ring planes are the caps.
-  for (std::size_t k = 0; k < r; ++k)
-    ring_plane[k] = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(z[k])), k > 0 && k + 1 < r);
+  for (std::size_t k = 0; k < r; ++k) {
+    ring_value[k] = kernel::make_plane(0, 0, 1, -Int128(z[k]));
+    ring_plane[k] = b.add_plane(ring_value[k], k > 0 && k + 1 < r);
+  }
   // Band trees.
   std::vector<TreeRef> band(r - 1);
   for (std::size_t k = 0; k + 1 < r; ++k) {
@@ -186,8 +252,8 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     for (int j = 0; j < n; ++j) {
       const Int128 c0 = c_of(k, j), c1 = c_of(k + 1, j), dc = c1 - c0;
       // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside.
-      faces[std::size_t(j)] = b.add_plane(kernel::make_plane(dz * nx[std::size_t(j)], dz * ny[std::size_t(j)], -dc,
-                                                             dc * z[k] - dz * c0));
+      face_value[k].push_back(kernel::make_plane(dz * nx[std::size_t(j)], dz * ny[std::size_t(j)], -dc, dc * z[k] - dz * c0));
+      faces[std::size_t(j)] = b.add_plane(face_value[k].back());
     }
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
     band[k] = SectorTree(b, faces, start, 0.05 * min_scale * min_edge).build();
@@ -201,7 +267,30 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   const TreeRef inner = slabs(slabs, 0, r - 2);
   const TreeRef top = b.add_node(ring_plane[r - 1], inner, kOut);
   const TreeRef root = b.add_node(ring_plane[0], kOut, top);
-  return std::move(b).build(root);
+  Solid solid = std::move(b).build(root);
+  // The direct boundary needs every path edge on every ring of positive scale. Rounding moves an
+  // edge's line by at most delta grid units, which moves its ends by delta / sin(exterior angle):
+  // edges much longer than that survive.
+  std::vector<double> scale(r);
+  double shortest = std::numeric_limits<double>::infinity(), largest = 0, min_sin = 1, far = 0;
+  for (std::size_t k = 0; k < r; ++k) {
+    scale[k] = rings[k].scale;
+    largest = std::max(largest, scale[k]);
+    if (scale[k] > 0) shortest = std::min(shortest, scale[k] * min_edge / kernel::kGridStep);
+  }
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector2d& a = normal[std::size_t(j)];
+    const Eigen::Vector2d& c = normal[std::size_t((j + 1) % n)];
+    min_sin = std::min(min_sin, std::fabs(a.x() * c.y() - a.y() * c.x()));
+    far = std::max(far, path[std::size_t(j)].norm());
+  }
+  // Normals rounded to 2^-26 turn a line by 2^-26 (moving it by R 2^-26 at radius R); offsets are
+  // rounded to 2^-27 grid units: delta below (R + 1) 2^-25, taken with a margin of 32.
+  const double delta = (largest * far / kernel::kGridStep + 1) * std::ldexp(1.0, -20);
+  const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
+  if (!degenerate && shortest * min_sin > 8 * delta)
+    return with_ring_boundary(std::move(solid), ring_value, face_value, scale);
+  return solid;
 }
 
 Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {

@@ -59,6 +59,17 @@ TEST(BoundaryMerge, ResultsCarryTheirBoundary) {
   EXPECT_NEAR(surface_area(a & b), 6.0, 1e-12);
 }
 
+TEST(BoundaryMerge, RingPrimitivesCarryTheirExactBoundary) {
+  // Spheres, cylinders and cones know their faces without extraction (triangles at an apex, caps).
+  const Solid solids[] = {sphere(1.0, {.segments = 16}), sphere(0.5, {.segments = 64}), cylinder(1.0, 2.0),
+                          cone(1.0, 2.0), cone(1.0, 2.0, {.segments = 7}, 0.5), sphere(3.0, {.segments = 5})};
+  for (const Solid& s : solids) {
+    EXPECT_TRUE(s.has_boundary());
+    EXPECT_TRUE(CarriedMatchesExtracted(s));
+    EXPECT_TRUE(CarriedMatchesExtracted(s - cube(0, 0, 0, 1)));
+  }
+}
+
 TEST(BoundaryMerge, SharedFacesEdgesAndCorners) {
   const Solid a = cube(0, 0, 0, 1);
   struct Case {
