@@ -1,5 +1,7 @@
 #include "bsp/tree_arena.hpp"
 
+#include <algorithm>
+
 #include "bsp/boundary_fragments.hpp"
 
 #include <utility>
@@ -9,7 +11,10 @@ namespace sculpt::detail {
 using kernel::ConvexPolygon;
 
 std::int32_t Arena::opposite(std::int32_t i) {
-  if (opposite_of.size() < std::size_t(planes.size())) opposite_of.resize(planes.size(), -1);
+  if (opposite_of.size() < std::size_t(planes.size())) {
+    if (opposite_of.capacity() < std::size_t(planes.size())) opposite_of.reserve(2 * std::size_t(planes.size()));
+    opposite_of.resize(planes.size(), -1);
+  }
   if (opposite_of[i] < 0) {
     const kernel::Plane o = planes[i].opposite();
     const std::int32_t j = planes.add(o, planes.auxiliary(i));
@@ -26,7 +31,9 @@ TreeRef Arena::append(const Solid& solid) {
   const std::int32_t shift = planes.size() - 6;  // the world box planes 0..5 are shared
   last_shift_ = shift;
   auto map = [shift](std::int32_t p) { return p < 6 ? p : p + shift; };
-  planes.reserve(planes.size() + src.size());
+  // Geometric growth: an exact reserve would copy the whole table on every in-place operation.
+  const std::size_t need = std::size_t(planes.size()) + src.size();
+  if (need > planes.planes().capacity()) planes.reserve(std::max(need, 2 * planes.planes().capacity()));
   for (std::size_t i = 6; i < src.size(); ++i) planes.add(src[i], solid.planes().auxiliary(std::int32_t(i)));
   const auto node_shift = std::int32_t(nodes.size());
   for (const BspNode& n : solid.nodes())

@@ -62,7 +62,8 @@ TEST(BoundaryMerge, ResultsCarryTheirBoundary) {
 TEST(BoundaryMerge, RingPrimitivesCarryTheirExactBoundary) {
   // Spheres, cylinders and cones know their faces without extraction (triangles at an apex, caps).
   const Solid solids[] = {sphere(1.0, {.segments = 16}), sphere(0.5, {.segments = 64}), cylinder(1.0, 2.0),
-                          cone(1.0, 2.0), cone(1.0, 2.0, {.segments = 7}, 0.5), sphere(3.0, {.segments = 5})};
+                          cone(1.0, 2.0), cone(1.0, 2.0, {.segments = 7}, 0.5), sphere(3.0, {.segments = 5}),
+                          sphere(1.0, {.segments = 7}), cylinder(1.0, 1.0, {.segments = 7})};  // 7: no "empty wedge"
   for (const Solid& s : solids) {
     EXPECT_TRUE(s.has_boundary());
     EXPECT_TRUE(CarriedMatchesExtracted(s));
