@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <tuple>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -126,60 +124,59 @@ std::vector<Eigen::Vector2d> circle_path(int segments) {
 // The boundary of a ring revolution, known exactly: band k's face j is the quadrilateral between
 // rings k and k + 1 under path edge j (a triangle at a ring of scale 0), and the end rings of
 // positive scale are caps. Its vertices are plane triples, exactly those the tree's cells meet in
-// (each face plane contains the scaled path edge of both its rings). Carried by the solid, so set
-// operations need not extract it from the tree. Plane indices are looked up by value in the
-// solid's table (the builder renumbers); missing ones (the ring planes' opposites) are added.
-Solid with_ring_boundary(Solid solid, const std::vector<Plane>& ring, const std::vector<std::vector<Plane>>& band,
-                         const std::vector<double>& scale) {
-  if (is_leaf(solid.root())) return solid;
-  Solid::Storage st = std::move(solid).release();
-  std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t, Int128>, std::int32_t> index;
-  for (std::int32_t i = 0; i < st.planes.size(); ++i) {
-    const Plane& p = st.planes[i];
-    index.emplace(std::tuple{p.a, p.b, p.c, p.d}, i);
-  }
-  auto id = [&](const Plane& p) {
-    const auto [it, added] = index.emplace(std::tuple{p.a, p.b, p.c, p.d}, st.planes.size());
-    if (added) st.planes.add(p);
-    return it->second;
-  };
+// (each face plane contains the scaled path edge of both its rings), so every corner at one ring
+// vertex is the same point: it is approximated once and shared (the filters only need a correct
+// error bound). Planes are the builder's; the ring planes' opposites are added.
+std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring,
+                                            const std::vector<Plane>& ring_value,
+                                            const std::vector<std::vector<std::int32_t>>& face,
+                                            const std::vector<std::vector<Plane>>& face_value,
+                                            const std::vector<double>& scale) {
   const std::size_t r = ring.size();
-  const int n = int(band[0].size());
+  const int n = int(face[0].size());
+  auto wrap = [n](int j) { return std::size_t(((j % n) + n) % n); };
+  // at[k][j]: ring k's vertex between path edges j - 1 and j (the apex when the scale is 0).
+  std::vector<std::vector<kernel::ApproxPoint>> at(r);
+  for (std::size_t k = 0; k < r; ++k) {
+    const std::vector<Plane>& f = face_value[std::min(k, r - 2)];
+    at[k].resize(std::size_t(n));
+    for (int j = 0; j < n; ++j)
+      at[k][std::size_t(j)] = scale[k] > 0 || j == 0 ? kernel::approximate_vertex(ring_value[k], f[wrap(j - 1)], f[wrap(j)])
+                                                      : at[k][0];
+  }
   std::vector<BoundaryFragment> faces;
-  auto corner = [&](kernel::ConvexPolygon& poly, std::int32_t prev, std::int32_t edge) {
-    poly.corners.push_back({edge, prev, edge, kernel::approximate_vertex(st.planes[poly.support], st.planes[prev], st.planes[edge])});
-  };
+  faces.reserve((r - 1) * std::size_t(n) + 2);
   for (std::size_t k = 0; k + 1 < r; ++k) {
-    const std::int32_t below = id(ring[k].opposite()), above = id(ring[k + 1]);
+    const std::int32_t below = b.add_plane(ring_value[k].opposite()), above = ring[k + 1];
     for (int j = 0; j < n; ++j) {
-      const std::int32_t prev = id(band[k][std::size_t((j + n - 1) % n)]), next = id(band[k][std::size_t((j + 1) % n)]);
+      const std::int32_t prev = face[k][wrap(j - 1)], next = face[k][wrap(j + 1)];
       kernel::ConvexPolygon poly;
-      poly.support = id(band[k][std::size_t(j)]);
+      poly.support = face[k][std::size_t(j)];
       // Counter-clockwise seen from outside: along ring k, up, back along ring k + 1, down.
       if (scale[k] > 0) {
-        corner(poly, prev, below);
-        corner(poly, below, next);
+        poly.corners.push_back({below, prev, below, at[k][std::size_t(j)]});
+        poly.corners.push_back({next, below, next, at[k][wrap(j + 1)]});
       } else {
-        corner(poly, prev, next);  // the apex
+        poly.corners.push_back({next, prev, next, at[k][0]});  // the apex
       }
       if (scale[k + 1] > 0) {
-        corner(poly, next, above);
-        corner(poly, above, prev);
+        poly.corners.push_back({above, next, above, at[k + 1][wrap(j + 1)]});
+        poly.corners.push_back({prev, above, prev, at[k + 1][std::size_t(j)]});
       } else {
-        corner(poly, next, prev);
+        poly.corners.push_back({prev, next, prev, at[k + 1][0]});
       }
       faces.push_back({std::move(poly), false});
     }
   }
   for (const std::size_t k : {std::size_t(0), r - 1}) {  // caps: counter-clockwise about +z
     if (!(scale[k] > 0)) continue;
-    const std::vector<Plane>& sides = band[k == 0 ? 0 : r - 2];
+    const std::vector<std::int32_t>& sides = face[k == 0 ? 0 : r - 2];
     kernel::ConvexPolygon poly;
-    poly.support = id(ring[k]);
-    for (int j = 0; j < n; ++j) corner(poly, id(sides[std::size_t((j + n - 1) % n)]), id(sides[std::size_t(j)]));
+    poly.support = ring[k];
+    for (int j = 0; j < n; ++j) poly.corners.push_back({sides[std::size_t(j)], sides[wrap(j - 1)], sides[std::size_t(j)], at[k][std::size_t(j)]});
     faces.push_back({std::move(poly), k == 0});
   }
-  return Solid(std::move(st.planes), std::move(st.nodes), std::move(st.polygons), st.root, 0, std::move(faces));
+  return faces;
 }
 
 Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings) {
@@ -239,6 +236,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   std::vector<std::int32_t> ring_plane(r);
   std::vector<Plane> ring_value(r);
   std::vector<std::vector<Plane>> face_value(r - 1);
+  std::vector<std::vector<std::int32_t>> face_index(r - 1);
   // Inner rings only separate bands (auxiliary); the first and last ring planes are the caps.
   for (std::size_t k = 0; k < r; ++k) {
     ring_value[k] = kernel::make_plane(0, 0, 1, -Int128(z[k]));
@@ -257,6 +255,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     }
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
     band[k] = SectorTree(b, faces, start, 0.05 * min_scale * min_edge).build();
+    face_index[k] = std::move(faces);
   }
   // Balanced tree over the bands (explicit recursion depth is log2 of the ring count).
   auto slabs = [&](auto&& self, std::size_t lo, std::size_t hi) -> TreeRef {
@@ -267,7 +266,6 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   const TreeRef inner = slabs(slabs, 0, r - 2);
   const TreeRef top = b.add_node(ring_plane[r - 1], inner, kOut);
   const TreeRef root = b.add_node(ring_plane[0], kOut, top);
-  Solid solid = std::move(b).build(root);
   // The direct boundary needs every path edge on every ring of positive scale. Rounding moves an
   // edge's line by at most delta grid units, which moves its ends by delta / sin(exterior angle):
   // edges much longer than that survive.
@@ -289,8 +287,8 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   const double delta = (largest * far / kernel::kGridStep + 1) * std::ldexp(1.0, -20);
   const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
   if (!degenerate && shortest * min_sin > 8 * delta)
-    return with_ring_boundary(std::move(solid), ring_value, face_value, scale);
-  return solid;
+    return std::move(b).build(root, ring_boundary(b, ring_plane, ring_value, face_index, face_value, scale));
+  return std::move(b).build(root);
 }
 
 Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {

@@ -29,7 +29,13 @@ TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_plan
   return t;
 }
 
-Solid TreeBuilder::build(TreeRef root) && {
+Solid TreeBuilder::build(TreeRef root) && { return std::move(*this).build_with(root, std::nullopt); }
+
+Solid TreeBuilder::build(TreeRef root, std::vector<BoundaryFragment> boundary) && {
+  return std::move(*this).build_with(root, std::move(boundary));
+}
+
+Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
   detail::Arena arena;
   arena.planes = std::move(planes_);
   // Every builder node is kept at most once (unless shared) and adds its plane's opposite.
@@ -119,6 +125,7 @@ Solid TreeBuilder::build(TreeRef root) && {
     else
       arena.nodes[std::size_t(f.parent)].positive = out;
   }
+  arena.boundary = std::move(boundary);
   return detail::compact(arena, result_root);
 }
 

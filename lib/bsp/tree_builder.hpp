@@ -30,8 +30,13 @@ class TreeBuilder {
                            TreeRef outside = kOut);
   /// Finishes the tree rooted at `root` (see file comment). The builder is consumed.
   Solid build(TreeRef root) &&;
+  /// As build(root), for a caller that knows the solid's boundary exactly: convex fragments on
+  /// this builder's planes that tile the surface between in and out (solid.hpp). The solid
+  /// carries it, so set operations need not extract it from the tree.
+  Solid build(TreeRef root, std::vector<BoundaryFragment> boundary) &&;
 
  private:
+  Solid build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) &&;
   kernel::PlaneTable planes_;
   std::vector<BspNode> nodes_;
 };
