@@ -30,13 +30,16 @@ std::optional<Eigen::Matrix<std::int64_t, 3, 3>> integer_matrix(const Eigen::Mat
 // `exact`: the map is exact, so the image of a plane that carries no face carries none either
 // and the auxiliary marks are kept. Re-quantized planes no longer meet where they did, and the
 // image tree can have sliver faces on any plane: then no plane is auxiliary.
-Solid map_planes(const Solid& solid, auto&& map_plane, bool exact) {
+Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror = false) {
   if (is_leaf(solid.root())) return solid;
   TreeBuilder b;
   std::vector<std::int32_t> plane_map(std::size_t(solid.planes().size()), -1);
+  std::vector<kernel::Plane> image(std::size_t(solid.planes().size()));
   auto mapped = [&](std::int32_t p) {
-    if (plane_map[std::size_t(p)] < 0)
-      plane_map[std::size_t(p)] = b.add_plane(map_plane(solid.planes()[p]), exact && solid.planes().auxiliary(p));
+    if (plane_map[std::size_t(p)] < 0) {
+      image[std::size_t(p)] = map_plane(solid.planes()[p]);
+      plane_map[std::size_t(p)] = b.add_plane(image[std::size_t(p)], exact && solid.planes().auxiliary(p));
+    }
     return plane_map[std::size_t(p)];
   };
   // Children have larger indices than their parents? Not guaranteed: build bottom-up by
@@ -57,7 +60,31 @@ Solid map_planes(const Solid& solid, auto&& map_plane, bool exact) {
     auto child = [&](TreeRef c) { return is_leaf(c) ? c : made[std::size_t(c)]; };
     made[std::size_t(r)] = b.add_node(mapped(n.plane), child(n.negative), child(n.positive));
   }
-  return std::move(b).build(made[std::size_t(solid.root())]);
+  const TreeRef root = made[std::size_t(solid.root())];
+  if (!exact || !solid.has_boundary()) return std::move(b).build(root);
+  // An exact map takes the boundary along: same plane triples on the mapped planes. A mirror
+  // (negative determinant) reverses the corner order about the mapped support planes.
+  std::vector<BoundaryFragment> boundary;
+  boundary.reserve(solid.boundary().size());
+  for (const BoundaryFragment& f : solid.boundary()) {
+    kernel::ConvexPolygon poly;
+    poly.support = mapped(f.polygon.support);
+    const auto& c = f.polygon.corners;
+    const std::size_t m = c.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      // A corner is the vertex support ∩ p ∩ q and the edge leaving it. Mirrored, the cycle is
+      // reversed: the edge leaving old vertex k is the old edge arriving there, that of k - 1.
+      const std::size_t k = mirror ? m - 1 - i : i;
+      const kernel::Corner& old = c[k];
+      const std::int32_t edge = mirror ? c[(k + m - 1) % m].edge : old.edge;
+      const std::int32_t p = mapped(old.p), q = mapped(old.q), e = mapped(edge);
+      poly.corners.push_back({e, p, q,
+                              kernel::approximate_vertex(image[std::size_t(f.polygon.support)], image[std::size_t(old.p)],
+                                                         image[std::size_t(old.q)])});
+    }
+    boundary.push_back({std::move(poly), f.flip});
+  }
+  return std::move(b).build(root, std::move(boundary));
 }
 
 }  // namespace
@@ -93,7 +120,7 @@ Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
         n[i] = sgn * (Int128(cof(i, 0)) * p.a + Int128(cof(i, 1)) * p.b + Int128(cof(i, 2)) * p.c);
       const Int128 d = Int128(idet * sgn) * p.d - (n[0] * t.x + n[1] * t.y + n[2] * t.z);
       return kernel::make_plane(n[0], n[1], n[2], d);
-    }, true);
+    }, true, idet < 0);
   }
   // General map: n' = M^-T n, offset' = d * step - n' . t (world units), then re-quantized.
   const Eigen::Matrix3d inv_t = m.inverse().transpose();

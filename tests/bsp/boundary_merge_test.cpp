@@ -71,6 +71,28 @@ TEST(BoundaryMerge, RingPrimitivesCarryTheirExactBoundary) {
   }
 }
 
+TEST(BoundaryMerge, ExactTransformsKeepTheBoundary) {
+  // Translations, quarter turns, mirrors and integer scales map planes exactly: the boundary goes
+  // along (a mirror reverses the corner order); general transforms drop it.
+  const Solid s = sphere(1.0, {.segments = 12}) - cube(0, 0, 0, 1);
+  Eigen::Affine3d mirror = Eigen::Affine3d::Identity();
+  mirror.linear() = Eigen::Vector3d(-1, 1, 1).asDiagonal();
+  Eigen::Affine3d quarter = Eigen::Affine3d::Identity();
+  quarter.linear() << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  quarter.translation() << 0.5, 0.25, -2;
+  Eigen::Affine3d squash = Eigen::Affine3d::Identity();
+  squash.linear() = Eigen::Vector3d(2, 3, -1).asDiagonal();
+  const double v = vol(s);
+  for (const auto& [t, factor] : {std::pair{translate(s, {1.5, -2, 0.25}), 1.0}, {transform(s, mirror), 1.0},
+                                  {transform(s, quarter), 1.0}, {transform(s, squash), 6.0}}) {
+    EXPECT_TRUE(t.has_boundary());
+    EXPECT_TRUE(CarriedMatchesExtracted(t));
+    EXPECT_NEAR(vol(t), factor * v, 1e-12 * factor * v);
+    EXPECT_TRUE(CarriedMatchesExtracted(t - cube(0.5, -0.5, -0.5, 1)));
+  }
+  EXPECT_FALSE(rotate(s, {0, 0, 1}, 30).has_boundary());
+}
+
 TEST(BoundaryMerge, SharedFacesEdgesAndCorners) {
   const Solid a = cube(0, 0, 0, 1);
   struct Case {
