@@ -296,11 +296,30 @@ Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
     throw InvalidInput("box: min must be below max in every axis (after snapping to the grid)");
   TreeBuilder b;
-  const std::vector<std::int32_t> faces = {
-      b.add_plane(kernel::make_plane(1, 0, 0, -Int128(hi.x))), b.add_plane(kernel::make_plane(-1, 0, 0, Int128(lo.x))),
-      b.add_plane(kernel::make_plane(0, 1, 0, -Int128(hi.y))), b.add_plane(kernel::make_plane(0, -1, 0, Int128(lo.y))),
-      b.add_plane(kernel::make_plane(0, 0, 1, -Int128(hi.z))), b.add_plane(kernel::make_plane(0, 0, -1, Int128(lo.z)))};
-  return std::move(b).build(b.add_convex_chain(faces));
+  const Plane value[6] = {kernel::make_plane(1, 0, 0, -Int128(hi.x)), kernel::make_plane(-1, 0, 0, Int128(lo.x)),
+                          kernel::make_plane(0, 1, 0, -Int128(hi.y)), kernel::make_plane(0, -1, 0, Int128(lo.y)),
+                          kernel::make_plane(0, 0, 1, -Int128(hi.z)), kernel::make_plane(0, 0, -1, Int128(lo.z))};
+  std::vector<std::int32_t> faces;
+  for (const Plane& p : value) faces.push_back(b.add_plane(p));
+  // The six faces, carried by the solid: face 2a + s (axis a, s = 0 for +, 1 for -) has the four
+  // faces of the other two axes as edges, counter-clockwise about its outward normal.
+  std::vector<BoundaryFragment> boundary;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;  // (u, v, axis) right-handed
+      // Counter-clockwise about +axis: +u, +v, -u, -v; about -axis the reverse cycle.
+      int cycle[4] = {2 * u, 2 * v, 2 * u + 1, 2 * v + 1};
+      if (side == 1) std::swap(cycle[1], cycle[3]);
+      kernel::ConvexPolygon poly;
+      poly.support = faces[std::size_t(2 * axis + side)];
+      for (int i = 0; i < 4; ++i) {
+        const int prev = cycle[(i + 3) % 4], edge = cycle[i];
+        poly.corners.push_back({faces[std::size_t(edge)], faces[std::size_t(prev)], faces[std::size_t(edge)],
+                                kernel::approximate_vertex(value[2 * axis + side], value[prev], value[edge])});
+      }
+      boundary.push_back({std::move(poly), false});
+    }
+  return std::move(b).build(b.add_convex_chain(faces), std::move(boundary));
 }
 
 Solid convex_polytope(const std::vector<HalfSpace>& half_spaces) {

@@ -49,6 +49,9 @@ double vol(const Solid& s) { return double(checks::reference_signed_volume(to_me
 
 TEST(BoundaryMerge, ResultsCarryTheirBoundary) {
   const Solid a = cube(0, 0, 0, 2), b = cube(1, 1, 1, 2);
+  EXPECT_TRUE(a.has_boundary());
+  EXPECT_TRUE(CarriedMatchesExtracted(a));
+  EXPECT_TRUE(CarriedMatchesExtracted(box({-1, 0.5, 2}, {3, 0.75, 2.5})));
   EXPECT_FALSE(without_boundary(a | b).has_boundary());
   for (const Solid& s : {a | b, a & b, a - b, b - a, complement(a | b)}) EXPECT_TRUE(CarriedMatchesExtracted(s));
   EXPECT_NEAR(vol(a | b), 15.0, 1e-14);
