@@ -31,28 +31,51 @@ struct Classes {
 
 Classes group_corners(const Fragments& fragments, const PlaneIds& ids, std::size_t corners) {
   Classes c;
-  c.of_corner.reserve(corners);
-  std::size_t slots = 16;
-  while (slots < 2 * corners) slots *= 2;
-  std::vector<int> table(slots, -1);
+  c.of_corner.resize(corners);
+  c.key.reserve(corners / 2 + 16);
+  c.triple.reserve(corners / 2 + 16);
+  c.at.reserve(corners / 2 + 16);
+  // Keys and hashes first, so the table probes can be prefetched a few corners ahead (the
+  // table is larger than the caches and the probes are random).
+  struct Keyed {
+    IdTriple key;
+    std::uint32_t hash;
+  };
+  std::vector<Keyed> keyed(corners);
+  std::size_t i = 0;
   for (const Fragment& fr : fragments.fragments) {
-    const std::int32_t s = fr.polygon.support;
+    const std::uint32_t s = ids.id[std::size_t(fr.polygon.support)];
     for (const auto& corner : fr.polygon.corners) {
-      IdTriple k = {ids.id[std::size_t(s)], ids.id[std::size_t(corner.p)], ids.id[std::size_t(corner.q)]};
+      IdTriple k = {s, ids.id[std::size_t(corner.p)], ids.id[std::size_t(corner.q)]};
       if (k[0] > k[1]) std::swap(k[0], k[1]);
       if (k[1] > k[2]) std::swap(k[1], k[2]);
       if (k[0] > k[1]) std::swap(k[0], k[1]);
-      std::size_t h = hash_triple(k) & (slots - 1);
-      while (table[h] >= 0 && c.key[std::size_t(table[h])] != k) h = (h + 1) & (slots - 1);
-      if (table[h] < 0) {
-        table[h] = int(c.key.size());
-        c.key.push_back(k);
-        c.triple.push_back({s, corner.p, corner.q});
-        c.at.push_back(corner.at);
-      }
-      c.of_corner.push_back(table[h]);
+      keyed[i++] = {k, std::uint32_t(hash_triple(k))};
     }
   }
+  std::size_t slots = 16;
+  while (slots < corners + corners / 2) slots *= 2;
+  struct Slot {
+    IdTriple key;
+    int cls;  // -1: empty
+  };
+  std::vector<Slot> table(slots, Slot{{0, 0, 0}, -1});
+  constexpr std::size_t kAhead = 8;
+  i = 0;
+  for (const Fragment& fr : fragments.fragments)
+    for (const auto& corner : fr.polygon.corners) {
+      if (i + kAhead < corners) __builtin_prefetch(&table[keyed[i + kAhead].hash & (slots - 1)]);
+      const IdTriple& k = keyed[i].key;
+      std::size_t h = keyed[i].hash & (slots - 1);
+      while (table[h].cls >= 0 && table[h].key != k) h = (h + 1) & (slots - 1);
+      if (table[h].cls < 0) {
+        table[h] = {k, int(c.key.size())};
+        c.key.push_back(k);
+        c.triple.push_back({fr.polygon.support, corner.p, corner.q});
+        c.at.push_back(corner.at);
+      }
+      c.of_corner[i++] = table[h].cls;
+    }
   return c;
 }
 

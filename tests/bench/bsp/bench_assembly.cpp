@@ -3,8 +3,10 @@
 // Prints one parseable line per case:
 //   bench impl=sculpt stage=assembly case=<case> n=<n> runs=<r> time_ms=<median> min_ms=<min>
 //         fragments=<f> occurrences=<corners> vertices=<v> faces=<f> volume=<v> area=<a>
+//         source=<extracted|carried>  (carried: the boundary the solid carries, if it does)
 //   bench_assembly                 sphere_minus_cube 32, 128, 256, menger 3, boxes 1000
 //   bench_assembly CASE N [RUNS]   one case (solids as in bench_bsp.cpp, CASES.md)
+//   bench_assembly CASE N RUNS stages  also times each stage of assemble_mesh (median over the runs)
 //   bench_assembly CASE N RUNS DUMP  also writes the mesh in a canonical text form to DUMP
 //                                  (faces as coordinate cycles starting at the smallest, sorted),
 //                                  to compare two builds' output independently of numbering
@@ -18,8 +20,13 @@
 
 #include <Eigen/Geometry>
 
+#include "bsp/assembly_coplanar.hpp"
+#include "bsp/assembly_faces.hpp"
+#include "bsp/assembly_sheets.hpp"
 #include "bsp/boundary_fragments.hpp"
+#include "bsp/junction_removal.hpp"
 #include "bsp/mesh_assembly.hpp"
+#include "bsp/vertex_merge.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 
@@ -66,16 +73,59 @@ struct Measures {
   long double volume = 0, area = 0;
 };
 
-Measures measure(const PolygonMesh& m) {
+Measures measure(const PolygonMesh& m) {  // faces may be non-convex: vector area per face
   Measures r;
-  for (const auto& f : m.faces)
+  for (const auto& f : m.faces) {
+    Eigen::Vector3d area = Eigen::Vector3d::Zero();
     for (std::size_t i = 1; i + 1 < f.size(); ++i) {
       const Eigen::Vector3d a = m.vertices[std::size_t(f[0])], b = m.vertices[std::size_t(f[i])],
                             c = m.vertices[std::size_t(f[i + 1])];
       r.volume += a.dot(b.cross(c)) / 6.0;
-      r.area += 0.5 * (b - a).cross(c - a).norm();
+      area += 0.5 * (b - a).cross(c - a);
     }
+    r.area += area.norm();
+  }
   return r;
+}
+
+// The stages of assemble_mesh (mesh_assembly.cpp) one by one, each timed: median ms per stage.
+void time_stages(const detail::Fragments& f, int runs) {
+  const char* names[] = {"plane_ids", "vertex_merge", "fragment_faces", "t_junctions", "coplanar", "straight", "sheets", "output"};
+  constexpr int kStages = 8;
+  std::vector<std::vector<double>> t(kStages);
+  detail::JunctionResult last;
+  for (int r = 0; r < runs; ++r) {
+    auto t0 = std::chrono::steady_clock::now();
+    int stage = 0;
+    auto lap = [&] {
+      const auto t1 = std::chrono::steady_clock::now();
+      t[std::size_t(stage++)].push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      t0 = t1;
+    };
+    const detail::PlaneIds ids = detail::canonical_plane_ids(f.planes);
+    lap();
+    const detail::MergedVertices merged = detail::merge_vertices(f, ids);
+    lap();
+    const detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
+    detail::FaceList faces = detail::fragment_faces(f, merged.vertex_of);
+    lap();
+    last = detail::remove_t_junctions(std::move(faces), geometry, ids);
+    lap();
+    faces = detail::merge_coplanar_faces(last.faces, merged.vertices.size(), ids);
+    lap();
+    faces = detail::remove_straight_vertices(faces, merged.vertices.size(), geometry);
+    lap();
+    const detail::Sheets sheets = detail::split_non_manifold(std::move(faces), merged.vertices, f.planes);
+    lap();
+    const PolygonMesh mesh = detail::output_mesh(sheets, merged.vertices, f.planes, false);
+    lap();
+  }
+  std::printf("stages");
+  for (int k = 0; k < kStages; ++k) {
+    std::sort(t[std::size_t(k)].begin(), t[std::size_t(k)].end());
+    std::printf(" %s=%.3f", names[k], t[std::size_t(k)][t[std::size_t(k)].size() / 2]);
+  }
+  std::printf(" open_edges=%d by_lines=%d by_search=%d\n", last.open, last.by_lines, last.by_search);
 }
 
 void dump(const PolygonMesh& mesh, const std::string& path) {
@@ -101,6 +151,27 @@ void dump(const PolygonMesh& mesh, const std::string& path) {
   std::fclose(out);
 }
 
+// Median time of assemble_mesh on `fragments`; prints the case line and returns the mesh.
+PolygonMesh time_assembly(const std::string& name, int n, int runs, const char* source, const detail::Fragments& fragments) {
+  std::size_t corners = 0;
+  for (const auto& f : fragments.fragments) corners += f.polygon.corners.size();
+  std::vector<double> times;
+  PolygonMesh mesh;
+  for (int i = 0; i < runs + 1; ++i) {  // the first run is a discarded warm-up
+    const auto t0 = std::chrono::steady_clock::now();
+    mesh = detail::assemble_mesh(fragments, {});
+    const auto t1 = std::chrono::steady_clock::now();
+    if (i > 0) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+  }
+  std::sort(times.begin(), times.end());
+  const Measures m = measure(mesh);
+  std::printf("bench impl=sculpt stage=assembly case=%s n=%d runs=%d time_ms=%.3f min_ms=%.3f fragments=%zu "
+              "occurrences=%zu vertices=%zu faces=%zu volume=%.17Lg area=%.17Lg source=%s\n",
+              name.c_str(), n, runs, times[times.size() / 2], times.front(), fragments.fragments.size(), corners,
+              mesh.vertices.size(), mesh.faces.size(), m.volume, m.area, source);
+  return mesh;
+}
+
 int run_case(const std::string& name, int n, int runs, const std::string& dump_path) {
   Solid solid;
   if (name == "sphere_minus_cube") {
@@ -113,24 +184,15 @@ int run_case(const std::string& name, int n, int runs, const std::string& dump_p
     std::fprintf(stderr, "unknown case %s\n", name.c_str());
     return 2;
   }
+  // The fragments extracted from the tree (detail::boundary_fragments), and, when the solid
+  // carries its boundary through the set operations, those too (what to_mesh assembles).
   const detail::Fragments fragments = detail::boundary_fragments(solid);
-  std::size_t corners = 0;
-  for (const auto& f : fragments.fragments) corners += f.polygon.corners.size();
-  std::vector<double> times;
-  PolygonMesh mesh;
-  for (int i = 0; i < runs + 1; ++i) {  // the first run is a discarded warm-up
-    const auto t0 = std::chrono::steady_clock::now();
-    mesh = detail::assemble_mesh(fragments, {});
-    const auto t1 = std::chrono::steady_clock::now();
-    if (i > 0) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-  }
-  std::sort(times.begin(), times.end());
-  if (!dump_path.empty()) dump(mesh, dump_path);
-  const Measures m = measure(mesh);
-  std::printf("bench impl=sculpt stage=assembly case=%s n=%d runs=%d time_ms=%.3f min_ms=%.3f fragments=%zu "
-              "occurrences=%zu vertices=%zu faces=%zu volume=%.17Lg area=%.17Lg\n",
-              name.c_str(), n, runs, times[times.size() / 2], times.front(), fragments.fragments.size(), corners,
-              mesh.vertices.size(), mesh.faces.size(), m.volume, m.area);
+  PolygonMesh mesh = time_assembly(name, n, runs, "extracted", fragments);
+  if (solid.has_boundary()) time_assembly(name, n, runs, "carried", detail::Fragments{solid.planes(), solid.boundary()});
+  if (dump_path == "stages")
+    time_stages(fragments, runs);
+  else if (!dump_path.empty())
+    dump(mesh, dump_path);
   return 0;
 }
 
