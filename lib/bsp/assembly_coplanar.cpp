@@ -10,27 +10,44 @@ FaceList merge_coplanar_faces(const FaceList& faces, int vertex_count, const Pla
   const std::size_t corners = std::size_t(faces.corners());
   // Oriented plane of each face: equal planes share a canonical id, the outward side one bit.
   std::vector<std::uint64_t> plane(static_cast<std::size_t>(nf));
-  std::vector<int> face_of(corners);
-  const OutgoingEdges index(faces, vertex_count);
   for (int f = 0; f < nf; ++f) {
     const auto s = std::size_t(faces.support[std::size_t(f)]);
     plane[std::size_t(f)] = 2 * std::uint64_t(ids.id[s]) + ((ids.negated[s] != 0) != (faces.flip[std::size_t(f)] != 0) ? 1 : 0);
-    for (int c = faces.begin(f); c < faces.end(f); ++c) face_of[std::size_t(c)] = f;
+  }
+  // Half-edges by start vertex (counting sort), each with its face and that face's plane, so a
+  // lookup touches one contiguous run.
+  struct Out {
+    int to, face;
+    std::uint64_t plane;
+  };
+  std::vector<int> start(std::size_t(vertex_count) + 1, 0);
+  for (const int v : faces.vertex) ++start[std::size_t(v) + 1];
+  for (std::size_t v = 0; v < std::size_t(vertex_count); ++v) start[v + 1] += start[v];
+  std::vector<Out> by_start(corners);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int f = 0; f < nf; ++f)
+      for (int c = faces.begin(f); c < faces.end(f); ++c)
+        by_start[std::size_t(fill[std::size_t(faces.vertex[std::size_t(c)])]++)] = {faces.vertex[std::size_t(faces.next(f, c))], f,
+                                                                               plane[std::size_t(f)]};
   }
   // Faces of one oriented plane joined through an edge (u, w) / (w, u) form one candidate union;
   // such edges are interior to it.
   UnionFind uf(static_cast<std::size_t>(nf));
   std::vector<std::uint8_t> interior(corners, 0);
   bool any = false;
-  for (int f = 0; f < nf; ++f)
+  for (int f = 0; f < nf; ++f) {
+    const std::uint64_t mine = plane[std::size_t(f)];
     for (int c = faces.begin(f); c < faces.end(f); ++c) {
-      index.for_each(faces.vertex[std::size_t(faces.next(f, c))], faces.vertex[std::size_t(c)], [&](int r) {
-        const int g = face_of[std::size_t(r)];
-        if (plane[std::size_t(g)] != plane[std::size_t(f)]) return;
+      const int u = faces.vertex[std::size_t(c)], w = faces.vertex[std::size_t(faces.next(f, c))];
+      for (int i = start[std::size_t(w)]; i < start[std::size_t(w) + 1]; ++i) {
+        const Out& o = by_start[std::size_t(i)];
+        if (o.to != u || o.plane != mine) continue;
         interior[std::size_t(c)] = 1;
-        if (g != f) uf.unite(f, g), any = true;
-      });
+        if (o.face != f) uf.unite(f, o.face), any = true;
+      }
     }
+  }
   if (!any) return faces;
   // Members of each union (the root is its smallest face), by counting sort.
   std::vector<int> member_start(std::size_t(nf) + 1, 0);

@@ -1,7 +1,7 @@
 // Mesh assembly alone (lib/bsp/mesh_assembly.hpp): builds each benchmark solid once, extracts
 // its boundary fragments once (detail::boundary_fragments), then times only assemble_mesh.
 // Prints one parseable line per case:
-//   bench impl=sculpt stage=assembly case=<case> n=<n> runs=<r> time_ms=<median> min_ms=<min>
+//   bench impl=sculpt stage=assembly case=<case> n=<n> runs=<r> time_ms=<median> min_ms=<min> cpu_ms=<median>
 //         fragments=<f> occurrences=<corners> vertices=<v> faces=<f> volume=<v> area=<a>
 //         source=<extracted|carried>  (carried: the boundary the solid carries, if it does)
 //   bench_assembly                 sphere_minus_cube 32, 128, 256, menger 3, boxes 1000
@@ -10,6 +10,8 @@
 //   bench_assembly CASE N RUNS DUMP  also writes the mesh in a canonical text form to DUMP
 //                                  (faces as coordinate cycles starting at the smallest, sorted),
 //                                  to compare two builds' output independently of numbering
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -69,6 +71,13 @@ Solid boxes(int count) {  // the LCG boxes of CASES.md, united one at a time as 
   return s;
 }
 
+// CPU time of this thread (ms): steadier than wall time on a shared, oversubscribed machine.
+double cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 struct Measures {
   long double volume = 0, area = 0;
 };
@@ -88,18 +97,18 @@ Measures measure(const PolygonMesh& m) {  // faces may be non-convex: vector are
   return r;
 }
 
-// The stages of assemble_mesh (mesh_assembly.cpp) one by one, each timed: median ms per stage.
+// The stages of assemble_mesh (mesh_assembly.cpp) one by one, each timed: median CPU ms per stage.
 void time_stages(const detail::Fragments& f, int runs) {
   const char* names[] = {"plane_ids", "vertex_merge", "fragment_faces", "t_junctions", "coplanar", "straight", "sheets", "output"};
   constexpr int kStages = 8;
   std::vector<std::vector<double>> t(kStages);
   detail::JunctionResult last;
   for (int r = 0; r < runs; ++r) {
-    auto t0 = std::chrono::steady_clock::now();
+    double t0 = cpu_ms();
     int stage = 0;
     auto lap = [&] {
-      const auto t1 = std::chrono::steady_clock::now();
-      t[std::size_t(stage++)].push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      const double t1 = cpu_ms();
+      t[std::size_t(stage++)].push_back(t1 - t0);
       t0 = t1;
     };
     const detail::PlaneIds ids = detail::canonical_plane_ids(f.planes);
@@ -155,19 +164,22 @@ void dump(const PolygonMesh& mesh, const std::string& path) {
 PolygonMesh time_assembly(const std::string& name, int n, int runs, const char* source, const detail::Fragments& fragments) {
   std::size_t corners = 0;
   for (const auto& f : fragments.fragments) corners += f.polygon.corners.size();
-  std::vector<double> times;
+  std::vector<double> times, cpu;
   PolygonMesh mesh;
   for (int i = 0; i < runs + 1; ++i) {  // the first run is a discarded warm-up
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = cpu_ms();
     mesh = detail::assemble_mesh(fragments, {});
+    const double c1 = cpu_ms();
     const auto t1 = std::chrono::steady_clock::now();
-    if (i > 0) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    if (i > 0) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count()), cpu.push_back(c1 - c0);
   }
   std::sort(times.begin(), times.end());
+  std::sort(cpu.begin(), cpu.end());
   const Measures m = measure(mesh);
-  std::printf("bench impl=sculpt stage=assembly case=%s n=%d runs=%d time_ms=%.3f min_ms=%.3f fragments=%zu "
+  std::printf("bench impl=sculpt stage=assembly case=%s n=%d runs=%d time_ms=%.3f min_ms=%.3f cpu_ms=%.3f fragments=%zu "
               "occurrences=%zu vertices=%zu faces=%zu volume=%.17Lg area=%.17Lg source=%s\n",
-              name.c_str(), n, runs, times[times.size() / 2], times.front(), fragments.fragments.size(), corners,
+              name.c_str(), n, runs, times[times.size() / 2], times.front(), cpu[cpu.size() / 2], fragments.fragments.size(), corners,
               mesh.vertices.size(), mesh.faces.size(), m.volume, m.area, source);
   return mesh;
 }
