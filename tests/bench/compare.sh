@@ -3,7 +3,7 @@
 # tests/bench/bsp/CASES.md and prints a table with time and memory ratios.
 #   tests/bench/compare.sh [--ours PROGRAM] [--ours-file FILE] [--peers-file FILE] [--stat median|min]
 #                          [peer run.sh options]
-# --ours: our bench program (default: the first of build/release/tests/bench/bsp/bench_*);
+# --ours: our bench program (default: build/release/tests/bench/bsp/bench_bsp);
 #         it must print the "bench key=value ..." lines of CASES.md.
 # --ours-file / --peers-file: use lines saved from an earlier run instead of running.
 # --stat: compare median times (default) or minimum times (less sensitive to a busy machine).
@@ -33,12 +33,12 @@ if [ -n "$ours_file" ]; then
   cp "$ours_file" "$tmp/ours.txt"
 else
   if [ -z "$ours" ]; then
-    for candidate in "$root"/build/release/tests/bench/bsp/bench_*; do
+    for candidate in "$root"/build/release/tests/bench/bsp/bench_bsp; do
       [ -x "$candidate" ] && { ours="$candidate"; break; }
     done
   fi
   if [ -z "$ours" ] || [ ! -x "$ours" ]; then
-    echo "compare.sh: our BSP bench program was not found (looked for build/release/tests/bench/bsp/bench_*;" >&2
+    echo "compare.sh: our BSP bench program was not found (looked for build/release/tests/bench/bsp/bench_bsp;" >&2
     echo "            build it with scripts/setup.sh or pass --ours PROGRAM). Showing the peers only." >&2
     : > "$tmp/ours.txt"
   else
