@@ -66,9 +66,9 @@ std::vector<std::array<int, 3>> triangulate_face(const std::vector<Eigen::Vector
       const Eigen::Vector2d ab = p[std::size_t(b)] - p[std::size_t(a)], bc = p[std::size_t(c)] - p[std::size_t(b)];
       if (ab.dot(bc) <= 0) continue;  // b is not between a and c
       for (auto& t : out)
-        for (int k = 0; k < 3; ++k)
-          if (t[std::size_t(k)] == face[std::size_t(a)] && t[std::size_t((k + 1) % 3)] == face[std::size_t(c)]) {
-            const int x = t[std::size_t((k + 2) % 3)];
+        for (int e = 0; e < 3; ++e)
+          if (t[std::size_t(e)] == face[std::size_t(a)] && t[std::size_t((e + 1) % 3)] == face[std::size_t(c)]) {
+            const int x = t[std::size_t((e + 2) % 3)];
             t = {face[std::size_t(a)], face[std::size_t(b)], x};
             out.push_back({face[std::size_t(b)], face[std::size_t(c)], x});
             return out;

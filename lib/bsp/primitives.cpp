@@ -124,9 +124,9 @@ std::vector<Eigen::Vector2d> circle_path(int segments) {
 // The boundary of a ring revolution, known exactly: band k's face j is the quadrilateral between
 // rings k and k + 1 under path edge j (a triangle at a ring of scale 0), and the end rings of
 // positive scale are caps. Its vertices are plane triples, exactly those the tree's cells meet in
-// (each face plane contains the scaled path edge of both its rings), so every corner at one ring
-// vertex is the same point: it is approximated once and shared (the filters only need a correct
-// error bound). Planes are the builder's; the ring planes' opposites are added.
+// (each face plane contains the scaled path edge of both its rings). Each corner carries the
+// approximation of its own labels (docs/kernel.md). Planes are the builder's; the ring planes'
+// opposites are added.
 std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring,
                                             const std::vector<Plane>& ring_value,
                                             const std::vector<std::vector<std::int32_t>>& face,
@@ -135,45 +135,48 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
   const std::size_t r = ring.size();
   const int n = int(face[0].size());
   auto wrap = [n](int j) { return std::size_t(((j % n) + n) % n); };
-  // at[k][j]: ring k's vertex between path edges j - 1 and j (the apex when the scale is 0).
-  std::vector<std::vector<kernel::ApproxPoint>> at(r);
-  for (std::size_t k = 0; k < r; ++k) {
-    const std::vector<Plane>& f = face_value[std::min(k, r - 2)];
-    at[k].resize(std::size_t(n));
-    for (int j = 0; j < n; ++j)
-      at[k][std::size_t(j)] = scale[k] > 0 || j == 0 ? kernel::approximate_vertex(ring_value[k], f[wrap(j - 1)], f[wrap(j)])
-                                                      : at[k][0];
-  }
   std::vector<BoundaryFragment> faces;
   faces.reserve((r - 1) * std::size_t(n) + 2);
+  struct Label {
+    std::int32_t id;
+    const Plane* value;
+  };
+  auto corner = [](kernel::ConvexPolygon& poly, const Plane& support, Label prev, Label edge) {
+    poly.corners.push_back({edge.id, prev.id, edge.id, kernel::approximate_vertex(support, *prev.value, *edge.value)});
+  };
   for (std::size_t k = 0; k + 1 < r; ++k) {
-    const std::int32_t below = b.add_plane(ring_value[k].opposite()), above = ring[k + 1];
+    const Plane below_value = ring_value[k].opposite();
+    const Label below{b.add_plane(below_value), &below_value}, above{ring[k + 1], &ring_value[k + 1]};
     for (int j = 0; j < n; ++j) {
-      const std::int32_t prev = face[k][wrap(j - 1)], next = face[k][wrap(j + 1)];
+      const Label prev{face[k][wrap(j - 1)], &face_value[k][wrap(j - 1)]};
+      const Label next{face[k][wrap(j + 1)], &face_value[k][wrap(j + 1)]};
+      const Plane& support = face_value[k][std::size_t(j)];
       kernel::ConvexPolygon poly;
       poly.support = face[k][std::size_t(j)];
       // Counter-clockwise seen from outside: along ring k, up, back along ring k + 1, down.
       if (scale[k] > 0) {
-        poly.corners.push_back({below, prev, below, at[k][std::size_t(j)]});
-        poly.corners.push_back({next, below, next, at[k][wrap(j + 1)]});
+        corner(poly, support, prev, below);
+        corner(poly, support, below, next);
       } else {
-        poly.corners.push_back({next, prev, next, at[k][0]});  // the apex
+        corner(poly, support, prev, next);  // the apex
       }
       if (scale[k + 1] > 0) {
-        poly.corners.push_back({above, next, above, at[k + 1][wrap(j + 1)]});
-        poly.corners.push_back({prev, above, prev, at[k + 1][std::size_t(j)]});
+        corner(poly, support, next, above);
+        corner(poly, support, above, prev);
       } else {
-        poly.corners.push_back({prev, next, prev, at[k + 1][0]});
+        corner(poly, support, next, prev);
       }
       faces.push_back({std::move(poly), false});
     }
   }
   for (const std::size_t k : {std::size_t(0), r - 1}) {  // caps: counter-clockwise about +z
     if (!(scale[k] > 0)) continue;
-    const std::vector<std::int32_t>& sides = face[k == 0 ? 0 : r - 2];
+    const std::size_t band = k == 0 ? 0 : r - 2;
     kernel::ConvexPolygon poly;
     poly.support = ring[k];
-    for (int j = 0; j < n; ++j) poly.corners.push_back({sides[std::size_t(j)], sides[wrap(j - 1)], sides[std::size_t(j)], at[k][std::size_t(j)]});
+    for (int j = 0; j < n; ++j)
+      corner(poly, ring_value[k], {face[band][wrap(j - 1)], &face_value[band][wrap(j - 1)]},
+             {face[band][std::size_t(j)], &face_value[band][std::size_t(j)]});
     faces.push_back({std::move(poly), k == 0});
   }
   return faces;
