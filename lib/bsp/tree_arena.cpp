@@ -143,6 +143,7 @@ Solid compact(Arena& arena, TreeRef root) {
   // Renumber planes: only those used by nodes and polygons survive.
   std::vector<std::int32_t> plane_map(std::size_t(arena.planes.size()), -1);
   kernel::PlaneTable table;
+  table.reserve(std::size_t(arena.planes.size()));  // at most all of them: no regrowth while adding
   for (std::int32_t i = 0; i < 6; ++i) plane_map[i] = i;
   auto use = [&](std::int32_t p) {
     if (plane_map[p] < 0) plane_map[p] = table.add(arena.planes[p], arena.planes.auxiliary(p));
