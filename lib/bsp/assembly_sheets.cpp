@@ -33,14 +33,26 @@ class SheetSplitter {
       : f_(faces), v_(vertices), planes_(planes), uf_(std::size_t(faces.corners())) {}
 
   std::vector<int> run() {
-    std::vector<HalfEdge> hs;
-    hs.reserve(std::size_t(f_.corners()));
+    // Half-edges grouped by undirected edge: counting sort by the smaller vertex, then each
+    // (short) run sorted by the larger one.
+    const std::size_t nv = v_.at.size();
+    std::vector<int> start(nv + 1, 0);
     for (int f = 0; f < f_.size(); ++f)
-      for (int c = f_.begin(f); c < f_.end(f); ++c) {
-        const int u = f_.vertex[std::size_t(c)], w = f_.vertex[std::size_t(f_.next(f, c))];
-        hs.push_back({edge_key(std::min(u, w), std::max(u, w)), f, c, u < w});
-      }
-    std::sort(hs.begin(), hs.end(), [](const HalfEdge& a, const HalfEdge& b) { return a.undirected < b.undirected; });
+      for (int c = f_.begin(f); c < f_.end(f); ++c)
+        ++start[std::size_t(std::min(f_.vertex[std::size_t(c)], f_.vertex[std::size_t(f_.next(f, c))])) + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<HalfEdge> hs(std::size_t(f_.corners()));
+    {
+      std::vector<int> fill(start.begin(), start.end() - 1);
+      for (int f = 0; f < f_.size(); ++f)
+        for (int c = f_.begin(f); c < f_.end(f); ++c) {
+          const int u = f_.vertex[std::size_t(c)], w = f_.vertex[std::size_t(f_.next(f, c))];
+          hs[std::size_t(fill[std::size_t(std::min(u, w))]++)] = {edge_key(std::min(u, w), std::max(u, w)), f, c, u < w};
+        }
+    }
+    for (std::size_t v = 0; v < nv; ++v)
+      std::sort(hs.begin() + start[v], hs.begin() + start[v + 1],
+                [](const HalfEdge& a, const HalfEdge& b) { return a.undirected < b.undirected; });
     for (std::size_t i = 0; i < hs.size();) {
       std::size_t j = i;
       while (j < hs.size() && hs[j].undirected == hs[i].undirected) ++j;

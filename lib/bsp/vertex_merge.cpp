@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -86,9 +87,8 @@ class ClassMerger {
 
   // Candidates share a cell of a grid of one grid unit (far above the approximation errors; a
   // class within its error of a cell boundary is entered in every cell it may belong to). Cells
-  // are numbered row-major within the bounding box of all cells, so sorting 64-bit numbers keeps
-  // neighbours together; a box too large for 64 bits folds coordinates (cells that collide are
-  // rejected by the approximations).
+  // are numbered row-major within the bounding box of all cells; a box too large for 64 bits
+  // folds coordinates (cells that collide are rejected by the approximations).
   UnionFind run() {
     const std::size_t n = c_.key.size();
     constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
@@ -128,28 +128,39 @@ class ClassMerger {
       constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
       return (std::uint64_t(x) & kMask) << 42 | (std::uint64_t(y) & kMask) << 21 | (std::uint64_t(z) & kMask);
     };
-    struct Item {
+    // Cells in a hash table, each with the chain of classes entered so far: a class is compared
+    // with the classes already in its cells, so classes are visited in their own (spatially
+    // coherent) order and nothing is sorted.
+    std::size_t entries = 0;
+    for (const Range& r : ranges)
+      if (r.lo[0] <= r.hi[0]) entries += std::size_t((r.hi[0] - r.lo[0] + 1) * (r.hi[1] - r.lo[1] + 1) * (r.hi[2] - r.lo[2] + 1));
+    std::size_t slots = 16;
+    while (slots < 2 * entries) slots *= 2;
+    const int shift = 64 - std::countr_zero(slots);
+    struct Slot {
       std::uint64_t cell;
-      int cls;
+      int head;  // last entry of the cell's chain, -1: empty slot
     };
-    std::vector<Item> items;
-    items.reserve(n + n / 8);
+    std::vector<Slot> table(slots, Slot{0, -1});
+    std::vector<int> entry_class, entry_next;
+    entry_class.reserve(entries);
+    entry_next.reserve(entries);
+    for (const int a : wide)
+      for (std::size_t b = 0; b < n; ++b)
+        if (std::size_t(a) != b) consider(a, int(b));
     for (std::size_t i = 0; i < n; ++i) {
       const Range& r = ranges[i];
       for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
         for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
-          for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) items.push_back({cell(x, y, z), int(i)});
-    }
-    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.cell < b.cell; });
-    for (const int a : wide)
-      for (std::size_t b = 0; b < n; ++b)
-        if (std::size_t(a) != b) consider(a, int(b));
-    for (std::size_t i = 0; i < items.size();) {
-      std::size_t j = i + 1;
-      while (j < items.size() && items[j].cell == items[i].cell) ++j;
-      for (std::size_t a = i; a < j; ++a)
-        for (std::size_t b = a + 1; b < j; ++b) consider(items[a].cls, items[b].cls);
-      i = j;
+          for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) {
+            const std::uint64_t k = cell(x, y, z);
+            std::size_t h = std::size_t((k * 0x9E3779B97F4A7C15ull) >> shift);
+            while (table[h].head >= 0 && table[h].cell != k) h = (h + 1) & (slots - 1);
+            for (int e = table[h].head; e >= 0; e = entry_next[std::size_t(e)]) consider(entry_class[std::size_t(e)], int(i));
+            entry_class.push_back(int(i));
+            entry_next.push_back(table[h].head);
+            table[h] = {k, int(entry_class.size()) - 1};
+          }
     }
     return std::move(uf_);
   }

@@ -10,6 +10,7 @@
 //   bench_assembly CASE N RUNS DUMP  also writes the mesh in a canonical text form to DUMP
 //                                  (faces as coordinate cycles starting at the smallest, sorted),
 //                                  to compare two builds' output independently of numbering
+//                                  (the carried boundary's mesh to DUMP.carried)
 #include <time.h>
 
 #include <algorithm>
@@ -98,7 +99,7 @@ Measures measure(const PolygonMesh& m) {  // faces may be non-convex: vector are
 }
 
 // The stages of assemble_mesh (mesh_assembly.cpp) one by one, each timed: median CPU ms per stage.
-void time_stages(const detail::Fragments& f, int runs) {
+void time_stages(const detail::Fragments& f, int runs, const char* source) {
   const char* names[] = {"plane_ids", "vertex_merge", "fragment_faces", "t_junctions", "coplanar", "straight", "sheets", "output"};
   constexpr int kStages = 8;
   std::vector<std::vector<double>> t(kStages);
@@ -129,7 +130,7 @@ void time_stages(const detail::Fragments& f, int runs) {
     const PolygonMesh mesh = detail::output_mesh(sheets, merged.vertices, f.planes, false);
     lap();
   }
-  std::printf("stages");
+  std::printf("stages source=%s", source);
   for (int k = 0; k < kStages; ++k) {
     std::sort(t[std::size_t(k)].begin(), t[std::size_t(k)].end());
     std::printf(" %s=%.3f", names[k], t[std::size_t(k)][t[std::size_t(k)].size() / 2]);
@@ -200,11 +201,16 @@ int run_case(const std::string& name, int n, int runs, const std::string& dump_p
   // carries its boundary through the set operations, those too (what to_mesh assembles).
   const detail::Fragments fragments = detail::boundary_fragments(solid);
   PolygonMesh mesh = time_assembly(name, n, runs, "extracted", fragments);
-  if (solid.has_boundary()) time_assembly(name, n, runs, "carried", detail::Fragments{solid.planes(), solid.boundary()});
-  if (dump_path == "stages")
-    time_stages(fragments, runs);
-  else if (!dump_path.empty())
+  PolygonMesh carried;
+  if (solid.has_boundary())
+    carried = time_assembly(name, n, runs, "carried", detail::Fragments{solid.planes(), solid.boundary()});
+  if (dump_path == "stages") {
+    time_stages(fragments, runs, "extracted");
+    if (solid.has_boundary()) time_stages(detail::Fragments{solid.planes(), solid.boundary()}, runs, "carried");
+  } else if (!dump_path.empty()) {
     dump(mesh, dump_path);
+    if (solid.has_boundary()) dump(carried, dump_path + ".carried");
+  }
   return 0;
 }
 
