@@ -1,5 +1,7 @@
 #include "bsp/tree_builder.hpp"
 
+#include <algorithm>
+
 #include <stdexcept>
 
 #include "bsp/tree_arena.hpp"
@@ -125,8 +127,17 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
     else
       arena.nodes[std::size_t(f.parent)].positive = out;
   }
-  arena.boundary = std::move(boundary);
-  return detail::compact(arena, result_root);
+  // Nodes were made top-down, each once, so they are already compact and depth-first with the
+  // root first; compaction is needed only where a node's two children are the same leaf.
+  const bool collapsible = std::any_of(arena.nodes.begin(), arena.nodes.end(), [](const BspNode& n) {
+    return is_leaf(n.negative) && n.negative == n.positive;
+  });
+  if (collapsible || result_root != 0 || is_leaf(result_root)) {
+    arena.boundary = std::move(boundary);
+    return detail::compact(arena, result_root);
+  }
+  return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), result_root, 0,
+               std::move(boundary));
 }
 
 }  // namespace sculpt
