@@ -178,5 +178,40 @@ TEST(BoundaryMerge, RandomGridBoxesMatchAVoxelCount) {
   EXPECT_NEAR(vol(acc), count, 1e-12 * count);
 }
 
+TEST(BoundaryMerge, RandomChainsOfMixedSolids) {
+  // Spheres, cones, cylinders (translated exactly), rotated boxes (re-quantized, no carried
+  // boundary) and grid boxes, combined by random operations in place and not.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> pick(0, 5), segments(5, 16), step(-4, 4);
+  auto primitive = [&]() -> Solid {
+    switch (pick(rng)) {
+      case 0: return sphere(0.5 + 0.5 * std::abs(u(rng)), {.segments = segments(rng)});
+      case 1: {
+        const double x = 0.2 * step(rng), y = 0.2 * step(rng), z = 0.2 * step(rng);
+        return box({x, y, z}, {x + 1, y + 0.5, z + 0.75});
+      }
+      case 2: return translate(cylinder(0.6, 1.2, {.segments = segments(rng)}), {0.25 * step(rng), 0, 0});
+      case 3: return rotate(cube(-0.5, -0.5, -0.5, 1), {u(rng), u(rng), u(rng) + 2}, 90 * u(rng));
+      case 4: return cone(0.7, 1.0, {.segments = segments(rng)});
+      default: return box({0, 0, 0}, {0.5 + 0.25 * std::abs(step(rng)), 0.5, 0.75});
+    }
+  };
+  for (int trial = 0; trial < 30; ++trial) {
+    Solid acc = primitive();
+    for (int k = 0; k < 4; ++k) {
+      const Solid b = primitive();
+      switch (pick(rng) % 4) {
+        case 0: acc = std::move(acc) | b; break;
+        case 1: acc = std::move(acc) - b; break;
+        case 2: acc = std::move(acc) & b; break;
+        default: acc = b - acc; break;
+      }
+    }
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    EXPECT_TRUE(CarriedMatchesExtracted(acc));
+  }
+}
+
 }  // namespace
 }  // namespace sculpt
