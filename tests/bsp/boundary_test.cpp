@@ -11,6 +11,7 @@
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
 #include "kernel/grid.hpp"
+#include "support/menger.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
@@ -20,25 +21,6 @@ using checks::EdgesManifoldAndOriented;
 using checks::GenusIs;
 using checks::VolumeNear;
 
-Solid menger(int level) {  // in units of 1/3^level: integer coordinates, exact
-  const double u = std::pow(3.0, level);
-  Solid s = box({0, 0, 0}, {u, u, u});
-  for (int l = 1; l <= level; ++l) {
-    const int m = int(std::pow(3, l));
-    const double w = u / m;
-    for (int axis = 0; axis < 3; ++axis)
-      for (int i = 1; i < m; i += 3)
-        for (int j = 1; j < m; j += 3) {
-          Eigen::Vector3d lo, hi;
-          lo[axis] = -1, hi[axis] = u + 1;
-          lo[(axis + 1) % 3] = i * w, hi[(axis + 1) % 3] = (i + 1) * w;
-          lo[(axis + 2) % 3] = j * w, hi[(axis + 2) % 3] = (j + 1) * w;
-          s = std::move(s) - box(lo, hi);
-        }
-  }
-  return s;
-}
-
 Solid menger_like_cross() {  // a cube with one tunnel: genus 1
   return box({0, 0, 0}, {3, 3, 3}) - box({1, -1, 1}, {2, 4, 2});
 }
@@ -47,7 +29,7 @@ TEST(Boundary, MengerSpongeLevelsHaveExactVolumeAndGenus) {
   // Volume 20^level unit cells; genus of the level-k sponge surface: known 1-skeleton count.
   const int genus[] = {0, 5, 81, 1409};
   for (int level = 1; level <= 3; ++level) {
-    const PolygonMesh m = to_mesh(menger(level));
+    const PolygonMesh m = to_mesh(checks::menger_sponge(level));
     EXPECT_TRUE(EdgesManifoldAndOriented(m)) << level;
     EXPECT_TRUE(VolumeNear(m, std::pow(20.0, level), 1e-13)) << level;
     EXPECT_TRUE(GenusIs(m, genus[level])) << level;

@@ -32,6 +32,7 @@
 #include "bsp/vertex_merge.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
+#include "support/menger.hpp"
 
 using namespace sculpt;
 
@@ -39,25 +40,6 @@ namespace {
 
 Solid sphere_minus_cube(int n) { return sphere(1.0, {.segments = n}) - box({0, 0, 0}, {1, 1, 1}); }
 
-Solid menger(int level) {  // in units of 1/27 as in bench_bsp.cpp
-  const double u = std::pow(3.0, level);
-  Solid s = box({0, 0, 0}, {u, u, u});
-  for (int l = 1; l <= level; ++l) {
-    const int m = int(std::pow(3, l));
-    const double w = u / m;
-    for (int axis = 0; axis < 3; ++axis)
-      for (int i = 1; i < m; i += 3)
-        for (int j = 1; j < m; j += 3) {
-          Eigen::Vector3d lo, hi;
-          const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-          lo[axis] = -0.5 * u, hi[axis] = 1.5 * u;
-          lo[a] = i * w, hi[a] = (i + 1) * w;
-          lo[b] = j * w, hi[b] = (j + 1) * w;
-          s = std::move(s) - box(lo, hi);
-        }
-  }
-  return s;
-}
 
 Solid boxes(int count) {  // the LCG boxes of CASES.md, united one at a time as in bench_bsp.cpp
   std::uint32_t state = 1;
@@ -190,7 +172,7 @@ int run_case(const std::string& name, int n, int runs, const std::string& dump_p
   if (name == "sphere_minus_cube") {
     solid = sphere_minus_cube(n);
   } else if (name == "menger") {
-    solid = menger(n);
+    solid = checks::menger_sponge(n);  // units of 1/27 as in bench_bsp
   } else if (name == "boxes") {
     solid = boxes(n);
   } else {

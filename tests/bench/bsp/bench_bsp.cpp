@@ -21,6 +21,7 @@
 #include "bsp/boundary.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
+#include "support/menger.hpp"
 
 using namespace sculpt;
 
@@ -51,25 +52,10 @@ Result sphere_minus_cube(int n) {
   return {s, to_mesh(s)};
 }
 
-// Menger sponge by 273 differences. 1/27 is not on the kernel grid (2^-15), so the sponge is
-// built in units of 1/27 (integer coordinates, exact) and volumes are reported for the unit cube.
+// Menger sponge by 273 differences (tests/support/menger.hpp): built in units of 1/27, since
+// 1/27 is not on the kernel grid (2^-15); volumes are reported for the unit cube.
 Result menger(int level) {
-  const double u = std::pow(3.0, level);
-  Solid s = box({0, 0, 0}, {u, u, u});
-  for (int l = 1; l <= level; ++l) {
-    const int m = int(std::pow(3, l));
-    const double w = u / m;
-    for (int axis = 0; axis < 3; ++axis)
-      for (int i = 1; i < m; i += 3)
-        for (int j = 1; j < m; j += 3) {
-          Eigen::Vector3d lo, hi;
-          const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-          lo[axis] = -0.5 * u, hi[axis] = 1.5 * u;
-          lo[a] = i * w, hi[a] = (i + 1) * w;
-          lo[b] = j * w, hi[b] = (j + 1) * w;
-          s = std::move(s) - box(lo, hi);
-        }
-  }
+  Solid s = checks::menger_sponge(level);
   return {s, to_mesh(s)};
 }
 

@@ -1,0 +1,37 @@
+#pragma once
+/// \file menger.hpp
+/// The Menger sponge of tests/bench/bsp/CASES.md, built by 3 (1 + 8 + ... ) differences of bars
+/// from a cube, shared by the tests and the benchmarks. 1/27 is not on the kernel grid, so the
+/// sponge is built in units of 1/3^level (integer coordinates, exact): the cube [0, 3^level]^3,
+/// bars reaching half the cube beyond it on both sides. Volume 20^level in those units.
+
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+
+namespace sculpt::checks {
+
+inline Solid menger_sponge(int level) {
+  const double u = std::pow(3.0, level);
+  Solid s = box({0, 0, 0}, {u, u, u});
+  for (int l = 1; l <= level; ++l) {
+    const int m = int(std::pow(3, l));
+    const double w = u / m;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int i = 1; i < m; i += 3)
+        for (int j = 1; j < m; j += 3) {
+          Eigen::Vector3d lo, hi;
+          const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+          lo[axis] = -0.5 * u, hi[axis] = 1.5 * u;
+          lo[a] = i * w, hi[a] = (i + 1) * w;
+          lo[b] = j * w, hi[b] = (j + 1) * w;
+          s = std::move(s) - box(lo, hi);
+        }
+  }
+  return s;
+}
+
+}  // namespace sculpt::checks
