@@ -20,7 +20,7 @@ enum class Mode : std::uint8_t {
 
 // A piece's fate in the result: dropped, kept as it is, kept reversed; or, for a piece that was
 // split, Mixed (its parts were decided separately).
-constexpr int kDrop = -1, kKeep = 0, kReverse = 1, kMixed = 2, kPending = 3;
+constexpr int kUndecided = -2, kDrop = -1, kKeep = 0, kReverse = 1, kMixed = 2, kPending = 3;
 
 class Clipper {
  public:
@@ -168,8 +168,9 @@ CornerBox bounds(const std::vector<BoundaryFragment>& faces) {
   for (int k = 0; k < 3; ++k) box.lo[k] = 1e300, box.hi[k] = -1e300;
   for (const BoundaryFragment& f : faces) {
     const CornerBox b = kernel::corner_box(f.polygon);
-    bool world = f.polygon.support < 6;
-    for (const auto& c : f.polygon.corners) world |= c.edge < 6 || c.p < 6 || c.q < 6;
+    constexpr std::int32_t w = kernel::kWorldPlanes;  // the world box planes come first
+    bool world = f.polygon.support < w;
+    for (const auto& c : f.polygon.corners) world |= c.edge < w || c.p < w || c.q < w;
     if (!b.valid || world) return {};
     for (int k = 0; k < 3; ++k) box.lo[k] = std::min(box.lo[k], b.lo[k]), box.hi[k] = std::max(box.hi[k], b.hi[k]);
   }
@@ -220,7 +221,7 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
   std::vector<BoundaryFragment> pieces;
   // Downwards, so that fragments moved into a freed slot (from the end) are already decided.
   for (std::size_t i = a_faces.size(); i-- > 0;) {
-    int v = -2;
+    int v = kUndecided;
     if (uniform || (b_box.valid && a_boxes[i].valid && apart(a_boxes[i]))) v = far_verdict;
     if (v == 0) continue;
     BoundaryFragment& f = a_faces[i];
@@ -228,7 +229,7 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
       f.flip = !f.flip;
       continue;
     }
-    if (v == -2) {
+    if (v == kUndecided) {
       const std::size_t before = pieces.size();
       clip.push(
           b, f, [&](bool front_in, bool back_in, bool) { return verdict(op[1][back_in], op[0][front_in]); },
