@@ -11,7 +11,7 @@
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
 #include "kernel/grid.hpp"
-#include "support/menger.hpp"
+#include "support/bench_solids.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {

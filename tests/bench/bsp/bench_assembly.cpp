@@ -32,7 +32,7 @@
 #include "bsp/vertex_merge.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
-#include "support/menger.hpp"
+#include "support/bench_solids.hpp"
 
 using namespace sculpt;
 
@@ -40,19 +40,6 @@ namespace {
 
 Solid sphere_minus_cube(int n) { return sphere(1.0, {.segments = n}) - box({0, 0, 0}, {1, 1, 1}); }
 
-
-Solid boxes(int count) {  // the LCG boxes of CASES.md, united one at a time as in bench_bsp.cpp
-  std::uint32_t state = 1;
-  auto next = [&] { return state = 1664525u * state + 1013904223u; };
-  Solid s;
-  for (int k = 0; k < count; ++k) {
-    Eigen::Vector3d lo, size;
-    for (int i = 0; i < 3; ++i) lo[i] = (next() >> 16) / 4096.0;
-    for (int i = 0; i < 3; ++i) size[i] = 0.5 + ((next() >> 16) >> 5) / 1024.0;
-    s = std::move(s) | box(lo, lo + size);
-  }
-  return s;
-}
 
 // CPU time of this thread (ms): steadier than wall time on a shared, oversubscribed machine.
 double cpu_ms() {
@@ -174,7 +161,7 @@ int run_case(const std::string& name, int n, int runs, const std::string& dump_p
   } else if (name == "menger") {
     solid = checks::menger_sponge(n);  // units of 1/27 as in bench_bsp
   } else if (name == "boxes") {
-    solid = boxes(n);
+    solid = checks::lcg_boxes(n);
   } else {
     std::fprintf(stderr, "unknown case %s\n", name.c_str());
     return 2;

@@ -21,7 +21,7 @@
 #include "bsp/boundary.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
-#include "support/menger.hpp"
+#include "support/bench_solids.hpp"
 
 using namespace sculpt;
 
@@ -52,7 +52,7 @@ Result sphere_minus_cube(int n) {
   return {s, to_mesh(s)};
 }
 
-// Menger sponge by 273 differences (tests/support/menger.hpp): built in units of 1/27, since
+// Menger sponge by 273 differences (tests/support/bench_solids.hpp): built in units of 1/27, since
 // 1/27 is not on the kernel grid (2^-15); volumes are reported for the unit cube.
 Result menger(int level) {
   Solid s = checks::menger_sponge(level);
@@ -62,15 +62,7 @@ Result menger(int level) {
 // Union of `count` boxes from the 32-bit LCG of CASES.md, accumulated in place one at a time
 // (the peers use their batch unions; ours, unite_all, fragments more on this input).
 Result boxes(int count) {
-  std::uint32_t state = 1;
-  auto next = [&] { return state = 1664525u * state + 1013904223u; };
-  Solid s;
-  for (int k = 0; k < count; ++k) {
-    Eigen::Vector3d lo, size;
-    for (int i = 0; i < 3; ++i) lo[i] = (next() >> 16) / 4096.0;
-    for (int i = 0; i < 3; ++i) size[i] = 0.5 + ((next() >> 16) >> 5) / 1024.0;
-    s = std::move(s) | box(lo, lo + size);
-  }
+  Solid s = checks::lcg_boxes(count);
   return {s, to_mesh(s)};
 }
 

@@ -1,11 +1,13 @@
 #pragma once
-/// \file menger.hpp
-/// The Menger sponge of tests/bench/bsp/CASES.md, built by 3 (1 + 8 + ... ) differences of bars
-/// from a cube, shared by the tests and the benchmarks. 1/27 is not on the kernel grid, so the
+/// \file bench_solids.hpp
+/// The solids of tests/bench/bsp/CASES.md, shared by the tests and the benchmarks.
+///
+/// menger_sponge: differences of bars from a cube (273 at level 3). 1/27 is not on the kernel grid, so the
 /// sponge is built in units of 1/3^level (integer coordinates, exact): the cube [0, 3^level]^3,
 /// bars reaching half the cube beyond it on both sides. Volume 20^level in those units.
 
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Core>
 
@@ -30,6 +32,20 @@ inline Solid menger_sponge(int level) {
           lo[b] = j * w, hi[b] = (j + 1) * w;
           s = std::move(s) - box(lo, hi);
         }
+  }
+  return s;
+}
+
+/// Union of `count` boxes from the 32-bit LCG of CASES.md, accumulated in place one at a time.
+inline Solid lcg_boxes(int count) {
+  std::uint32_t state = 1;
+  auto next = [&] { return state = 1664525u * state + 1013904223u; };
+  Solid s;
+  for (int k = 0; k < count; ++k) {
+    Eigen::Vector3d lo, size;
+    for (int i = 0; i < 3; ++i) lo[i] = (next() >> 16) / 4096.0;
+    for (int i = 0; i < 3; ++i) size[i] = 0.5 + ((next() >> 16) >> 5) / 1024.0;
+    s = std::move(s) | box(lo, lo + size);
   }
   return s;
 }
