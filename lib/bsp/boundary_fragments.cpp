@@ -1,5 +1,9 @@
 #include "bsp/boundary_fragments.hpp"
 
+#include <algorithm>
+
+#include "bsp/node_polygons.hpp"
+
 namespace sculpt::detail {
 
 using kernel::ConvexPolygon;
@@ -10,7 +14,12 @@ namespace {
 class Extractor {
  public:
   explicit Extractor(const Solid& s) : solid_(s) {
-    arena_.planes = s.planes();
+    if (std::any_of(s.polygons().begin(), s.polygons().end(), pending)) {
+      arena_ = with_node_polygons(s);  // its plane table extends the solid's
+      polygons_ = &arena_.polygons;
+    } else {
+      arena_.planes = s.planes();
+    }
   }
 
   // Pushes `poly` down the subtree `t` and calls out(piece, in) for every leaf reached.
@@ -30,7 +39,7 @@ class Extractor {
         continue;
       }
       const BspNode& n = solid_.nodes()[std::size_t(r)];
-      const Side quick = kernel::box_side(top.box, solid_.planes()[n.plane]);
+      const Side quick = kernel::box_side(top.box, arena_.planes[n.plane]);
       if (quick == Side::Negative || quick == Side::Positive) {
         top.at = quick == Side::Negative ? n.negative : n.positive;
         continue;
@@ -85,7 +94,7 @@ class Extractor {
       const bool neg_first = size_of(n.negative) <= size_of(n.positive);
       const TreeRef first = neg_first ? n.negative : n.positive, second = neg_first ? n.positive : n.negative;
       negative_pieces.clear();
-      push_down(first, solid_.polygons()[i],
+      push_down(first, (*polygons_)[i],
                 [&](ConvexPolygon p, bool in) { negative_pieces.emplace_back(std::move(p), in); });
       for (auto& [piece, first_in] : negative_pieces) {
         const bool fi = first_in;
@@ -101,6 +110,7 @@ class Extractor {
  private:
   const Solid& solid_;
   Arena arena_;
+  const std::vector<ConvexPolygon>* polygons_ = &solid_.polygons();
   struct Piece {
     TreeRef at;
     ConvexPolygon polygon;

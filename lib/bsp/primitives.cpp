@@ -56,6 +56,9 @@ class SectorTree {
     const std::int32_t p = axial(a0);
     return b_.add_node(p, wedge(a0 + std::numbers::pi, a0 + 2 * std::numbers::pi), wedge(a0, a0 + std::numbers::pi));
   }
+  /// True if some chain was widened beyond the faces its wedge overlaps (after build()): its extra
+  /// faces may miss their cells, so the tree needs TreeBuilder's full build.
+  bool widened() const { return widen_ != 0; }
 
  private:
   double angle(int i) const {  // start angle of face i (any integer i), unwrapped
@@ -247,6 +250,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   }
   // Band trees.
   std::vector<TreeRef> band(r - 1);
+  bool widened = false;
   for (std::size_t k = 0; k + 1 < r; ++k) {
     const Int128 dz = z[k + 1] - z[k];
     std::vector<std::int32_t> faces(static_cast<std::size_t>(n));
@@ -257,7 +261,9 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
       faces[std::size_t(j)] = b.add_plane(face_value[k].back());
     }
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
-    band[k] = SectorTree(b, faces, start, 0.05 * min_scale * min_edge).build();
+    SectorTree sectors(b, faces, start, 0.05 * min_scale * min_edge);
+    band[k] = sectors.build();
+    widened |= sectors.widened();
     face_index[k] = std::move(faces);
   }
   // Balanced tree over the bands (explicit recursion depth is log2 of the ring count).
@@ -270,8 +276,8 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   const TreeRef top = b.add_node(ring_plane[r - 1], inner, kOut);
   const TreeRef root = b.add_node(ring_plane[0], kOut, top);
   // The direct boundary needs every path edge on every ring of positive scale. Rounding moves an
-  // edge's line by at most delta grid units, which moves its ends by delta / sin(exterior angle):
-  // edges much longer than that survive.
+  // edge's line by at most delta grid units, which moves its ends by at most 2 delta / sin(exterior
+  // angle): edges much longer than that survive.
   std::vector<double> scale(r);
   double shortest = std::numeric_limits<double>::infinity(), largest = 0, min_sin = 1, far = 0;
   for (std::size_t k = 0; k < r; ++k) {
@@ -286,12 +292,18 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     far = std::max(far, path[std::size_t(j)].norm());
   }
   // Normals rounded to 2^-26 turn a line by 2^-26 (moving it by R 2^-26 at radius R); offsets are
-  // rounded to 2^-27 grid units: delta below (R + 1) 2^-25, taken with a margin of 32.
-  const double delta = (largest * far / kernel::kGridStep + 1) * std::ldexp(1.0, -20);
+  // rounded to 2^-27 grid units: delta below (R + 1) 2^-25, taken with a margin of 2. Two lines
+  // moved by delta at exterior angle t meet at most 2 delta / sin t away, so an edge of length L
+  // survives if L sin t > 4 delta; 8 delta leaves another factor of 2.
+  const double delta = (largest * far / kernel::kGridStep + 1) * std::ldexp(1.0, -24);
   const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
-  if (!degenerate && shortest * min_sin > 8 * delta)
-    return std::move(b).build(root, ring_boundary(b, ring_plane, ring_value, face_index, face_value, scale));
-  return std::move(b).build(root);
+  if (degenerate || !(shortest * min_sin > 8 * delta)) return std::move(b).build(root);
+  // Every node then cuts its cell: ring planes cut their slabs and axial planes their wedges (both
+  // reach the world box), and each chain face keeps the middle part of its facet inside its wedge
+  // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as
+  // built. Widened chains may hold faces outside their wedges: those are left to the full build.
+  std::vector<BoundaryFragment> boundary = ring_boundary(b, ring_plane, ring_value, face_index, face_value, scale);
+  return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !widened});
 }
 
 Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
@@ -322,7 +334,7 @@ Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
       }
       boundary.push_back({std::move(poly), false});
     }
-  return std::move(b).build(b.add_convex_chain(faces), std::move(boundary));
+  return std::move(b).build(b.add_convex_chain(faces), std::move(boundary), {.nodes_cut_cells = true});
 }
 
 Solid convex_polytope(const std::vector<HalfSpace>& half_spaces) {

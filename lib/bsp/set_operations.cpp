@@ -4,6 +4,7 @@
 
 #include "bsp/boundary_fragments.hpp"
 #include "bsp/boundary_merge.hpp"
+#include "bsp/node_polygons.hpp"
 #include "bsp/tree_arena.hpp"
 
 namespace sculpt {
@@ -119,12 +120,17 @@ class Merger {
 
   // Naylor et al. 1990, "merge_bspts": the result follows the structure of tree `a`; tree `b`
   // is partitioned by a's planes, and leaves are combined by the truth table op[in_a][in_b].
+  // Tree b's sub-hyperplanes must be known (fill_node_polygons); a's pending ones are computed
+  // from their paths as the merge reaches them (`a` is the root of a whole tree).
   TreeRef merge(TreeRef a, TreeRef b, const bool op[2][2]) {
     struct Frame {
       TreeRef a, b;
       Slot slot;
+      std::size_t depth;  // length of a's path to this frame's parent
+      std::int32_t add;   // plane this frame adds to the path, -1 at the root
     };
-    std::vector<Frame> stack{{a, b, {-1, 0}}};
+    std::vector<std::int32_t> path;  // a's half-spaces down to the current node
+    std::vector<Frame> stack{{a, b, {-1, 0}, 0, -1}};
     std::vector<std::pair<TreeRef, Slot>> visited;  // result nodes taken from a, pre-order
     TreeRef result = kOut;
     auto put = [&](Slot s, TreeRef v) {
@@ -140,12 +146,16 @@ class Merger {
         put(f.slot, combine(f.a, f.b, op));
         continue;
       }
+      path.resize(f.depth);
+      if (f.add >= 0) path.push_back(f.add);
       const BspNode n = a_.nodes[std::size_t(f.a)];
+      if (detail::pending(a_.polygons[std::size_t(f.a)]))
+        a_.polygons[std::size_t(f.a)] = detail::node_polygon(a_, n.plane, path);
       auto [bneg, bpos] = partition(f.b, a_.polygons[std::size_t(f.a)], n.plane);
       put(f.slot, f.a);  // a's node is reused: its region and sub-hyperplane are unchanged
       visited.push_back({f.a, f.slot});
-      stack.push_back({n.negative, bneg, {f.a, 0}});
-      stack.push_back({n.positive, bpos, {f.a, 1}});
+      stack.push_back({n.negative, bneg, {f.a, 0}, path.size(), n.plane});
+      stack.push_back({n.positive, bpos, {f.a, 1}, path.size(), a_.opposite(n.plane)});
     }
     // Collapse nodes whose children became the same leaf, children before parents.
     for (auto it = visited.rbegin(); it != visited.rend(); ++it) {
@@ -191,6 +201,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   const TreeRef rb = arena.append(b);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(b);
   detail::merge_boundaries(arena, ra, std::move(fa), a.boundary_boxes(), rb, fb, op);
+  detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
   Merger m(arena);
   const TreeRef r = m.merge(ra, rb, op);
   return detail::compact(arena, r);
@@ -227,6 +238,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   const TreeRef rb = arena.append(y);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
   detail::merge_boundaries(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
+  detail::fill_node_polygons(arena, rb);
   Merger m(arena);
   const TreeRef r = m.merge(ra, rb, table);
   if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64)) return detail::compact(arena, r);
@@ -275,6 +287,7 @@ Solid complement(const Solid& a) {
 std::pair<Solid, Solid> partition(const Solid& solid, const kernel::Plane& plane) {
   Arena arena;
   TreeRef r = arena.append(solid);
+  detail::fill_node_polygons(arena, r);
   const std::int32_t cut = arena.planes.add(plane);
   ConvexPolygon pp = kernel::world_polygon(arena.planes, cut);
   Merger m(arena);

@@ -8,7 +8,9 @@
 /// index or one of the leaves kOut / kIn. Each node also keeps its sub-hyperplane: the convex
 /// polygon plane ∩ cell (the cell clipped to the world box), used by partitioning and boundary
 /// extraction. Invariant: every node's plane cuts its cell into two parts of positive volume
-/// (no empty cells), which the builder and the set operations maintain exactly.
+/// (no empty cells), which the builder and the set operations maintain exactly. A sub-hyperplane
+/// may be *pending* (no corners) in trees built without clipping (BuildOptions::nodes_cut_cells):
+/// algorithms compute it from the node's path when they need it (bsp/node_polygons.hpp).
 ///
 /// A solid may also carry its boundary: convex plane-based fragments on its planes that tile
 /// the surface between in- and out-cells. Set operations compute the result's boundary from the
@@ -60,7 +62,7 @@ class Solid {
   [[nodiscard]] bool is_empty() const { return root_ == kOut; }
   [[nodiscard]] const kernel::PlaneTable& planes() const { return planes_; }
   [[nodiscard]] const std::vector<BspNode>& nodes() const { return nodes_; }
-  /// Sub-hyperplane of node i (same index as nodes()).
+  /// Sub-hyperplane of node i (same index as nodes()); no corners while pending (see above).
   [[nodiscard]] const std::vector<kernel::ConvexPolygon>& polygons() const { return polygons_; }
 
   /// True if the solid carries its boundary fragments (results of set operations, leaves).

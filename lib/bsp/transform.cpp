@@ -61,7 +61,9 @@ Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror =
     made[std::size_t(r)] = b.add_node(mapped(n.plane), child(n.negative), child(n.positive));
   }
   const TreeRef root = made[std::size_t(solid.root())];
-  if (!exact || !solid.has_boundary()) return std::move(b).build(root);
+  if (!exact) return std::move(b).build(root);
+  // An exact map takes each plane to its exact image (an affine bijection): every node still cuts its cell.
+  if (!solid.has_boundary()) return std::move(b).build(root, BuildOptions{.nodes_cut_cells = true});
   // An exact map takes the boundary along: same plane triples on the mapped planes. A mirror
   // (negative determinant) reverses the corner order about the mapped support planes.
   std::vector<BoundaryFragment> boundary;
@@ -84,7 +86,7 @@ Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror =
     }
     boundary.push_back({std::move(poly), f.flip});
   }
-  return std::move(b).build(root, std::move(boundary));
+  return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = true});
 }
 
 }  // namespace

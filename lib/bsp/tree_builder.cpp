@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "bsp/node_polygons.hpp"
 #include "bsp/tree_arena.hpp"
 
 namespace sculpt {
@@ -33,8 +34,44 @@ TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_plan
 
 Solid TreeBuilder::build(TreeRef root) && { return std::move(*this).build_with(root, std::nullopt); }
 
-Solid TreeBuilder::build(TreeRef root, std::vector<BoundaryFragment> boundary) && {
+Solid TreeBuilder::build(TreeRef root, std::vector<BoundaryFragment> boundary, const BuildOptions& options) && {
+  if (options.nodes_cut_cells) return std::move(*this).build_as_given(root, std::move(boundary));
   return std::move(*this).build_with(root, std::move(boundary));
+}
+
+Solid TreeBuilder::build(TreeRef root, const BuildOptions& options) && {
+  if (options.nodes_cut_cells) return std::move(*this).build_as_given(root, std::nullopt);
+  return std::move(*this).build_with(root, std::nullopt);
+}
+
+// Every node cuts its cell: copy the tree depth-first from the root (a node shared by two parents
+// is copied for each), with pending sub-hyperplanes (node_polygons.hpp).
+Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
+  if (is_leaf(root)) return Solid::leaf(root == kIn);
+  std::vector<BspNode> nodes;
+  nodes.reserve(nodes_.size());
+  struct Frame {
+    TreeRef source;
+    std::int32_t parent;  // copied node whose child receives this one, -1 = the root
+    int side;
+  };
+  std::vector<Frame> stack{{root, -1, 0}};
+  while (!stack.empty()) {
+    const Frame f = stack.back();
+    stack.pop_back();
+    TreeRef out = f.source;
+    if (!is_leaf(f.source)) {
+      const BspNode& n = nodes_[std::size_t(f.source)];
+      out = TreeRef(nodes.size());
+      nodes.push_back({n.plane, kOut, kOut});
+      stack.push_back({n.positive, out, 1});
+      stack.push_back({n.negative, out, 0});
+    }
+    if (f.parent >= 0) (f.side == 0 ? nodes[std::size_t(f.parent)].negative : nodes[std::size_t(f.parent)].positive) = out;
+  }
+  std::vector<ConvexPolygon> polygons(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) polygons[i].support = nodes[i].plane;
+  return Solid(std::move(planes_), std::move(nodes), std::move(polygons), 0, 0, std::move(boundary));
 }
 
 Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
@@ -70,33 +107,15 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
     TreeRef out = src;
     while (!is_leaf(src)) {
       const BspNode n = nodes_[std::size_t(src)];
-      // Two buffers: each clip writes the other one (no copy back).
-      ConvexPolygon buffers[2] = {kernel::world_polygon(arena.planes, n.plane, {.quick_corners = true}), {}};
-      int current = 0;
-      int cell_side = 0;  // 0: the plane cuts the cell; -1 / +1: the cell lies on that side
-      bool empty = false;
-      // Nearest ancestors first: they bound the cell most tightly, so the polygon shrinks to the
-      // cell's size at once and the far ancestors usually only classify a few corners.
-      kernel::CornerBox box = kernel::corner_box(buffers[0]);  // kept equal to the current polygon's
-      for (auto it = constraints.rbegin(); it != constraints.rend(); ++it) {
-        const std::int32_t c = *it;
-        const Side s = kernel::clip_to_negative(arena.planes, buffers[current], buffers[1 - current], box, c);
-        if (s == Side::Both) {
-          current = 1 - current;
-        } else if (s == Side::On) {  // same plane as an ancestor, which takes over its faces
-          cell_side = arena.planes[c] == arena.planes[n.plane] ? -1 : +1;
-          if (!arena.planes.auxiliary(n.plane)) {
-            const std::int32_t opp = arena.opposite(c);
-            arena.planes.set_auxiliary(c, false);
-            arena.planes.set_auxiliary(opp, false);
-          }
-          break;
-        } else if (s == Side::Positive) {
-          empty = true;
-          break;
-        }
+      ConvexPolygon poly;
+      std::int32_t on = -1;
+      const detail::CellCut cut = detail::clip_to_cell(arena.planes, n.plane, constraints, poly, on);
+      int cell_side = cut == detail::CellCut::Negative ? -1 : (cut == detail::CellCut::Positive ? 1 : 0);
+      const bool empty = cut == detail::CellCut::Empty;
+      if (on >= 0 && !arena.planes.auxiliary(n.plane)) {  // the ancestor's plane takes over the faces
+        arena.planes.set_auxiliary(on, false);
+        arena.planes.set_auxiliary(arena.opposite(on), false);
       }
-      ConvexPolygon& poly = buffers[current];
       if (empty) {
         if (f.parent < 0) {
           cell_side = kernel::orient(kernel::GridPoint{}, arena.planes[n.plane]) == kernel::Sign::Negative ? -1 : 1;
@@ -110,7 +129,6 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
         out = src;
         continue;
       }
-      kernel::refresh_world_corners(arena.planes, poly);  // the usual bits on kept world corners
       const auto id = std::int32_t(arena.nodes.size());
       arena.nodes.push_back({n.plane, kOut, kOut});
       arena.polygons.push_back(std::move(poly));

@@ -4,7 +4,9 @@
 /// 1990 sec. 6). Add planes, combine them bottom-up into nodes whose children are nodes or
 /// the leaves kIn / kOut, then build(): the builder computes every node's sub-hyperplane
 /// top-down (explicit stack) and removes nodes whose plane does not cut their cell (their one
-/// non-empty side replaces them), so any tree of planes yields a valid solid.
+/// non-empty side replaces them), so any tree of planes yields a valid solid. A caller that knows
+/// every node cuts its cell (BuildOptions::nodes_cut_cells) skips that work: the tree is kept as
+/// given and sub-hyperplanes are computed later, only where an algorithm needs them.
 ///
 ///   TreeBuilder b;
 ///   auto top = b.add_plane(kernel::make_plane(0, 0, 1, -z1));      // z <= z1 inside
@@ -14,6 +16,15 @@
 #include "bsp/solid.hpp"
 
 namespace sculpt {
+
+struct BuildOptions {
+  /// The caller guarantees that every node's plane cuts its cell (the region of its path) into two
+  /// parts of positive volume: the exact image of a valid tree, or a primitive whose every node
+  /// is known to carry a piece of a face. Nothing is clipped or dropped; sub-hyperplanes stay
+  /// pending until a set operation or boundary extraction needs them, which checks this claim
+  /// for every node it computes (std::logic_error if it is false).
+  bool nodes_cut_cells = false;
+};
 
 class TreeBuilder {
  public:
@@ -33,10 +44,13 @@ class TreeBuilder {
   /// As build(root), for a caller that knows the solid's boundary exactly: convex fragments on
   /// this builder's planes that tile the surface between in and out (solid.hpp). The solid
   /// carries it, so set operations need not extract it from the tree.
-  Solid build(TreeRef root, std::vector<BoundaryFragment> boundary) &&;
+  Solid build(TreeRef root, std::vector<BoundaryFragment> boundary, const BuildOptions& options = {}) &&;
+  /// As build(root), with options.
+  Solid build(TreeRef root, const BuildOptions& options) &&;
 
  private:
   Solid build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) &&;
+  Solid build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) &&;
   kernel::PlaneTable planes_;
   std::vector<BspNode> nodes_;
 };
