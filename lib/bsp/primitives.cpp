@@ -39,11 +39,16 @@ void check_positive(double v, const char* what) {
 // would be an exact degenerate case for every other axial plane.
 class SectorTree {
  public:
-  SectorTree(TreeBuilder& b, const std::vector<std::int32_t>& faces, const std::vector<double>& start,
-             double max_offset = 0)
-      : b_(b), faces_(faces), start_(start), n_(int(faces.size())), max_offset_(max_offset) {}
+  /// Faces start at the angles `start`; one SectorTree builds the trees of several bands of the
+  /// same path (their splits are at the same angles).
+  SectorTree(TreeBuilder& b, const std::vector<double>& start) : b_(b), start_(start), n_(int(start.size())) {}
 
-  TreeRef build() {
+  /// The tree over `faces` (plane indices, face i starting at start[i]); axial planes are moved off
+  /// the axis by at most `max_offset`.
+  TreeRef build(const std::vector<std::int32_t>& faces, double max_offset = 0) {
+    faces_ = &faces;
+    max_offset_ = max_offset;
+    count_ = 0;
     // First split: the plane through the axis and the middle of face 0.
     const double a0 = mid(0);
     // Every later split is at a face middle; the first plane's opposite ray may pass near a
@@ -53,12 +58,13 @@ class SectorTree {
     while (angle(f + 1) <= opposite) ++f;
     const double width = angle(f + 1) - angle(f);
     widen_ = std::min(opposite - angle(f), angle(f + 1) - opposite) < 0.25 * width ? 1 : 0;
+    widened_ |= widen_ != 0;
     const std::int32_t p = axial(a0);
     return b_.add_node(p, wedge(a0 + std::numbers::pi, a0 + 2 * std::numbers::pi), wedge(a0, a0 + std::numbers::pi));
   }
   /// True if some chain was widened beyond the faces its wedge overlaps (after build()): its extra
   /// faces may miss their cells, so the tree needs TreeBuilder's full build.
-  bool widened() const { return widen_ != 0; }
+  bool widened() const { return widened_; }
 
  private:
   double angle(int i) const {  // start angle of face i (any integer i), unwrapped
@@ -79,10 +85,11 @@ class SectorTree {
     }
     return lo;
   }
-  std::int32_t axial(double a) {
+  std::int32_t axial(double a) { return axial(std::sin(a), std::cos(a)); }
+  std::int32_t axial(double sin_a, double cos_a) {
     // f = -sin(a) x + cos(a) y + offset: positive for angles in (a, a + pi) (offset aside).
     const double offset = max_offset_ * (0.5 + 0.5 * std::fmod(0.6180339887498949 * ++count_, 1.0));
-    return b_.add_plane(kernel::plane_from_normal({-std::sin(a), std::cos(a), 0.0}, offset), /*auxiliary=*/true);
+    return b_.add_plane(kernel::plane_from_normal({-sin_a, cos_a, 0.0}, offset), /*auxiliary=*/true);
   }
   // Tree for the wedge of angles (lo, hi), hi - lo <= pi.
   TreeRef wedge(double lo, double hi) {
@@ -91,25 +98,49 @@ class SectorTree {
     int last = first_above(hi) - 1;         // last face starting below hi (angle(i) < hi)
     while (last >= first && angle(last) >= hi) --last;  // a face starting exactly at hi (odd n)
     if (last < first) throw std::logic_error("SectorTree: empty wedge");
+    return faces(first, last);
+  }
+  // Tree for a wedge overlapping exactly faces first..last (unwrapped indices). Inner wedges end
+  // at face middles, so splitting at the middle of face k leaves faces first..k and k..last.
+  TreeRef faces(int first, int last) {
     if (last - first + 1 <= 4) {
       std::vector<std::int32_t> chain;
       // Widened by one face on each side only where a wedge bound may pass near a vertex
       // (first split, prisms); between face middles the chain is exactly first..last.
-      for (int i = first - widen_; i <= last + widen_; ++i) chain.push_back(faces_[std::size_t(((i % n_) + n_) % n_)]);
+      for (int i = first - widen_; i <= last + widen_; ++i) chain.push_back((*faces_)[wrap(i)]);
       return b_.add_convex_chain(chain);
     }
-    const double m = mid((first + last) / 2);
-    const std::int32_t p = axial(m);
-    return b_.add_node(p, wedge(lo, m), wedge(m, hi));
+    const int k = (first + last) / 2;
+    const std::int32_t p = axial(mid_sin(k), mid_cos(k));
+    return b_.add_node(p, faces(first, k), faces(k, last));
+  }
+  std::size_t wrap(int i) const { return std::size_t(((i % n_) + n_) % n_); }
+  // sin and cos of the middle angle of face i, computed once per face (every band splits there).
+  double mid_sin(int i) {
+    fill_mid();
+    return mid_sin_[wrap(i)];
+  }
+  double mid_cos(int i) {
+    fill_mid();
+    return mid_cos_[wrap(i)];
+  }
+  void fill_mid() {
+    if (!mid_sin_.empty()) return;
+    for (int i = 0; i < n_; ++i) {
+      mid_sin_.push_back(std::sin(mid(i)));
+      mid_cos_.push_back(std::cos(mid(i)));
+    }
   }
 
   TreeBuilder& b_;
-  const std::vector<std::int32_t>& faces_;
+  const std::vector<std::int32_t>* faces_ = nullptr;
   const std::vector<double>& start_;
   int n_;
-  double max_offset_;
+  double max_offset_ = 0;
   int count_ = 0;
   int widen_ = 1;
+  bool widened_ = false;
+  std::vector<double> mid_sin_, mid_cos_;
 };
 
 }  // namespace
@@ -250,7 +281,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   }
   // Band trees.
   std::vector<TreeRef> band(r - 1);
-  bool widened = false;
+  SectorTree sectors(b, start);
   for (std::size_t k = 0; k + 1 < r; ++k) {
     const Int128 dz = z[k + 1] - z[k];
     std::vector<std::int32_t> faces(static_cast<std::size_t>(n));
@@ -261,9 +292,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
       faces[std::size_t(j)] = b.add_plane(face_value[k].back());
     }
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
-    SectorTree sectors(b, faces, start, 0.05 * min_scale * min_edge);
-    band[k] = sectors.build();
-    widened |= sectors.widened();
+    band[k] = sectors.build(faces, 0.05 * min_scale * min_edge);
     face_index[k] = std::move(faces);
   }
   // Balanced tree over the bands (explicit recursion depth is log2 of the ring count).
@@ -303,7 +332,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as
   // built. Widened chains may hold faces outside their wedges: those are left to the full build.
   std::vector<BoundaryFragment> boundary = ring_boundary(b, ring_plane, ring_value, face_index, face_value, scale);
-  return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !widened});
+  return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors.widened()});
 }
 
 Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
@@ -376,7 +405,7 @@ Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1) {
     while (start[std::size_t(j)] <= start[std::size_t(j - 1)]) start[std::size_t(j)] += 2 * std::numbers::pi;
   if (start[std::size_t(n - 1)] - start[0] >= 2 * std::numbers::pi)
     throw InvalidInput("prism: polygon must be convex and counter-clockwise");
-  const TreeRef sides = SectorTree(b, faces, start).build();
+  const TreeRef sides = SectorTree(b, start).build(faces);
   const std::int32_t bottom = b.add_plane(kernel::make_plane(0, 0, -1, Int128(gz0)));
   const std::int32_t top = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(gz1)));
   const TreeRef root = b.add_node(bottom, b.add_node(top, sides, kOut), kOut);

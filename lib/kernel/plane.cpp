@@ -30,7 +30,9 @@ bool fits(Int128 v, int bits) { return magnitude(v) <= (UInt128(1) << bits); }
 
 Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d) {
   if (a == 0 && b == 0 && c == 0) throw InvalidInput("plane with a zero normal");
-  UInt128 g = gcd(gcd(magnitude(a), magnitude(b)), gcd(magnitude(c), magnitude(d)));
+  // The offset (up to 128 bits, the slow part) only matters when the normal has a common factor.
+  UInt128 g = gcd(gcd(magnitude(a), magnitude(b)), magnitude(c));
+  if (g != 1) g = gcd(g, magnitude(d));
   if (g != 1) a /= Int128(g), b /= Int128(g), c /= Int128(g), d /= Int128(g);
   if (!fits(a, kNormalBits) || !fits(b, kNormalBits) || !fits(c, kNormalBits) ||
       !fits(d, kOffsetBits)) {
