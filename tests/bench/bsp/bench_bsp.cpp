@@ -16,6 +16,7 @@
 #include <functional>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bsp/boundary.hpp"
@@ -48,22 +49,25 @@ struct Result {
 
 // Sphere of radius 1 with n segments minus the unit cube with a corner at the centre.
 Result sphere_minus_cube(int n) {
-  const Solid s = sphere(1.0, {.segments = n}) - box({0, 0, 0}, {1, 1, 1});
-  return {s, to_mesh(s)};
+  Solid s = sphere(1.0, {.segments = n}) - box({0, 0, 0}, {1, 1, 1});
+  PolygonMesh mesh = to_mesh(s);
+  return {std::move(s), std::move(mesh)};  // moved: a copy of the tree is not part of the case
 }
 
 // Menger sponge by 273 differences (tests/support/bench_solids.hpp): built in units of 1/27, since
 // 1/27 is not on the kernel grid (2^-15); volumes are reported for the unit cube.
 Result menger(int level) {
   Solid s = checks::menger_sponge(level);
-  return {s, to_mesh(s)};
+  PolygonMesh mesh = to_mesh(s);
+  return {std::move(s), std::move(mesh)};
 }
 
 // Union of `count` boxes from the 32-bit LCG of CASES.md, accumulated in place one at a time
 // (the peers use their batch unions; ours, unite_all, fragments more on this input).
 Result boxes(int count) {
   Solid s = checks::lcg_boxes(count);
-  return {s, to_mesh(s)};
+  PolygonMesh mesh = to_mesh(s);
+  return {std::move(s), std::move(mesh)};
 }
 
 double mesh_volume(const PolygonMesh& m) {
