@@ -109,14 +109,12 @@ Solid compact(Arena& arena, TreeRef root) {
   if (is_leaf(root)) return Solid::leaf(root == kIn);
   // Post-order: a node is emitted after both children, so collapses propagate upwards.
   std::vector<TreeRef> result(arena.nodes.size(), kOut);
-  std::vector<std::int32_t> order;  // arena nodes in post-order that were kept
   struct Frame {
     TreeRef node;
     bool expanded;
   };
   std::vector<Frame> stack{{root, false}};
   std::vector<BspNode> kept;  // children refer to `result` values (new indices or leaves)
-  std::vector<std::int32_t> kept_arena;
   while (!stack.empty()) {
     Frame f = stack.back();
     stack.pop_back();
@@ -135,7 +133,6 @@ Solid compact(Arena& arena, TreeRef root) {
     }
     result[f.node] = TreeRef(kept.size());
     kept.push_back({n.plane, neg, pos});
-    kept_arena.push_back(f.node);
   }
   const TreeRef new_root = result[root];
   if (is_leaf(new_root)) return Solid::leaf(new_root == kIn);
@@ -149,18 +146,39 @@ Solid compact(Arena& arena, TreeRef root) {
     if (plane_map[p] < 0) plane_map[p] = table.add(arena.planes[p], arena.planes.auxiliary(p));
     return plane_map[p];
   };
-  // Post-order puts the root last; reverse to have the root first (index 0).
+  // Post-order puts the root last; reverse to have the root first (index 0). The arena's own
+  // buffers are reused (no new allocation: their pages are already mapped, and the capacity is
+  // kept for the next in-place operations); kept node i goes to slot k - 1 - i.
   const std::size_t k = kept.size();
-  std::vector<BspNode> nodes(k);
-  std::vector<ConvexPolygon> polygons(k);
   auto flip = [k](TreeRef r) { return is_leaf(r) ? r : TreeRef(k - 1 - std::size_t(r)); };
-  for (std::size_t i = 0; i < k; ++i) {
+  // Polygons by cycles of the permutation: `result` holds each kept node's post-order number,
+  // negative for the others; a slot whose number is cleared to -1 is free or final.
+  std::vector<ConvexPolygon>& polygons = arena.polygons;
+  auto target = [&](std::size_t i) { return result[i] < 0 ? std::size_t(-1) : k - 1 - std::size_t(result[i]); };
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    std::size_t t = target(i);
+    if (t == std::size_t(-1) || t == i) continue;
+    ConvexPolygon carry = std::move(polygons[i]);
+    result[i] = -1;
+    while (true) {
+      const std::size_t next = target(t);
+      if (next == std::size_t(-1)) {
+        polygons[t] = std::move(carry);
+        break;
+      }
+      std::swap(carry, polygons[t]);
+      result[t] = -1;
+      t = next;
+    }
+  }
+  polygons.resize(k);
+  arena.nodes.resize(k);
+  for (std::size_t i = 0; i < k; ++i) {  // the order of the plane renumbering is part of the result
     const std::size_t j = k - 1 - i;
-    nodes[j] = {use(kept[i].plane), flip(kept[i].negative), flip(kept[i].positive)};
-    ConvexPolygon poly = std::move(arena.polygons[kept_arena[i]]);
+    arena.nodes[j] = {use(kept[i].plane), flip(kept[i].negative), flip(kept[i].positive)};
+    ConvexPolygon& poly = polygons[j];
     poly.support = use(poly.support);
     for (auto& c : poly.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
-    polygons[j] = std::move(poly);
   }
   std::optional<std::vector<BoundaryFragment>> boundary;
   std::vector<FragmentBox> boxes = std::move(arena.boundary_boxes);
@@ -172,8 +190,8 @@ Solid compact(Arena& arena, TreeRef root) {
       for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
     }
   }
-  return Solid(std::move(table), std::move(nodes), std::move(polygons), flip(new_root), 0, std::move(boundary),
-               std::move(boxes));
+  return Solid(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), 0,
+               std::move(boundary), std::move(boxes));
 }
 
 }  // namespace sculpt::detail

@@ -34,8 +34,9 @@ struct Arena {
   std::int32_t last_shift_ = 0;  ///< plane index shift of the last append (0 after adopt)
 };
 
-/// Copies the tree reachable from `root` into a compact Solid (depth-first order), collapsing
-/// nodes whose two children are the same leaf and dropping unused planes.
+/// Turns the tree reachable from `root` into a compact Solid (depth-first order, root first),
+/// collapsing nodes whose two children are the same leaf and dropping unused planes. The solid
+/// takes over the arena's node and polygon buffers (permuted in place, capacity kept).
 Solid compact(Arena& arena, TreeRef root);
 
 /// Flips in and out leaves of the subtree at `root` in place (explicit stack).
