@@ -208,21 +208,33 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
   const CornerBox b_box = uniform ? CornerBox{} : bounds(b_faces);
   const bool far_in = is_leaf(b) ? b == kIn : (b_box.valid || uniform ? clip.far_status(b) : false);
   const int far_verdict = verdict(op[1][far_in], op[0][far_in]);
-  const float lo[3] = {float(b_box.lo[0]), float(b_box.lo[1]), float(b_box.lo[2])};
-  const float hi[3] = {float(b_box.hi[0]), float(b_box.hi[1]), float(b_box.hi[2])};
   // Strictly apart, with a margin for the rounding of b_box to float (relative 2^-23).
-  auto apart = [&](const FragmentBox& x) {
-    for (int k = 0; k < 3; ++k) {
-      const float m = 1e-6f * (std::fabs(lo[k]) + std::fabs(hi[k])) + 1e-30f;
-      if (x.hi[k] < lo[k] - m || x.lo[k] > hi[k] + m) return true;
-    }
-    return false;
+  float below[3], above[3];
+  for (int k = 0; k < 3; ++k) {
+    const float lo = float(b_box.lo[k]), hi = float(b_box.hi[k]);
+    const float m = 1e-6f * (std::fabs(lo) + std::fabs(hi)) + 1e-30f;
+    below[k] = lo - m;
+    above[k] = hi + m;
+  }
+  auto near = [&](const FragmentBox& x) {  // false: known to be apart
+    bool apart = false;                    // no early exit: a branch-free test over a long array
+    for (int k = 0; k < 3; ++k) apart |= (x.hi[k] < below[k]) | (x.lo[k] > above[k]);
+    return !(apart & x.valid);
   };
+  // The fragments to push down B's tree, downwards (those apart from B keep the far verdict).
+  std::vector<std::size_t> todo;
+  if (!uniform && b_box.valid && far_verdict == kKeep) {
+    for (std::size_t i = a_faces.size(); i-- > 0;)
+      if (near(a_boxes[i])) todo.push_back(i);
+  } else {
+    todo.resize(a_faces.size());
+    for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = todo.size() - 1 - i;
+  }
   std::vector<BoundaryFragment> pieces;
   // Downwards, so that fragments moved into a freed slot (from the end) are already decided.
-  for (std::size_t i = a_faces.size(); i-- > 0;) {
+  for (const std::size_t i : todo) {
     int v = kUndecided;
-    if (uniform || (b_box.valid && a_boxes[i].valid && apart(a_boxes[i]))) v = far_verdict;
+    if (uniform || (b_box.valid && a_boxes[i].valid && !near(a_boxes[i]))) v = far_verdict;
     if (v == 0) continue;
     BoundaryFragment& f = a_faces[i];
     if (v == 1) {

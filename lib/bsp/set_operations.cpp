@@ -34,31 +34,31 @@ class Merger {
       a_.nodes[std::size_t(s.node)].positive = v;
   }
 
-  // Naylor et al. 1990, "partition_bspt": splits subtree t (living in region R) by plane
+  // Naylor et al. 1990, "partition_bspt": splits `subtree` (living in region R) by plane
   // `cut`, whose part inside R is the polygon `pp`. Uses the invariant that every node's plane
   // cuts its cell into two parts of positive volume, so when the node's sub-hyperplane S lies on
   // one side of `cut`, `pp` lies on one side of the node's plane and the other child's region
   // lies entirely on S's side of `cut`. Subtrees are moved, never shared.
-  std::pair<TreeRef, TreeRef> partition(TreeRef t, ConvexPolygon pp, std::int32_t cut) {
+  // `pp` is copied before the arena grows (it may be one of the arena's polygons).
+  std::pair<TreeRef, TreeRef> partition(TreeRef subtree, const ConvexPolygon& pp, std::int32_t cut) {
+    std::vector<PartitionFrame>& stack = partition_stack_;
+    std::vector<std::pair<TreeRef, Slot>>& touched = touched_;  // nodes placed in a result, pre-order
+    stack.clear();
+    touched.clear();
+    stack.push_back({subtree, pp, {-1, 0}, {-1, 1}});
     const std::int32_t cut_opp = a_.opposite(cut);
-    struct Frame {
-      TreeRef t;
-      ConvexPolygon pp;
-      Slot neg, pos;
-    };
-    std::vector<Frame> stack;
-    std::vector<std::pair<TreeRef, Slot>> touched;  // nodes placed in a result, pre-order
-    stack.push_back({t, std::move(pp), {-1, 0}, {-1, 1}});
+    // The top frame is updated in place where one child follows (no copy of its polygon).
     while (!stack.empty()) {
-      Frame f = std::move(stack.back());
-      stack.pop_back();
+      PartitionFrame& f = stack.back();
       if (is_leaf(f.t)) {
         set(f.neg, f.t);
         set(f.pos, f.t);
+        stack.pop_back();
         continue;
       }
-      const BspNode n = a_.nodes[std::size_t(f.t)];
-      kernel::PolygonSplit s = kernel::split(a_.planes, a_.polygons[std::size_t(f.t)], cut, cut_opp);
+      const TreeRef t = f.t;
+      const BspNode n = a_.nodes[std::size_t(t)];
+      kernel::PolygonSplit s = kernel::split(a_.planes, a_.polygons[std::size_t(t)], cut, cut_opp);
       switch (s.side) {
         case Side::On: {  // the node is absorbed by `cut`, which takes over its faces
           const bool same = a_.planes[n.plane] == a_.planes[cut];
@@ -68,6 +68,7 @@ class Merger {
           }
           set(f.neg, same ? n.negative : n.positive);
           set(f.pos, same ? n.positive : n.negative);
+          stack.pop_back();
           break;
         }
         case Side::Both: {
@@ -76,19 +77,21 @@ class Merger {
           const auto m = std::int32_t(a_.nodes.size());
           a_.nodes.push_back(n);
           a_.polygons.push_back(std::move(s.positive));
-          a_.polygons[std::size_t(f.t)] = std::move(s.negative);
-          set(f.neg, f.t);
+          a_.polygons[std::size_t(t)] = std::move(s.negative);
+          set(f.neg, t);
           set(f.pos, m);
-          touched.push_back({f.t, f.neg});
+          touched.push_back({t, f.neg});
           touched.push_back({m, f.pos});
+          // The negative child replaces the frame, the positive one goes on top of it.
+          ConvexPolygon positive;
           if (ps.side == Side::Both) {
-            stack.push_back({n.negative, std::move(ps.negative), {f.t, 0}, {m, 0}});
-            stack.push_back({n.positive, std::move(ps.positive), {f.t, 1}, {m, 1}});
-          } else {
-            // Cannot happen with exact predicates and the invariant; keep the tree valid anyway.
-            stack.push_back({n.negative, f.pp, {f.t, 0}, {m, 0}});
-            stack.push_back({n.positive, std::move(f.pp), {f.t, 1}, {m, 1}});
+            f.pp = std::move(ps.negative);
+            positive = std::move(ps.positive);
+          } else {  // cannot happen with exact predicates and the invariant; keep the tree valid anyway
+            positive = f.pp;
           }
+          f.t = n.negative, f.neg = {t, 0}, f.pos = {m, 0};
+          stack.push_back({n.positive, std::move(positive), {t, 1}, {m, 1}});  // invalidates f
           break;
         }
         case Side::Negative:
@@ -96,15 +99,15 @@ class Merger {
           const bool node_neg = s.side == Side::Negative;  // node's region part stays on this side
           const Side pside = kernel::classify(a_.planes, f.pp, n.plane);
           const bool recurse_neg = pside != Side::Positive;  // pp in the node's negative half
-          const TreeRef child = recurse_neg ? n.negative : n.positive;
-          const Slot child_slot{f.t, recurse_neg ? 0 : 1};
-          touched.push_back({f.t, node_neg ? f.neg : f.pos});
+          const Slot child_slot{t, recurse_neg ? 0 : 1};
+          touched.push_back({t, node_neg ? f.neg : f.pos});
+          f.t = recurse_neg ? n.negative : n.positive;  // the child follows with the same polygon
           if (node_neg) {
-            set(f.neg, f.t);
-            stack.push_back({child, std::move(f.pp), child_slot, f.pos});
+            set(f.neg, t);
+            f.neg = child_slot;
           } else {
-            set(f.pos, f.t);
-            stack.push_back({child, std::move(f.pp), f.neg, child_slot});
+            set(f.pos, t);
+            f.pos = child_slot;
           }
           break;
         }
@@ -181,8 +184,17 @@ class Merger {
     return a;
   }
 
+  struct PartitionFrame {
+    TreeRef t;
+    ConvexPolygon pp;
+    Slot neg, pos;
+  };
+
   Arena& a_;
   TreeRef out_[2] = {kOut, kOut};
+  // Working storage of partition(), kept between calls (one partition per node of the merge).
+  std::vector<PartitionFrame> partition_stack_;
+  std::vector<std::pair<TreeRef, Slot>> touched_;
 };
 
 Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
