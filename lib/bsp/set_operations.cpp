@@ -1,5 +1,6 @@
 #include "bsp/set_operations.hpp"
 
+#include <tuple>
 #include <utility>
 
 #include "bsp/boundary_fragments.hpp"
@@ -39,15 +40,21 @@ class Merger {
   // cuts its cell into two parts of positive volume, so when the node's sub-hyperplane S lies on
   // one side of `cut`, `pp` lies on one side of the node's plane and the other child's region
   // lies entirely on S's side of `cut`. Subtrees are moved, never shared.
-  // `pp` is copied before the arena grows (it may be one of the arena's polygons).
-  std::pair<TreeRef, TreeRef> partition(TreeRef subtree, const ConvexPolygon& pp, std::int32_t cut) {
+  // `pp` is copied before the arena grows (it may be one of the arena's polygons). A side that
+  // is not `wanted` (the caller drops it) is not built: a node cut in two stays whole on the
+  // wanted side (no copy), and nodes placed wholly on the other side are left unused.
+  std::pair<TreeRef, TreeRef> partition(TreeRef subtree, const ConvexPolygon& pp, std::int32_t cut,
+                                        const bool wanted[2] = kBothSides) {
     std::vector<PartitionFrame>& stack = partition_stack_;
     std::vector<std::pair<TreeRef, Slot>>& touched = touched_;  // nodes placed in a result, pre-order
     stack.clear();
     touched.clear();
-    stack.push_back({subtree, pp, {-1, 0}, {-1, 1}});
+    stack.emplace_back();
+    stack.back() = {subtree, {}, {-1, 0}, {-1, 1}};
+    stack.back().pp = pp;
     const std::int32_t cut_opp = a_.opposite(cut);
     // The top frame is updated in place where one child follows (no copy of its polygon).
+    ConvexPolygon& part = scratch_;
     while (!stack.empty()) {
       PartitionFrame& f = stack.back();
       if (is_leaf(f.t)) {
@@ -58,8 +65,11 @@ class Merger {
       }
       const TreeRef t = f.t;
       const BspNode n = a_.nodes[std::size_t(t)];
-      kernel::PolygonSplit s = kernel::split(a_.planes, a_.polygons[std::size_t(t)], cut, cut_opp);
-      switch (s.side) {
+      // The node polygon's positive part goes straight into a new slot (taken back if unused).
+      a_.polygons.emplace_back();
+      const Side side = kernel::split(a_.planes, a_.polygons[std::size_t(t)], cut, cut_opp, part, a_.polygons.back());
+      if (side != Side::Both) a_.polygons.pop_back();
+      switch (side) {
         case Side::On: {  // the node is absorbed by `cut`, which takes over its faces
           const bool same = a_.planes[n.plane] == a_.planes[cut];
           if (!a_.planes.auxiliary(n.plane)) {
@@ -72,31 +82,47 @@ class Merger {
           break;
         }
         case Side::Both: {
-          const std::int32_t h_opp = a_.opposite(n.plane);
-          kernel::PolygonSplit ps = kernel::split(a_.planes, f.pp, n.plane, h_opp);
-          const auto m = std::int32_t(a_.nodes.size());
-          a_.nodes.push_back(n);
-          a_.polygons.push_back(std::move(s.positive));
-          a_.polygons[std::size_t(t)] = std::move(s.negative);
-          set(f.neg, t);
-          set(f.pos, m);
-          touched.push_back({t, f.neg});
-          touched.push_back({m, f.pos});
-          // The negative child replaces the frame, the positive one goes on top of it.
-          ConvexPolygon positive;
-          if (ps.side == Side::Both) {
-            f.pp = std::move(ps.negative);
-            positive = std::move(ps.positive);
-          } else {  // cannot happen with exact predicates and the invariant; keep the tree valid anyway
-            positive = f.pp;
+          // Node t keeps the negative part and a copy m the positive one; with one side wanted,
+          // t alone goes to that side. Slots of the other side write the dropped output.
+          TreeRef tn = -1, tp = -1;
+          if (wanted[0] && wanted[1]) {
+            tn = t, tp = std::int32_t(a_.nodes.size());
+            a_.nodes.push_back(n);
+            a_.polygons[std::size_t(t)] = std::move(part);
+          } else {
+            (wanted[0] ? tn : tp) = t;
+            a_.polygons[std::size_t(t)] = std::move(wanted[0] ? part : a_.polygons.back());
+            a_.polygons.pop_back();
           }
-          f.t = n.negative, f.neg = {t, 0}, f.pos = {m, 0};
-          stack.push_back({n.positive, std::move(positive), {t, 1}, {m, 1}});  // invalidates f
+          if (tn >= 0) {
+            set(f.neg, tn);
+            touched.push_back({tn, f.neg});
+          }
+          if (tp >= 0) {
+            set(f.pos, tp);
+            touched.push_back({tp, f.pos});
+          }
+          auto slot = [](TreeRef node, int child, int side_of_output) {
+            return node >= 0 ? Slot{node, child} : Slot{-1, side_of_output};
+          };
+          // The negative child replaces the frame, the positive one goes on top of it; pp's
+          // positive part is written into the new frame directly.
+          const std::size_t top = stack.size() - 1;
+          stack.emplace_back();  // invalidates f
+          PartitionFrame& cur = stack[top];
+          PartitionFrame& next = stack.back();
+          const Side pside = kernel::split(a_.planes, cur.pp, n.plane, a_.opposite(n.plane), part, next.pp);
+          if (pside == Side::Both)
+            cur.pp = std::move(part);
+          else  // cannot happen with exact predicates and the invariant; keep the tree valid anyway
+            next.pp = cur.pp;
+          next.t = n.positive, next.neg = slot(tn, 1, 0), next.pos = slot(tp, 1, 1);
+          cur.t = n.negative, cur.neg = slot(tn, 0, 0), cur.pos = slot(tp, 0, 1);
           break;
         }
         case Side::Negative:
         case Side::Positive: {
-          const bool node_neg = s.side == Side::Negative;  // node's region part stays on this side
+          const bool node_neg = side == Side::Negative;  // node's region part stays on this side
           const Side pside = kernel::classify(a_.planes, f.pp, n.plane);
           const bool recurse_neg = pside != Side::Positive;  // pp in the node's negative half
           const Slot child_slot{t, recurse_neg ? 0 : 1};
@@ -154,7 +180,10 @@ class Merger {
       const BspNode n = a_.nodes[std::size_t(f.a)];
       if (detail::pending(a_.polygons[std::size_t(f.a)]))
         a_.polygons[std::size_t(f.a)] = detail::node_polygon(a_, n.plane, path);
-      auto [bneg, bpos] = partition(f.b, a_.polygons[std::size_t(f.a)], n.plane);
+      // A side whose child in a is a leaf that decides the result alone does not need b's part.
+      const bool wanted[2] = {!decided(n.negative, op), !decided(n.positive, op)};
+      TreeRef bneg = kOut, bpos = kOut;
+      if (wanted[0] || wanted[1]) std::tie(bneg, bpos) = partition(f.b, a_.polygons[std::size_t(f.a)], n.plane, wanted);
       put(f.slot, f.a);  // a's node is reused: its region and sub-hyperplane are unchanged
       visited.push_back({f.a, f.slot});
       stack.push_back({n.negative, bneg, {f.a, 0}, path.size(), n.plane});
@@ -169,6 +198,15 @@ class Merger {
   }
 
  private:
+  static constexpr bool kBothSides[2] = {true, true};
+
+  // True if `a` is a leaf whose value alone decides op (then combine() ignores b).
+  static bool decided(TreeRef a, const bool op[2][2]) {
+    if (!is_leaf(a)) return false;
+    const int x = a == kIn;
+    return op[x][0] == op[x][1];
+  }
+
   TreeRef combine(TreeRef a, TreeRef b, const bool op[2][2]) {
     if (is_leaf(a)) {
       const int x = a == kIn;
@@ -195,6 +233,7 @@ class Merger {
   // Working storage of partition(), kept between calls (one partition per node of the merge).
   std::vector<PartitionFrame> partition_stack_;
   std::vector<std::pair<TreeRef, Slot>> touched_;
+  ConvexPolygon scratch_;
 };
 
 Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {

@@ -119,11 +119,10 @@ Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t 
   return neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
 }
 
-PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
-                   std::int32_t cut_opposite) {
-  PolygonSplit out;
-  out.side = box_side(poly, planes[cut]);
-  if (out.side != Side::Both) return out;
+Side split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut, std::int32_t cut_opposite,
+           ConvexPolygon& negative, ConvexPolygon& positive) {
+  const Side quick = box_side(poly, planes[cut]);
+  if (quick != Side::Both) return quick;
   const std::size_t k = poly.corners.size();
   boost::container::small_vector<Sign, 8> s;
   bool neg = false, pos = false;
@@ -132,34 +131,39 @@ PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int
     neg |= g == Sign::Negative;
     pos |= g == Sign::Positive;
   });
-  out.side = neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
-  if (out.side != Side::Both) return out;
+  const Side side = neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
+  if (side != Side::Both) return side;
 
-  out.negative.support = out.positive.support = poly.support;
+  negative.support = positive.support = poly.support;
+  negative.corners.clear();
+  positive.corners.clear();
   const Plane& support = planes[poly.support];
   for (std::size_t i = 0; i < k; ++i) {
     const Corner& c = poly.corners[i];
     const Sign si = s[i], sj = s[(i + 1) % k];
     if (si != Sign::Positive)  // corner kept in the negative part
-      out.negative.corners.push_back(si == Sign::Zero && sj == Sign::Positive
-                                         ? Corner{cut, c.p, c.q, c.at}
-                                         : c);
+      negative.corners.push_back(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, c.p, c.q, c.at} : c);
     if (si != Sign::Negative)
-      out.positive.corners.push_back(si == Sign::Zero && sj == Sign::Negative
-                                         ? Corner{cut_opposite, c.p, c.q, c.at}
-                                         : c);
+      positive.corners.push_back(si == Sign::Zero && sj == Sign::Negative ? Corner{cut_opposite, c.p, c.q, c.at} : c);
     const bool crosses = (si == Sign::Negative && sj == Sign::Positive) ||
                          (si == Sign::Positive && sj == Sign::Negative);
     if (!crosses) continue;
     const ApproxPoint at = approximate_vertex(support, planes[c.edge], planes[cut]);
     if (si == Sign::Negative) {
-      out.negative.corners.push_back({cut, c.edge, cut, at});
-      out.positive.corners.push_back({c.edge, c.edge, cut, at});
+      negative.corners.push_back({cut, c.edge, cut, at});
+      positive.corners.push_back({c.edge, c.edge, cut, at});
     } else {
-      out.positive.corners.push_back({cut_opposite, c.edge, cut, at});
-      out.negative.corners.push_back({c.edge, c.edge, cut, at});
+      positive.corners.push_back({cut_opposite, c.edge, cut, at});
+      negative.corners.push_back({c.edge, c.edge, cut, at});
     }
   }
+  return Side::Both;
+}
+
+PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
+                   std::int32_t cut_opposite) {
+  PolygonSplit out;
+  out.side = split(planes, poly, cut, cut_opposite, out.negative, out.positive);
   return out;
 }
 

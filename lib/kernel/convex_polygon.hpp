@@ -117,6 +117,10 @@ struct PolygonSplit {
 /// the new edge of the positive part).
 PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
                    std::int32_t cut_opposite);
+/// split() into polygons the caller owns (loops that reuse their storage): `negative` and
+/// `positive` are written only when the result is Both. Neither may be `poly`.
+Side split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut, std::int32_t cut_opposite,
+           ConvexPolygon& negative, ConvexPolygon& positive);
 
 /// The negative part of split() for loops that clip one polygon by many planes (TreeBuilder):
 /// `in` clipped to the closed negative side of plane `cut`. `box` must be corner_box(in). Returns
