@@ -37,11 +37,18 @@ void check_positive(double v, const char* what) {
 // The axial planes are moved off the axis by small distinct offsets (below a tenth of the
 // narrowest face) so that no three of them meet in a line: otherwise every vertex on the axis
 // would be an exact degenerate case for every other axial plane.
+struct SectorOptions {
+  bool auxiliary_axes = true;  ///< the axial planes carry no face (see revolve_rings)
+  int widen = 0;               ///< chains hold at least this many extra faces on each side
+};
+
 class SectorTree {
  public:
   /// Faces start at the angles `start`; one SectorTree builds the trees of several bands of the
   /// same path (their splits are at the same angles).
-  SectorTree(TreeBuilder& b, const std::vector<double>& start) : b_(b), start_(start), n_(int(start.size())) {}
+  using Options = SectorOptions;
+  SectorTree(TreeBuilder& b, const std::vector<double>& start, const Options& options = {})
+      : b_(b), start_(start), n_(int(start.size())), options_(options) {}
 
   /// The tree over `faces` (plane indices, face i starting at start[i]); axial planes are moved off
   /// the axis by at most `max_offset`.
@@ -58,6 +65,7 @@ class SectorTree {
     while (angle(f + 1) <= opposite) ++f;
     const double width = angle(f + 1) - angle(f);
     widen_ = std::min(opposite - angle(f), angle(f + 1) - opposite) < 0.25 * width ? 1 : 0;
+    widen_ = std::max(widen_, options_.widen);
     widened_ |= widen_ != 0;
     const std::int32_t p = axial(a0);
     return b_.add_node(p, wedge(a0 + std::numbers::pi, a0 + 2 * std::numbers::pi), wedge(a0, a0 + std::numbers::pi));
@@ -89,7 +97,7 @@ class SectorTree {
   std::int32_t axial(double sin_a, double cos_a) {
     // f = -sin(a) x + cos(a) y + offset: positive for angles in (a, a + pi) (offset aside).
     const double offset = max_offset_ * (0.5 + 0.5 * std::fmod(0.6180339887498949 * ++count_, 1.0));
-    return b_.add_plane(kernel::plane_from_normal({-sin_a, cos_a, 0.0}, offset), /*auxiliary=*/true);
+    return b_.add_plane(kernel::plane_from_normal({-sin_a, cos_a, 0.0}, offset), options_.auxiliary_axes);
   }
   // Tree for the wedge of angles (lo, hi), hi - lo <= pi.
   TreeRef wedge(double lo, double hi) {
@@ -136,6 +144,7 @@ class SectorTree {
   const std::vector<std::int32_t>* faces_ = nullptr;
   const std::vector<double>& start_;
   int n_;
+  Options options_;
   double max_offset_ = 0;
   int count_ = 0;
   int widen_ = 1;
@@ -268,42 +277,6 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     return Int128(std::llround(std::ldexp(c, kPathNormalBits)));
   };
 
-  TreeBuilder b;
-  // Ring planes z = z_k: f = z - z_k.
-  std::vector<std::int32_t> ring_plane(r);
-  std::vector<Plane> ring_value(r);
-  std::vector<std::vector<Plane>> face_value(r - 1);
-  std::vector<std::vector<std::int32_t>> face_index(r - 1);
-  // Inner rings only separate bands (auxiliary); the first and last ring planes are the caps.
-  for (std::size_t k = 0; k < r; ++k) {
-    ring_value[k] = kernel::make_plane(0, 0, 1, -Int128(z[k]));
-    ring_plane[k] = b.add_plane(ring_value[k], k > 0 && k + 1 < r);
-  }
-  // Band trees.
-  std::vector<TreeRef> band(r - 1);
-  SectorTree sectors(b, start);
-  for (std::size_t k = 0; k + 1 < r; ++k) {
-    const Int128 dz = z[k + 1] - z[k];
-    std::vector<std::int32_t> faces(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j) {
-      const Int128 c0 = c_of(k, j), c1 = c_of(k + 1, j), dc = c1 - c0;
-      // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside.
-      face_value[k].push_back(kernel::make_plane(dz * nx[std::size_t(j)], dz * ny[std::size_t(j)], -dc, dc * z[k] - dz * c0));
-      faces[std::size_t(j)] = b.add_plane(face_value[k].back());
-    }
-    const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
-    band[k] = sectors.build(faces, 0.05 * min_scale * min_edge);
-    face_index[k] = std::move(faces);
-  }
-  // Balanced tree over the bands (explicit recursion depth is log2 of the ring count).
-  auto slabs = [&](auto&& self, std::size_t lo, std::size_t hi) -> TreeRef {
-    if (lo == hi) return band[lo];
-    const std::size_t m = (lo + hi + 1) / 2;  // ring between band m - 1 and band m
-    return b.add_node(ring_plane[m], self(self, lo, m - 1), self(self, m, hi));
-  };
-  const TreeRef inner = slabs(slabs, 0, r - 2);
-  const TreeRef top = b.add_node(ring_plane[r - 1], inner, kOut);
-  const TreeRef root = b.add_node(ring_plane[0], kOut, top);
   // The direct boundary needs every path edge on every ring of positive scale. Rounding moves an
   // edge's line by at most delta grid units, which moves its ends by at most 2 delta / sin(exterior
   // angle): edges much longer than that survive.
@@ -326,7 +299,48 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // survives if L sin t > 4 delta; 8 delta leaves another factor of 2.
   const double delta = (largest * far / kernel::kGridStep + 1) * std::ldexp(1.0, -24);
   const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
-  if (degenerate || !(shortest * min_sin > 8 * delta)) return std::move(b).build(root);
+  const bool direct = !degenerate && shortest * min_sin > 8 * delta;
+
+  TreeBuilder b;
+  // Ring planes z = z_k: f = z - z_k.
+  std::vector<std::int32_t> ring_plane(r);
+  std::vector<Plane> ring_value(r);
+  std::vector<std::vector<Plane>> face_value(r - 1);
+  std::vector<std::vector<std::int32_t>> face_index(r - 1);
+  // Inner rings only separate bands (auxiliary); the first and last ring planes are the caps.
+  for (std::size_t k = 0; k < r; ++k) {
+    ring_value[k] = kernel::make_plane(0, 0, 1, -Int128(z[k]));
+    ring_plane[k] = b.add_plane(ring_value[k], k > 0 && k + 1 < r);
+  }
+  // Band trees.
+  std::vector<TreeRef> band(r - 1);
+  // Below that bound, rounding can move a face out of the wedge whose chain should hold it: the
+  // solid then bends along an axial plane, which must then count as a face plane (not auxiliary)
+  // for extraction to find that boundary. Chains are widened so that this stays rare.
+  SectorTree sectors(b, start, {.auxiliary_axes = direct, .widen = direct ? 0 : 1});
+  for (std::size_t k = 0; k + 1 < r; ++k) {
+    const Int128 dz = z[k + 1] - z[k];
+    std::vector<std::int32_t> faces(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      const Int128 c0 = c_of(k, j), c1 = c_of(k + 1, j), dc = c1 - c0;
+      // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside.
+      face_value[k].push_back(kernel::make_plane(dz * nx[std::size_t(j)], dz * ny[std::size_t(j)], -dc, dc * z[k] - dz * c0));
+      faces[std::size_t(j)] = b.add_plane(face_value[k].back());
+    }
+    const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
+    band[k] = sectors.build(faces, 0.05 * min_scale * min_edge);
+    face_index[k] = std::move(faces);
+  }
+  // Balanced tree over the bands (explicit recursion depth is log2 of the ring count).
+  auto slabs = [&](auto&& self, std::size_t lo, std::size_t hi) -> TreeRef {
+    if (lo == hi) return band[lo];
+    const std::size_t m = (lo + hi + 1) / 2;  // ring between band m - 1 and band m
+    return b.add_node(ring_plane[m], self(self, lo, m - 1), self(self, m, hi));
+  };
+  const TreeRef inner = slabs(slabs, 0, r - 2);
+  const TreeRef top = b.add_node(ring_plane[r - 1], inner, kOut);
+  const TreeRef root = b.add_node(ring_plane[0], kOut, top);
+  if (!direct) return std::move(b).build(root);
   // Every node then cuts its cell: ring planes cut their slabs and axial planes their wedges (both
   // reach the world box), and each chain face keeps the middle part of its facet inside its wedge
   // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as

@@ -40,5 +40,20 @@ TEST(Sphere, MeshIsClosedAndVolumeApproachesTheBall) {
   }
 }
 
+// Far below the direct boundary's bound (faces 0.006 grid units wide, 32768 of them), rounding
+// the face planes moved a face out of the wedge whose chain should hold it: the solid bent along
+// an auxiliary axial plane, extraction skipped that plane, and the mesh had a sliver hole (8 open
+// edges, 4 extra vertices). Such cylinders are closed, with every path vertex on both caps.
+TEST(Cylinder, FineTessellationOfATinyRadiusIsClosed) {
+  const int n = 32768;
+  const Solid s = cylinder(1e-3, 1.0, {.segments = n});
+  const PolygonMesh m = to_mesh(s);
+  EXPECT_TRUE(EdgesManifoldAndOriented(m));
+  EXPECT_TRUE(GenusIs(m, 0));
+  EXPECT_EQ(m.vertices.size(), std::size_t(2 * n));
+  const double v = checks::reference_signed_volume(m);
+  EXPECT_NEAR(v, std::numbers::pi * 1e-6, 1e-6 * 1e-6);  // the polygon's area is within 1e-8 of the disc's
+}
+
 }  // namespace
 }  // namespace sculpt
