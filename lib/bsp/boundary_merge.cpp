@@ -183,7 +183,7 @@ int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDro
 
 }  // namespace
 
-void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_faces, std::vector<FragmentBox> a_boxes,
+void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_faces, FragmentBoxes a_boxes_in,
                       TreeRef b, const std::vector<BoundaryFragment>& b_faces, const bool op[2][2]) {
   Clipper clip(arena);
   // B's fragments against A's tree. Where A has a face on the same plane region (A's status
@@ -199,10 +199,17 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
 
   // A's fragments against B's tree, in place. Fragments apart from B's boundary box lie in B's
   // outer region (connected, no boundary of B): decided by one status without being moved.
+  std::vector<FragmentBox>& a_boxes = a_boxes_in.each;
+  std::vector<FragmentBox>& blocks = a_boxes_in.blocks;
   if (a_boxes.size() != a_faces.size()) {
     a_boxes.clear();
     a_boxes.reserve(a_faces.size());
     for (const BoundaryFragment& f : a_faces) a_boxes.push_back(fragment_box(f.polygon));
+    blocks.clear();
+  }
+  if (blocks.size() != FragmentBoxes::block_count(a_boxes.size())) {
+    blocks.assign(FragmentBoxes::block_count(a_boxes.size()), FragmentBox{});
+    for (std::size_t j = 0; j < blocks.size(); ++j) a_boxes_in.update_block(j);
   }
   const bool uniform = is_leaf(b) || b_faces.empty();
   const CornerBox b_box = uniform ? CornerBox{} : bounds(b_faces);
@@ -224,13 +231,19 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
   // The fragments to push down B's tree, downwards (those apart from B keep the far verdict).
   std::vector<std::size_t> todo;
   if (!uniform && b_box.valid && far_verdict == kKeep) {
-    for (std::size_t i = a_faces.size(); i-- > 0;)
-      if (near(a_boxes[i])) todo.push_back(i);
+    constexpr std::size_t w = FragmentBoxes::kBlock;
+    for (std::size_t j = blocks.size(); j-- > 0;) {
+      if (!near(blocks[j])) continue;  // every fragment of the block is apart
+      for (std::size_t i = std::min(a_faces.size(), (j + 1) * w); i-- > j * w;)
+        if (near(a_boxes[i])) todo.push_back(i);
+    }
   } else {
     todo.resize(a_faces.size());
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = todo.size() - 1 - i;
   }
   std::vector<BoundaryFragment> pieces;
+  std::vector<std::size_t> changed;  // blocks whose boxes change (below the shortened end)
+  std::size_t shortest = a_faces.size();
   // Downwards, so that fragments moved into a freed slot (from the end) are already decided.
   for (const std::size_t i : todo) {
     int v = kUndecided;
@@ -250,6 +263,7 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
         f = std::move(pieces.back());
         pieces.pop_back();
         a_boxes[i] = fragment_box(f.polygon);
+        changed.push_back(i / FragmentBoxes::kBlock);
         continue;
       }
     }
@@ -257,17 +271,24 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
     if (i + 1 != a_faces.size()) {
       f = std::move(a_faces.back());
       a_boxes[i] = a_boxes.back();
+      changed.push_back(i / FragmentBoxes::kBlock);
     }
     a_faces.pop_back();
     a_boxes.pop_back();
+    shortest = std::min(shortest, a_faces.size());
   }
   for (std::vector<BoundaryFragment>* more : {&pieces, &from_b})
     for (BoundaryFragment& p : *more) {
       a_boxes.push_back(fragment_box(p.polygon));
       a_faces.push_back(std::move(p));
     }
+  // Block boxes: those with a changed fragment, and all from the block where the end moved.
+  blocks.resize(FragmentBoxes::block_count(a_boxes.size()));
+  for (const std::size_t j : changed)
+    if (j < blocks.size()) a_boxes_in.update_block(j);
+  for (std::size_t j = shortest / FragmentBoxes::kBlock; j < blocks.size(); ++j) a_boxes_in.update_block(j);
   arena.boundary = std::move(a_faces);
-  arena.boundary_boxes = std::move(a_boxes);
+  arena.boundary_boxes = std::move(a_boxes_in);
 }
 
 }  // namespace sculpt::detail

@@ -17,10 +17,10 @@ namespace sculpt::detail {
 
 /// Fragments of op(A, B), where op[in_a][in_b] is the operation's truth table, A and B are trees
 /// in the arena (roots `a`, `b`) and the fragments are on arena planes; `a_boxes` are the boxes
-/// of `a_faces` (or empty). The result goes to arena.boundary and arena.boundary_boxes. A's
-/// fragments are reused in place: those apart from B's boundary are decided by one box test
-/// without being moved. Call it before merging the trees: the merge reuses their nodes.
-void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_faces, std::vector<FragmentBox> a_boxes,
+/// of `a_faces` (computed here where missing). The result goes to arena.boundary and
+/// arena.boundary_boxes. A's fragments are reused in place: those apart from B's boundary are
+/// decided by one box test (one per block of fragments apart from it) without being moved. Call it before merging the trees: the merge reuses their nodes.
+void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_faces, FragmentBoxes a_boxes,
                       TreeRef b, const std::vector<BoundaryFragment>& b_faces, const bool op[2][2]);
 
 }  // namespace sculpt::detail

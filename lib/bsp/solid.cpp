@@ -9,11 +9,13 @@ namespace sculpt {
 
 Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
              std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size,
-             std::optional<std::vector<BoundaryFragment>> boundary, std::vector<FragmentBox> boundary_boxes)
+             std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes)
     : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
       compacted_size_(compacted_size ? compacted_size : nodes_.size()), boundary_(std::move(boundary)),
       boundary_boxes_(std::move(boundary_boxes)) {
-  if (!boundary_ || boundary_boxes_.size() != boundary_->size()) boundary_boxes_.clear();
+  if (!boundary_ || boundary_boxes_.each.size() != boundary_->size()) boundary_boxes_.each.clear();
+  if (boundary_boxes_.blocks.size() != FragmentBoxes::block_count(boundary_boxes_.each.size()))
+    boundary_boxes_.blocks.clear();
   if (nodes_.size() != polygons_.size() || (!is_leaf(root_) && std::size_t(root_) >= nodes_.size()))
     throw std::logic_error("Solid: inconsistent tree storage");
 }
@@ -27,7 +29,7 @@ Solid::Storage Solid::release() && {
   root_ = kOut;
   compacted_size_ = 0;
   boundary_ = std::vector<BoundaryFragment>{};
-  boundary_boxes_.clear();
+  boundary_boxes_ = {};
   return s;
 }
 
@@ -43,6 +45,19 @@ FragmentBox fragment_box(const kernel::ConvexPolygon& polygon) {
     if (double(f.hi[k]) < b.hi[k]) f.hi[k] = std::nextafter(f.hi[k], HUGE_VALF);
   }
   return f;
+}
+
+void FragmentBoxes::update_block(std::size_t j) {
+  FragmentBox b{};
+  b.valid = true;
+  for (int k = 0; k < 3; ++k) b.lo[k] = HUGE_VALF, b.hi[k] = -HUGE_VALF;
+  const std::size_t end = std::min(each.size(), (j + 1) * kBlock);
+  for (std::size_t i = j * kBlock; i < end; ++i) {
+    const FragmentBox& x = each[i];
+    b.valid &= x.valid;
+    for (int k = 0; k < 3; ++k) b.lo[k] = std::min(b.lo[k], x.lo[k]), b.hi[k] = std::max(b.hi[k], x.hi[k]);
+  }
+  blocks[j] = b;
 }
 
 const std::vector<BoundaryFragment>& Solid::boundary() const {

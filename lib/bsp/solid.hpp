@@ -51,6 +51,18 @@ struct FragmentBox {
 };
 FragmentBox fragment_box(const kernel::ConvexPolygon& polygon);
 
+/// Boxes of a solid's boundary fragments: one per fragment (same order), and one per run of
+/// kBlock consecutive fragments (the union of theirs; invalid if one of them is), so a set
+/// operation finds the fragments near the other operand without testing every fragment's box.
+struct FragmentBoxes {
+  static constexpr std::size_t kBlock = 32;
+  std::vector<FragmentBox> each;
+  std::vector<FragmentBox> blocks;  ///< block_count(each.size()) boxes, or empty if not computed
+  static std::size_t block_count(std::size_t fragments) { return (fragments + kBlock - 1) / kBlock; }
+  /// Recomputes blocks[j] from `each` (blocks must have its final size).
+  void update_block(std::size_t j);
+};
+
 class Solid {
  public:
   /// The empty solid (a single out leaf).
@@ -70,7 +82,7 @@ class Solid {
   /// The carried boundary fragments (planes of planes()); empty unless has_boundary().
   [[nodiscard]] const std::vector<BoundaryFragment>& boundary() const;
   /// Boxes of boundary() (same order), or empty if not computed.
-  [[nodiscard]] const std::vector<FragmentBox>& boundary_boxes() const { return boundary_boxes_; }
+  [[nodiscard]] const FragmentBoxes& boundary_boxes() const { return boundary_boxes_; }
 
   /// Low-level constructor used by the tree algorithms; checks sizes only. The storage may
   /// hold nodes that are not reachable from the root (left over by in-place operations);
@@ -79,7 +91,7 @@ class Solid {
   Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
         std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size = 0,
         std::optional<std::vector<BoundaryFragment>> boundary = std::nullopt,
-        std::vector<FragmentBox> boundary_boxes = {});
+        FragmentBoxes boundary_boxes = {});
 
   /// Storage moved out of a solid (which becomes empty), for in-place operations.
   struct Storage {
@@ -89,7 +101,7 @@ class Solid {
     TreeRef root;
     std::size_t compacted_size;  ///< node count after the last compaction
     std::optional<std::vector<BoundaryFragment>> boundary;
-    std::vector<FragmentBox> boundary_boxes;
+    FragmentBoxes boundary_boxes;
   };
   Storage release() &&;
 
@@ -100,7 +112,7 @@ class Solid {
   TreeRef root_ = kOut;
   std::size_t compacted_size_ = 0;
   std::optional<std::vector<BoundaryFragment>> boundary_ = std::vector<BoundaryFragment>{};
-  std::vector<FragmentBox> boundary_boxes_;
+  FragmentBoxes boundary_boxes_;
 };
 
 /// Size and shape of a tree.

@@ -181,7 +181,7 @@ Solid compact(Arena& arena, TreeRef root) {
     for (auto& c : poly.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
   }
   std::optional<std::vector<BoundaryFragment>> boundary;
-  std::vector<FragmentBox> boxes = std::move(arena.boundary_boxes);
+  FragmentBoxes boxes = std::move(arena.boundary_boxes);
   if (arena.boundary) {
     boundary = std::move(*arena.boundary);
     arena.boundary.reset();

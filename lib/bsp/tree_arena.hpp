@@ -28,7 +28,7 @@ struct Arena {
   std::size_t compacted_size = 0;  ///< of an adopted solid
   /// Boundary of the tree being built, when known; compact() keeps it (and its planes).
   std::optional<std::vector<BoundaryFragment>> boundary;
-  std::vector<FragmentBox> boundary_boxes;  ///< of `boundary`, same order, or empty
+  FragmentBoxes boundary_boxes;  ///< of `boundary`, or empty
 
  private:
   std::int32_t last_shift_ = 0;  ///< plane index shift of the last append (0 after adopt)
