@@ -1,5 +1,7 @@
 #include "kernel/plane.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -13,6 +15,22 @@ __extension__ typedef unsigned __int128 UInt128;
 
 UInt128 magnitude(Int128 v) { return v < 0 ? UInt128(-v) : UInt128(v); }
 
+// Binary gcd without data-dependent branches in the loop (min/max compile to conditional moves):
+// the branches of std::gcd's loop are mispredicted on random operands.
+std::uint64_t gcd64(std::uint64_t a, std::uint64_t b) {
+  if (a == 0) return b;
+  if (b == 0) return a;
+  const int shift = std::countr_zero(a | b);
+  a >>= std::countr_zero(a);
+  do {
+    b >>= std::countr_zero(b);
+    const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
+    a = lo;
+    b = hi - lo;
+  } while (b != 0);
+  return a << shift;
+}
+
 UInt128 gcd(UInt128 a, UInt128 b) {
   // 128-bit remainders only while a value needs them, then the 64-bit binary gcd.
   while (b != 0 && ((a | b) >> 64) != 0) {
@@ -21,7 +39,7 @@ UInt128 gcd(UInt128 a, UInt128 b) {
     b = t;
   }
   if (b == 0) return a;
-  return std::gcd(std::uint64_t(a), std::uint64_t(b));
+  return gcd64(std::uint64_t(a), std::uint64_t(b));
 }
 
 bool fits(Int128 v, int bits) { return magnitude(v) <= (UInt128(1) << bits); }
@@ -30,10 +48,21 @@ bool fits(Int128 v, int bits) { return magnitude(v) <= (UInt128(1) << bits); }
 
 Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d) {
   if (a == 0 && b == 0 && c == 0) throw InvalidInput("plane with a zero normal");
+  const UInt128 ma = magnitude(a), mb = magnitude(b), mc = magnitude(c);
+  const bool narrow = ((ma | mb | mc) >> 63) == 0;  // the usual case: 64-bit arithmetic for the normal
+  UInt128 g = narrow ? UInt128(gcd64(gcd64(std::uint64_t(ma), std::uint64_t(mb)), std::uint64_t(mc)))
+                     : gcd(gcd(ma, mb), mc);
   // The offset (up to 128 bits, the slow part) only matters when the normal has a common factor.
-  UInt128 g = gcd(gcd(magnitude(a), magnitude(b)), magnitude(c));
   if (g != 1) g = gcd(g, magnitude(d));
-  if (g != 1) a /= Int128(g), b /= Int128(g), c /= Int128(g), d /= Int128(g);
+  if (g != 1) {
+    if (narrow) {  // g divides the normal, so it fits 63 bits too
+      const auto g64 = std::int64_t(g);
+      a = std::int64_t(a) / g64, b = std::int64_t(b) / g64, c = std::int64_t(c) / g64;
+    } else {
+      a /= Int128(g), b /= Int128(g), c /= Int128(g);
+    }
+    d /= Int128(g);
+  }
   if (!fits(a, kNormalBits) || !fits(b, kNormalBits) || !fits(c, kNormalBits) ||
       !fits(d, kOffsetBits)) {
     std::ostringstream s;
