@@ -11,6 +11,7 @@
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
+#include "bench/peers/cases.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
@@ -186,6 +187,65 @@ TEST(BoundaryMerge, RandomGridBoxesMatchAVoxelCount) {
   const double count = double(std::count(voxel.begin(), voxel.end(), true));
   EXPECT_TRUE(CarriedMatchesExtracted(acc));
   EXPECT_NEAR(vol(acc), count, 1e-12 * count);
+}
+
+// The boxes a solid carries for its fragments are those of its fragments, and each block box is
+// the union of its fragments' boxes (recomputed here), after every in-place operation.
+::testing::AssertionResult BoxesAreCurrent(const Solid& s) {
+  const FragmentBoxes& b = s.boundary_boxes();
+  const auto& f = s.boundary();
+  if (b.each.empty()) return ::testing::AssertionFailure() << "no boxes carried";
+  if (b.each.size() != f.size()) return ::testing::AssertionFailure() << "box count " << b.each.size();
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const FragmentBox x = fragment_box(f[i].polygon), &y = b.each[i];
+    if (x.valid != y.valid || !std::equal(x.lo, x.lo + 3, y.lo) || !std::equal(x.hi, x.hi + 3, y.hi))
+      return ::testing::AssertionFailure() << "stale box of fragment " << i;
+  }
+  const std::size_t w = FragmentBoxes::kBlock;
+  if (b.blocks.size() != (f.size() + w - 1) / w) return ::testing::AssertionFailure() << "block count";
+  for (std::size_t j = 0; j < b.blocks.size(); ++j) {
+    bool valid = true;
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (std::size_t i = j * w; i < std::min(f.size(), j * w + w); ++i)
+      for (int k = 0; k < 3; ++k) {
+        valid &= b.each[i].valid;
+        lo[k] = std::min(lo[k], b.each[i].lo[k]), hi[k] = std::max(hi[k], b.each[i].hi[k]);
+      }
+    const FragmentBox& y = b.blocks[j];
+    if (valid != y.valid || (valid && (!std::equal(lo, lo + 3, y.lo) || !std::equal(hi, hi + 3, y.hi))))
+      return ::testing::AssertionFailure() << "stale box of block " << j;
+  }
+  return ::testing::AssertionSuccess();
+}
+
+TEST(BoundaryMerge, BlockBoxesFollowInPlaceUnionsAndDifferences) {
+  // The first 150 boxes of the benchmark's LCG (tests/bench/bsp/CASES.md), then differences of
+  // every seventh one: culling by block boxes must not lose a fragment (exact volumes).
+  const std::vector<bench_cases::Box> boxes = bench_cases::random_boxes(150);
+  Solid acc;
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const auto& b = boxes[k];
+    acc = std::move(acc) | box({b.lo[0], b.lo[1], b.lo[2]}, {b.hi[0], b.hi[1], b.hi[2]});
+    if (k % 25 == 24) {
+      ASSERT_TRUE(BoxesAreCurrent(acc)) << "after union " << k;
+    }
+  }
+  EXPECT_NEAR(vol(acc), bench_cases::union_volume(boxes), 1e-9 * bench_cases::union_volume(boxes));
+  EXPECT_TRUE(CarriedMatchesExtracted(acc));
+  // Differences: A - (union of the removed) has the volume |A| - |A ∩ removed| = |A ∪ removed| - |removed|.
+  std::vector<bench_cases::Box> removed;
+  for (std::size_t k = 0; k < boxes.size(); k += 7) {
+    bench_cases::Box r = boxes[k];
+    for (int i = 0; i < 3; ++i) r.lo[i] += 0.25, r.hi[i] += 0.125;  // overlapping, not equal
+    removed.push_back(r);
+    acc = std::move(acc) - box({r.lo[0], r.lo[1], r.lo[2]}, {r.hi[0], r.hi[1], r.hi[2]});
+    ASSERT_TRUE(BoxesAreCurrent(acc)) << "after difference " << k;
+  }
+  std::vector<bench_cases::Box> all = boxes;
+  all.insert(all.end(), removed.begin(), removed.end());
+  const double expected = bench_cases::union_volume(all) - bench_cases::union_volume(removed);
+  EXPECT_NEAR(vol(acc), expected, 1e-9 * expected);
+  EXPECT_TRUE(CarriedMatchesExtracted(acc));
 }
 
 TEST(BoundaryMerge, RandomChainsOfMixedSolids) {
