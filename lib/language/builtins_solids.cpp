@@ -1,6 +1,7 @@
 // Built-ins of the solids area: primitives, transforms, classification, measures, mesh export
 // and import (lib/bsp, lib/mesh; Ihm & Naylor 1990 sec. 6, Naylor et al. 1990).
 #include <filesystem>
+#include <sstream>
 
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
@@ -10,7 +11,9 @@
 #include "language/builtins.hpp"
 #include "language/solid_values.hpp"
 #include "mesh/mesh_io.hpp"
+#include "kernel/grid.hpp"
 #include "mesh/mesh_validation.hpp"
+#include "mesh/self_intersection.hpp"
 #ifdef SCULPT_HAVE_FROM_MESH
 #include "bsp/from_mesh.hpp"
 #endif
@@ -24,6 +27,28 @@ Eigen::Vector3d vector3(const Arguments& args, std::size_t i) {
 }
 
 const Solid& solid_arg(const Arguments& args, std::size_t i) { return args.object<SolidValue>(i, "a solid").solid; }
+
+// The exact kernel snaps vertices to its grid (docs/kernel.md). A valid mesh with features below
+// the grid step can become self-intersecting that way (faces 1e-6 apart now touch) without any
+// face turning over, which from_mesh would catch: check the snapped copy as well.
+std::string snapped_self_intersection(const PolygonMesh& mesh) {
+  PolygonMesh snapped = mesh;
+  bool moved = false;
+  for (Eigen::Vector3d& v : snapped.vertices) {
+    const Eigen::Vector3d g = kernel::to_world(kernel::snap(v));
+    moved = moved || g != v;
+    v = g;
+  }
+  if (!moved) return {};
+  const std::vector<FacePair> pairs = find_self_intersections(snapped, {.max_pairs = 1});
+  if (pairs.empty()) return {};
+  const Eigen::Vector3d& near = mesh.vertices[std::size_t(mesh.faces[std::size_t(pairs[0].face_a)][0])];
+  std::ostringstream out;
+  out << "faces " << pairs[0].face_a << " and " << pairs[0].face_b << " (near " << near.x() << ", " << near.y() << ", "
+      << near.z() << ") meet when the vertices are snapped to the exact kernel's grid (step 2^-" << kernel::kGridShift
+      << "): the mesh has features smaller than the grid step";
+  return out.str();
+}
 
 CircularOptions circular(const Arguments& args, std::size_t i) {
   CircularOptions options;
@@ -154,6 +179,7 @@ void register_solids(BuiltinTable& table) {
                const PolygonMesh mesh = read_mesh(path);
                const ValidationReport report = check_closed_manifold(mesh);
                if (!report.ok()) args.fail(path + " is not a closed manifold: " + report.summary(3));
+               if (const std::string e = snapped_self_intersection(mesh); !e.empty()) args.fail(path + ": " + e);
 #ifdef SCULPT_HAVE_FROM_MESH
                return solid_value(from_mesh(mesh));
 #else

@@ -198,5 +198,33 @@ TEST(Builtins, ExportWritesAClosedMeshThatImportReads) {
             "t.bsp:1:1: error: export: ");
 }
 
+// Two cubes 1e-6 apart form a valid mesh; snapped to the kernel's grid (step 2^-15) they share a
+// face. import must refuse that with the faces and the place, not build a solid from it.
+TEST(Builtins, ImportRefusesAMeshThatSelfIntersectsOnceSnapped) {
+  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  std::filesystem::create_directories(dir);
+  auto write_two_cubes = [&](const std::string& name, double gap) {
+    const std::string path = (dir / name).string();
+    std::ofstream f(path);
+    f.precision(17);
+    f << "OFF\n16 12 0\n";
+    for (double x0 : {0.0, 1.0 + gap})
+      for (int k = 0; k < 8; ++k) f << x0 + (k & 1) << ' ' << ((k >> 1) & 1) << ' ' << ((k >> 2) & 1) << '\n';
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (int c : {0, 8})
+      for (const auto& q : quads) f << "4 " << q[0] + c << ' ' << q[1] + c << ' ' << q[2] + c << ' ' << q[3] + c << '\n';
+    return path;
+  };
+  const std::string far = write_two_cubes("two_cubes_far.off", 0.5);
+  const auto ok = run_script("print(volume(import(\"" + far + "\")))");
+  if (ok.error.find("not available in this build") != std::string::npos) GTEST_SKIP();
+  EXPECT_EQ(ok.error, "");
+  EXPECT_NEAR(std::stod(ok.out), 2.0, 1e-12);  // two unit cubes
+  const std::string near = write_two_cubes("two_cubes_near.off", 1e-6);
+  const std::string e = first_error_line("s = import(\"" + near + "\")");
+  EXPECT_NE(e.find("t.bsp:1:5: error: import: "), std::string::npos) << e;
+  EXPECT_NE(e.find("meet when the vertices are snapped to the exact kernel's grid"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace sculpt::language
