@@ -155,18 +155,22 @@ Solid compact(Arena& arena, TreeRef root) {
   // negative for the others; a slot whose number is cleared to -1 is free or final.
   std::vector<ConvexPolygon>& polygons = arena.polygons;
   auto target = [&](std::size_t i) { return result[i] < 0 ? std::size_t(-1) : k - 1 - std::size_t(result[i]); };
+  ConvexPolygon carried[2];  // the polygon on its way and the one it displaces (two moves each)
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     std::size_t t = target(i);
     if (t == std::size_t(-1) || t == i) continue;
-    ConvexPolygon carry = std::move(polygons[i]);
+    int c = 0;
+    carried[c] = std::move(polygons[i]);
     result[i] = -1;
     while (true) {
       const std::size_t next = target(t);
       if (next == std::size_t(-1)) {
-        polygons[t] = std::move(carry);
+        polygons[t] = std::move(carried[c]);
         break;
       }
-      std::swap(carry, polygons[t]);
+      carried[1 - c] = std::move(polygons[t]);
+      polygons[t] = std::move(carried[c]);
+      c = 1 - c;
       result[t] = -1;
       t = next;
     }
