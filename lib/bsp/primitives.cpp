@@ -177,7 +177,7 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
                                             const std::vector<double>& scale) {
   const std::size_t r = ring.size();
   const int n = int(face[0].size());
-  auto wrap = [n](int j) { return std::size_t(((j % n) + n) % n); };
+  auto wrap = [n](int j) { return std::size_t(j < 0 ? j + n : (j >= n ? j - n : j)); };  // j in [-1, n]
   std::vector<BoundaryFragment> faces;
   faces.reserve((r - 1) * std::size_t(n) + 2);
   struct Label {
