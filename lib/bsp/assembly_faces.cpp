@@ -1,7 +1,5 @@
 #include "bsp/assembly_faces.hpp"
 
-#include "bsp/boundary_fragments.hpp"
-
 #include <algorithm>
 #include <bit>
 
@@ -9,31 +7,55 @@ namespace sculpt::detail {
 
 using kernel::Plane;
 
+namespace {
+
+std::uint64_t plane_hash(const Plane& p) {
+  std::uint64_t h = std::uint64_t(p.a) * 0x9E3779B97F4A7C15ull;
+  h = (h ^ (h >> 29)) + std::uint64_t(p.b) * 0xC2B2AE3D27D4EB4Full;
+  h = (h ^ (h >> 31)) + std::uint64_t(p.c) * 0x165667B19E3779F9ull;
+  h = (h ^ (h >> 27)) + std::uint64_t(p.d) * 0x27D4EB2F165667C5ull + std::uint64_t(p.d >> 64);
+  return h ^ (h >> 33);
+}
+
+}  // namespace
+
 PlaneIds canonical_plane_ids(const kernel::PlaneTable& planes) {
   const std::size_t n = std::size_t(planes.size());
   PlaneIds r;
   r.id.resize(n);
   r.negated.resize(n);
-  // Open addressing over the normalized planes (sign fixed by the first non-zero coefficient).
-  std::vector<Plane> normalized(n);
+  // Open addressing over the normalized planes (sign fixed by the first non-zero coefficient),
+  // planes read in order; the probes are random, so the slot of the plane a few ahead is
+  // prefetched.
   std::size_t slots = 16;
   while (slots < 2 * n) slots *= 2;
+  const std::size_t mask = slots - 1;
   std::vector<std::int32_t> table(slots, -1);  // slot -> plane index of the id's representative
-  auto hash = [](const Plane& p) {
-    std::uint64_t h = std::uint64_t(p.a) * 0x9E3779B97F4A7C15ull;
-    h = (h ^ (h >> 29)) + std::uint64_t(p.b) * 0xC2B2AE3D27D4EB4Full;
-    h = (h ^ (h >> 31)) + std::uint64_t(p.c) * 0x165667B19E3779F9ull;
-    h = (h ^ (h >> 27)) + std::uint64_t(p.d) * 0x27D4EB2F165667C5ull + std::uint64_t(p.d >> 64);
-    return h ^ (h >> 33);
+  auto negative = [](const Plane& p) { return p.a < 0 || (p.a == 0 && (p.b < 0 || (p.b == 0 && p.c < 0))); };
+  auto home = [&](std::size_t i) {
+    const Plane& p = planes[std::int32_t(i)];
+    return std::size_t(plane_hash(negative(p) ? p.opposite() : p)) & mask;
   };
+  constexpr std::size_t kAhead = 8;
+  std::size_t homes[kAhead];
+  for (std::size_t i = 0; i < std::min(n, kAhead); ++i) homes[i] = home(i);
   std::uint32_t ids = 0;
   for (std::size_t i = 0; i < n; ++i) {
+    std::size_t h = homes[i % kAhead];
+    if (i + kAhead < n) {
+      homes[i % kAhead] = home(i + kAhead);
+      __builtin_prefetch(&table[homes[i % kAhead]]);
+    }
     const Plane& p = planes[std::int32_t(i)];
-    const bool neg = p.a < 0 || (p.a == 0 && (p.b < 0 || (p.b == 0 && p.c < 0)));
-    normalized[i] = neg ? p.opposite() : p;
+    const bool neg = negative(p);
     r.negated[i] = neg ? 1 : 0;
-    std::size_t h = hash(normalized[i]) & (slots - 1);
-    while (table[h] >= 0 && !(normalized[std::size_t(table[h])] == normalized[i])) h = (h + 1) & (slots - 1);
+    // Equal up to orientation: the same plane when the signs agree, else the opposite.
+    auto same = [&](std::int32_t j) {
+      const Plane& q = planes[j];
+      return r.negated[std::size_t(j)] == r.negated[i] ? q == p
+                                                        : (q.a == -p.a && q.b == -p.b && q.c == -p.c && q.d == -p.d);
+    };
+    while (table[h] >= 0 && !same(table[h])) h = (h + 1) & mask;
     if (table[h] < 0) {
       table[h] = std::int32_t(i);
       r.id[i] = ids++;
@@ -70,24 +92,6 @@ void FaceList::copy_face(const FaceList& other, int f) {
   vertex.insert(vertex.end(), other.vertex.begin() + b, other.vertex.begin() + e);
   line.insert(line.end(), other.line.begin() + b, other.line.begin() + e);
   start.back() += int(e - b);
-}
-
-FaceList fragment_faces(const Fragments& fragments, const std::vector<int>& vertex_of) {
-  FaceList faces;
-  faces.reserve(fragments.fragments.size(), vertex_of.size());
-  std::size_t first = 0;  // first corner of the fragment in vertex_of
-  for (const Fragment& fr : fragments.fragments) {
-    const auto& corners = fr.polygon.corners;
-    const int m = int(corners.size());
-    faces.open_face(fr.polygon.support, fr.flip);
-    for (int k = 0; k < m; ++k) {
-      const int ck = fr.flip ? m - 1 - k : k;                   // corner at final position k
-      const int edge_corner = fr.flip ? (ck - 1 + m) % m : ck;  // corner whose edge leads to k + 1
-      faces.add_corner(vertex_of[first + std::size_t(ck)], corners[std::size_t(edge_corner)].edge);
-    }
-    first += std::size_t(m);
-  }
-  return faces;
 }
 
 OutgoingEdges::OutgoingEdges(const FaceList& faces, int vertex_count)

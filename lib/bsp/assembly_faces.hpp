@@ -63,12 +63,6 @@ struct FaceList {
   void copy_face(const FaceList& other, int f);
 };
 
-struct Fragments;
-/// The fragments as faces in final orientation (a flipped fragment's corners reversed), with
-/// the plane of the edge leaving each corner; vertex_of maps the fragments' corners (in order)
-/// to vertices (merge_vertices).
-FaceList fragment_faces(const Fragments& fragments, const std::vector<int>& vertex_of);
-
 /// Disjoint sets over 0..n-1 with path halving; the root of a set is its smallest element.
 class UnionFind {
  public:

@@ -98,15 +98,31 @@ class JunctionRemover {
         at[std::size_t(fill[std::size_t(open_[i].w)]++)] = int(i);
       }
     }
-    for (std::size_t v = 0; v < nv; ++v)
-      for (int a = at_start[v]; a < at_start[v + 1]; ++a)
-        for (int b = a + 1; b < at_start[v + 1]; ++b) {
-          const OpenEdge& x = open_[std::size_t(at[std::size_t(a)])];
-          const OpenEdge& y = open_[std::size_t(at[std::size_t(b)])];
-          if (x.line == y.line || uf.find(at[std::size_t(a)]) == uf.find(at[std::size_t(b)])) continue;
+    // Edges of one plane pair are one group already: one test per pair of distinct plane pairs
+    // at v (all edges of a pair lie on one line through v, so any of them decides).
+    // (An edge from v to v, if one ever occurs, lies on every line through v: its vertex falls
+    // back to testing every pair.)
+    std::vector<int> lines;  // one open edge per distinct plane pair at v
+    for (std::size_t v = 0; v < nv; ++v) {
+      lines.clear();
+      bool degenerate = false;
+      for (int a = at_start[v]; a < at_start[v + 1]; ++a) {
+        const int i = at[std::size_t(a)];
+        degenerate = degenerate || open_[std::size_t(i)].u == open_[std::size_t(i)].w;
+        bool seen = false;
+        for (const int j : lines) seen = seen || open_[std::size_t(j)].line == open_[std::size_t(i)].line;
+        if (!seen) lines.push_back(i);
+      }
+      if (degenerate) lines.assign(at.begin() + at_start[v], at.begin() + at_start[v + 1]);
+      for (std::size_t a = 0; a < lines.size(); ++a)
+        for (std::size_t b = a + 1; b < lines.size(); ++b) {
+          const OpenEdge& x = open_[std::size_t(lines[a])];
+          const OpenEdge& y = open_[std::size_t(lines[b])];
+          if (uf.find(lines[a]) == uf.find(lines[b])) continue;
           const int far = y.u == int(v) ? y.w : y.u;
-          if (on_line(x, far)) uf.unite(at[std::size_t(a)], at[std::size_t(b)]);
+          if (on_line(x, far)) uf.unite(lines[a], lines[b]);
         }
+    }
     // Each group: its vertices sorted along the line (exactly), then the inserts of its edges.
     std::vector<int> member_start(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ++member_start[std::size_t(uf.find(int(i))) + 1];

@@ -8,14 +8,15 @@
 
 namespace sculpt::detail {
 
-// The stages, each in its own file: exact vertex merging (vertex_merge), T-junction removal
-// (junction_removal), coplanar merging and straight vertices (assembly_coplanar), one vertex
-// copy per sheet and output (assembly_sheets); shared data in assembly_faces.
+// The stages, each in its own file: exact vertex merging and the fragments as faces on the
+// merged vertices (vertex_merge), T-junction removal (junction_removal), coplanar merging and
+// straight vertices (assembly_coplanar), one vertex copy per sheet and output
+// (assembly_sheets); shared data in assembly_faces.
 PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& options) {
-  const PlaneIds ids = canonical_plane_ids(fragments.planes);
-  const MergedVertices merged = merge_vertices(fragments, ids);
+  MergedFragments merged = merge_vertices(fragments);
+  const PlaneIds& ids = merged.ids;
   const VertexGeometry geometry(fragments.planes, ids, merged.vertices);
-  FaceList faces = remove_t_junctions(fragment_faces(fragments, merged.vertex_of), geometry, ids).faces;
+  FaceList faces = remove_t_junctions(std::move(merged.faces), geometry, ids).faces;
   faces = merge_coplanar_faces(faces, merged.vertices.size(), ids);
   faces = remove_straight_vertices(faces, merged.vertices.size(), geometry);
   const Sheets sheets = split_non_manifold(std::move(faces), merged.vertices, fragments.planes);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <climits>
 #include <cmath>
 #include <cstdint>
 
@@ -15,226 +14,258 @@ namespace {
 
 using IdTriple = std::array<std::uint32_t, 3>;  // canonical plane ids, sorted
 
-std::uint64_t hash_triple(const IdTriple& k) {
-  std::uint64_t h = (std::uint64_t(k[0]) << 32 | k[1]) * 0x9E3779B97F4A7C15ull;
-  h ^= (h >> 29) + std::uint64_t(k[2]) * 0xC2B2AE3D27D4EB4Full;
-  return h ^ (h >> 32);
+bool same_key(const IdTriple& x, const IdTriple& y) { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; }
+
+IdTriple sorted(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  if (a > b) std::swap(a, b);
+  if (b > c) std::swap(b, c);
+  if (a > b) std::swap(a, b);
+  return {a, b, c};
 }
 
-// Corners with the same triple (as a set of planes up to orientation) are one class: the same
-// point, known without arithmetic. Only classes are compared exactly.
-struct Classes {
-  std::vector<int> of_corner;         // corner -> class
-  std::vector<IdTriple> key;          // class -> sorted canonical ids
-  std::vector<PlaneTriple> triple;    // class -> triple of its first corner
-  std::vector<ApproxPoint> at;        // class -> approximation of its first corner
-};
-
-Classes group_corners(const Fragments& fragments, const PlaneIds& ids, std::size_t corners) {
-  Classes c;
-  c.of_corner.resize(corners);
-  c.key.reserve(corners / 2 + 16);
-  c.triple.reserve(corners / 2 + 16);
-  c.at.reserve(corners / 2 + 16);
-  // Keys and hashes first, so the table probes can be prefetched a few corners ahead (the
-  // table is larger than the caches and the probes are random).
-  struct Keyed {
-    IdTriple key;
-    std::uint32_t hash;
-  };
-  std::vector<Keyed> keyed(corners);
-  std::size_t i = 0;
-  for (const Fragment& fr : fragments.fragments) {
-    const std::uint32_t s = ids.id[std::size_t(fr.polygon.support)];
-    for (const auto& corner : fr.polygon.corners) {
-      IdTriple k = {s, ids.id[std::size_t(corner.p)], ids.id[std::size_t(corner.q)]};
-      if (k[0] > k[1]) std::swap(k[0], k[1]);
-      if (k[1] > k[2]) std::swap(k[1], k[2]);
-      if (k[0] > k[1]) std::swap(k[0], k[1]);
-      keyed[i++] = {k, std::uint32_t(hash_triple(k))};
-    }
-  }
-  std::size_t slots = 16;
-  while (slots < corners + corners / 2) slots *= 2;
-  struct Slot {
-    IdTriple key;
-    int cls;  // -1: empty
-  };
-  std::vector<Slot> table(slots, Slot{{0, 0, 0}, -1});
-  constexpr std::size_t kAhead = 8;
-  i = 0;
-  for (const Fragment& fr : fragments.fragments)
-    for (const auto& corner : fr.polygon.corners) {
-      if (i + kAhead < corners) __builtin_prefetch(&table[keyed[i + kAhead].hash & (slots - 1)]);
-      const IdTriple& k = keyed[i].key;
-      std::size_t h = keyed[i].hash & (slots - 1);
-      while (table[h].cls >= 0 && table[h].key != k) h = (h + 1) & (slots - 1);
-      if (table[h].cls < 0) {
-        table[h] = {k, int(c.key.size())};
-        c.key.push_back(k);
-        c.triple.push_back({fr.polygon.support, corner.p, corner.q});
-        c.at.push_back(corner.at);
-      }
-      c.of_corner[i++] = table[h].cls;
-    }
-  return c;
-}
-
-class ClassMerger {
+// Corners are visited in order and each is resolved at once. A class is the set of corners with
+// one triple (as a set of planes up to orientation): the same point without arithmetic. Classes
+// are entered in the cells of a grid of one grid unit that their approximation's error box
+// touches (far above the approximation errors: nearly always one cell). A corner looks for its
+// class in its cells; a new class is compared exactly with the vertices of the classes in its
+// cells and joins the one it equals, else it starts a new vertex. Equal points have overlapping
+// error boxes, so they share the cell of the exact point: no equal pair is missed, and a new
+// class equals at most one vertex (two equal vertices would have been merged).
+class CornerMerger {
  public:
-  ClassMerger(const kernel::PlaneTable& planes, const PlaneIds& ids, const Classes& c)
-      : planes_(planes), ids_(ids), c_(c), uf_(c.key.size()) {}
-
-  // Candidates share a cell of a grid of one grid unit (far above the approximation errors; a
-  // class within its error of a cell boundary is entered in every cell it may belong to). Cells
-  // are numbered row-major within the bounding box of all cells; a box too large for 64 bits
-  // folds coordinates (cells that collide are rejected by the approximations).
-  UnionFind run() {
-    const std::size_t n = c_.key.size();
-    constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
-    struct Range {
-      std::int64_t lo[3], hi[3];
-    };
-    std::vector<Range> ranges(n);
-    std::vector<int> wide;
-    std::int64_t min[3] = {INT64_MAX, INT64_MAX, INT64_MAX}, max[3] = {INT64_MIN, INT64_MIN, INT64_MIN};
-    for (std::size_t i = 0; i < n; ++i) {
-      const ApproxPoint& a = c_.at[i];
-      const double v[3] = {a.x, a.y, a.z};
-      Range& r = ranges[i];
-      bool too_wide = !(a.err >= 0 && a.err < 0.25);
-      for (int k = 0; k < 3 && !too_wide; ++k) {
-        r.lo[k] = std::int64_t(std::floor(v[k] - a.err + kShift));
-        r.hi[k] = std::int64_t(std::floor(v[k] + a.err + kShift));
-        min[k] = std::min(min[k], r.lo[k]);
-        max[k] = std::max(max[k], r.hi[k]);
-      }
-      if (too_wide) {
-        wide.push_back(int(i));  // a large error bound (nearly dependent planes): brute force
-        r.lo[0] = 1, r.hi[0] = 0;  // no cells
-      }
-    }
-    // Row-major numbering when the box has fewer than 2^62 cells, else folded coordinates.
-    std::uint64_t size[3] = {1, 1, 1};
-    double cells = 1;
-    for (int k = 0; k < 3; ++k)
-      if (max[k] >= min[k]) cells *= double(max[k] - min[k]) + 1;
-    const bool exact = cells < 0x1p62;
-    for (int k = 0; k < 3; ++k)
-      if (exact && max[k] >= min[k]) size[k] = std::uint64_t(max[k] - min[k] + 1);
-    auto cell = [&](std::int64_t x, std::int64_t y, std::int64_t z) -> std::uint64_t {
-      if (exact)
-        return (std::uint64_t(x - min[0]) * size[1] + std::uint64_t(y - min[1])) * size[2] + std::uint64_t(z - min[2]);
-      constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
-      return (std::uint64_t(x) & kMask) << 42 | (std::uint64_t(y) & kMask) << 21 | (std::uint64_t(z) & kMask);
-    };
-    // Cells in a hash table, each with the chain of classes entered so far: a class is compared
-    // with the classes already in its cells, so classes are visited in their own (spatially
-    // coherent) order and nothing is sorted.
-    std::size_t entries = 0;
-    for (const Range& r : ranges)
-      if (r.lo[0] <= r.hi[0]) entries += std::size_t((r.hi[0] - r.lo[0] + 1) * (r.hi[1] - r.lo[1] + 1) * (r.hi[2] - r.lo[2] + 1));
-    std::size_t slots = 16;
-    while (slots < 2 * entries) slots *= 2;
-    const int shift = 64 - std::countr_zero(slots);
-    struct Slot {
-      std::uint64_t cell;
-      int head;  // last entry of the cell's chain, -1: empty slot
-    };
-    std::vector<Slot> table(slots, Slot{0, -1});
-    std::vector<int> entry_class, entry_next;
-    entry_class.reserve(entries);
-    entry_next.reserve(entries);
-    for (const int a : wide)
-      for (std::size_t b = 0; b < n; ++b)
-        if (std::size_t(a) != b) consider(a, int(b));
-    for (std::size_t i = 0; i < n; ++i) {
-      const Range& r = ranges[i];
-      for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
-        for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
-          for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) {
-            const std::uint64_t k = cell(x, y, z);
-            std::size_t h = std::size_t((k * 0x9E3779B97F4A7C15ull) >> shift);
-            while (table[h].head >= 0 && table[h].cell != k) h = (h + 1) & (slots - 1);
-            for (int e = table[h].head; e >= 0; e = entry_next[std::size_t(e)]) consider(entry_class[std::size_t(e)], int(i));
-            entry_class.push_back(int(i));
-            entry_next.push_back(table[h].head);
-            table[h] = {k, int(entry_class.size()) - 1};
-          }
-    }
-    return std::move(uf_);
+  CornerMerger(const kernel::PlaneTable& planes, const PlaneIds& ids, AssemblyVertices& vertices, std::size_t corners)
+      : planes_(planes), ids_(ids), v_(vertices) {
+    std::size_t slots = 64;
+    while (slots < corners / 2) slots *= 2;
+    slots_.assign(slots, Slot{0, kEmpty});
+    shift_ = 32 - std::countr_zero(slots);
+    entries_.reserve(corners / 2 + 16);
+    class_key_.reserve(corners / 2 + 16);
+    class_vertex_.reserve(corners / 2 + 16);
+    v_.at.reserve(corners / 3 + 16);
+    v_.triple.reserve(corners / 3 + 16);
+    vertex_ids_.reserve(corners / 3 + 16);
   }
+
+  // Queues corner `c` of a fragment on plane `support` (canonical id s); its vertex is written
+  // to *out once resolved (a few corners later, so that its cells can be prefetched: the table
+  // is larger than the caches and the probes are random). Corners are resolved in order.
+  void add(std::int32_t support, std::uint32_t s, const kernel::Corner& c, int* out) {
+    if (queued_ == kAhead) resolve(queue_[next_]), --queued_;
+    Pending& p = queue_[(next_ + queued_) % kAhead];
+    prepare(support, s, c, out, p);
+    ++queued_;
+  }
+  void flush() {
+    for (; queued_ > 0; --queued_) resolve(queue_[next_]);
+  }
+
+  // Classes (key, vertex) in order: every class's planes are known to pass through its vertex.
+  [[nodiscard]] const std::vector<IdTriple>& class_keys() const { return class_key_; }
+  [[nodiscard]] const std::vector<int>& class_vertices() const { return class_vertex_; }
 
  private:
-  void consider(int a, int b) {
-    if (uf_.find(a) == uf_.find(b)) return;
-    const ApproxPoint& pa = c_.at[std::size_t(a)];
-    const ApproxPoint& pb = c_.at[std::size_t(b)];
-    if (pa.err >= 0 && pb.err >= 0) {  // a filter only: disjoint error boxes are different points
-      const double tol = pa.err + pb.err;
-      if (std::fabs(pb.x - pa.x) > tol || std::fabs(pb.y - pa.y) > tol || std::fabs(pb.z - pa.z) > tol) return;
-    }
-    if (same_point(a, b)) uf_.unite(a, b);
+  static constexpr int kEmpty = -1, kNoEntry = -2;
+  static constexpr int kAhead = 8;
+  // Cells are identified by 32 bits of a hash of their coordinates (21 bits of each, folded):
+  // cells that collide share a chain and are told apart by the approximations. The slot of a
+  // hash is its top bits, so the table can grow without the coordinates.
+  struct Slot {
+    std::uint32_t cell;
+    int head;  // last entry of the cell's chain: kNoEntry if none yet, kEmpty: free slot
+  };
+  struct Entry {  // a class entered in one cell
+    IdTriple key;
+    int vertex, next;
+  };
+  struct Pending {
+    const kernel::Corner* corner;
+    int* out;
+    std::int32_t support;
+    IdTriple key;
+    int cells;  // -1: wide (no cells)
+    std::uint32_t cell[8];
+  };
+
+  static std::int64_t floor_of(double x) {  // |x| < 2^61
+    const auto t = std::int64_t(x);
+    return double(t) > x ? t - 1 : t;
   }
 
-  // Exact: class a's point lies on the three planes of class b (planes shared by both triples
-  // need no test).
-  bool same_point(int a, int b) const {
-    const PlaneTriple& ta = c_.triple[std::size_t(a)];
-    const PlaneTriple& tb = c_.triple[std::size_t(b)];
-    const IdTriple& ka = c_.key[std::size_t(a)];
-    for (const std::int32_t plane : {tb.s, tb.p, tb.q}) {
-      const std::uint32_t id = ids_.id[std::size_t(plane)];
-      if (id == ka[0] || id == ka[1] || id == ka[2]) continue;
-      if (kernel::orient(planes_[ta.s], planes_[ta.p], planes_[ta.q], c_.at[std::size_t(a)], planes_[plane]) !=
-          kernel::Sign::Zero)
-        return false;
+  void prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, int* out, Pending& p) {
+    p.corner = &c;
+    p.out = out;
+    p.support = support;
+    p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
+    const ApproxPoint& a = c.at;
+    constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
+    constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
+    std::int64_t lo[3], hi[3];
+    bool wide = !(a.err >= 0 && a.err < 0.25);
+    const double coord[3] = {a.x, a.y, a.z};
+    for (int k = 0; k < 3 && !wide; ++k) {
+      wide = !(std::fabs(coord[k]) < kFar);
+      lo[k] = floor_of(coord[k] - a.err + kShift);
+      hi[k] = floor_of(coord[k] + a.err + kShift);
+    }
+    p.cells = -1;
+    if (wide) return;
+    // The cells of the error box (at most two per axis).
+    constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
+    int n = 0;
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          const std::uint64_t k = (std::uint64_t(x) & kMask) << 42 | (std::uint64_t(y) & kMask) << 21 | (std::uint64_t(z) & kMask);
+          p.cell[n++] = std::uint32_t((k * 0x9E3779B97F4A7C15ull) >> 32);
+        }
+    p.cells = n;
+    __builtin_prefetch(&slots_[p.cell[0] >> shift_]);
+  }
+
+  void resolve(Pending& p) {
+    next_ = (next_ + 1) % kAhead;
+    const IdTriple& key = p.key;
+    const kernel::Corner& c = *p.corner;
+    if (p.cells < 0) {
+      *p.out = wide_vertex(key, p.support, c);
+      return;
+    }
+    if (2 * (cells_used_ + 8) > slots_.size()) grow();
+    const int n = p.cells;
+    std::size_t cells[8];
+    for (int i = 0; i < n; ++i) cells[i] = slot_of(p.cell[i]);
+    for (int i = 0; i < n; ++i)
+      for (int e = slots_[cells[i]].head; e >= 0; e = entries_[std::size_t(e)].next)
+        if (same_key(entries_[std::size_t(e)].key, key)) {
+          *p.out = entries_[std::size_t(e)].vertex;
+          return;
+        }
+    for (const int w : wide_classes_)
+      if (same_key(class_key_[std::size_t(w)], key)) {
+        *p.out = class_vertex_[std::size_t(w)];
+        return;
+      }
+    int v = -1;
+    int last = -1;  // a vertex's classes tend to be adjacent in a chain: test it once
+    for (int i = 0; i < n && v < 0; ++i)
+      for (int e = slots_[cells[i]].head; e >= 0 && v < 0; e = entries_[std::size_t(e)].next) {
+        const int u = entries_[std::size_t(e)].vertex;
+        if (u != last && same_point(key, p.support, c, u)) v = u;
+        last = u;
+      }
+    for (std::size_t i = 0; i < wide_classes_.size() && v < 0; ++i) {
+      const int u = class_vertex_[std::size_t(wide_classes_[i])];
+      if (same_point(key, p.support, c, u)) v = u;
+    }
+    if (v < 0) v = new_vertex(p.support, c);
+    new_class(key, v);
+    for (int i = 0; i < n; ++i) {
+      entries_.push_back({key, v, slots_[cells[i]].head});
+      slots_[cells[i]].head = int(entries_.size()) - 1;
+    }
+    *p.out = v;
+  }
+
+  std::size_t slot_of(std::uint32_t cell) {
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t h = cell >> shift_;
+    while (slots_[h].head != kEmpty && slots_[h].cell != cell) h = (h + 1) & mask;
+    if (slots_[h].head == kEmpty) slots_[h] = {cell, kNoEntry}, ++cells_used_;
+    return h;
+  }
+
+  void grow() {
+    // Chains keep their entries; only the slots move.
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(2 * old.size(), Slot{0, kEmpty});
+    shift_ = 32 - std::countr_zero(slots_.size());
+    const std::size_t mask = slots_.size() - 1;
+    for (const Slot& s : old) {
+      if (s.head == kEmpty) continue;
+      std::size_t h = s.cell >> shift_;
+      while (slots_[h].head != kEmpty) h = (h + 1) & mask;
+      slots_[h] = s;
+    }
+  }
+
+  std::uint32_t key_of(std::int32_t plane) const { return ids_.id[std::size_t(plane)]; }
+
+  int new_class(const IdTriple& key, int vertex) {  // (for the known planes and the wide path)
+    class_key_.push_back(key);
+    class_vertex_.push_back(vertex);
+    return int(class_key_.size()) - 1;
+  }
+
+  int new_vertex(std::int32_t support, const kernel::Corner& c) {
+    v_.at.push_back(c.at);
+    v_.triple.push_back({support, c.p, c.q});
+    vertex_ids_.push_back({key_of(support), key_of(c.p), key_of(c.q)});
+    return v_.size() - 1;
+  }
+
+  // A corner without cells (large or no error bound: nearly dependent planes): its class by
+  // key, else exact comparison with every vertex.
+  int wide_vertex(const IdTriple& key, std::int32_t support, const kernel::Corner& c) {
+    for (std::size_t i = 0; i < class_key_.size(); ++i)
+      if (same_key(class_key_[i], key)) return class_vertex_[i];
+    int v = -1;
+    for (int u = 0; u < v_.size() && v < 0; ++u)
+      if (same_point(key, support, c, u)) v = u;
+    if (v < 0) v = new_vertex(support, c);
+    wide_classes_.push_back(new_class(key, v));
+    return v;
+  }
+
+  // Exact: the corner's point (support ∩ p ∩ q, canonical ids `key`) lies on the three planes
+  // of vertex u's triple (planes shared with the corner need no test). Disjoint error boxes
+  // are different points (a filter only).
+  bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, int u) const {
+    const ApproxPoint& pa = c.at;
+    const ApproxPoint& pb = v_.at[std::size_t(u)];
+    if (pa.err >= 0 && pb.err >= 0) {
+      const double tol = pa.err + pb.err;
+      if (std::fabs(pb.x - pa.x) > tol || std::fabs(pb.y - pa.y) > tol || std::fabs(pb.z - pa.z) > tol) return false;
+    }
+    const PlaneTriple& t = v_.triple[std::size_t(u)];
+    const IdTriple& ids = vertex_ids_[std::size_t(u)];
+    const kernel::Plane &s = planes_[support], &p = planes_[c.p], &q = planes_[c.q];
+    const std::int32_t planes[3] = {t.s, t.p, t.q};
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t id = ids[std::size_t(i)];
+      if (id == key[0] || id == key[1] || id == key[2]) continue;
+      if (kernel::orient(s, p, q, pa, planes_[planes[i]]) != kernel::Sign::Zero) return false;
     }
     return true;
   }
 
   const kernel::PlaneTable& planes_;
   const PlaneIds& ids_;
-  const Classes& c_;
-  UnionFind uf_;
+  AssemblyVertices& v_;
+  std::vector<Slot> slots_;
+  int shift_ = 26;
+  std::size_t cells_used_ = 0;  // occupied slots
+  std::vector<Entry> entries_;
+  std::vector<IdTriple> class_key_;
+  std::vector<int> class_vertex_;
+  std::vector<int> wide_classes_;
+  std::vector<IdTriple> vertex_ids_;  // vertex -> canonical ids of its triple, in triple order
+  Pending queue_[kAhead];
+  int next_ = 0, queued_ = 0;  // the oldest queued corner, and how many are queued
 };
 
-}  // namespace
-
-MergedVertices merge_vertices(const Fragments& fragments, const PlaneIds& ids) {
-  std::size_t corners = 0;
-  for (const Fragment& fr : fragments.fragments) corners += fr.polygon.corners.size();
-  const Classes classes = group_corners(fragments, ids, corners);
-  UnionFind uf = ClassMerger(fragments.planes, ids, classes).run();
-
-  // Vertices numbered by first corner; each keeps its first corner's triple and approximation.
-  MergedVertices r;
-  AssemblyVertices& v = r.vertices;
-  r.vertex_of.resize(corners);
-  std::vector<int> vertex_of_root(classes.key.size(), -1);
-  std::size_t i = 0;
-  for (const Fragment& fr : fragments.fragments)
-    for (const auto& corner : fr.polygon.corners) {
-      const int root = uf.find(classes.of_corner[i]);
-      int& vertex = vertex_of_root[std::size_t(root)];
-      if (vertex < 0) {
-        vertex = v.size();
-        v.at.push_back(corner.at);
-        v.triple.push_back({fr.polygon.support, corner.p, corner.q});
-      }
-      r.vertex_of[i++] = vertex;
-    }
-
-  // Known planes of each vertex: the canonical ids of all its classes' triples, without repeats.
-  const std::size_t nv = v.at.size();
+// Known planes of each vertex: the canonical ids of all its classes' triples, without repeats.
+void collect_known_planes(const std::vector<IdTriple>& keys, const std::vector<int>& vertex_of_class,
+                          AssemblyVertices& v) {
+  const std::size_t nv = std::size_t(v.size());
   std::vector<int> count(nv + 1, 0);
-  for (std::size_t c = 0; c < classes.key.size(); ++c) count[std::size_t(vertex_of_root[std::size_t(uf.find(int(c)))]) + 1] += 3;
+  for (const int u : vertex_of_class) count[std::size_t(u) + 1] += 3;
   for (std::size_t k = 0; k < nv; ++k) count[k + 1] += count[k];
   std::vector<std::uint32_t> all(static_cast<std::size_t>(count[nv]));
   std::vector<int> fill(count.begin(), count.end() - 1);
-  for (std::size_t c = 0; c < classes.key.size(); ++c) {
-    int& at = fill[std::size_t(vertex_of_root[std::size_t(uf.find(int(c)))])];
-    for (const std::uint32_t id : classes.key[c]) all[std::size_t(at++)] = id;
+  for (std::size_t c = 0; c < keys.size(); ++c) {
+    int& at = fill[std::size_t(vertex_of_class[c])];
+    for (const std::uint32_t id : keys[c]) all[std::size_t(at++)] = id;
   }
   v.known_start.assign(nv + 1, 0);
   v.known.reserve(all.size());
@@ -245,6 +276,43 @@ MergedVertices merge_vertices(const Fragments& fragments, const PlaneIds& ids) {
     v.known.insert(v.known.end(), b, last);
     v.known_start[k + 1] = int(v.known.size());
   }
+}
+
+}  // namespace
+
+MergedFragments merge_vertices(const Fragments& fragments) {
+  std::size_t corners = 0;
+  for (const Fragment& fr : fragments.fragments) corners += fr.polygon.corners.size();
+  const std::size_t nf = fragments.fragments.size();
+  MergedFragments r;
+  r.ids = canonical_plane_ids(fragments.planes);
+  CornerMerger merger(fragments.planes, r.ids, r.vertices, corners);
+  FaceList& faces = r.faces;
+  faces.start.resize(nf + 1);
+  faces.support.resize(nf);
+  faces.flip.resize(nf);
+  faces.vertex.resize(corners);
+  faces.line.resize(corners);
+  std::size_t base = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const Fragment& fr = fragments.fragments[f];
+    const auto& cs = fr.polygon.corners;
+    const std::size_t m = cs.size();
+    const std::uint32_t s = r.ids.id[std::size_t(fr.polygon.support)];
+    faces.start[f] = int(base);
+    faces.support[f] = fr.polygon.support;
+    faces.flip[f] = fr.flip ? 1 : 0;
+    // A flipped fragment's corners reversed: corner j goes to position m-1-j, and its edge
+    // (to corner j+1) becomes the edge leaving position m-1-(j+1).
+    for (std::size_t j = 0; j < m; ++j) {
+      merger.add(fr.polygon.support, s, cs[j], &faces.vertex[base + (fr.flip ? m - 1 - j : j)]);
+      faces.line[base + (fr.flip ? m - 1 - (j + 1 == m ? 0 : j + 1) : j)] = cs[j].edge;
+    }
+    base += m;
+  }
+  faces.start[nf] = int(base);
+  merger.flush();
+  collect_known_planes(merger.class_keys(), merger.class_vertices(), r.vertices);
   return r;
 }
 

@@ -11,13 +11,17 @@
 
 namespace sculpt::detail {
 
-struct MergedVertices {
-  AssemblyVertices vertices;    ///< numbered in the order of their first corner
-  std::vector<int> vertex_of;   ///< corner (fragments' corners in order) -> vertex
+/// What the later assembly stages start from.
+struct MergedFragments {
+  PlaneIds ids;               ///< canonical ids of the planes (canonical_plane_ids)
+  AssemblyVertices vertices;  ///< numbered in the order of their first corner
+  FaceList faces;             ///< the fragments in final orientation (a flipped one reversed)
 };
 
-/// Vertices of the fragments' corners, merged by exact equality. Each vertex keeps the triple
-/// and approximation of its first corner and the canonical ids of every plane of its corners.
-MergedVertices merge_vertices(const Fragments& fragments, const PlaneIds& ids);
+/// Plane ids, then one pass over the fragments: vertices of their corners merged by exact equality (each keeps
+/// the triple and approximation of its first corner and the canonical ids of every plane of
+/// its corners), and the fragments as faces on those vertices, with the plane of the edge
+/// leaving each corner.
+MergedFragments merge_vertices(const Fragments& fragments);
 
 }  // namespace sculpt::detail

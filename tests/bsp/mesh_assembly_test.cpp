@@ -225,10 +225,10 @@ TEST(MeshAssembly, JunctionRemovalByLinesAndBySearchAgree) {
   for (std::size_t i = 0; i < solids.size(); ++i) {
     SCOPED_TRACE(i);
     const detail::Fragments f = detail::boundary_fragments(solids[i]);
-    const detail::PlaneIds ids = detail::canonical_plane_ids(f.planes);
-    const detail::MergedVertices merged = detail::merge_vertices(f, ids);
+    const detail::MergedFragments merged = detail::merge_vertices(f);
+    const detail::PlaneIds& ids = merged.ids;
     const detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
-    const detail::FaceList faces = detail::fragment_faces(f, merged.vertex_of);
+    const detail::FaceList& faces = merged.faces;
     const detail::JunctionResult by_lines = detail::remove_t_junctions(faces, geometry, ids);
     const detail::JunctionResult by_search = detail::remove_t_junctions(faces, geometry, ids, {.group_by_lines = false});
     EXPECT_GT(by_lines.open, 0);

@@ -7,6 +7,7 @@
 //   bench_assembly                 sphere_minus_cube 32, 128, 256, menger 3, boxes 1000
 //   bench_assembly CASE N [RUNS]   one case (solids as in bench_bsp.cpp, CASES.md)
 //   bench_assembly CASE N RUNS stages  also times each stage of assemble_mesh (median over the runs)
+//   bench_assembly CASE N RUNS carried  times only the carried boundary (for profiling)
 //   bench_assembly CASE N RUNS DUMP  also writes the mesh in a canonical text form to DUMP
 //                                  (faces as coordinate cycles starting at the smallest, sorted),
 //                                  to compare two builds' output independently of numbering
@@ -69,8 +70,8 @@ Measures measure(const PolygonMesh& m) {  // faces may be non-convex: vector are
 
 // The stages of assemble_mesh (mesh_assembly.cpp) one by one, each timed: median CPU ms per stage.
 void time_stages(const detail::Fragments& f, int runs, const char* source) {
-  const char* names[] = {"plane_ids", "vertex_merge", "fragment_faces", "t_junctions", "coplanar", "straight", "sheets", "output"};
-  constexpr int kStages = 8;
+  const char* names[] = {"vertex_merge", "t_junctions", "coplanar", "straight", "sheets", "output"};
+  constexpr int kStages = 6;
   std::vector<std::vector<double>> t(kStages);
   detail::JunctionResult last;
   for (int r = 0; r < runs; ++r) {
@@ -81,14 +82,12 @@ void time_stages(const detail::Fragments& f, int runs, const char* source) {
       t[std::size_t(stage++)].push_back(t1 - t0);
       t0 = t1;
     };
-    const detail::PlaneIds ids = detail::canonical_plane_ids(f.planes);
-    lap();
-    const detail::MergedVertices merged = detail::merge_vertices(f, ids);
+    detail::MergedFragments merged = detail::merge_vertices(f);  // with the plane ids and the faces
+    const detail::PlaneIds& ids = merged.ids;
     lap();
     const detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
-    detail::FaceList faces = detail::fragment_faces(f, merged.vertex_of);
-    lap();
-    last = detail::remove_t_junctions(std::move(faces), geometry, ids);
+    last = detail::remove_t_junctions(std::move(merged.faces), geometry, ids);
+    detail::FaceList faces;
     lap();
     faces = detail::merge_coplanar_faces(last.faces, merged.vertices.size(), ids);
     lap();
@@ -168,6 +167,10 @@ int run_case(const std::string& name, int n, int runs, const std::string& dump_p
   }
   // The fragments extracted from the tree (detail::boundary_fragments), and, when the solid
   // carries its boundary through the set operations, those too (what to_mesh assembles).
+  if (dump_path == "carried") {
+    if (solid.has_boundary()) time_assembly(name, n, runs, "carried", detail::Fragments{solid.planes(), solid.boundary()});
+    return 0;
+  }
   const detail::Fragments fragments = detail::boundary_fragments(solid);
   PolygonMesh mesh = time_assembly(name, n, runs, "extracted", fragments);
   PolygonMesh carried;
