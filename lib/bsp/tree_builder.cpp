@@ -48,8 +48,11 @@ Solid TreeBuilder::build(TreeRef root, const BuildOptions& options) && {
 // is copied for each), with pending sub-hyperplanes (node_polygons.hpp).
 Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
   if (is_leaf(root)) return Solid::leaf(root == kIn);
+  // Room for a set operation in place (set_operations.cpp appends the other operand and the
+  // merge's copies): reserved address space is not touched until used.
+  const std::size_t room = nodes_.size() + nodes_.size() / 2 + 64;
   std::vector<BspNode> nodes;
-  nodes.reserve(nodes_.size());
+  nodes.reserve(room);
   struct Frame {
     TreeRef source;
     std::int32_t parent;  // copied node whose child receives this one, -1 = the root
@@ -69,7 +72,9 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<Bounda
     }
     if (f.parent >= 0) (f.side == 0 ? nodes[std::size_t(f.parent)].negative : nodes[std::size_t(f.parent)].positive) = out;
   }
-  std::vector<ConvexPolygon> polygons(nodes.size());
+  std::vector<ConvexPolygon> polygons;
+  polygons.reserve(room);
+  polygons.resize(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) polygons[i].support = nodes[i].plane;
   return Solid(std::move(planes_), std::move(nodes), std::move(polygons), 0, 0, std::move(boundary));
 }
@@ -78,8 +83,9 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
   detail::Arena arena;
   arena.planes = std::move(planes_);
   // Every builder node is kept at most once (unless shared) and adds its plane's opposite.
-  arena.nodes.reserve(nodes_.size());
-  arena.polygons.reserve(nodes_.size());
+  const std::size_t room = nodes_.size() + nodes_.size() / 2 + 64;  // as in build_as_given
+  arena.nodes.reserve(room);
+  arena.polygons.reserve(room);
   arena.planes.reserve(std::size_t(arena.planes.size()) + nodes_.size());
   arena.opposite_of.reserve(std::size_t(arena.planes.size()) + nodes_.size());
   if (is_leaf(root)) return Solid::leaf(root == kIn);
