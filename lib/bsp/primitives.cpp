@@ -112,11 +112,11 @@ class SectorTree {
   // at face middles, so splitting at the middle of face k leaves faces first..k and k..last.
   TreeRef faces(int first, int last) {
     if (last - first + 1 <= 4) {
-      std::vector<std::int32_t> chain;
       // Widened by one face on each side only where a wedge bound may pass near a vertex
       // (first split, prisms); between face middles the chain is exactly first..last.
-      for (int i = first - widen_; i <= last + widen_; ++i) chain.push_back((*faces_)[wrap(i)]);
-      return b_.add_convex_chain(chain);
+      chain_.clear();  // one buffer for every chain
+      for (int i = first - widen_; i <= last + widen_; ++i) chain_.push_back((*faces_)[wrap(i)]);
+      return b_.add_convex_chain(chain_);
     }
     const int k = (first + last) / 2;
     const std::int32_t p = axial(mid_sin(k), mid_cos(k));
@@ -150,6 +150,7 @@ class SectorTree {
   int widen_ = 1;
   bool widened_ = false;
   std::vector<double> mid_sin_, mid_cos_;
+  std::vector<std::int32_t> chain_;
 };
 
 }  // namespace
