@@ -292,7 +292,8 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   detail::fill_node_polygons(arena, rb);
   Merger m(arena);
   const TreeRef r = m.merge(ra, rb, table);
-  if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64)) return detail::compact(arena, r);
+  if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64))
+    return detail::compact(arena, r, {.keep_capacity = true});
   const std::size_t compacted = arena.compacted_size;
   if (is_leaf(r)) return Solid::leaf(r == kIn);
   return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted,

@@ -105,7 +105,7 @@ void complement_in_place(Arena& arena, TreeRef& root) {
   }
 }
 
-Solid compact(Arena& arena, TreeRef root) {
+Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
   if (is_leaf(root)) return Solid::leaf(root == kIn);
   // Post-order: a node is emitted after both children, so collapses propagate upwards.
   std::vector<TreeRef> result(arena.nodes.size(), kOut);
@@ -183,6 +183,10 @@ Solid compact(Arena& arena, TreeRef root) {
     ConvexPolygon& poly = polygons[j];
     poly.support = use(poly.support);
     for (auto& c : poly.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
+  }
+  if (!options.keep_capacity && polygons.capacity() > k + k / 4) {
+    arena.nodes.shrink_to_fit();
+    polygons.shrink_to_fit();
   }
   std::optional<std::vector<BoundaryFragment>> boundary;
   FragmentBoxes boxes = std::move(arena.boundary_boxes);

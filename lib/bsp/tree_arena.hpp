@@ -34,10 +34,15 @@ struct Arena {
   std::int32_t last_shift_ = 0;  ///< plane index shift of the last append (0 after adopt)
 };
 
+struct CompactOptions {
+  /// Keep the buffers' spare capacity (in-place accumulation grows into it); otherwise buffers
+  /// more than a quarter unused are shrunk to fit (a solid kept as a value holds no slack).
+  bool keep_capacity = false;
+};
 /// Turns the tree reachable from `root` into a compact Solid (depth-first order, root first),
 /// collapsing nodes whose two children are the same leaf and dropping unused planes. The solid
-/// takes over the arena's node and polygon buffers (permuted in place, capacity kept).
-Solid compact(Arena& arena, TreeRef root);
+/// takes over the arena's node and polygon buffers (permuted in place).
+Solid compact(Arena& arena, TreeRef root, const CompactOptions& options = {});
 
 /// Flips in and out leaves of the subtree at `root` in place (explicit stack).
 void complement_in_place(Arena& arena, TreeRef& root);
