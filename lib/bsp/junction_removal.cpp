@@ -28,8 +28,11 @@ class JunctionRemover {
     if (open_.empty()) return false;
     ins_begin_.assign(open_.size(), 0);
     ins_end_.assign(open_.size(), 0);
+    matched_.assign(open_.size(), 0);
     if (options.group_by_lines) group_by_lines();
-    const std::vector<int> failing = unmatched_pieces();
+    std::vector<int> failing;
+    for (std::size_t i = 0; i < open_.size(); ++i)
+      if (matched_[i] == 0) failing.push_back(int(i));
     result.by_search = int(failing.size());
     result.by_lines = result.open - result.by_search;
     if (!failing.empty()) search(failing);
@@ -133,6 +136,7 @@ class JunctionRemover {
       for (std::size_t i = 0; i < n; ++i) members[std::size_t(fill[std::size_t(uf.find(int(i)))]++)] = int(i);
     }
     std::vector<int> rank(nv, -1), verts;
+    std::vector<std::uint8_t> up, down;  // a piece from rank k to k + 1 (k + 1 to k) exists
     for (std::size_t r = 0; r < n; ++r) {
       const int b = member_start[r], e = member_start[r + 1];
       if (e - b < 2) continue;
@@ -159,34 +163,28 @@ class JunctionRemover {
           for (int k = ru - 1; k > rw; --k) ins_.push_back(verts[std::size_t(k)]);
         ins_end_[std::size_t(i)] = int(ins_.size());
       }
+      // Each piece needs an opposite: a piece of another edge of the group (pieces of other
+      // groups are not on this line through these vertices, or the groups would have been
+      // joined at a shared vertex) or a half-edge of the faces.
+      up.assign(verts.size(), 0);
+      down.assign(verts.size(), 0);
+      for (int m = b; m < e; ++m) {
+        const int i = members[std::size_t(m)];
+        const int ru = rank[std::size_t(open_[std::size_t(i)].u)], rw = rank[std::size_t(open_[std::size_t(i)].w)];
+        for (int k = std::min(ru, rw); k < std::max(ru, rw); ++k) (ru < rw ? up : down)[std::size_t(k)] = 1;
+      }
+      for (int m = b; m < e; ++m) {
+        const int i = members[std::size_t(m)];
+        const int ru = rank[std::size_t(open_[std::size_t(i)].u)], rw = rank[std::size_t(open_[std::size_t(i)].w)];
+        bool ok = true;
+        for (int k = std::min(ru, rw); k < std::max(ru, rw) && ok; ++k) {
+          const int lo = verts[std::size_t(k)], hi = verts[std::size_t(k) + 1];
+          ok = ru < rw ? (down[std::size_t(k)] != 0 || index_.find(hi, lo) >= 0) : (up[std::size_t(k)] != 0 || index_.find(lo, hi) >= 0);
+        }
+        matched_[std::size_t(i)] = ok ? 1 : 0;
+      }
       for (const int v : verts) rank[std::size_t(v)] = -1;
     }
-  }
-
-  // Open edges whose pieces (after the inserts) do not all have an opposite half-edge.
-  std::vector<int> unmatched_pieces() const {
-    std::size_t pieces = 0;
-    for (std::size_t i = 0; i < open_.size(); ++i) pieces += std::size_t(ins_end_[i] - ins_begin_[i] + 1);
-    EdgeIndex sub(pieces);
-    int id = 0;
-    auto for_pieces = [&](std::size_t i, auto&& fn) {
-      int a = open_[i].u;
-      for (int k = ins_begin_[i]; k < ins_end_[i]; ++k) {
-        fn(a, ins_[std::size_t(k)]);
-        a = ins_[std::size_t(k)];
-      }
-      fn(a, open_[i].w);
-    };
-    for (std::size_t i = 0; i < open_.size(); ++i) for_pieces(i, [&](int a, int b) { sub.insert(edge_key(a, b), id++); });
-    std::vector<int> failing;
-    for (std::size_t i = 0; i < open_.size(); ++i) {
-      bool ok = true;
-      for_pieces(i, [&](int a, int b) {
-        ok = ok && (index_.find(b, a) >= 0 || sub.find(edge_key(b, a)) >= 0);
-      });
-      if (!ok) failing.push_back(int(i));
-    }
-    return failing;
   }
 
   Eigen::Vector3d position(int v) const {
@@ -283,6 +281,7 @@ class JunctionRemover {
   OutgoingEdges index_;          // every half-edge by (u, w)
   std::vector<OpenEdge> open_;   // half-edges without an opposite, in corner order
   std::vector<int> ins_begin_, ins_end_, ins_;  // inserted vertices of each open edge, from u to w
+  std::vector<std::uint8_t> matched_;            // 1: every piece of the open edge has an opposite
 };
 
 }  // namespace
