@@ -50,9 +50,19 @@ class SheetSplitter {
           hs[std::size_t(fill[std::size_t(std::min(u, w))]++)] = {edge_key(std::min(u, w), std::max(u, w)), f, c, u < w};
         }
     }
-    for (std::size_t v = 0; v < nv; ++v)
-      std::sort(hs.begin() + start[v], hs.begin() + start[v + 1],
-                [](const HalfEdge& a, const HalfEdge& b) { return a.undirected < b.undirected; });
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (start[v + 1] - start[v] > 16) {  // (std::sort sorts up to 16 elements by insertion too)
+        std::sort(hs.begin() + start[v], hs.begin() + start[v + 1],
+                  [](const HalfEdge& a, const HalfEdge& b) { return a.undirected < b.undirected; });
+        continue;
+      }
+      for (int i = start[v] + 1; i < start[v + 1]; ++i) {  // short runs: insertion sort inline
+        const HalfEdge h = hs[std::size_t(i)];
+        int j = i;
+        for (; j > start[v] && hs[std::size_t(j) - 1].undirected > h.undirected; --j) hs[std::size_t(j)] = hs[std::size_t(j) - 1];
+        hs[std::size_t(j)] = h;
+      }
+    }
     for (std::size_t i = 0; i < hs.size();) {
       std::size_t j = i;
       while (j < hs.size() && hs[j].undirected == hs[i].undirected) ++j;

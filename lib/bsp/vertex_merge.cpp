@@ -33,8 +33,9 @@ IdTriple sorted(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
 // class equals at most one vertex (two equal vertices would have been merged).
 class CornerMerger {
  public:
-  CornerMerger(const kernel::PlaneTable& planes, const PlaneIds& ids, AssemblyVertices& vertices, std::size_t corners)
-      : planes_(planes), ids_(ids), v_(vertices) {
+  CornerMerger(const kernel::PlaneTable& planes, const PlaneIds& ids, AssemblyVertices& vertices,
+               std::vector<int>& out, std::size_t corners)
+      : planes_(planes), ids_(ids), v_(vertices), out_(out) {
     std::size_t slots = 64;
     while (slots < corners / 2) slots *= 2;
     slots_.assign(slots, Slot{0, kEmpty});
@@ -48,9 +49,9 @@ class CornerMerger {
   }
 
   // Queues corner `c` of a fragment on plane `support` (canonical id s); its vertex is written
-  // to *out once resolved (a few corners later, so that its cells can be prefetched: the table
+  // to out[position] once resolved (a few corners later, so that its cells can be prefetched: the table
   // is larger than the caches and the probes are random). Corners are resolved in order.
-  void add(std::int32_t support, std::uint32_t s, const kernel::Corner& c, int* out) {
+  void add(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out) {
     if (queued_ == kAhead) resolve(queue_[next_]), --queued_;
     Pending& p = queue_[(next_ + queued_) % kAhead];
     prepare(support, s, c, out, p);
@@ -80,7 +81,7 @@ class CornerMerger {
   };
   struct Pending {
     const kernel::Corner* corner;
-    int* out;
+    std::size_t out;  // position in the output
     std::int32_t support;
     IdTriple key;
     int cells;  // -1: wide (no cells)
@@ -92,7 +93,7 @@ class CornerMerger {
     return double(t) > x ? t - 1 : t;
   }
 
-  void prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, int* out, Pending& p) {
+  void prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out, Pending& p) {
     p.corner = &c;
     p.out = out;
     p.support = support;
@@ -128,7 +129,7 @@ class CornerMerger {
     const IdTriple& key = p.key;
     const kernel::Corner& c = *p.corner;
     if (p.cells < 0) {
-      *p.out = wide_vertex(key, p.support, c);
+      out_[p.out] = wide_vertex(key, p.support, c);
       return;
     }
     if (2 * (cells_used_ + 8) > slots_.size()) grow();
@@ -138,12 +139,12 @@ class CornerMerger {
     for (int i = 0; i < n; ++i)
       for (int e = slots_[cells[i]].head; e >= 0; e = entries_[std::size_t(e)].next)
         if (same_key(entries_[std::size_t(e)].key, key)) {
-          *p.out = entries_[std::size_t(e)].vertex;
+          out_[p.out] = entries_[std::size_t(e)].vertex;
           return;
         }
     for (const int w : wide_classes_)
       if (same_key(class_key_[std::size_t(w)], key)) {
-        *p.out = class_vertex_[std::size_t(w)];
+        out_[p.out] = class_vertex_[std::size_t(w)];
         return;
       }
     int v = -1;
@@ -164,7 +165,7 @@ class CornerMerger {
       entries_.push_back({key, v, slots_[cells[i]].head});
       slots_[cells[i]].head = int(entries_.size()) - 1;
     }
-    *p.out = v;
+    out_[p.out] = v;
   }
 
   std::size_t slot_of(std::uint32_t cell) {
@@ -242,6 +243,7 @@ class CornerMerger {
   const kernel::PlaneTable& planes_;
   const PlaneIds& ids_;
   AssemblyVertices& v_;
+  std::vector<int>& out_;
   std::vector<Slot> slots_;
   int shift_ = 26;
   std::size_t cells_used_ = 0;  // occupied slots
@@ -281,18 +283,18 @@ void collect_known_planes(const std::vector<IdTriple>& keys, const std::vector<i
 }  // namespace
 
 MergedFragments merge_vertices(const Fragments& fragments) {
-  std::size_t corners = 0;
-  for (const Fragment& fr : fragments.fragments) corners += fr.polygon.corners.size();
+  // (No counting pass over the fragments first: it would read them twice.)
   const std::size_t nf = fragments.fragments.size();
+  const std::size_t expected = 4 * nf + 16;  // corners, mostly quadrilaterals
   MergedFragments r;
   r.ids = canonical_plane_ids(fragments.planes);
-  CornerMerger merger(fragments.planes, r.ids, r.vertices, corners);
   FaceList& faces = r.faces;
+  CornerMerger merger(fragments.planes, r.ids, r.vertices, faces.vertex, expected);
   faces.start.resize(nf + 1);
   faces.support.resize(nf);
   faces.flip.resize(nf);
-  faces.vertex.resize(corners);
-  faces.line.resize(corners);
+  faces.vertex.reserve(expected);
+  faces.line.reserve(expected);
   std::size_t base = 0;
   for (std::size_t f = 0; f < nf; ++f) {
     const Fragment& fr = fragments.fragments[f];
@@ -302,10 +304,12 @@ MergedFragments merge_vertices(const Fragments& fragments) {
     faces.start[f] = int(base);
     faces.support[f] = fr.polygon.support;
     faces.flip[f] = fr.flip ? 1 : 0;
+    faces.vertex.resize(base + m);
+    faces.line.resize(base + m);
     // A flipped fragment's corners reversed: corner j goes to position m-1-j, and its edge
     // (to corner j+1) becomes the edge leaving position m-1-(j+1).
     for (std::size_t j = 0; j < m; ++j) {
-      merger.add(fr.polygon.support, s, cs[j], &faces.vertex[base + (fr.flip ? m - 1 - j : j)]);
+      merger.add(fr.polygon.support, s, cs[j], base + (fr.flip ? m - 1 - j : j));
       faces.line[base + (fr.flip ? m - 1 - (j + 1 == m ? 0 : j + 1) : j)] = cs[j].edge;
     }
     base += m;
