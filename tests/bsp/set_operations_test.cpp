@@ -148,5 +148,42 @@ TEST(SetOperations, InPlaceOperationsMatchTheCopyingOnesEvenWhenAliased) {
   EXPECT_NEAR(volume(unite_all({box({0, 0, 0}, {1, 1, 1}), box({2, 0, 0}, {3, 1, 1}), box({0.5, 0, 0}, {2.5, 1, 1})})), 3.0, 1e-15);
 }
 
+TEST(SetOperations, CompactedResultsAreDepthFirstWithoutUnusedNodesOrPlanes) {
+  // Copying operations compact their result (in the arena's own buffers): the root is node 0,
+  // the nodes are in pre-order (positive child first), every node is reachable, every plane
+  // beyond the world box is used, and each node's polygon lies on its plane. Checked on results
+  // whose arenas held many dropped nodes (a sphere cut by boxes, a chain of unions).
+  Solid chain = cube(0, 0, 0, 1);
+  for (int i = 1; i < 12; ++i) chain = chain | cube(0.375 * i, 0.25 * (i % 3), 0.125 * (i % 5), 1);
+  const Solid s16 = sphere(1.0, {.segments = 16}), s12 = sphere(1.0, {.segments = 12});  // lvalues:
+  const Solid cases[] = {s16 - cube(0, 0, 0, 1), chain, intersect(s12, cube(-0.5, -0.5, -0.5, 1))};  // copying
+  for (const Solid& s : cases) {
+    ASSERT_FALSE(is_leaf(s.root()));
+    EXPECT_EQ(s.root(), 0);
+    std::vector<TreeRef> stack{s.root()};
+    std::vector<bool> plane_used(std::size_t(s.planes().size()), false);
+    TreeRef expected = 0;
+    while (!stack.empty()) {
+      const TreeRef r = stack.back();
+      stack.pop_back();
+      if (is_leaf(r)) continue;
+      EXPECT_EQ(r, expected++);
+      const BspNode& n = s.nodes()[std::size_t(r)];
+      const auto& poly = s.polygons()[std::size_t(r)];
+      EXPECT_EQ(poly.support, n.plane);
+      plane_used[std::size_t(n.plane)] = true;
+      for (const auto& c : poly.corners) plane_used[std::size_t(c.edge)] = plane_used[std::size_t(c.p)] = plane_used[std::size_t(c.q)] = true;
+      stack.push_back(n.negative);
+      stack.push_back(n.positive);
+    }
+    EXPECT_EQ(std::size_t(expected), s.nodes().size());  // no unreachable node
+    for (const auto& f : s.boundary()) {
+      plane_used[std::size_t(f.polygon.support)] = true;
+      for (const auto& c : f.polygon.corners) plane_used[std::size_t(c.edge)] = plane_used[std::size_t(c.p)] = plane_used[std::size_t(c.q)] = true;
+    }
+    for (std::size_t i = 6; i < plane_used.size(); ++i) EXPECT_TRUE(plane_used[i]) << "unused plane " << i;
+  }
+}
+
 }  // namespace
 }  // namespace sculpt
