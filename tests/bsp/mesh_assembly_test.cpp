@@ -192,6 +192,57 @@ TEST(MeshAssembly, NearlyCoincidentDistinctVerticesStayApart) {
   expect_polytope_vertices(mesh, reference);
 }
 
+TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
+  // merge_vertices resolves each corner against the classes in its grid cells as it goes; the
+  // reference compares every pair of corners by Cramer's rule in unbounded integers. Two
+  // corners share a vertex iff their points are equal; vertices are numbered by first corner,
+  // each with its first corner's triple; the faces reverse flipped fragments.
+  std::vector<Solid> solids;
+  solids.push_back(sphere(1.0, {.segments = 12}) - box({0, 0, 0}, {1, 1, 1}));
+  solids.push_back(box({0, 0, 0}, {2, 2, 2}) | box({1, 1, 1}, {3, 3, 3}) | box({0.5, -1, 0.5}, {1.5, 4, 1.5}));
+  {
+    std::vector<HalfSpace> hs;  // octahedron: four planes through each vertex
+    for (int sx = -1; sx <= 1; sx += 2)
+      for (int sy = -1; sy <= 1; sy += 2)
+        for (int sz = -1; sz <= 1; sz += 2) hs.push_back({Eigen::Vector3d(sx, sy, sz), -1.0});
+    solids.push_back(convex_polytope(hs) - box({0, 0, 0}, {1, 1, 1}));
+  }
+  for (std::size_t i = 0; i < solids.size(); ++i) {
+    SCOPED_TRACE(i);
+    for (const bool carried : {false, true}) {
+      if (carried && !solids[i].has_boundary()) continue;
+      const detail::Fragments f =
+          carried ? detail::Fragments{solids[i].planes(), solids[i].boundary()} : detail::boundary_fragments(solids[i]);
+      const detail::MergedFragments merged = detail::merge_vertices(f);
+      std::vector<Homogeneous> point;
+      std::vector<int> vertex;  // of each corner, in fragment order
+      std::vector<detail::PlaneTriple> triple;
+      for (std::size_t k = 0; k < f.fragments.size(); ++k) {
+        const auto& fr = f.fragments[k];
+        const int m = int(fr.polygon.corners.size());
+        ASSERT_EQ(merged.faces.count(int(k)), m);
+        for (int j = 0; j < m; ++j) {
+          const auto& c = fr.polygon.corners[std::size_t(j)];
+          point.push_back(cramer(f.planes[fr.polygon.support], f.planes[c.p], f.planes[c.q]));
+          vertex.push_back(merged.faces.vertex[std::size_t(merged.faces.begin(int(k)) + (fr.flip ? m - 1 - j : j))]);
+          triple.push_back({fr.polygon.support, c.p, c.q});
+        }
+      }
+      int next = 0;
+      for (std::size_t a = 0; a < point.size(); ++a) {
+        if (vertex[a] == next) {  // first corner of a new vertex
+          const detail::PlaneTriple& t = merged.vertices.triple[std::size_t(next)];
+          EXPECT_TRUE(t.s == triple[a].s && t.p == triple[a].p && t.q == triple[a].q);
+          ++next;
+        }
+        ASSERT_LT(vertex[a], next) << "vertices are numbered by first corner";
+        for (std::size_t b = 0; b < a; ++b) ASSERT_EQ(vertex[a] == vertex[b], point[a] == point[b]) << a << " " << b;
+      }
+      EXPECT_EQ(next, merged.vertices.size());
+    }
+  }
+}
+
 // After T-junction removal every half-edge u -> w has a half-edge w -> u, as many times.
 ::testing::AssertionResult EveryHalfEdgeHasAnOpposite(const detail::FaceList& faces) {
   std::map<std::pair<int, int>, int> count;
