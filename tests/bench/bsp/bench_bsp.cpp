@@ -131,7 +131,8 @@ int run_case(const std::string& name, int n, int runs) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc >= 3) return run_case(argv[1], std::atoi(argv[2]), argc >= 4 ? std::atoi(argv[3]) : 5);
+  // 7 runs by default, as the peers' harness (tests/bench/peers/run.sh).
+  if (argc >= 3) return run_case(argv[1], std::atoi(argv[2]), argc >= 4 ? std::atoi(argv[3]) : 7);
   const std::vector<std::pair<std::string, int>> cases = {{"sphere_minus_cube", 32}, {"sphere_minus_cube", 64},
                                                           {"sphere_minus_cube", 128}, {"sphere_minus_cube", 256},
                                                           {"menger", 3}, {"boxes", 1000}};
