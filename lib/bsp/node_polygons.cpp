@@ -1,6 +1,5 @@
 #include "bsp/node_polygons.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace sculpt::detail {

@@ -48,7 +48,12 @@ class SectorTree {
   /// same path (their splits are at the same angles).
   using Options = SectorOptions;
   SectorTree(TreeBuilder& b, const std::vector<double>& start, const Options& options = {})
-      : b_(b), start_(start), n_(int(start.size())), options_(options) {}
+      : b_(b), start_(start), n_(int(start.size())), options_(options) {
+    for (int i = 0; i < n_; ++i) {  // every band splits at the same face middles
+      mid_sin_.push_back(std::sin(mid(i)));
+      mid_cos_.push_back(std::cos(mid(i)));
+    }
+  }
 
   /// The tree over `faces` (plane indices, face i starting at start[i]); axial planes are moved off
   /// the axis by at most `max_offset`.
@@ -119,26 +124,10 @@ class SectorTree {
       return b_.add_convex_chain(chain_);
     }
     const int k = (first + last) / 2;
-    const std::int32_t p = axial(mid_sin(k), mid_cos(k));
+    const std::int32_t p = axial(mid_sin_[wrap(k)], mid_cos_[wrap(k)]);
     return b_.add_node(p, faces(first, k), faces(k, last));
   }
   std::size_t wrap(int i) const { return std::size_t(((i % n_) + n_) % n_); }
-  // sin and cos of the middle angle of face i, computed once per face (every band splits there).
-  double mid_sin(int i) {
-    fill_mid();
-    return mid_sin_[wrap(i)];
-  }
-  double mid_cos(int i) {
-    fill_mid();
-    return mid_cos_[wrap(i)];
-  }
-  void fill_mid() {
-    if (!mid_sin_.empty()) return;
-    for (int i = 0; i < n_; ++i) {
-      mid_sin_.push_back(std::sin(mid(i)));
-      mid_cos_.push_back(std::cos(mid(i)));
-    }
-  }
 
   TreeBuilder& b_;
   const std::vector<std::int32_t>* faces_ = nullptr;
@@ -149,7 +138,7 @@ class SectorTree {
   int count_ = 0;
   int widen_ = 1;
   bool widened_ = false;
-  std::vector<double> mid_sin_, mid_cos_;
+  std::vector<double> mid_sin_, mid_cos_;  // of each face's middle angle
   std::vector<std::int32_t> chain_;
 };
 
