@@ -1,9 +1,9 @@
 #include "kernel/plane.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <bit>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 
 #include "base/errors.hpp"
@@ -15,20 +15,41 @@ __extension__ typedef unsigned __int128 UInt128;
 
 UInt128 magnitude(Int128 v) { return v < 0 ? UInt128(-v) : UInt128(v); }
 
-// Binary gcd without data-dependent branches in the loop (min/max compile to conditional moves):
-// the branches of std::gcd's loop are mispredicted on random operands.
-std::uint64_t gcd64(std::uint64_t a, std::uint64_t b) {
-  if (a == 0) return b;
-  if (b == 0) return a;
-  const int shift = std::countr_zero(a | b);
-  a >>= std::countr_zero(a);
-  do {
-    b >>= std::countr_zero(b);
-    const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
-    a = lo;
-    b = hi - lo;
-  } while (b != 0);
-  return a << shift;
+// Binary gcd with the trailing-zero count taken from the difference, so that it runs beside the
+// minimum instead of after it (a shorter dependency chain per step), and min/abs compiled to
+// conditional moves (std::gcd's branches are mispredicted on random operands). An odd part of 1
+// (an operand that is a power of two: the largest component of plane_from_normal's normals) ends
+// at once instead of after one subtraction per bit pair.
+std::uint64_t gcd64(std::uint64_t u, std::uint64_t v) {
+  if (u == 0) return v;
+  if (v == 0) return u;
+  const int uz = std::countr_zero(u), vz = std::countr_zero(v);
+  const int shift = std::min(uz, vz);
+  u >>= uz;
+  v >>= vz;
+  if (u == 1 || v == 1) return std::uint64_t(1) << shift;
+  // Operands of very different sizes (a normal's gcd and an offset, a band's height and a slope):
+  // one division brings the larger down to the smaller's size first (Euclid's step, odd parts).
+  if (std::bit_width(u) > std::bit_width(v) + 12) std::swap(u, v);
+  if (std::bit_width(v) > std::bit_width(u) + 12) {
+    v %= u;
+    if (v == 0) return u << shift;
+    v >>= std::countr_zero(v);
+  }
+  while (u != v) {  // both odd
+    const std::uint64_t diff = v - u;  // wraps; countr_zero(-x) == countr_zero(x)
+    const int z = std::countr_zero(diff);
+    const std::uint64_t lo = std::min(u, v);
+    v = (u > v ? u - v : diff) >> z;
+    u = lo;
+  }
+  return u << shift;
+}
+
+// |v| mod m for m > 0 below 2^64: one 64-bit division if v fits, else two 128-by-64 steps.
+std::uint64_t mod64(UInt128 v, std::uint64_t m) {
+  if ((v >> 64) == 0) return std::uint64_t(v) % m;
+  return std::uint64_t(v % m);
 }
 
 UInt128 gcd(UInt128 a, UInt128 b) {
@@ -44,24 +65,19 @@ UInt128 gcd(UInt128 a, UInt128 b) {
 
 bool fits(Int128 v, int bits) { return magnitude(v) <= (UInt128(1) << bits); }
 
-}  // namespace
-
-Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d) {
-  if (a == 0 && b == 0 && c == 0) throw InvalidInput("plane with a zero normal");
-  const UInt128 ma = magnitude(a), mb = magnitude(b), mc = magnitude(c);
-  const bool narrow = ((ma | mb | mc) >> 63) == 0;  // the usual case: 64-bit arithmetic for the normal
-  UInt128 g = narrow ? UInt128(gcd64(gcd64(std::uint64_t(ma), std::uint64_t(mb)), std::uint64_t(mc)))
-                     : gcd(gcd(ma, mb), mc);
-  // The offset (up to 128 bits, the slow part) only matters when the normal has a common factor.
-  if (g != 1) g = gcd(g, magnitude(d));
+// The plane a, b, c, d divided by the gcd of all four, given g = gcd(|a|, |b|, |c|) > 0; checks
+// the bit budget. The offset (up to 128 bits) only matters when the normal has a common factor:
+// then |d| mod g first, so the binary gcd runs on values below g.
+Plane divide_by_gcd(Int128 a, Int128 b, Int128 c, Int128 d, UInt128 g) {
+  if (g != 1) g = (g >> 64) == 0 ? gcd64(std::uint64_t(g), mod64(magnitude(d), std::uint64_t(g))) : gcd(g, magnitude(d));
   if (g != 1) {
-    if (narrow) {  // g divides the normal, so it fits 63 bits too
-      const auto g64 = std::int64_t(g);
+    if ((g >> 64) == 0 && ((magnitude(a) | magnitude(b) | magnitude(c)) >> 63) == 0) {
+      const auto g64 = std::int64_t(g);  // g divides the normal, so it fits 63 bits too
       a = std::int64_t(a) / g64, b = std::int64_t(b) / g64, c = std::int64_t(c) / g64;
+      d = magnitude(d) >> 63 == 0 ? Int128(std::int64_t(d) / g64) : d / Int128(g);
     } else {
-      a /= Int128(g), b /= Int128(g), c /= Int128(g);
+      a /= Int128(g), b /= Int128(g), c /= Int128(g), d /= Int128(g);
     }
-    d /= Int128(g);
   }
   if (!fits(a, kNormalBits) || !fits(b, kNormalBits) || !fits(c, kNormalBits) ||
       !fits(d, kOffsetBits)) {
@@ -72,6 +88,25 @@ Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d) {
     throw RangeError(s.str());
   }
   return {std::int64_t(a), std::int64_t(b), std::int64_t(c), d};
+}
+
+}  // namespace
+
+Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d) {
+  if (a == 0 && b == 0 && c == 0) throw InvalidInput("plane with a zero normal");
+  const UInt128 ma = magnitude(a), mb = magnitude(b), mc = magnitude(c);
+  const bool narrow = ((ma | mb | mc) >> 63) == 0;  // the usual case: 64-bit arithmetic for the normal
+  if (!narrow) return divide_by_gcd(a, b, c, d, gcd(gcd(ma, mb), mc));
+  const std::uint64_t gab = gcd64(std::uint64_t(ma), std::uint64_t(mb));
+  return divide_by_gcd(a, b, c, d, gab == 1 ? 1 : gcd64(gab, std::uint64_t(mc)));
+}
+
+Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d, const PlaneFactors& known) {
+  const UInt128 ma = magnitude(a), mb = magnitude(b), mc = magnitude(c);
+  if (known.ab_gcd == 0 || ((ma | mb | mc) >> 63) != 0) return make_plane(a, b, c, d);
+  if (a == 0 && b == 0 && c == 0) throw InvalidInput("plane with a zero normal");
+  assert(known.ab_gcd == gcd64(std::uint64_t(ma), std::uint64_t(mb)));
+  return divide_by_gcd(a, b, c, d, known.ab_gcd == 1 ? 1 : gcd64(known.ab_gcd, std::uint64_t(mc)));
 }
 
 Plane plane_through(const GridPoint& p0, const GridPoint& p1, const GridPoint& p2) {
@@ -101,7 +136,11 @@ Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world) {
     msg << "plane offset " << offset_world << " is outside the exact kernel's range " << range_text();
     throw RangeError(msg.str());
   }
-  return make_plane(Int128(a), Int128(b), Int128(c), Int128(std::nearbyint(d)));
+  // |a|, |b|, |c| <= 2^52 and most offsets convert through 64 bits (the 128-bit conversion is a
+  // library call); the values are the same.
+  const double rd = std::nearbyint(d);
+  const Int128 id = std::fabs(rd) < 0x1p62 ? Int128(std::int64_t(rd)) : Int128(rd);
+  return make_plane(std::int64_t(a), std::int64_t(b), std::int64_t(c), id);
 }
 
 }  // namespace sculpt::kernel

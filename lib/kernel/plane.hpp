@@ -35,6 +35,15 @@ struct Plane {
 /// A plane from integer coefficients, divided by their gcd. \throw RangeError if a coefficient
 /// exceeds the bit budget (or the normal is zero: InvalidInput).
 Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d);
+/// What a caller knows about a plane's coefficients before normalization (make_plane's shortcuts).
+struct PlaneFactors {
+  std::uint64_t ab_gcd = 0;  ///< gcd(|a|, |b|) exactly (0: unknown, or a = b = 0)
+};
+/// make_plane(a, b, c, d) for a caller that knows gcd(|a|, |b|): the same plane, one gcd less. For
+/// families of planes whose x, y normals are multiples of a few directions (the faces of a solid of
+/// revolution over one path edge: a, b = height * (nx, ny), so gcd = height * gcd(nx, ny)).
+/// \pre known.ab_gcd is 0 or exactly gcd(|a|, |b|) (asserted in debug builds).
+Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d, const PlaneFactors& known);
 /// The plane through three grid points, positive side where (p1-p0) x (p2-p0) points
 /// (counter-clockwise seen from the positive side). \throw InvalidInput if they are collinear.
 Plane plane_through(const GridPoint& p0, const GridPoint& p1, const GridPoint& p2);
