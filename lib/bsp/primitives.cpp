@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -174,18 +175,25 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
     std::int32_t id;
     const Plane* value;
   };
+  // Fragments are built in place (a polygon is 272 bytes): aggregate initialization leaves the
+  // corners' inline storage untouched, where value initialization would zero it.
+  auto fragment = [&faces](std::int32_t support, bool flip) -> kernel::ConvexPolygon& {
+    faces.push_back(BoundaryFragment{.polygon = {.support = support, .corners = {}}, .flip = flip});
+    return faces.back().polygon;
+  };
   auto corner = [](kernel::ConvexPolygon& poly, const Plane& support, Label prev, Label edge) {
     poly.corners.push_back({edge.id, prev.id, edge.id, kernel::approximate_vertex(support, *prev.value, *edge.value)});
   };
   for (std::size_t k = 0; k + 1 < r; ++k) {
     const Plane below_value = ring_value[k].opposite();
     const Label below{b.add_plane(below_value), &below_value}, above{ring[k + 1], &ring_value[k + 1]};
+    const std::vector<std::int32_t>& ids = face[k];
+    const std::vector<Plane>& values = face_value[k];
     for (int j = 0; j < n; ++j) {
-      const Label prev{face[k][wrap(j - 1)], &face_value[k][wrap(j - 1)]};
-      const Label next{face[k][wrap(j + 1)], &face_value[k][wrap(j + 1)]};
-      const Plane& support = face_value[k][std::size_t(j)];
-      kernel::ConvexPolygon poly;
-      poly.support = face[k][std::size_t(j)];
+      const Label prev{ids[wrap(j - 1)], &values[wrap(j - 1)]};
+      const Label next{ids[wrap(j + 1)], &values[wrap(j + 1)]};
+      const Plane& support = values[std::size_t(j)];
+      kernel::ConvexPolygon& poly = fragment(ids[std::size_t(j)], false);
       // Counter-clockwise seen from outside: along ring k, up, back along ring k + 1, down.
       if (scale[k] > 0) {
         corner(poly, support, prev, below);
@@ -199,18 +207,16 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
       } else {
         corner(poly, support, next, prev);
       }
-      faces.push_back({std::move(poly), false});
     }
   }
   for (const std::size_t k : {std::size_t(0), r - 1}) {  // caps: counter-clockwise about +z
     if (!(scale[k] > 0)) continue;
     const std::size_t band = k == 0 ? 0 : r - 2;
-    kernel::ConvexPolygon poly;
-    poly.support = ring[k];
+    kernel::ConvexPolygon& poly = fragment(ring[k], k == 0);
+    poly.corners.reserve(std::size_t(n));
     for (int j = 0; j < n; ++j)
       corner(poly, ring_value[k], {face[band][wrap(j - 1)], &face_value[band][wrap(j - 1)]},
              {face[band][std::size_t(j)], &face_value[band][std::size_t(j)]});
-    faces.push_back({std::move(poly), k == 0});
   }
   return faces;
 }
@@ -292,6 +298,9 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   const bool direct = !degenerate && shortest * min_sin > 8 * delta;
 
   TreeBuilder b;
+  // Per band n face planes, about n / 2 axial planes and the opposite of its lower ring plane.
+  b.reserve(std::size_t(kernel::kWorldPlanes) + r + (r - 1) * (std::size_t(n) * 3 / 2 + 2),
+            r + 1 + (r - 1) * (std::size_t(n) * 3 / 2 + 2));
   // Ring planes z = z_k: f = z - z_k.
   std::vector<std::int32_t> ring_plane(r);
   std::vector<Plane> ring_value(r);
@@ -302,20 +311,31 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     ring_value[k] = kernel::make_plane(0, 0, 1, -Int128(z[k]));
     ring_plane[k] = b.add_plane(ring_value[k], k > 0 && k + 1 < r);
   }
+  // The x, y part of a face normal is dz (nx, ny): the gcd of those two is dz gcd(nx, ny), so
+  // make_plane needs only the gcd with the z part (the same planes, one gcd per face less).
+  std::vector<std::uint64_t> xy_gcd(static_cast<std::size_t>(n));
+  for (std::size_t j = 0; j < std::size_t(n); ++j)
+    xy_gcd[j] = std::gcd(std::uint64_t(std::llabs(nx[j])), std::uint64_t(std::llabs(ny[j])));
   // Band trees.
   std::vector<TreeRef> band(r - 1);
   // Below that bound, rounding can move a face out of the wedge whose chain should hold it: the
   // solid then bends along an axial plane, which must then count as a face plane (not auxiliary)
   // for extraction to find that boundary. Chains are widened so that this stays rare.
   SectorTree sectors(b, start, {.auxiliary_axes = direct, .widen = direct ? 0 : 1});
+  std::vector<Int128> c_below(static_cast<std::size_t>(n)), c_above(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) c_above[std::size_t(j)] = c_of(0, j);
   for (std::size_t k = 0; k + 1 < r; ++k) {
     const Int128 dz = z[k + 1] - z[k];
+    std::swap(c_below, c_above);  // ring k's offsets were ring k + 1's of the band below
+    for (int j = 0; j < n; ++j) c_above[std::size_t(j)] = c_of(k + 1, j);
     std::vector<std::int32_t> faces(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j) {
-      const Int128 c0 = c_of(k, j), c1 = c_of(k + 1, j), dc = c1 - c0;
+    face_value[k].reserve(std::size_t(n));
+    for (std::size_t j = 0; j < std::size_t(n); ++j) {
+      const Int128 c0 = c_below[j], dc = c_above[j] - c0;
       // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside.
-      face_value[k].push_back(kernel::make_plane(dz * nx[std::size_t(j)], dz * ny[std::size_t(j)], -dc, dc * z[k] - dz * c0));
-      faces[std::size_t(j)] = b.add_plane(face_value[k].back());
+      face_value[k].push_back(kernel::make_plane(dz * nx[j], dz * ny[j], -dc, dc * z[k] - dz * c0,
+                                                 {.ab_gcd = std::uint64_t(dz) * xy_gcd[j]}));
+      faces[j] = b.add_plane(face_value[k].back());
     }
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
     band[k] = sectors.build(faces, 0.05 * min_scale * min_edge);

@@ -16,6 +16,11 @@ TreeBuilder::TreeBuilder() = default;
 
 std::int32_t TreeBuilder::add_plane(const kernel::Plane& plane, bool auxiliary) { return planes_.add(plane, auxiliary); }
 
+void TreeBuilder::reserve(std::size_t planes, std::size_t nodes) {
+  planes_.reserve(planes);
+  nodes_.reserve(nodes);
+}
+
 TreeRef TreeBuilder::add_node(std::int32_t plane, TreeRef negative, TreeRef positive) {
   if (plane < 0 || plane >= planes_.size()) throw std::out_of_range("TreeBuilder: unknown plane");
   for (TreeRef c : {negative, positive})
@@ -72,10 +77,11 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<Bounda
     }
     if (f.parent >= 0) (f.side == 0 ? nodes[std::size_t(f.parent)].negative : nodes[std::size_t(f.parent)].positive) = out;
   }
+  // Pending sub-hyperplanes: aggregate initialization writes the support and the corners' header
+  // only (value initialization would zero each 272-byte polygon first).
   std::vector<ConvexPolygon> polygons;
   polygons.reserve(room);
-  polygons.resize(nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) polygons[i].support = nodes[i].plane;
+  for (const BspNode& n : nodes) polygons.push_back(ConvexPolygon{.support = n.plane, .corners = {}});
   return Solid(std::move(planes_), std::move(nodes), std::move(polygons), 0, 0, std::move(boundary));
 }
 

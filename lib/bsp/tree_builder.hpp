@@ -33,6 +33,8 @@ class TreeBuilder {
   /// splits space and carries no face of the solid (see kernel::PlaneTable); boundary extraction
   /// skips it. Leave it false unless that is certain.
   std::int32_t add_plane(const kernel::Plane& plane, bool auxiliary = false);
+  /// Room for this many planes and nodes in all (for callers that know their tree's size).
+  void reserve(std::size_t planes, std::size_t nodes);
   /// A node splitting by plane `plane`: `negative` on the side f < 0, `positive` on f > 0.
   TreeRef add_node(std::int32_t plane, TreeRef negative, TreeRef positive);
   /// A balanced tree for the convex polytope ∩ (f_i <= 0) of the given planes, as a chain in
