@@ -58,46 +58,58 @@ FaceList merge_coplanar_faces(const FaceList& faces, int vertex_count, const Pla
     std::vector<int> fill(member_start.begin(), member_start.end() - 1);
     for (int f = 0; f < nf; ++f) members[std::size_t(fill[std::size_t(uf.find(f))]++)] = f;
   }
+  // Each union's boundary edges (corners not interior) must form one loop through every one
+  // of them: a simple polygon. The edge leaving each vertex is found through a per-vertex slot
+  // (`leaving`, reset after each union) instead of sorting the edges.
   struct Boundary {
     int u, w;
     std::int32_t line;
   };
-  std::vector<Boundary> boundary;
+  std::vector<int> leaving(std::size_t(vertex_count), -1);  // vertex -> its boundary edge
+  std::vector<Boundary> boundary;                           // the union's boundary edges
   std::vector<std::uint8_t> removed(std::size_t(nf), 0);
   FaceList added;
   for (int r = 0; r < nf; ++r) {
     const int b = member_start[std::size_t(r)], e = member_start[std::size_t(r) + 1];
     if (e - b < 2) continue;
     boundary.clear();
+    bool simple = true;  // no vertex left by two boundary edges
+    int first = -1;      // the loop starts at the smallest vertex (as the sorted edges did)
     for (int m = b; m < e; ++m) {
       const int f = members[std::size_t(m)];
-      for (int c = faces.begin(f); c < faces.end(f); ++c)
-        if (interior[std::size_t(c)] == 0)
-          boundary.push_back({faces.vertex[std::size_t(c)], faces.vertex[std::size_t(faces.next(f, c))], faces.line[std::size_t(c)]});
+      for (int c = faces.begin(f); c < faces.end(f); ++c) {
+        if (interior[std::size_t(c)] != 0) continue;
+        const int u = faces.vertex[std::size_t(c)];
+        int& slot = leaving[std::size_t(u)];
+        if (slot >= 0) simple = false;
+        slot = int(boundary.size());
+        boundary.push_back({u, faces.vertex[std::size_t(faces.next(f, c))], faces.line[std::size_t(c)]});
+        if (first < 0 || u < first) first = u;
+      }
     }
-    std::sort(boundary.begin(), boundary.end(), [](const Boundary& x, const Boundary& y) { return x.u < y.u; });
-    bool simple = boundary.size() >= 3;
-    for (std::size_t c = 1; c < boundary.size() && simple; ++c) simple = boundary[c].u != boundary[c - 1].u;
-    if (!simple) continue;
-    // One loop through every boundary edge: a simple polygon.
-    const std::size_t mark = added.vertex.size();
-    added.open_face(faces.support[std::size_t(r)], faces.flip[std::size_t(r)] != 0);
-    int u = boundary.front().u;
-    do {
-      const auto it = std::lower_bound(boundary.begin(), boundary.end(), u, [](const Boundary& x, int v) { return x.u < v; });
-      if (it == boundary.end() || it->u != u) break;
-      added.add_corner(u, it->line);
-      u = it->w;
-    } while (u != boundary.front().u && added.vertex.size() - mark <= boundary.size());
-    if (added.vertex.size() - mark == boundary.size()) {
-      for (int m = b; m < e; ++m) removed[std::size_t(members[std::size_t(m)])] = 1;
-    } else {  // several loops or a broken one: keep the fragments
-      added.vertex.resize(mark);
-      added.line.resize(mark);
-      added.start.pop_back();
-      added.support.pop_back();
-      added.flip.pop_back();
+    simple = simple && boundary.size() >= 3;
+    if (simple) {
+      // One loop through every boundary edge: a simple polygon.
+      const std::size_t mark = added.vertex.size();
+      added.open_face(faces.support[std::size_t(r)], faces.flip[std::size_t(r)] != 0);
+      int u = first;
+      do {
+        const int i = leaving[std::size_t(u)];
+        if (i < 0) break;
+        added.add_corner(u, boundary[std::size_t(i)].line);
+        u = boundary[std::size_t(i)].w;
+      } while (u != first && added.vertex.size() - mark <= boundary.size());
+      if (added.vertex.size() - mark == boundary.size()) {
+        for (int m = b; m < e; ++m) removed[std::size_t(members[std::size_t(m)])] = 1;
+      } else {  // several loops or a broken one: keep the fragments
+        added.vertex.resize(mark);
+        added.line.resize(mark);
+        added.start.pop_back();
+        added.support.pop_back();
+        added.flip.pop_back();
+      }
     }
+    for (const Boundary& x : boundary) leaving[std::size_t(x.u)] = -1;
   }
   FaceList out;
   out.reserve(std::size_t(nf), corners);

@@ -71,9 +71,15 @@ class JunctionRemover {
       }
   }
 
-  // Exact: the far endpoint x of another half-edge lies on the line of open edge e.
+  // Exact: the far endpoint x of another half-edge lies on the line of open edge e. The
+  // floating-point filter first: most vertices tested are clearly off the line.
   bool on_line(const OpenEdge& e, int x) const {
-    return g_.on_plane(x, f_.line[std::size_t(e.corner)]) && g_.on_plane(x, f_.support[std::size_t(e.face)]);
+    const std::int32_t line = f_.line[std::size_t(e.corner)], support = f_.support[std::size_t(e.face)];
+    const kernel::ApproxPoint& at = g_.at(x);
+    if (kernel::filtered_orient(at, g_.planes()[line]) != kernel::Sign::Zero ||
+        kernel::filtered_orient(at, g_.planes()[support]) != kernel::Sign::Zero)
+      return false;
+    return g_.on_plane(x, line) && g_.on_plane(x, support);
   }
 
   // Groups of collinear open edges; each edge gets the group's vertices strictly inside it.
@@ -136,6 +142,11 @@ class JunctionRemover {
       for (std::size_t i = 0; i < n; ++i) members[std::size_t(fill[std::size_t(uf.find(int(i)))]++)] = int(i);
     }
     std::vector<int> rank(nv, -1), verts;
+    struct Along {  // a vertex with its coordinate along the line's axis, for sorting
+      double x, err;
+      int v;
+    };
+    std::vector<Along> along;
     std::vector<std::uint8_t> up, down;  // a piece from rank k to k + 1 (k + 1 to k) exists
     for (std::size_t r = 0; r < n; ++r) {
       const int b = member_start[r], e = member_start[r + 1];
@@ -151,7 +162,21 @@ class JunctionRemover {
       }
       const OpenEdge& first = open_[std::size_t(members[std::size_t(b)])];
       const int axis = g_.line_axis(f_.support[std::size_t(first.face)], f_.line[std::size_t(first.corner)]);
-      std::sort(verts.begin(), verts.end(), [&](int x, int y) { return g_.less_along(x, y, axis); });
+      // Sorted exactly (VertexGeometry::less_along), its floating-point test inline.
+      along.clear();
+      for (const int v : verts) {
+        const kernel::ApproxPoint& a = g_.at(v);
+        along.push_back({axis == 0 ? a.x : (axis == 1 ? a.y : a.z), a.err, v});
+      }
+      std::sort(along.begin(), along.end(), [&](const Along& x, const Along& y) {
+        if (x.err >= 0 && y.err >= 0) {
+          const double gap = x.err + y.err;
+          if (x.x + gap < y.x) return true;
+          if (y.x + gap < x.x) return false;
+        }
+        return g_.less_along(x.v, y.v, axis);
+      });
+      for (std::size_t k = 0; k < verts.size(); ++k) verts[k] = along[k].v;
       for (std::size_t k = 0; k < verts.size(); ++k) rank[std::size_t(verts[k])] = int(k);
       for (int m = b; m < e; ++m) {
         const int i = members[std::size_t(m)];

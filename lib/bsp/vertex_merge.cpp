@@ -1,5 +1,7 @@
 #include "bsp/vertex_merge.hpp"
 
+#include "bsp/vertex_equality.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -219,8 +221,8 @@ class CornerMerger {
   }
 
   // Exact: the corner's point (support ∩ p ∩ q, canonical ids `key`) lies on the three planes
-  // of vertex u's triple (planes shared with the corner need no test). Disjoint error boxes
-  // are different points (a filter only).
+  // of vertex u's triple (planes shared with the corner need no test; the others by the exact
+  // zero test of vertex_equality.hpp). Disjoint error boxes are different points (a filter only).
   bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, int u) const {
     const ApproxPoint& pa = c.at;
     const ApproxPoint& pb = v_.at[std::size_t(u)];
@@ -230,12 +232,14 @@ class CornerMerger {
     }
     const PlaneTriple& t = v_.triple[std::size_t(u)];
     const IdTriple& ids = vertex_ids_[std::size_t(u)];
-    const kernel::Plane &s = planes_[support], &p = planes_[c.p], &q = planes_[c.q];
     const std::int32_t planes[3] = {t.s, t.p, t.q};
+    VertexMinors corner{};  // the corner's 2x2 minors, shared by its (usually two) tests
+    bool ready = false;
     for (int i = 0; i < 3; ++i) {
       const std::uint32_t id = ids[std::size_t(i)];
       if (id == key[0] || id == key[1] || id == key[2]) continue;
-      if (kernel::orient(s, p, q, pa, planes_[planes[i]]) != kernel::Sign::Zero) return false;
+      if (!ready) corner = vertex_minors(planes_[support], planes_[c.p], planes_[c.q], pa), ready = true;
+      if (!vertex_on_plane(corner, planes_[planes[i]])) return false;
     }
     return true;
   }

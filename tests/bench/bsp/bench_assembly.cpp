@@ -74,27 +74,29 @@ void time_stages(const detail::Fragments& f, int runs, const char* source) {
   constexpr int kStages = 6;
   std::vector<std::vector<double>> t(kStages);
   detail::JunctionResult last;
+  int sizes[kStages][2] = {};  // faces and corners after each stage (last run)
   for (int r = 0; r < runs; ++r) {
     double t0 = cpu_ms();
     int stage = 0;
-    auto lap = [&] {
+    auto lap = [&](const detail::FaceList* after = nullptr) {
       const double t1 = cpu_ms();
+      if (after != nullptr) sizes[stage][0] = after->size(), sizes[stage][1] = after->corners();
       t[std::size_t(stage++)].push_back(t1 - t0);
       t0 = t1;
     };
     detail::MergedFragments merged = detail::merge_vertices(f);  // with the plane ids and the faces
     const detail::PlaneIds& ids = merged.ids;
-    lap();
+    lap(&merged.faces);
     const detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
     last = detail::remove_t_junctions(std::move(merged.faces), geometry, ids);
     detail::FaceList faces;
-    lap();
+    lap(&last.faces);
     faces = detail::merge_coplanar_faces(last.faces, merged.vertices.size(), ids);
-    lap();
+    lap(&faces);
     faces = detail::remove_straight_vertices(faces, merged.vertices.size(), geometry);
-    lap();
+    lap(&faces);
     const detail::Sheets sheets = detail::split_non_manifold(std::move(faces), merged.vertices, f.planes);
-    lap();
+    lap(&sheets.faces);
     const PolygonMesh mesh = detail::output_mesh(sheets, merged.vertices, f.planes, false);
     lap();
   }
@@ -104,6 +106,9 @@ void time_stages(const detail::Fragments& f, int runs, const char* source) {
     std::printf(" %s=%.3f", names[k], t[std::size_t(k)][t[std::size_t(k)].size() / 2]);
   }
   std::printf(" open_edges=%d by_lines=%d by_search=%d\n", last.open, last.by_lines, last.by_search);
+  std::printf("sizes source=%s", source);  // faces/corners after each stage
+  for (int k = 0; k + 1 < kStages; ++k) std::printf(" %s=%d/%d", names[k], sizes[k][0], sizes[k][1]);
+  std::printf("\n");
 }
 
 void dump(const PolygonMesh& mesh, const std::string& path) {

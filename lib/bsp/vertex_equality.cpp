@@ -1,0 +1,71 @@
+#include "bsp/vertex_equality.hpp"
+
+namespace sculpt::detail {
+
+using kernel::Int128;
+using kernel::Plane;
+
+namespace {
+
+constexpr Int128 kSmallOffset = Int128(1) << 72;
+
+bool small(const Plane& e) { return e.d < kSmallOffset && e.d > -kSmallOffset; }
+
+Int128 minor_ab(const Plane& x, const Plane& y) { return Int128(x.a) * y.b - Int128(y.a) * x.b; }
+Int128 minor_cd(const Plane& x, const Plane& y) { return Int128(x.c) * y.d - Int128(y.c) * x.d; }
+
+// Signed 256-bit sum of products of two Int128 values: two's complement in two unsigned
+// 128-bit halves (as in kernel/predicates.cpp). Magnitudes: four 64 x 64 -> 128-bit products.
+struct Sum256 {
+  __extension__ typedef unsigned __int128 U128;
+  U128 lo = 0, hi = 0;
+
+  void add(Int128 a, Int128 b, bool subtract) {
+    const bool negative = ((a < 0) != (b < 0)) != subtract;
+    const U128 ua = a < 0 ? U128(0) - U128(a) : U128(a), ub = b < 0 ? U128(0) - U128(b) : U128(b);
+    const std::uint64_t a0 = std::uint64_t(ua), a1 = std::uint64_t(ua >> 64);
+    const std::uint64_t b0 = std::uint64_t(ub), b1 = std::uint64_t(ub >> 64);
+    const U128 p00 = U128(a0) * b0, p01 = U128(a0) * b1, p10 = U128(a1) * b0, p11 = U128(a1) * b1;
+    const U128 mid = (p00 >> 64) + std::uint64_t(p01) + std::uint64_t(p10);
+    const U128 plo = (mid << 64) | std::uint64_t(p00);
+    const U128 phi = p11 + (p01 >> 64) + (p10 >> 64) + (mid >> 64);
+    if (negative) {
+      const U128 nlo = lo - plo;
+      hi = hi - phi - (nlo > lo ? 1 : 0);
+      lo = nlo;
+    } else {
+      const U128 nlo = lo + plo;
+      hi = hi + phi + (nlo < lo ? 1 : 0);
+      lo = nlo;
+    }
+  }
+  [[nodiscard]] bool zero() const { return (lo | hi) == 0; }
+};
+
+}  // namespace
+
+VertexMinors vertex_minors(const Plane& p, const Plane& q, const Plane& r, const kernel::ApproxPoint& at) {
+  VertexMinors v{{&p, &q, &r}, &at, small(p) && small(q) && small(r), 0, 0, 0, 0, 0, 0};
+  if (v.small) {
+    v.m01 = minor_ab(p, q), v.m02 = minor_ab(p, r), v.m12 = minor_ab(q, r);
+    v.n01 = minor_cd(p, q), v.n02 = minor_cd(p, r), v.n12 = minor_cd(q, r);
+  }
+  return v;
+}
+
+bool vertex_on_plane(const VertexMinors& v, const Plane& s) {
+  const Plane &p = *v.rows[0], &q = *v.rows[1], &r = *v.rows[2];
+  if (!v.small || !small(s)) return kernel::orient(p, q, r, *v.at, s) == kernel::Sign::Zero;
+  // Laplace expansion by the (a, b) and (c, d) column pairs, rows 0..2 = p, q, r and 3 = s:
+  // det = m01 n23 - m02 n13 + m03 n12 + m12 n03 - m13 n02 + m23 n01.
+  Sum256 det;
+  det.add(v.m01, minor_cd(r, s), false);
+  det.add(v.m02, minor_cd(q, s), true);
+  det.add(minor_ab(p, s), v.n12, false);
+  det.add(v.m12, minor_cd(p, s), false);
+  det.add(minor_ab(q, s), v.n02, true);
+  det.add(minor_ab(r, s), v.n01, false);
+  return det.zero();
+}
+
+}  // namespace sculpt::detail
