@@ -3,6 +3,7 @@
 #include <tuple>
 #include <utility>
 
+#include "bsp/batch_union.hpp"
 #include "bsp/boundary_fragments.hpp"
 #include "bsp/boundary_merge.hpp"
 #include "bsp/node_polygons.hpp"
@@ -315,14 +316,9 @@ Solid subtract(const Solid& a, const Solid& b) { return apply(a, b, kDifference)
 
 Solid unite_all(std::vector<Solid> solids) {
   if (solids.empty()) return Solid();
-  while (solids.size() > 1) {
-    std::vector<Solid> next;
-    next.reserve((solids.size() + 1) / 2);
-    for (std::size_t i = 0; i + 1 < solids.size(); i += 2) next.push_back(unite(std::move(solids[i]), solids[i + 1]));
-    if (solids.size() % 2) next.push_back(std::move(solids.back()));
-    solids = std::move(next);
-  }
-  return std::move(solids.front());
+  if (solids.size() > 2) return detail::unite_by_boundaries(std::move(solids));
+  if (solids.size() == 1) return std::move(solids.front());
+  return unite(std::move(solids[0]), solids[1]);
 }
 
 Solid complement(const Solid& a) {

@@ -6,6 +6,7 @@
 /// sponge is built in units of 1/3^level (integer coordinates, exact): the cube [0, 3^level]^3,
 /// bars reaching half the cube beyond it on both sides. Volume 20^level in those units.
 
+#include <vector>
 #include <cmath>
 #include <cstdint>
 
@@ -36,17 +37,25 @@ inline Solid menger_sponge(int level) {
   return s;
 }
 
-/// Union of `count` boxes from the 32-bit LCG of CASES.md, accumulated in place one at a time.
-inline Solid lcg_boxes(int count) {
+/// The `count` boxes of the 32-bit LCG of CASES.md, in order.
+inline std::vector<Solid> lcg_box_list(int count) {
   std::uint32_t state = 1;
   auto next = [&] { return state = 1664525u * state + 1013904223u; };
-  Solid s;
+  std::vector<Solid> boxes;
+  boxes.reserve(std::size_t(std::max(0, count)));
   for (int k = 0; k < count; ++k) {
     Eigen::Vector3d lo, size;
     for (int i = 0; i < 3; ++i) lo[i] = (next() >> 16) / 4096.0;
     for (int i = 0; i < 3; ++i) size[i] = 0.5 + ((next() >> 16) >> 5) / 1024.0;
-    s = std::move(s) | box(lo, lo + size);
+    boxes.push_back(box(lo, lo + size));
   }
+  return boxes;
+}
+
+/// Union of `count` boxes from the 32-bit LCG of CASES.md, accumulated in place one at a time.
+inline Solid lcg_boxes(int count) {
+  Solid s;
+  for (const Solid& b : lcg_box_list(count)) s = std::move(s) | b;
   return s;
 }
 

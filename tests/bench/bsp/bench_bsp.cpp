@@ -5,7 +5,8 @@
 //         boundary_fragments=<count carried by the result solid>
 // Without arguments it runs every case, each in its own process (so peak RSS is per case):
 //   bench_bsp                 all cases
-//   bench_bsp CASE N [RUNS]   one case (sphere_minus_cube 32|64|128|256, menger 3, boxes 1000)
+//   bench_bsp CASE N [RUNS]   one case (sphere_minus_cube 32|64|128|256, menger 3, boxes 1000,
+//                             boxes_pairwise 1000: the same union one box at a time)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -62,9 +63,16 @@ Result menger(int level) {
   return {std::move(s), std::move(mesh)};
 }
 
-// Union of `count` boxes from the 32-bit LCG of CASES.md, accumulated in place one at a time
-// (the peers use their batch unions; ours, unite_all, fragments more on this input).
+// Union of `count` boxes from the 32-bit LCG of CASES.md by the batch union, unite_all, as the
+// peers use theirs (Manifold.union(list), JSCAD union(...boxes)).
 Result boxes(int count) {
+  Solid s = unite_all(checks::lcg_box_list(count));
+  PolygonMesh mesh = to_mesh(s);
+  return {std::move(s), std::move(mesh)};
+}
+
+// The same union accumulated in place one box at a time (acc = std::move(acc) | box).
+Result boxes_pairwise(int count) {
   Solid s = checks::lcg_boxes(count);
   PolygonMesh mesh = to_mesh(s);
   return {std::move(s), std::move(mesh)};
@@ -92,6 +100,8 @@ int run_case(const std::string& name, int n, int runs) {
     expected = buf;
   } else if (name == "boxes") {
     f = [n] { return boxes(n); };
+  } else if (name == "boxes_pairwise") {
+    f = [n] { return boxes_pairwise(n); };
   } else {
     std::fprintf(stderr, "unknown case %s\n", name.c_str());
     return 2;

@@ -1,0 +1,28 @@
+#pragma once
+/// \file autopartition.hpp
+/// Internal: a BSP tree from a closed boundary given as convex fragments (Thibault & Naylor
+/// 1987, "Set operations on polyhedra using binary space partitioning trees", sec. 3): each node's
+/// plane is the support of one of the fragments in its cell, chosen among a few candidates by a
+/// score of splits and balance; the fragments on that plane are used up, the others are split
+/// onto the two sides, and a side left without fragments is an in-cell behind and an out-cell in
+/// front. Every node carries a fragment strictly inside its cell, so its plane cuts the cell.
+
+#include <vector>
+
+#include "bsp/tree_arena.hpp"
+
+namespace sculpt::detail {
+
+struct AutopartitionOptions {
+  int candidates = 5;         ///< fragments whose planes are scored per node (evenly spaced)
+  int sample = 48;            ///< fragments each candidate is scored against (evenly spaced)
+  double split_weight = 8.0;  ///< score = split_weight * splits + |negative - positive|
+};
+
+/// The solid bounded by `fragments`: convex pieces on arena planes (outward normal per `flip`)
+/// that tile a closed, consistently oriented surface without overlaps, such as the boundary of
+/// a regularized set operation. The solid carries them as its boundary. Explicit stack; arena
+/// nodes are not used (only its planes). Empty `fragments` gives the empty solid.
+Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options = {});
+
+}  // namespace sculpt::detail
