@@ -20,6 +20,7 @@ using kernel::Plane;
 namespace {
 
 constexpr int kPathNormalBits = 26;  // integer 2D normals of the path edges (docs/kernel.md)
+constexpr double kPathScale = double(std::int64_t(1) << kPathNormalBits);  // scaling by it is exact
 
 void check_segments(int segments) {
   if (segments < 3 || segments > 1 << 16)
@@ -46,7 +47,8 @@ struct SectorOptions {
 class SectorTree {
  public:
   /// Faces start at the angles `start`; one SectorTree builds the trees of several bands of the
-  /// same path (their splits are at the same angles).
+  /// same path: they split at the same angles, so the tree's shape is worked out once (at the
+  /// first build) and each band only adds its planes and nodes.
   using Options = SectorOptions;
   SectorTree(TreeBuilder& b, const std::vector<double>& start, const Options& options = {})
       : b_(b), start_(start), n_(int(start.size())), options_(options) {
@@ -56,12 +58,42 @@ class SectorTree {
     }
   }
 
-  /// The tree over `faces` (plane indices, face i starting at start[i]); axial planes are moved off
-  /// the axis by at most `max_offset`.
+  /// The tree over `faces` (plane indices, face i starting at start[i]), added to the builder in
+  /// pre-order (TreeBuilder::open_node); axial planes are moved off the axis by at most `max_offset`.
   TreeRef build(const std::vector<std::int32_t>& faces, double max_offset = 0) {
-    faces_ = &faces;
-    max_offset_ = max_offset;
-    count_ = 0;
+    if (shape_.empty()) make_shape();
+    // Axial planes in the order the recursion met them: their offsets depend on that order.
+    axial_id_.clear();
+    for (const Axial& a : axial_)
+      axial_id_.push_back(b_.add_plane(kernel::plane_from_normal({-a.sin, a.cos, 0.0}, max_offset * a.fraction),
+                                       options_.auxiliary_axes));
+    const TreeRef base = b_.open_nodes(std::int32_t(shape_.size()));
+    for (std::size_t i = 0; i < shape_.size(); ++i) {
+      const ShapeNode& s = shape_[i];
+      auto at = [base](TreeRef c) { return is_leaf(c) ? c : base + c; };
+      b_.set_node(base + TreeRef(i), s.axial >= 0 ? axial_id_[std::size_t(s.axial)] : faces[std::size_t(s.face)],
+                  at(s.negative), at(s.positive));
+    }
+    return base;
+  }
+  /// True if some chain was widened beyond the faces its wedge overlaps (after build()): its extra
+  /// faces may miss their cells, so the tree needs TreeBuilder's full build.
+  bool widened() const { return widened_; }
+
+ private:
+  // One node of the shape: an axial plane (index into axial_) or a face (index into faces), with
+  // children as shape indices or leaves.
+  struct ShapeNode {
+    std::int32_t axial = -1, face = -1;
+    TreeRef negative = kOut, positive = kOut;
+  };
+  struct Axial {
+    double sin, cos, fraction;  // direction and the share of max_offset its offset takes
+  };
+
+  // The recursion the tree follows, once: nodes bottom-up (children first), then laid out in
+  // pre-order. Axial planes are numbered in the order they are met (positive subtrees first).
+  void make_shape() {
     // First split: the plane through the axis and the middle of face 0.
     const double a0 = mid(0);
     // Every later split is at a face middle; the first plane's opposite ray may pass near a
@@ -72,15 +104,28 @@ class SectorTree {
     const double width = angle(f + 1) - angle(f);
     widen_ = std::min(opposite - angle(f), angle(f + 1) - opposite) < 0.25 * width ? 1 : 0;
     widen_ = std::max(widen_, options_.widen);
-    widened_ |= widen_ != 0;
-    const std::int32_t p = axial(a0);
-    return b_.add_node(p, wedge(a0 + std::numbers::pi, a0 + 2 * std::numbers::pi), wedge(a0, a0 + std::numbers::pi));
+    widened_ = widen_ != 0;
+    const std::int32_t p = axial(std::sin(a0), std::cos(a0));
+    const TreeRef positive = wedge(a0, a0 + std::numbers::pi);
+    const TreeRef negative = wedge(a0 + std::numbers::pi, a0 + 2 * std::numbers::pi);
+    const TreeRef root = node({.axial = p, .negative = negative, .positive = positive});
+    // Pre-order: each node, then its negative subtree, then its positive one (explicit stack).
+    std::vector<std::int32_t> at(made_.size());
+    std::vector<TreeRef> stack{root};
+    while (!stack.empty()) {
+      const TreeRef t = stack.back();
+      stack.pop_back();
+      at[std::size_t(t)] = std::int32_t(shape_.size());
+      shape_.push_back(made_[std::size_t(t)]);
+      for (const TreeRef c : {made_[std::size_t(t)].positive, made_[std::size_t(t)].negative})
+        if (!is_leaf(c)) stack.push_back(c);
+    }
+    for (ShapeNode& s : shape_)
+      for (TreeRef* c : {&s.negative, &s.positive})
+        if (!is_leaf(*c)) *c = at[std::size_t(*c)];
+    made_.clear();
   }
-  /// True if some chain was widened beyond the faces its wedge overlaps (after build()): its extra
-  /// faces may miss their cells, so the tree needs TreeBuilder's full build.
-  bool widened() const { return widened_; }
 
- private:
   double angle(int i) const {  // start angle of face i (any integer i), unwrapped
     const int k = ((i % n_) + n_) % n_;
     const double turns = std::floor(double(i) / n_);
@@ -99,11 +144,15 @@ class SectorTree {
     }
     return lo;
   }
-  std::int32_t axial(double a) { return axial(std::sin(a), std::cos(a)); }
   std::int32_t axial(double sin_a, double cos_a) {
     // f = -sin(a) x + cos(a) y + offset: positive for angles in (a, a + pi) (offset aside).
-    const double offset = max_offset_ * (0.5 + 0.5 * std::fmod(0.6180339887498949 * ++count_, 1.0));
-    return b_.add_plane(kernel::plane_from_normal({-sin_a, cos_a, 0.0}, offset), options_.auxiliary_axes);
+    const double fraction = 0.5 + 0.5 * std::fmod(0.6180339887498949 * double(axial_.size() + 1), 1.0);
+    axial_.push_back({sin_a, cos_a, fraction});
+    return std::int32_t(axial_.size() - 1);
+  }
+  TreeRef node(const ShapeNode& s) {
+    made_.push_back(s);
+    return TreeRef(made_.size() - 1);
   }
   // Tree for the wedge of angles (lo, hi), hi - lo <= pi.
   TreeRef wedge(double lo, double hi) {
@@ -120,27 +169,28 @@ class SectorTree {
     if (last - first + 1 <= 4) {
       // Widened by one face on each side only where a wedge bound may pass near a vertex
       // (first split, prisms); between face middles the chain is exactly first..last.
-      chain_.clear();  // one buffer for every chain
-      for (int i = first - widen_; i <= last + widen_; ++i) chain_.push_back((*faces_)[wrap(i)]);
-      return b_.add_convex_chain(chain_);
+      TreeRef t = kIn;  // a convex chain: inside below every face, outside above any
+      for (int i = last + widen_; i >= first - widen_; --i) t = node({.face = std::int32_t(wrap(i)), .negative = t});
+      return t;
     }
     const int k = (first + last) / 2;
     const std::int32_t p = axial(mid_sin_[wrap(k)], mid_cos_[wrap(k)]);
-    return b_.add_node(p, faces(first, k), faces(k, last));
+    const TreeRef positive = faces(k, last);
+    const TreeRef negative = faces(first, k);
+    return node({.axial = p, .negative = negative, .positive = positive});
   }
   std::size_t wrap(int i) const { return std::size_t(((i % n_) + n_) % n_); }
 
   TreeBuilder& b_;
-  const std::vector<std::int32_t>* faces_ = nullptr;
   const std::vector<double>& start_;
   int n_;
   Options options_;
-  double max_offset_ = 0;
-  int count_ = 0;
   int widen_ = 1;
   bool widened_ = false;
   std::vector<double> mid_sin_, mid_cos_;  // of each face's middle angle
-  std::vector<std::int32_t> chain_;
+  std::vector<ShapeNode> shape_, made_;    // the tree's shape in pre-order; bottom-up while made
+  std::vector<Axial> axial_;               // axial planes in the order they are added
+  std::vector<std::int32_t> axial_id_;     // their planes in the band being built
 };
 
 }  // namespace
@@ -159,51 +209,44 @@ std::vector<Eigen::Vector2d> circle_path(int segments) {
 // rings k and k + 1 under path edge j (a triangle at a ring of scale 0), and the end rings of
 // positive scale are caps. Its vertices are plane triples, exactly those the tree's cells meet in
 // (each face plane contains the scaled path edge of both its rings). Each corner carries the
-// approximation of its own labels (docs/kernel.md). Planes are the builder's; the ring planes'
-// opposites are added.
+// approximation of its own labels (docs/kernel.md). Planes are the builder's (`ring`: ring k's
+// plane z - z_k, `face`: band k's face planes); the ring planes' opposites are added.
 std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring,
-                                            const std::vector<Plane>& ring_value,
                                             const std::vector<std::vector<std::int32_t>>& face,
-                                            const std::vector<std::vector<Plane>>& face_value,
                                             const std::vector<double>& scale) {
   const std::size_t r = ring.size();
   const int n = int(face[0].size());
   auto wrap = [n](int j) { return std::size_t(j < 0 ? j + n : (j >= n ? j - n : j)); };  // j in [-1, n]
+  std::vector<std::int32_t> below(r - 1);  // the opposite of band k's lower ring plane
+  for (std::size_t k = 0; k + 1 < r; ++k) below[k] = b.add_plane(b.planes()[ring[k]].opposite());
+  const kernel::PlaneTable& planes = b.planes();  // no plane is added from here on
   std::vector<BoundaryFragment> faces;
   faces.reserve((r - 1) * std::size_t(n) + 2);
-  struct Label {
-    std::int32_t id;
-    const Plane* value;
-  };
   // Fragments are built in place (a polygon is 272 bytes): aggregate initialization leaves the
   // corners' inline storage untouched, where value initialization would zero it.
   auto fragment = [&faces](std::int32_t support, bool flip) -> kernel::ConvexPolygon& {
     faces.push_back(BoundaryFragment{.polygon = {.support = support, .corners = {}}, .flip = flip});
     return faces.back().polygon;
   };
-  auto corner = [](kernel::ConvexPolygon& poly, const Plane& support, Label prev, Label edge) {
-    poly.corners.push_back({edge.id, prev.id, edge.id, kernel::approximate_vertex(support, *prev.value, *edge.value)});
+  auto corner = [&planes](kernel::ConvexPolygon& poly, const Plane& support, std::int32_t prev, std::int32_t edge) {
+    poly.corners.push_back({edge, prev, edge, kernel::approximate_vertex(support, planes[prev], planes[edge])});
   };
   for (std::size_t k = 0; k + 1 < r; ++k) {
-    const Plane below_value = ring_value[k].opposite();
-    const Label below{b.add_plane(below_value), &below_value}, above{ring[k + 1], &ring_value[k + 1]};
     const std::vector<std::int32_t>& ids = face[k];
-    const std::vector<Plane>& values = face_value[k];
     for (int j = 0; j < n; ++j) {
-      const Label prev{ids[wrap(j - 1)], &values[wrap(j - 1)]};
-      const Label next{ids[wrap(j + 1)], &values[wrap(j + 1)]};
-      const Plane& support = values[std::size_t(j)];
-      kernel::ConvexPolygon& poly = fragment(ids[std::size_t(j)], false);
+      const std::int32_t prev = ids[wrap(j - 1)], next = ids[wrap(j + 1)], id = ids[std::size_t(j)];
+      const Plane& support = planes[id];
+      kernel::ConvexPolygon& poly = fragment(id, false);
       // Counter-clockwise seen from outside: along ring k, up, back along ring k + 1, down.
       if (scale[k] > 0) {
-        corner(poly, support, prev, below);
-        corner(poly, support, below, next);
+        corner(poly, support, prev, below[k]);
+        corner(poly, support, below[k], next);
       } else {
         corner(poly, support, prev, next);  // the apex
       }
       if (scale[k + 1] > 0) {
-        corner(poly, support, next, above);
-        corner(poly, support, above, prev);
+        corner(poly, support, next, ring[k + 1]);
+        corner(poly, support, ring[k + 1], prev);
       } else {
         corner(poly, support, next, prev);
       }
@@ -211,12 +254,10 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
   }
   for (const std::size_t k : {std::size_t(0), r - 1}) {  // caps: counter-clockwise about +z
     if (!(scale[k] > 0)) continue;
-    const std::size_t band = k == 0 ? 0 : r - 2;
+    const std::vector<std::int32_t>& ids = face[k == 0 ? 0 : r - 2];
     kernel::ConvexPolygon& poly = fragment(ring[k], k == 0);
     poly.corners.reserve(std::size_t(n));
-    for (int j = 0; j < n; ++j)
-      corner(poly, ring_value[k], {face[band][wrap(j - 1)], &face_value[band][wrap(j - 1)]},
-             {face[band][std::size_t(j)], &face_value[band][std::size_t(j)]});
+    for (int j = 0; j < n; ++j) corner(poly, planes[ring[k]], ids[wrap(j - 1)], ids[std::size_t(j)]);
   }
   return faces;
 }
@@ -270,7 +311,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     const double c = rings[k].scale * offset[std::size_t(j)] / kernel::kGridStep;
     if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord))
       throw RangeError("revolved solid exceeds the exact kernel's range " + kernel::range_text());
-    return Int128(std::llround(std::ldexp(c, kPathNormalBits)));
+    return Int128(std::llround(c * kPathScale));
   };
 
   // The direct boundary needs every path edge on every ring of positive scale. Rounding moves an
@@ -303,59 +344,59 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
             r + 1 + (r - 1) * (std::size_t(n) * 3 / 2 + 2));
   // Ring planes z = z_k: f = z - z_k.
   std::vector<std::int32_t> ring_plane(r);
-  std::vector<Plane> ring_value(r);
-  std::vector<std::vector<Plane>> face_value(r - 1);
   std::vector<std::vector<std::int32_t>> face_index(r - 1);
   // Inner rings only separate bands (auxiliary); the first and last ring planes are the caps.
   for (std::size_t k = 0; k < r; ++k) {
-    ring_value[k] = kernel::make_plane(0, 0, 1, -Int128(z[k]));
-    ring_plane[k] = b.add_plane(ring_value[k], k > 0 && k + 1 < r);
+    ring_plane[k] = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(z[k])), k > 0 && k + 1 < r);
   }
   // The x, y part of a face normal is dz (nx, ny): the gcd of those two is dz gcd(nx, ny), so
   // make_plane needs only the gcd with the z part (the same planes, one gcd per face less).
   std::vector<std::uint64_t> xy_gcd(static_cast<std::size_t>(n));
   for (std::size_t j = 0; j < std::size_t(n); ++j)
     xy_gcd[j] = std::gcd(std::uint64_t(std::llabs(nx[j])), std::uint64_t(std::llabs(ny[j])));
-  // Band trees.
-  std::vector<TreeRef> band(r - 1);
   // Below that bound, rounding can move a face out of the wedge whose chain should hold it: the
   // solid then bends along an axial plane, which must then count as a face plane (not auxiliary)
   // for extraction to find that boundary. Chains are widened so that this stays rare.
   SectorTree sectors(b, start, {.auxiliary_axes = direct, .widen = direct ? 0 : 1});
   std::vector<Int128> c_below(static_cast<std::size_t>(n)), c_above(static_cast<std::size_t>(n));
   for (int j = 0; j < n; ++j) c_above[std::size_t(j)] = c_of(0, j);
-  for (std::size_t k = 0; k + 1 < r; ++k) {
+  // Band k's face planes and tree (bands come in increasing order).
+  auto band = [&](std::size_t k) -> TreeRef {
     const Int128 dz = z[k + 1] - z[k];
     std::swap(c_below, c_above);  // ring k's offsets were ring k + 1's of the band below
     for (int j = 0; j < n; ++j) c_above[std::size_t(j)] = c_of(k + 1, j);
     std::vector<std::int32_t> faces(static_cast<std::size_t>(n));
-    face_value[k].reserve(std::size_t(n));
     for (std::size_t j = 0; j < std::size_t(n); ++j) {
       const Int128 c0 = c_below[j], dc = c_above[j] - c0;
       // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside.
-      face_value[k].push_back(kernel::make_plane(dz * nx[j], dz * ny[j], -dc, dc * z[k] - dz * c0,
-                                                 {.ab_gcd = std::uint64_t(dz) * xy_gcd[j]}));
-      faces[j] = b.add_plane(face_value[k].back());
+      faces[j] = b.add_plane(kernel::make_plane(dz * nx[j], dz * ny[j], -dc, dc * z[k] - dz * c0,
+                                                {.ab_gcd = std::uint64_t(dz) * xy_gcd[j]}));
     }
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
-    band[k] = sectors.build(faces, 0.05 * min_scale * min_edge);
+    const TreeRef t = sectors.build(faces, 0.05 * min_scale * min_edge);
     face_index[k] = std::move(faces);
-  }
-  // Balanced tree over the bands (explicit recursion depth is log2 of the ring count).
-  auto slabs = [&](auto&& self, std::size_t lo, std::size_t hi) -> TreeRef {
-    if (lo == hi) return band[lo];
-    const std::size_t m = (lo + hi + 1) / 2;  // ring between band m - 1 and band m
-    return b.add_node(ring_plane[m], self(self, lo, m - 1), self(self, m, hi));
+    return t;
   };
-  const TreeRef inner = slabs(slabs, 0, r - 2);
-  const TreeRef top = b.add_node(ring_plane[r - 1], inner, kOut);
-  const TreeRef root = b.add_node(ring_plane[0], kOut, top);
+  // The tree top-down in pre-order (TreeBuilder::open_nodes), so the builder keeps it as laid out:
+  // the bottom cap's plane, the top cap's, then a balanced tree over the bands split by the inner
+  // ring planes (explicit recursion depth is log2 of the ring count), lower bands first.
+  const TreeRef root = b.open_nodes(2), top = root + 1;
+  auto slabs = [&](auto&& self, std::size_t lo, std::size_t hi) -> TreeRef {
+    if (lo == hi) return band(lo);
+    const std::size_t m = (lo + hi + 1) / 2;  // ring between band m - 1 and band m
+    const TreeRef node = b.open_nodes(1);
+    const TreeRef negative = self(self, lo, m - 1);
+    b.set_node(node, ring_plane[m], negative, self(self, m, hi));
+    return node;
+  };
+  b.set_node(top, ring_plane[r - 1], slabs(slabs, 0, r - 2), kOut);
+  b.set_node(root, ring_plane[0], kOut, top);
   if (!direct) return std::move(b).build(root);
   // Every node then cuts its cell: ring planes cut their slabs and axial planes their wedges (both
   // reach the world box), and each chain face keeps the middle part of its facet inside its wedge
   // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as
   // built. Widened chains may hold faces outside their wedges: those are left to the full build.
-  std::vector<BoundaryFragment> boundary = ring_boundary(b, ring_plane, ring_value, face_index, face_value, scale);
+  std::vector<BoundaryFragment> boundary = ring_boundary(b, ring_plane, face_index, scale);
   return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors.widened()});
 }
 

@@ -16,46 +16,39 @@ TreeBuilder::TreeBuilder() = default;
 
 std::int32_t TreeBuilder::add_plane(const kernel::Plane& plane, bool auxiliary) { return planes_.add(plane, auxiliary); }
 
-void TreeBuilder::reserve(std::size_t planes, std::size_t nodes) {
-  planes_.reserve(planes);
-  nodes_.reserve(nodes);
+namespace {
+
+// Room for a set operation in place (set_operations.cpp appends the other operand and the merge's
+// copies): reserved address space is not touched until used.
+std::size_t room_for(std::size_t nodes) { return nodes + nodes / 2 + 64; }
+
+void check_child(TreeRef c, std::size_t nodes) {
+  if (c != kIn && c != kOut && (c < 0 || std::size_t(c) >= nodes)) throw std::out_of_range("TreeBuilder: unknown child");
 }
 
-TreeRef TreeBuilder::add_node(std::int32_t plane, TreeRef negative, TreeRef positive) {
-  if (plane < 0 || plane >= planes_.size()) throw std::out_of_range("TreeBuilder: unknown plane");
-  for (TreeRef c : {negative, positive})
-    if (c != kIn && c != kOut && (c < 0 || std::size_t(c) >= nodes_.size()))
-      throw std::out_of_range("TreeBuilder: unknown child");
-  nodes_.push_back({plane, negative, positive});
-  return TreeRef(nodes_.size() - 1);
+// True if `nodes` is exactly the pre-order layout of the tree at `root`: the root at 0, each node
+// followed by its negative subtree, then its positive one, nothing shared or unreachable. By
+// induction from the last index: node i's subtree then fills [i, i + size[i]).
+bool in_preorder(const std::vector<BspNode>& nodes, TreeRef root) {
+  if (root != 0) return false;
+  const std::size_t count = nodes.size();
+  std::vector<std::uint32_t> size(count);
+  for (std::size_t i = count; i-- > 0;) {
+    const BspNode& n = nodes[i];
+    std::size_t end = i + 1;  // one past the subtree's last node so far
+    for (const TreeRef c : {n.negative, n.positive}) {
+      if (is_leaf(c)) continue;
+      if (std::size_t(c) != end || end >= count) return false;
+      end += size[end];
+    }
+    size[i] = std::uint32_t(end - i);
+  }
+  return count > 0 && size[0] == count;
 }
 
-TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_planes, TreeRef inside,
-                                      TreeRef outside) {
-  TreeRef t = inside;
-  for (auto it = face_planes.rbegin(); it != face_planes.rend(); ++it) t = add_node(*it, t, outside);
-  return t;
-}
-
-Solid TreeBuilder::build(TreeRef root) && { return std::move(*this).build_with(root, std::nullopt); }
-
-Solid TreeBuilder::build(TreeRef root, std::vector<BoundaryFragment> boundary, const BuildOptions& options) && {
-  if (options.nodes_cut_cells) return std::move(*this).build_as_given(root, std::move(boundary));
-  return std::move(*this).build_with(root, std::move(boundary));
-}
-
-Solid TreeBuilder::build(TreeRef root, const BuildOptions& options) && {
-  if (options.nodes_cut_cells) return std::move(*this).build_as_given(root, std::nullopt);
-  return std::move(*this).build_with(root, std::nullopt);
-}
-
-// Every node cuts its cell: copy the tree depth-first from the root (a node shared by two parents
-// is copied for each), with pending sub-hyperplanes (node_polygons.hpp).
-Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
-  if (is_leaf(root)) return Solid::leaf(root == kIn);
-  // Room for a set operation in place (set_operations.cpp appends the other operand and the
-  // merge's copies): reserved address space is not touched until used.
-  const std::size_t room = nodes_.size() + nodes_.size() / 2 + 64;
+// The tree at `root` copied depth-first into pre-order (a node shared by two parents is copied for
+// each), with room for `room` nodes.
+std::vector<BspNode> copy_preorder(const std::vector<BspNode>& from, TreeRef root, std::size_t room) {
   std::vector<BspNode> nodes;
   nodes.reserve(room);
   struct Frame {
@@ -69,13 +62,82 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<Bounda
     stack.pop_back();
     TreeRef out = f.source;
     if (!is_leaf(f.source)) {
-      const BspNode& n = nodes_[std::size_t(f.source)];
+      const BspNode& n = from[std::size_t(f.source)];
       out = TreeRef(nodes.size());
       nodes.push_back({n.plane, kOut, kOut});
       stack.push_back({n.positive, out, 1});
       stack.push_back({n.negative, out, 0});
     }
     if (f.parent >= 0) (f.side == 0 ? nodes[std::size_t(f.parent)].negative : nodes[std::size_t(f.parent)].positive) = out;
+  }
+  return nodes;
+}
+
+}  // namespace
+
+void TreeBuilder::reserve(std::size_t planes, std::size_t nodes) {
+  planes_.reserve(planes);
+  nodes_.reserve(nodes);
+}
+
+TreeRef TreeBuilder::add_node(std::int32_t plane, TreeRef negative, TreeRef positive) {
+  if (plane < 0 || plane >= planes_.size()) throw std::out_of_range("TreeBuilder: unknown plane");
+  for (TreeRef c : {negative, positive}) check_child(c, nodes_.size());
+  nodes_.push_back({plane, negative, positive});
+  return TreeRef(nodes_.size() - 1);
+}
+
+TreeRef TreeBuilder::open_nodes(std::int32_t count) {
+  if (count < 0) throw std::out_of_range("TreeBuilder: negative node count");
+  const auto first = TreeRef(nodes_.size());
+  nodes_.resize(nodes_.size() + std::size_t(count), {-1, kOut, kOut});
+  unset_ += count;
+  return first;
+}
+
+void TreeBuilder::set_node(TreeRef node, std::int32_t plane, TreeRef negative, TreeRef positive) {
+  if (node < 0 || std::size_t(node) >= nodes_.size()) throw std::out_of_range("TreeBuilder: unknown node");
+  if (plane < 0 || plane >= planes_.size()) throw std::out_of_range("TreeBuilder: unknown plane");
+  for (TreeRef c : {negative, positive}) check_child(c, nodes_.size());
+  BspNode& n = nodes_[std::size_t(node)];
+  if (n.plane < 0) --unset_;
+  n = {plane, negative, positive};
+}
+
+TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_planes, TreeRef inside,
+                                      TreeRef outside) {
+  TreeRef t = inside;
+  for (auto it = face_planes.rbegin(); it != face_planes.rend(); ++it) t = add_node(*it, t, outside);
+  return t;
+}
+
+Solid TreeBuilder::build(TreeRef root) && { return std::move(*this).build(root, BuildOptions{}); }
+
+Solid TreeBuilder::build(TreeRef root, std::vector<BoundaryFragment> boundary, const BuildOptions& options) && {
+  if (unset_ != 0) throw std::logic_error("TreeBuilder: a node made by open_nodes was never set");
+  check_child(root, nodes_.size());
+  if (options.nodes_cut_cells) return std::move(*this).build_as_given(root, std::move(boundary));
+  return std::move(*this).build_with(root, std::move(boundary));
+}
+
+Solid TreeBuilder::build(TreeRef root, const BuildOptions& options) && {
+  if (unset_ != 0) throw std::logic_error("TreeBuilder: a node made by open_nodes was never set");
+  check_child(root, nodes_.size());
+  if (options.nodes_cut_cells) return std::move(*this).build_as_given(root, std::nullopt);
+  return std::move(*this).build_with(root, std::nullopt);
+}
+
+// Every node cuts its cell: the tree in pre-order from the root (as laid out, or copied), with
+// pending sub-hyperplanes (node_polygons.hpp).
+Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
+  if (is_leaf(root)) return Solid::leaf(root == kIn);
+  const std::size_t room = room_for(nodes_.size());
+  std::vector<BspNode> nodes;
+  if (in_preorder(nodes_, root)) {  // laid out top-down already (open_nodes): kept as it is
+    nodes = std::move(nodes_);
+    nodes.reserve(room);
+  } else {
+    nodes = copy_preorder(nodes_, root, room);
   }
   // Pending sub-hyperplanes: aggregate initialization writes the support and the corners' header
   // only (value initialization would zero each 272-byte polygon first).
@@ -89,7 +151,7 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
   detail::Arena arena;
   arena.planes = std::move(planes_);
   // Every builder node is kept at most once (unless shared) and adds its plane's opposite.
-  const std::size_t room = nodes_.size() + nodes_.size() / 2 + 64;  // as in build_as_given
+  const std::size_t room = room_for(nodes_.size());
   arena.nodes.reserve(room);
   arena.polygons.reserve(room);
   arena.planes.reserve(std::size_t(arena.planes.size()) + nodes_.size());

@@ -33,10 +33,19 @@ class TreeBuilder {
   /// splits space and carries no face of the solid (see kernel::PlaneTable); boundary extraction
   /// skips it. Leave it false unless that is certain.
   std::int32_t add_plane(const kernel::Plane& plane, bool auxiliary = false);
-  /// Room for this many planes and nodes in all (for callers that know their tree's size).
+  /// Room for this many planes and nodes in all (for callers that know their tree's size), and for
+  /// the room build() leaves after the nodes.
   void reserve(std::size_t planes, std::size_t nodes);
+  /// The planes added so far (references stay valid until the next add_plane).
+  [[nodiscard]] const kernel::PlaneTable& planes() const { return planes_; }
   /// A node splitting by plane `plane`: `negative` on the side f < 0, `positive` on f > 0.
   TreeRef add_node(std::int32_t plane, TreeRef negative, TreeRef positive);
+  /// Top-down construction: appends `count` nodes for set_node to fill and returns the first's
+  /// index. A tree laid out in pre-order (the root first, each node followed by its negative
+  /// subtree, then its positive one) is kept without a copy by build(..., {.nodes_cut_cells}).
+  TreeRef open_nodes(std::int32_t count);
+  /// Fills a node made by open_nodes; its children may be any nodes of this builder or leaves.
+  void set_node(TreeRef node, std::int32_t plane, TreeRef negative, TreeRef positive);
   /// A balanced tree for the convex polytope ∩ (f_i <= 0) of the given planes, as a chain in
   /// the given order (callers balance by splitting first with non-face planes).
   TreeRef add_convex_chain(const std::vector<std::int32_t>& face_planes, TreeRef inside = kIn,
@@ -55,6 +64,7 @@ class TreeBuilder {
   Solid build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) &&;
   kernel::PlaneTable planes_;
   std::vector<BspNode> nodes_;
+  std::int32_t unset_ = 0;  ///< opened nodes not filled yet
 };
 
 }  // namespace sculpt

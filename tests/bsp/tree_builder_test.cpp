@@ -13,6 +13,8 @@
 #include <cstring>
 #include <numbers>
 #include <random>
+#include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include "bsp/boundary.hpp"
@@ -311,6 +313,109 @@ TEST(TreeBuilder, ExactImagesNeedNoDropping) {
       EXPECT_NEAR(volume(image), det * volume(s), 1e-9 * det * volume(s));  // |det| times the volume
     }
   }
+}
+
+// Top-down construction (open_nodes / set_node): a tree laid out in pre-order is kept as it is,
+// any other layout (breadth-first, a shared node, an unreachable node) is copied into pre-order.
+// Either way the solid's storage must equal that of the same tree built bottom-up (add_node).
+TEST(TreeBuilder, OpenedNodesGiveTheSameStorageInAnyLayout) {
+  std::mt19937 rng(11);
+  auto storage = [](const Solid& s) {
+    std::vector<std::tuple<Plane, bool, TreeRef, TreeRef, Plane>> out;
+    for (std::size_t i = 0; i < s.nodes().size(); ++i) {
+      const BspNode& n = s.nodes()[i];
+      out.emplace_back(s.planes()[n.plane], s.planes().auxiliary(n.plane), n.negative, n.positive,
+                       s.planes()[s.polygons()[i].support]);
+    }
+    return out;
+  };
+  int layouts = 0, shares = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    SCOPED_TRACE(trial);
+    // A random recipe whose nodes are numbered breadth-first (children after parents).
+    Recipe r;
+    const int planes = 2 + int(rng() % 6);
+    for (int i = 0; i < planes; ++i) {
+      r.planes.push_back(kernel::make_plane(int(rng() % 5) - 2, 1 + int(rng() % 3), int(rng() % 3), i));
+      r.auxiliary.push_back(rng() % 2 == 0);
+    }
+    const int count = 1 + int(rng() % 40);
+    for (int k = 0; k < count; ++k) r.nodes.push_back({std::int32_t(rng() % std::uint32_t(planes)), kOut, kIn});
+    int next = 1;
+    for (int k = 0; k < next; ++k)  // node k has a parent (or is the root)
+      for (TreeRef* c : {&r.nodes[std::size_t(k)].negative, &r.nodes[std::size_t(k)].positive})
+        *c = next < count && rng() % 3 != 0 ? TreeRef(next++) : (rng() % 2 ? kIn : kOut);
+    r.nodes.resize(std::size_t(next));  // the nodes no parent took
+    // Sometimes a node shared by two parents: the root's positive child X, also a child of node 1
+    // (the root's negative child) in place of a leaf.
+    const TreeRef x = r.nodes[0].positive;
+    const bool shared = trial % 3 == 1 && r.nodes[0].negative == 1 && !is_leaf(x) &&
+                        (is_leaf(r.nodes[1].negative) || is_leaf(r.nodes[1].positive));
+    if (shared) (is_leaf(r.nodes[1].negative) ? r.nodes[1].negative : r.nodes[1].positive) = x;
+    r.root = 0;
+    // Pre-order of the recipe (negative subtree first), as TreeBuilder lays it out.
+    std::vector<TreeRef> preorder;
+    for (std::vector<TreeRef> stack{0}; !stack.empty();) {
+      const TreeRef t = stack.back();
+      stack.pop_back();
+      preorder.push_back(t);
+      for (const TreeRef c : {r.nodes[std::size_t(t)].positive, r.nodes[std::size_t(t)].negative})
+        if (!is_leaf(c)) stack.push_back(c);
+    }
+    // Bottom-up reference, then top-down in three layouts: the recipe's breadth-first order, pre-order
+    // (kept as laid out unless a node is shared), pre-order with one unreachable node at the end.
+    const Solid reference = [&] {
+      TreeBuilder b;
+      for (std::size_t i = 0; i < r.planes.size(); ++i) b.add_plane(r.planes[i], r.auxiliary[i]);
+      std::vector<TreeRef> ref(r.nodes.size(), kOut);
+      auto child = [&](TreeRef c) { return is_leaf(c) ? c : ref[std::size_t(c)]; };
+      for (std::size_t k = r.nodes.size(); k-- > 0;)
+        ref[k] = b.add_node(kernel::kWorldPlanes + r.nodes[k].plane, child(r.nodes[k].negative), child(r.nodes[k].positive));
+      return std::move(b).build(ref[0], BuildOptions{.nodes_cut_cells = true});
+    }();
+    for (int layout = 0; layout < 3; ++layout) {
+      std::vector<TreeRef> order(r.nodes.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = TreeRef(i);
+      if (layout > 0 && !shared) order = preorder;  // a shared node is visited twice: no single layout
+      TreeBuilder b;
+      for (std::size_t i = 0; i < r.planes.size(); ++i) b.add_plane(r.planes[i], r.auxiliary[i]);
+      const TreeRef first = b.open_nodes(std::int32_t(order.size()) + (layout == 2 ? 1 : 0));
+      std::vector<TreeRef> at(r.nodes.size(), kOut);
+      for (std::size_t i = 0; i < order.size(); ++i) at[std::size_t(order[i])] = first + TreeRef(i);
+      auto child = [&](TreeRef c) { return is_leaf(c) ? c : at[std::size_t(c)]; };
+      for (std::size_t k = 0; k < r.nodes.size(); ++k)
+        b.set_node(at[k], kernel::kWorldPlanes + r.nodes[k].plane, child(r.nodes[k].negative), child(r.nodes[k].positive));
+      if (layout == 2) b.set_node(first + TreeRef(order.size()), kernel::kWorldPlanes, kIn, kOut);  // unreachable
+      const Solid s = std::move(b).build(at[0], BuildOptions{.nodes_cut_cells = true});
+      EXPECT_EQ(s.root(), 0);
+      EXPECT_EQ(storage(s), storage(reference)) << "layout " << layout;
+      ++layouts;
+    }
+    EXPECT_EQ(reference.nodes().size(), preorder.size());  // a shared node is copied for each parent
+    if (!shared) {
+      EXPECT_EQ(preorder.size(), r.nodes.size());
+    }
+    shares += shared ? 1 : 0;
+  }
+  EXPECT_EQ(layouts, 600);
+  EXPECT_GT(shares, 10);
+}
+
+TEST(TreeBuilder, OpenedNodesAreChecked) {
+  TreeBuilder b;
+  const std::int32_t p = b.add_plane(kernel::make_plane(0, 0, 1, 0));
+  EXPECT_THROW(b.open_nodes(-1), std::out_of_range);
+  const TreeRef n = b.open_nodes(2);
+  EXPECT_THROW(b.set_node(n + 2, p, kIn, kOut), std::out_of_range);  // unknown node
+  EXPECT_THROW(b.set_node(n, p + 1, kIn, kOut), std::out_of_range);  // unknown plane
+  EXPECT_THROW(b.set_node(n, p, n + 2, kOut), std::out_of_range);    // unknown child
+  b.set_node(n, p, n + 1, kOut);
+  {
+    TreeBuilder copy = b;  // node n + 1 never set
+    EXPECT_THROW((void)std::move(copy).build(n), std::logic_error);
+  }
+  b.set_node(n + 1, p, kIn, kOut);
+  EXPECT_NO_THROW((void)std::move(b).build(n));
 }
 
 // Random trees over a few planes with many coincident, opposite and parallel ones: most nodes
