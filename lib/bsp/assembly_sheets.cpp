@@ -63,14 +63,35 @@ class SheetSplitter {
         hs[std::size_t(j)] = h;
       }
     }
+    // Edges with two half-edges pair directly; edges with more (the solid touches itself along
+    // them) pair around the edge, across the solid's wedges by default. Where that leaves two
+    // pairs of one edge between the same vertex classes at both ends (the sheets meet again at
+    // both end vertices, so no duplication separates them), the edge pairs across the outside
+    // wedges instead, and the classes are recomputed (a few rounds at most).
+    std::vector<std::pair<std::size_t, std::size_t>> crowded;  // [begin, end) in hs
     for (std::size_t i = 0; i < hs.size();) {
       std::size_t j = i;
       while (j < hs.size() && hs[j].undirected == hs[i].undirected) ++j;
       if (j - i == 2 && hs[i].forward != hs[i + 1].forward)
         pair(hs[i], hs[i + 1]);
       else if (j - i > 2)
-        pair_around_edge(std::vector<HalfEdge>(hs.begin() + std::ptrdiff_t(i), hs.begin() + std::ptrdiff_t(j)));
+        crowded.emplace_back(i, j);
       i = j;
+    }
+    if (!crowded.empty()) {
+      const UnionFind manifold = uf_;  // the classes from the two-face edges alone
+      std::vector<bool> outside(crowded.size(), false);
+      for (int round = 0; round < 4; ++round) {
+        uf_ = manifold;
+        for (std::size_t k = 0; k < crowded.size(); ++k)
+          pair_around_edge(std::vector<HalfEdge>(hs.begin() + std::ptrdiff_t(crowded[k].first),
+                                                 hs.begin() + std::ptrdiff_t(crowded[k].second)),
+                           outside[k]);
+        bool changed = false;
+        for (std::size_t k = 0; k < crowded.size(); ++k)
+          if (pinched(hs, crowded[k])) outside[k] = !outside[k], changed = true;
+        if (!changed) break;
+      }
     }
     // One vertex per (vertex, corner class): the first class keeps the vertex id.
     std::vector<int> original(v_.at.size());
@@ -100,7 +121,21 @@ class SheetSplitter {
     uf_.unite(f_.next(a.face, a.corner), b.corner);
   }
 
-  void pair_around_edge(const std::vector<HalfEdge>& group) {
+  // True if two half-edges of the group join the same vertex classes (the edge would appear twice).
+  bool pinched(const std::vector<HalfEdge>& hs, std::pair<std::size_t, std::size_t> range) {
+    std::vector<std::uint64_t> keys;
+    for (std::size_t i = range.first; i < range.second; ++i) {
+      const HalfEdge& h = hs[i];
+      const int from = uf_.find(h.corner), to = uf_.find(f_.next(h.face, h.corner));
+      keys.push_back(edge_key(from, to));
+    }
+    std::sort(keys.begin(), keys.end());
+    return std::adjacent_find(keys.begin(), keys.end()) != keys.end();
+  }
+
+  // Pairs the faces around an edge with more than two: each face with its neighbour across a
+  // wedge inside the solid, or (`outside`) across a wedge outside it.
+  void pair_around_edge(const std::vector<HalfEdge>& group, bool outside) {
     // Axis from the smaller to the larger vertex id.
     const HalfEdge& h0 = group[0];
     const int a = f_.vertex[std::size_t(h0.corner)], b = f_.vertex[std::size_t(f_.next(h0.face, h0.corner))];
@@ -127,9 +162,9 @@ class SheetSplitter {
     const std::size_t m = items.size();
     std::vector<bool> used(m, false);
     for (std::size_t i = 0; i < m; ++i) {
-      if (!items[i].in_after || used[i]) continue;
+      if (items[i].in_after == outside || used[i]) continue;
       const std::size_t j = (i + 1) % m;
-      if (used[j] || items[j].in_after) continue;
+      if (used[j] || items[j].in_after != outside) continue;
       const HalfEdge& x = group[items[i].index];
       const HalfEdge& y = group[items[j].index];
       if (x.forward == y.forward) continue;

@@ -73,8 +73,7 @@ TEST(BatchUnion, GridBoxesWithSharedFacesEdgesAndCornersMatchVoxelsAndThePairwis
     }
     const double expected = double(std::count(voxel.begin(), voxel.end(), true));
     const Solid all = unite_all(boxes);
-    // (Meshes are not checked here: where such unions touch themselves along an edge, the mesh
-    // assembly can leave a four-face edge, with the pairwise union as well; see docs/bsp.md.)
+    EXPECT_TRUE(checks::VerticesManifold(to_mesh(all)));
     EXPECT_EQ(vol(all), expected);
     EXPECT_EQ(vol(tree_only(all)), expected);  // the tree agrees with the boundary it carries
     EXPECT_TRUE(SameSet(all, pairwise(boxes), -0.5, N + 0.5, 0.5, 500));

@@ -69,6 +69,44 @@ inline ::testing::AssertionResult EdgesManifoldAndOriented(const PolygonMesh& m)
   return ::testing::AssertionSuccess();
 }
 
+/// Every vertex has one fan: going around it from face to face across shared edges visits all of
+/// its corners (no two sheets share a vertex). \pre EdgesManifoldAndOriented(m).
+inline ::testing::AssertionResult VerticesManifold(const PolygonMesh& m) {
+  if (auto r = EdgesManifoldAndOriented(m); !r) return r;
+  // For each directed edge a -> b: the face using it and the position of a in that face.
+  std::map<std::pair<int, int>, std::pair<int, int>> by_edge;
+  std::vector<int> corners(m.vertices.size(), 0);
+  for (size_t f = 0; f < m.faces.size(); ++f)
+    for (size_t k = 0; k < m.faces[f].size(); ++k) {
+      const int a = m.faces[f][k], b = m.faces[f][(k + 1) % m.faces[f].size()];
+      by_edge[{a, b}] = {static_cast<int>(f), static_cast<int>(k)};
+      ++corners[static_cast<size_t>(a)];
+    }
+  std::vector<int> seen(m.vertices.size(), 0);
+  std::vector<bool> started(m.vertices.size(), false);
+  for (const auto& [edge, start] : by_edge) {
+    const int v = edge.first;
+    if (started[static_cast<size_t>(v)]) continue;
+    started[static_cast<size_t>(v)] = true;
+    // Walk the fan: from the corner at v in face f (outgoing edge v -> w), cross to the face
+    // using w -> v, whose corner at v follows that edge.
+    std::pair<int, int> at = start;
+    do {
+      ++seen[static_cast<size_t>(v)];
+      const auto& face = m.faces[static_cast<size_t>(at.first)];
+      const int w = face[(static_cast<size_t>(at.second) + 1) % face.size()];
+      const auto& other = by_edge.at({w, v});
+      const auto& of = m.faces[static_cast<size_t>(other.first)];
+      at = {other.first, static_cast<int>((static_cast<size_t>(other.second) + 1) % of.size())};
+    } while (at != start && seen[static_cast<size_t>(v)] <= corners[static_cast<size_t>(v)]);
+    if (seen[static_cast<size_t>(v)] != corners[static_cast<size_t>(v)])
+      return ::testing::AssertionFailure() << "vertex " << describe(m, v) << " has " << corners[static_cast<size_t>(v)]
+                                           << " corners but its fan through face " << start.first << " has "
+                                           << seen[static_cast<size_t>(v)] << " (two sheets share it)";
+  }
+  return ::testing::AssertionSuccess();
+}
+
 /// V - E + F, V = referenced vertices, E = distinct undirected edges.
 inline int reference_euler_characteristic(const PolygonMesh& m) {
   std::set<int> vertices;
