@@ -5,15 +5,22 @@
 
 namespace sculpt::detail {
 
-FaceList merge_coplanar_faces(const FaceList& faces, int vertex_count, const PlaneIds& ids) {
+FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& ids) {
   const int nf = faces.size();
   const std::size_t corners = std::size_t(faces.corners());
   // Oriented plane of each face: equal planes share a canonical id, the outward side one bit.
   std::vector<std::uint64_t> plane(static_cast<std::size_t>(nf));
+  std::vector<std::uint8_t> on_plane(2 * ids.id.size(), 0);  // faces per oriented plane: 0, 1, 2 = more
   for (int f = 0; f < nf; ++f) {
     const auto s = std::size_t(faces.support[std::size_t(f)]);
-    plane[std::size_t(f)] = 2 * std::uint64_t(ids.id[s]) + ((ids.negated[s] != 0) != (faces.flip[std::size_t(f)] != 0) ? 1 : 0);
+    const std::uint64_t oriented = 2 * std::uint64_t(ids.id[s]) + ((ids.negated[s] != 0) != (faces.flip[std::size_t(f)] != 0) ? 1 : 0);
+    plane[std::size_t(f)] = oriented;
+    std::uint8_t& n = on_plane[std::size_t(oriented)];
+    n = n < 2 ? n + 1 : 2;
   }
+  // A face alone on its oriented plane has no interior edge (its opposite half-edges lie on
+  // other planes): only the other faces' half-edges are indexed and looked up.
+  auto shared = [&](int f) { return on_plane[std::size_t(plane[std::size_t(f)])] == 2; };
   // Half-edges by start vertex (counting sort), each with its face and that face's plane, so a
   // lookup touches one contiguous run.
   struct Out {
@@ -21,15 +28,18 @@ FaceList merge_coplanar_faces(const FaceList& faces, int vertex_count, const Pla
     std::uint64_t plane;
   };
   std::vector<int> start(std::size_t(vertex_count) + 1, 0);
-  for (const int v : faces.vertex) ++start[std::size_t(v) + 1];
+  for (int f = 0; f < nf; ++f)
+    if (shared(f))
+      for (int c = faces.begin(f); c < faces.end(f); ++c) ++start[std::size_t(faces.vertex[std::size_t(c)]) + 1];
   for (std::size_t v = 0; v < std::size_t(vertex_count); ++v) start[v + 1] += start[v];
-  std::vector<Out> by_start(corners);
+  std::vector<Out> by_start(std::size_t(start.back()));
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
     for (int f = 0; f < nf; ++f)
-      for (int c = faces.begin(f); c < faces.end(f); ++c)
-        by_start[std::size_t(fill[std::size_t(faces.vertex[std::size_t(c)])]++)] = {faces.vertex[std::size_t(faces.next(f, c))], f,
-                                                                               plane[std::size_t(f)]};
+      if (shared(f))
+        for (int c = faces.begin(f); c < faces.end(f); ++c)
+          by_start[std::size_t(fill[std::size_t(faces.vertex[std::size_t(c)])]++)] = {faces.vertex[std::size_t(faces.next(f, c))], f,
+                                                                                 plane[std::size_t(f)]};
   }
   // Faces of one oriented plane joined through an edge (u, w) / (w, u) form one candidate union;
   // such edges are interior to it.
@@ -37,6 +47,7 @@ FaceList merge_coplanar_faces(const FaceList& faces, int vertex_count, const Pla
   std::vector<std::uint8_t> interior(corners, 0);
   bool any = false;
   for (int f = 0; f < nf; ++f) {
+    if (!shared(f)) continue;
     const std::uint64_t mine = plane[std::size_t(f)];
     for (int c = faces.begin(f); c < faces.end(f); ++c) {
       const int u = faces.vertex[std::size_t(c)], w = faces.vertex[std::size_t(faces.next(f, c))];
@@ -119,7 +130,7 @@ FaceList merge_coplanar_faces(const FaceList& faces, int vertex_count, const Pla
   return out;
 }
 
-FaceList remove_straight_vertices(const FaceList& faces, int vertex_count, const VertexGeometry& geometry) {
+FaceList remove_straight_vertices(FaceList faces, int vertex_count, const VertexGeometry& geometry) {
   const std::size_t nv = std::size_t(vertex_count);
   // Exactly two distinct neighbours per vertex: keep the first two seen, mark a third.
   std::vector<std::array<int, 2>> seen(nv, {-1, -1});

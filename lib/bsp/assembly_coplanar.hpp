@@ -12,11 +12,11 @@ namespace sculpt::detail {
 /// Faces on one oriented plane (equal or opposite planes with the same outward side) that share
 /// edges become one face when their union is a simple polygon (one boundary loop); unions with
 /// holes keep their convex fragments. Untouched faces keep their order; merged faces follow.
-FaceList merge_coplanar_faces(const FaceList& faces, int vertex_count, const PlaneIds& ids);
+FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& ids);
 
 /// A vertex with exactly two neighbours that lies exactly on the line of its two edges in every
 /// face using it is a leftover of fragmentation: it is removed from those faces (a face keeps at
 /// least three vertices).
-FaceList remove_straight_vertices(const FaceList& faces, int vertex_count, const VertexGeometry& geometry);
+FaceList remove_straight_vertices(FaceList faces, int vertex_count, const VertexGeometry& geometry);
 
 }  // namespace sculpt::detail

@@ -39,21 +39,37 @@ class JunctionRemover {
     return true;
   }
 
-  // The faces with the inserted vertices.
+  // The faces with the inserted vertices: runs of corners between open edges copied whole.
   FaceList apply() const {
     FaceList out;
-    out.reserve(std::size_t(f_.size()), f_.vertex.size() + ins_.size());
-    std::size_t o = 0;  // open edges are in corner order
+    const std::size_t total = f_.vertex.size() + ins_.size();
+    out.start.resize(f_.start.size());
+    out.support = f_.support;
+    out.flip = f_.flip;
+    out.vertex.resize(total);
+    out.line.resize(total);
+    auto copy = [&](int from, int to, std::size_t at) {  // corners [from, to) to position `at`
+      std::copy(f_.vertex.begin() + from, f_.vertex.begin() + to, out.vertex.begin() + std::ptrdiff_t(at));
+      std::copy(f_.line.begin() + from, f_.line.begin() + to, out.line.begin() + std::ptrdiff_t(at));
+    };
+    std::size_t o = 0, at = 0;  // open edges are in corner order
     for (int f = 0; f < f_.size(); ++f) {
-      out.open_face(f_.support[std::size_t(f)], f_.flip[std::size_t(f)] != 0);
-      for (int c = f_.begin(f); c < f_.end(f); ++c) {
-        out.add_corner(f_.vertex[std::size_t(c)], f_.line[std::size_t(c)]);
-        if (o < open_.size() && open_[o].corner == c) {
-          for (int k = ins_begin_[o]; k < ins_end_[o]; ++k) out.add_corner(ins_[std::size_t(k)], f_.line[std::size_t(c)]);
-          ++o;
+      out.start[std::size_t(f)] = int(at);
+      int c = f_.begin(f);
+      for (; o < open_.size() && open_[o].corner < f_.end(f); ++o) {
+        const int corner = open_[o].corner;
+        copy(c, corner + 1, at);
+        at += std::size_t(corner + 1 - c);
+        c = corner + 1;
+        for (int k = ins_begin_[o]; k < ins_end_[o]; ++k, ++at) {
+          out.vertex[at] = ins_[std::size_t(k)];
+          out.line[at] = f_.line[std::size_t(corner)];
         }
       }
+      copy(c, f_.end(f), at);
+      at += std::size_t(f_.end(f) - c);
     }
+    out.start.back() = int(at);
     return out;
   }
 
@@ -74,7 +90,10 @@ class JunctionRemover {
   // Exact: the far endpoint x of another half-edge lies on the line of open edge e. The
   // floating-point filter first: most vertices tested are clearly off the line.
   bool on_line(const OpenEdge& e, int x) const {
-    const std::int32_t line = f_.line[std::size_t(e.corner)], support = f_.support[std::size_t(e.face)];
+    return on_line(f_.support[std::size_t(e.face)], f_.line[std::size_t(e.corner)], x);
+  }
+  // Exact: vertex x lies on the line support ∩ line.
+  bool on_line(std::int32_t support, std::int32_t line, int x) const {
     const kernel::ApproxPoint& at = g_.at(x);
     if (kernel::filtered_orient(at, g_.planes()[line]) != kernel::Sign::Zero ||
         kernel::filtered_orient(at, g_.planes()[support]) != kernel::Sign::Zero)
@@ -99,47 +118,60 @@ class JunctionRemover {
     std::vector<int> at_start(nv + 1, 0);
     for (const OpenEdge& e : open_) ++at_start[std::size_t(e.u) + 1], ++at_start[std::size_t(e.w) + 1];
     for (std::size_t v = 0; v < nv; ++v) at_start[v + 1] += at_start[v];
-    std::vector<int> at(static_cast<std::size_t>(at_start[nv]));
+    struct Incident {  // an open edge at a vertex, with what the joins at that vertex read
+      std::uint64_t line;
+      int edge, far;  // the open edge, and its endpoint other than the vertex
+      std::int32_t support, plane;
+    };
+    std::vector<Incident> at(static_cast<std::size_t>(at_start[nv]));  // contiguous per vertex
     {
       std::vector<int> fill(at_start.begin(), at_start.end() - 1);
       for (std::size_t i = 0; i < n; ++i) {
-        at[std::size_t(fill[std::size_t(open_[i].u)]++)] = int(i);
-        at[std::size_t(fill[std::size_t(open_[i].w)]++)] = int(i);
+        const OpenEdge& e = open_[i];
+        const std::int32_t support = f_.support[std::size_t(e.face)], plane = f_.line[std::size_t(e.corner)];
+        at[std::size_t(fill[std::size_t(e.u)]++)] = {e.line, int(i), e.w, support, plane};
+        at[std::size_t(fill[std::size_t(e.w)]++)] = {e.line, int(i), e.u, support, plane};
       }
     }
     // Edges of one plane pair are one group already: one test per pair of distinct plane pairs
     // at v (all edges of a pair lie on one line through v, so any of them decides).
     // (An edge from v to v, if one ever occurs, lies on every line through v: its vertex falls
     // back to testing every pair.)
-    std::vector<int> lines;  // one open edge per distinct plane pair at v
+    std::vector<int> lines;  // one entry of `at` per distinct plane pair at v
     for (std::size_t v = 0; v < nv; ++v) {
       lines.clear();
       bool degenerate = false;
       for (int a = at_start[v]; a < at_start[v + 1]; ++a) {
-        const int i = at[std::size_t(a)];
-        degenerate = degenerate || open_[std::size_t(i)].u == open_[std::size_t(i)].w;
+        const Incident& x = at[std::size_t(a)];
+        degenerate = degenerate || x.far == int(v);
         bool seen = false;
-        for (const int j : lines) seen = seen || open_[std::size_t(j)].line == open_[std::size_t(i)].line;
-        if (!seen) lines.push_back(i);
+        for (const int j : lines) seen = seen || at[std::size_t(j)].line == x.line;
+        if (!seen) lines.push_back(a);
       }
-      if (degenerate) lines.assign(at.begin() + at_start[v], at.begin() + at_start[v + 1]);
+      if (degenerate) {
+        lines.clear();
+        for (int a = at_start[v]; a < at_start[v + 1]; ++a) lines.push_back(a);
+      }
       for (std::size_t a = 0; a < lines.size(); ++a)
         for (std::size_t b = a + 1; b < lines.size(); ++b) {
-          const OpenEdge& x = open_[std::size_t(lines[a])];
-          const OpenEdge& y = open_[std::size_t(lines[b])];
-          if (uf.find(lines[a]) == uf.find(lines[b])) continue;
-          const int far = y.u == int(v) ? y.w : y.u;
-          if (on_line(x, far)) uf.unite(lines[a], lines[b]);
+          const Incident& x = at[std::size_t(lines[a])];
+          const Incident& y = at[std::size_t(lines[b])];
+          if (uf.find(x.edge) == uf.find(y.edge)) continue;
+          if (on_line(x.support, x.plane, y.far)) uf.unite(x.edge, y.edge);
         }
     }
     // Each group: its vertices sorted along the line (exactly), then the inserts of its edges.
     std::vector<int> member_start(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ++member_start[std::size_t(uf.find(int(i))) + 1];
     for (std::size_t i = 0; i < n; ++i) member_start[i + 1] += member_start[i];
-    std::vector<int> members(n);
+    struct Member {  // an open edge of the group, its endpoints and (once sorted) their ranks
+      int i, u, w, ru, rw;
+    };
+    std::vector<Member> members(n);  // in group order: each group's passes read one contiguous run
     {
       std::vector<int> fill(member_start.begin(), member_start.end() - 1);
-      for (std::size_t i = 0; i < n; ++i) members[std::size_t(fill[std::size_t(uf.find(int(i)))]++)] = int(i);
+      for (std::size_t i = 0; i < n; ++i)
+        members[std::size_t(fill[std::size_t(uf.find(int(i)))]++)] = {int(i), open_[i].u, open_[i].w, 0, 0};
     }
     std::vector<int> rank(nv, -1), verts;
     struct Along {  // a vertex with its coordinate along the line's axis, for sorting
@@ -153,14 +185,14 @@ class JunctionRemover {
       if (e - b < 2) continue;
       verts.clear();
       for (int m = b; m < e; ++m) {
-        const OpenEdge& x = open_[std::size_t(members[std::size_t(m)])];
+        const Member& x = members[std::size_t(m)];
         for (const int v : {x.u, x.w})
           if (rank[std::size_t(v)] < 0) {
             rank[std::size_t(v)] = 0;
             verts.push_back(v);
           }
       }
-      const OpenEdge& first = open_[std::size_t(members[std::size_t(b)])];
+      const OpenEdge& first = open_[std::size_t(members[std::size_t(b)].i)];
       const int axis = g_.line_axis(f_.support[std::size_t(first.face)], f_.line[std::size_t(first.corner)]);
       // Sorted exactly (VertexGeometry::less_along), its floating-point test inline.
       along.clear();
@@ -179,8 +211,9 @@ class JunctionRemover {
       for (std::size_t k = 0; k < verts.size(); ++k) verts[k] = along[k].v;
       for (std::size_t k = 0; k < verts.size(); ++k) rank[std::size_t(verts[k])] = int(k);
       for (int m = b; m < e; ++m) {
-        const int i = members[std::size_t(m)];
-        const int ru = rank[std::size_t(open_[std::size_t(i)].u)], rw = rank[std::size_t(open_[std::size_t(i)].w)];
+        Member& x = members[std::size_t(m)];
+        const int i = x.i;
+        const int ru = x.ru = rank[std::size_t(x.u)], rw = x.rw = rank[std::size_t(x.w)];
         ins_begin_[std::size_t(i)] = int(ins_.size());
         if (ru < rw)
           for (int k = ru + 1; k < rw; ++k) ins_.push_back(verts[std::size_t(k)]);
@@ -194,13 +227,12 @@ class JunctionRemover {
       up.assign(verts.size(), 0);
       down.assign(verts.size(), 0);
       for (int m = b; m < e; ++m) {
-        const int i = members[std::size_t(m)];
-        const int ru = rank[std::size_t(open_[std::size_t(i)].u)], rw = rank[std::size_t(open_[std::size_t(i)].w)];
+        const int ru = members[std::size_t(m)].ru, rw = members[std::size_t(m)].rw;
         for (int k = std::min(ru, rw); k < std::max(ru, rw); ++k) (ru < rw ? up : down)[std::size_t(k)] = 1;
       }
       for (int m = b; m < e; ++m) {
-        const int i = members[std::size_t(m)];
-        const int ru = rank[std::size_t(open_[std::size_t(i)].u)], rw = rank[std::size_t(open_[std::size_t(i)].w)];
+        const int i = members[std::size_t(m)].i;
+        const int ru = members[std::size_t(m)].ru, rw = members[std::size_t(m)].rw;
         bool ok = true;
         for (int k = std::min(ru, rw); k < std::max(ru, rw) && ok; ++k) {
           const int lo = verts[std::size_t(k)], hi = verts[std::size_t(k) + 1];

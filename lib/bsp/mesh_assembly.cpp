@@ -6,6 +6,8 @@
 #include "bsp/junction_removal.hpp"
 #include "bsp/vertex_merge.hpp"
 
+#include <utility>
+
 namespace sculpt::detail {
 
 // The stages, each in its own file: exact vertex merging and the fragments as faces on the
@@ -17,8 +19,8 @@ PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& opt
   const PlaneIds& ids = merged.ids;
   const VertexGeometry geometry(fragments.planes, ids, merged.vertices);
   FaceList faces = remove_t_junctions(std::move(merged.faces), geometry, ids).faces;
-  faces = merge_coplanar_faces(faces, merged.vertices.size(), ids);
-  faces = remove_straight_vertices(faces, merged.vertices.size(), geometry);
+  faces = merge_coplanar_faces(std::move(faces), merged.vertices.size(), ids);
+  faces = remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
   const Sheets sheets = split_non_manifold(std::move(faces), merged.vertices, fragments.planes);
   return output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate);
 }

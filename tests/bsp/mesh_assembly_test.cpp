@@ -18,6 +18,7 @@
 #include "bsp/junction_removal.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
+#include "bsp/vertex_equality.hpp"
 #include "bsp/vertex_merge.hpp"
 #include "support/mesh_checks.hpp"
 
@@ -138,6 +139,59 @@ int most_triples_at_one_point(const detail::Fragments& f) {
     most = std::max(most, int(triples.size()));
   }
   return most;
+}
+
+// vertex_on_plane (vertex_equality.hpp) against the sign of plane s at Cramer's vertex in
+// unbounded integers, and against kernel::orient: random planes of every size up to the bit
+// budget (normals to 2^50, offsets to 2^77, both sides of the 2^72 fast-path limit), planes
+// through the vertex (integer combinations of its three), planes off it by one unit of d
+// (det = W: never zero), axis planes (sphere rings), and nearly dependent triples.
+TEST(MeshAssembly, VertexOnPlaneZeroTestMatchesUnboundedArithmetic) {
+  std::mt19937_64 rng(20261122);
+  auto coefficient = [&](int bits) {
+    return std::int64_t(rng() % ((std::uint64_t(1) << bits) + 1)) * ((rng() & 1) != 0 ? 1 : -1);
+  };
+  auto offset = [&](int bits) {
+    const kernel::Int128 high = bits > 60 ? kernel::Int128(coefficient(bits - 60)) : 0;
+    return high * (kernel::Int128(1) << 60) + coefficient(std::min(bits, 60));
+  };
+  const int normal_bits[] = {1, 20, 37, 50};
+  const int offset_bits[] = {10, 52, 71, 77};
+  int zeros = 0, nonzeros = 0, large = 0, nearly_dependent = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int nb = normal_bits[trial % 4], db = offset_bits[(trial / 4) % 4];
+    auto random_plane = [&] { return Plane(coefficient(nb), coefficient(nb), coefficient(nb), offset(db)); };
+    Plane p = random_plane(), q = random_plane(), r = random_plane();
+    if (trial % 7 == 0) p = Plane(0, 0, 1, offset(db));  // a ring plane of a sphere
+    if (trial % 5 == 0) {  // nearly dependent: r almost p + q
+      r = Plane(p.a + q.a + 1, p.b + q.b, p.c + q.c, p.d + q.d);
+      ++nearly_dependent;
+    }
+    const Homogeneous h = cramer(p, q, r);
+    if (h.w == 0) continue;
+    const kernel::ApproxPoint at = kernel::approximate_vertex(p, q, r);
+    const detail::VertexMinors minors = detail::vertex_minors(p, q, r, at);
+    std::vector<Plane> tests = {random_plane(), p.opposite(), q};
+    for (int k = 0; k < 3; ++k) {  // through the vertex: alpha p + beta q + gamma r
+      const std::int64_t al = std::int64_t(rng() % 5) - 2, be = std::int64_t(rng() % 5) - 2, ga = std::int64_t(rng() % 5) - 2;
+      const Plane s(al * p.a + be * q.a + ga * r.a, al * p.b + be * q.b + ga * r.b, al * p.c + be * q.c + ga * r.c,
+                    al * p.d + be * q.d + ga * r.d);
+      if (s.a == 0 && s.b == 0 && s.c == 0) continue;
+      tests.push_back(s);
+      tests.push_back(Plane(s.a, s.b, s.c, s.d + ((rng() & 1) != 0 ? 1 : -1)));  // off by one unit
+    }
+    for (const Plane& s : tests) {
+      const bool on = side(h, s) == 0;
+      ASSERT_EQ(detail::vertex_on_plane(minors, s), on) << "trial " << trial;
+      ASSERT_EQ(kernel::orient(p, q, r, at, s) == kernel::Sign::Zero, on) << "trial " << trial;
+      (on ? zeros : nonzeros) += 1;
+      large += minors.small && (s.d >= kernel::Int128(1) << 72 || s.d <= -(kernel::Int128(1) << 72)) ? 0 : 1;
+    }
+  }
+  EXPECT_GT(zeros, 8000);
+  EXPECT_GT(nonzeros, 8000);
+  EXPECT_GT(large, 1000);  // the general path (some |d| >= 2^72) ran too
+  EXPECT_GT(nearly_dependent, 500);
 }
 
 TEST(MeshAssembly, EqualPointsFromDifferentPlaneTriplesAreOneVertex) {

@@ -91,9 +91,9 @@ void time_stages(const detail::Fragments& f, int runs, const char* source) {
     last = detail::remove_t_junctions(std::move(merged.faces), geometry, ids);
     detail::FaceList faces;
     lap(&last.faces);
-    faces = detail::merge_coplanar_faces(last.faces, merged.vertices.size(), ids);
+    faces = detail::merge_coplanar_faces(std::move(last.faces), merged.vertices.size(), ids);
     lap(&faces);
-    faces = detail::remove_straight_vertices(faces, merged.vertices.size(), geometry);
+    faces = detail::remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
     lap(&faces);
     const detail::Sheets sheets = detail::split_non_manifold(std::move(faces), merged.vertices, f.planes);
     lap(&sheets.faces);
