@@ -14,10 +14,10 @@ using kernel::Side;
 
 namespace {
 
-// A fragment's piece in the cell being partitioned, with its box and outward plane.
+// A fragment's piece in the cell being partitioned, with its outward plane (its box is kept
+// apart, in an array of its own: scoring reads boxes far more often than polygons).
 struct Piece {
   ConvexPolygon polygon;
-  CornerBox box;
   std::int32_t outward;  // support, or its opposite for a flipped fragment
 };
 
@@ -27,8 +27,8 @@ struct Node {
 };
 
 // Side of a piece with respect to a plane: the box first, the corners when it is undecided.
-Side side_of(const kernel::PlaneTable& planes, const Piece& p, std::int32_t plane) {
-  const Side quick = kernel::box_side(p.box, planes[plane]);
+Side side_of(const kernel::PlaneTable& planes, const Piece& p, const CornerBox& box, std::int32_t plane) {
+  const Side quick = kernel::box_side(box, planes[plane]);
   return quick != Side::Both ? quick : kernel::classify(planes, p.polygon, plane);
 }
 
@@ -39,10 +39,13 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
   const kernel::PlaneTable& planes = arena.planes;
   // Pieces live in one pool (split parts are appended); frames hold indices into it.
   std::vector<Piece> pool;
+  std::vector<CornerBox> boxes;
   pool.reserve(2 * fragments.size());
+  boxes.reserve(2 * fragments.size());
   for (const BoundaryFragment& f : fragments) {
     const std::int32_t s = f.polygon.support;
-    pool.push_back({f.polygon, kernel::corner_box(f.polygon), f.flip ? arena.opposite(s) : s});
+    pool.push_back({f.polygon, f.flip ? arena.opposite(s) : s});
+    boxes.push_back(kernel::corner_box(f.polygon));
   }
 
   struct Frame {
@@ -74,7 +77,8 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
       const std::int32_t plane = pool[std::size_t(f.pieces[i])].outward;
       int neg = 0, pos = 0, both = 0;
       for (std::size_t j = 0; j < m; ++j) {
-        const Side s = side_of(planes, pool[std::size_t(f.pieces[j * n / m])], plane);
+        const auto q = std::size_t(f.pieces[j * n / m]);
+        const Side s = side_of(planes, pool[q], boxes[q], plane);
         neg += s == Side::Negative;
         pos += s == Side::Positive;
         both += s == Side::Both;
@@ -90,7 +94,7 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
       Piece& p = pool[std::size_t(id)];
       const std::int32_t s = p.polygon.support;
       if (s == plane || s == opposite || planes[s] == pv || planes[s] == po) continue;  // used up
-      Side side = kernel::box_side(p.box, pv);
+      Side side = kernel::box_side(boxes[std::size_t(id)], pv);
       if (side == Side::Both) side = kernel::split(planes, p.polygon, plane, opposite, neg_part, pos_part);
       switch (side) {
         case Side::Negative: negative.push_back(id); break;
@@ -98,9 +102,11 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
         case Side::Both: {
           const std::int32_t outward = p.outward;  // p dies when the pool grows
           negative.push_back(std::int32_t(pool.size()));
-          pool.push_back({neg_part, kernel::corner_box(neg_part), outward});
+          pool.push_back({neg_part, outward});
+          boxes.push_back(kernel::corner_box(neg_part));
           positive.push_back(std::int32_t(pool.size()));
-          pool.push_back({pos_part, kernel::corner_box(pos_part), outward});
+          pool.push_back({pos_part, outward});
+          boxes.push_back(kernel::corner_box(pos_part));
           break;
         }
         case Side::On: break;  // cannot happen: a piece on the plane has that support
@@ -130,6 +136,7 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
     auto child = [&](TreeRef c) { return is_leaf(c) ? c : made[std::size_t(c)]; };
     made[i] = b.add_node(use(nd.plane), child(nd.negative), child(nd.positive));
   }
+  if (!options.carry_boundary) return std::move(b).build(made[std::size_t(root)], BuildOptions{.nodes_cut_cells = true});
   for (BoundaryFragment& f : fragments) {
     f.polygon.support = use(f.polygon.support);
     for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);

@@ -17,12 +17,16 @@ struct AutopartitionOptions {
   int candidates = 5;         ///< fragments whose planes are scored per node (evenly spaced)
   int sample = 48;            ///< fragments each candidate is scored against (evenly spaced)
   double split_weight = 8.0;  ///< score = split_weight * splits + |negative - positive|
+  /// The solid carries `fragments` as its boundary; otherwise it is extracted from the tree when
+  /// needed (for fragments that may not tile a closed surface exactly, e.g. an unchecked mesh).
+  bool carry_boundary = true;
 };
 
 /// The solid bounded by `fragments`: convex pieces on arena planes (outward normal per `flip`)
 /// that tile a closed, consistently oriented surface without overlaps, such as the boundary of
 /// a regularized set operation. The solid carries them as its boundary. Explicit stack; arena
-/// nodes are not used (only its planes). Empty `fragments` gives the empty solid.
+/// nodes are not used (only its planes). Empty `fragments` gives the empty solid. With `sample`
+/// at least the number of fragments, each candidate is scored against all of them in order.
 Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options = {});
 
 }  // namespace sculpt::detail

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -9,7 +10,7 @@
 
 #include "base/errors.hpp"
 #include "bsp/face_triangulation.hpp"
-#include "bsp/tree_builder.hpp"
+#include "bsp/autopartition.hpp"
 
 namespace sculpt {
 
@@ -17,7 +18,6 @@ using kernel::ConvexPolygon;
 using kernel::GridPoint;
 using kernel::Int128;
 using kernel::Plane;
-using kernel::Side;
 
 namespace {
 
@@ -134,86 +134,17 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
     }
   }
 
-  // Thibault & Naylor 1987: pick the splitting plane among sampled candidates by score, keep
-  // the polygons on it, partition the rest; an empty side is an in-cell behind, out-cell in front.
-  struct Node {
-    std::int32_t plane;
-    TreeRef neg = kOut, pos = kOut;
-  };
-  std::vector<Node> nodes;
-  struct Frame {
-    std::vector<ConvexPolygon> polys;
-    std::int32_t parent;  // -1: root
-    int side;
-  };
-  TreeRef root = kOut;
-  std::vector<Frame> stack;
-  stack.push_back({std::move(polys), -1, 0});
-  std::vector<std::int32_t> opposite(std::size_t(table.size()), -1);
-  while (!stack.empty()) {
-    Frame f = std::move(stack.back());
-    stack.pop_back();
-    const std::size_t n = f.polys.size();
-    std::size_t best = 0;
-    double best_score = 1e300;
-    const std::size_t k = std::min<std::size_t>(n, std::size_t(std::max(1, options.candidates)));
-    for (std::size_t c = 0; c < k; ++c) {
-      const std::size_t i = c * n / k;
-      int neg = 0, pos = 0, both = 0;
-      for (const auto& p : f.polys) {
-        const Side s = kernel::classify(table, p, f.polys[i].support);
-        neg += s == Side::Negative;
-        pos += s == Side::Positive;
-        both += s == Side::Both;
-      }
-      const double score = options.split_weight * both + std::abs((neg + both) - (pos + both));
-      if (score < best_score) best_score = score, best = i;
-    }
-    const std::int32_t plane = f.polys[best].support;
-    const Plane pv = table[plane];
-    if (opposite.size() < std::size_t(table.size())) opposite.resize(std::size_t(table.size()), -1);
-    if (opposite[std::size_t(plane)] < 0) {
-      opposite[std::size_t(plane)] = table.add(pv.opposite());
-      opposite.resize(std::size_t(table.size()), -1);
-    }
-    const std::int32_t opp = opposite[std::size_t(plane)];
-    std::vector<ConvexPolygon> neg, pos;
-    for (auto& p : f.polys) {
-      if (table[p.support] == pv || table[p.support] == pv.opposite()) continue;  // on the plane: consumed
-      kernel::PolygonSplit s = kernel::split(table, p, plane, opp);
-      switch (s.side) {
-        case Side::Negative: neg.push_back(std::move(p)); break;
-        case Side::Positive: pos.push_back(std::move(p)); break;
-        case Side::Both:
-          neg.push_back(std::move(s.negative));
-          pos.push_back(std::move(s.positive));
-          break;
-        case Side::On: break;
-      }
-    }
-    const auto id = TreeRef(nodes.size());
-    nodes.push_back({plane});
-    if (f.parent < 0)
-      root = id;
-    else
-      (f.side == 0 ? nodes[std::size_t(f.parent)].neg : nodes[std::size_t(f.parent)].pos) = id;
-    nodes[std::size_t(id)].neg = neg.empty() ? kIn : kOut;
-    nodes[std::size_t(id)].pos = kOut;
-    if (!neg.empty()) stack.push_back({std::move(neg), id, 0});
-    if (!pos.empty()) stack.push_back({std::move(pos), id, 1});
-  }
-
-  // Hand the tree to the builder bottom-up (children first), which computes sub-hyperplanes.
-  TreeBuilder b;
-  std::vector<std::int32_t> plane_map(std::size_t(table.size()), -1);
-  std::vector<TreeRef> made(nodes.size(), kOut);
-  for (std::size_t i = nodes.size(); i-- > 0;) {  // children have larger indices than parents
-    const Node& nd = nodes[i];
-    if (plane_map[std::size_t(nd.plane)] < 0) plane_map[std::size_t(nd.plane)] = b.add_plane(table[nd.plane]);
-    auto child = [&](TreeRef c) { return is_leaf(c) ? c : made[std::size_t(c)]; };
-    made[i] = b.add_node(plane_map[std::size_t(nd.plane)], child(nd.neg), child(nd.pos));
-  }
-  return std::move(b).build(made[std::size_t(root)]);
+  // Thibault & Naylor 1987 (autopartition.hpp): each candidate scored against every polygon.
+  detail::Arena arena;
+  arena.planes = std::move(table);
+  std::vector<BoundaryFragment> fragments;
+  fragments.reserve(polys.size());
+  for (ConvexPolygon& p : polys) fragments.push_back({std::move(p), false});
+  return detail::autopartition(arena, std::move(fragments),
+                               {.candidates = options.candidates,
+                                .sample = std::numeric_limits<int>::max(),
+                                .split_weight = options.split_weight,
+                                .carry_boundary = false});
 }
 
 }  // namespace sculpt
