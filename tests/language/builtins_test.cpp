@@ -198,6 +198,18 @@ TEST(Builtins, ExportWritesAClosedMeshThatImportReads) {
             "t.bsp:1:1: error: export: ");
 }
 
+TEST(Builtins, UnionAllOfAListOfSolids) {
+  // Ten unit cubes in a row sharing faces, and one more overlapping two of them: volume 10.
+  const auto r = run_script(
+      "cubes = []\nfor i in range(0, 10) { cubes = append(cubes, box([i, 0, 0], [i + 1, 1, 1])) }\n"
+      "cubes = append(cubes, box([2.5, 0, 0], [4.5, 1, 1]))\n"
+      "u = union_all(cubes)\nprint(volume(u), classify(u, [5, 0.5, 0.5]), classify(u, [10, 0.5, 0.5]))");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.out, "10 in on\n");
+  EXPECT_EQ(first_error_line("u = union_all([box([0, 0, 0], [1, 1, 1]), 3])"),
+            "t.bsp:1:15: error: union_all: item 2 is number, not a solid");
+}
+
 // Two cubes 1e-6 apart form a valid mesh; snapped to the kernel's grid (step 2^-15) they share a
 // face. import must refuse that with the faces and the place, not build a solid from it.
 TEST(Builtins, ImportRefusesAMeshThatSelfIntersectsOnceSnapped) {
