@@ -152,13 +152,20 @@ class JunctionRemover {
         lines.clear();
         for (int a = at_start[v]; a < at_start[v + 1]; ++a) lines.push_back(a);
       }
-      for (std::size_t a = 0; a < lines.size(); ++a)
+      for (std::size_t a = 0; a + 1 < lines.size(); ++a) {
+        const Incident& x = at[std::size_t(lines[a])];
+        // x's two planes read once for all its tests (the plane table is larger than the caches).
+        const kernel::Plane &support = g_.planes()[x.support], &plane = g_.planes()[x.plane];
         for (std::size_t b = a + 1; b < lines.size(); ++b) {
-          const Incident& x = at[std::size_t(lines[a])];
           const Incident& y = at[std::size_t(lines[b])];
           if (uf.find(x.edge) == uf.find(y.edge)) continue;
-          if (on_line(x.support, x.plane, y.far)) uf.unite(x.edge, y.edge);
+          // The floating-point filter first: most far endpoints are clearly off x's line.
+          const kernel::ApproxPoint& p = g_.at(y.far);
+          if (kernel::filtered_orient(p, plane) != kernel::Sign::Zero || kernel::filtered_orient(p, support) != kernel::Sign::Zero)
+            continue;
+          if (g_.on_plane(y.far, x.plane) && g_.on_plane(y.far, x.support)) uf.unite(x.edge, y.edge);
         }
+      }
     }
     // Each group: its vertices sorted along the line (exactly), then the inserts of its edges.
     std::vector<int> member_start(n + 1, 0);
@@ -192,8 +199,22 @@ class JunctionRemover {
             verts.push_back(v);
           }
       }
-      const OpenEdge& first = open_[std::size_t(members[std::size_t(b)].i)];
-      const int axis = g_.line_axis(f_.support[std::size_t(first.face)], f_.line[std::size_t(first.corner)]);
+      // An axis along which the line's direction has a non-zero component (two distinct points
+      // of the line differ in it, so sorting along it orders the line, one way round or the
+      // other: the inserts and the matches are the same). Proved by the first edge's endpoints
+      // when their approximations differ in it by more than twice their errors (rounding of
+      // the difference included), else decided exactly from the planes (line_axis).
+      int axis = -1;
+      {
+        const kernel::ApproxPoint &pu = g_.at(members[std::size_t(b)].u), &pw = g_.at(members[std::size_t(b)].w);
+        const double gap[3] = {std::fabs(pw.x - pu.x), std::fabs(pw.y - pu.y), std::fabs(pw.z - pu.z)};
+        const int k = gap[0] >= gap[1] ? (gap[0] >= gap[2] ? 0 : 2) : (gap[1] >= gap[2] ? 1 : 2);
+        if (pu.err >= 0 && pw.err >= 0 && gap[k] > 2 * (pu.err + pw.err)) axis = k;
+      }
+      if (axis < 0) {
+        const OpenEdge& first = open_[std::size_t(members[std::size_t(b)].i)];
+        axis = g_.line_axis(f_.support[std::size_t(first.face)], f_.line[std::size_t(first.corner)]);
+      }
       // Sorted exactly (VertexGeometry::less_along), its floating-point test inline.
       along.clear();
       for (const int v : verts) {
