@@ -45,6 +45,27 @@ TEST(Revolve, VolumeEqualsTheAnalyticPolytopeVolumeAndTheMeshIsClosed) {
   revolve_and_check({{1, 0}, {1, 2}}, polygon_path({{0, -1}, {1, 1}, {-1, 0.5}}));
 }
 
+// Fine paths around thin profiles: edges down to a fraction of the grid step. Ring primitives
+// once lost a sliver there (a rounded face plane left its wedge and the solid bent along an
+// auxiliary plane); section-6 trees use exact lifted planes and must stay closed.
+TEST(Revolve, FineTessellationsOfThinProfilesStayClosed) {
+  const std::vector<Eigen::Vector2d> profile = {{0, 0}, {0.8, 0.05}, {0.3, 0.4}, {0.1, 1.0},
+                                                {0.6, 1.6}, {0.9, 2.4}, {0, 2.5}};
+  for (const double scale : {0.05, 0.002})
+    for (const int n : {255, 1024}) {
+      SCOPED_TRACE(testing::Message() << "scale " << scale << ", " << n << " edges");
+      std::vector<Eigen::Vector2d> p;
+      for (const auto& q : profile) p.push_back(q * scale);
+      const Solid s = revolve(p, circular_path(n));
+      const SnappedRevolution snapped = snap_revolution(p, circular_path(n));
+      const PolygonMesh mesh = to_mesh(s);
+      EXPECT_TRUE(checks::EdgesManifoldAndOriented(mesh));
+      EXPECT_EQ(mesh.faces.size(), std::size_t(6 * n));
+      const double expected = revolved_volume(snapped.profile, snapped.path);
+      EXPECT_NEAR(volume(s), expected, 1e-9 * expected);
+    }
+}
+
 TEST(Revolve, BoundaryHasGenusZeroAndLiesOnTheFacesOfTheDirectConstruction) {
   const auto profile = sampled(curves::goblet_profile(), 21);
   const Solid s = revolve(profile, circular_path(32));
