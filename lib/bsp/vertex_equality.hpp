@@ -25,9 +25,12 @@ VertexMinors vertex_minors(const kernel::Plane& p, const kernel::Plane& q, const
                            const kernel::ApproxPoint& at);
 
 /// Exact: the vertex lies on plane s (det[p; q; r; s] == 0). When p, q, r and s all have
-/// |d| < 2^72 the determinant is expanded by the 2x2 minors of the (a, b) and (c, d) column
-/// pairs in 256-bit arithmetic (|m| < 2^107, |n| < 2^126, six products < 2^236: no overflow);
-/// otherwise kernel::orient decides.
+/// |d| < 2^72 the determinant is expanded by the 2x2 minors m (columns a, b) and n (columns
+/// c, d): |m| < 2^107 and |n| < 2^126 fit Int128, det = sum of six products m n. If every
+/// product has bit_length(m) + bit_length(n) <= 124, each is below 2^124 and the sum below
+/// 6 * 2^124 < 2^127: summed in Int128 (axis-aligned and sphere ring planes make most minors
+/// small or zero). Otherwise in 256 bits (products < 2^233, sum < 2^236). Larger offsets:
+/// kernel::orient decides.
 bool vertex_on_plane(const VertexMinors& v, const kernel::Plane& s);
 
 }  // namespace sculpt::detail
