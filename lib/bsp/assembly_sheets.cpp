@@ -191,6 +191,7 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
   const FaceList& faces = sheets.faces;
   PolygonMesh mesh;
   std::vector<int> index(sheets.original.size(), -1);  // only referenced vertices are written
+  mesh.vertices.reserve(sheets.original.size());
   for (const int v : faces.vertex)
     if (index[std::size_t(v)] < 0) {
       index[std::size_t(v)] = int(mesh.vertices.size());
@@ -202,7 +203,7 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
     face.clear();
     for (int c = faces.begin(f); c < faces.end(f); ++c) face.push_back(index[std::size_t(faces.vertex[std::size_t(c)])]);
     if (!triangulate || face.size() == 3) {
-      mesh.faces.push_back(face);
+      mesh.faces.emplace_back(face.begin(), face.end());  // (allocates exactly the face's size)
       continue;
     }
     for (const auto& t : triangulate_face(mesh.vertices, face, outward_normal(faces, f, planes)))
