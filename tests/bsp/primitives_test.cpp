@@ -55,5 +55,30 @@ TEST(Cylinder, FineTessellationOfATinyRadiusIsClosed) {
   EXPECT_NEAR(v, std::numbers::pi * 1e-6, 1e-6 * 1e-6);  // the polygon's area is within 1e-8 of the disc's
 }
 
+// Every plane of a ring primitive is normalized (make_plane's contract, which its shortcut for face
+// planes with a known xy gcd must keep): the gcd of |a|, |b|, |c|, |d| is 1, by plain Euclid.
+TEST(RingPrimitives, PlanesAreNormalized) {
+  auto euclid = [](kernel::Int128 x, kernel::Int128 y) {
+    x = x < 0 ? -x : x, y = y < 0 ? -y : y;
+    while (y != 0) {
+      const kernel::Int128 t = x % y;
+      x = y, y = t;
+    }
+    return x;
+  };
+  int planes = 0;
+  for (int n : {3, 6, 7, 32, 61}) {
+    for (const Solid& s : {sphere(0.8, {.segments = n}), cylinder(1.5, 0.3, {.segments = n}),
+                           cone(1.0, 2.0, {.segments = n}, 0.4), cone(0.7, 0.7, {.segments = n})}) {
+      for (std::int32_t i = 0; i < s.planes().size(); ++i) {
+        const kernel::Plane& p = s.planes()[i];
+        ASSERT_EQ(euclid(euclid(p.a, p.b), euclid(p.c, p.d)), 1) << n << " plane " << i;
+        ++planes;
+      }
+    }
+  }
+  EXPECT_GT(planes, 5000);
+}
+
 }  // namespace
 }  // namespace sculpt
