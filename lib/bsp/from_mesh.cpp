@@ -144,7 +144,9 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
                                {.candidates = options.candidates,
                                 .sample = std::numeric_limits<int>::max(),
                                 .split_weight = options.split_weight,
-                                .carry_boundary = false});
+                                .carry_boundary = false,
+                                .auxiliary_splits = false,
+                                .approximate_scores = false});
 }
 
 }  // namespace sculpt
