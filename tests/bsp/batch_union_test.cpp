@@ -151,6 +151,20 @@ TEST(BatchUnion, CurvedAndTiltedSolidsMatchThePairwiseUnion) {
   EXPECT_TRUE(SameSet(u, p, -2, 3, 0.25));
 }
 
+TEST(BatchUnion, ConvexOperandsGiveShallowTrees) {
+  // Four overlapping spheres of 1,104 faces each: autopartition alone would chain their faces
+  // (each sees all others behind it); planes through the median keep the tree shallow.
+  std::vector<Solid> all;
+  for (int i = 0; i < 4; ++i) all.push_back(translate(sphere(1.0, {.segments = 48}), {0.7 * i, 0.3 * (i % 2), 0.0}));
+  const Solid u = unite_all(all);
+  const Solid p = pairwise(all);
+  EXPECT_LT(tree_stats(u).height, 120);
+  EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(u)));
+  EXPECT_NEAR(vol(u), vol(p), 1e-12 * vol(p));
+  EXPECT_NEAR(vol(tree_only(u)), vol(p), 1e-12 * vol(p));
+  EXPECT_TRUE(SameSet(u, p, -1.5, 3.5, 0.25));
+}
+
 TEST(BatchUnion, UnboundedOperands) {
   // The complement of a box united with boxes that fill part of its hole.
   const Solid hole = complement(box({0, 0, 0}, {4, 4, 4}));
