@@ -57,38 +57,6 @@ Int256 big(Int128 v) {
   return neg ? Int256(-r) : r;
 }
 
-// Signed 256-bit accumulator for sums of products of two Int128 values (the fast exact path):
-// two's complement split into a low and a high unsigned 128-bit half. Straight-line code: four
-// 64 x 64 -> 128-bit multiplications per product, no loops.
-struct Accumulator {
-  __extension__ typedef unsigned __int128 U128;
-  U128 lo = 0, hi = 0;
-
-  void add_product(Int128 a, Int128 b, bool subtract) {
-    const bool negative = ((a < 0) != (b < 0)) != subtract;
-    const U128 ua = a < 0 ? U128(0) - U128(a) : U128(a), ub = b < 0 ? U128(0) - U128(b) : U128(b);
-    const std::uint64_t a0 = std::uint64_t(ua), a1 = std::uint64_t(ua >> 64);
-    const std::uint64_t b0 = std::uint64_t(ub), b1 = std::uint64_t(ub >> 64);
-    const U128 p00 = U128(a0) * b0, p01 = U128(a0) * b1, p10 = U128(a1) * b0, p11 = U128(a1) * b1;
-    const U128 mid = (p00 >> 64) + std::uint64_t(p01) + std::uint64_t(p10);
-    const U128 plo = (mid << 64) | std::uint64_t(p00);
-    const U128 phi = p11 + (p01 >> 64) + (p10 >> 64) + (mid >> 64);
-    if (negative) {
-      const U128 nlo = lo - plo;
-      hi = hi - phi - (nlo > lo ? 1 : 0);
-      lo = nlo;
-    } else {
-      const U128 nlo = lo + plo;
-      hi = hi + phi + (nlo < lo ? 1 : 0);
-      lo = nlo;
-    }
-  }
-  [[nodiscard]] int sign() const {
-    if ((hi >> 127) != 0) return -1;
-    return (hi | lo) != 0 ? 1 : 0;
-  }
-};
-
 bool trivially_on(const Plane& p, const Plane& q, const Plane& r, const Plane& s) {
   return same_or_opposite(s, p) || same_or_opposite(s, q) || same_or_opposite(s, r);
 }
@@ -175,7 +143,7 @@ Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& a
     auto m = [&](int i, int j) { return i128(rows[i]->a) * rows[j]->b - i128(rows[j]->a) * rows[i]->b; };
     auto n = [&](int i, int j) { return i128(rows[i]->c) * rows[j]->d - i128(rows[j]->c) * rows[i]->d; };
     const Int128 m01 = m(0, 1), m02 = m(0, 2), m12 = m(1, 2);
-    Accumulator det, W;
+    ProductSum256 det, W;
     det.add_product(m01, n(2, 3), false);
     det.add_product(m02, n(1, 3), true);
     det.add_product(m(0, 3), n(1, 2), false);

@@ -85,4 +85,38 @@ struct Wide {
   }
 };
 
+/// Signed 256-bit sum of products of two Int128 values, for the fast exact paths (the 4x4
+/// orientation determinant of predicates.cpp, the vertex-on-plane test of the mesh assembly):
+/// two's complement in two unsigned 128-bit halves, four 64 x 64 -> 128-bit products per term,
+/// straight-line code. Modulo 2^256: callers keep sums within the bit budget.
+struct ProductSum256 {
+  __extension__ typedef unsigned __int128 U128;
+  U128 lo = 0, hi = 0;
+
+  void add_product(Int128 a, Int128 b, bool subtract) {
+    const bool negative = ((a < 0) != (b < 0)) != subtract;
+    const U128 ua = a < 0 ? U128(0) - U128(a) : U128(a), ub = b < 0 ? U128(0) - U128(b) : U128(b);
+    const std::uint64_t a0 = std::uint64_t(ua), a1 = std::uint64_t(ua >> 64);
+    const std::uint64_t b0 = std::uint64_t(ub), b1 = std::uint64_t(ub >> 64);
+    const U128 p00 = U128(a0) * b0, p01 = U128(a0) * b1, p10 = U128(a1) * b0, p11 = U128(a1) * b1;
+    const U128 mid = (p00 >> 64) + std::uint64_t(p01) + std::uint64_t(p10);
+    const U128 plo = (mid << 64) | std::uint64_t(p00);
+    const U128 phi = p11 + (p01 >> 64) + (p10 >> 64) + (mid >> 64);
+    if (negative) {
+      const U128 nlo = lo - plo;
+      hi = hi - phi - (nlo > lo ? 1 : 0);
+      lo = nlo;
+    } else {
+      const U128 nlo = lo + plo;
+      hi = hi + phi + (nlo < lo ? 1 : 0);
+      lo = nlo;
+    }
+  }
+  [[nodiscard]] bool zero() const { return (hi | lo) == 0; }
+  [[nodiscard]] int sign() const {
+    if ((hi >> 127) != 0) return -1;
+    return (hi | lo) != 0 ? 1 : 0;
+  }
+};
+
 }  // namespace sculpt::kernel

@@ -38,6 +38,36 @@ TEST(Wide, MatchesBoostOnRandomProducts) {
   }
 }
 
+// Sums of up to six signed products of 126-bit values, including exact cancellation to zero.
+TEST(ProductSum256, SignMatchesBoostOnRandomSums) {
+  std::mt19937_64 rng(23);
+  auto value = [&] {
+    const Int128 v = (Int128(std::int64_t(rng())) << 62) ^ Int128(rng() >> 2);
+    return v >> (rng() % 100);
+  };
+  for (int i = 0; i < 5000; ++i) {
+    ProductSum256 sum;
+    Int256 ref = 0;
+    const int terms = 1 + int(rng() % 6);
+    for (int t = 0; t < terms; ++t) {
+      const Int128 a = value(), b = value();
+      const bool subtract = rng() & 1;
+      sum.add_product(a, b, subtract);
+      ref += subtract ? Int256(-(big(a) * big(b))) : Int256(big(a) * big(b));
+    }
+    if (i % 5 == 0) {  // cancel to exactly zero: subtract the same products again
+      ProductSum256 zero;
+      const Int128 a = value(), b = value();
+      zero.add_product(a, b, false);
+      zero.add_product(b, a, true);
+      EXPECT_TRUE(zero.zero());
+      EXPECT_EQ(zero.sign(), 0);
+    }
+    EXPECT_EQ(sum.sign(), ref.sign());
+    EXPECT_EQ(sum.zero(), ref == 0);
+  }
+}
+
 // Random planes through random grid points: the filtered orientation equals the reference.
 TEST(Orient, FilterAndExactPathAgreeWithBoostReference) {
   std::mt19937_64 rng(11);
