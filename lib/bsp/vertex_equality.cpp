@@ -1,5 +1,7 @@
 #include "bsp/vertex_equality.hpp"
 
+#include "kernel/wide_int.hpp"
+
 namespace sculpt::detail {
 
 using kernel::Int128;
@@ -13,34 +15,6 @@ bool small(const Plane& e) { return e.d < kSmallOffset && e.d > -kSmallOffset; }
 
 Int128 minor_ab(const Plane& x, const Plane& y) { return Int128(x.a) * y.b - Int128(y.a) * x.b; }
 Int128 minor_cd(const Plane& x, const Plane& y) { return Int128(x.c) * y.d - Int128(y.c) * x.d; }
-
-// Signed 256-bit sum of products of two Int128 values: two's complement in two unsigned
-// 128-bit halves (as in kernel/predicates.cpp). Magnitudes: four 64 x 64 -> 128-bit products.
-struct Sum256 {
-  __extension__ typedef unsigned __int128 U128;
-  U128 lo = 0, hi = 0;
-
-  void add(Int128 a, Int128 b, bool subtract) {
-    const bool negative = ((a < 0) != (b < 0)) != subtract;
-    const U128 ua = a < 0 ? U128(0) - U128(a) : U128(a), ub = b < 0 ? U128(0) - U128(b) : U128(b);
-    const std::uint64_t a0 = std::uint64_t(ua), a1 = std::uint64_t(ua >> 64);
-    const std::uint64_t b0 = std::uint64_t(ub), b1 = std::uint64_t(ub >> 64);
-    const U128 p00 = U128(a0) * b0, p01 = U128(a0) * b1, p10 = U128(a1) * b0, p11 = U128(a1) * b1;
-    const U128 mid = (p00 >> 64) + std::uint64_t(p01) + std::uint64_t(p10);
-    const U128 plo = (mid << 64) | std::uint64_t(p00);
-    const U128 phi = p11 + (p01 >> 64) + (p10 >> 64) + (mid >> 64);
-    if (negative) {
-      const U128 nlo = lo - plo;
-      hi = hi - phi - (nlo > lo ? 1 : 0);
-      lo = nlo;
-    } else {
-      const U128 nlo = lo + plo;
-      hi = hi + phi + (nlo < lo ? 1 : 0);
-      lo = nlo;
-    }
-  }
-  [[nodiscard]] bool zero() const { return (lo | hi) == 0; }
-};
 
 // Bits of |x| (0 for 0).
 int magnitude_bits(Int128 x) {
@@ -81,9 +55,9 @@ bool vertex_on_plane(const VertexMinors& v, const Plane& s) {
     for (const Term& t : terms) sum += t.subtract ? -(t.m * t.n) : t.m * t.n;
     return sum == 0;
   }
-  Sum256 det;
+  kernel::ProductSum256 det;  // (kernel/wide_int.hpp, shared with kernel::orient)
   for (const Term& t : terms)
-    if (t.m != 0 && t.n != 0) det.add(t.m, t.n, t.subtract);
+    if (t.m != 0 && t.n != 0) det.add_product(t.m, t.n, t.subtract);
   return det.zero();
 }
 
