@@ -156,7 +156,10 @@ FaceList remove_straight_vertices(FaceList faces, int vertex_count, const Vertex
   for (std::size_t v = 0; v < nv; ++v) any |= (removable[v] = seen[v][1] >= 0 && more[v] == 0) != 0;
   if (!any) return faces;
   // A vertex goes only if it is straight in every face that uses it: the next vertex lies on
-  // the line of the incoming edge (support ∩ that edge's plane), decided exactly.
+  // the line of the incoming edge (support ∩ that edge's plane), decided exactly. (Every vertex
+  // of a face lies on its support: fragment corners by construction, T-junction inserts because
+  // they were found on the edge's line, merged faces keep their fragments' corners; so only the
+  // edge's plane is tested.)
   for (int f = 0; f < faces.size(); ++f) {
     const int m = faces.count(f);
     for (int c = faces.begin(f); c < faces.end(f); ++c) {
@@ -164,7 +167,7 @@ FaceList remove_straight_vertices(FaceList faces, int vertex_count, const Vertex
       if (removable[v] == 0) continue;
       const int w = faces.vertex[std::size_t(faces.next(f, c))];
       const std::int32_t in_line = faces.line[std::size_t(c == faces.begin(f) ? faces.end(f) - 1 : c - 1)];
-      if (m <= 3 || !geometry.on_plane(w, in_line) || !geometry.on_plane(w, faces.support[std::size_t(f)])) removable[v] = 0;
+      if (m <= 3 || !geometry.on_plane(w, in_line)) removable[v] = 0;
     }
   }
   FaceList out;
