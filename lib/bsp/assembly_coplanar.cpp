@@ -46,11 +46,15 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
   UnionFind uf(static_cast<std::size_t>(nf));
   std::vector<std::uint8_t> interior(corners, 0);
   bool any = false;
+  constexpr std::size_t kAhead = 8;
   for (int f = 0; f < nf; ++f) {
     if (!shared(f)) continue;
     const std::uint64_t mine = plane[std::size_t(f)];
     for (int c = faces.begin(f); c < faces.end(f); ++c) {
       const int u = faces.vertex[std::size_t(c)], w = faces.vertex[std::size_t(faces.next(f, c))];
+      // The run of a corner a few ahead (its face's next corner or a later face's: only a hint)
+      // is prefetched: the runs are scattered over an index larger than the caches.
+      if (std::size_t(c) + kAhead < corners) __builtin_prefetch(&by_start[std::size_t(start[std::size_t(faces.vertex[std::size_t(c) + kAhead])])]);
       for (int i = start[std::size_t(w)]; i < start[std::size_t(w) + 1]; ++i) {
         const Out& o = by_start[std::size_t(i)];
         if (o.to != u || o.plane != mine) continue;
