@@ -86,8 +86,9 @@ Solid unite_by_boundaries(std::vector<Solid> solids) {
         clip.push(
             o.root, f,
             [&](bool front_in, bool back_in, bool on_plane) {
-              if (front_in || (!first && on_plane && front_in != back_in)) return kDrop;
-              return kKeep;
+              // In front of the piece o is in: the union's interior. On o's plane with o in behind
+              // (the same orientation): o's own piece stands for it when o comes first.
+              return front_in || (!first && on_plane && back_in) ? kDrop : kKeep;
             },
             [&](kernel::ConvexPolygon piece, int) { kept.push_back({std::move(piece), f.flip}); });
       }
