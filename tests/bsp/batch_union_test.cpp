@@ -166,6 +166,25 @@ TEST(BatchUnion, ConvexOperandsGiveShallowTrees) {
   EXPECT_TRUE(SameSet(u, p, -1.5, 3.5, 0.25));
 }
 
+TEST(BatchUnion, HundredBoxesWithTinyOffsetsMatchThePairwiseUnion) {
+  // The same unit box a hundred times, moved by one or a few grid steps (2^-15): almost coplanar
+  // faces everywhere, many exactly coplanar.
+  const double step = 1.0 / 32768;
+  std::vector<Solid> all;
+  for (int i = 0; i < 100; ++i) {
+    const Eigen::Vector3d lo(i * step, (i % 7) * step, (i % 3) * step);
+    all.push_back(box(lo, lo + Eigen::Vector3d::Ones()));
+  }
+  const Solid u = unite_all(all);
+  const Solid p = pairwise(all);
+  const PolygonMesh m = to_mesh(u);
+  EXPECT_TRUE(checks::VerticesManifold(m));
+  EXPECT_TRUE(GenusIs(m, 0));
+  EXPECT_NEAR(vol(u), vol(p), 1e-14 * vol(p));
+  EXPECT_NEAR(vol(tree_only(u)), vol(p), 1e-14 * vol(p));
+  EXPECT_TRUE(SameSet(u, p, -0.25, 1.25, 1.0 / 8, 3000));
+}
+
 TEST(BatchUnion, UnboundedOperands) {
   // The complement of a box united with boxes that fill part of its hole.
   const Solid hole = complement(box({0, 0, 0}, {4, 4, 4}));
