@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "base/errors.hpp"
+#include "bsp/ring_boundary.hpp"
 #include "bsp/transform.hpp"
 #include "bsp/tree_builder.hpp"
 
@@ -205,63 +206,6 @@ std::vector<Eigen::Vector2d> circle_path(int segments) {
   return p;
 }
 
-// The boundary of a ring revolution, known exactly: band k's face j is the quadrilateral between
-// rings k and k + 1 under path edge j (a triangle at a ring of scale 0), and the end rings of
-// positive scale are caps. Its vertices are plane triples, exactly those the tree's cells meet in
-// (each face plane contains the scaled path edge of both its rings). Each corner carries the
-// approximation of its own labels (docs/kernel.md). Planes are the builder's (`ring`: ring k's
-// plane z - z_k, `face`: band k's face planes); the ring planes' opposites are added.
-std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring,
-                                            const std::vector<std::vector<std::int32_t>>& face,
-                                            const std::vector<double>& scale) {
-  const std::size_t r = ring.size();
-  const int n = int(face[0].size());
-  auto wrap = [n](int j) { return std::size_t(j < 0 ? j + n : (j >= n ? j - n : j)); };  // j in [-1, n]
-  std::vector<std::int32_t> below(r - 1);  // the opposite of band k's lower ring plane
-  for (std::size_t k = 0; k + 1 < r; ++k) below[k] = b.add_plane(b.planes()[ring[k]].opposite());
-  const kernel::PlaneTable& planes = b.planes();  // no plane is added from here on
-  std::vector<BoundaryFragment> faces;
-  faces.reserve((r - 1) * std::size_t(n) + 2);
-  // Fragments are built in place (a polygon is 272 bytes): aggregate initialization leaves the
-  // corners' inline storage untouched, where value initialization would zero it.
-  auto fragment = [&faces](std::int32_t support, bool flip) -> kernel::ConvexPolygon& {
-    faces.push_back(BoundaryFragment{.polygon = {.support = support, .corners = {}}, .flip = flip});
-    return faces.back().polygon;
-  };
-  auto corner = [&planes](kernel::ConvexPolygon& poly, const Plane& support, std::int32_t prev, std::int32_t edge) {
-    poly.corners.push_back({edge, prev, edge, kernel::approximate_vertex(support, planes[prev], planes[edge])});
-  };
-  for (std::size_t k = 0; k + 1 < r; ++k) {
-    const std::vector<std::int32_t>& ids = face[k];
-    for (int j = 0; j < n; ++j) {
-      const std::int32_t prev = ids[wrap(j - 1)], next = ids[wrap(j + 1)], id = ids[std::size_t(j)];
-      const Plane& support = planes[id];
-      kernel::ConvexPolygon& poly = fragment(id, false);
-      // Counter-clockwise seen from outside: along ring k, up, back along ring k + 1, down.
-      if (scale[k] > 0) {
-        corner(poly, support, prev, below[k]);
-        corner(poly, support, below[k], next);
-      } else {
-        corner(poly, support, prev, next);  // the apex
-      }
-      if (scale[k + 1] > 0) {
-        corner(poly, support, next, ring[k + 1]);
-        corner(poly, support, ring[k + 1], prev);
-      } else {
-        corner(poly, support, next, prev);
-      }
-    }
-  }
-  for (const std::size_t k : {std::size_t(0), r - 1}) {  // caps: counter-clockwise about +z
-    if (!(scale[k] > 0)) continue;
-    const std::vector<std::int32_t>& ids = face[k == 0 ? 0 : r - 2];
-    kernel::ConvexPolygon& poly = fragment(ring[k], k == 0);
-    poly.corners.reserve(std::size_t(n));
-    for (int j = 0; j < n; ++j) corner(poly, planes[ring[k]], ids[wrap(j - 1)], ids[std::size_t(j)]);
-  }
-  return faces;
-}
-
 Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings) {
   const int n = int(path.size());
   if (n < 3) throw InvalidInput("revolution path needs at least 3 vertices");
@@ -396,7 +340,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // reach the world box), and each chain face keeps the middle part of its facet inside its wedge
   // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as
   // built. Widened chains may hold faces outside their wedges: those are left to the full build.
-  std::vector<BoundaryFragment> boundary = ring_boundary(b, ring_plane, face_index, scale);
+  std::vector<BoundaryFragment> boundary = detail::ring_boundary(b, ring_plane, face_index, scale);
   return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors.widened()});
 }
 
