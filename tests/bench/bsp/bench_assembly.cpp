@@ -4,6 +4,7 @@
 //   bench impl=sculpt stage=assembly case=<case> n=<n> runs=<r> time_ms=<median> min_ms=<min> cpu_ms=<median>
 //         fragments=<f> occurrences=<corners> vertices=<v> faces=<f> volume=<v> area=<a>
 //         source=<extracted|carried>  (carried: the boundary the solid carries, if it does)
+//         allocations=<operator new calls per assemble_mesh call (last run)>
 //   bench_assembly                 sphere_minus_cube 32, 128, 256, menger 3, boxes 1000
 //   bench_assembly CASE N [RUNS]   one case (solids as in bench_bsp.cpp, CASES.md)
 //   bench_assembly CASE N RUNS stages  also times each stage of assemble_mesh (median over the runs)
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,19 @@
 #include "support/bench_solids.hpp"
 
 using namespace sculpt;
+
+// Allocation counter (this benchmark only): every operator new goes through these replacements,
+// so allocations per assemble_mesh call can be counted (fixed costs matter at small sizes).
+namespace {
+long g_allocations = 0;
+}  // namespace
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -140,21 +155,24 @@ PolygonMesh time_assembly(const std::string& name, int n, int runs, const char* 
   for (const auto& f : fragments.fragments) corners += f.polygon.corners.size();
   std::vector<double> times, cpu;
   PolygonMesh mesh;
+  long allocations = 0;
   for (int i = 0; i < runs + 1; ++i) {  // the first run is a discarded warm-up
+    const long a0 = g_allocations;
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = cpu_ms();
     mesh = detail::assemble_mesh(fragments, {});
     const double c1 = cpu_ms();
     const auto t1 = std::chrono::steady_clock::now();
+    allocations = g_allocations - a0;
     if (i > 0) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count()), cpu.push_back(c1 - c0);
   }
   std::sort(times.begin(), times.end());
   std::sort(cpu.begin(), cpu.end());
   const Measures m = measure(mesh);
   std::printf("bench impl=sculpt stage=assembly case=%s n=%d runs=%d time_ms=%.3f min_ms=%.3f cpu_ms=%.3f fragments=%zu "
-              "occurrences=%zu vertices=%zu faces=%zu volume=%.17Lg area=%.17Lg source=%s\n",
+              "occurrences=%zu vertices=%zu faces=%zu volume=%.17Lg area=%.17Lg source=%s allocations=%ld\n",
               name.c_str(), n, runs, times[times.size() / 2], times.front(), cpu[cpu.size() / 2], fragments.fragments.size(), corners,
-              mesh.vertices.size(), mesh.faces.size(), m.volume, m.area, source);
+              mesh.vertices.size(), mesh.faces.size(), m.volume, m.area, source, allocations);
   return mesh;
 }
 
