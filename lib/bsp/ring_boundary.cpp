@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace sculpt::detail {
 
@@ -102,26 +103,26 @@ Approximation<T> approximate(const Normal<T>& pn, const Normal<T>& qn, const Nor
   return a;
 }
 
-}  // namespace
 
-std::vector<ApproxPoint> approximate_vertices(const kernel::PlaneTable& planes, std::span<const PlaneTriple> triples) {
+// The approximations of `triples` into dest(i) (an ApproxPoint&): first the coordinates of all
+// corners, two at a time, then their error bounds, then the kernel's for nearly dependent planes.
+template <class Dest>
+void approximate_into(const kernel::PlaneTable& planes, std::span<const PlaneTriple> triples, Dest dest) {
   std::vector<Normal<double>> normal(std::size_t(planes.size()));
   for (std::int32_t i = 0; i < planes.size(); ++i) normal[std::size_t(i)] = normal_of(planes[i]);
   auto at = [&normal](std::int32_t i) -> const Normal<double>& { return normal[std::size_t(i)]; };
-  std::vector<ApproxPoint> out(triples.size());
   struct Bound {
     double eV, eW, aW;
   };
-  std::vector<Bound> bound(triples.size());
+  const std::unique_ptr<Bound[]> bound(new Bound[triples.size()]);  // no zeroing: all written
   std::vector<std::size_t> unusable;
-  // First the coordinates of all corners, two at a time, then their error bounds.
   std::size_t i = 0;
   for (; i + 1 < triples.size(); i += 2) {
     const PlaneTriple s = triples[i], t = triples[i + 1];
     const Approximation<Pair> a =
         approximate(pair_of(at(s.p), at(t.p)), pair_of(at(s.q), at(t.q)), pair_of(at(s.r), at(t.r)));
-    out[i] = {a.x[0], a.y[0], a.z[0], 0.0};
-    out[i + 1] = {a.x[1], a.y[1], a.z[1], 0.0};
+    dest(i) = {a.x[0], a.y[0], a.z[0], 0.0};
+    dest(i + 1) = {a.x[1], a.y[1], a.z[1], 0.0};
     bound[i] = {a.eV[0], a.eW[0], a.aW[0]};
     bound[i + 1] = {a.eV[1], a.eW[1], a.aW[1]};
     if (!a.usable[0]) unusable.push_back(i);
@@ -130,19 +131,26 @@ std::vector<ApproxPoint> approximate_vertices(const kernel::PlaneTable& planes, 
   if (i < triples.size()) {
     const PlaneTriple t = triples[i];
     const Approximation<double> a = approximate(at(t.p), at(t.q), at(t.r));
-    out[i] = {a.x, a.y, a.z, 0.0};
+    dest(i) = {a.x, a.y, a.z, 0.0};
     bound[i] = {a.eV, a.eW, a.aW};
     if (!a.usable) unusable.push_back(i);
   }
   for (std::size_t k = 0; k < triples.size(); ++k) {
-    ApproxPoint& o = out[k];
+    ApproxPoint& o = dest(k);
     const Bound& e = bound[k];
     o.err = error_bound(o.x, o.y, o.z, e.eV, e.eW, e.aW);
   }
   for (const std::size_t k : unusable) {
     const PlaneTriple t = triples[k];
-    out[k] = kernel::approximate_vertex(planes[t.p], planes[t.q], planes[t.r]);
+    dest(k) = kernel::approximate_vertex(planes[t.p], planes[t.q], planes[t.r]);
   }
+}
+
+}  // namespace
+
+std::vector<ApproxPoint> approximate_vertices(const kernel::PlaneTable& planes, std::span<const PlaneTriple> triples) {
+  std::vector<ApproxPoint> out(triples.size());
+  approximate_into(planes, triples, [&out](std::size_t i) -> ApproxPoint& { return out[i]; });
   return out;
 }
 
@@ -156,7 +164,7 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
   for (std::size_t k = 0; k + 1 < r; ++k) below[k] = b.add_plane(b.planes()[ring[k]].opposite());
   const kernel::PlaneTable& planes = b.planes();  // no plane is added from here on
   // First the labels: each fragment's support, flip and corner count, each corner's triple
-  // (support, previous edge, edge); then all approximations in one batch; then the fragments.
+  // (support, previous edge, edge); then the fragments; then all approximations in one batch.
   struct Label {
     std::int32_t support;
     bool flip;
@@ -193,18 +201,22 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
     for (int j = 0; j < n; ++j) triples.push_back({ring[k], ids[wrap(j - 1)], ids[std::size_t(j)]});
     labels.push_back({ring[k], k == 0, n});
   }
-  const std::vector<ApproxPoint> at = approximate_vertices(planes, triples);
   std::vector<BoundaryFragment> faces;
   faces.reserve(labels.size());
+  std::vector<ApproxPoint*> at(triples.size());  // where each corner's approximation goes
   std::size_t c = 0;
   for (const Label& l : labels) {
     // Built in place (a polygon is 272 bytes): aggregate initialization leaves the corners' inline
     // storage untouched, where value initialization would zero it.
     faces.push_back(BoundaryFragment{.polygon = {.support = l.support, .corners = {}}, .flip = l.flip});
-    kernel::ConvexPolygon& poly = faces.back().polygon;
-    poly.corners.reserve(std::size_t(l.corners));
-    for (int i = 0; i < l.corners; ++i, ++c) poly.corners.push_back({triples[c].r, triples[c].q, triples[c].r, at[c]});
+    auto& corners = faces.back().polygon.corners;
+    corners.reserve(std::size_t(l.corners));
+    for (int i = 0; i < l.corners; ++i, ++c) {
+      corners.push_back({triples[c].r, triples[c].q, triples[c].r, {}});
+      at[c] = &corners.back().at;
+    }
   }
+  approximate_into(planes, triples, [&at](std::size_t i) -> ApproxPoint& { return *at[i]; });
   return faces;
 }
 

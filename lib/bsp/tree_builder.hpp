@@ -33,7 +33,8 @@ class TreeBuilder {
   /// splits space and carries no face of the solid (see kernel::PlaneTable); boundary extraction
   /// skips it. Leave it false unless that is certain.
   std::int32_t add_plane(const kernel::Plane& plane, bool auxiliary = false);
-  /// Room for this many planes and nodes in all (for callers that know their tree's size).
+  /// Room for this many planes and nodes in all (for callers that know their tree's size); the
+  /// nodes get the extra room the solid keeps for set operations in place (build_as_given).
   void reserve(std::size_t planes, std::size_t nodes);
   /// The planes added so far (references stay valid until the next add_plane).
   [[nodiscard]] const kernel::PlaneTable& planes() const { return planes_; }
