@@ -1,6 +1,7 @@
 #include "bsp/boundary_merge.hpp"
 
 #include "bsp/boundary_clipper.hpp"
+#include "bsp/extent_pruning.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,33 +21,30 @@ int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDro
 }  // namespace
 
 void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_faces, FragmentBoxes a_boxes_in,
-                      TreeRef b, const std::vector<BoundaryFragment>& b_faces, const bool op[2][2]) {
+                      TreeRef b, const std::vector<BoundaryFragment>& b_faces, const bool op[2][2],
+                      const ExtentSides* a_sides) {
   Clipper clip(arena);
   // B's fragments against A's tree. Where A has a face on the same plane region (A's status
   // differs across it), A's fragment stands for both.
   std::vector<BoundaryFragment> from_b;
-  for (const BoundaryFragment& f : b_faces)
+  const bool b_matters_inside_a_only = op[0][0] == op[0][1];  // out of A, op does not read B
+  for (const BoundaryFragment& f : b_faces) {
+    // On a plane with A on one closed side: no interior point of A, so out of A or on A's
+    // boundary everywhere (extent_pruning.hpp): dropped like every such piece.
+    if (a_sides && b_matters_inside_a_only && a_sides->of(f.polygon.support) != Side::Both) continue;
     clip.push(
         a, f,
         [&](bool front_in, bool back_in, bool on_plane) {
           return on_plane && front_in != back_in ? kDrop : verdict(op[back_in][1], op[front_in][0]);
         },
         [&](ConvexPolygon piece, int v) { from_b.push_back({std::move(piece), v == kKeep ? f.flip : !f.flip}); });
+  }
 
   // A's fragments against B's tree, in place. Fragments apart from B's boundary box lie in B's
   // outer region (connected, no boundary of B): decided by one status without being moved.
   std::vector<FragmentBox>& a_boxes = a_boxes_in.each;
   std::vector<FragmentBox>& blocks = a_boxes_in.blocks;
-  if (a_boxes.size() != a_faces.size()) {
-    a_boxes.clear();
-    a_boxes.reserve(a_faces.size());
-    for (const BoundaryFragment& f : a_faces) a_boxes.push_back(fragment_box(f.polygon));
-    blocks.clear();
-  }
-  if (blocks.size() != FragmentBoxes::block_count(a_boxes.size())) {
-    blocks.assign(FragmentBoxes::block_count(a_boxes.size()), FragmentBox{});
-    for (std::size_t j = 0; j < blocks.size(); ++j) a_boxes_in.update_block(j);
-  }
+  complete_boxes(a_faces, a_boxes_in);
   const bool uniform = is_leaf(b) || b_faces.empty();
   const CornerBox b_box = uniform ? CornerBox{} : bounds(b_faces);
   const bool far_in = is_leaf(b) ? b == kIn : (b_box.valid || uniform ? clip.far_status(b) : false);

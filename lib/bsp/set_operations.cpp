@@ -6,6 +6,7 @@
 #include "bsp/batch_union.hpp"
 #include "bsp/boundary_fragments.hpp"
 #include "bsp/boundary_merge.hpp"
+#include "bsp/extent_pruning.hpp"
 #include "bsp/node_polygons.hpp"
 #include "bsp/tree_arena.hpp"
 
@@ -237,6 +238,23 @@ class Merger {
   ConvexPolygon scratch_;
 };
 
+// The boundary of op(a, b) (to arena.boundary), then the merged tree; returns its root. Where the
+// result out of a does not depend on b (op[0][*] constant), b only matters inside a: b's planes
+// with a on one closed side are dropped first (extent_pruning.hpp).
+TreeRef merge_operands(Arena& arena, TreeRef ra, std::vector<BoundaryFragment> fa, FragmentBoxes boxes, TreeRef rb,
+                       const std::vector<BoundaryFragment>& fb, const bool op[2][2]) {
+  std::optional<detail::ExtentSides> sides;
+  if (op[0][0] == op[0][1] && !is_leaf(rb)) {
+    detail::complete_boxes(fa, boxes);
+    sides = detail::extent_sides(arena, ra, fa, boxes, rb, fb);
+  }
+  detail::merge_boundaries(arena, ra, std::move(fa), std::move(boxes), rb, fb, op, sides ? &*sides : nullptr);
+  if (sides) rb = detail::prune_to_extent(arena, rb, *sides);
+  detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
+  Merger m(arena);
+  return m.merge(ra, rb, op);
+}
+
 Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   // Partition the smaller tree by the planes of the larger one (cost ~ the larger tree's
   // nodes whose cells meet the smaller solid's cells that are not single leaves).
@@ -252,10 +270,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   std::vector<BoundaryFragment> fa = arena.boundary_of(a);
   const TreeRef rb = arena.append(b);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(b);
-  detail::merge_boundaries(arena, ra, std::move(fa), a.boundary_boxes(), rb, fb, op);
-  detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
-  Merger m(arena);
-  const TreeRef r = m.merge(ra, rb, op);
+  const TreeRef r = merge_operands(arena, ra, std::move(fa), a.boundary_boxes(), rb, fb, op);
   return detail::compact(arena, r);
 }
 
@@ -289,10 +304,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   }
   const TreeRef rb = arena.append(y);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
-  detail::merge_boundaries(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
-  detail::fill_node_polygons(arena, rb);
-  Merger m(arena);
-  const TreeRef r = m.merge(ra, rb, table);
+  const TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
   if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64))
     return detail::compact(arena, r, {.keep_capacity = true});
   const std::size_t compacted = arena.compacted_size;
