@@ -136,10 +136,13 @@ class SheetSplitter {
   // Pairs the faces around an edge with more than two: each face with its neighbour across a
   // wedge inside the solid, or (`outside`) across a wedge outside it.
   void pair_around_edge(const std::vector<HalfEdge>& group, bool outside) {
-    // Axis from the smaller to the larger vertex id.
+    // Directions from the planes alone: an edge can be shorter than the doubles' resolution (two
+    // exact vertices of re-quantized planes that round to the same coordinates), so no vertex
+    // position is used. Near the edge, each face lies in its support plane on the negative side
+    // of its edge's line plane; the edge runs along support x line.
     const HalfEdge& h0 = group[0];
-    const int a = f_.vertex[std::size_t(h0.corner)], b = f_.vertex[std::size_t(f_.next(h0.face, h0.corner))];
-    const Eigen::Vector3d p = position(v_, std::min(a, b)), axis = (position(v_, std::max(a, b)) - p).normalized();
+    const Eigen::Vector3d axis =
+        unit_normal(f_.support[std::size_t(h0.face)]).cross(unit_normal(f_.line[std::size_t(h0.corner)])).normalized();
     const Eigen::Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
     struct Item {
       double angle;
@@ -150,11 +153,8 @@ class SheetSplitter {
     for (std::size_t i = 0; i < group.size(); ++i) {
       const int f = group[i].face;
       const Eigen::Vector3d n = outward_normal(f_, f, planes_);
-      Eigen::Vector3d r = axis.cross(n);  // in the face plane, perpendicular to the edge
-      // Orient r into the face: the face interior is to the left of its directed edge.
-      const Eigen::Vector3d dir = position(v_, f_.vertex[std::size_t(f_.next(f, group[i].corner))]) -
-                                  position(v_, f_.vertex[std::size_t(group[i].corner)]);
-      if (r.dot(n.cross(dir)) < 0) r = -r;
+      const Eigen::Vector3d s = unit_normal(f_.support[std::size_t(f)]), l = unit_normal(f_.line[std::size_t(group[i].corner)]);
+      const Eigen::Vector3d r = (s * l.dot(s) - l).normalized();  // in the face plane, into the face
       const double angle = std::atan2(r.dot(e2), r.dot(e1));
       items.push_back({angle, n.dot(axis.cross(r)) < 0, i});
     }
@@ -172,6 +172,8 @@ class SheetSplitter {
       pair(x, y);
     }
   }
+
+  Eigen::Vector3d unit_normal(std::int32_t plane) const { return planes_[plane].normal().normalized(); }
 
   FaceList& f_;
   const AssemblyVertices& v_;

@@ -85,5 +85,23 @@ TEST(Transform, NonUniformScalesAndRotationsOfSetOperationResultsStayClosed) {
   }
 }
 
+// Re-quantized planes that met at a ring vertex (face planes, the ring plane, the axis planes
+// through the vertex) leave edges shorter than the doubles' resolution; where such an edge has
+// more than two faces, the sheets are paired by angles from the planes (no vertex positions).
+TEST(Transform, RotatedAndScaledRingPrimitivesStayClosed) {
+  const Solid solids[] = {sphere(1.0, {.segments = 16}), sphere(1.0, {.segments = 48}),
+                          cylinder(1.0, 2.0, {.segments = 24}), sphere(1.0, {.segments = 32}) - box({0, 0, 0}, {1, 1, 1})};
+  for (const Solid& s : solids) {
+    const double v = double(checks::reference_signed_volume(to_mesh(s)));
+    for (const double degrees : {7.0, 23.0, 41.0}) {
+      const Eigen::Vector3d f(1.3, 0.7, 2.1);
+      const PolygonMesh m = to_mesh(rotate(scale(s, f), {1, -2, 0.5}, degrees));
+      EXPECT_TRUE(EdgesManifoldAndOriented(m)) << degrees;
+      EXPECT_TRUE(checks::VerticesManifold(m)) << degrees;
+      EXPECT_NEAR(checks::reference_signed_volume(m), v * f.prod(), 1e-9 * f.prod()) << degrees;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sculpt
