@@ -163,9 +163,11 @@ std::pair<Big, Big> homogeneous(const Plane& p, const Plane& q, const Plane& r, 
 
 bool VertexGeometry::on_plane(int v, std::int32_t plane) const {
   const std::uint32_t id = ids_.id[std::size_t(plane)];
-  if (std::size_t(v) + 1 < v_.known_start.size()) {
-    for (int i = v_.known_start[std::size_t(v)]; i < v_.known_start[std::size_t(v) + 1]; ++i)
-      if (v_.known[std::size_t(i)] == id) return true;
+  if (std::size_t(v) < v_.first_class.size()) {
+    for (int k = v_.first_class[std::size_t(v)]; k >= 0; k = v_.class_next[std::size_t(k)]) {
+      const IdTriple& t = v_.class_planes[std::size_t(k)];
+      if (t[0] == id || t[1] == id || t[2] == id) return true;
+    }
   }
   const PlaneTriple& t = v_.triple[std::size_t(v)];
   return kernel::orient(planes_[t.s], planes_[t.p], planes_[t.q], v_.at[std::size_t(v)], planes_[plane]) ==

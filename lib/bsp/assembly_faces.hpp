@@ -6,6 +6,7 @@
 /// plus the planes known to pass through each of them, so most on-plane questions need no
 /// arithmetic. Planes are compared through canonical ids: equal or opposite planes share one.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,14 +28,21 @@ struct PlaneTriple {
   std::int32_t s, p, q;  ///< plane indices; the vertex is s ∩ p ∩ q
 };
 
+/// Canonical plane ids of a corner's three planes, sorted: corners with the same ids are the
+/// same point without arithmetic (one class).
+using IdTriple = std::array<std::uint32_t, 3>;
+
 /// Vertices of the mesh being assembled (grid units).
 struct AssemblyVertices {
   std::vector<kernel::ApproxPoint> at;  ///< approximation of each vertex
   std::vector<PlaneTriple> triple;      ///< one defining triple per vertex
-  /// Canonical ids of the planes known to contain vertex v: known[known_start[v]..known_start[v+1]).
-  /// Only vertices made by vertex merging have entries (copies made later have none).
-  std::vector<int> known_start;
-  std::vector<std::uint32_t> known;
+  /// The planes known to contain vertex v: those of its classes (corners merged into v with
+  /// one IdTriple each), a list through class_next from first_class[v] (-1 ends it; repeats
+  /// are harmless for membership). Only vertices made by vertex merging have entries (copies
+  /// made later have none).
+  std::vector<int> first_class;
+  std::vector<IdTriple> class_planes;
+  std::vector<int> class_next;
   [[nodiscard]] int size() const { return int(at.size()); }
 };
 

@@ -14,8 +14,6 @@ using kernel::ApproxPoint;
 
 namespace {
 
-using IdTriple = std::array<std::uint32_t, 3>;  // canonical plane ids, sorted
-
 bool same_key(const IdTriple& x, const IdTriple& y) { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; }
 
 IdTriple sorted(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
@@ -43,10 +41,12 @@ class CornerMerger {
     slots_.assign(slots, Slot{0, kEmpty});
     shift_ = 32 - std::countr_zero(slots);
     entries_.reserve(corners / 2 + 16);
-    class_key_.reserve(corners / 2 + 16);
+    v_.class_planes.reserve(corners / 2 + 16);
+    v_.class_next.reserve(corners / 2 + 16);
     class_vertex_.reserve(corners / 2 + 16);
     v_.at.reserve(corners / 3 + 16);
     v_.triple.reserve(corners / 3 + 16);
+    v_.first_class.reserve(corners / 3 + 16);
     vertex_ids_.reserve(corners / 3 + 16);
   }
 
@@ -62,10 +62,6 @@ class CornerMerger {
   void flush() {
     for (; queued_ > 0; --queued_) resolve(queue_[next_]);
   }
-
-  // Classes (key, vertex) in order: every class's planes are known to pass through its vertex.
-  [[nodiscard]] const std::vector<IdTriple>& class_keys() const { return class_key_; }
-  [[nodiscard]] const std::vector<int>& class_vertices() const { return class_vertex_; }
 
  private:
   static constexpr int kEmpty = -1, kNoEntry = -2;
@@ -145,7 +141,7 @@ class CornerMerger {
           return;
         }
     for (const int w : wide_classes_)
-      if (same_key(class_key_[std::size_t(w)], key)) {
+      if (same_key(v_.class_planes[std::size_t(w)], key)) {
         out_[p.out] = class_vertex_[std::size_t(w)];
         return;
       }
@@ -194,24 +190,29 @@ class CornerMerger {
 
   std::uint32_t key_of(std::int32_t plane) const { return ids_.id[std::size_t(plane)]; }
 
-  int new_class(const IdTriple& key, int vertex) {  // (for the known planes and the wide path)
-    class_key_.push_back(key);
+  // A class joins its vertex's list (the vertex's known planes) and the class table (the wide path).
+  int new_class(const IdTriple& key, int vertex) {
+    const int k = int(v_.class_planes.size());
+    v_.class_planes.push_back(key);
+    v_.class_next.push_back(v_.first_class[std::size_t(vertex)]);
+    v_.first_class[std::size_t(vertex)] = k;
     class_vertex_.push_back(vertex);
-    return int(class_key_.size()) - 1;
+    return k;
   }
 
   int new_vertex(std::int32_t support, const kernel::Corner& c) {
     v_.at.push_back(c.at);
     v_.triple.push_back({support, c.p, c.q});
     vertex_ids_.push_back({key_of(support), key_of(c.p), key_of(c.q)});
+    v_.first_class.push_back(-1);
     return v_.size() - 1;
   }
 
   // A corner without cells (large or no error bound: nearly dependent planes): its class by
   // key, else exact comparison with every vertex.
   int wide_vertex(const IdTriple& key, std::int32_t support, const kernel::Corner& c) {
-    for (std::size_t i = 0; i < class_key_.size(); ++i)
-      if (same_key(class_key_[i], key)) return class_vertex_[i];
+    for (std::size_t i = 0; i < v_.class_planes.size(); ++i)
+      if (same_key(v_.class_planes[i], key)) return class_vertex_[i];
     int v = -1;
     for (int u = 0; u < v_.size() && v < 0; ++u)
       if (same_point(key, support, c, u)) v = u;
@@ -252,37 +253,12 @@ class CornerMerger {
   int shift_ = 26;
   std::size_t cells_used_ = 0;  // occupied slots
   std::vector<Entry> entries_;
-  std::vector<IdTriple> class_key_;
-  std::vector<int> class_vertex_;
+  std::vector<int> class_vertex_;  // class -> vertex (keys in v_.class_planes)
   std::vector<int> wide_classes_;
   std::vector<IdTriple> vertex_ids_;  // vertex -> canonical ids of its triple, in triple order
   Pending queue_[kAhead];
   int next_ = 0, queued_ = 0;  // the oldest queued corner, and how many are queued
 };
-
-// Known planes of each vertex: the canonical ids of all its classes' triples, without repeats.
-void collect_known_planes(const std::vector<IdTriple>& keys, const std::vector<int>& vertex_of_class,
-                          AssemblyVertices& v) {
-  const std::size_t nv = std::size_t(v.size());
-  std::vector<int> count(nv + 1, 0);
-  for (const int u : vertex_of_class) count[std::size_t(u) + 1] += 3;
-  for (std::size_t k = 0; k < nv; ++k) count[k + 1] += count[k];
-  std::vector<std::uint32_t> all(static_cast<std::size_t>(count[nv]));
-  std::vector<int> fill(count.begin(), count.end() - 1);
-  for (std::size_t c = 0; c < keys.size(); ++c) {
-    int& at = fill[std::size_t(vertex_of_class[c])];
-    for (const std::uint32_t id : keys[c]) all[std::size_t(at++)] = id;
-  }
-  v.known_start.assign(nv + 1, 0);
-  v.known.reserve(all.size());
-  for (std::size_t k = 0; k < nv; ++k) {
-    const auto b = all.begin() + count[k], e = all.begin() + count[k + 1];
-    if (e - b > 3) std::sort(b, e);
-    const auto last = e - b > 3 ? std::unique(b, e) : e;
-    v.known.insert(v.known.end(), b, last);
-    v.known_start[k + 1] = int(v.known.size());
-  }
-}
 
 }  // namespace
 
@@ -297,10 +273,10 @@ MergedFragments merge_vertices(const Fragments& fragments) {
   faces.start.resize(nf + 1);
   faces.support.resize(nf);
   faces.flip.resize(nf);
-  // (Room for a fifth corner per fragment: growing past the reserve would copy both arrays;
-  // the sphere's carried fragments average 4.03 corners.)
-  faces.vertex.reserve(expected + nf);
-  faces.line.reserve(expected + nf);
+  // Sized once (room for a fifth corner per fragment; the sphere's carried fragments average
+  // 4.03 corners), doubled if ever short, cut to size at the end: no resize per fragment.
+  faces.vertex.resize(expected + nf);
+  faces.line.resize(expected + nf);
   std::size_t base = 0;
   for (std::size_t f = 0; f < nf; ++f) {
     const Fragment& fr = fragments.fragments[f];
@@ -310,8 +286,10 @@ MergedFragments merge_vertices(const Fragments& fragments) {
     faces.start[f] = int(base);
     faces.support[f] = fr.polygon.support;
     faces.flip[f] = fr.flip ? 1 : 0;
-    faces.vertex.resize(base + m);
-    faces.line.resize(base + m);
+    if (base + m > faces.line.size()) {
+      faces.vertex.resize(2 * (base + m));
+      faces.line.resize(2 * (base + m));
+    }
     // A flipped fragment's corners reversed: corner j goes to position m-1-j, and its edge
     // (to corner j+1) becomes the edge leaving position m-1-(j+1).
     for (std::size_t j = 0; j < m; ++j) {
@@ -322,7 +300,8 @@ MergedFragments merge_vertices(const Fragments& fragments) {
   }
   faces.start[nf] = int(base);
   merger.flush();
-  collect_known_planes(merger.class_keys(), merger.class_vertices(), r.vertices);
+  faces.vertex.resize(base);
+  faces.line.resize(base);
   return r;
 }
 
