@@ -8,6 +8,7 @@
 //   bench_assembly                 sphere_minus_cube 32, 128, 256, menger 3, boxes 1000
 //   bench_assembly CASE N [RUNS]   one case (solids as in bench_bsp.cpp, CASES.md)
 //   bench_assembly CASE N RUNS stages  also times each stage of assemble_mesh (median over the runs)
+//                                  and counts its allocations
 //   bench_assembly CASE N RUNS carried  times only the carried boundary (for profiling)
 //   bench_assembly CASE N RUNS DUMP  also writes the mesh in a canonical text form to DUMP
 //                                  (faces as coordinate cycles starting at the smallest, sorted),
@@ -90,12 +91,16 @@ void time_stages(const detail::Fragments& f, int runs, const char* source) {
   std::vector<std::vector<double>> t(kStages);
   detail::JunctionResult last;
   int sizes[kStages][2] = {};  // faces and corners after each stage (last run)
+  long allocations[kStages] = {};  // operator new calls of each stage (last run)
   for (int r = 0; r < runs; ++r) {
     double t0 = cpu_ms();
+    long a0 = g_allocations;
     int stage = 0;
     auto lap = [&](const detail::FaceList* after = nullptr) {
       const double t1 = cpu_ms();
       if (after != nullptr) sizes[stage][0] = after->size(), sizes[stage][1] = after->corners();
+      allocations[stage] = g_allocations - a0;
+      a0 = g_allocations;
       t[std::size_t(stage++)].push_back(t1 - t0);
       t0 = t1;
     };
@@ -123,6 +128,8 @@ void time_stages(const detail::Fragments& f, int runs, const char* source) {
   std::printf(" open_edges=%d by_lines=%d by_search=%d\n", last.open, last.by_lines, last.by_search);
   std::printf("sizes source=%s", source);  // faces/corners after each stage
   for (int k = 0; k + 1 < kStages; ++k) std::printf(" %s=%d/%d", names[k], sizes[k][0], sizes[k][1]);
+  std::printf("\nallocations source=%s", source);
+  for (int k = 0; k < kStages; ++k) std::printf(" %s=%ld", names[k], allocations[k]);
   std::printf("\n");
 }
 
