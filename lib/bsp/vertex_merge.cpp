@@ -234,14 +234,17 @@ class CornerMerger {
     const PlaneTriple& t = v_.triple[std::size_t(u)];
     const IdTriple& ids = vertex_ids_[std::size_t(u)];
     const std::int32_t planes[3] = {t.s, t.p, t.q};
-    VertexMinors corner{};  // the corner's 2x2 minors, shared by its (usually two) tests
-    bool ready = false;
+    std::int32_t tested[3];
+    int n = 0;
     for (int i = 0; i < 3; ++i) {
       const std::uint32_t id = ids[std::size_t(i)];
-      if (id == key[0] || id == key[1] || id == key[2]) continue;
-      if (!ready) corner = vertex_minors(planes_[support], planes_[c.p], planes_[c.q], pa), ready = true;
-      if (!vertex_on_plane(corner, planes_[planes[i]])) return false;
+      if (id != key[0] && id != key[1] && id != key[2]) tested[n++] = planes[i];
     }
+    if (n == 0) return true;
+    // The corner's 2x2 minors, shared by its (usually two) tests (built in place: no copy).
+    const VertexMinors corner = vertex_minors(planes_[support], planes_[c.p], planes_[c.q], pa);
+    for (int i = 0; i < n; ++i)
+      if (!vertex_on_plane(corner, planes_[tested[i]])) return false;
     return true;
   }
 
