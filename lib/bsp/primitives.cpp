@@ -68,8 +68,8 @@ class SectorTree {
     axial_id_.clear();
     axial_plane_.resize(axial_.size());  // all made first, then added (see revolve_rings' band)
     for (std::size_t i = 0; i < axial_.size(); ++i)
-      ::new (&axial_plane_[i]) kernel::Plane(
-          kernel::plane_from_normal({-axial_[i].sin, axial_[i].cos, 0.0}, max_offset * axial_[i].fraction));
+      ::new (&axial_plane_[i])
+          kernel::Plane(kernel::plane_from_scaled_normal(axial_[i].normal, max_offset * axial_[i].fraction));
     for (const kernel::Plane& p : axial_plane_) axial_id_.push_back(b_.add_plane(p, options_.auxiliary_axes));
     const TreeRef base = b_.open_nodes(std::int32_t(shape_.size()));
     for (std::size_t i = 0; i < shape_.size(); ++i) {
@@ -101,7 +101,8 @@ class SectorTree {
     TreeRef negative = kOut, positive = kOut;
   };
   struct Axial {
-    double sin, cos, fraction;  // direction and the share of max_offset its offset takes
+    kernel::ScaledNormal normal;  // of the plane through the axis at its angle, the same in every band
+    double fraction;              // the share of max_offset its offset takes
   };
 
   // The recursion the tree follows, once: nodes bottom-up (children first), then laid out in
@@ -160,7 +161,7 @@ class SectorTree {
   std::int32_t axial(double sin_a, double cos_a) {
     // f = -sin(a) x + cos(a) y + offset: positive for angles in (a, a + pi) (offset aside).
     const double fraction = 0.5 + 0.5 * std::fmod(0.6180339887498949 * double(axial_.size() + 1), 1.0);
-    axial_.push_back({sin_a, cos_a, fraction});
+    axial_.push_back({kernel::scale_normal({-sin_a, cos_a, 0.0}), fraction});
     return std::int32_t(axial_.size() - 1);
   }
   TreeRef node(const ShapeNode& s) {

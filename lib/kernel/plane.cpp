@@ -65,6 +65,22 @@ UInt128 gcd(UInt128 a, UInt128 b) {
 
 bool fits(Int128 v, int bits) { return magnitude(v) <= (UInt128(1) << bits); }
 
+// Division by g of multiples of g (|v| < 2^63) without a division instruction: the power of two
+// shifted out (arithmetic shift, exact for multiples), then a product with the inverse of g's odd
+// part modulo 2^64, which is exact for exact quotients (Hacker's Delight 10-15). The inverse by
+// Newton's iteration x <- x (2 - odd x), which doubles the correct low bits (odd x = 1 mod 8 at x = odd).
+struct ExactDivisor {
+  explicit ExactDivisor(std::uint64_t g) : shift(std::countr_zero(g)) {
+    const std::uint64_t odd = g >> shift;
+    if (odd == 1) return;
+    inverse = odd;
+    for (int i = 0; i < 5; ++i) inverse *= 2 - odd * inverse;  // 3, 6, 12, 24, 48, 96 bits
+  }
+  [[nodiscard]] std::int64_t divide(std::int64_t v) const { return std::int64_t(std::uint64_t(v >> shift) * inverse); }
+  int shift;
+  std::uint64_t inverse = 1;
+};
+
 // The plane a, b, c, d divided by the gcd of all four, given g = gcd(|a|, |b|, |c|) > 0; checks
 // the bit budget. The offset (up to 128 bits) only matters when the normal has a common factor:
 // then |d| mod g first, so the binary gcd runs on values below g.
@@ -72,9 +88,9 @@ Plane divide_by_gcd(Int128 a, Int128 b, Int128 c, Int128 d, UInt128 g) {
   if (g != 1) g = (g >> 64) == 0 ? gcd64(std::uint64_t(g), mod64(magnitude(d), std::uint64_t(g))) : gcd(g, magnitude(d));
   if (g != 1) {
     if ((g >> 64) == 0 && ((magnitude(a) | magnitude(b) | magnitude(c)) >> 63) == 0) {
-      const auto g64 = std::int64_t(g);  // g divides the normal, so it fits 63 bits too
-      a = std::int64_t(a) / g64, b = std::int64_t(b) / g64, c = std::int64_t(c) / g64;
-      d = magnitude(d) >> 63 == 0 ? Int128(std::int64_t(d) / g64) : d / Int128(g);
+      const ExactDivisor by{std::uint64_t(g)};  // g divides the normal, so it fits 63 bits too
+      a = by.divide(std::int64_t(a)), b = by.divide(std::int64_t(b)), c = by.divide(std::int64_t(c));
+      d = magnitude(d) >> 63 == 0 ? Int128(by.divide(std::int64_t(d))) : d / Int128(g);
     } else {
       a /= Int128(g), b /= Int128(g), c /= Int128(g), d /= Int128(g);
     }
@@ -121,16 +137,25 @@ Plane plane_through(const GridPoint& p0, const GridPoint& p1, const GridPoint& p
   return make_plane(a, b, c, d);
 }
 
-Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world) {
+ScaledNormal scale_normal(const Eigen::Vector3d& normal) {
   const double m = normal.cwiseAbs().maxCoeff();
-  if (!(m > 0) || !std::isfinite(m) || !std::isfinite(offset_world))
-    throw InvalidInput("plane with a zero or non-finite normal");
+  if (!(m > 0) || !std::isfinite(m)) throw InvalidInput("plane with a zero or non-finite normal");
   // Scale the normal so its largest component has kNormalBits - 1 bits, then round.
-  const double s = std::ldexp(1.0, kNormalBits - 1) / m;
-  const double a = std::nearbyint(normal.x() * s), b = std::nearbyint(normal.y() * s),
-               c = std::nearbyint(normal.z() * s);
+  ScaledNormal n;
+  n.scale = std::ldexp(1.0, kNormalBits - 1) / m;
+  n.a = std::int64_t(std::nearbyint(normal.x() * n.scale));
+  n.b = std::int64_t(std::nearbyint(normal.y() * n.scale));
+  n.c = std::int64_t(std::nearbyint(normal.z() * n.scale));
+  // As make_plane finds it (the largest component is 2^(kNormalBits - 1), never zero).
+  const std::uint64_t gab = gcd64(std::uint64_t(std::llabs(n.a)), std::uint64_t(std::llabs(n.b)));
+  n.gcd = gab == 1 ? 1 : gcd64(gab, std::uint64_t(std::llabs(n.c)));
+  return n;
+}
+
+Plane plane_from_scaled_normal(const ScaledNormal& n, double offset_world) {
+  if (!std::isfinite(offset_world)) throw InvalidInput("plane with a zero or non-finite normal");
   // n.x + offset = 0 with x = g * step  =>  (n s) . g + offset * s / step = 0.
-  const double d = offset_world * s / kGridStep;
+  const double d = offset_world * n.scale / kGridStep;
   if (!(std::fabs(d) < std::ldexp(1.0, kOffsetBits - 1))) {
     std::ostringstream msg;
     msg << "plane offset " << offset_world << " is outside the exact kernel's range " << range_text();
@@ -140,7 +165,11 @@ Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world) {
   // library call); the values are the same.
   const double rd = std::nearbyint(d);
   const Int128 id = std::fabs(rd) < 0x1p62 ? Int128(std::int64_t(rd)) : Int128(rd);
-  return make_plane(std::int64_t(a), std::int64_t(b), std::int64_t(c), id);
+  return divide_by_gcd(n.a, n.b, n.c, id, n.gcd);
+}
+
+Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world) {
+  return plane_from_scaled_normal(scale_normal(normal), offset_world);  // the same message for either error
 }
 
 }  // namespace sculpt::kernel

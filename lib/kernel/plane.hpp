@@ -51,6 +51,18 @@ Plane plane_through(const GridPoint& p0, const GridPoint& p1, const GridPoint& p
 /// to kNormalBits - 1 bits before rounding. Used after rotations and for analytic planes;
 /// moves the plane by at most about 2^-50 of the range. \throw RangeError if out of range.
 Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world);
+/// What plane_from_normal computes from the normal alone, for many planes with one normal and
+/// different offsets (the axial planes of a solid of revolution: the same directions in every band).
+struct ScaledNormal {
+  std::int64_t a = 0, b = 0, c = 0;  ///< the normal scaled to kNormalBits - 1 bits and rounded
+  double scale = 0;                  ///< the scale: 2^(kNormalBits - 1) / max |component|
+  std::uint64_t gcd = 0;             ///< gcd(|a|, |b|, |c|)
+};
+/// \throw InvalidInput for a zero or non-finite normal.
+ScaledNormal scale_normal(const Eigen::Vector3d& normal);
+/// plane_from_normal(normal, offset_world) for n = scale_normal(normal): the same plane, the same
+/// errors for the offset. \throw RangeError, InvalidInput (non-finite offset).
+Plane plane_from_scaled_normal(const ScaledNormal& n, double offset_world);
 /// True if p and q are the same plane with the same or with opposite orientation.
 inline bool same_or_opposite(const Plane& p, const Plane& q) { return p == q || p == q.opposite(); }
 

@@ -180,6 +180,64 @@ TEST(Plane, FromNormalGivesTheRoundedScaledPlane) {
   }
 }
 
+// Common factors with large odd parts (make_plane divides exact multiples by a product with the
+// odd part's inverse modulo 2^64 and a shift): planes f (a, b, c, d) with odd f up to 2^45 times a
+// power of two, both signs, offsets up to 63 bits, reduce to the plain-Euclid result.
+TEST(Plane, MakePlaneDividesExactlyByLargeOddFactors) {
+  std::uint64_t state = 2024;
+  auto next = [&] { return state = state * 6364136223846793005ull + 1442695040888963407ull; };
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int odd_bits = 1 + int(next() % 45), shift = int(next() % 6);
+    const Int128 f = Int128((next() >> (64 - odd_bits)) | 1) << shift;
+    const int room = 52 - odd_bits - shift;  // cofactor bits that keep the normal within 2^53
+    auto cofactor = [&](int bits) {
+      const Int128 v = bits <= 0 ? Int128(next() % 2) : Int128(next() >> (64 - bits));
+      return next() % 2 ? v : -v;
+    };
+    Int128 a = cofactor(room), b = cofactor(room), c = cofactor(room);
+    if (a == 0 && b == 0 && c == 0) a = 1;
+    const Int128 d = cofactor(62 - odd_bits - shift);  // |d f| below 2^63: the 64-bit path
+    expect_reduced(make_plane(a * f, b * f, c * f, d * f), a * f, b * f, c * f, d * f, "odd factor", trial);
+  }
+}
+
+// scale_normal does plane_from_normal's normal work once: the rounded scaled normal, its scale and
+// gcd (plain Euclid); plane_from_normal on it gives make_plane of the rounded coefficients.
+TEST(Plane, FromScaledNormalGivesTheSamePlanesForEveryOffset) {
+  std::uint64_t state = 99;
+  auto next = [&] { return state = state * 6364136223846793005ull + 1442695040888963407ull; };
+  auto unit = [&] { return double(next() >> 11) * 0x1p-53 * 2 - 1; };
+  int tested = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    Eigen::Vector3d n(unit(), unit(), trial % 3 == 0 ? 0.0 : unit());
+    if (trial % 7 == 0) n.y() = std::ldexp(n.y(), -40);  // components that round to small integers
+    if (n.cwiseAbs().maxCoeff() == 0) n.x() = 1;
+    const ScaledNormal sn = scale_normal(n);
+    const double s = std::ldexp(1.0, kNormalBits - 1) / n.cwiseAbs().maxCoeff();
+    ASSERT_EQ(sn.scale, s);
+    ASSERT_EQ(sn.a, std::int64_t(std::nearbyint(n.x() * s)));
+    ASSERT_EQ(sn.b, std::int64_t(std::nearbyint(n.y() * s)));
+    ASSERT_EQ(sn.c, std::int64_t(std::nearbyint(n.z() * s)));
+    ASSERT_EQ(Int128(sn.gcd), euclid(euclid(sn.a, sn.b), sn.c));
+    for (int k = 0; k < 4; ++k) {
+      const double offset = unit() * std::ldexp(1.0, int(next() % 12) - 4);
+      if (!(std::fabs(offset * s / kGridStep) < std::ldexp(1.0, kOffsetBits - 1))) continue;  // out of range
+      const Plane p = plane_from_scaled_normal(sn, offset);
+      ASSERT_EQ(p, plane_from_normal(n, offset));
+      ASSERT_EQ(p, make_plane(sn.a, sn.b, sn.c, Int128(std::nearbyint(offset * s / kGridStep))));
+      ++tested;
+    }
+  }
+  EXPECT_GT(tested, 15000);
+  EXPECT_THROW(scale_normal({0, 0, 0}), InvalidInput);
+  EXPECT_THROW(scale_normal({std::nan(""), 1, 0}), InvalidInput);
+  EXPECT_THROW(scale_normal({HUGE_VAL, 1, 0}), InvalidInput);
+  const ScaledNormal x = scale_normal({1, 0, 0});
+  EXPECT_THROW(plane_from_scaled_normal(x, HUGE_VAL), InvalidInput);
+  EXPECT_THROW(plane_from_scaled_normal(x, 1e30), RangeError);
+  EXPECT_EQ(plane_from_scaled_normal(x, -0.5), make_plane(1, 0, 0, -16384));
+}
+
 TEST(Plane, FromNormalRoundsCloseToTheRequestedPlane) {
   const Plane p = plane_from_normal({1, 2, 3}, -1.5);
   // The point (0.5, 0.5, 0) (world) satisfies x + 2y + 3z - 1.5 = 0.
