@@ -126,12 +126,30 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
     }
     for (const Boundary& x : boundary) leaving[std::size_t(x.u)] = -1;
   }
-  FaceList out;
-  out.reserve(std::size_t(nf), corners);
-  for (int f = 0; f < nf; ++f)
-    if (removed[std::size_t(f)] == 0) out.copy_face(faces, f);
-  for (int g = 0; g < added.size(); ++g) out.copy_face(added, g);
-  return out;
+  // The kept faces compacted in place (corners and faces only move towards the front), then
+  // the merged ones appended.
+  std::size_t at = 0;
+  int kept = 0;
+  for (int f = 0; f < nf; ++f) {
+    if (removed[std::size_t(f)] != 0) continue;
+    const int b = faces.begin(f), e = faces.end(f);
+    faces.start[std::size_t(kept)] = int(at);
+    faces.support[std::size_t(kept)] = faces.support[std::size_t(f)];
+    faces.flip[std::size_t(kept)] = faces.flip[std::size_t(f)];
+    ++kept;
+    for (int c = b; c < e; ++c, ++at) {
+      faces.vertex[at] = faces.vertex[std::size_t(c)];
+      faces.line[at] = faces.line[std::size_t(c)];
+    }
+  }
+  faces.start.resize(std::size_t(kept) + 1);
+  faces.start.back() = int(at);
+  faces.support.resize(std::size_t(kept));
+  faces.flip.resize(std::size_t(kept));
+  faces.vertex.resize(at);
+  faces.line.resize(at);
+  for (int g = 0; g < added.size(); ++g) faces.copy_face(added, g);
+  return faces;
 }
 
 FaceList remove_straight_vertices(FaceList faces, int vertex_count, const VertexGeometry& geometry) {
@@ -174,20 +192,26 @@ FaceList remove_straight_vertices(FaceList faces, int vertex_count, const Vertex
       if (m <= 3 || !geometry.on_plane(w, in_line)) removable[v] = 0;
     }
   }
-  FaceList out;
-  out.reserve(std::size_t(faces.size()), std::size_t(faces.corners()));
+  // The faces compacted in place (corners only move towards the front; faces keep their
+  // order and planes).
+  std::size_t at = 0;
   for (int f = 0; f < faces.size(); ++f) {
+    const int b = faces.begin(f), e = faces.end(f);
     int kept = 0;
-    for (int c = faces.begin(f); c < faces.end(f); ++c) kept += removable[std::size_t(faces.vertex[std::size_t(c)])] == 0;
-    if (kept == faces.count(f) || kept < 3) {
-      out.copy_face(faces, f);
-      continue;
-    }
-    out.open_face(faces.support[std::size_t(f)], faces.flip[std::size_t(f)] != 0);
-    for (int c = faces.begin(f); c < faces.end(f); ++c)  // the incoming edge's line goes on
-      if (removable[std::size_t(faces.vertex[std::size_t(c)])] == 0) out.add_corner(faces.vertex[std::size_t(c)], faces.line[std::size_t(c)]);
+    for (int c = b; c < e; ++c) kept += removable[std::size_t(faces.vertex[std::size_t(c)])] == 0;
+    const bool all = kept == e - b || kept < 3;
+    faces.start[std::size_t(f)] = int(at);
+    for (int c = b; c < e; ++c)  // the incoming edge's line goes on
+      if (all || removable[std::size_t(faces.vertex[std::size_t(c)])] == 0) {
+        faces.vertex[at] = faces.vertex[std::size_t(c)];
+        faces.line[at] = faces.line[std::size_t(c)];
+        ++at;
+      }
   }
-  return out;
+  faces.start.back() = int(at);
+  faces.vertex.resize(at);
+  faces.line.resize(at);
+  return faces;
 }
 
 }  // namespace sculpt::detail
