@@ -82,8 +82,10 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
   };
   std::vector<int> leaving(std::size_t(vertex_count), -1);  // vertex -> its boundary edge
   std::vector<Boundary> boundary;                           // the union's boundary edges
+  boundary.reserve(64);
   std::vector<std::uint8_t> removed(std::size_t(nf), 0);
   FaceList added;
+  added.reserve(std::size_t(nf) / 8 + 16, corners / 8 + 64);  // (growing from empty allocates often)
   for (int r = 0; r < nf; ++r) {
     const int b = member_start[std::size_t(r)], e = member_start[std::size_t(r) + 1];
     if (e - b < 2) continue;

@@ -39,44 +39,47 @@ class JunctionRemover {
     return true;
   }
 
-  // The faces with the inserted vertices: runs of corners between open edges copied whole.
-  FaceList apply() const {
-    FaceList out;
-    const std::size_t total = f_.vertex.size() + ins_.size();
-    out.start.resize(f_.start.size());
-    out.support = f_.support;
-    out.flip = f_.flip;
-    out.vertex.resize(total);
-    out.line.resize(total);
-    auto copy = [&](int from, int to, std::size_t at) {  // corners [from, to) to position `at`
-      std::copy(f_.vertex.begin() + from, f_.vertex.begin() + to, out.vertex.begin() + std::ptrdiff_t(at));
-      std::copy(f_.line.begin() + from, f_.line.begin() + to, out.line.begin() + std::ptrdiff_t(at));
+  // Inserts the found vertices into `faces` (the face list this remover was built on), in
+  // place: the arrays grow at the back and runs of corners between open edges move towards it,
+  // the last face first (a run never moves onto corners not yet moved).
+  void apply(FaceList& faces) const {
+    const std::size_t total = faces.vertex.size() + ins_.size();
+    faces.vertex.resize(total);
+    faces.line.resize(total);
+    auto move = [&](int from, int to, std::size_t end) {  // corners [from, to) to end at `end`
+      std::copy_backward(faces.vertex.begin() + from, faces.vertex.begin() + to, faces.vertex.begin() + std::ptrdiff_t(end));
+      std::copy_backward(faces.line.begin() + from, faces.line.begin() + to, faces.line.begin() + std::ptrdiff_t(end));
     };
-    std::size_t o = 0, at = 0;  // open edges are in corner order
-    for (int f = 0; f < f_.size(); ++f) {
-      out.start[std::size_t(f)] = int(at);
-      int c = f_.begin(f);
-      for (; o < open_.size() && open_[o].corner < f_.end(f); ++o) {
-        const int corner = open_[o].corner;
-        copy(c, corner + 1, at);
-        at += std::size_t(corner + 1 - c);
+    std::size_t o = open_.size(), at = total;  // open edges are in corner order
+    int end = faces.start.back();              // the old end of face f
+    faces.start.back() = int(total);
+    for (int f = faces.size() - 1; f >= 0; --f) {
+      const int begin = faces.start[std::size_t(f)];
+      int c = end;  // corners [begin, c) not moved yet
+      for (; o > 0 && open_[o - 1].corner >= begin; --o) {
+        const int corner = open_[o - 1].corner;
+        move(corner + 1, c, at);
+        at -= std::size_t(c - corner - 1);
         c = corner + 1;
-        for (int k = ins_begin_[o]; k < ins_end_[o]; ++k, ++at) {
-          out.vertex[at] = ins_[std::size_t(k)];
-          out.line[at] = f_.line[std::size_t(corner)];
+        const std::int32_t line = faces.line[std::size_t(corner)];
+        for (int k = ins_end_[o - 1]; k > ins_begin_[o - 1]; --k) {
+          --at;
+          faces.vertex[at] = ins_[std::size_t(k) - 1];
+          faces.line[at] = line;
         }
       }
-      copy(c, f_.end(f), at);
-      at += std::size_t(f_.end(f) - c);
+      move(begin, c, at);
+      at -= std::size_t(c - begin);
+      faces.start[std::size_t(f)] = int(at);
+      end = begin;
     }
-    out.start.back() = int(at);
-    return out;
   }
 
  private:
   int next_vertex(int f, int c) const { return f_.vertex[std::size_t(f_.next(f, c))]; }
 
   void find_open() {
+    open_.reserve(f_.vertex.size() / 8 + 16);  // (a guess: growing from empty allocates often)
     for (int f = 0; f < f_.size(); ++f)
       for (int c = f_.begin(f); c < f_.end(f); ++c) {
         const int u = f_.vertex[std::size_t(c)], w = next_vertex(f, c);
@@ -138,6 +141,7 @@ class JunctionRemover {
     // (An edge from v to v, if one ever occurs, lies on every line through v: its vertex falls
     // back to testing every pair.)
     std::vector<int> lines;  // one entry of `at` per distinct plane pair at v
+    lines.reserve(16);
     for (std::size_t v = 0; v < nv; ++v) {
       lines.clear();
       bool degenerate = false;
@@ -186,6 +190,9 @@ class JunctionRemover {
       int v;
     };
     std::vector<Along> along;
+    verts.reserve(16);
+    along.reserve(16);
+    ins_.reserve(n);
     std::vector<std::uint8_t> up, down;  // a piece from rank k to k + 1 (k + 1 to k) exists
     for (std::size_t r = 0; r < n; ++r) {
       const int b = member_start[r], e = member_start[r + 1];
@@ -368,7 +375,8 @@ JunctionResult remove_t_junctions(FaceList faces, const VertexGeometry& geometry
                                   const JunctionOptions& options) {
   JunctionResult result;
   JunctionRemover remover(faces, geometry, ids);
-  result.faces = remover.run(options, result) ? remover.apply() : std::move(faces);
+  if (remover.run(options, result)) remover.apply(faces);
+  result.faces = std::move(faces);
   return result;
 }
 
