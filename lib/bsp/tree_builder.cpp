@@ -98,13 +98,12 @@ TreeRef TreeBuilder::open_nodes(std::int32_t count) {
   return first;
 }
 
-void TreeBuilder::set_node(TreeRef node, std::int32_t plane, TreeRef negative, TreeRef positive) {
+// set_node's checks failed: which one (set_node is inline in the header, for SectorTree's loops).
+void TreeBuilder::reject_node(TreeRef node, std::int32_t plane, TreeRef negative, TreeRef positive) const {
   if (node < 0 || std::size_t(node) >= nodes_.size()) throw std::out_of_range("TreeBuilder: unknown node");
   if (plane < 0 || plane >= planes_.size()) throw std::out_of_range("TreeBuilder: unknown plane");
   for (TreeRef c : {negative, positive}) check_child(c, nodes_.size());
-  BspNode& n = nodes_[std::size_t(node)];
-  if (n.plane < 0) --unset_;
-  n = {plane, negative, positive};
+  throw std::logic_error("TreeBuilder: set_node rejected a valid node");
 }
 
 TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_planes, TreeRef inside,

@@ -45,7 +45,15 @@ class TreeBuilder {
   /// subtree, then its positive one) is kept without a copy by build(..., {.nodes_cut_cells}).
   TreeRef open_nodes(std::int32_t count);
   /// Fills a node made by open_nodes; its children may be any nodes of this builder or leaves.
-  void set_node(TreeRef node, std::int32_t plane, TreeRef negative, TreeRef positive);
+  void set_node(TreeRef node, std::int32_t plane, TreeRef negative, TreeRef positive) {
+    const auto size = std::int64_t(nodes_.size());
+    auto child_ok = [size](TreeRef c) { return c == kIn || c == kOut || (c >= 0 && c < size); };
+    if (node < 0 || node >= size || plane < 0 || plane >= planes_.size() || !child_ok(negative) || !child_ok(positive))
+      reject_node(node, plane, negative, positive);
+    BspNode& n = nodes_[std::size_t(node)];
+    if (n.plane < 0) --unset_;
+    n = {plane, negative, positive};
+  }
   /// A balanced tree for the convex polytope ∩ (f_i <= 0) of the given planes, as a chain in
   /// the given order (callers balance by splitting first with non-face planes).
   TreeRef add_convex_chain(const std::vector<std::int32_t>& face_planes, TreeRef inside = kIn,
@@ -60,6 +68,7 @@ class TreeBuilder {
   Solid build(TreeRef root, const BuildOptions& options) &&;
 
  private:
+  [[noreturn]] void reject_node(TreeRef node, std::int32_t plane, TreeRef negative, TreeRef positive) const;
   Solid build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) &&;
   Solid build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) &&;
   kernel::PlaneTable planes_;
