@@ -21,10 +21,10 @@ Eigen::Vector3d outward_normal(const FaceList& faces, int f, const kernel::Plane
   return faces.flip[std::size_t(f)] != 0 ? Eigen::Vector3d(-n) : n;
 }
 
-struct HalfEdge {
-  std::uint64_t undirected;
+struct HalfEdge {  // in the run of its smaller vertex
+  int other;        // the larger vertex (the undirected edge is smaller -> other)
   int face, corner;
-  bool forward;  // from the smaller to the larger vertex id
+  int forward;  // 1: from the smaller to the larger vertex id
 };
 
 class SheetSplitter {
@@ -33,33 +33,31 @@ class SheetSplitter {
       : f_(faces), v_(vertices), planes_(planes), uf_(std::size_t(faces.corners())) {}
 
   std::vector<int> run() {
-    // Half-edges grouped by undirected edge: counting sort by the smaller vertex, then each
-    // (short) run sorted by the larger one.
+    // Half-edges grouped by undirected edge: counting sort by the smaller vertex (each run
+    // filled from its end: no separate fill array; runs keep the corner order), then each run
+    // sorted by the larger vertex (as before: insertion sort, std::sort above 16).
     const std::size_t nv = v_.at.size();
     std::vector<int> start(nv + 1, 0);
     for (int f = 0; f < f_.size(); ++f)
       for (int c = f_.begin(f); c < f_.end(f); ++c)
-        ++start[std::size_t(std::min(f_.vertex[std::size_t(c)], f_.vertex[std::size_t(f_.next(f, c))])) + 1];
-    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+        ++start[std::size_t(std::min(f_.vertex[std::size_t(c)], f_.vertex[std::size_t(f_.next(f, c))]))];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];  // start[v] = end of v's run
     std::vector<HalfEdge> hs(std::size_t(f_.corners()));
-    {
-      std::vector<int> fill(start.begin(), start.end() - 1);
-      for (int f = 0; f < f_.size(); ++f)
-        for (int c = f_.begin(f); c < f_.end(f); ++c) {
-          const int u = f_.vertex[std::size_t(c)], w = f_.vertex[std::size_t(f_.next(f, c))];
-          hs[std::size_t(fill[std::size_t(std::min(u, w))]++)] = {edge_key(std::min(u, w), std::max(u, w)), f, c, u < w};
-        }
-    }
+    for (int f = f_.size() - 1; f >= 0; --f)  // backwards, so each run keeps the corner order
+      for (int c = f_.end(f) - 1; c >= f_.begin(f); --c) {
+        const int u = f_.vertex[std::size_t(c)], w = f_.vertex[std::size_t(f_.next(f, c))];
+        hs[std::size_t(--start[std::size_t(std::min(u, w))])] = {std::max(u, w), f, c, u < w ? 1 : 0};
+      }
     for (std::size_t v = 0; v < nv; ++v) {
-      if (start[v + 1] - start[v] > 16) {  // (std::sort sorts up to 16 elements by insertion too)
-        std::sort(hs.begin() + start[v], hs.begin() + start[v + 1],
-                  [](const HalfEdge& a, const HalfEdge& b) { return a.undirected < b.undirected; });
+      const int b = start[v], e = start[v + 1];
+      if (e - b > 16) {  // (std::sort sorts up to 16 elements by insertion too)
+        std::sort(hs.begin() + b, hs.begin() + e, [](const HalfEdge& x, const HalfEdge& y) { return x.other < y.other; });
         continue;
       }
-      for (int i = start[v] + 1; i < start[v + 1]; ++i) {  // short runs: insertion sort inline
+      for (int i = b + 1; i < e; ++i) {  // short runs: insertion sort inline
         const HalfEdge h = hs[std::size_t(i)];
         int j = i;
-        for (; j > start[v] && hs[std::size_t(j) - 1].undirected > h.undirected; --j) hs[std::size_t(j)] = hs[std::size_t(j) - 1];
+        for (; j > b && hs[std::size_t(j) - 1].other > h.other; --j) hs[std::size_t(j)] = hs[std::size_t(j) - 1];
         hs[std::size_t(j)] = h;
       }
     }
@@ -69,15 +67,16 @@ class SheetSplitter {
     // both end vertices, so no duplication separates them), the edge pairs across the outside
     // wedges instead, and the classes are recomputed (a few rounds at most).
     std::vector<std::pair<std::size_t, std::size_t>> crowded;  // [begin, end) in hs
-    for (std::size_t i = 0; i < hs.size();) {
-      std::size_t j = i;
-      while (j < hs.size() && hs[j].undirected == hs[i].undirected) ++j;
-      if (j - i == 2 && hs[i].forward != hs[i + 1].forward)
-        pair(hs[i], hs[i + 1]);
-      else if (j - i > 2)
-        crowded.emplace_back(i, j);
-      i = j;
-    }
+    for (std::size_t v = 0; v < nv; ++v)
+      for (std::size_t i = std::size_t(start[v]), e = std::size_t(start[v + 1]); i < e;) {
+        std::size_t j = i + 1;
+        while (j < e && hs[j].other == hs[i].other) ++j;
+        if (j - i == 2 && hs[i].forward != hs[i + 1].forward)
+          pair(hs[i], hs[i + 1]);
+        else if (j - i > 2)
+          crowded.emplace_back(i, j);
+        i = j;
+      }
     if (!crowded.empty()) {
       const UnionFind manifold = uf_;  // the classes from the two-face edges alone
       std::vector<bool> outside(crowded.size(), false);
