@@ -331,9 +331,14 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     // the store queue (failed store forwarding, ~6 % of sphere(32)). Placement new: made in place.
     for (std::size_t j = 0; j < std::size_t(n); ++j) {
       const Int128 c0 = c_below[j], dc = c_above[j] - c0;
-      // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside.
+      // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside. The gcd of all four is
+      // gcd(dz X, dc, dc z_k - dz c_k) = gcd(dc, dz gcd(X, c_k)) with X = gcd(nx, ny): a divisor of
+      // dz X and dc divides d exactly when it divides dz c_k (|c| < 2^52, dz X < 2^53).
+      const std::uint64_t x = xy_gcd[j], c0m = std::uint64_t(c0 < 0 ? -c0 : c0);
+      const std::uint64_t y = std::uint64_t(dz) * (x == 1 ? 1 : std::gcd(x, c0m % x));
+      const std::uint64_t dcm = std::uint64_t(dc < 0 ? -dc : dc);
       ::new (&face_plane[j]) Plane(kernel::make_plane(dz * nx[j], dz * ny[j], -dc, dc * z[k] - dz * c0,
-                                                      {.ab_gcd = std::uint64_t(dz) * xy_gcd[j]}));
+                                                      {.gcd = y == 1 ? 1 : std::gcd(y, dcm % y)}));
     }
     for (std::size_t j = 0; j < std::size_t(n); ++j) faces[j] = b.add_plane(face_plane[j]);
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);

@@ -84,8 +84,15 @@ struct ExactDivisor {
 // The plane a, b, c, d divided by the gcd of all four, given g = gcd(|a|, |b|, |c|) > 0; checks
 // the bit budget. The offset (up to 128 bits) only matters when the normal has a common factor:
 // then |d| mod g first, so the binary gcd runs on values below g.
+Plane divide_exactly(Int128 a, Int128 b, Int128 c, Int128 d, UInt128 g);
+
 Plane divide_by_gcd(Int128 a, Int128 b, Int128 c, Int128 d, UInt128 g) {
   if (g != 1) g = (g >> 64) == 0 ? gcd64(std::uint64_t(g), mod64(magnitude(d), std::uint64_t(g))) : gcd(g, magnitude(d));
+  return divide_exactly(a, b, c, d, g);
+}
+
+// The plane a, b, c, d divided by g, the gcd of all four; checks the bit budget.
+Plane divide_exactly(Int128 a, Int128 b, Int128 c, Int128 d, UInt128 g) {
   if (g != 1) {
     if ((g >> 64) == 0 && ((magnitude(a) | magnitude(b) | magnitude(c)) >> 63) == 0) {
       const ExactDivisor by{std::uint64_t(g)};  // g divides the normal, so it fits 63 bits too
@@ -119,8 +126,12 @@ Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d) {
 
 Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d, const PlaneFactors& known) {
   const UInt128 ma = magnitude(a), mb = magnitude(b), mc = magnitude(c);
-  if (known.ab_gcd == 0 || ((ma | mb | mc) >> 63) != 0) return make_plane(a, b, c, d);
+  if ((known.ab_gcd == 0 && known.gcd == 0) || ((ma | mb | mc) >> 63) != 0) return make_plane(a, b, c, d);
   if (a == 0 && b == 0 && c == 0) throw InvalidInput("plane with a zero normal");
+  if (known.gcd != 0) {
+    assert(UInt128(known.gcd) == gcd(gcd64(gcd64(std::uint64_t(ma), std::uint64_t(mb)), std::uint64_t(mc)), magnitude(d)));
+    return divide_exactly(a, b, c, d, known.gcd);
+  }
   assert(known.ab_gcd == gcd64(std::uint64_t(ma), std::uint64_t(mb)));
   return divide_by_gcd(a, b, c, d, known.ab_gcd == 1 ? 1 : gcd64(known.ab_gcd, std::uint64_t(mc)));
 }

@@ -38,11 +38,13 @@ Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d);
 /// What a caller knows about a plane's coefficients before normalization (make_plane's shortcuts).
 struct PlaneFactors {
   std::uint64_t ab_gcd = 0;  ///< gcd(|a|, |b|) exactly (0: unknown, or a = b = 0)
+  std::uint64_t gcd = 0;     ///< gcd(|a|, |b|, |c|, |d|) exactly (0: unknown); ab_gcd is then not used
 };
-/// make_plane(a, b, c, d) for a caller that knows gcd(|a|, |b|): the same plane, one gcd less. For
-/// families of planes whose x, y normals are multiples of a few directions (the faces of a solid of
-/// revolution over one path edge: a, b = height * (nx, ny), so gcd = height * gcd(nx, ny)).
-/// \pre known.ab_gcd is 0 or exactly gcd(|a|, |b|) (asserted in debug builds).
+/// make_plane(a, b, c, d) for a caller that knows gcd(|a|, |b|) or the gcd of all four: the same
+/// plane, one or all gcds less. For families of planes whose x, y normals are multiples of a few
+/// directions (the faces of a solid of revolution over one path edge: a, b = height * (nx, ny), so
+/// gcd(|a|, |b|) = height * gcd(nx, ny)).
+/// \pre known.ab_gcd and known.gcd are 0 or exact (asserted in debug builds).
 Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d, const PlaneFactors& known);
 /// The plane through three grid points, positive side where (p1-p0) x (p2-p0) points
 /// (counter-clockwise seen from the positive side). \throw InvalidInput if they are collinear.

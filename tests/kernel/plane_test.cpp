@@ -139,7 +139,8 @@ TEST(Plane, MakePlaneShortcutsGiveTheGreatestCommonDivisor) {
 }
 
 // The faces of a solid of revolution (primitives.cpp): a, b = dz (nx, ny) with gcd dz gcd(nx, ny),
-// c = -dc, d = dc z - dz c0; the shortcut gives make_plane's planes on sphere-like and random rings.
+// c = -dc, d = dc z - dz c0; the shortcuts (the xy gcd, the gcd of all four) give make_plane's
+// planes on sphere-like and random rings.
 TEST(Plane, KnownXyGcdGivesTheSamePlanes) {
   std::uint64_t state = 42;
   auto next = [&] { return state = state * 6364136223846793005ull + 1442695040888963407ull; };
@@ -155,6 +156,10 @@ TEST(Plane, KnownXyGcdGivesTheSamePlanes) {
     const Plane general = make_plane(a, b, c, d);
     ASSERT_EQ(make_plane(a, b, c, d, {.ab_gcd = std::uint64_t(dz) * gxy}), general) << trial;
     expect_reduced(general, a, b, c, d, "face", trial);
+    // The gcd of all four as primitives.cpp finds it: gcd(dc, dz gcd(gcd(nx, ny), c0)).
+    const Int128 all = euclid(dc, Int128(dz) * euclid(Int128(gxy), c0));
+    ASSERT_EQ(all, euclid(euclid(a, b), euclid(c, d))) << trial;
+    ASSERT_EQ(make_plane(a, b, c, d, {.gcd = std::uint64_t(all)}), general) << trial;
   }
 }
 
