@@ -95,16 +95,14 @@ void FaceList::copy_face(const FaceList& other, int f) {
 }
 
 OutgoingEdges::OutgoingEdges(const FaceList& faces, int vertex_count)
-    : start_(std::size_t(vertex_count) + 1, 0), to_(faces.vertex.size()), corner_(faces.vertex.size()) {
-  for (const int v : faces.vertex) ++start_[std::size_t(v) + 1];
+    : start_(std::size_t(vertex_count) + 1, 0), out_(faces.vertex.size()) {
+  // Counting sort; each run filled from its end (no fill array), faces backwards so that each
+  // run keeps the corner order.
+  for (const int v : faces.vertex) ++start_[std::size_t(v)];
   for (std::size_t v = 0; v < std::size_t(vertex_count); ++v) start_[v + 1] += start_[v];
-  std::vector<int> fill(start_.begin(), start_.end() - 1);
-  for (int f = 0; f < faces.size(); ++f)
-    for (int c = faces.begin(f); c < faces.end(f); ++c) {
-      const int slot = fill[std::size_t(faces.vertex[std::size_t(c)])]++;
-      to_[std::size_t(slot)] = faces.vertex[std::size_t(faces.next(f, c))];
-      corner_[std::size_t(slot)] = c;
-    }
+  for (int f = faces.size() - 1; f >= 0; --f)
+    for (int c = faces.end(f) - 1; c >= faces.begin(f); --c)
+      out_[std::size_t(--start_[std::size_t(faces.vertex[std::size_t(c)])])] = {faces.vertex[std::size_t(faces.next(f, c))], c};
 }
 
 EdgeIndex::EdgeIndex(std::size_t values) : next_(values, -1) {

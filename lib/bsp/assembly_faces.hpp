@@ -125,18 +125,22 @@ class OutgoingEdges {
   /// A corner whose edge goes from u to w, or -1.
   [[nodiscard]] int find(int u, int w) const {
     for (int i = start_[std::size_t(u)]; i < start_[std::size_t(u) + 1]; ++i)
-      if (to_[std::size_t(i)] == w) return corner_[std::size_t(i)];
+      if (out_[std::size_t(i)].to == w) return out_[std::size_t(i)].corner;
     return -1;
   }
   /// Calls fn(corner) for every corner whose edge goes from u to w.
   template <typename Fn>
   void for_each(int u, int w, Fn&& fn) const {
     for (int i = start_[std::size_t(u)]; i < start_[std::size_t(u) + 1]; ++i)
-      if (to_[std::size_t(i)] == w) fn(corner_[std::size_t(i)]);
+      if (out_[std::size_t(i)].to == w) fn(out_[std::size_t(i)].corner);
   }
 
  private:
-  std::vector<int> start_, to_, corner_;
+  struct Out {
+    int to, corner;
+  };
+  std::vector<int> start_;
+  std::vector<Out> out_;
 };
 
 /// Exact questions about assembly vertices (approximations filter, exact predicates decide).

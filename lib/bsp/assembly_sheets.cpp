@@ -201,12 +201,13 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
   mesh.faces.reserve(std::size_t(faces.size()));
   std::vector<int> face;
   for (int f = 0; f < faces.size(); ++f) {
-    face.clear();
-    for (int c = faces.begin(f); c < faces.end(f); ++c) face.push_back(index[std::size_t(faces.vertex[std::size_t(c)])]);
-    if (!triangulate || face.size() == 3) {
-      mesh.faces.emplace_back(face.begin(), face.end());  // (allocates exactly the face's size)
+    if (!triangulate || faces.count(f) == 3) {  // written in place (allocates exactly the face's size)
+      std::vector<int>& out = mesh.faces.emplace_back(std::size_t(faces.count(f)));
+      for (int c = faces.begin(f), k = 0; c < faces.end(f); ++c, ++k) out[std::size_t(k)] = index[std::size_t(faces.vertex[std::size_t(c)])];
       continue;
     }
+    face.clear();
+    for (int c = faces.begin(f); c < faces.end(f); ++c) face.push_back(index[std::size_t(faces.vertex[std::size_t(c)])]);
     for (const auto& t : triangulate_face(mesh.vertices, face, outward_normal(faces, f, planes)))
       mesh.faces.push_back({t[0], t[1], t[2]});
   }
