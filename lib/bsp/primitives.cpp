@@ -53,12 +53,7 @@ class SectorTree {
   /// first build) and each band only adds its planes and nodes.
   using Options = SectorOptions;
   SectorTree(TreeBuilder& b, const std::vector<double>& start, const Options& options = {})
-      : b_(b), start_(start), n_(int(start.size())), options_(options) {
-    for (int i = 0; i < n_; ++i) {  // every band splits at the same face middles
-      mid_sin_.push_back(std::sin(mid(i)));
-      mid_cos_.push_back(std::cos(mid(i)));
-    }
-  }
+      : b_(b), start_(start), n_(int(start.size())), options_(options) {}
 
   /// The tree over `faces` (plane indices, face i starting at start[i]), added to the builder in
   /// pre-order (TreeBuilder::open_node); axial planes are moved off the axis by at most `max_offset`.
@@ -188,7 +183,8 @@ class SectorTree {
       return t;
     }
     const int k = (first + last) / 2;
-    const std::int32_t p = axial(mid_sin_[wrap(k)], mid_cos_[wrap(k)]);
+    const double a = mid(int(wrap(k)));  // the middle of face k, as an angle in [start[0], start[0] + 2 pi)
+    const std::int32_t p = axial(std::sin(a), std::cos(a));
     const TreeRef positive = faces(k, last);
     const TreeRef negative = faces(first, k);
     return node({.axial = p, .negative = negative, .positive = positive});
@@ -201,7 +197,6 @@ class SectorTree {
   Options options_;
   int widen_ = 1;
   bool widened_ = false;
-  std::vector<double> mid_sin_, mid_cos_;  // of each face's middle angle
   std::vector<ShapeNode> shape_, made_;    // the tree's shape in pre-order; bottom-up while made
   std::vector<Axial> axial_;               // axial planes in the order they are added
   std::vector<std::int32_t> axial_id_;     // their planes in the band being built

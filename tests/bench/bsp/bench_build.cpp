@@ -110,7 +110,7 @@ void run(int n, int runs, const std::string& what = "sphere") {
   }
   std::sort(times.begin(), times.end());
   std::sort(cpu.begin(), cpu.end());
-  std::printf("bench impl=sculpt case=%s_build n=%d runs=%d time_ms=%.3f min_ms=%.3f cpu_ms=%.3f tree_nodes=%d planes=%d "
+  std::printf("bench impl=sculpt case=%s_build n=%d runs=%d time_ms=%.4f min_ms=%.4f cpu_ms=%.4f tree_nodes=%d planes=%d "
               "exact_predicates=%llu trivial_predicates=%llu filtered_predicates=%llu checksum=%016llx "
               "planes_hash=%016llx boundary=%zu boundary_hash=%016llx\n",
               what.c_str(), n, runs, times[times.size() / 2], times.front(), cpu[cpu.size() / 2], tree_stats(s).nodes, s.planes().size(),
