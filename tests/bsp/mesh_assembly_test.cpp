@@ -298,6 +298,67 @@ TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
   }
 }
 
+TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
+  // Each merged vertex lists the canonical ids of its corner classes' planes (first_class /
+  // class_next, linked as the merge makes classes): every corner's three planes are listed for
+  // its vertex, every listed plane passes through the vertex (Cramer's rule in unbounded
+  // integers), and VertexGeometry::on_plane (the list first, else exact) agrees with the exact
+  // side for every vertex and every plane of the table.
+  std::vector<Solid> solids;
+  solids.push_back(sphere(1.0, {.segments = 10}) - box({0, 0, 0}, {1, 1, 1}));
+  solids.push_back(box({0, 0, 0}, {2, 2, 2}) | box({1, 1, 1}, {3, 3, 3}));
+  for (std::size_t i = 0; i < solids.size(); ++i) {
+    SCOPED_TRACE(i);
+    for (const bool carried : {false, true}) {
+      if (carried && !solids[i].has_boundary()) continue;
+      const detail::Fragments f =
+          carried ? detail::Fragments{solids[i].planes(), solids[i].boundary()} : detail::boundary_fragments(solids[i]);
+      const detail::MergedFragments merged = detail::merge_vertices(f);
+      const detail::AssemblyVertices& v = merged.vertices;
+      ASSERT_EQ(v.first_class.size(), std::size_t(v.size()));
+      auto listed = [&](int u) {
+        std::set<std::uint32_t> ids;
+        int steps = 0;
+        for (int k = v.first_class[std::size_t(u)]; k >= 0; k = v.class_next[std::size_t(k)], ++steps) {
+          EXPECT_LT(steps, int(v.class_planes.size())) << "the class list of vertex " << u << " does not end";
+          if (steps >= int(v.class_planes.size())) break;
+          ids.insert(v.class_planes[std::size_t(k)].begin(), v.class_planes[std::size_t(k)].end());
+        }
+        return ids;
+      };
+      std::vector<Homogeneous> at;
+      for (int u = 0; u < v.size(); ++u) {
+        const detail::PlaneTriple& t = v.triple[std::size_t(u)];
+        at.push_back(cramer(f.planes[t.s], f.planes[t.p], f.planes[t.q]));
+      }
+      std::vector<std::set<std::uint32_t>> known(static_cast<std::size_t>(v.size()));
+      for (int u = 0; u < v.size(); ++u) known[std::size_t(u)] = listed(u);
+      for (std::size_t k = 0; k < f.fragments.size(); ++k) {
+        const auto& fr = f.fragments[k];
+        const int m = int(fr.polygon.corners.size());
+        for (int j = 0; j < m; ++j) {
+          const auto& c = fr.polygon.corners[std::size_t(j)];
+          const int u = merged.faces.vertex[std::size_t(merged.faces.begin(int(k)) + (fr.flip ? m - 1 - j : j))];
+          for (const std::int32_t plane : {fr.polygon.support, c.p, c.q})
+            EXPECT_TRUE(known[std::size_t(u)].count(merged.ids.id[std::size_t(plane)]) == 1) << "corner plane not listed";
+        }
+      }
+      const detail::VertexGeometry geometry(f.planes, merged.ids, v);
+      int on = 0;
+      for (int u = 0; u < v.size(); ++u)
+        for (std::int32_t plane = 0; plane < f.planes.size(); ++plane) {
+          const bool exact = side(at[std::size_t(u)], f.planes[plane]) == 0;
+          if (known[std::size_t(u)].count(merged.ids.id[std::size_t(plane)]) == 1) {
+            EXPECT_TRUE(exact) << u << " " << plane;
+          }
+          ASSERT_EQ(geometry.on_plane(u, plane), exact) << "vertex " << u << " plane " << plane;
+          on += exact ? 1 : 0;
+        }
+      EXPECT_GT(on, 3 * v.size());  // (the test sees incidences, not only misses)
+    }
+  }
+}
+
 // After T-junction removal every half-edge u -> w has a half-edge w -> u, as many times.
 ::testing::AssertionResult EveryHalfEdgeHasAnOpposite(const detail::FaceList& faces) {
   std::map<std::pair<int, int>, int> count;
