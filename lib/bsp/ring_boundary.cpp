@@ -24,7 +24,8 @@ __extension__ typedef std::int64_t PairMask __attribute__((vector_size(16)));
 
 inline double abs_of(double v) { return std::fabs(v); }
 inline Pair abs_of(Pair v) {  // clears the sign bits, as fabs does
-  return Pair(PairMask(v) & PairMask{std::numeric_limits<std::int64_t>::max(), std::numeric_limits<std::int64_t>::max()});
+  constexpr std::int64_t kMagnitude = std::numeric_limits<std::int64_t>::max();
+  return Pair(PairMask(v) & PairMask{kMagnitude, kMagnitude});
 }
 inline double max_of(double a, double b) { return std::max(a, b); }
 inline Pair max_of(Pair a, Pair b) { return a < b ? b : a; }  // std::max's choice in each lane
@@ -101,7 +102,6 @@ Approximation<T> approximate(const Normal<T>& pn, const Normal<T>& qn, const Nor
   a.eV = eV, a.eW = eW, a.aW = aW;
   return a;
 }
-
 
 // Approximations of vertices given as triples of one plane table's planes: the normals are
 // converted once; each call takes blocks small enough to stay in the L1 cache, first the
@@ -196,7 +196,8 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
                                        .flip = flip});
       auto& poly = faces.back().polygon.corners;
       poly.reserve(corners);
-      for (const std::size_t end = c + corners; c < end; ++c) poly.push_back({triples[c].r, triples[c].q, triples[c].r, at[c]});
+      for (const std::size_t end = c + corners; c < end; ++c)
+        poly.push_back({triples[c].r, triples[c].q, triples[c].r, at[c]});  // edge, p, q, approximation
     }
   };
   for (std::size_t k = 0; k + 1 < r; ++k) {
