@@ -1,6 +1,7 @@
 #include "bsp/primitives.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <new>
@@ -40,10 +41,17 @@ void check_positive(double v, const char* what) {
 // face on both sides; faces that do not cut their cell are removed by TreeBuilder::build.
 // The axial planes are moved off the axis by small distinct offsets (below a tenth of the
 // narrowest face) so that no three of them meet in a line: otherwise every vertex on the axis
-// would be an exact degenerate case for every other axial plane.
+// would be an exact degenerate case for every other axial plane. Where the path has vertices on
+// the coordinate axes whose ring vertices lie exactly on the planes y = 0 and x = 0, those two
+// planes (through the axis, no offset) split first, at the vertices: solids and cuts aligned
+// with the axes (boxes, mirror halves, other ring primitives on the same axis) then meet the
+// tree in shared planes, which a merge absorbs whole, instead of crossing every wedge.
 struct SectorOptions {
   bool auxiliary_axes = true;  ///< the axial planes carry no face (see revolve_rings)
   int widen = 0;               ///< chains hold at least this many extra faces on each side
+  /// Path vertices on the +x, +y, -x, -y axes (face index starting there) whose ring vertices lie
+  /// exactly on y = 0 (+x, -x) or x = 0 (+y, -y), or -1. Used when +x and -x are both known.
+  std::array<int, 4> axis_vertex = {-1, -1, -1, -1};
 };
 
 class SectorTree {
@@ -62,9 +70,11 @@ class SectorTree {
     // Axial planes in the order the recursion met them: their offsets depend on that order.
     axial_id_.clear();
     axial_plane_.resize(axial_.size());  // all made first, then added (see revolve_rings' band)
-    for (std::size_t i = 0; i < axial_.size(); ++i)
-      ::new (&axial_plane_[i])
-          kernel::Plane(kernel::plane_from_scaled_normal(axial_[i].normal, max_offset * axial_[i].fraction));
+    for (std::size_t i = 0; i < axial_.size(); ++i) {
+      const Axial& x = axial_[i];
+      ::new (&axial_plane_[i]) kernel::Plane(x.exact ? kernel::make_plane(x.exact_a, x.exact_b, 0, 0)
+                                                     : kernel::plane_from_scaled_normal(x.normal, max_offset * x.fraction));
+    }
     for (const kernel::Plane& p : axial_plane_) axial_id_.push_back(b_.add_plane(p, options_.auxiliary_axes));
     const TreeRef base = b_.open_nodes(std::int32_t(shape_.size()));
     for (std::size_t i = 0; i < shape_.size(); ++i) {
@@ -98,11 +108,17 @@ class SectorTree {
   struct Axial {
     kernel::ScaledNormal normal;  // of the plane through the axis at its angle, the same in every band
     double fraction;              // the share of max_offset its offset takes
+    bool exact = false;           // y = 0 or x = 0 through the axis, no offset: (exact_a, exact_b, 0, 0)
+    std::int64_t exact_a = 0, exact_b = 0;
   };
 
   // The recursion the tree follows, once: nodes bottom-up (children first), then laid out in
   // pre-order. Axial planes are numbered in the order they are met (positive subtrees first).
   void make_shape() {
+    if (options_.axis_vertex[0] >= 0 && options_.axis_vertex[2] >= 0) {
+      axis_shape();
+      return;
+    }
     // First split: the plane through the axis and the middle of face 0.
     const double a0 = mid(0);
     // Every later split is at a face middle; the first plane's opposite ray may pass near a
@@ -117,7 +133,33 @@ class SectorTree {
     const std::int32_t p = axial(std::sin(a0), std::cos(a0));
     const TreeRef positive = wedge(a0, a0 + std::numbers::pi);
     const TreeRef negative = wedge(a0 + std::numbers::pi, a0 + 2 * std::numbers::pi);
-    const TreeRef root = node({.axial = p, .negative = negative, .positive = positive});
+    layout(node({.axial = p, .negative = negative, .positive = positive}));
+  }
+
+  // Split at the path's vertices on the axes: y = 0 (positive for angles in (0, pi)), then in each
+  // half x = 0 (f = -x: positive for angles in (pi/2, 3 pi/2)) where that half has its vertex.
+  // Every wedge is bounded by vertices, so its chains hold exactly its faces.
+  void axis_shape() {
+    widen_ = options_.widen;
+    widened_ = widen_ != 0;
+    const auto& v = options_.axis_vertex;
+    auto after = [this](int i, int base) { return i < base ? i + n_ : i; };  // unwrapped, from base on
+    const int x_pos = v[0], x_neg = after(v[2], x_pos), end = x_pos + n_;
+    const std::int32_t y_plane = exact_axial(0, 1);
+    std::int32_t x_plane = -1;
+    auto half = [&](int first, int mid, int last) {  // faces first..last, `mid` the vertex between, or -1
+      if (mid < 0) return faces(first, last);
+      if (x_plane < 0) x_plane = exact_axial(1, 0);
+      const TreeRef low = faces(first, mid - 1), high = faces(mid, last);  // low: x > 0 in the upper half
+      const bool upper = first == x_pos;
+      return node({.axial = x_plane, .negative = upper ? low : high, .positive = upper ? high : low});
+    };
+    const TreeRef upper = half(x_pos, v[1] < 0 ? -1 : after(v[1], x_pos), x_neg - 1);
+    const TreeRef lower = half(x_neg, v[3] < 0 ? -1 : after(v[3], x_neg), end - 1);
+    layout(node({.axial = y_plane, .negative = lower, .positive = upper}));
+  }
+
+  void layout(TreeRef root) {
     // Pre-order: each node, then its negative subtree, then its positive one (explicit stack).
     std::vector<std::int32_t> at(made_.size());
     std::vector<TreeRef> stack{root};
@@ -157,6 +199,10 @@ class SectorTree {
     // f = -sin(a) x + cos(a) y + offset: positive for angles in (a, a + pi) (offset aside).
     const double fraction = 0.5 + 0.5 * std::fmod(0.6180339887498949 * double(axial_.size() + 1), 1.0);
     axial_.push_back({kernel::scale_normal({-sin_a, cos_a, 0.0}), fraction});
+    return std::int32_t(axial_.size() - 1);
+  }
+  std::int32_t exact_axial(std::int64_t sin_a, std::int64_t cos_a) {  // f = -sin(a) x + cos(a) y
+    axial_.push_back({kernel::ScaledNormal{}, 0.0, true, -sin_a, cos_a});
     return std::int32_t(axial_.size() - 1);
   }
   TreeRef node(const ShapeNode& s) {
@@ -267,6 +313,25 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     return Int128(std::llround(c * kPathScale));
   };
 
+  // Path vertices on the axes whose ring vertices lie exactly on y = 0 or x = 0 (SectorOptions):
+  // at ring k, edges p = j - 1 and q = j meet where nx_p x + ny_p y = C_p and nx_q x + ny_q y = C_q
+  // (C = c_of(k, .), |C| < 2^51, |n| <= 2^26: the products are exact), so the vertex has y = 0 iff
+  // nx_p C_q = nx_q C_p, and x = 0 iff C_p ny_q = C_q ny_p. A ring of scale 0 is on the axis.
+  std::array<int, 4> axis_vertex = {-1, -1, -1, -1};  // +x, +y, -x, -y
+  for (int j = 0; j < n; ++j) {
+    const double a = std::atan2(path[std::size_t(j)].y(), path[std::size_t(j)].x());
+    for (int d = 0; d < 4; ++d) {
+      if (!(std::fabs(std::remainder(a - d * std::numbers::pi / 2, 2 * std::numbers::pi)) < 1e-9)) continue;
+      const std::size_t p = std::size_t((j + n - 1) % n), q = std::size_t(j);
+      bool on = true;
+      for (std::size_t k = 0; k < rings.size() && on; ++k) {
+        const Int128 cp = c_of(k, int(p)), cq = c_of(k, int(q));
+        on = d % 2 == 0 ? Int128(nx[p]) * cq == Int128(nx[q]) * cp : cp * ny[q] == cq * ny[p];
+      }
+      if (on) axis_vertex[std::size_t(d)] = j;
+    }
+  }
+
   // The direct boundary needs every path edge on every ring of positive scale. Rounding moves an
   // edge's line by at most delta grid units, which moves its ends by at most 2 delta / sin(exterior
   // angle): edges much longer than that survive.
@@ -295,7 +360,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // Below that bound, rounding can move a face out of the wedge whose chain should hold it: the
   // solid then bends along an axial plane, which must then count as a face plane (not auxiliary)
   // for extraction to find that boundary. Chains are widened so that this stays rare.
-  SectorTree sectors(b, start, {.auxiliary_axes = direct, .widen = direct ? 0 : 1});
+  SectorTree sectors(b, start, {.auxiliary_axes = direct, .widen = direct ? 0 : 1, .axis_vertex = axis_vertex});
   // Exactly: the ring planes, per band n face planes, its axial planes and the opposite of its
   // lower ring plane; the two cap nodes, the inner ring nodes and each band's sector tree.
   b.reserve(std::size_t(kernel::kWorldPlanes) + r + (r - 1) * (std::size_t(n) + sectors.axial_planes() + 1),
