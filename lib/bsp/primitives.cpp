@@ -319,9 +319,10 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // nx_p C_q = nx_q C_p, and x = 0 iff C_p ny_q = C_q ny_p. A ring of scale 0 is on the axis.
   std::array<int, 4> axis_vertex = {-1, -1, -1, -1};  // +x, +y, -x, -y
   for (int j = 0; j < n; ++j) {
-    const double a = std::atan2(path[std::size_t(j)].y(), path[std::size_t(j)].x());
-    for (int d = 0; d < 4; ++d) {
-      if (!(std::fabs(std::remainder(a - d * std::numbers::pi / 2, 2 * std::numbers::pi)) < 1e-9)) continue;
+    // Candidates: path vertices within 1e-9 rad of an axis (no trigonometry: |other| <= 1e-9 |own|).
+    const double x = path[std::size_t(j)].x(), y = path[std::size_t(j)].y();
+    const int d = std::fabs(y) <= 1e-9 * std::fabs(x) ? (x > 0 ? 0 : 2) : (std::fabs(x) <= 1e-9 * std::fabs(y) ? (y > 0 ? 1 : 3) : -1);
+    if (d >= 0) {
       const std::size_t p = std::size_t((j + n - 1) % n), q = std::size_t(j);
       bool on = true;
       for (std::size_t k = 0; k < rings.size() && on; ++k) {
