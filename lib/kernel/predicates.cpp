@@ -1,5 +1,6 @@
 #include "kernel/predicates.hpp"
 
+#include "kernel/vertex_approximation.hpp"
 #include "kernel/wide_int.hpp"
 
 #include <algorithm>
@@ -8,33 +9,7 @@
 namespace sculpt::kernel {
 namespace {
 
-constexpr double kEps = 1.1102230246251565e-16;  // 2^-53, unit roundoff
-
-struct Cross {
-  double x, y, z;
-  double max;  // largest |component| of the computed value
-  double err;  // bound on the error of each component
-};
-
-// A plane's normal in double (exact: |a|, |b|, |c| <= 2^53) and its largest |component|.
-struct Normal {
-  double a, b, c, n;
-  explicit Normal(const Plane& p) : a(double(p.a)), b(double(p.b)), c(double(p.c)) {
-    n = std::max(std::max(std::fabs(a), std::fabs(b)), std::fabs(c));
-  }
-};
-
-// Cross product of two normals in double; components are exact integers < 2^107, the
-// computed value has two product roundings and one subtraction rounding.
-Cross cross(const Normal& p, const Normal& q) {
-  Cross r;
-  r.x = p.b * q.c - p.c * q.b;
-  r.y = p.c * q.a - p.a * q.c;
-  r.z = p.a * q.b - p.b * q.a;
-  r.max = std::max(std::max(std::fabs(r.x), std::fabs(r.y)), std::fabs(r.z));
-  r.err = 4.0 * kEps * 2.0 * p.n * q.n;  // 2 eps (|t1| + |t2|) with |t1|+|t2| <= 2 np nq, doubled
-  return r;
-}
+using approximation::kEps;
 
 Int128 i128(std::int64_t v) { return Int128(v); }
 
@@ -69,23 +44,12 @@ PredicateCounters& predicate_counters() {
 }
 
 ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r) {
-  // x = -(d_p (n_q x n_r) + d_q (n_r x n_p) + d_r (n_p x n_q)) / (n_p . (n_q x n_r))
-  const Normal pn(p), qn(q), rn(r);
-  const Cross u = cross(qn, rn), v = cross(rn, pn), w = cross(pn, qn);
-  const double pa = pn.a, pb = pn.b, pc = pn.c;
-  const double W = pa * u.x + pb * u.y + pc * u.z;
-  const double np = pn.n;
-  const double eW = 3.0 * np * u.err + 4.0 * kEps * 3.0 * np * u.max;
-  const double dp = p.d_nearest, dq = q.d_nearest, dr = r.d_nearest;
-  const double vx = dp * u.x + dq * v.x + dr * w.x;
-  const double vy = dp * u.y + dq * v.y + dr * w.y;
-  const double vz = dp * u.z + dq * v.z + dr * w.z;
-  const double adp = std::fabs(dp), adq = std::fabs(dq), adr = std::fabs(dr);
-  const double eV = (1.0 + 4.0 * kEps) * (adp * u.err + adq * v.err + adr * w.err) +
-                    6.0 * kEps * (adp * u.max + adq * v.max + adr * w.max);
+  // x = -(d_p (n_q x n_r) + d_q (n_r x n_p) + d_r (n_p x n_q)) / (n_p . (n_q x n_r)), with the
+  // error bounds of kernel/vertex_approximation.hpp.
+  namespace va = approximation;
+  const va::Approximation<double> v = va::approximate(va::normal_of(p), va::normal_of(q), va::normal_of(r));
   ApproxPoint a;
-  const double aW = std::fabs(W);
-  if (!(aW > 2.0 * eW)) {
+  if (!v.usable) {
     // Nearly dependent planes: round the exact homogeneous coordinates instead.
     const HomogeneousPoint h = exact_vertex(p, q, r);
     if (h.w == 0) return a;  // err = -1: dependent planes, no vertex
@@ -96,11 +60,8 @@ ApproxPoint approximate_vertex(const Plane& p, const Plane& q, const Plane& r) {
     a.err = 8.0 * kEps * std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::fabs(a.z)) + 1e-300;
     return a;
   }
-  a.x = -vx / W;
-  a.y = -vy / W;
-  a.z = -vz / W;
-  const double m = std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::fabs(a.z));
-  a.err = 1.01 * ((eV + m * eW) / (aW - eW) + 2.0 * kEps * m);
+  a.x = v.x, a.y = v.y, a.z = v.z;
+  a.err = va::error_bound(v.x, v.y, v.z, v.eV, v.eW, v.aW);
   return a;
 }
 
