@@ -247,6 +247,11 @@ TEST(MeshAssembly, NearlyCoincidentDistinctVerticesStayApart) {
   expect_polytope_vertices(mesh, reference);
 }
 
+// The carried fragments of a solid, or those extracted from its tree.
+detail::Fragments fragments_of(const Solid& s, bool carried) {
+  return carried ? detail::Fragments{s.planes(), s.boundary()} : detail::boundary_fragments(s);
+}
+
 TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
   // merge_vertices resolves each corner against the classes in its grid cells as it goes; the
   // reference compares every pair of corners by Cramer's rule in unbounded integers. Two
@@ -266,8 +271,7 @@ TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
     SCOPED_TRACE(i);
     for (const bool carried : {false, true}) {
       if (carried && !solids[i].has_boundary()) continue;
-      const detail::Fragments f =
-          carried ? detail::Fragments{solids[i].planes(), solids[i].boundary()} : detail::boundary_fragments(solids[i]);
+      const detail::Fragments f = fragments_of(solids[i], carried);
       const detail::MergedFragments merged = detail::merge_vertices(f);
       std::vector<Homogeneous> point;
       std::vector<int> vertex;  // of each corner, in fragment order
@@ -311,8 +315,7 @@ TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
     SCOPED_TRACE(i);
     for (const bool carried : {false, true}) {
       if (carried && !solids[i].has_boundary()) continue;
-      const detail::Fragments f =
-          carried ? detail::Fragments{solids[i].planes(), solids[i].boundary()} : detail::boundary_fragments(solids[i]);
+      const detail::Fragments f = fragments_of(solids[i], carried);
       const detail::MergedFragments merged = detail::merge_vertices(f);
       const detail::AssemblyVertices& v = merged.vertices;
       ASSERT_EQ(v.first_class.size(), std::size_t(v.size()));
