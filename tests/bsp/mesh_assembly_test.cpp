@@ -28,15 +28,7 @@ namespace {
 using Big = boost::multiprecision::cpp_int;
 using kernel::Plane;
 
-Big big(kernel::Int128 v) {
-  const bool neg = v < 0;
-  __extension__ typedef unsigned __int128 U;
-  const U m = neg ? U(0) - U(v) : U(v);
-  Big r = Big(std::uint64_t(m >> 64));
-  r <<= 64;
-  r += Big(std::uint64_t(m));
-  return neg ? Big(-r) : r;
-}
+Big big(kernel::Int128 v) { return Big(v); }  // Boost converts __int128 itself
 
 // The vertex p ∩ q ∩ r by Cramer's rule in unbounded integers: (x, y, z) / w (w = 0: none).
 struct Homogeneous {
