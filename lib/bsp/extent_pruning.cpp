@@ -59,6 +59,41 @@ Side side_of_corners(const kernel::PlaneTable& planes, const std::vector<Boundar
   return seen.neg ? Side::Negative : (seen.pos ? Side::Positive : Side::Both);
 }
 
+// Corners of A's boundary near its extremes along the axes (a corner of each fragment whose box
+// reaches furthest): a plane with witnesses strictly on both sides crosses A at once, without the
+// scan of side_of_corners. Any boundary corners would be correct; extreme ones decide most planes.
+std::vector<kernel::ApproxPoint> witnesses(const std::vector<BoundaryFragment>& faces, const FragmentBoxes& boxes) {
+  std::size_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (std::size_t i = 1; i < boxes.each.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      if (boxes.each[i].lo[k] < boxes.each[lo[k]].lo[k]) lo[k] = i;
+      if (boxes.each[i].hi[k] > boxes.each[hi[k]].hi[k]) hi[k] = i;
+    }
+  std::vector<kernel::ApproxPoint> w;
+  for (int k = 0; k < 3; ++k)
+    for (const std::size_t i : {lo[k], hi[k]}) {
+      const kernel::Corner* best = nullptr;  // the fragment's corner furthest along the axis
+      for (const kernel::Corner& c : faces[i].polygon.corners) {
+        const double v = k == 0 ? c.at.x : (k == 1 ? c.at.y : c.at.z);
+        const double b = best == nullptr ? 0 : (k == 0 ? best->at.x : (k == 1 ? best->at.y : best->at.z));
+        if (best == nullptr || (i == hi[k] ? v > b : v < b)) best = &c;
+      }
+      if (best != nullptr && best->at.err >= 0) w.push_back(best->at);
+    }
+  return w;
+}
+
+// True if the witnesses show A on both sides of h (by the filter alone).
+bool crosses(const std::vector<kernel::ApproxPoint>& witnesses, const kernel::Plane& h) {
+  bool neg = false, pos = false;
+  for (const kernel::ApproxPoint& a : witnesses) {
+    const Sign g = kernel::filtered_orient(a, h);
+    neg |= g == Sign::Negative;
+    pos |= g == Sign::Positive;
+  }
+  return neg && pos;
+}
+
 }  // namespace
 
 void complete_boxes(const std::vector<BoundaryFragment>& faces, FragmentBoxes& boxes) {
@@ -106,8 +141,10 @@ ExtentSides extent_sides(Arena& arena, TreeRef a, const std::vector<BoundaryFrag
   std::sort(planes.begin(), planes.end());
   planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
   sides.side_.reserve(planes.size());
+  const std::vector<kernel::ApproxPoint> extreme = witnesses(a_faces, a_boxes);
   for (const std::int32_t p : planes) {
-    sides.side_.push_back(side_of_corners(arena.planes, a_faces, a_boxes, arena.planes[p]));
+    const kernel::Plane& h = arena.planes[p];
+    sides.side_.push_back(crosses(extreme, h) ? Side::Both : side_of_corners(arena.planes, a_faces, a_boxes, h));
     if (sides.side_.back() != Side::Both) ++sides.one_sided_;
   }
   return sides;
