@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "bsp/boundary_fragments.hpp"
-#include "bsp/mesh_assembly.hpp"
+#include "bsp/tree/boundary_fragments.hpp"
+#include "bsp/assembly/mesh_assembly.hpp"
 
 namespace sculpt {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "base/errors.hpp"
-#include "bsp/tree_arena.hpp"
+#include "bsp/tree/tree_arena.hpp"
 
 namespace sculpt {
 

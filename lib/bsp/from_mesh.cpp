@@ -9,8 +9,8 @@
 #include <Eigen/Geometry>
 
 #include "base/errors.hpp"
-#include "bsp/face_triangulation.hpp"
-#include "bsp/autopartition.hpp"
+#include "bsp/assembly/face_triangulation.hpp"
+#include "bsp/tree/autopartition.hpp"
 
 namespace sculpt {
 

@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "base/errors.hpp"
-#include "bsp/ring_boundary.hpp"
+#include "bsp/rings/ring_boundary.hpp"
 #include "bsp/transform.hpp"
 #include "bsp/tree_builder.hpp"
 

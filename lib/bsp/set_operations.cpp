@@ -3,12 +3,12 @@
 #include <tuple>
 #include <utility>
 
-#include "bsp/batch_union.hpp"
-#include "bsp/boundary_fragments.hpp"
-#include "bsp/boundary_merge.hpp"
-#include "bsp/extent_pruning.hpp"
-#include "bsp/node_polygons.hpp"
-#include "bsp/tree_arena.hpp"
+#include "bsp/merge/batch_union.hpp"
+#include "bsp/tree/boundary_fragments.hpp"
+#include "bsp/merge/boundary_merge.hpp"
+#include "bsp/merge/extent_pruning.hpp"
+#include "bsp/tree/node_polygons.hpp"
+#include "bsp/tree/tree_arena.hpp"
 
 namespace sculpt {
 

@@ -15,8 +15,9 @@ Solid unite(const Solid& a, const Solid& b);      ///< a ∪ b
 Solid intersect(const Solid& a, const Solid& b);  ///< a ∩ b
 Solid subtract(const Solid& a, const Solid& b);   ///< a − b
 Solid complement(const Solid& a);                 ///< space − a (unbounded)
-/// Union of many solids by a balanced reduction (pairs, then pairs of pairs): each solid's tree
-/// is copied O(log n) times instead of n times as in a left-to-right fold.
+/// Union of many solids at once: each operand's boundary is clipped by the trees of the operands
+/// whose boxes meet it, and one tree is built from the union's boundary (merge/batch_union.hpp),
+/// instead of re-partitioning every operand by the growing tree of a left-to-right fold.
 Solid unite_all(std::vector<Solid> solids);
 
 /// In-place variants: `a` is consumed and its storage reused when it is the larger tree, so

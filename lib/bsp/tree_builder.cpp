@@ -4,8 +4,8 @@
 
 #include <stdexcept>
 
-#include "bsp/node_polygons.hpp"
-#include "bsp/tree_arena.hpp"
+#include "bsp/tree/node_polygons.hpp"
+#include "bsp/tree/tree_arena.hpp"
 
 namespace sculpt {
 

@@ -9,9 +9,7 @@
 #include "language/builtins.hpp"
 #include "language/solid_values.hpp"
 #include "reports/tree_report.hpp"
-#ifdef SCULPT_HAVE_FROM_MESH
 #include "bsp/from_mesh.hpp"
-#endif
 
 namespace sculpt::language {
 namespace {
@@ -101,11 +99,7 @@ void register_reports(BuiltinTable& table) {
                     "comparing trees built different ways with stats([s, rebuild(s)]).",
              .params = {{"s"}},
              .run = [](const Arguments& args) -> Value {
-#ifdef SCULPT_HAVE_FROM_MESH
                return solid_value(from_mesh(to_mesh(args.object<SolidValue>(0, "a solid").solid)));
-#else
-               args.fail("building a solid from a mesh is not available in this build (lib/bsp/from_mesh)");
-#endif
              }});
 }
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "bsp/revolve.hpp"
+#include "revolution/revolve.hpp"
 #include "curves/linearization.hpp"
 #include "curves/profiles.hpp"
 #include "language/builtins.hpp"

@@ -14,9 +14,7 @@
 #include "kernel/grid.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "mesh/self_intersection.hpp"
-#ifdef SCULPT_HAVE_FROM_MESH
 #include "bsp/from_mesh.hpp"
-#endif
 
 namespace sculpt::language {
 namespace {
@@ -198,11 +196,7 @@ void register_solids(BuiltinTable& table) {
                const ValidationReport report = check_closed_manifold(mesh);
                if (!report.ok()) args.fail(path + " is not a closed manifold: " + report.summary(3));
                if (const std::string e = snapped_self_intersection(mesh); !e.empty()) args.fail(path + ": " + e);
-#ifdef SCULPT_HAVE_FROM_MESH
                return solid_value(from_mesh(mesh));
-#else
-               args.fail("building a solid from a mesh is not available in this build (lib/bsp/from_mesh)");
-#endif
              }});
 }
 

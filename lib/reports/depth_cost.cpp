@@ -7,11 +7,7 @@
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
 #include "kernel/grid.hpp"
-#ifdef SCULPT_HAVE_LEAF_CELLS
 #include "bsp/cells.hpp"
-#else
-#include "reports/cell_clipper.hpp"
-#endif
 
 namespace sculpt::reports {
 
@@ -42,13 +38,8 @@ DepthCost depth_cost(const Solid& solid, const DepthCostOptions& options) {
   out.height = stats.height;
 
   std::map<int, DepthBin> bins;
-#ifdef SCULPT_HAVE_LEAF_CELLS
   out.cell_volumes = "exact (bsp/cells.hpp)";
   for (const LeafCell& cell : leaf_cells(solid, out.sample_box)) {
-#else
-  out.cell_volumes = "floating-point clipping (reports/cell_clipper.hpp)";
-  for (const ClippedCell& cell : clipped_cells(solid, out.sample_box)) {
-#endif
     if (!(cell.volume > 0.0)) continue;
     const double p = cell.volume / out.sample_volume;
     ++out.cells_in_box;

@@ -5,8 +5,8 @@
 /// p_C = v_C / V at cost d_C, so the expected depth is sum p_C d_C. No binary tree with these
 /// leaf probabilities can do better than the entropy H = -sum p_C log2 p_C (Shannon; Kraft's
 /// inequality), so the ratio expected depth / H measures how far the tree is from optimal.
-/// Each leaf cell is clipped to the sample box: exactly by bsp/cells.hpp where that is built, else
-/// in floating point by reports/cell_clipper.hpp (DepthCost::cell_volumes says which).
+/// Each leaf cell is clipped to the sample box exactly by bsp/cells.hpp (DepthCost::cell_volumes
+/// says so in the report).
 
 #include <optional>
 #include <string>

@@ -9,7 +9,7 @@
 
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
-#include "bsp/extent_pruning.hpp"
+#include "bsp/merge/extent_pruning.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "support/mesh_checks.hpp"

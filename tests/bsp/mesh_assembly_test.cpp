@@ -1,6 +1,6 @@
 // Mesh assembly (lib/bsp/mesh_assembly.hpp and its stages): the exact shortcuts checked against
 // brute-force references computed here with unbounded integers.
-#include "bsp/mesh_assembly.hpp"
+#include "bsp/assembly/mesh_assembly.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,14 +12,14 @@
 #include <random>
 #include <set>
 
-#include "bsp/assembly_faces.hpp"
+#include "bsp/assembly/faces.hpp"
 #include "bsp/boundary.hpp"
-#include "bsp/boundary_fragments.hpp"
-#include "bsp/junction_removal.hpp"
+#include "bsp/tree/boundary_fragments.hpp"
+#include "bsp/assembly/junction_removal.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
-#include "bsp/vertex_equality.hpp"
-#include "bsp/vertex_merge.hpp"
+#include "bsp/assembly/vertex_equality.hpp"
+#include "bsp/assembly/vertex_merge.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {

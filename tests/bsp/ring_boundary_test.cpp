@@ -1,4 +1,4 @@
-#include "bsp/ring_boundary.hpp"
+#include "bsp/rings/ring_boundary.hpp"
 
 #include <gtest/gtest.h>
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "bsp/boundary.hpp"
-#include "bsp/node_polygons.hpp"
+#include "bsp/tree/node_polygons.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/transform.hpp"

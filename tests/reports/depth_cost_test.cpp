@@ -7,11 +7,9 @@
 
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
-#ifdef SCULPT_HAVE_LEAF_CELLS
 #include "bsp/cells.hpp"
-#endif
 #include "bsp/primitives.hpp"
-#include "bsp/revolve.hpp"
+#include "revolution/revolve.hpp"
 #include "bsp/set_operations.hpp"
 #include "curves/profiles.hpp"
 #include "reports/cell_clipper.hpp"
@@ -66,7 +64,6 @@ TEST(DepthCost, CellVolumesSumToTheSampleSpaceAndMatchAnIndependentClipper) {
     EXPECT_NEAR(c.cell_volume_sum, c.sample_volume, 1e-9 * c.sample_volume);
     EXPECT_NEAR(c.in_volume, volume(s), 1e-9 * volume(s));
     // The volume inside agrees with the boundary's (divergence theorem), an independent computation.
-#ifdef SCULPT_HAVE_LEAF_CELLS
     // Same cells, volumes and depths from the floating-point clipper, which shares nothing with
     // bsp/cells.hpp but the tree.
     std::map<std::pair<int, bool>, double> exact, clipped;
@@ -78,7 +75,6 @@ TEST(DepthCost, CellVolumesSumToTheSampleSpaceAndMatchAnIndependentClipper) {
     }
     for (const auto& [key, v] : clipped) EXPECT_NEAR(exact[key], v, 1e-8 * c.sample_volume) << key.first;
     EXPECT_NEAR(c.expected_depth, expected, 1e-8);
-#endif
     // Shannon: no binary tree beats the entropy of its leaf distribution.
     EXPECT_GE(c.expected_depth, c.entropy_bound);
   }

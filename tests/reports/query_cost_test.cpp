@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "base/errors.hpp"
-#include "bsp/revolve.hpp"
+#include "revolution/revolve.hpp"
 #include "curves/profiles.hpp"
 #include "reports/depth_cost.hpp"
 #include "bsp/classify.hpp"

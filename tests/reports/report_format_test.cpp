@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "bsp/primitives.hpp"
-#include "bsp/revolve.hpp"
+#include "revolution/revolve.hpp"
 
 using namespace sculpt;
 using namespace sculpt::reports;

@@ -1,4 +1,4 @@
-#include "bsp/path_tree.hpp"
+#include "revolution/trees/path_tree.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "bsp/revolve_boundary.hpp"
+#include "revolution/revolve_boundary.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "bsp/revolve_plane_tree.hpp"
+#include "revolution/trees/revolve_plane_tree.hpp"
 
 #include <gtest/gtest.h>
 

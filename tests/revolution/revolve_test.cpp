@@ -1,4 +1,4 @@
-#include "bsp/revolve.hpp"
+#include "revolution/revolve.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
-#include "bsp/revolve_boundary.hpp"
+#include "revolution/revolve_boundary.hpp"
 #include "bsp/set_operations.hpp"
 #include "curves/profiles.hpp"
 #include "support/mesh_checks.hpp"

@@ -27,13 +27,13 @@
 
 #include <Eigen/Geometry>
 
-#include "bsp/assembly_coplanar.hpp"
-#include "bsp/assembly_faces.hpp"
-#include "bsp/assembly_sheets.hpp"
-#include "bsp/boundary_fragments.hpp"
-#include "bsp/junction_removal.hpp"
-#include "bsp/mesh_assembly.hpp"
-#include "bsp/vertex_merge.hpp"
+#include "bsp/assembly/coplanar_faces.hpp"
+#include "bsp/assembly/faces.hpp"
+#include "bsp/assembly/sheets.hpp"
+#include "bsp/tree/boundary_fragments.hpp"
+#include "bsp/assembly/junction_removal.hpp"
+#include "bsp/assembly/mesh_assembly.hpp"
+#include "bsp/assembly/vertex_merge.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "support/bench_solids.hpp"

@@ -18,16 +18,14 @@
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
 #include "bsp/point_classifier.hpp"
-#include "bsp/revolve.hpp"
+#include "revolution/revolve.hpp"
 #include "bsp/set_operations.hpp"
 #include "curves/digitized_curve.hpp"
 #include "curves/profiles.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "reports/tree_report.hpp"
-#ifdef SCULPT_HAVE_FROM_MESH
 #include "bsp/from_mesh.hpp"
-#endif
 
 using namespace sculpt;
 using Clock = std::chrono::steady_clock;
@@ -111,7 +109,6 @@ int main(int argc, char** argv) {
     }
     std::printf("\nwrote %s/goblet.off, %s/goblet.obj, %s/goblet_depth.svg\n\n", out.c_str(), out.c_str(), out.c_str());
 
-#ifdef SCULPT_HAVE_FROM_MESH
     // The same outer goblet, its tree built from its boundary (B-rep to BSP), side by side.
     const auto brep_start = Clock::now();
     const Solid brep = from_mesh(to_mesh(g.outer));
@@ -122,7 +119,6 @@ int main(int argc, char** argv) {
     const std::string side_text = reports::report_text(side);
     std::fputs(side_text.substr(0, side_text.find("\ndepth histogram")).c_str(), stdout);
     std::printf("\n");
-#endif
     const TreeStats outer = tree_stats(g.outer);
     const int size = outer.nodes + outer.in_leaves + outer.out_leaves;
     const double v_cup = volume(g.cup), v_ball = volume(g.ball), v_both = volume(g.cup & g.ball);

@@ -1,0 +1,28 @@
+#include "bsp/assembly/mesh_assembly.hpp"
+
+#include "bsp/assembly/coplanar_faces.hpp"
+#include "bsp/assembly/faces.hpp"
+#include "bsp/assembly/sheets.hpp"
+#include "bsp/assembly/junction_removal.hpp"
+#include "bsp/assembly/vertex_merge.hpp"
+
+#include <utility>
+
+namespace sculpt::detail {
+
+// The stages, each in its own file: exact vertex merging and the fragments as faces on the
+// merged vertices (vertex_merge), T-junction removal (junction_removal), coplanar merging and
+// straight vertices (assembly_coplanar), one vertex copy per sheet and output
+// (assembly_sheets); shared data in assembly_faces.
+PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& options) {
+  MergedFragments merged = merge_vertices(fragments);
+  const PlaneIds& ids = merged.ids;
+  const VertexGeometry geometry(fragments.planes, ids, merged.vertices);
+  FaceList faces = remove_t_junctions(std::move(merged.faces), geometry, ids).faces;
+  faces = merge_coplanar_faces(std::move(faces), merged.vertices.size(), ids);
+  faces = remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
+  const Sheets sheets = split_non_manifold(std::move(faces), merged.vertices, fragments.planes);
+  return output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate);
+}
+
+}  // namespace sculpt::detail

@@ -1,0 +1,18 @@
+#pragma once
+/// \file mesh_assembly.hpp
+/// Internal: turns boundary fragments into a closed polygon mesh: exact vertex merging,
+/// T-junction removal, pairing of half-edges around non-manifold edges and one vertex copy per
+/// sheet at non-manifold vertices (as Manifold does; docs/kernel.md).
+
+#include "bsp/tree/boundary_fragments.hpp"
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt::detail {
+
+struct AssemblyOptions {
+  bool triangulate = false;
+};
+
+PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& options);
+
+}  // namespace sculpt::detail

@@ -1,0 +1,27 @@
+#pragma once
+/// \file assembly_sheets.hpp
+/// Internal to mesh assembly: where the solid touches itself along an edge or at a vertex, each
+/// sheet gets its own copy of the vertices there, so every sheet is a 2-manifold (as Manifold
+/// does; docs/kernel.md); then the output mesh.
+
+#include "bsp/assembly/faces.hpp"
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt::detail {
+
+struct Sheets {
+  FaceList faces;             ///< vertex ids renumbered: one vertex per sheet
+  std::vector<int> original;  ///< new vertex -> the assembly vertex it stands for
+};
+
+/// Pairs each half-edge with its opposite; around an edge shared by more than two faces, the
+/// pairs are the faces bounding the same inside wedge (angular order about the edge). Corners
+/// connected through paired edges share a vertex; other corners get a copy.
+Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, const kernel::PlaneTable& planes);
+
+/// The mesh in world units (only vertices used by faces are written), optionally with each face
+/// fan-triangulated by ear clipping.
+PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
+                        bool triangulate);
+
+}  // namespace sculpt::detail

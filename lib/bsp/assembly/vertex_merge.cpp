@@ -1,0 +1,311 @@
+#include "bsp/assembly/vertex_merge.hpp"
+
+#include "bsp/assembly/vertex_equality.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+namespace sculpt::detail {
+
+using kernel::ApproxPoint;
+
+namespace {
+
+bool same_key(const IdTriple& x, const IdTriple& y) { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; }
+
+IdTriple sorted(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  if (a > b) std::swap(a, b);
+  if (b > c) std::swap(b, c);
+  if (a > b) std::swap(a, b);
+  return {a, b, c};
+}
+
+// Corners are visited in order and each is resolved at once. A class is the set of corners with
+// one triple (as a set of planes up to orientation): the same point without arithmetic. Classes
+// are entered in the cells of a grid of one grid unit that their approximation's error box
+// touches (far above the approximation errors: nearly always one cell). A corner looks for its
+// class in its cells; a new class is compared exactly with the vertices of the classes in its
+// cells and joins the one it equals, else it starts a new vertex. Equal points have overlapping
+// error boxes, so they share the cell of the exact point: no equal pair is missed, and a new
+// class equals at most one vertex (two equal vertices would have been merged).
+class CornerMerger {
+ public:
+  CornerMerger(const kernel::PlaneTable& planes, const PlaneIds& ids, AssemblyVertices& vertices,
+               std::vector<int>& out, std::size_t corners)
+      : planes_(planes), ids_(ids), v_(vertices), out_(out) {
+    std::size_t slots = 64;
+    while (slots < corners / 2) slots *= 2;
+    slots_.assign(slots, Slot{0, kEmpty});
+    shift_ = 32 - std::countr_zero(slots);
+    entries_.reserve(corners / 2 + 16);
+    v_.class_planes.reserve(corners / 2 + 16);
+    v_.class_next.reserve(corners / 2 + 16);
+    class_vertex_.reserve(corners / 2 + 16);
+    v_.at.reserve(corners / 3 + 16);
+    v_.triple.reserve(corners / 3 + 16);
+    v_.first_class.reserve(corners / 3 + 16);
+    vertex_ids_.reserve(corners / 3 + 16);
+  }
+
+  // Queues corner `c` of a fragment on plane `support` (canonical id s); its vertex is written
+  // to out[position] once resolved (a few corners later, so that its cells can be prefetched: the table
+  // is larger than the caches and the probes are random). Corners are resolved in order.
+  void add(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out) {
+    if (queued_ == kAhead) resolve(queue_[next_]), --queued_;
+    Pending& p = queue_[(next_ + queued_) % kAhead];
+    prepare(support, s, c, out, p);
+    ++queued_;
+  }
+  void flush() {
+    for (; queued_ > 0; --queued_) resolve(queue_[next_]);
+  }
+
+ private:
+  static constexpr int kEmpty = -1, kNoEntry = -2;
+  static constexpr int kAhead = 8;
+  // Cells are identified by 32 bits of a hash of their coordinates (21 bits of each, folded):
+  // cells that collide share a chain and are told apart by the approximations. The slot of a
+  // hash is its top bits, so the table can grow without the coordinates.
+  struct Slot {
+    std::uint32_t cell;
+    int head;  // last entry of the cell's chain: kNoEntry if none yet, kEmpty: free slot
+  };
+  struct Entry {  // a class entered in one cell
+    IdTriple key;
+    int vertex, next;
+  };
+  struct Pending {
+    const kernel::Corner* corner;
+    std::size_t out;  // position in the output
+    std::int32_t support;
+    IdTriple key;
+    int cells;  // -1: wide (no cells)
+    std::uint32_t cell[8];
+  };
+
+  static std::int64_t floor_of(double x) {  // |x| < 2^61
+    const auto t = std::int64_t(x);
+    return double(t) > x ? t - 1 : t;
+  }
+
+  void prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out, Pending& p) {
+    p.corner = &c;
+    p.out = out;
+    p.support = support;
+    p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
+    const ApproxPoint& a = c.at;
+    constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
+    constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
+    std::int64_t lo[3], hi[3];
+    bool wide = !(a.err >= 0 && a.err < 0.25);
+    const double coord[3] = {a.x, a.y, a.z};
+    for (int k = 0; k < 3 && !wide; ++k) {
+      wide = !(std::fabs(coord[k]) < kFar);
+      lo[k] = floor_of(coord[k] - a.err + kShift);
+      hi[k] = floor_of(coord[k] + a.err + kShift);
+    }
+    p.cells = -1;
+    if (wide) return;
+    // The cells of the error box (at most two per axis).
+    constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
+    int n = 0;
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          const std::uint64_t k = (std::uint64_t(x) & kMask) << 42 | (std::uint64_t(y) & kMask) << 21 | (std::uint64_t(z) & kMask);
+          p.cell[n++] = std::uint32_t((k * 0x9E3779B97F4A7C15ull) >> 32);
+        }
+    p.cells = n;
+    __builtin_prefetch(&slots_[p.cell[0] >> shift_]);
+  }
+
+  void resolve(Pending& p) {
+    next_ = (next_ + 1) % kAhead;
+    const IdTriple& key = p.key;
+    const kernel::Corner& c = *p.corner;
+    if (p.cells < 0) {
+      out_[p.out] = wide_vertex(key, p.support, c);
+      return;
+    }
+    if (2 * (cells_used_ + 8) > slots_.size()) grow();
+    const int n = p.cells;
+    std::size_t cells[8];
+    for (int i = 0; i < n; ++i) cells[i] = slot_of(p.cell[i]);
+    for (int i = 0; i < n; ++i)
+      for (int e = slots_[cells[i]].head; e >= 0; e = entries_[std::size_t(e)].next)
+        if (same_key(entries_[std::size_t(e)].key, key)) {
+          out_[p.out] = entries_[std::size_t(e)].vertex;
+          return;
+        }
+    for (const int w : wide_classes_)
+      if (same_key(v_.class_planes[std::size_t(w)], key)) {
+        out_[p.out] = class_vertex_[std::size_t(w)];
+        return;
+      }
+    int v = -1;
+    int last = -1;  // a vertex's classes tend to be adjacent in a chain: test it once
+    for (int i = 0; i < n && v < 0; ++i)
+      for (int e = slots_[cells[i]].head; e >= 0 && v < 0; e = entries_[std::size_t(e)].next) {
+        const int u = entries_[std::size_t(e)].vertex;
+        if (u != last && same_point(key, p.support, c, u)) v = u;
+        last = u;
+      }
+    for (std::size_t i = 0; i < wide_classes_.size() && v < 0; ++i) {
+      const int u = class_vertex_[std::size_t(wide_classes_[i])];
+      if (same_point(key, p.support, c, u)) v = u;
+    }
+    if (v < 0) v = new_vertex(p.support, c);
+    new_class(key, v);
+    for (int i = 0; i < n; ++i) {
+      entries_.push_back({key, v, slots_[cells[i]].head});
+      slots_[cells[i]].head = int(entries_.size()) - 1;
+    }
+    out_[p.out] = v;
+  }
+
+  std::size_t slot_of(std::uint32_t cell) {
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t h = cell >> shift_;
+    while (slots_[h].head != kEmpty && slots_[h].cell != cell) h = (h + 1) & mask;
+    if (slots_[h].head == kEmpty) slots_[h] = {cell, kNoEntry}, ++cells_used_;
+    return h;
+  }
+
+  void grow() {
+    // Chains keep their entries; only the slots move.
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(2 * old.size(), Slot{0, kEmpty});
+    shift_ = 32 - std::countr_zero(slots_.size());
+    const std::size_t mask = slots_.size() - 1;
+    for (const Slot& s : old) {
+      if (s.head == kEmpty) continue;
+      std::size_t h = s.cell >> shift_;
+      while (slots_[h].head != kEmpty) h = (h + 1) & mask;
+      slots_[h] = s;
+    }
+  }
+
+  std::uint32_t key_of(std::int32_t plane) const { return ids_.id[std::size_t(plane)]; }
+
+  // A class joins its vertex's list (the vertex's known planes) and the class table (the wide path).
+  int new_class(const IdTriple& key, int vertex) {
+    const int k = int(v_.class_planes.size());
+    v_.class_planes.push_back(key);
+    v_.class_next.push_back(v_.first_class[std::size_t(vertex)]);
+    v_.first_class[std::size_t(vertex)] = k;
+    class_vertex_.push_back(vertex);
+    return k;
+  }
+
+  int new_vertex(std::int32_t support, const kernel::Corner& c) {
+    v_.at.push_back(c.at);
+    v_.triple.push_back({support, c.p, c.q});
+    vertex_ids_.push_back({key_of(support), key_of(c.p), key_of(c.q)});
+    v_.first_class.push_back(-1);
+    return v_.size() - 1;
+  }
+
+  // A corner without cells (large or no error bound: nearly dependent planes): its class by
+  // key, else exact comparison with every vertex.
+  int wide_vertex(const IdTriple& key, std::int32_t support, const kernel::Corner& c) {
+    for (std::size_t i = 0; i < v_.class_planes.size(); ++i)
+      if (same_key(v_.class_planes[i], key)) return class_vertex_[i];
+    int v = -1;
+    for (int u = 0; u < v_.size() && v < 0; ++u)
+      if (same_point(key, support, c, u)) v = u;
+    if (v < 0) v = new_vertex(support, c);
+    wide_classes_.push_back(new_class(key, v));
+    return v;
+  }
+
+  // Exact: the corner's point (support ∩ p ∩ q, canonical ids `key`) lies on the three planes
+  // of vertex u's triple (planes shared with the corner need no test; the others by the exact
+  // zero test of vertex_equality.hpp). Disjoint error boxes are different points (a filter only).
+  bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, int u) const {
+    const ApproxPoint& pa = c.at;
+    const ApproxPoint& pb = v_.at[std::size_t(u)];
+    if (pa.err >= 0 && pb.err >= 0) {
+      const double tol = pa.err + pb.err;
+      if (std::fabs(pb.x - pa.x) > tol || std::fabs(pb.y - pa.y) > tol || std::fabs(pb.z - pa.z) > tol) return false;
+    }
+    const PlaneTriple& t = v_.triple[std::size_t(u)];
+    const IdTriple& ids = vertex_ids_[std::size_t(u)];
+    const std::int32_t planes[3] = {t.s, t.p, t.q};
+    std::int32_t tested[3];
+    int n = 0;
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t id = ids[std::size_t(i)];
+      if (id != key[0] && id != key[1] && id != key[2]) tested[n++] = planes[i];
+    }
+    if (n == 0) return true;
+    // The corner's 2x2 minors, shared by its (usually two) tests (built in place: no copy).
+    const VertexMinors corner = vertex_minors(planes_[support], planes_[c.p], planes_[c.q], pa);
+    for (int i = 0; i < n; ++i)
+      if (!vertex_on_plane(corner, planes_[tested[i]])) return false;
+    return true;
+  }
+
+  const kernel::PlaneTable& planes_;
+  const PlaneIds& ids_;
+  AssemblyVertices& v_;
+  std::vector<int>& out_;
+  std::vector<Slot> slots_;
+  int shift_ = 26;
+  std::size_t cells_used_ = 0;  // occupied slots
+  std::vector<Entry> entries_;
+  std::vector<int> class_vertex_;  // class -> vertex (keys in v_.class_planes)
+  std::vector<int> wide_classes_;
+  std::vector<IdTriple> vertex_ids_;  // vertex -> canonical ids of its triple, in triple order
+  Pending queue_[kAhead];
+  int next_ = 0, queued_ = 0;  // the oldest queued corner, and how many are queued
+};
+
+}  // namespace
+
+MergedFragments merge_vertices(const Fragments& fragments) {
+  // (No counting pass over the fragments first: it would read them twice.)
+  const std::size_t nf = fragments.fragments.size();
+  const std::size_t expected = 4 * nf + 16;  // corners, mostly quadrilaterals
+  MergedFragments r;
+  r.ids = canonical_plane_ids(fragments.planes);
+  FaceList& faces = r.faces;
+  CornerMerger merger(fragments.planes, r.ids, r.vertices, faces.vertex, expected);
+  faces.start.resize(nf + 1);
+  faces.support.resize(nf);
+  faces.flip.resize(nf);
+  // Sized once (room for a fifth corner per fragment; the sphere's carried fragments average
+  // 4.03 corners), doubled if ever short, cut to size at the end: no resize per fragment.
+  faces.vertex.resize(expected + nf);
+  faces.line.resize(expected + nf);
+  std::size_t base = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const Fragment& fr = fragments.fragments[f];
+    const auto& cs = fr.polygon.corners;
+    const std::size_t m = cs.size();
+    const std::uint32_t s = r.ids.id[std::size_t(fr.polygon.support)];
+    faces.start[f] = int(base);
+    faces.support[f] = fr.polygon.support;
+    faces.flip[f] = fr.flip ? 1 : 0;
+    if (base + m > faces.line.size()) {
+      faces.vertex.resize(2 * (base + m));
+      faces.line.resize(2 * (base + m));
+    }
+    // A flipped fragment's corners reversed: corner j goes to position m-1-j, and its edge
+    // (to corner j+1) becomes the edge leaving position m-1-(j+1).
+    for (std::size_t j = 0; j < m; ++j) {
+      merger.add(fr.polygon.support, s, cs[j], base + (fr.flip ? m - 1 - j : j));
+      faces.line[base + (fr.flip ? m - 1 - (j + 1 == m ? 0 : j + 1) : j)] = cs[j].edge;
+    }
+    base += m;
+  }
+  faces.start[nf] = int(base);
+  merger.flush();
+  faces.vertex.resize(base);
+  faces.line.resize(base);
+  return r;
+}
+
+}  // namespace sculpt::detail

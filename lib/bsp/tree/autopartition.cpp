@@ -1,0 +1,207 @@
+#include "bsp/tree/autopartition.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <utility>
+
+#include "bsp/tree_builder.hpp"
+
+namespace sculpt::detail {
+
+using kernel::ConvexPolygon;
+using kernel::CornerBox;
+using kernel::Side;
+
+namespace {
+
+// A fragment's piece in the cell being partitioned, with its outward plane (its box is kept
+// apart, in an array of its own: scoring reads boxes far more often than polygons).
+struct Piece {
+  ConvexPolygon polygon;
+  std::int32_t outward;  // support, or its opposite for a flipped fragment
+};
+
+struct Node {
+  std::int32_t plane;
+  TreeRef negative = kOut, positive = kOut;
+  bool auxiliary = false;  // a splitting plane that carries no fragment
+};
+
+// Side of a piece with respect to a plane, for scoring only (a heuristic: the split itself is
+// exact): the box first, else exactly, or (`approximate`) from the signs of the plane at the
+// corners' approximations.
+Side side_of(const kernel::PlaneTable& planes, const Piece& p, const CornerBox& box, std::int32_t plane,
+             bool approximate) {
+  const kernel::Plane& e = planes[plane];
+  const Side quick = kernel::box_side(box, e);
+  if (quick != Side::Both) return quick;
+  if (!approximate) return kernel::classify(planes, p.polygon, plane);
+  const double a = double(e.a), b = double(e.b), c = double(e.c), d = e.d_nearest;
+  const double tolerance = 1e-9 * (std::fabs(a) + std::fabs(b) + std::fabs(c)) * (1.0 + std::fabs(box.lo[0]) + std::fabs(box.hi[0]));
+  bool neg = false, pos = false;
+  for (const kernel::Corner& k : p.polygon.corners) {
+    const double v = a * k.at.x + b * k.at.y + c * k.at.z + d;
+    neg |= v < -tolerance;
+    pos |= v > tolerance;
+  }
+  return neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
+}
+
+}  // namespace
+
+Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options) {
+  if (fragments.empty()) return Solid();
+  const kernel::PlaneTable& planes = arena.planes;
+  // Pieces live in one pool (split parts are appended); frames hold indices into it.
+  std::vector<Piece> pool;
+  std::vector<CornerBox> boxes;
+  pool.reserve(2 * fragments.size());
+  boxes.reserve(2 * fragments.size());
+  for (const BoundaryFragment& f : fragments) {
+    const std::int32_t s = f.polygon.support;
+    pool.push_back({f.polygon, f.flip ? arena.opposite(s) : s});
+    boxes.push_back(kernel::corner_box(f.polygon));
+  }
+
+  struct Frame {
+    std::vector<std::int32_t> pieces;
+    std::int32_t parent;  // -1: the root
+    int side;
+  };
+  std::vector<Node> nodes;
+  std::vector<Frame> stack;
+  {
+    std::vector<std::int32_t> all(pool.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = std::int32_t(i);
+    stack.push_back({std::move(all), -1, 0});
+  }
+  TreeRef root = kOut;
+  const std::size_t candidates = std::size_t(std::max(1, options.candidates));
+  const std::size_t sample = std::size_t(std::max(1, options.sample));
+  ConvexPolygon neg_part, pos_part;
+  while (!stack.empty()) {
+    Frame f = std::move(stack.back());
+    stack.pop_back();
+    const std::size_t n = f.pieces.size();
+    // Score a few candidate planes against a sample of the cell's pieces.
+    std::size_t best = 0;
+    double best_score = 1e300;
+    int best_larger = 0;  // the larger side of the best candidate, in sampled pieces
+    const std::size_t k = std::min(n, candidates), m = std::min(n, sample);
+    auto score = [&](std::int32_t plane, int& larger) {
+      int neg = 0, pos = 0, both = 0;
+      for (std::size_t j = 0; j < m; ++j) {
+        const auto q = std::size_t(f.pieces[j * n / m]);
+        const Side s = side_of(planes, pool[q], boxes[q], plane, options.approximate_scores);
+        neg += s == Side::Negative;
+        pos += s == Side::Positive;
+        both += s == Side::Both;
+      }
+      larger = std::max(neg, pos);
+      return options.split_weight * both + std::abs(neg - pos);
+    };
+    for (std::size_t c = 0; c < k && n > 1; ++c) {
+      const std::size_t i = c * n / k;
+      int larger = 0;
+      const double sc = score(pool[std::size_t(f.pieces[i])].outward, larger);
+      if (sc < best_score) best_score = sc, best = i, best_larger = larger;
+    }
+    // Where every candidate leaves nearly all pieces on one side (a convex part: its faces see
+    // each other from behind), a plane x, y or z = median of the pieces' box centres + 1/2 grid
+    // step, which carries no piece, may balance better (kd-tree style; Naylor 1990's balance).
+    std::int32_t aux_plane = -1;
+    if (options.auxiliary_splits && n >= 64 && best_larger * 10 > int(m) * 9) {
+      std::vector<double> centre(m);
+      for (int axis = 0; axis < 3; ++axis) {
+        for (std::size_t j = 0; j < m; ++j) {
+          const CornerBox& b = boxes[std::size_t(f.pieces[j * n / m])];
+          centre[j] = b.valid ? 0.5 * (b.lo[axis] + b.hi[axis]) : 0.0;
+        }
+        std::nth_element(centre.begin(), centre.begin() + std::ptrdiff_t(m / 2), centre.end());
+        const double c = std::floor(centre[m / 2]);
+        if (!(std::fabs(c) < double(kernel::PlaneTable::kWorld))) continue;
+        kernel::Int128 normal[3] = {0, 0, 0};
+        normal[axis] = 2;
+        const std::int32_t candidate =
+            arena.planes.add(kernel::make_plane(normal[0], normal[1], normal[2], -(2 * kernel::Int128(c) + 1)), true);
+        int larger = 0;
+        const double sc = score(candidate, larger);
+        if (sc < best_score) best_score = sc, aux_plane = candidate;
+      }
+    }
+    // Splits the cell's pieces by `plane`; pieces on it are used up (false if that happens for an
+    // auxiliary plane, which must carry none).
+    std::vector<std::int32_t> negative, positive;
+    auto split_all = [&](std::int32_t plane, std::int32_t opposite, bool auxiliary) {
+      negative.clear();
+      positive.clear();
+      const kernel::Plane pv = planes[plane], po = planes[opposite];
+      for (const std::int32_t id : f.pieces) {
+        const std::int32_t s = pool[std::size_t(id)].polygon.support;
+        if (s == plane || s == opposite || planes[s] == pv || planes[s] == po) {
+          if (auxiliary) return false;
+          continue;  // used up
+        }
+        Side side = kernel::box_side(boxes[std::size_t(id)], pv);
+        if (side == Side::Both)
+          side = kernel::split(planes, pool[std::size_t(id)].polygon, plane, opposite, neg_part, pos_part);
+        switch (side) {
+          case Side::Negative: negative.push_back(id); break;
+          case Side::Positive: positive.push_back(id); break;
+          case Side::Both: {
+            const std::int32_t outward = pool[std::size_t(id)].outward;  // the pool may grow
+            negative.push_back(std::int32_t(pool.size()));
+            pool.push_back({neg_part, outward});
+            boxes.push_back(kernel::corner_box(neg_part));
+            positive.push_back(std::int32_t(pool.size()));
+            pool.push_back({pos_part, outward});
+            boxes.push_back(kernel::corner_box(pos_part));
+            break;
+          }
+          case Side::On: break;  // cannot happen: a piece on the plane has that support
+        }
+      }
+      return true;
+    };
+    // An auxiliary plane must have pieces on both sides (an empty side's status would be unknown).
+    bool auxiliary = aux_plane >= 0 && split_all(aux_plane, arena.opposite(aux_plane), true) && !negative.empty() &&
+                     !positive.empty();
+    std::int32_t plane = aux_plane;
+    if (!auxiliary) {
+      plane = pool[std::size_t(f.pieces[best])].outward;
+      split_all(plane, arena.opposite(plane), false);
+    }
+    const auto id = TreeRef(nodes.size());
+    nodes.push_back({plane, negative.empty() ? kIn : kOut, kOut, auxiliary});
+    if (f.parent < 0)
+      root = id;
+    else
+      (f.side == 0 ? nodes[std::size_t(f.parent)].negative : nodes[std::size_t(f.parent)].positive) = id;
+    if (!negative.empty()) stack.push_back({std::move(negative), id, 0});
+    if (!positive.empty()) stack.push_back({std::move(positive), id, 1});
+  }
+
+  // Bottom-up into the builder (children have larger indices), with the planes in use.
+  TreeBuilder b;
+  std::vector<std::int32_t> plane_map(std::size_t(planes.size()), -1);
+  for (std::int32_t i = 0; i < kernel::kWorldPlanes; ++i) plane_map[std::size_t(i)] = i;  // shared world box
+  auto use = [&](std::int32_t p, bool auxiliary = false) {
+    if (plane_map[std::size_t(p)] < 0) plane_map[std::size_t(p)] = b.add_plane(planes[p], auxiliary);
+    return plane_map[std::size_t(p)];
+  };
+  std::vector<TreeRef> made(nodes.size(), kOut);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    const Node& nd = nodes[i];
+    auto child = [&](TreeRef c) { return is_leaf(c) ? c : made[std::size_t(c)]; };
+    made[i] = b.add_node(use(nd.plane, nd.auxiliary), child(nd.negative), child(nd.positive));
+  }
+  if (!options.carry_boundary) return std::move(b).build(made[std::size_t(root)], BuildOptions{.nodes_cut_cells = true});
+  for (BoundaryFragment& f : fragments) {
+    f.polygon.support = use(f.polygon.support);
+    for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
+  }
+  return std::move(b).build(made[std::size_t(root)], std::move(fragments), {.nodes_cut_cells = true});
+}
+
+}  // namespace sculpt::detail

@@ -1,0 +1,23 @@
+#pragma once
+/// \file boundary_fragments.hpp
+/// Internal: the boundary of a solid as convex plane-based fragments (Thibault & Naylor 1987;
+/// Naylor et al. 1990 sec. 5): each node's sub-hyperplane is pushed down both subtrees and the
+/// pieces with an in-cell on exactly one side are kept.
+
+#include <vector>
+
+#include "bsp/tree/tree_arena.hpp"
+
+namespace sculpt::detail {
+
+/// A boundary piece on a node plane, corners counter-clockwise about its normal.
+using Fragment = BoundaryFragment;
+
+struct Fragments {
+  kernel::PlaneTable planes;  ///< the solid's planes plus opposites created while splitting
+  std::vector<Fragment> fragments;
+};
+
+Fragments boundary_fragments(const Solid& solid);
+
+}  // namespace sculpt::detail

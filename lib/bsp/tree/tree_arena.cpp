@@ -1,0 +1,205 @@
+#include "bsp/tree/tree_arena.hpp"
+
+#include <algorithm>
+
+#include "bsp/tree/boundary_fragments.hpp"
+
+#include <utility>
+
+namespace sculpt::detail {
+
+using kernel::ConvexPolygon;
+
+std::int32_t Arena::opposite(std::int32_t i) {
+  if (opposite_of.size() < std::size_t(planes.size())) {
+    if (opposite_of.capacity() < std::size_t(planes.size())) opposite_of.reserve(2 * std::size_t(planes.size()));
+    opposite_of.resize(planes.size(), -1);
+  }
+  if (opposite_of[i] < 0) {
+    const kernel::Plane o = planes[i].opposite();
+    const std::int32_t j = planes.add(o, planes.auxiliary(i));
+    opposite_of.resize(planes.size(), -1);
+    opposite_of[i] = j;
+    opposite_of[j] = i;
+  }
+  return opposite_of[i];
+}
+
+TreeRef Arena::append(const Solid& solid) {
+  if (is_leaf(solid.root())) return solid.root();
+  const auto& src = solid.planes().planes();
+  const std::int32_t shift = planes.size() - 6;  // the world box planes 0..5 are shared
+  last_shift_ = shift;
+  auto map = [shift](std::int32_t p) { return p < 6 ? p : p + shift; };
+  // Geometric growth: an exact reserve would copy the whole table on every in-place operation.
+  const std::size_t need = std::size_t(planes.size()) + src.size();
+  if (need > planes.planes().capacity()) planes.reserve(std::max(need, 2 * planes.planes().capacity()));
+  for (std::size_t i = 6; i < src.size(); ++i) planes.add(src[i], solid.planes().auxiliary(std::int32_t(i)));
+  const auto node_shift = std::int32_t(nodes.size());
+  for (const BspNode& n : solid.nodes())
+    nodes.push_back({map(n.plane), is_leaf(n.negative) ? n.negative : n.negative + node_shift,
+                     is_leaf(n.positive) ? n.positive : n.positive + node_shift});
+  for (const ConvexPolygon& poly : solid.polygons()) {
+    ConvexPolygon q = poly;
+    q.support = map(q.support);
+    for (auto& c : q.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
+    polygons.push_back(std::move(q));
+  }
+  return solid.root() + node_shift;
+}
+
+TreeRef Arena::adopt(Solid&& solid) {
+  Solid::Storage s = std::move(solid).release();
+  planes = std::move(s.planes);
+  nodes = std::move(s.nodes);
+  polygons = std::move(s.polygons);
+  opposite_of.clear();
+  compacted_size = s.compacted_size;
+  boundary = std::move(s.boundary);
+  boundary_boxes = std::move(s.boundary_boxes);
+  last_shift_ = 0;
+  return s.root;
+}
+
+std::vector<BoundaryFragment> Arena::boundary_of(const Solid& solid) {
+  const std::int32_t shift = last_shift_;
+  const std::int32_t own = solid.planes().size();
+  std::vector<std::int32_t> extra;  // extracted fragments may use opposites beyond the solid's planes
+  auto remap = [&](std::vector<BoundaryFragment>& fragments, const kernel::PlaneTable& from) {
+    auto map = [&](std::int32_t p) {
+      if (p < 6) return p;
+      if (p < own) return p + shift;
+      const auto k = std::size_t(p - own);
+      if (extra.size() <= k) extra.resize(k + 1, -1);
+      if (extra[k] < 0) extra[k] = planes.add(from[p], from.auxiliary(p));
+      return extra[k];
+    };
+    for (BoundaryFragment& f : fragments) {
+      f.polygon.support = map(f.polygon.support);
+      for (auto& c : f.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
+    }
+  };
+  if (solid.has_boundary()) {
+    std::vector<BoundaryFragment> out = solid.boundary();
+    if (shift != 0) remap(out, solid.planes());
+    return out;
+  }
+  Fragments f = boundary_fragments(solid);
+  remap(f.fragments, f.planes);
+  return std::move(f.fragments);
+}
+
+void complement_in_place(Arena& arena, TreeRef& root) {
+  auto flip = [](TreeRef& r) { r = r == kIn ? kOut : kIn; };
+  if (is_leaf(root)) return flip(root);
+  std::vector<TreeRef> stack{root};
+  while (!stack.empty()) {
+    BspNode& n = arena.nodes[stack.back()];
+    stack.pop_back();
+    for (TreeRef* c : {&n.negative, &n.positive}) {
+      if (is_leaf(*c))
+        flip(*c);
+      else
+        stack.push_back(*c);
+    }
+  }
+}
+
+Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
+  if (is_leaf(root)) return Solid::leaf(root == kIn);
+  // Post-order: a node is emitted after both children, so collapses propagate upwards.
+  std::vector<TreeRef> result(arena.nodes.size(), kOut);
+  struct Frame {
+    TreeRef node;
+    bool expanded;
+  };
+  std::vector<Frame> stack{{root, false}};
+  std::vector<BspNode> kept;  // children refer to `result` values (new indices or leaves)
+  while (!stack.empty()) {
+    Frame f = stack.back();
+    stack.pop_back();
+    const BspNode& n = arena.nodes[f.node];
+    if (!f.expanded) {
+      stack.push_back({f.node, true});
+      if (!is_leaf(n.positive)) stack.push_back({n.positive, false});
+      if (!is_leaf(n.negative)) stack.push_back({n.negative, false});
+      continue;
+    }
+    const TreeRef neg = is_leaf(n.negative) ? n.negative : result[n.negative];
+    const TreeRef pos = is_leaf(n.positive) ? n.positive : result[n.positive];
+    if (is_leaf(neg) && neg == pos) {
+      result[f.node] = neg;
+      continue;
+    }
+    result[f.node] = TreeRef(kept.size());
+    kept.push_back({n.plane, neg, pos});
+  }
+  const TreeRef new_root = result[root];
+  if (is_leaf(new_root)) return Solid::leaf(new_root == kIn);
+
+  // Renumber planes: only those used by nodes and polygons survive.
+  std::vector<std::int32_t> plane_map(std::size_t(arena.planes.size()), -1);
+  kernel::PlaneTable table;
+  table.reserve(std::size_t(arena.planes.size()));  // at most all of them: no regrowth while adding
+  for (std::int32_t i = 0; i < 6; ++i) plane_map[i] = i;
+  auto use = [&](std::int32_t p) {
+    if (plane_map[p] < 0) plane_map[p] = table.add(arena.planes[p], arena.planes.auxiliary(p));
+    return plane_map[p];
+  };
+  // Post-order puts the root last; reverse to have the root first (index 0). The arena's own
+  // buffers are reused (no new allocation: their pages are already mapped, and the capacity is
+  // kept for the next in-place operations); kept node i goes to slot k - 1 - i.
+  const std::size_t k = kept.size();
+  auto flip = [k](TreeRef r) { return is_leaf(r) ? r : TreeRef(k - 1 - std::size_t(r)); };
+  // Polygons by cycles of the permutation: `result` holds each kept node's post-order number,
+  // negative for the others; a slot whose number is cleared to -1 is free or final.
+  std::vector<ConvexPolygon>& polygons = arena.polygons;
+  auto target = [&](std::size_t i) { return result[i] < 0 ? std::size_t(-1) : k - 1 - std::size_t(result[i]); };
+  ConvexPolygon carried[2];  // the polygon on its way and the one it displaces (two moves each)
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    std::size_t t = target(i);
+    if (t == std::size_t(-1) || t == i) continue;
+    int c = 0;
+    carried[c] = std::move(polygons[i]);
+    result[i] = -1;
+    while (true) {
+      const std::size_t next = target(t);
+      if (next == std::size_t(-1)) {
+        polygons[t] = std::move(carried[c]);
+        break;
+      }
+      carried[1 - c] = std::move(polygons[t]);
+      polygons[t] = std::move(carried[c]);
+      c = 1 - c;
+      result[t] = -1;
+      t = next;
+    }
+  }
+  polygons.resize(k);
+  arena.nodes.resize(k);
+  for (std::size_t i = 0; i < k; ++i) {  // the order of the plane renumbering is part of the result
+    const std::size_t j = k - 1 - i;
+    arena.nodes[j] = {use(kept[i].plane), flip(kept[i].negative), flip(kept[i].positive)};
+    ConvexPolygon& poly = polygons[j];
+    poly.support = use(poly.support);
+    for (auto& c : poly.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
+  }
+  if (!options.keep_capacity && polygons.capacity() > k + k / 4) {
+    arena.nodes.shrink_to_fit();
+    polygons.shrink_to_fit();
+  }
+  std::optional<std::vector<BoundaryFragment>> boundary;
+  FragmentBoxes boxes = std::move(arena.boundary_boxes);
+  if (arena.boundary) {
+    boundary = std::move(*arena.boundary);
+    arena.boundary.reset();
+    for (BoundaryFragment& f : *boundary) {
+      f.polygon.support = use(f.polygon.support);
+      for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
+    }
+  }
+  return Solid(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), 0,
+               std::move(boundary), std::move(boxes));
+}
+
+}  // namespace sculpt::detail
