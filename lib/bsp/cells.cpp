@@ -17,7 +17,7 @@ using Cell = std::vector<ConvexPolygon>;
 
 // The part of `cell` on the negative side of plane q (empty if none). The cap on q is q's world
 // polygon clipped by every face plane of the cell.
-Cell clip(detail::Arena& a, const Cell& cell, std::int32_t q) {
+Cell clip(bsp::detail::Arena& a, const Cell& cell, std::int32_t q) {
   const std::int32_t q_opp = a.opposite(q);
   bool any_negative = false, any_positive = false;
   std::vector<kernel::PolygonSplit> parts;
@@ -93,7 +93,7 @@ std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& 
   if (box.isEmpty()) throw InvalidInput("leaf_cells: empty sample box");
   const kernel::GridPoint lo = kernel::snap(box.min()), hi = kernel::snap(box.max());
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) throw InvalidInput("leaf_cells: sample box thinner than the grid step");
-  detail::Arena a;
+  bsp::detail::Arena a;
   a.planes = solid.planes();
   using kernel::Int128;
   const std::int32_t box_planes[6] = {

@@ -1,57 +1,20 @@
 #include "bsp/convex_path.hpp"
 
-#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
 
 #include "base/errors.hpp"
+#include "mesh/predicates.hpp"
 
 namespace sculpt {
 namespace {
-
-// Error-free transformations: a + b = s + e and a * b = p + e exactly (fma gives the product error).
-void two_sum(double a, double b, double& s, double& e) {
-  s = a + b;
-  const double bv = s - a;
-  e = (a - (s - bv)) + (b - bv);
-}
-
-/// Adds x into a nonoverlapping expansion (Shewchuk's GROW-EXPANSION); zero terms are dropped.
-void grow(std::vector<double>& expansion, double x) {
-  std::vector<double> out;
-  out.reserve(expansion.size() + 1);
-  double q = x;
-  for (double term : expansion) {
-    double s = 0, e = 0;
-    two_sum(q, term, s, e);
-    if (e != 0.0) out.push_back(e);
-    q = s;
-  }
-  if (q != 0.0) out.push_back(q);
-  expansion = std::move(out);
-}
 
 void check_finite(const Eigen::Vector2d& p, std::size_t i) {
   if (!p.allFinite()) throw InvalidInput("path vertex " + std::to_string(i) + " is not finite");
 }
 
 }  // namespace
-
-int exact_orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  // det = ax*by - ax*cy - bx*ay + bx*cy + cx*ay - cx*by, six exact products (value + fma error).
-  const std::array<std::array<double, 2>, 6> terms{{{a.x(), b.y()}, {-a.x(), c.y()}, {-b.x(), a.y()},
-                                                    {b.x(), c.y()}, {c.x(), a.y()}, {-c.x(), b.y()}}};
-  std::vector<double> sum;
-  for (const auto& [u, v] : terms) {
-    const double p = u * v;
-    grow(sum, std::fma(u, v, -p));
-    grow(sum, p);
-  }
-  // Nonoverlapping, increasing magnitude: the last nonzero term carries the sign.
-  if (sum.empty()) return 0;
-  return sum.back() > 0 ? 1 : -1;
-}
 
 double ConvexPath::area() const {
   double twice = 0.0;
@@ -90,13 +53,13 @@ ConvexPath polygon_path(std::vector<Eigen::Vector2d> v) {
       throw InvalidInput("path vertices " + std::to_string(i) + " and " + std::to_string((i + 1) % n) +
                          " coincide");
   // Orientation of the first non-collinear turn decides; every turn must then agree.
-  const int first = exact_orientation(v[n - 1], v[0], v[1]);
+  const int first = mesh_predicates::orient2d(v[n - 1], v[0], v[1]);
   if (first < 0) {
     std::vector<Eigen::Vector2d> reversed(v.rbegin(), v.rend());
     v = std::move(reversed);
   }
   for (std::size_t i = 0; i < n; ++i) {
-    const int turn = exact_orientation(v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+    const int turn = mesh_predicates::orient2d(v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
     if (turn == 0)
       throw InvalidInput("path is not strictly convex: vertex " + std::to_string(i) +
                          " is collinear with its neighbours");

@@ -26,13 +26,10 @@ ConvexPath circular_path(int n, double radius = 1.0);
 /// \pre n >= 3, a, b finite and > 0   \throw InvalidInput
 ConvexPath ellipse_path(double a, double b, int n);
 /// Any strictly convex polygon by its vertices, in either orientation (clockwise is reversed).
-/// Convexity is checked exactly (orientation signs computed without rounding error): every turn
+/// Convexity is checked exactly (orientation signs by mesh/predicates.hpp): every turn
 /// strictly left and the boundary winding once.
 /// \throw InvalidInput naming the offending vertex (repeated, collinear, reflex, self-overlapping)
 ConvexPath polygon_path(std::vector<Eigen::Vector2d> vertices);
 
-/// Sign (-1, 0, +1) of the orientation determinant of a, b, c, computed exactly (error-free
-/// products and an expansion sum, after Shewchuk 1997). +1: counter-clockwise.
-int exact_orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
 
 }  // namespace sculpt

@@ -9,7 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "base/errors.hpp"
-#include "bsp/assembly/face_triangulation.hpp"
+#include "mesh/triangulate.hpp"
 #include "bsp/tree/autopartition.hpp"
 
 namespace sculpt {
@@ -119,7 +119,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       pts.push_back(kernel::to_world(g[std::size_t(f[i])]));
       local.push_back(int(i));
     }
-    for (const auto& tri : detail::triangulate_face(pts, local, best.normal())) {
+    for (const IndexTriangle& tri : triangulate_polygon(pts, local)) {
       const GridPoint v[3] = {g[std::size_t(f[std::size_t(tri[0])])], g[std::size_t(f[std::size_t(tri[1])])],
                               g[std::size_t(f[std::size_t(tri[2])])]};
       const GridPoint u = sub(v[1], v[0]), w = sub(v[2], v[0]);
@@ -135,12 +135,12 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
   }
 
   // Thibault & Naylor 1987 (autopartition.hpp): each candidate scored against every polygon.
-  detail::Arena arena;
+  bsp::detail::Arena arena;
   arena.planes = std::move(table);
   std::vector<BoundaryFragment> fragments;
   fragments.reserve(polys.size());
   for (ConvexPolygon& p : polys) fragments.push_back({std::move(p), false});
-  return detail::autopartition(arena, std::move(fragments),
+  return bsp::detail::autopartition(arena, std::move(fragments),
                                {.candidates = options.candidates,
                                 .sample = std::numeric_limits<int>::max(),
                                 .split_weight = options.split_weight,

@@ -35,29 +35,15 @@ struct CircularOptions {
 };
 /// Cylinder of radius r around the z axis, z in [0, h]; the polygon has its vertices on the circle.
 Solid cylinder(double radius, double height, const CircularOptions& options = {});
+struct ConeOptions {
+  int segments = 32;        ///< as CircularOptions::segments
+  bool center = false;      ///< centre the height on z = 0 instead of z in [0, h]
+  double top_radius = 0;    ///< > 0: a frustum with this radius at the top
+};
 /// Cone (frustum if top_radius > 0) around the z axis, base radius r at z = 0, apex at z = h.
-Solid cone(double radius, double height, const CircularOptions& options = {}, double top_radius = 0);
+Solid cone(double radius, double height, const ConeOptions& options = {});
 /// Sphere of radius r centred at the origin: segments edges around the equator,
 /// (segments + 1) / 2 rings like OpenSCAD, flat polar caps; vertices on the sphere.
 Solid sphere(double radius, const CircularOptions& options = {});
-
-}  // namespace sculpt
-
-namespace sculpt {
-
-/// One ring of a solid of revolution: height z and scale of the path polygon (0 = apex).
-struct Ring {
-  double z = 0;
-  double scale = 1;
-};
-/// Stacked bands between consecutive rings (z strictly increasing): ring k is the convex path
-/// polygon (counter-clockwise around the z axis, containing it) scaled by rings[k].scale; each
-/// band face is an exact planar quadrilateral (or triangle at an apex), caps are flat. The tree
-/// is Ihm & Naylor's sec. 6 structure: a balanced tree of the ring planes, in each band a
-/// balanced tree of planes through the axis, then the face planes. Only the first and the last
-/// ring may have scale 0. \throw InvalidInput for a bad path or rings.
-Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings);
-/// The regular polygon with `segments` vertices on the unit circle, the first at angle 0.
-std::vector<Eigen::Vector2d> circle_path(int segments);
 
 }  // namespace sculpt

@@ -12,7 +12,7 @@
 
 namespace sculpt {
 
-using detail::Arena;
+using bsp::detail::Arena;
 using kernel::ConvexPolygon;
 using kernel::Side;
 
@@ -180,8 +180,8 @@ class Merger {
       path.resize(f.depth);
       if (f.add >= 0) path.push_back(f.add);
       const BspNode n = a_.nodes[std::size_t(f.a)];
-      if (detail::pending(a_.polygons[std::size_t(f.a)]))
-        a_.polygons[std::size_t(f.a)] = detail::node_polygon(a_, n.plane, path);
+      if (bsp::detail::pending(a_.polygons[std::size_t(f.a)]))
+        a_.polygons[std::size_t(f.a)] = bsp::detail::node_polygon(a_, n.plane, path);
       // A side whose child in a is a leaf that decides the result alone does not need b's part.
       const bool wanted[2] = {!decided(n.negative, op), !decided(n.positive, op)};
       TreeRef bneg = kOut, bpos = kOut;
@@ -214,13 +214,13 @@ class Merger {
       const int x = a == kIn;
       if (op[x][0] == op[x][1]) return op[x][0] ? kIn : kOut;
       if (op[x][1]) return b;
-      detail::complement_in_place(a_, b);
+      bsp::detail::complement_in_place(a_, b);
       return b;
     }
     const int y = b == kIn;
     if (op[0][y] == op[1][y]) return op[0][y] ? kIn : kOut;
     if (op[1][y]) return a;
-    detail::complement_in_place(a_, a);
+    bsp::detail::complement_in_place(a_, a);
     return a;
   }
 
@@ -243,14 +243,14 @@ class Merger {
 // with a on one closed side are dropped first (extent_pruning.hpp).
 TreeRef merge_operands(Arena& arena, TreeRef ra, std::vector<BoundaryFragment> fa, FragmentBoxes boxes, TreeRef rb,
                        const std::vector<BoundaryFragment>& fb, const bool op[2][2]) {
-  std::optional<detail::ExtentSides> sides;
+  std::optional<bsp::detail::ExtentSides> sides;
   if (op[0][0] == op[0][1] && !is_leaf(rb)) {
-    detail::complete_boxes(fa, boxes);
-    sides = detail::extent_sides(arena, ra, fa, boxes, rb, fb);
+    bsp::detail::complete_boxes(fa, boxes);
+    sides = bsp::detail::extent_sides(arena, ra, fa, boxes, rb, fb);
   }
-  detail::merge_boundaries(arena, ra, std::move(fa), std::move(boxes), rb, fb, op, sides ? &*sides : nullptr);
-  if (sides) rb = detail::prune_to_extent(arena, rb, *sides);
-  detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
+  bsp::detail::merge_boundaries(arena, ra, std::move(fa), std::move(boxes), rb, fb, op, sides ? &*sides : nullptr);
+  if (sides) rb = bsp::detail::prune_to_extent(arena, rb, *sides);
+  bsp::detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
   Merger m(arena);
   return m.merge(ra, rb, op);
 }
@@ -271,7 +271,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   const TreeRef rb = arena.append(b);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(b);
   const TreeRef r = merge_operands(arena, ra, std::move(fa), a.boundary_boxes(), rb, fb, op);
-  return detail::compact(arena, r);
+  return bsp::detail::compact(arena, r);
 }
 
 // In place: the larger operand's storage is reused; the result is compacted only when the
@@ -279,8 +279,8 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < y.nodes().size()) return apply(x, y, table);
   // The boundary of x must be known before its storage moves into the arena.
-  std::optional<detail::Fragments> extracted;
-  if (!x.has_boundary()) extracted = detail::boundary_fragments(x);
+  std::optional<bsp::detail::Fragments> extracted;
+  if (!x.has_boundary()) extracted = bsp::detail::boundary_fragments(x);
   Arena arena;
   const TreeRef ra = arena.adopt(std::move(x));
   std::vector<BoundaryFragment> fa;
@@ -306,7 +306,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
   const TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
   if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64))
-    return detail::compact(arena, r, {.keep_capacity = true});
+    return bsp::detail::compact(arena, r, {.keep_capacity = true});
   const std::size_t compacted = arena.compacted_size;
   if (is_leaf(r)) return Solid::leaf(r == kIn);
   return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted,
@@ -328,7 +328,7 @@ Solid subtract(const Solid& a, const Solid& b) { return apply(a, b, kDifference)
 
 Solid unite_all(std::vector<Solid> solids) {
   if (solids.empty()) return Solid();
-  if (solids.size() > 2) return detail::unite_by_boundaries(std::move(solids));
+  if (solids.size() > 2) return bsp::detail::unite_by_boundaries(std::move(solids));
   if (solids.size() == 1) return std::move(solids.front());
   return unite(std::move(solids[0]), solids[1]);
 }
@@ -340,14 +340,14 @@ Solid complement(const Solid& a) {
     arena.boundary = arena.boundary_of(a);
     for (BoundaryFragment& f : *arena.boundary) f.flip = !f.flip;
   }
-  detail::complement_in_place(arena, r);
-  return detail::compact(arena, r);
+  bsp::detail::complement_in_place(arena, r);
+  return bsp::detail::compact(arena, r);
 }
 
 std::pair<Solid, Solid> partition(const Solid& solid, const kernel::Plane& plane) {
   Arena arena;
   TreeRef r = arena.append(solid);
-  detail::fill_node_polygons(arena, r);
+  bsp::detail::fill_node_polygons(arena, r);
   const std::int32_t cut = arena.planes.add(plane);
   ConvexPolygon pp = kernel::world_polygon(arena.planes, cut);
   Merger m(arena);
@@ -361,7 +361,7 @@ std::pair<Solid, Solid> partition(const Solid& solid, const kernel::Plane& plane
   arena.polygons.push_back(kernel::world_polygon(arena.planes, cut));
   // The two trees share no nodes; compact each separately from a copy of the arena.
   Arena second = arena;
-  return {detail::compact(arena, id_neg), detail::compact(second, id_pos)};
+  return {bsp::detail::compact(arena, id_neg), bsp::detail::compact(second, id_pos)};
 }
 
 }  // namespace sculpt

@@ -150,7 +150,7 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<Bounda
 }
 
 Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
-  detail::Arena arena;
+  bsp::detail::Arena arena;
   arena.planes = std::move(planes_);
   // Every builder node is kept at most once (unless shared) and adds its plane's opposite.
   const std::size_t room = room_for(nodes_.size());
@@ -185,9 +185,9 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
       const BspNode n = nodes_[std::size_t(src)];
       ConvexPolygon poly;
       std::int32_t on = -1;
-      const detail::CellCut cut = detail::clip_to_cell(arena.planes, n.plane, constraints, poly, on);
-      int cell_side = cut == detail::CellCut::Negative ? -1 : (cut == detail::CellCut::Positive ? 1 : 0);
-      const bool empty = cut == detail::CellCut::Empty;
+      const bsp::detail::CellCut cut = bsp::detail::clip_to_cell(arena.planes, n.plane, constraints, poly, on);
+      int cell_side = cut == bsp::detail::CellCut::Negative ? -1 : (cut == bsp::detail::CellCut::Positive ? 1 : 0);
+      const bool empty = cut == bsp::detail::CellCut::Empty;
       if (on >= 0 && !arena.planes.auxiliary(n.plane)) {  // the ancestor's plane takes over the faces
         arena.planes.set_auxiliary(on, false);
         arena.planes.set_auxiliary(arena.opposite(on), false);
@@ -228,7 +228,7 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
   });
   if (collapsible || result_root != 0 || is_leaf(result_root)) {
     arena.boundary = std::move(boundary);
-    return detail::compact(arena, result_root);
+    return bsp::detail::compact(arena, result_root);
   }
   return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), result_root, 0,
                std::move(boundary));

@@ -1,5 +1,5 @@
 // Built-ins of the revolution area: convex paths, solids of revolution as nearly balanced BSP
-// trees, and the profile models of Figure 5 (Ihm & Naylor 1990, sec. 6; lib/bsp/revolve.hpp,
+// trees, and the profile models of Figure 5 (Ihm & Naylor 1990, sec. 6; lib/revolution/revolve.hpp,
 // lib/curves/profiles.hpp). See docs/revolution.md.
 #include <cmath>
 #include <string>
@@ -88,11 +88,11 @@ void register_revolution(BuiltinTable& table) {
              .run = [](const Arguments& args) {
                const auto profile = profile_arg(args, 0);
                const auto& path = args.object<PathValue>(1, "a path (circle, ellipse, convex_path)").path;
-               RevolveOptions options;
+               revolution::RevolveOptions options;
                if (args.has(2)) options.face_only_below = static_cast<int>(args.integer(2, 2, 1000000));
                // About 1.4 nodes per profile segment and path edge (docs/revolution.md).
                args.charge(static_cast<std::uint64_t>(profile.size()) * static_cast<std::uint64_t>(path.edges()));
-               return solid_value(revolve(profile, path, options));
+               return solid_value(revolution::revolve(profile, path, options));
              }});
   table.add({.name = "profile",
              .signature = "profile(name, points=n, noise=0, seed=1)",

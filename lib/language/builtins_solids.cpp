@@ -104,7 +104,8 @@ void register_solids(BuiltinTable& table) {
              .doc = "Cone around the z axis: base of radius r at z = 0, apex at z = h.",
              .params = {{"r"}, {"h"}, {"segments", false}},
              .run = [](const Arguments& args) {
-               return solid_value(cone(args.number(0), args.number(1), circular(args, 2)));
+               const CircularOptions c = circular(args, 2);
+               return solid_value(cone(args.number(0), args.number(1), {.segments = c.segments, .center = c.center}));
              }});
   table.add({.name = "union_all",
              .signature = "union_all(solids)",

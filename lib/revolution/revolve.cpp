@@ -10,8 +10,11 @@
 #include "bsp/tree_builder.hpp"
 #include "kernel/grid.hpp"
 #include "kernel/plane.hpp"
+#include "revolution/trees/revolve_plane_tree.hpp"
 
-namespace sculpt {
+namespace sculpt::revolution {
+
+using namespace detail;  // the trees of trees/
 namespace {
 
 using kernel::Int128;
@@ -130,4 +133,4 @@ Solid revolve(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& pat
   return std::move(builder).build(tree.root >= 0 ? ref[tree.root] : tree.root);
 }
 
-}  // namespace sculpt
+}  // namespace sculpt::revolution

@@ -19,10 +19,14 @@
 #include <Eigen/Core>
 
 #include "bsp/convex_path.hpp"
-#include "revolution/trees/revolve_plane_tree.hpp"
 #include "bsp/solid.hpp"
 
-namespace sculpt {
+namespace sculpt::revolution {
+
+/// Options of the section 6 construction.
+struct RevolveOptions {
+  int face_only_below = 6;  ///< path sub-curves this short use face planes only (paper: "say 6")
+};
 
 /// The inputs revolve() actually revolves: the profile made monotone (increasing z) and snapped to
 /// the kernel grid, and the path snapped to the dyadic lattice with `path_bits` bits (the largest,
@@ -44,4 +48,4 @@ SnappedRevolution snap_revolution(const std::vector<Eigen::Vector2d>& profile, c
 /// \throw as snap_revolution
 Solid revolve(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& path, const RevolveOptions& options = {});
 
-}  // namespace sculpt
+}  // namespace sculpt::revolution

@@ -6,7 +6,9 @@
 
 #include "revolution/trees/revolve_plane_tree.hpp"
 
-namespace sculpt {
+namespace sculpt::revolution {
+
+using namespace detail;  // the trees of trees/
 namespace {
 
 class BoundaryBuilder {
@@ -89,4 +91,4 @@ double revolved_volume(const std::vector<Eigen::Vector2d>& profile, const Convex
   return volume;
 }
 
-}  // namespace sculpt
+}  // namespace sculpt::revolution

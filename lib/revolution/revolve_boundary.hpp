@@ -11,7 +11,7 @@
 #include "bsp/convex_path.hpp"
 #include "mesh/polygon_mesh.hpp"
 
-namespace sculpt {
+namespace sculpt::revolution {
 
 /// Closed polygon mesh of the revolved polytope: one planar trapezoid (a triangle where the profile
 /// touches the axis) per slab and path edge, an annulus of trapezoids or a flat cap (one polygon)
@@ -23,4 +23,4 @@ PolygonMesh revolve_boundary(const std::vector<Eigen::Vector2d>& profile, const 
 /// h/3 (A0 + A1 + sqrt(A0 A1)), A = r^2 area(path).   \throw InvalidInput
 double revolved_volume(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& path);
 
-}  // namespace sculpt
+}  // namespace sculpt::revolution

@@ -1,5 +1,5 @@
 // Ring primitives split first by the coordinate planes through their axis where the path has
-// vertices there (bsp/primitives.cpp, SectorOptions::axis_vertex): which paths qualify (decided
+// vertices there (bsp/rings/sector_tree.hpp, SectorOptions::axis_vertex): which paths qualify (decided
 // exactly), that the ring vertices there lie exactly on those planes, that the solids stay the
 // same (closed, same volume), and that a box sharing the planes is absorbed by the merge.
 #include <gtest/gtest.h>
@@ -8,6 +8,7 @@
 
 #include "bsp/boundary.hpp"
 #include "bsp/primitives.hpp"
+#include "bsp/rings/ring_solid.hpp"
 #include "bsp/set_operations.hpp"
 #include "kernel/predicates.hpp"
 #include "support/mesh_checks.hpp"
@@ -64,7 +65,7 @@ TEST(AxisPlanes, AsymmetricPathsKeepTheFaceMiddleSplits) {
   // A vertex on +x whose two edges are not mirror images: the ring vertices there are not on
   // y = 0, so no band may split there.
   const std::vector<Eigen::Vector2d> path = {{1, 0}, {0.3, 0.9}, {-1, 0.2}, {-0.6, -1}, {0.5, -0.7}};
-  const Solid prism = revolve_rings(path, {{0, 1}, {1, 1}});
+  const Solid prism = bsp::detail::revolve_rings(path, {{0, 1}, {1, 1}});
   EXPECT_EQ(nodes_on(prism, kY0), 0);
   EXPECT_EQ(nodes_on(prism, kX0), 0);
   double area = 0;  // shoelace: the revolved prism's volume is area * height
@@ -75,7 +76,7 @@ TEST(AxisPlanes, AsymmetricPathsKeepTheFaceMiddleSplits) {
   }
   EXPECT_NEAR(vol(prism), area, 1e-6);
   // A symmetric path with vertices on all four axes (a diamond): both planes.
-  const Solid diamond = revolve_rings({{1, 0}, {0, 1}, {-1, 0}, {0, -1}}, {{0, 1}, {1, 1}});
+  const Solid diamond = bsp::detail::revolve_rings({{1, 0}, {0, 1}, {-1, 0}, {0, -1}}, {{0, 1}, {1, 1}});
   EXPECT_EQ(nodes_on(diamond, kY0), 1);
   EXPECT_EQ(nodes_on(diamond, kX0), 2);
   EXPECT_NEAR(vol(diamond), 2.0, 1e-6);  // edge normals are rounded to 2^-26

@@ -68,7 +68,7 @@ TEST(BoundaryMerge, ResultsCarryTheirBoundary) {
 TEST(BoundaryMerge, RingPrimitivesCarryTheirExactBoundary) {
   // Spheres, cylinders and cones know their faces without extraction (triangles at an apex, caps).
   const Solid solids[] = {sphere(1.0, {.segments = 16}), sphere(0.5, {.segments = 64}), cylinder(1.0, 2.0),
-                          cone(1.0, 2.0), cone(1.0, 2.0, {.segments = 7}, 0.5), sphere(3.0, {.segments = 5}),
+                          cone(1.0, 2.0), cone(1.0, 2.0, {.segments = 7, .top_radius = 0.5}), sphere(3.0, {.segments = 5}),
                           sphere(1.0, {.segments = 7}), cylinder(1.0, 1.0, {.segments = 7}),  // 7: no "empty wedge"
                           // near the limit of the direct boundary (primitives.cpp): short edges at the poles
                           sphere(1.0, {.segments = 256}), cylinder(0.01, 1.0, {.segments = 300})};

@@ -24,8 +24,8 @@ double vol(const Solid& s) { return double(checks::reference_signed_volume(to_me
 
 // A's sides of every plane of B (both in one arena, as a set operation has them).
 struct Sides {
-  detail::Arena arena;
-  detail::ExtentSides sides;
+  bsp::detail::Arena arena;
+  bsp::detail::ExtentSides sides;
   TreeRef b = kOut;
   Side of(const kernel::Plane& p) const {  // the side for B's plane equal to p (Both if none)
     for (std::int32_t i = 0; i < arena.planes.size(); ++i)
@@ -40,8 +40,8 @@ Sides sides_of(const Solid& a, const Solid& b) {
   s.b = s.arena.append(b);
   const std::vector<BoundaryFragment> fb = s.arena.boundary_of(b);
   FragmentBoxes boxes;
-  detail::complete_boxes(fa, boxes);
-  s.sides = detail::extent_sides(s.arena, ra, fa, boxes, s.b, fb);
+  bsp::detail::complete_boxes(fa, boxes);
+  s.sides = bsp::detail::extent_sides(s.arena, ra, fa, boxes, s.b, fb);
   return s;
 }
 
@@ -63,7 +63,7 @@ TEST(ExtentPruning, SidesOfPlanesTouchingCrossingAndMissingABox) {
   EXPECT_EQ(s.of(axis_plane(2, 1, 1)), Side::Negative);   // z <= 1: touching
   EXPECT_EQ(s.of(axis_plane(2, -1, -3)), Side::Negative);  // -z - 3 <= 0: apart
   // Pruned, B's tree keeps only the crossing plane.
-  const TreeRef pruned = detail::prune_to_extent(s.arena, s.b, s.sides);
+  const TreeRef pruned = bsp::detail::prune_to_extent(s.arena, s.b, s.sides);
   ASSERT_FALSE(is_leaf(pruned));
   const BspNode& n = s.arena.nodes[std::size_t(pruned)];
   EXPECT_TRUE(s.arena.planes[n.plane] == axis_plane(0, -1, 0.5));
@@ -71,7 +71,7 @@ TEST(ExtentPruning, SidesOfPlanesTouchingCrossingAndMissingABox) {
   // B touching A along a face only: every plane is one-sided, B collapses to its out leaf.
   Sides t = sides_of(a, box({1, 0, 0}, {2, 1, 1}));
   EXPECT_EQ(t.of(axis_plane(0, -1, 1)), Side::Positive);  // 1 - x <= 0 holds B; A is on x <= 1
-  EXPECT_EQ(detail::prune_to_extent(t.arena, t.b, t.sides), kOut);
+  EXPECT_EQ(bsp::detail::prune_to_extent(t.arena, t.b, t.sides), kOut);
   // An unbounded A (a complement) has no extent: nothing is one-sided.
   Sides u = sides_of(complement(a), box({2, 0, 0}, {3, 1, 1}));
   EXPECT_TRUE(u.sides.none());

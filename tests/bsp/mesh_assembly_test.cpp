@@ -108,7 +108,7 @@ void expect_polytope_vertices(const PolygonMesh& mesh, const std::vector<Homogen
 
 // Largest number of different plane triples (as sets of planes up to orientation) among the
 // fragments' corners at one point: > 1 means the exact comparison across triples is exercised.
-int most_triples_at_one_point(const detail::Fragments& f) {
+int most_triples_at_one_point(const bsp::detail::Fragments& f) {
   struct Corner {
     Homogeneous at;
     std::set<int> planes;  // one representative index per plane up to orientation
@@ -162,7 +162,7 @@ TEST(MeshAssembly, VertexOnPlaneZeroTestMatchesUnboundedArithmetic) {
     const Homogeneous h = cramer(p, q, r);
     if (h.w == 0) continue;
     const kernel::ApproxPoint at = kernel::approximate_vertex(p, q, r);
-    const detail::VertexMinors minors = detail::vertex_minors(p, q, r, at);
+    const bsp::detail::VertexMinors minors = bsp::detail::vertex_minors(p, q, r, at);
     std::vector<Plane> tests = {random_plane(), p.opposite(), q};
     for (int k = 0; k < 3; ++k) {  // through the vertex: alpha p + beta q + gamma r
       const std::int64_t al = std::int64_t(rng() % 5) - 2, be = std::int64_t(rng() % 5) - 2, ga = std::int64_t(rng() % 5) - 2;
@@ -174,7 +174,7 @@ TEST(MeshAssembly, VertexOnPlaneZeroTestMatchesUnboundedArithmetic) {
     }
     for (const Plane& s : tests) {
       const bool on = side(h, s) == 0;
-      ASSERT_EQ(detail::vertex_on_plane(minors, s), on) << "trial " << trial;
+      ASSERT_EQ(bsp::detail::vertex_on_plane(minors, s), on) << "trial " << trial;
       ASSERT_EQ(kernel::orient(p, q, r, at, s) == kernel::Sign::Zero, on) << "trial " << trial;
       (on ? zeros : nonzeros) += 1;
       const bool large_d = s.d >= kernel::Int128(1) << 72 || s.d <= -(kernel::Int128(1) << 72);
@@ -195,11 +195,11 @@ TEST(MeshAssembly, EqualPointsFromDifferentPlaneTriplesAreOneVertex) {
     for (int sy = -1; sy <= 1; sy += 2)
       for (int sz = -1; sz <= 1; sz += 2) hs.push_back({Eigen::Vector3d(sx, sy, sz), -1.0});
   const Solid s = convex_polytope(hs);
-  const detail::Fragments f = detail::boundary_fragments(s);
+  const bsp::detail::Fragments f = bsp::detail::boundary_fragments(s);
   ASSERT_GE(most_triples_at_one_point(f), 2);
   const std::vector<Homogeneous> reference = polytope_vertices(kernel_planes(hs));
   ASSERT_EQ(reference.size(), 6u);
-  const PolygonMesh mesh = detail::assemble_mesh(f, {});
+  const PolygonMesh mesh = bsp::detail::assemble_mesh(f, {});
   expect_polytope_vertices(mesh, reference);
   EXPECT_EQ(mesh.faces.size(), 8u);
   EXPECT_TRUE(checks::VolumeNear(mesh, 4.0 / 3.0, 1e-12));
@@ -216,9 +216,9 @@ TEST(MeshAssembly, FivePlanesThroughOneApexGiveOneVertex) {
   const std::vector<Homogeneous> reference = polytope_vertices(kernel_planes(hs));
   ASSERT_EQ(reference.size(), 6u);
   const Solid s = convex_polytope(hs);
-  const detail::Fragments f = detail::boundary_fragments(s);
+  const bsp::detail::Fragments f = bsp::detail::boundary_fragments(s);
   ASSERT_GE(most_triples_at_one_point(f), 2);
-  expect_polytope_vertices(detail::assemble_mesh(f, {}), reference);
+  expect_polytope_vertices(bsp::detail::assemble_mesh(f, {}), reference);
 }
 
 TEST(MeshAssembly, NearlyCoincidentDistinctVerticesStayApart) {
@@ -240,8 +240,8 @@ TEST(MeshAssembly, NearlyCoincidentDistinctVerticesStayApart) {
 }
 
 // The carried fragments of a solid, or those extracted from its tree.
-detail::Fragments fragments_of(const Solid& s, bool carried) {
-  return carried ? detail::Fragments{s.planes(), s.boundary()} : detail::boundary_fragments(s);
+bsp::detail::Fragments fragments_of(const Solid& s, bool carried) {
+  return carried ? bsp::detail::Fragments{s.planes(), s.boundary()} : bsp::detail::boundary_fragments(s);
 }
 
 TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
@@ -263,11 +263,11 @@ TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
     SCOPED_TRACE(i);
     for (const bool carried : {false, true}) {
       if (carried && !solids[i].has_boundary()) continue;
-      const detail::Fragments f = fragments_of(solids[i], carried);
-      const detail::MergedFragments merged = detail::merge_vertices(f);
+      const bsp::detail::Fragments f = fragments_of(solids[i], carried);
+      const bsp::detail::MergedFragments merged = bsp::detail::merge_vertices(f);
       std::vector<Homogeneous> point;
       std::vector<int> vertex;  // of each corner, in fragment order
-      std::vector<detail::PlaneTriple> triple;
+      std::vector<bsp::detail::PlaneTriple> triple;
       for (std::size_t k = 0; k < f.fragments.size(); ++k) {
         const auto& fr = f.fragments[k];
         const int m = int(fr.polygon.corners.size());
@@ -282,7 +282,7 @@ TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
       int next = 0;
       for (std::size_t a = 0; a < point.size(); ++a) {
         if (vertex[a] == next) {  // first corner of a new vertex
-          const detail::PlaneTriple& t = merged.vertices.triple[std::size_t(next)];
+          const bsp::detail::PlaneTriple& t = merged.vertices.triple[std::size_t(next)];
           EXPECT_TRUE(t.s == triple[a].s && t.p == triple[a].p && t.q == triple[a].q);
           ++next;
         }
@@ -307,9 +307,9 @@ TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
     SCOPED_TRACE(i);
     for (const bool carried : {false, true}) {
       if (carried && !solids[i].has_boundary()) continue;
-      const detail::Fragments f = fragments_of(solids[i], carried);
-      const detail::MergedFragments merged = detail::merge_vertices(f);
-      const detail::AssemblyVertices& v = merged.vertices;
+      const bsp::detail::Fragments f = fragments_of(solids[i], carried);
+      const bsp::detail::MergedFragments merged = bsp::detail::merge_vertices(f);
+      const bsp::detail::AssemblyVertices& v = merged.vertices;
       ASSERT_EQ(v.first_class.size(), std::size_t(v.size()));
       auto listed = [&](int u) {
         std::set<std::uint32_t> ids;
@@ -323,7 +323,7 @@ TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
       };
       std::vector<Homogeneous> at;
       for (int u = 0; u < v.size(); ++u) {
-        const detail::PlaneTriple& t = v.triple[std::size_t(u)];
+        const bsp::detail::PlaneTriple& t = v.triple[std::size_t(u)];
         at.push_back(cramer(f.planes[t.s], f.planes[t.p], f.planes[t.q]));
       }
       std::vector<std::set<std::uint32_t>> known(static_cast<std::size_t>(v.size()));
@@ -338,7 +338,7 @@ TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
             EXPECT_TRUE(known[std::size_t(u)].count(merged.ids.id[std::size_t(plane)]) == 1) << "corner plane not listed";
         }
       }
-      const detail::VertexGeometry geometry(f.planes, merged.ids, v);
+      const bsp::detail::VertexGeometry geometry(f.planes, merged.ids, v);
       int on = 0;
       for (int u = 0; u < v.size(); ++u)
         for (std::int32_t plane = 0; plane < f.planes.size(); ++plane) {
@@ -355,7 +355,7 @@ TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
 }
 
 // After T-junction removal every half-edge u -> w has a half-edge w -> u, as many times.
-::testing::AssertionResult EveryHalfEdgeHasAnOpposite(const detail::FaceList& faces) {
+::testing::AssertionResult EveryHalfEdgeHasAnOpposite(const bsp::detail::FaceList& faces) {
   std::map<std::pair<int, int>, int> count;
   for (int f = 0; f < faces.size(); ++f)
     for (int c = faces.begin(f); c < faces.end(f); ++c)
@@ -386,13 +386,13 @@ TEST(MeshAssembly, JunctionRemovalByLinesAndBySearchAgree) {
   solids.push_back(box({0, 0, 0}, {3, 3, 3}) - box({1, -1, 1}, {2, 4, 2}) - box({-1, 1, 1}, {4, 2, 2}));
   for (std::size_t i = 0; i < solids.size(); ++i) {
     SCOPED_TRACE(i);
-    const detail::Fragments f = detail::boundary_fragments(solids[i]);
-    const detail::MergedFragments merged = detail::merge_vertices(f);
-    const detail::PlaneIds& ids = merged.ids;
-    const detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
-    const detail::FaceList& faces = merged.faces;
-    const detail::JunctionResult by_lines = detail::remove_t_junctions(faces, geometry, ids);
-    const detail::JunctionResult by_search = detail::remove_t_junctions(faces, geometry, ids, {.group_by_lines = false});
+    const bsp::detail::Fragments f = bsp::detail::boundary_fragments(solids[i]);
+    const bsp::detail::MergedFragments merged = bsp::detail::merge_vertices(f);
+    const bsp::detail::PlaneIds& ids = merged.ids;
+    const bsp::detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
+    const bsp::detail::FaceList& faces = merged.faces;
+    const bsp::detail::JunctionResult by_lines = bsp::detail::remove_t_junctions(faces, geometry, ids);
+    const bsp::detail::JunctionResult by_search = bsp::detail::remove_t_junctions(faces, geometry, ids, {.group_by_lines = false});
     EXPECT_GT(by_lines.open, 0);
     EXPECT_GT(by_lines.by_lines, 0);
     EXPECT_EQ(by_search.by_search, by_search.open);
@@ -405,8 +405,8 @@ TEST(MeshAssembly, JunctionRemovalByLinesAndBySearchAgree) {
 
 TEST(MeshAssembly, CanonicalPlaneIdsMatchEqualOrOppositePlanes) {
   const Solid s = sphere(1.0, {.segments = 12}) - box({0, 0, 0}, {1, 1, 1});
-  const detail::Fragments f = detail::boundary_fragments(s);
-  const detail::PlaneIds ids = detail::canonical_plane_ids(f.planes);
+  const bsp::detail::Fragments f = bsp::detail::boundary_fragments(s);
+  const bsp::detail::PlaneIds ids = bsp::detail::canonical_plane_ids(f.planes);
   ASSERT_EQ(ids.id.size(), std::size_t(f.planes.size()));
   for (std::int32_t i = 0; i < f.planes.size(); ++i)
     for (std::int32_t j = 0; j < f.planes.size(); ++j) {
@@ -422,7 +422,7 @@ TEST(MeshAssembly, HalfEdgeIndexesFindEveryEdgeAndNoOther) {
   // A small random face list against a plain multimap.
   std::mt19937 rng(3);
   std::uniform_int_distribution<int> vertex(0, 29), size(3, 6);
-  detail::FaceList faces;
+  bsp::detail::FaceList faces;
   for (int f = 0; f < 200; ++f) {
     faces.open_face(0, false);
     for (int k = size(rng); k > 0; --k) faces.add_corner(vertex(rng), 0);
@@ -431,15 +431,15 @@ TEST(MeshAssembly, HalfEdgeIndexesFindEveryEdgeAndNoOther) {
   for (int f = 0; f < faces.size(); ++f)
     for (int c = faces.begin(f); c < faces.end(f); ++c)
       reference.insert({{faces.vertex[std::size_t(c)], faces.vertex[std::size_t(faces.next(f, c))]}, c});
-  const detail::OutgoingEdges out(faces, 30);
-  detail::EdgeIndex index(std::size_t(faces.corners()));
-  for (const auto& [edge, c] : reference) index.insert(detail::edge_key(edge.first, edge.second), c);
+  const bsp::detail::OutgoingEdges out(faces, 30);
+  bsp::detail::EdgeIndex index(std::size_t(faces.corners()));
+  for (const auto& [edge, c] : reference) index.insert(bsp::detail::edge_key(edge.first, edge.second), c);
   for (int u = 0; u < 30; ++u)
     for (int w = 0; w < 30; ++w) {
       std::multiset<int> expected, by_vertex, by_hash;
       for (auto [it, end] = reference.equal_range({u, w}); it != end; ++it) expected.insert(it->second);
       out.for_each(u, w, [&](int c) { by_vertex.insert(c); });
-      for (int c = index.find(detail::edge_key(u, w)); c >= 0; c = index.next(c)) by_hash.insert(c);
+      for (int c = index.find(bsp::detail::edge_key(u, w)); c >= 0; c = index.next(c)) by_hash.insert(c);
       ASSERT_EQ(by_vertex, expected) << u << " -> " << w;
       ASSERT_EQ(by_hash, expected) << u << " -> " << w;
       ASSERT_EQ(out.find(u, w) >= 0, !expected.empty());

@@ -69,7 +69,7 @@ TEST(RingPrimitives, PlanesAreNormalized) {
   int planes = 0;
   for (int n : {3, 6, 7, 32, 61}) {
     for (const Solid& s : {sphere(0.8, {.segments = n}), cylinder(1.5, 0.3, {.segments = n}),
-                           cone(1.0, 2.0, {.segments = n}, 0.4), cone(0.7, 0.7, {.segments = n})}) {
+                           cone(1.0, 2.0, {.segments = n, .top_radius = 0.4}), cone(0.7, 0.7, {.segments = n})}) {
       for (std::int32_t i = 0; i < s.planes().size(); ++i) {
         const kernel::Plane& p = s.planes()[i];
         ASSERT_EQ(euclid(euclid(p.a, p.b), euclid(p.c, p.d)), 1) << n << " plane " << i;

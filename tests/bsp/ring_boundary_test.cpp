@@ -45,7 +45,7 @@ TEST(RingBoundary, BatchApproximationsHaveTheKernelsBits) {
   const std::int32_t n0 = planes.add(Plane(big, 1, 0, 5)), n1 = planes.add(Plane(big + 1, 1, 0, -7)),
                      n2 = planes.add(Plane(0, 0, 1, 3));
   const std::int32_t d0 = planes.add(Plane(1, 2, 3, 0)), d1 = planes.add(Plane(2, 4, 6, 1));  // parallel
-  std::vector<detail::PlaneTriple> triples;
+  std::vector<bsp::detail::PlaneTriple> triples;
   const auto count = std::uint64_t(planes.size());
   for (int i = 0; i < 20001; ++i) {  // odd: the last one is computed alone
     triples.push_back({std::int32_t(rng() % count), std::int32_t(rng() % count), std::int32_t(rng() % count)});
@@ -53,11 +53,11 @@ TEST(RingBoundary, BatchApproximationsHaveTheKernelsBits) {
     if (i % 89 == 0) triples.push_back({n2, n0, n1});
     if (i % 83 == 0) triples.push_back({d0, d1, n2});
   }
-  const std::vector<ApproxPoint> batch = detail::approximate_vertices(planes, triples);
+  const std::vector<ApproxPoint> batch = bsp::detail::approximate_vertices(planes, triples);
   ASSERT_EQ(batch.size(), triples.size());
   int nearly = 0, dependent = 0;
   for (std::size_t i = 0; i < triples.size(); ++i) {
-    const detail::PlaneTriple t = triples[i];
+    const bsp::detail::PlaneTriple t = triples[i];
     const ApproxPoint expected = kernel::approximate_vertex(planes[t.p], planes[t.q], planes[t.r]);
     ASSERT_TRUE(same_bits(batch[i], expected)) << i << ": " << batch[i].x << " " << expected.x;
     nearly += t.p == n0 || t.p == n2;
@@ -65,7 +65,7 @@ TEST(RingBoundary, BatchApproximationsHaveTheKernelsBits) {
   }
   EXPECT_GT(nearly, 200);
   EXPECT_GT(dependent, 200);
-  EXPECT_TRUE(detail::approximate_vertices(planes, {}).empty());
+  EXPECT_TRUE(bsp::detail::approximate_vertices(planes, {}).empty());
 }
 
 // Every corner a ring primitive carries is the vertex support ∩ p ∩ q with edge q, approximated
@@ -77,7 +77,7 @@ TEST(RingBoundary, CarriedCornersAreTheKernelsApproximations) {
     solids.push_back(sphere(0.013, {.segments = n}));
     solids.push_back(cylinder(2.5, 0.75, {.segments = n, .center = true}));
     solids.push_back(cone(1.0, 2.0, {.segments = n}));
-    solids.push_back(cone(1.0, 2.0, {.segments = n}, 0.4));
+    solids.push_back(cone(1.0, 2.0, {.segments = n, .top_radius = 0.4}));
   }
   std::size_t corners = 0;
   for (std::size_t s = 0; s < solids.size(); ++s) {

@@ -21,11 +21,14 @@
 #include "bsp/tree/node_polygons.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/primitives.hpp"
+#include "bsp/rings/ring_solid.hpp"
 #include "bsp/transform.hpp"
 
 namespace sculpt {
 namespace {
 
+using bsp::detail::Ring;
+using bsp::detail::revolve_rings;
 using kernel::ConvexPolygon;
 using kernel::Plane;
 using kernel::PlaneTable;
@@ -179,7 +182,7 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 // Pending sub-hyperplanes of `s` (BuildOptions::nodes_cut_cells) are computed first, from the
 // nodes' paths, so the polygons compared are those every algorithm gets.
 int expect_same_tree(const Built& ref, const Solid& solid) {
-  const detail::Arena s = detail::with_node_polygons(solid);
+  const bsp::detail::Arena s = bsp::detail::with_node_polygons(solid);
   const TreeRef s_root = solid.root();
   std::vector<TreeRef> collapsed(ref.nodes.size(), kOut);
   // Children are created after parents: a reverse pass sees children first.
@@ -239,7 +242,7 @@ TEST(TreeBuilder, SphereTreesEqualTheReferenceBuilder) {
 }
 
 TEST(TreeBuilder, ConeAndCylinderTreesEqualTheReferenceBuilder) {
-  for (const Solid& s : {cylinder(0.5, 2.0, {.segments = 48}), cone(1.0, 1.0, {.segments = 31}, 0.25),
+  for (const Solid& s : {cylinder(0.5, 2.0, {.segments = 48}), cone(1.0, 1.0, {.segments = 31, .top_radius = 0.25}),
                          cone(2.0, 0.5, {.segments = 9, .center = true})}) {
     const Built ref = reference_build(recipe_of(s));
     EXPECT_EQ(expect_same_tree(ref, s), tree_stats(s).nodes);
@@ -255,8 +258,8 @@ TEST(TreeBuilder, RingPrimitivesNeedNoDropping) {
     for (double r : {1e-3, 0.37, 1.0, 250.0}) {
       solids.push_back(sphere(r, {.segments = n}));
       solids.push_back(cylinder(r, 0.5 * r + 1e-3, {.segments = n}));
-      solids.push_back(cone(r, r, {.segments = n, .center = true}, 0.0));
-      solids.push_back(cone(r, 2.0, {.segments = n}, 0.3 * r));
+      solids.push_back(cone(r, r, {.segments = n, .center = true, .top_radius = 0.0}));
+      solids.push_back(cone(r, 2.0, {.segments = n, .top_radius = 0.3 * r}));
     }
   }
   // Fine tessellations near the limit of the direct boundary (primitives.cpp: edge length times
@@ -288,7 +291,7 @@ TEST(TreeBuilder, RingPrimitivesNeedNoDropping) {
   for (std::size_t i = 0; i < solids.size(); ++i) {
     SCOPED_TRACE(i);
     const Solid& s = solids[i];
-    trusted += std::all_of(s.polygons().begin(), s.polygons().end(), detail::pending);
+    trusted += std::all_of(s.polygons().begin(), s.polygons().end(), bsp::detail::pending);
     const Built ref = reference_build(recipe_of(s));
     EXPECT_EQ(expect_same_tree(ref, s), tree_stats(s).nodes);
     if (HasFailure()) return;
@@ -299,7 +302,7 @@ TEST(TreeBuilder, RingPrimitivesNeedNoDropping) {
 // Exact maps (translations, mirrors, integer scales, quarter turns) keep every node cutting its
 // cell, so their images are built without clipping, from full builds and fast builds alike.
 TEST(TreeBuilder, ExactImagesNeedNoDropping) {
-  const Solid sources[] = {sphere(1.0, {.segments = 24}), cone(1.0, 2.0, {.segments = 9}, 0.25),
+  const Solid sources[] = {sphere(1.0, {.segments = 24}), cone(1.0, 2.0, {.segments = 9, .top_radius = 0.25}),
                            sphere(0.5, {.segments = 7}) | box({0, 0, 0}, {1, 1, 1})};
   for (const Solid& s : sources) {
     const std::pair<Solid, double> images[] = {{translate(s, {0.25, -3.0, 7.5}), 1.0},

@@ -16,6 +16,7 @@
 #include "reports/query_cost.hpp"
 
 using namespace sculpt;
+using namespace sculpt::revolution;
 using namespace sculpt::reports;
 
 namespace {

@@ -11,6 +11,7 @@
 #include <random>
 
 using namespace sculpt;
+using namespace sculpt::revolution;
 using namespace sculpt::reports;
 
 namespace {

@@ -9,6 +9,7 @@
 #include "revolution/revolve.hpp"
 
 using namespace sculpt;
+using namespace sculpt::revolution;
 using namespace sculpt::reports;
 
 namespace {

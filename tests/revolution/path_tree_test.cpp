@@ -10,6 +10,8 @@
 #include "base/errors.hpp"
 
 using namespace sculpt;
+using namespace sculpt::revolution;
+using namespace sculpt::revolution::detail;
 
 namespace {
 

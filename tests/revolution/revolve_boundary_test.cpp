@@ -9,6 +9,7 @@
 #include "support/mesh_checks.hpp"
 
 using namespace sculpt;
+using namespace sculpt::revolution;
 
 namespace {
 std::vector<Eigen::Vector2d> sampled(const curves::ProfileDesign& d, int points) {

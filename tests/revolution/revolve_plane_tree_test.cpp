@@ -9,6 +9,8 @@
 #include "curves/profiles.hpp"
 
 using namespace sculpt;
+using namespace sculpt::revolution;
+using namespace sculpt::revolution::detail;
 
 namespace {
 

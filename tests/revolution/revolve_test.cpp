@@ -1,4 +1,5 @@
 #include "revolution/revolve.hpp"
+#include "revolution/trees/revolve_plane_tree.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,6 +15,8 @@
 #include "support/mesh_checks.hpp"
 
 using namespace sculpt;
+using namespace sculpt::revolution;
+using namespace sculpt::revolution::detail;
 
 namespace {
 

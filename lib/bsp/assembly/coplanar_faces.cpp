@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& ids) {
   const int nf = faces.size();
@@ -216,4 +216,4 @@ FaceList remove_straight_vertices(FaceList faces, int vertex_count, const Vertex
   return faces;
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

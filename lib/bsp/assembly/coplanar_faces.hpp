@@ -7,7 +7,7 @@
 
 #include "bsp/assembly/faces.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// Faces on one oriented plane (equal or opposite planes with the same outward side) that share
 /// edges become one face when their union is a simple polygon (one boundary loop); unions with
@@ -19,4 +19,4 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
 /// least three vertices).
 FaceList remove_straight_vertices(FaceList faces, int vertex_count, const VertexGeometry& geometry);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

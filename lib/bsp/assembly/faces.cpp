@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <bit>
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::Plane;
 
@@ -210,4 +210,4 @@ bool VertexGeometry::between(int u, int c, int w, int axis) const {
                                 : (less_along(w, c, axis) && less_along(c, u, axis));
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

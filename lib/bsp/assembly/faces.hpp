@@ -12,7 +12,7 @@
 
 #include "kernel/convex_polygon.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// Canonical ids of planes modulo orientation (planes are normalized, so equal values are equal
 /// planes): id[i] == id[j] iff plane i equals plane j or its opposite; negated[i] tells whether
@@ -168,4 +168,4 @@ class VertexGeometry {
   const AssemblyVertices& v_;
 };
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

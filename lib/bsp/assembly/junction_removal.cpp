@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 namespace {
 
@@ -380,4 +380,4 @@ JunctionResult remove_t_junctions(FaceList faces, const VertexGeometry& geometry
   return result;
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

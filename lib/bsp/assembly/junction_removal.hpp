@@ -6,7 +6,7 @@
 
 #include "bsp/assembly/faces.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 struct JunctionOptions {
   bool group_by_lines = true;  ///< false: every open edge goes to the spatial search (tests)
@@ -30,4 +30,4 @@ struct JunctionResult {
 JunctionResult remove_t_junctions(FaceList faces, const VertexGeometry& geometry, const PlaneIds& ids,
                                   const JunctionOptions& options = {});
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -7,7 +7,7 @@
 #include "bsp/tree/boundary_fragments.hpp"
 #include "mesh/polygon_mesh.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 struct AssemblyOptions {
   bool triangulate = false;
@@ -15,4 +15,4 @@ struct AssemblyOptions {
 
 PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& options);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -5,9 +5,9 @@
 
 #include <Eigen/Geometry>
 
-#include "bsp/assembly/face_triangulation.hpp"
+#include "mesh/triangulate.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 namespace {
 
@@ -187,8 +187,7 @@ Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, cons
   return {std::move(faces), std::move(original)};
 }
 
-PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate) {
+PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, bool triangulate) {
   const FaceList& faces = sheets.faces;
   PolygonMesh mesh;
   std::vector<int> index(sheets.original.size(), -1);  // only referenced vertices are written
@@ -208,10 +207,10 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
     }
     face.clear();
     for (int c = faces.begin(f); c < faces.end(f); ++c) face.push_back(index[std::size_t(faces.vertex[std::size_t(c)])]);
-    for (const auto& t : triangulate_face(mesh.vertices, face, outward_normal(faces, f, planes)))
+    for (const IndexTriangle& t : triangulate_polygon(mesh.vertices, face))
       mesh.faces.push_back({t[0], t[1], t[2]});
   }
   return mesh;
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

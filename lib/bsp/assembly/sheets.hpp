@@ -7,7 +7,7 @@
 #include "bsp/assembly/faces.hpp"
 #include "mesh/polygon_mesh.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 struct Sheets {
   FaceList faces;             ///< vertex ids renumbered: one vertex per sheet
@@ -20,8 +20,7 @@ struct Sheets {
 Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, const kernel::PlaneTable& planes);
 
 /// The mesh in world units (only vertices used by faces are written), optionally with each face
-/// fan-triangulated by ear clipping.
-PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate);
+/// triangulated by mesh/triangulate.hpp's exact ear clipping.
+PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, bool triangulate);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

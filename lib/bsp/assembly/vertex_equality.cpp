@@ -2,7 +2,7 @@
 
 #include "kernel/wide_int.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::Int128;
 using kernel::Plane;
@@ -61,4 +61,4 @@ bool vertex_on_plane(const VertexMinors& v, const Plane& s) {
   return det.zero();
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

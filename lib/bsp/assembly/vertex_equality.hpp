@@ -9,7 +9,7 @@
 
 #include "kernel/predicates.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// The vertex p ∩ q ∩ r prepared for exact on-plane tests (keeps references to the planes).
 struct VertexMinors {
@@ -33,4 +33,4 @@ VertexMinors vertex_minors(const kernel::Plane& p, const kernel::Plane& q, const
 /// kernel::orient decides.
 bool vertex_on_plane(const VertexMinors& v, const kernel::Plane& s);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

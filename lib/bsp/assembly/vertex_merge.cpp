@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::ApproxPoint;
 
@@ -308,4 +308,4 @@ MergedFragments merge_vertices(const Fragments& fragments) {
   return r;
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

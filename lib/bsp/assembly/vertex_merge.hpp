@@ -9,7 +9,7 @@
 #include "bsp/assembly/faces.hpp"
 #include "bsp/tree/boundary_fragments.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// What the later assembly stages start from.
 struct MergedFragments {
@@ -24,4 +24,4 @@ struct MergedFragments {
 /// leaving each corner.
 MergedFragments merge_vertices(const Fragments& fragments);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -7,7 +7,7 @@
 #include "bsp/tree/autopartition.hpp"
 #include "bsp/tree/boundary_clipper.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::CornerBox;
 
@@ -101,4 +101,4 @@ Solid unite_by_boundaries(std::vector<Solid> solids) {
   return autopartition(arena, std::move(result));
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

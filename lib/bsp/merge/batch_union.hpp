@@ -11,9 +11,9 @@
 
 #include "bsp/solid.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// The regularized union of `solids` (any number, bounded or not). Every decision is exact.
 Solid unite_by_boundaries(std::vector<Solid> solids);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::ConvexPolygon;
 using kernel::CornerBox;
@@ -125,4 +125,4 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
   arena.boundary_boxes = std::move(a_boxes_in);
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -13,7 +13,7 @@
 
 #include "bsp/tree/tree_arena.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 class ExtentSides;
 
@@ -28,4 +28,4 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
                       TreeRef b, const std::vector<BoundaryFragment>& b_faces, const bool op[2][2],
                       const ExtentSides* a_sides = nullptr);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -3,7 +3,7 @@
 #include "bsp/tree/boundary_clipper.hpp"
 #include "bsp/tree/node_polygons.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::Side;
 using kernel::Sign;
@@ -185,4 +185,4 @@ TreeRef prune_to_extent(Arena& arena, TreeRef b, const ExtentSides& sides) {
   return root;
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -17,7 +17,7 @@
 
 #include "bsp/tree/tree_arena.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// For some planes of the arena: on which closed side of the plane a bounded solid A lies.
 class ExtentSides {
@@ -54,4 +54,4 @@ TreeRef prune_to_extent(Arena& arena, TreeRef b, const ExtentSides& sides);
 /// Makes `boxes` the boxes of `faces` (each fragment and each block), computing what is missing.
 void complete_boxes(const std::vector<BoundaryFragment>& faces, FragmentBoxes& boxes);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::ApproxPoint;
 using kernel::Plane;
@@ -144,4 +144,4 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
   return faces;
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -12,7 +12,7 @@
 
 #include "bsp/tree_builder.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// A vertex as three plane indices: the point p ∩ q ∩ r.
 struct PlaneTriple {
@@ -32,4 +32,4 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
                                             const std::vector<std::vector<std::int32_t>>& face,
                                             const std::vector<double>& scale);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

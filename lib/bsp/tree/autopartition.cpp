@@ -7,7 +7,7 @@
 
 #include "bsp/tree_builder.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::ConvexPolygon;
 using kernel::CornerBox;
@@ -204,4 +204,4 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
   return std::move(b).build(made[std::size_t(root)], std::move(fragments), {.nodes_cut_cells = true});
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -15,7 +15,7 @@
 
 #include "bsp/tree/tree_arena.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 struct AutopartitionOptions {
   int candidates = 5;         ///< fragments whose planes are scored per node (evenly spaced)
@@ -39,4 +39,4 @@ struct AutopartitionOptions {
 /// at least the number of fragments, each candidate is scored against all of them in order.
 Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options = {});
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

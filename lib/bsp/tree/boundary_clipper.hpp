@@ -10,7 +10,7 @@
 
 #include "bsp/tree/tree_arena.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 // Which sides of a piece lying on a node's plane the traversal still has to find out.
 enum class ClipMode : std::uint8_t {
@@ -178,4 +178,4 @@ inline kernel::CornerBox bounds(const std::vector<BoundaryFragment>& faces) {
   return box;
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

@@ -4,7 +4,7 @@
 
 #include "bsp/tree/node_polygons.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::ConvexPolygon;
 using kernel::Side;
@@ -123,4 +123,4 @@ class Extractor {
 
 Fragments boundary_fragments(const Solid& solid) { return Extractor(solid).run(); }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

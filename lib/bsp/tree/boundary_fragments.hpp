@@ -8,7 +8,7 @@
 
 #include "bsp/tree/tree_arena.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// A boundary piece on a node plane, corners counter-clockwise about its normal.
 using Fragment = BoundaryFragment;
@@ -20,4 +20,4 @@ struct Fragments {
 
 Fragments boundary_fragments(const Solid& solid);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

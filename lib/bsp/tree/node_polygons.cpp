@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::ConvexPolygon;
 using kernel::Side;
@@ -69,4 +69,4 @@ Arena with_node_polygons(const Solid& solid) {
   return arena;
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

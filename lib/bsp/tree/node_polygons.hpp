@@ -11,7 +11,7 @@
 
 #include "bsp/tree/tree_arena.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 /// True if node polygon `poly` is pending (a node's sub-hyperplane is never empty).
 inline bool pending(const kernel::ConvexPolygon& poly) { return poly.corners.empty(); }
@@ -42,4 +42,4 @@ kernel::ConvexPolygon node_polygon(Arena& arena, std::int32_t plane, std::span<c
 /// arena's plane table may grow beyond the solid's (opposites of path planes).
 Arena with_node_polygons(const Solid& solid);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

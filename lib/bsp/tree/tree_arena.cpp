@@ -6,7 +6,7 @@
 
 #include <utility>
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 using kernel::ConvexPolygon;
 
@@ -202,4 +202,4 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
                std::move(boundary), std::move(boxes));
 }
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

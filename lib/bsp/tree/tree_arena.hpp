@@ -7,7 +7,7 @@
 
 #include "bsp/solid.hpp"
 
-namespace sculpt::detail {
+namespace sculpt::bsp::detail {
 
 struct Arena {
   kernel::PlaneTable planes;
@@ -47,4 +47,4 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options = {});
 /// Flips in and out leaves of the subtree at `root` in place (explicit stack).
 void complement_in_place(Arena& arena, TreeRef& root);
 
-}  // namespace sculpt::detail
+}  // namespace sculpt::bsp::detail

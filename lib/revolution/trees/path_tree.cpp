@@ -6,7 +6,7 @@
 
 #include "base/errors.hpp"
 
-namespace sculpt {
+namespace sculpt::revolution::detail {
 namespace {
 
 /// Where a subtree goes: the root, or one child of a node.
@@ -171,4 +171,4 @@ int PathTree::height() const {
   return best;
 }
 
-}  // namespace sculpt
+}  // namespace sculpt::revolution::detail

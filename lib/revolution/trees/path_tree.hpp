@@ -14,7 +14,7 @@
 #include "bsp/convex_path.hpp"
 #include "bsp/solid.hpp"
 
-namespace sculpt {
+namespace sculpt::revolution::detail {
 
 /// A 2D BSP tree of lines through path vertices; children are node indices or the leaves
 /// kIn / kOut of solid.hpp. Line of node k: the directed line from
@@ -42,4 +42,4 @@ struct PathTreeOptions {
 /// Builds the section 6 tree of a convex path. \throw InvalidInput if face_only_below < 2
 PathTree build_path_tree(const ConvexPath& path, const PathTreeOptions& options = {});
 
-}  // namespace sculpt
+}  // namespace sculpt::revolution::detail

@@ -7,7 +7,7 @@
 
 #include "base/errors.hpp"
 
-namespace sculpt {
+namespace sculpt::revolution::detail {
 
 std::vector<Eigen::Vector2d> monotone_profile(const std::vector<Eigen::Vector2d>& profile) {
   if (profile.size() < 2)
@@ -139,4 +139,4 @@ int PlaneTree::height() const {
   return best;
 }
 
-}  // namespace sculpt
+}  // namespace sculpt::revolution::detail

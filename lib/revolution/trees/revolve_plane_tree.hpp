@@ -13,9 +13,10 @@
 #include <Eigen/Core>
 
 #include "bsp/convex_path.hpp"
+#include "revolution/revolve.hpp"
 #include "revolution/trees/path_tree.hpp"
 
-namespace sculpt {
+namespace sculpt::revolution::detail {
 
 /// A BSP tree of planes. Node plane (a, b, c, d), (a, b, c) a unit vector: a x + b y + c z + d > 0 is
 /// the positive side (child `above`; outside the solid for a face plane, higher z for a horizontal
@@ -36,9 +37,6 @@ struct PlaneTree {
   [[nodiscard]] int leaves() const { return static_cast<int>(nodes.size()) + 1; }
 };
 
-struct RevolveOptions {
-  int face_only_below = 6;  ///< path sub-curves this short use face planes only (paper: "say 6")
-};
 
 /// A profile as revolve() takes it: points (r, z), r >= 0, z monotone (non-decreasing, or
 /// non-increasing: then it is reversed). Horizontal runs are allowed (steps, flat caps inside).
@@ -63,4 +61,4 @@ Eigen::Vector4d lifted_plane(const ConvexPath& path, int from, int to, const Rev
 PlaneTree revolve_plane_tree(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& path,
                              const RevolveOptions& options = {});
 
-}  // namespace sculpt
+}  // namespace sculpt::revolution::detail

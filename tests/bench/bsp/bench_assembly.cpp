@@ -1,5 +1,5 @@
 // Mesh assembly alone (lib/bsp/mesh_assembly.hpp): builds each benchmark solid once, extracts
-// its boundary fragments once (detail::boundary_fragments), then times only assemble_mesh.
+// its boundary fragments once (bsp::detail::boundary_fragments), then times only assemble_mesh.
 // Prints one parseable line per case:
 //   bench impl=sculpt stage=assembly case=<case> n=<n> runs=<r> time_ms=<median> min_ms=<min> cpu_ms=<median>
 //         fragments=<f> occurrences=<corners> vertices=<v> faces=<f> volume=<v> area=<a>
@@ -85,18 +85,18 @@ Measures measure(const PolygonMesh& m) {  // faces may be non-convex: vector are
 }
 
 // The stages of assemble_mesh (mesh_assembly.cpp) one by one, each timed: median CPU ms per stage.
-void time_stages(const detail::Fragments& f, int runs, const char* source) {
+void time_stages(const bsp::detail::Fragments& f, int runs, const char* source) {
   const char* names[] = {"vertex_merge", "t_junctions", "coplanar", "straight", "sheets", "output"};
   constexpr int kStages = 6;
   std::vector<std::vector<double>> t(kStages);
-  detail::JunctionResult last;
+  bsp::detail::JunctionResult last;
   int sizes[kStages][2] = {};  // faces and corners after each stage (last run)
   long allocations[kStages] = {};  // operator new calls of each stage (last run)
   for (int r = 0; r < runs; ++r) {
     double t0 = cpu_ms();
     long a0 = g_allocations;
     int stage = 0;
-    auto lap = [&](const detail::FaceList* after = nullptr) {
+    auto lap = [&](const bsp::detail::FaceList* after = nullptr) {
       const double t1 = cpu_ms();
       if (after != nullptr) sizes[stage][0] = after->size(), sizes[stage][1] = after->corners();
       allocations[stage] = g_allocations - a0;
@@ -104,20 +104,20 @@ void time_stages(const detail::Fragments& f, int runs, const char* source) {
       t[std::size_t(stage++)].push_back(t1 - t0);
       t0 = t1;
     };
-    detail::MergedFragments merged = detail::merge_vertices(f);  // with the plane ids and the faces
-    const detail::PlaneIds& ids = merged.ids;
+    bsp::detail::MergedFragments merged = bsp::detail::merge_vertices(f);  // with the plane ids and the faces
+    const bsp::detail::PlaneIds& ids = merged.ids;
     lap(&merged.faces);
-    const detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
-    last = detail::remove_t_junctions(std::move(merged.faces), geometry, ids);
-    detail::FaceList faces;
+    const bsp::detail::VertexGeometry geometry(f.planes, ids, merged.vertices);
+    last = bsp::detail::remove_t_junctions(std::move(merged.faces), geometry, ids);
+    bsp::detail::FaceList faces;
     lap(&last.faces);
-    faces = detail::merge_coplanar_faces(std::move(last.faces), merged.vertices.size(), ids);
+    faces = bsp::detail::merge_coplanar_faces(std::move(last.faces), merged.vertices.size(), ids);
     lap(&faces);
-    faces = detail::remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
+    faces = bsp::detail::remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
     lap(&faces);
-    const detail::Sheets sheets = detail::split_non_manifold(std::move(faces), merged.vertices, f.planes);
+    const bsp::detail::Sheets sheets = bsp::detail::split_non_manifold(std::move(faces), merged.vertices, f.planes);
     lap(&sheets.faces);
-    const PolygonMesh mesh = detail::output_mesh(sheets, merged.vertices, f.planes, false);
+    const PolygonMesh mesh = bsp::detail::output_mesh(sheets, merged.vertices, false);
     lap();
   }
   std::printf("stages source=%s", source);
@@ -157,7 +157,7 @@ void dump(const PolygonMesh& mesh, const std::string& path) {
 }
 
 // Median time of assemble_mesh on `fragments`; prints the case line and returns the mesh.
-PolygonMesh time_assembly(const std::string& name, int n, int runs, const char* source, const detail::Fragments& fragments) {
+PolygonMesh time_assembly(const std::string& name, int n, int runs, const char* source, const bsp::detail::Fragments& fragments) {
   std::size_t corners = 0;
   for (const auto& f : fragments.fragments) corners += f.polygon.corners.size();
   std::vector<double> times, cpu;
@@ -167,7 +167,7 @@ PolygonMesh time_assembly(const std::string& name, int n, int runs, const char* 
     const long a0 = g_allocations;
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = cpu_ms();
-    mesh = detail::assemble_mesh(fragments, {});
+    mesh = bsp::detail::assemble_mesh(fragments, {});
     const double c1 = cpu_ms();
     const auto t1 = std::chrono::steady_clock::now();
     allocations = g_allocations - a0;
@@ -195,20 +195,20 @@ int run_case(const std::string& name, int n, int runs, const std::string& dump_p
     std::fprintf(stderr, "unknown case %s\n", name.c_str());
     return 2;
   }
-  // The fragments extracted from the tree (detail::boundary_fragments), and, when the solid
+  // The fragments extracted from the tree (bsp::detail::boundary_fragments), and, when the solid
   // carries its boundary through the set operations, those too (what to_mesh assembles).
   if (dump_path == "carried") {
-    if (solid.has_boundary()) time_assembly(name, n, runs, "carried", detail::Fragments{solid.planes(), solid.boundary()});
+    if (solid.has_boundary()) time_assembly(name, n, runs, "carried", bsp::detail::Fragments{solid.planes(), solid.boundary()});
     return 0;
   }
-  const detail::Fragments fragments = detail::boundary_fragments(solid);
+  const bsp::detail::Fragments fragments = bsp::detail::boundary_fragments(solid);
   PolygonMesh mesh = time_assembly(name, n, runs, "extracted", fragments);
   PolygonMesh carried;
   if (solid.has_boundary())
-    carried = time_assembly(name, n, runs, "carried", detail::Fragments{solid.planes(), solid.boundary()});
+    carried = time_assembly(name, n, runs, "carried", bsp::detail::Fragments{solid.planes(), solid.boundary()});
   if (dump_path == "stages") {
     time_stages(fragments, runs, "extracted");
-    if (solid.has_boundary()) time_stages(detail::Fragments{solid.planes(), solid.boundary()}, runs, "carried");
+    if (solid.has_boundary()) time_stages(bsp::detail::Fragments{solid.planes(), solid.boundary()}, runs, "carried");
   } else if (!dump_path.empty()) {
     dump(mesh, dump_path);
     if (solid.has_boundary()) dump(carried, dump_path + ".carried");

@@ -28,6 +28,7 @@
 #include "bsp/from_mesh.hpp"
 
 using namespace sculpt;
+using namespace sculpt::revolution;
 using Clock = std::chrono::steady_clock;
 
 namespace {

@@ -1,0 +1,199 @@
+#include "bsp/rings/ring_solid.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <new>
+#include <numbers>
+#include <numeric>
+#include <string>
+
+#include "base/errors.hpp"
+#include "bsp/rings/ring_boundary.hpp"
+#include "bsp/rings/sector_tree.hpp"
+#include "bsp/tree_builder.hpp"
+
+namespace sculpt::bsp::detail {
+
+using kernel::Int128;
+using kernel::Plane;
+
+namespace {
+
+constexpr int kPathNormalBits = 26;  // integer 2D normals of the path edges (docs/kernel.md)
+constexpr double kPathScale = double(std::int64_t(1) << kPathNormalBits);  // scaling by it is exact
+
+}  // namespace
+
+Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings) {
+  const int n = int(path.size());
+  if (n < 3) throw InvalidInput("revolution path needs at least 3 vertices");
+  if (rings.size() < 2) throw InvalidInput("revolution needs at least 2 rings");
+  // Path edges: integer outward normals and offsets (the origin must be strictly inside).
+  std::vector<Eigen::Vector2d> normal(static_cast<std::size_t>(n));
+  std::vector<std::int64_t> nx(static_cast<std::size_t>(n)), ny(static_cast<std::size_t>(n));
+  std::vector<double> offset(static_cast<std::size_t>(n)), start(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector2d& v = path[std::size_t(j)];
+    const Eigen::Vector2d& w = path[std::size_t((j + 1) % n)];
+    Eigen::Vector2d e = w - v;
+    if (!(e.norm() > 0)) throw InvalidInput("revolution path has repeated vertices");
+    Eigen::Vector2d m(e.y(), -e.x());
+    m.normalize();
+    normal[std::size_t(j)] = m;
+    nx[std::size_t(j)] = std::llround(std::ldexp(m.x(), kPathNormalBits));
+    ny[std::size_t(j)] = std::llround(std::ldexp(m.y(), kPathNormalBits));
+    offset[std::size_t(j)] = m.dot(v);
+    if (!(offset[std::size_t(j)] > 0))
+      throw InvalidInput("revolution path must be convex, counter-clockwise and contain the axis");
+    start[std::size_t(j)] = std::atan2(v.y(), v.x());
+  }
+  double min_edge = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < n; ++j) min_edge = std::min(min_edge, (path[std::size_t((j + 1) % n)] - path[std::size_t(j)]).norm());
+  for (int j = 1; j < n; ++j)  // unwrap to increasing angles
+    while (start[std::size_t(j)] <= start[std::size_t(j - 1)]) start[std::size_t(j)] += 2 * std::numbers::pi;
+  if (start[std::size_t(n - 1)] - start[0] >= 2 * std::numbers::pi)
+    throw InvalidInput("revolution path must be convex and counter-clockwise");
+
+  // Rings on the grid: z in grid units, offsets c = scale * offset in grid units * normal scale.
+  const std::size_t r = rings.size();
+  std::vector<std::int64_t> z(r);
+  for (std::size_t k = 0; k < r; ++k) {
+    if (!(rings[k].scale >= 0) || !std::isfinite(rings[k].scale))
+      throw InvalidInput("ring scale must be finite and >= 0");
+    if (rings[k].scale == 0 && k != 0 && k + 1 != r)
+      throw InvalidInput("only the first and the last ring may have scale 0");
+    z[k] = kernel::snap(rings[k].z);
+    if (k > 0 && z[k] <= z[k - 1]) {
+      std::ostringstream s;
+      s << "ring heights must increase by at least one grid step (" << kernel::kGridStep << ")";
+      throw InvalidInput(s.str());
+    }
+  }
+  auto c_of = [&](std::size_t k, int j) -> Int128 {
+    const double c = rings[k].scale * offset[std::size_t(j)] / kernel::kGridStep;
+    if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord))
+      throw RangeError("revolved solid exceeds the exact kernel's range " + kernel::range_text());
+    return Int128(std::llround(c * kPathScale));
+  };
+
+  // Path vertices on the axes whose ring vertices lie exactly on y = 0 or x = 0 (SectorOptions):
+  // at ring k, edges p = j - 1 and q = j meet where nx_p x + ny_p y = C_p and nx_q x + ny_q y = C_q
+  // (C = c_of(k, .), |C| < 2^51, |n| <= 2^26: the products are exact), so the vertex has y = 0 iff
+  // nx_p C_q = nx_q C_p, and x = 0 iff C_p ny_q = C_q ny_p. A ring of scale 0 is on the axis.
+  std::array<int, 4> axis_vertex = {-1, -1, -1, -1};  // +x, +y, -x, -y
+  for (int j = 0; j < n; ++j) {
+    // Candidates: path vertices within 1e-9 rad of an axis (no trigonometry: |other| <= 1e-9 |own|).
+    const double x = path[std::size_t(j)].x(), y = path[std::size_t(j)].y();
+    const int d = std::fabs(y) <= 1e-9 * std::fabs(x) ? (x > 0 ? 0 : 2) : (std::fabs(x) <= 1e-9 * std::fabs(y) ? (y > 0 ? 1 : 3) : -1);
+    if (d >= 0) {
+      const std::size_t p = std::size_t((j + n - 1) % n), q = std::size_t(j);
+      bool on = true;
+      for (std::size_t k = 0; k < rings.size() && on; ++k) {
+        const Int128 cp = c_of(k, int(p)), cq = c_of(k, int(q));
+        on = d % 2 == 0 ? Int128(nx[p]) * cq == Int128(nx[q]) * cp : cp * ny[q] == cq * ny[p];
+      }
+      if (on) axis_vertex[std::size_t(d)] = j;
+    }
+  }
+
+  // The direct boundary needs every path edge on every ring of positive scale. Rounding moves an
+  // edge's line by at most delta grid units, which moves its ends by at most 2 delta / sin(exterior
+  // angle): edges much longer than that survive.
+  std::vector<double> scale(r);
+  double shortest = std::numeric_limits<double>::infinity(), largest = 0, min_sin = 1, far = 0;
+  for (std::size_t k = 0; k < r; ++k) {
+    scale[k] = rings[k].scale;
+    largest = std::max(largest, scale[k]);
+    if (scale[k] > 0) shortest = std::min(shortest, scale[k] * min_edge / kernel::kGridStep);
+  }
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector2d& a = normal[std::size_t(j)];
+    const Eigen::Vector2d& c = normal[std::size_t((j + 1) % n)];
+    min_sin = std::min(min_sin, std::fabs(a.x() * c.y() - a.y() * c.x()));
+    far = std::max(far, path[std::size_t(j)].norm());
+  }
+  // Normals rounded to 2^-26 turn a line by 2^-26 (moving it by R 2^-26 at radius R); offsets are
+  // rounded to 2^-27 grid units: delta below (R + 1) 2^-25, taken with a margin of 2. Two lines
+  // moved by delta at exterior angle t meet at most 2 delta / sin t away, so an edge of length L
+  // survives if L sin t > 4 delta; 8 delta leaves another factor of 2.
+  const double delta = (largest * far / kernel::kGridStep + 1) * std::ldexp(1.0, -24);
+  const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
+  const bool direct = !degenerate && shortest * min_sin > 8 * delta;
+
+  TreeBuilder b;
+  // Below that bound, rounding can move a face out of the wedge whose chain should hold it: the
+  // solid then bends along an axial plane, which must then count as a face plane (not auxiliary)
+  // for extraction to find that boundary. Chains are widened so that this stays rare.
+  SectorTree sectors(b, start, {.auxiliary_axes = direct, .widen = direct ? 0 : 1, .axis_vertex = axis_vertex});
+  // Exactly: the ring planes, per band n face planes, its axial planes and the opposite of its
+  // lower ring plane; the two cap nodes, the inner ring nodes and each band's sector tree.
+  b.reserve(std::size_t(kernel::kWorldPlanes) + r + (r - 1) * (std::size_t(n) + sectors.axial_planes() + 1),
+            r + (r - 1) * sectors.nodes());
+  // Ring planes z = z_k: f = z - z_k.
+  std::vector<std::int32_t> ring_plane(r);
+  std::vector<std::vector<std::int32_t>> face_index(r - 1);
+  // Inner rings only separate bands (auxiliary); the first and last ring planes are the caps.
+  for (std::size_t k = 0; k < r; ++k) {
+    ring_plane[k] = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(z[k])), k > 0 && k + 1 < r);
+  }
+  // The x, y part of a face normal is dz (nx, ny): the gcd of those two is dz gcd(nx, ny), so
+  // make_plane needs only the gcd with the z part (the same planes, one gcd per face less).
+  std::vector<std::uint64_t> xy_gcd(static_cast<std::size_t>(n));
+  for (std::size_t j = 0; j < std::size_t(n); ++j)
+    xy_gcd[j] = std::gcd(std::uint64_t(std::llabs(nx[j])), std::uint64_t(std::llabs(ny[j])));
+  std::vector<Int128> c_below(static_cast<std::size_t>(n)), c_above(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) c_above[std::size_t(j)] = c_of(0, j);
+  // Band k's face planes and tree (bands come in increasing order).
+  std::vector<Plane> face_plane(static_cast<std::size_t>(n));
+  auto band = [&](std::size_t k) -> TreeRef {
+    const Int128 dz = z[k + 1] - z[k];
+    std::swap(c_below, c_above);  // ring k's offsets were ring k + 1's of the band below
+    for (int j = 0; j < n; ++j) c_above[std::size_t(j)] = c_of(k + 1, j);
+    std::vector<std::int32_t> faces(static_cast<std::size_t>(n));
+    // All planes first, then into the table: one just returned by make_plane (written in 8-byte
+    // parts) and copied at once by PlaneTable::add (16-byte loads) waited for its stores to leave
+    // the store queue (failed store forwarding, ~6 % of sphere(32)). Placement new: made in place.
+    for (std::size_t j = 0; j < std::size_t(n); ++j) {
+      const Int128 c0 = c_below[j], dc = c_above[j] - c0;
+      // dz (n . (x, y)) - dc z + (dc z_k - dz c_k) = 0, positive outside. The gcd of all four is
+      // gcd(dz X, dc, dc z_k - dz c_k) = gcd(dc, dz gcd(X, c_k)) with X = gcd(nx, ny): a divisor of
+      // dz X and dc divides d exactly when it divides dz c_k (|c| < 2^52, dz X < 2^53).
+      const std::uint64_t x = xy_gcd[j], c0m = std::uint64_t(c0 < 0 ? -c0 : c0);
+      const std::uint64_t y = std::uint64_t(dz) * (x == 1 ? 1 : std::gcd(x, c0m % x));
+      const std::uint64_t dcm = std::uint64_t(dc < 0 ? -dc : dc);
+      ::new (&face_plane[j]) Plane(kernel::make_plane(dz * nx[j], dz * ny[j], -dc, dc * z[k] - dz * c0,
+                                                      {.gcd = y == 1 ? 1 : std::gcd(y, dcm % y)}));
+    }
+    for (std::size_t j = 0; j < std::size_t(n); ++j) faces[j] = b.add_plane(face_plane[j]);
+    const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
+    const TreeRef t = sectors.build(faces, 0.05 * min_scale * min_edge);
+    face_index[k] = std::move(faces);
+    return t;
+  };
+  // The tree top-down in pre-order (TreeBuilder::open_nodes), so the builder keeps it as laid out:
+  // the bottom cap's plane, the top cap's, then a balanced tree over the bands split by the inner
+  // ring planes (explicit recursion depth is log2 of the ring count), lower bands first.
+  const TreeRef root = b.open_nodes(2), top = root + 1;
+  auto slabs = [&](auto&& self, std::size_t lo, std::size_t hi) -> TreeRef {
+    if (lo == hi) return band(lo);
+    const std::size_t m = (lo + hi + 1) / 2;  // ring between band m - 1 and band m
+    const TreeRef node = b.open_nodes(1);
+    const TreeRef negative = self(self, lo, m - 1);
+    b.set_node(node, ring_plane[m], negative, self(self, m, hi));
+    return node;
+  };
+  b.set_node(top, ring_plane[r - 1], slabs(slabs, 0, r - 2), kOut);
+  b.set_node(root, ring_plane[0], kOut, top);
+  if (!direct) return std::move(b).build(root);
+  // Every node then cuts its cell: ring planes cut their slabs and axial planes their wedges (both
+  // reach the world box), and each chain face keeps the middle part of its facet inside its wedge
+  // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as
+  // built. Widened chains may hold faces outside their wedges: those are left to the full build.
+  std::vector<BoundaryFragment> boundary = ring_boundary(b, ring_plane, face_index, scale);
+  return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors.widened()});
+}
+
+}  // namespace sculpt::bsp::detail
