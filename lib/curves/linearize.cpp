@@ -6,11 +6,11 @@
 
 #include "base/errors.hpp"
 #include "curves/curve_measures.hpp"
-#include "curves/dynamic_programming.hpp"
-#include "curves/fast_linearization.hpp"
-#include "curves/heuristic_subdivision.hpp"
-#include "curves/optimal_linearization.hpp"
-#include "curves/top_down_splitting.hpp"
+#include "curves/methods/dynamic_programming.hpp"
+#include "curves/methods/fast_linearization.hpp"
+#include "curves/methods/heuristic_subdivision.hpp"
+#include "curves/methods/top_down_splitting.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
 
 namespace sculpt::curves {
 namespace {

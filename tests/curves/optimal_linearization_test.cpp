@@ -1,13 +1,13 @@
 // The optimal solvers against DYNAMIC (the paper's algorithm) and against brute force.
-#include "curves/optimal_linearization.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "curve_testing.hpp"
-#include "curves/dynamic_programming.hpp"
-#include "curves/fast_linearization.hpp"
+#include "curves/methods/dynamic_programming.hpp"
+#include "curves/methods/fast_linearization.hpp"
 #include "curves/test_curves.hpp"
 
 using namespace sculpt::curves;

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "curve_testing.hpp"
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
 using namespace sculpt::curves;
 using Vec = Eigen::Vector3d;

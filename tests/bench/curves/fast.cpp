@@ -9,9 +9,9 @@
 #include <string>
 
 #include "bench_common.hpp"
-#include "curves/fast_linearization.hpp"
 #include "curves/linearize.hpp"
-#include "curves/optimal_linearization.hpp"
+#include "curves/methods/fast_linearization.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
 #include "curves/test_curves.hpp"
 
 using namespace sculpt::curves;

@@ -1,4 +1,4 @@
-#include "curves/heuristic_subdivision.hpp"
+#include "curves/methods/heuristic_subdivision.hpp"
 
 #include <algorithm>
 

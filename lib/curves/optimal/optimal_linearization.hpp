@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "curves/linearization.hpp"
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
 namespace sculpt::curves {
 

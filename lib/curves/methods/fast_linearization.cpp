@@ -1,4 +1,4 @@
-#include "curves/fast_linearization.hpp"
+#include "curves/methods/fast_linearization.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,8 +8,8 @@
 #include <limits>
 #include <numeric>
 
-#include "curves/optimal_linearization.hpp"
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
 namespace sculpt::curves {
 namespace {

@@ -1,4 +1,4 @@
-#include "curves/top_down_splitting.hpp"
+#include "curves/methods/top_down_splitting.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "curves/segment_error.hpp"
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
 namespace sculpt::curves::detail {
 

@@ -1,4 +1,4 @@
-#include "curves/dynamic_programming.hpp"
+#include "curves/methods/dynamic_programming.hpp"
 
 #include <limits>
 #include <utility>

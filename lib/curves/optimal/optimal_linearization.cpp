@@ -1,4 +1,4 @@
-#include "curves/optimal_linearization.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <utility>
 
 #include "curves/curve_measures.hpp"
-#include "curves/feasibility_solver.hpp"
-#include "curves/heuristic_subdivision.hpp"
+#include "curves/methods/heuristic_subdivision.hpp"
+#include "curves/optimal/feasibility_solver.hpp"
 
 namespace sculpt::curves {
 namespace {

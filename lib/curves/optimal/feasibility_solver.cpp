@@ -1,4 +1,4 @@
-#include "curves/feasibility_solver.hpp"
+#include "curves/optimal/feasibility_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <memory>
 #include <utility>
 
-#include "curves/chord_scan.hpp"
+#include "curves/optimal/chord_scan.hpp"
 
 namespace sculpt::curves::detail {
 namespace {
