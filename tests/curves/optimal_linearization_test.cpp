@@ -11,6 +11,7 @@
 #include "curves/test_curves.hpp"
 
 using namespace sculpt::curves;
+using namespace sculpt::curves::detail;  // the internals under test
 using Vec = Eigen::Vector3d;
 
 namespace {

@@ -9,6 +9,7 @@
 #include "curves/optimal/segment_error_tree.hpp"
 
 using namespace sculpt::curves;
+using namespace sculpt::curves::detail;  // the internals under test
 using Vec = Eigen::Vector3d;
 
 TEST(SegmentError, DistanceToInfiniteLineNotToSegment) {

@@ -11,7 +11,7 @@
 #include "curves/optimal/optimal_linearization.hpp"
 #include "curves/optimal/segment_error_tree.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -213,4 +213,4 @@ Linearization fast_linearization(const std::vector<Eigen::Vector3d>& points, int
   return result;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

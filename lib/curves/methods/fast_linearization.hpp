@@ -20,7 +20,7 @@
 
 #include "curves/linearization.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 struct FastOptions {
   int exact_below = 20000;  ///< n at or below this: exact solver
@@ -34,4 +34,4 @@ struct FastOptions {
 [[nodiscard]] Linearization fast_linearization(const std::vector<Eigen::Vector3d>& points, int m, Norm norm,
                                                const FastOptions& options = {});
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 Linearization weighted_subdivision(const std::vector<Eigen::Vector3d>& points, const CurveMeasures& measures, int m,
                                    double alpha, Norm norm) {
@@ -80,4 +80,4 @@ Linearization iterative_refinement(const std::vector<Eigen::Vector3d>& points, L
   return best;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

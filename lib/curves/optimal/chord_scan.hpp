@@ -15,7 +15,7 @@
 #include <emmintrin.h>
 #endif
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 /// Points as three coordinate columns.
 struct PointColumns {
@@ -119,4 +119,4 @@ inline void chord_distances(const double* cross2, const double* length2, std::si
   for (; t < count; ++t) out[t] = cross2[t] < 0.0 ? marker(cross2[t]) : std::sqrt(cross2[t]) / std::sqrt(length2[t]);
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

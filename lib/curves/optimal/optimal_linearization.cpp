@@ -14,12 +14,8 @@
 #include "curves/methods/heuristic_subdivision.hpp"
 #include "curves/optimal/feasibility_solver.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 namespace {
-
-using detail::FeasibilitySolver;
-using detail::kUnreached;
-using detail::kWindow;
 
 // Up to this many candidate edges the solver computes all their errors once (stored mode).
 // (memory: 8 bytes each), if evaluating them directly costs at most this many point distances.
@@ -298,4 +294,4 @@ Linearization optimal_min_count(const std::vector<Eigen::Vector3d>& points, doub
   return result;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

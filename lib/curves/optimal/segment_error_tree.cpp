@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 namespace {
 
@@ -164,4 +164,4 @@ double SegmentErrorTree::error(int i, int j, double limit) const {
   return best;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

@@ -15,7 +15,7 @@
 
 #include "curves/segment_error.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 class SegmentErrorTree {
  public:
@@ -46,4 +46,4 @@ class SegmentErrorTree {
   std::vector<Node> nodes_;  // nodes_[0] is the root
 };
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

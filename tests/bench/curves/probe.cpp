@@ -13,6 +13,7 @@
 #include "curves/test_curves.hpp"
 
 using namespace sculpt::curves;
+using namespace sculpt::curves::detail;  // the internal solvers measured here
 
 int main(int argc, char** argv) {
   const std::string name = argc > 1 ? argv[1] : "folium";
