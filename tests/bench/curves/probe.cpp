@@ -10,7 +10,7 @@
 #include "curves/methods/dynamic_programming.hpp"
 #include "curves/methods/fast_linearization.hpp"
 #include "curves/optimal/optimal_linearization.hpp"
-#include "curves/test_curves.hpp"
+#include "curves/appendix_b_curves.hpp"
 
 using namespace sculpt::curves;
 using namespace sculpt::curves::detail;  // the internal solvers measured here
@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   const int n = argc > 2 ? std::atoi(argv[2]) : 3000;
   const int m = argc > 3 ? std::atoi(argv[3]) : 4;
   const int fast = argc > 4 ? std::atoi(argv[4]) : 0;
-  const auto curve = make_test_curve(*test_curve_from_name(name), {.points = n});
+  const auto curve = make_appendix_b_curve(*appendix_b_curve_from_name(name), {.points = n});
   const auto points = path_points(curve);
   Linearization la;
   const int runs = argc > 5 ? std::atoi(argv[5]) : 1;
