@@ -167,7 +167,7 @@ Linearization fast_linearization(const std::vector<Eigen::Vector3d>& points, int
   // For few segments (cheap, and where greedy covers are weakest): the exact optimum over every
   // stride-th point, refined with halving steps; keep whichever is better.
   if (m <= options.ladder_max_segments) {
-    const int stride = std::max(1, last / std::max(256, options.candidates_per_segment * m));
+    const int stride = std::max(1, last / std::max(options.min_candidates, options.candidates_per_segment * m));
     std::vector<int> coarse;
     for (int k = 0; k < last; k += stride) coarse.push_back(k);
     coarse.push_back(last);

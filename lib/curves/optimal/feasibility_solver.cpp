@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "curves/optimal/chord_scan.hpp"
+#include "curves/optimal/tolerances.hpp"
 
 namespace sculpt::curves::detail {
 namespace {
@@ -15,12 +16,6 @@ namespace {
 constexpr double kBeyond = std::numeric_limits<double>::infinity();
 // Stored value of an edge whose error is below the floor it was measured under (build_rows).
 constexpr double kBelow = -1.0;
-// Chords spanning up to this many points are evaluated directly (the tree's bounds are weak on
-// rough data such as scattered points; direct scans with early exit are predictable).
-constexpr int kDirectSpan = 1024;
-// build_rows measures chords spanning more points through the tree (nearly straight stretches,
-// e.g. around an inflection, make long rows).
-constexpr int kRowTreeSpan = 512;
 
 // The solver's state and algorithms (FeasibilitySolver forwards to it); positions 0..K-1 index
 // `vertex_`. Local to this file, so that its helpers inline into the hot loops.
@@ -46,7 +41,7 @@ class Solver {
   [[nodiscard]] double error(int a, int b) {
     if (!stored_.empty() && b <= reach_[a] && stored_[row_[a] + (b - a - 1)] >= 0.0)
       return stored_[row_[a] + (b - a - 1)];
-    if (vertex_[b] - vertex_[a] <= 256) return segment_error(points_, vertex_[a], vertex_[b], norm_);
+    if (vertex_[b] - vertex_[a] <= kDirectErrorSpan) return segment_error(points_, vertex_[a], vertex_[b], norm_);
     return tree().error(vertex_[a], vertex_[b]);
   }
 
@@ -105,7 +100,8 @@ class Solver {
     cross2_.clear();
     length2_.clear();
     // squared thresholds with margins far above rounding: beyond limit / certainly below floor
-    const Thresholds squared{limit * limit * (1.0 + 1e-9), floor * floor * (1.0 - 1e-9), limit, floor};
+    const Thresholds squared{limit * limit * (1.0 + kRelativeMargin), floor * floor * (1.0 - kRelativeMargin), limit,
+                             floor};
     double scanned = 0.0;  // point distances so far (work budget)
     for (int a = 0; a + 1 < count; ++a) {
       rows[a] = values.size();
@@ -214,7 +210,7 @@ class Solver {
 
  private:
   struct Thresholds {  // build_rows' bounds on squared distances
-    double beyond2, below2;  // limit^2 (1 + 1e-9), floor^2 (1 - 1e-9)
+    double beyond2, below2;  // limit^2 and floor^2 with the relative margin (kRelativeMargin)
     double limit, floor;
   };
   struct Checkpoint {  // slope interval after the points up to `index`
@@ -264,7 +260,7 @@ class Solver {
         const int next = dist_[a] + 1;
         bool filtered = false;
         for (int b = find(a + 1); b <= reach_[a]; b = find(b + 1)) {
-          if (vertex_[b] - vertex_[a] > 64) {  // long chords: O(1) slope filter first
+          if (vertex_[b] - vertex_[a] > kSlopeFilterSpan) {  // long chords: O(1) slope filter first
             if (!filtered) {
               build_slope_filter(vertex_[a], vertex_[reach_[a]], eps);
               filtered = true;
@@ -354,7 +350,7 @@ class Solver {
     const Eigen::Vector3d& a = points_[i];
     const Eigen::Vector3d d = points_[j] - a;
     if (d.squaredNorm() == 0.0) return segment_error(points_, i, j, norm_);
-    const double bound = limit * limit * d.squaredNorm() * (1.0 + 1e-9) + 1e-300;
+    const double bound = beyond_squared(limit * limit * d.squaredNorm());
     int farthest = i + 1;
     double largest = -1.0;
     for (int k = i + 1; k < j; ++k) {
@@ -376,7 +372,7 @@ class Solver {
   // Tested squared with (|p| + |q|)^2 <= 2 (|p|^2 + |q|^2) and a margin far above rounding.
   bool pair_excludes(int i, int k, int l, double eps) const {
     const Eigen::Vector3d p = points_[k] - points_[i], q = points_[l] - points_[i];
-    return p.cross(q).squaredNorm() > 2.0 * eps * eps * (p.squaredNorm() + q.squaredNorm()) * (1.0 + 1e-9) + 1e-300;
+    return p.cross(q).squaredNorm() > beyond_squared(2.0 * eps * eps * (p.squaredNorm() + q.squaredNorm()));
   }
 
   // For build_rows: appends the error of chord (i, j) to values: kBeyond if it exceeds limit
@@ -393,7 +389,7 @@ class Solver {
       scanned += std::min(j - i, kRowTreeSpan);
       return values.back() > t.limit;
     }
-    const double bound = t.beyond2 * length2 + 1e-300;
+    const double bound = t.beyond2 * length2 + kUnderflowMargin;
     if (violator > i && violator < j && cross2_to(c, i, violator, dx, dy, dz) > bound) {
       values.push_back(kBeyond);
       return true;
@@ -423,7 +419,7 @@ class Solver {
     if (norm_ == Norm::LInf && violator > i && violator < j) {
       const Eigen::Vector3d d = points_[j] - points_[i];
       const double s = (points_[violator] - points_[i]).cross(d).squaredNorm();
-      if (s > limit * limit * d.squaredNorm() * (1.0 + 1e-9) + 1e-300 && d.squaredNorm() > 0.0)
+      if (s > beyond_squared(limit * limit * d.squaredNorm()) && d.squaredNorm() > 0.0)
         return ChordDistance(points_[i], points_[j])(points_[violator]);
     }
     if (j - i > kRowTreeSpan) {
@@ -436,15 +432,15 @@ class Solver {
     return e;
   }
 
-  // For store_errors: short chords directly; long ones first against 32 evenly spread points
+  // For store_errors: short chords directly; long ones first against kSpreadProbes evenly spread points
   // (rejects most infeasible chords, also where the tree's bounds are weak, e.g. scattered
   // points), then through the tree.
   double stored_error(int i, int j, double limit) {
     if (j - i <= kDirectSpan) return bounded_error(i, j, limit);
     if (norm_ == Norm::LInf && limit < std::numeric_limits<double>::infinity()) {
       const ChordDistance distance(points_[i], points_[j]);
-      for (int t = 1; t <= 32; ++t) {
-        const int k = i + static_cast<int>((static_cast<long long>(j - i) * t) / 33);
+      for (int t = 1; t <= kSpreadProbes; ++t) {
+        const int k = i + static_cast<int>((static_cast<long long>(j - i) * t) / (kSpreadProbes + 1));
         if (const double d = distance(points_[k]); d > limit) return d;
       }
     }
@@ -466,7 +462,7 @@ class Solver {
       // margin far above rounding, so it never rejects a chord the exact test would accept.
       const Eigen::Vector3d d = points_[vertex_[b]] - points_[vertex_[a]];
       const double cross2 = (points_[h] - points_[vertex_[a]]).cross(d).squaredNorm();
-      if (cross2 > eps * eps * d.squaredNorm() * (1.0 + 1e-9) + 1e-300) return false;
+      if (cross2 > beyond_squared(eps * eps * d.squaredNorm())) return false;
     }
     int violator = -1;
     const bool ok = tree().within(vertex_[a], vertex_[b], eps, hint_[b], &violator);
@@ -487,7 +483,7 @@ class Solver {
     const Eigen::Vector3d second = points_[std::min(i + 2, last)] - origin;
     const Eigen::Vector3d across = second - u * second.dot(u);
     const Eigen::Vector3d v =
-        across.norm() > 1e-9 * second.norm() && across.norm() > 0.0
+        across.norm() > kStraightRatio * second.norm() && across.norm() > 0.0
             ? Eigen::Vector3d(across.normalized())
             : (std::abs(u.x()) < 0.9 ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0)).cross(u).normalized();
     return {u, v};
@@ -501,14 +497,14 @@ class Solver {
   // the intersection of these intervals becomes empty (with a safety margin). The plane is the
   // curve's own plane for planar data, else the plane of the first two chords from p_i (the
   // discrete osculating plane, which keeps most of the bending). Points behind or within 2 eps
-  // along u add no constraint (still sound). Far from i only every ((k - i) / 32)-th point is
-  // examined, so a scan costs O(32 log(reach)), not O(reach).
+  // along u add no constraint (still sound). Far from i only every ((k - i) / kConeSamples)-th
+  // point is examined, so a scan costs O(kConeSamples log(reach)), not O(reach).
   int cone_reach(int i, int last, double eps) const {
     const Eigen::Vector3d& origin = points_[i];
     if (i + 1 > last) return last;
     const auto [u, v] = plane(i, last);
     double low = -std::numeric_limits<double>::infinity(), high = std::numeric_limits<double>::infinity();
-    for (int k = i + 1; k <= last; k += std::max(1, (k - i) / 32)) {
+    for (int k = i + 1; k <= last; k += std::max(1, (k - i) / kConeSamples)) {
       const Eigen::Vector3d w = points_[k] - origin;
       const double x = w.dot(u), y = w.dot(v);
       if (!(x > 2.0 * eps)) continue;  // behind or too near: no constraint (sound)
@@ -516,7 +512,7 @@ class Solver {
       const double root = eps * std::sqrt(std::max(0.0, x * x + y * y - eps * eps));
       low = std::max(low, (x * y - root) / denominator);
       high = std::min(high, (x * y + root) / denominator);
-      if (low > high + 1e-9 * (1.0 + std::abs(low) + std::abs(high))) return k;
+      if (low > high + kRelativeMargin * (1.0 + std::abs(low) + std::abs(high))) return k;
     }
     return last;
   }
@@ -530,7 +526,7 @@ class Solver {
     checkpoints_.clear();
     double low = -std::numeric_limits<double>::infinity(), high = std::numeric_limits<double>::infinity();
     const Eigen::Vector3d& origin = points_[i];
-    for (int k = i + 1; k <= last; k += std::max(1, (k - i) / 64)) {
+    for (int k = i + 1; k <= last; k += std::max(1, (k - i) / kSlopeFilterSamples)) {
       const Eigen::Vector3d w = points_[k] - origin;
       const double x = w.dot(filter_.u), y = w.dot(filter_.v);
       if (!(x > 2.0 * eps)) continue;
@@ -551,7 +547,7 @@ class Solver {
     const Eigen::Vector3d w = points_[j] - points_[i];
     const double x = w.dot(filter_.u), y = w.dot(filter_.v);
     if (!(x > 0.0)) return false;
-    const double margin = 1e-9 * (std::abs(y) + x * (1.0 + std::abs(c.low) + std::abs(c.high)));
+    const double margin = kRelativeMargin * (std::abs(y) + x * (1.0 + std::abs(c.low) + std::abs(c.high)));
     return y < c.low * x - margin || y > c.high * x + margin;
   }
 

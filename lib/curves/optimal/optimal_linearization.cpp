@@ -38,6 +38,9 @@ constexpr double kSmallBudget = 6e7;
 // fraction of the start's error (INIT is within 1.0-1.7x of the optimum on the Appendix-B curves).
 constexpr int kGuesses = 4;
 constexpr double kFirstGuess = 1.0;
+// Streaming bisection with no infeasible tolerance known yet: halving, until hi falls below this
+// fraction of the start's error; then 0 itself is probed.
+constexpr double kZeroProbeFraction = 1e-9;
 
 std::vector<int> all_vertices(int n) {
   std::vector<int> v(n);
@@ -58,7 +61,7 @@ double path_error(FeasibilitySolver& solver, const std::vector<int>& path) {
 std::optional<double> middle(double lo, double hi, double first_hi) {
   if (lo < 0.0) {
     if (hi <= 0.0) return std::nullopt;
-    return hi < 1e-9 * first_hi ? 0.0 : 0.5 * hi;
+    return hi < kZeroProbeFraction * first_hi ? 0.0 : 0.5 * hi;
   }
   if (hi > 2.0 * lo) {
     const double mid = lo + 0.5 * (hi - lo);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "curves/optimal/tolerances.hpp"
+
 namespace sculpt::curves::detail {
 
 namespace {
@@ -36,7 +38,7 @@ SegmentErrorTree::SegmentErrorTree(const std::vector<Eigen::Vector3d>& points, N
     double radius = 0.0;
     for (int q = begin + 1; q < end - 1; ++q)
       radius = std::max(radius, distance_to_segment(points[q], points[begin], points[end - 1]));
-    nodes_[k].radius = radius * (1.0 + 1e-9);
+    nodes_[k].radius = radius * (1.0 + kRelativeMargin);
     if (end - begin > kLeafSize) {
       const int mid = begin + (end - begin) / 2;
       const int left = static_cast<int>(nodes_.size());
@@ -68,7 +70,7 @@ Bounds node_bounds(const Node& node, const std::vector<Eigen::Vector3d>& points,
   const double nearest = (u0 + t * du).norm();
   const double farthest = std::max(u0.norm(), u1.norm());
   // Margin far above the rounding of these few operations relative to the coordinates involved.
-  const double margin = 1e-9 * (w0.norm() + w1.norm() + node.radius) + 1e-300;
+  const double margin = kRelativeMargin * (w0.norm() + w1.norm() + node.radius) + kUnderflowMargin;
   return {nearest - node.radius - margin, farthest + node.radius + margin};
 }
 
