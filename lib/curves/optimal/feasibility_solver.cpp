@@ -117,15 +117,23 @@ class Solver {
           rejected = false;
           continue;
         }
-        rejected = hinted_scan(i, j, squared, violator, values, scanned);
+        const RowEntry entry = hinted_scan(i, j, squared, violator);
+        if (entry.queued) {
+          measured_.push_back(values.size());
+          cross2_.push_back(entry.cross2);
+          length2_.push_back(entry.length2);
+        }
+        values.push_back(entry.value);
+        violator = entry.violator;
+        rejected = entry.beyond;
+        scanned += entry.work;
         if ((scanned += 1.0) > 2e6 + budget * (a + 1)) return false;
       }
       reach[a] = b - 1;
     }
     // The distances of the measured chords' farthest points, sqrt(cross2) / sqrt(length2)
     // exactly as ChordDistance computes them, in a loop of independent roots and divisions.
-    std::vector<double> distances(measured_.size());
-    chord_distances(cross2_.data(), length2_.data(), measured_.size(), kBeyond, kBelow, distances.data());
+    const std::vector<double> distances = chord_distances(cross2_, length2_, kBeyond, kBelow);
     for (std::size_t t = 0; t < measured_.size(); ++t) values[measured_[t]] = distances[t];
     row_ = std::move(rows);
     reach_ = std::move(reach);
@@ -180,24 +188,23 @@ class Solver {
     return path;
   }
 
-  // A path of exactly m edges with every edge within eps, or nullopt if none exists. In stored
-  // mode, if the fewest edges within eps are at least m - kWindow, the path is the best of all
-  // paths of m edges (*optimal = true; best_exact_path).
-  std::optional<std::vector<int>> exact_path(double eps, int m, bool* optimal = nullptr) {
+  // A path of exactly m edges with every edge within eps, or none. In stored mode, if the fewest
+  // edges within eps are at least m - kWindow, the path is the best of all paths of m edges
+  // (.optimal; best_exact_path).
+  ExactPath exact_path(double eps, int m) {
     min_count(eps);
-    if (dist_.back() > m) return std::nullopt;
-    if (m - dist_.back() <= kWindow && !stored_.empty() && optimal) {
+    if (dist_.back() > m) return {std::nullopt, false};
+    if (m - dist_.back() <= kWindow && !stored_.empty()) {
       std::optional<std::vector<int>> path = best_exact_path(eps, m);
       if (path && floor_ > 0.0 && best_bottleneck_ < floor_) {  // errors below the floor decide it
         materialize();
         path = best_exact_path(eps, m);
       }
-      *optimal = path.has_value();
-      return path;
+      const bool optimal = path.has_value();
+      return {std::move(path), optimal};
     }
-    std::vector<int> path = min_path();
-    if (split_to(path, eps, m)) return path;
-    return bitset_path(eps, m);
+    if (std::optional<std::vector<int>> split = split_to(min_path(), eps, m)) return {std::move(split), false};
+    return {bitset_path(eps, m), false};
   }
 
   // Indices of a position path.
@@ -209,6 +216,18 @@ class Solver {
   }
 
  private:
+  struct RowEntry {        // one chord of a build_rows row (hinted_scan)
+    double value;          // kBeyond, kBelow, the error, or (queued) a placeholder
+    bool beyond;           // the error exceeds the limit
+    int violator;          // a point beyond the limit, or -1: the hint for the next chord of the row
+    int work;              // point distances spent
+    bool queued = false;   // to be measured from cross2 and length2 at the end of build_rows
+    double cross2 = 0.0, length2 = 0.0;
+  };
+  struct ChordError {  // bounded_error, hinted_error
+    double error;
+    int violator;  // a point beyond the limit, or -1
+  };
   struct Thresholds {  // build_rows' bounds on squared distances
     double beyond2, below2;  // limit^2 and floor^2 with the relative margin (kRelativeMargin)
     double limit, floor;
@@ -343,13 +362,14 @@ class Solver {
   }
 
   // segment_error(i, j) if it is <= limit, else some value > limit (L-inf: the scan stops at the
-  // first point clearly beyond the limit; the margin keeps borderline points exact).
-  double bounded_error(int i, int j, double limit, int* farthest_out = nullptr) const {
+  // first point clearly beyond the limit; the margin keeps borderline points exact). The
+  // violator is the farthest point scanned when that exceeds the limit, else -1.
+  ChordError bounded_error(int i, int j, double limit) const {
     if (norm_ != Norm::LInf || j - i < 2 || !(limit < std::numeric_limits<double>::infinity()))
-      return segment_error(points_, i, j, norm_);
+      return {segment_error(points_, i, j, norm_), -1};
     const Eigen::Vector3d& a = points_[i];
     const Eigen::Vector3d d = points_[j] - a;
-    if (d.squaredNorm() == 0.0) return segment_error(points_, i, j, norm_);
+    if (d.squaredNorm() == 0.0) return {segment_error(points_, i, j, norm_), -1};
     const double bound = beyond_squared(limit * limit * d.squaredNorm());
     int farthest = i + 1;
     double largest = -1.0;
@@ -361,8 +381,8 @@ class Solver {
         if (s > bound) break;
       }
     }
-    if (farthest_out) *farthest_out = farthest;
-    return ChordDistance(a, points_[j])(points_[farthest]);  // as segment_error() measures it
+    const double error = ChordDistance(a, points_[j])(points_[farthest]);  // as segment_error() measures it
+    return {error, error > limit ? farthest : -1};
   }
 
   // No line through p_i passes within eps of both p_k and p_l: with p = p_k - p_i, q = p_l - p_i,
@@ -375,68 +395,56 @@ class Solver {
     return p.cross(q).squaredNorm() > beyond_squared(2.0 * eps * eps * (p.squaredNorm() + q.squaredNorm()));
   }
 
-  // For build_rows: appends the error of chord (i, j) to values: kBeyond if it exceeds limit
-  // (found by a point beyond limit, tried first `violator`, which is updated), kBelow if it is
-  // certainly below floor, else a placeholder, with the squared cross product of the farthest
-  // point and |p_j - p_i|^2 queued in cross2_, length2_ (measured_ = its place). Degenerate,
-  // long and L2 chords are measured at once. True if the error exceeds limit.
-  bool hinted_scan(int i, int j, const Thresholds& t, int& violator, std::vector<double>& values, double& scanned) {
+  // For build_rows: the stored value of chord (i, j): kBeyond if it exceeds limit (found by a
+  // point beyond limit, tried first `hint`), kBelow if it is certainly below floor, else a
+  // placeholder queued for measuring (the squared cross product of the farthest point and
+  // |p_j - p_i|^2). Degenerate, long and L2 chords are measured at once.
+  RowEntry hinted_scan(int i, int j, const Thresholds& t, int hint) {
     const PointColumns& c = *columns_;
     const double dx = c.x[j] - c.x[i], dy = c.y[j] - c.y[i], dz = c.z[j] - c.z[i];
     const double length2 = (dx * dx + dy * dy) + dz * dz;  // = (p_j - p_i).squaredNorm()
     if (norm_ != Norm::LInf || length2 == 0.0 || j - i > kRowTreeSpan) {
-      values.push_back(hinted_error(i, j, t.limit, violator));
-      scanned += std::min(j - i, kRowTreeSpan);
-      return values.back() > t.limit;
+      const ChordError measured = hinted_error(i, j, t.limit, hint);
+      return {.value = measured.error,
+              .beyond = measured.error > t.limit,
+              .violator = measured.violator,
+              .work = std::min(j - i, kRowTreeSpan)};
     }
     const double bound = t.beyond2 * length2 + kUnderflowMargin;
-    if (violator > i && violator < j && cross2_to(c, i, violator, dx, dy, dz) > bound) {
-      values.push_back(kBeyond);
-      return true;
-    }
+    if (hint > i && hint < j && cross2_to(c, i, hint, dx, dy, dz) > bound)
+      return {.value = kBeyond, .beyond = true, .violator = hint, .work = 0};
     const ChordScan scan = planar_ ? scan_chord_planar(c, i, j, bound) : scan_chord(c, i, j, bound);
-    violator = scan.beyond;
-    scanned += violator >= 0 ? violator - i : j - i;
-    if (violator >= 0) {
-      values.push_back(kBeyond);
-      return true;
-    }
+    const int work = scan.beyond >= 0 ? scan.beyond - i : j - i;
+    if (scan.beyond >= 0) return {.value = kBeyond, .beyond = true, .violator = scan.beyond, .work = work};
     // below floor for certain: sqrt(cross2) / sqrt(length2) < floor
-    if (scan.cross2 < t.below2 * length2) {
-      values.push_back(kBelow);
-      return false;
-    }
-    measured_.push_back(values.size());
-    values.push_back(0.0);
-    cross2_.push_back(scan.cross2);
-    length2_.push_back(length2);
-    return false;
+    if (scan.cross2 < t.below2 * length2) return {.value = kBelow, .beyond = false, .violator = -1, .work = work};
+    return {.value = 0.0,
+            .beyond = false,
+            .violator = -1,
+            .work = work,
+            .queued = true,
+            .cross2 = scan.cross2,
+            .length2 = length2};
   }
 
-  // bounded_error(i, j, limit), but first against point `violator` (if inside the chord); on
-  // return `violator` is the farthest point found when the error exceeds limit, else -1.
-  double hinted_error(int i, int j, double limit, int& violator) {
-    if (norm_ == Norm::LInf && violator > i && violator < j) {
+  // bounded_error(i, j, limit), but first against point `hint` (if inside the chord; it stays
+  // the violator if it is beyond the limit).
+  ChordError hinted_error(int i, int j, double limit, int hint) {
+    if (norm_ == Norm::LInf && hint > i && hint < j) {
       const Eigen::Vector3d d = points_[j] - points_[i];
-      const double s = (points_[violator] - points_[i]).cross(d).squaredNorm();
+      const double s = (points_[hint] - points_[i]).cross(d).squaredNorm();
       if (s > beyond_squared(limit * limit * d.squaredNorm()) && d.squaredNorm() > 0.0)
-        return ChordDistance(points_[i], points_[j])(points_[violator]);
+        return {ChordDistance(points_[i], points_[j])(points_[hint]), hint};
     }
-    if (j - i > kRowTreeSpan) {
-      violator = -1;
-      return tree().error(i, j, limit);
-    }
-    int farthest = -1;
-    const double e = bounded_error(i, j, limit, &farthest);
-    violator = e > limit ? farthest : -1;
-    return e;
+    if (j - i > kRowTreeSpan) return {tree().error(i, j, limit), -1};
+    return bounded_error(i, j, limit);
   }
 
   // For store_errors: short chords directly; long ones first against kSpreadProbes evenly spread points
   // (rejects most infeasible chords, also where the tree's bounds are weak, e.g. scattered
   // points), then through the tree.
   double stored_error(int i, int j, double limit) {
-    if (j - i <= kDirectSpan) return bounded_error(i, j, limit);
+    if (j - i <= kDirectSpan) return bounded_error(i, j, limit).error;
     if (norm_ == Norm::LInf && limit < std::numeric_limits<double>::infinity()) {
       const ChordDistance distance(points_[i], points_[j]);
       for (int t = 1; t <= kSpreadProbes; ++t) {
@@ -464,10 +472,9 @@ class Solver {
       const double cross2 = (points_[h] - points_[vertex_[a]]).cross(d).squaredNorm();
       if (cross2 > beyond_squared(eps * eps * d.squaredNorm())) return false;
     }
-    int violator = -1;
-    const bool ok = tree().within(vertex_[a], vertex_[b], eps, hint_[b], &violator);
-    if (!ok && violator >= 0) hint_[b] = violator;
-    return ok;
+    const WithinTest result = tree().test(vertex_[a], vertex_[b], eps, hint_[b]);
+    if (!result.within && result.violator >= 0) hint_[b] = result.violator;
+    return result.within;
   }
 
   // The projection plane at p_i: u along the first chord, v across it towards the second (the
@@ -551,12 +558,13 @@ class Solver {
     return y < c.low * x - margin || y > c.high * x + margin;
   }
 
-  // Certificate for "exactly m": split segments of `path` (positions) into two within eps.
-  bool split_to(std::vector<int>& path, double eps, int m) {
+  // Certificate for "exactly m": `path` (positions) with segments split into two within eps until
+  // it has m, or nullopt if that fails (within a work budget).
+  std::optional<std::vector<int>> split_to(std::vector<int> path, double eps, int m) {
     long long budget = 8LL * count() + 64LL * m;
     std::size_t e = 0;
     while (static_cast<int>(path.size()) - 1 < m) {
-      if (e + 1 >= path.size()) return false;
+      if (e + 1 >= path.size()) return std::nullopt;
       const int a = path[e], b = path[e + 1];
       bool split = false;
       if (b - a >= 2) {
@@ -565,7 +573,7 @@ class Solver {
         for (int t = 0; t < 3 + (b - a - 1) && !split; ++t) {
           const int c = t < 3 ? first[t] : a + 1 + (t - 3);
           if (c <= a || c >= b) continue;
-          if ((budget -= 2) < 0) return false;
+          if ((budget -= 2) < 0) return std::nullopt;
           if (c <= reach_[a] && c >= 0 && b <= reach_[c] && test(a, c, eps) && test(c, b, eps)) {
             path.insert(path.begin() + static_cast<std::ptrdiff_t>(e) + 1, c);
             split = true;
@@ -574,7 +582,7 @@ class Solver {
       }
       if (!split) ++e;  // after a split, try the new first half again
     }
-    return true;
+    return path;
   }
 
   // Exact: S[b] = set of segment counts <= m with which position b is reachable.
@@ -671,9 +679,7 @@ double FeasibilitySolver::reach_eps() const { return impl_->reach_eps(); }
 void FeasibilitySolver::min_count(double eps) { impl_->min_count(eps); }
 int FeasibilitySolver::min_segments() const { return impl_->min_segments(); }
 std::vector<int> FeasibilitySolver::min_path() const { return impl_->min_path(); }
-std::optional<std::vector<int>> FeasibilitySolver::exact_path(double eps, int m, bool* optimal) {
-  return impl_->exact_path(eps, m, optimal);
-}
+ExactPath FeasibilitySolver::exact_path(double eps, int m) { return impl_->exact_path(eps, m); }
 std::vector<int> FeasibilitySolver::indices(const std::vector<int>& path) const { return impl_->indices(path); }
 
 }  // namespace sculpt::curves::detail

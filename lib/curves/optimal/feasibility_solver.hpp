@@ -27,6 +27,12 @@ inline constexpr int kUnreached = std::numeric_limits<int>::max();
 /// (best_exact_path, kWindow + 1 layers).
 inline constexpr int kWindow = 6;
 
+/// Result of FeasibilitySolver::exact_path.
+struct ExactPath {
+  std::optional<std::vector<int>> path;  ///< positions of a path of exactly m edges within eps, if any
+  bool optimal = false;                  ///< the path is the best of all paths of m edges
+};
+
 /// Shortest paths over the allowed vertices; positions 0..K-1 index `vertices()`. The state and
 /// the algorithms live in feasibility_solver.cpp (Impl).
 class FeasibilitySolver {
@@ -74,10 +80,10 @@ class FeasibilitySolver {
   [[nodiscard]] int min_segments() const;
   [[nodiscard]] std::vector<int> min_path() const;
 
-  /// A path of exactly m edges with every edge within eps, or nullopt if none exists. In stored
+  /// A path of exactly m edges with every edge within eps, or none if none exists. In stored
   /// mode, if the fewest edges within eps are at least m - kWindow, the path is the best of all
-  /// paths of m edges (*optimal = true).
-  std::optional<std::vector<int>> exact_path(double eps, int m, bool* optimal = nullptr);
+  /// paths of m edges (.optimal = true).
+  [[nodiscard]] ExactPath exact_path(double eps, int m);
 
   /// Point indices of a position path.
   [[nodiscard]] std::vector<int> indices(const std::vector<int>& path) const;

@@ -118,9 +118,8 @@ struct Search {
   bool probe(double eps) {
     ++probes;
     const long long before = solver.tests();
-    bool optimal = false;
     if (eps < solver.floor()) solver.materialize();
-    std::optional<std::vector<int>> path = solver.exact_path(eps, m, &optimal);
+    auto [path, optimal] = solver.exact_path(eps, m);
     last = {eps, solver.min_segments()};
     (path ? feasible : infeasible) = last;
     if (debug)

@@ -76,27 +76,21 @@ Bounds node_bounds(const Node& node, const std::vector<Eigen::Vector3d>& points,
 
 }  // namespace
 
-bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator) const {
-  if (violator) *violator = -1;
-  if (j - i < 2) return 0.0 <= eps;
+WithinTest SegmentErrorTree::test(int i, int j, double eps, int hint) const {
+  if (j - i < 2) return {0.0 <= eps, -1};
   const ChordDistance distance(points_[i], points_[j]);
   if (norm_ == Norm::L2) {
     double sum = 0.0;
     for (int k = i + 1; k < j; ++k) {
       const double d = distance(points_[k]);
       sum += d * d;
-      if (((k - i) & 15) == 0 && std::sqrt(sum) > eps) return false;  // partial sums only grow
+      if (((k - i) & 15) == 0 && std::sqrt(sum) > eps) return {false, -1};  // partial sums only grow
     }
-    return std::sqrt(sum) <= eps;
+    return {std::sqrt(sum) <= eps, -1};
   }
-  if (hint > i && hint < j && distance(points_[hint]) > eps) {
-    if (violator) *violator = hint;
-    return false;
-  }
-  if (const int middle = i + (j - i) / 2; distance(points_[middle]) > eps) {  // often the farthest
-    if (violator) *violator = middle;
-    return false;
-  }
+  if (hint > i && hint < j && distance(points_[hint]) > eps) return {false, hint};
+  const int middle = i + (j - i) / 2;  // often the farthest
+  if (distance(points_[middle]) > eps) return {false, middle};
   const Eigen::Vector3d direction = points_[j] - points_[i];
   const double length2 = direction.squaredNorm();
   const double inverse_length2 = length2 > 0.0 ? 1.0 / length2 : 0.0;
@@ -110,23 +104,17 @@ bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator)
     const Bounds bounds = node_bounds(node, points_, distance, direction, inverse_length2);
     if (bounds.high <= eps) continue;  // every point of the node is within
     const bool inside = node.begin >= lo && node.end - 1 <= hi;
-    if (inside && bounds.low > eps) {  // every point of the node violates
-      if (violator) *violator = node.begin;
-      return false;
-    }
+    if (inside && bounds.low > eps) return {false, node.begin};  // every point of the node violates
     if (node.left < 0) {
       const int from = std::max(node.begin, lo), to = std::min(node.end - 1, hi);
       for (int k = from; k <= to; ++k)
-        if (distance(points_[k]) > eps) {
-          if (violator) *violator = k;
-          return false;
-        }
+        if (distance(points_[k]) > eps) return {false, k};
       continue;
     }
     stack[top++] = node.right;
     stack[top++] = node.left;
   }
-  return true;
+  return {true, -1};
 }
 
 double SegmentErrorTree::error(int i, int j, double limit) const {
