@@ -33,8 +33,9 @@ struct ExactPath {
   bool optimal = false;                  ///< the path is the best of all paths of m edges
 };
 
-/// Shortest paths over the allowed vertices; positions 0..K-1 index `vertices()`. The state and
-/// the algorithms live in feasibility_solver.cpp (Impl).
+/// Shortest paths over the allowed vertices; positions 0..K-1 index `vertices()`. The state is
+/// Impl (feasibility_solver_impl.hpp); its four jobs live in edge_errors.cpp, cone_pruning.cpp,
+/// fewest_segments.cpp and exact_paths.cpp.
 class FeasibilitySolver {
  public:
   /// `vertices`: sorted point indices, first 0 and last points.size() - 1. `shared_tree` (optional)
