@@ -6,11 +6,11 @@
 
 #include "base/errors.hpp"
 #include "curves/curve_measures.hpp"
-#include "curves/dynamic_programming.hpp"
-#include "curves/fast_linearization.hpp"
-#include "curves/heuristic_subdivision.hpp"
-#include "curves/optimal_linearization.hpp"
-#include "curves/top_down_splitting.hpp"
+#include "curves/methods/dynamic_programming.hpp"
+#include "curves/methods/fast_linearization.hpp"
+#include "curves/methods/heuristic_subdivision.hpp"
+#include "curves/methods/top_down_splitting.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
 
 namespace sculpt::curves {
 namespace {
@@ -104,27 +104,27 @@ Linearization linearize(const DigitizedCurve& curve, const LinearizeOptions& opt
     case Method::Iter: {
       const CurveMeasures measures(curve);
       const double alpha = method == Method::Length ? 1.0 : method == Method::Image ? 0.0 : options.alpha;
-      Linearization init = weighted_subdivision(points, measures, m, alpha, norm);
+      Linearization init = detail::weighted_subdivision(points, measures, m, alpha, norm);
       if (method != Method::Iter) return init;
-      return iterative_refinement(points, std::move(init), norm, options.max_iterations);
+      return detail::iterative_refinement(points, std::move(init), norm, options.max_iterations);
     }
     case Method::Dynamic:
-      return dynamic_linearization(points, m, norm);
+      return detail::dynamic_linearization(points, m, norm);
     case Method::Optimal:
-      return optimal_min_error(points, m, norm);
+      return detail::optimal_min_error(points, m, norm);
     case Method::Fast:
-      return fast_linearization(points, m, norm);
+      return detail::fast_linearization(points, m, norm);
     case Method::MinCount:
-      return optimal_min_count(points, *options.tolerance, norm);
+      return detail::optimal_min_count(points, *options.tolerance, norm);
     case Method::CenterOfMass:
     case Method::DouglasPeucker: {
       const CurveMeasures measures(curve);
-      return top_down_split(points, measures,
-                            {.rule = method == Method::DouglasPeucker ? SplitRule::FarthestPoint
-                                                                      : SplitRule::CenterOfCurvature,
-                             .segments = has_segments ? m : 0,
-                             .tolerance = has_tolerance ? *options.tolerance : 0.0,
-                             .norm = norm});
+      return detail::top_down_split(points, measures,
+                                    {.rule = method == Method::DouglasPeucker ? detail::SplitRule::FarthestPoint
+                                                                              : detail::SplitRule::CenterOfCurvature,
+                                     .segments = has_segments ? m : 0,
+                                     .tolerance = has_tolerance ? *options.tolerance : 0.0,
+                                     .norm = norm});
     }
     case Method::Automatic:
       break;

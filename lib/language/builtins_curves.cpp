@@ -6,7 +6,7 @@
 
 #include "curves/digitized_curve.hpp"
 #include "curves/linearize.hpp"
-#include "curves/test_curves.hpp"
+#include "curves/appendix_b_curves.hpp"
 #include "language/builtins.hpp"
 #include "language/curve_values.hpp"
 
@@ -81,8 +81,8 @@ void register_curves(BuiltinTable& table) {
                return make_curve(std::move(curve));
              }});
 
-  for (curves::TestCurve which : curves::all_test_curves()) {
-    const std::string name = curves::test_curve_name(which);
+  for (curves::AppendixBCurve which : curves::all_appendix_b_curves()) {
+    const std::string name = curves::appendix_b_curve_name(which);
     table.add({.name = name,
                .signature = name + "(points=" + std::to_string(curves::paper_point_count(which)) +
                             ", noise=0, seed=1)",
@@ -90,11 +90,11 @@ void register_curves(BuiltinTable& table) {
                       "(default: the paper's count), with optional seeded Gaussian noise.",
                .params = {{"points", false}, {"noise", false}, {"seed", false}},
                .run = [which](const Arguments& args) {
-                 curves::TestCurveOptions options;
+                 curves::AppendixBCurveOptions options;
                  if (args.has(0)) options.points = static_cast<int>(args.integer(0, 2, 10'000'000));
                  if (args.has(1)) options.noise = args.number(1);
                  if (args.has(2)) options.seed = static_cast<std::uint64_t>(args.integer(2, 0, 1LL << 53));
-                 return make_curve(curves::make_test_curve(which, options));
+                 return make_curve(curves::make_appendix_b_curve(which, options));
                }});
   }
 

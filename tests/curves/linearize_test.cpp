@@ -7,7 +7,7 @@
 
 #include "base/errors.hpp"
 #include "curve_testing.hpp"
-#include "curves/test_curves.hpp"
+#include "curves/appendix_b_curves.hpp"
 
 using namespace sculpt;
 using namespace sculpt::curves;
@@ -39,13 +39,13 @@ DigitizedCurve small_curve(std::initializer_list<Vec> points, bool closed = fals
 }  // namespace
 
 TEST(Linearize, EveryCountMethodGivesExactlyMSegments) {
-  for (TestCurve which : all_test_curves()) {
-    const DigitizedCurve curve = make_test_curve(which, {.points = 150});
+  for (AppendixBCurve which : all_appendix_b_curves()) {
+    const DigitizedCurve curve = make_appendix_b_curve(which, {.points = 150});
     for (Method method : kCountMethods)
       for (int m : {1, 2, 5, 16, 64}) {
         const Linearization la = linearize(curve, {.segments = m, .method = method});
         expect_contract(curve, la);
-        EXPECT_EQ(la.segments(), m) << method_name(method) << " " << test_curve_name(which);
+        EXPECT_EQ(la.segments(), m) << method_name(method) << " " << appendix_b_curve_name(which);
       }
   }
 }
@@ -64,10 +64,10 @@ TEST(Linearize, NothingBeatsTheOptimum) {
 
 TEST(Linearize, IterNeverEndsWorseThanInit) {
   std::mt19937_64 rng(4);
-  for (TestCurve which : all_test_curves())
+  for (AppendixBCurve which : all_appendix_b_curves())
     for (double alpha : {0.0, 0.3, 0.5, 0.8, 1.0})
       for (int m : {4, 8, 16, 32, 64}) {
-        const DigitizedCurve curve = make_test_curve(which, {.noise = alpha * 0.01, .seed = 3});
+        const DigitizedCurve curve = make_appendix_b_curve(which, {.noise = alpha * 0.01, .seed = 3});
         const auto init = linearize(curve, {.segments = m, .method = Method::Init, .alpha = alpha});
         const auto iter = linearize(curve, {.segments = m, .method = Method::Iter, .alpha = alpha});
         EXPECT_LE(iter.error, init.error);
@@ -76,7 +76,7 @@ TEST(Linearize, IterNeverEndsWorseThanInit) {
 }
 
 TEST(Linearize, LengthAndImageAreInitWithAlphaOneAndZero) {
-  const DigitizedCurve curve = make_test_curve(TestCurve::Folium);
+  const DigitizedCurve curve = make_appendix_b_curve(AppendixBCurve::Folium);
   EXPECT_EQ(linearize(curve, {.segments = 9, .method = Method::Length}).indices,
             linearize(curve, {.segments = 9, .method = Method::Init, .alpha = 1.0}).indices);
   EXPECT_EQ(linearize(curve, {.segments = 9, .method = Method::Image}).indices,
@@ -107,8 +107,8 @@ TEST(Linearize, BestOverAtMostMNeverGrowsWithM) {
 }
 
 TEST(Linearize, ToleranceMethodsMeetTheTolerance) {
-  for (TestCurve which : all_test_curves()) {
-    const DigitizedCurve curve = make_test_curve(which, {.points = 300, .noise = 0.002, .seed = 9});
+  for (AppendixBCurve which : all_appendix_b_curves()) {
+    const DigitizedCurve curve = make_appendix_b_curve(which, {.points = 300, .noise = 0.002, .seed = 9});
     for (double tol : {0.0, 1e-3, 1e-2, 0.1, 1.0}) {
       const auto fewest = linearize(curve, {.tolerance = tol});
       expect_contract(curve, fewest);
@@ -189,7 +189,7 @@ TEST(Linearize, MethodNamesRoundTrip) {
 }
 
 TEST(Linearize, L2NormIsHonouredEverywhere) {
-  const DigitizedCurve curve = make_test_curve(TestCurve::Sextic, {.points = 80});
+  const DigitizedCurve curve = make_appendix_b_curve(AppendixBCurve::Sextic, {.points = 80});
   const double optimum = linearize(curve, {.segments = 6, .norm = Norm::L2}).error;
   EXPECT_EQ(optimum, linearize(curve, {.segments = 6, .method = Method::Dynamic, .norm = Norm::L2}).error);
   for (Method method : kCountMethods) {

@@ -1,16 +1,17 @@
 // The optimal solvers against DYNAMIC (the paper's algorithm) and against brute force.
-#include "curves/optimal_linearization.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "curve_testing.hpp"
-#include "curves/dynamic_programming.hpp"
-#include "curves/fast_linearization.hpp"
-#include "curves/test_curves.hpp"
+#include "curves/methods/dynamic_programming.hpp"
+#include "curves/methods/fast_linearization.hpp"
+#include "curves/appendix_b_curves.hpp"
 
 using namespace sculpt::curves;
+using namespace sculpt::curves::detail;  // the internals under test
 using Vec = Eigen::Vector3d;
 
 namespace {
@@ -72,16 +73,16 @@ TEST(OptimalMinError, AgreesWithDynamicOnLargerRandomCurves) {
   }
 }
 
-TEST(OptimalMinError, AgreesWithDynamicOnTheTestCurves) {
-  for (TestCurve which : all_test_curves()) {
+TEST(OptimalMinError, AgreesWithDynamicOnTheAppendixBCurves) {
+  for (AppendixBCurve which : all_appendix_b_curves()) {
     for (double noise : {0.0, 0.01}) {
-      const DigitizedCurve curve = make_test_curve(which, {.points = 120, .noise = noise, .seed = 5});
+      const DigitizedCurve curve = make_appendix_b_curve(which, {.points = 120, .noise = noise, .seed = 5});
       const std::vector<Vec> points = path_points(curve);
       for (int m : {2, 4, 8, 16, 32, 64}) {
         const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
         expect_valid(optimal, points, m, Norm::LInf);
         EXPECT_EQ(optimal.error, dynamic_linearization(points, m, Norm::LInf).error)
-            << test_curve_name(which) << " m=" << m << " noise=" << noise;
+            << appendix_b_curve_name(which) << " m=" << m << " noise=" << noise;
       }
     }
   }
@@ -140,35 +141,35 @@ TEST(OptimalMinCount, AtTheOptimalErrorOfMNeedsAtMostM) {
 
 TEST(FastLinearization, CoarseToFineStaysWithinFivePercentOfOptimum) {
   // Force the coarse-to-fine path (exact_below = 0) on every test curve.
-  for (TestCurve which : all_test_curves()) {
-    const DigitizedCurve curve = make_test_curve(which, {.points = 1000});
+  for (AppendixBCurve which : all_appendix_b_curves()) {
+    const DigitizedCurve curve = make_appendix_b_curve(which, {.points = 1000});
     const std::vector<Vec> points = path_points(curve);
     for (int m : {4, 8, 16, 32, 64}) {
       const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
       const Linearization fast = fast_linearization(points, m, Norm::LInf, {.exact_below = 0});
       expect_valid(fast, points, m, Norm::LInf);
       EXPECT_GE(fast.error, optimal.error);
-      EXPECT_LE(fast.error, 1.05 * optimal.error) << test_curve_name(which) << " m=" << m;
+      EXPECT_LE(fast.error, 1.05 * optimal.error) << appendix_b_curve_name(which) << " m=" << m;
     }
   }
 }
 
 TEST(FastLinearization, GreedyCoversWithManySegmentsStayNearOptimum) {
   // m > 64: only the greedy covers and the layered passes run (no coarse optimum).
-  for (TestCurve which : {TestCurve::Cubic, TestCurve::Helix, TestCurve::Rose}) {
-    const DigitizedCurve curve = make_test_curve(which, {.points = 12000});
+  for (AppendixBCurve which : {AppendixBCurve::Cubic, AppendixBCurve::Helix, AppendixBCurve::Rose}) {
+    const DigitizedCurve curve = make_appendix_b_curve(which, {.points = 12000});
     const std::vector<Vec> points = path_points(curve);
     const Linearization optimal = optimal_min_error(points, 400, Norm::LInf);
     const Linearization fast = fast_linearization(points, 400, Norm::LInf, {.exact_below = 0});
     expect_valid(fast, points, 400, Norm::LInf);
     EXPECT_GE(fast.error, optimal.error);
-    EXPECT_LE(fast.error, 1.05 * optimal.error) << test_curve_name(which);
+    EXPECT_LE(fast.error, 1.05 * optimal.error) << appendix_b_curve_name(which);
   }
 }
 
 TEST(FastLinearization, NoisyCurvesKeepTheContract) {
-  for (TestCurve which : all_test_curves()) {
-    const DigitizedCurve curve = make_test_curve(which, {.points = 400, .noise = 0.01, .seed = 2});
+  for (AppendixBCurve which : all_appendix_b_curves()) {
+    const DigitizedCurve curve = make_appendix_b_curve(which, {.points = 400, .noise = 0.01, .seed = 2});
     const std::vector<Vec> points = path_points(curve);
     for (int m : {3, 50, 200}) {
       const Linearization fast = fast_linearization(points, m, Norm::LInf, {.exact_below = 0});
@@ -183,9 +184,9 @@ TEST(OptimalMinCount, AgreesWithDirectDynamicProgrammingOnLongSegments) {
   // plain O(n^2) DP over segment_error().
   std::mt19937_64 rng(21);
   std::vector<std::vector<Vec>> curves;
-  for (TestCurve which : all_test_curves()) {
-    curves.push_back(path_points(make_test_curve(which, {.points = 400})));
-    curves.push_back(path_points(make_test_curve(which, {.points = 400, .noise = 0.003, .seed = 4})));
+  for (AppendixBCurve which : all_appendix_b_curves()) {
+    curves.push_back(path_points(make_appendix_b_curve(which, {.points = 400})));
+    curves.push_back(path_points(make_appendix_b_curve(which, {.points = 400, .noise = 0.003, .seed = 4})));
   }
   curves.push_back(curve_testing::random_curve(rng, 400, 2).points);
   curves.push_back(curve_testing::random_curve(rng, 400, 3).points);
@@ -213,8 +214,8 @@ TEST(OptimalMinCount, AgreesWithDirectDynamicProgrammingOnLongSegments) {
 TEST(OptimalMinError, StreamingModeAgreesWithDynamic) {
   std::mt19937_64 rng(31);
   std::vector<std::vector<Vec>> curves;
-  for (TestCurve which : all_test_curves())
-    curves.push_back(path_points(make_test_curve(which, {.points = 200, .noise = 0.002, .seed = 8})));
+  for (AppendixBCurve which : all_appendix_b_curves())
+    curves.push_back(path_points(make_appendix_b_curve(which, {.points = 200, .noise = 0.002, .seed = 8})));
   for (int trial = 0; trial < 6; ++trial) {
     curves.push_back(scattered(rng, 60, trial % 2 ? 3 : 2));
     curves.push_back(curve_testing::random_curve(rng, 150, trial % 2 ? 3 : 2).points);
@@ -233,12 +234,12 @@ TEST(OptimalMinError, StreamingModeAgreesWithDynamic) {
 // measured, the layered bottleneck DP that ends the search) on the Appendix-B curves at the
 // paper's point counts, where symmetric curves give many chord errors equal up to rounding.
 TEST(OptimalMinError, AgreesWithDynamicAtThePapersPointCounts) {
-  for (TestCurve which : {TestCurve::Cubic, TestCurve::Helix, TestCurve::Folium, TestCurve::Sextic}) {
-    const std::vector<Vec> points = path_points(make_test_curve(which));
+  for (AppendixBCurve which : {AppendixBCurve::Cubic, AppendixBCurve::Helix, AppendixBCurve::Folium, AppendixBCurve::Sextic}) {
+    const std::vector<Vec> points = path_points(make_appendix_b_curve(which));
     for (int m : {8, 64}) {
       const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
       expect_valid(optimal, points, m, Norm::LInf);
-      EXPECT_EQ(optimal.error, dynamic_linearization(points, m, Norm::LInf).error) << test_curve_name(which) << " m=" << m;
+      EXPECT_EQ(optimal.error, dynamic_linearization(points, m, Norm::LInf).error) << appendix_b_curve_name(which) << " m=" << m;
     }
   }
 }

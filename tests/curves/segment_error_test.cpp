@@ -6,9 +6,10 @@
 #include <random>
 
 #include "curve_testing.hpp"
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
 using namespace sculpt::curves;
+using namespace sculpt::curves::detail;  // the internals under test
 using Vec = Eigen::Vector3d;
 
 TEST(SegmentError, DistanceToInfiniteLineNotToSegment) {

@@ -7,7 +7,7 @@
 
 #include "bench_common.hpp"
 #include "curves/linearize.hpp"
-#include "curves/test_curves.hpp"
+#include "curves/appendix_b_curves.hpp"
 
 using namespace sculpt::curves;
 
@@ -16,8 +16,8 @@ int main(int argc, char** argv) {
   const int n = quick ? 10000 : 100000;
   std::printf("n = %d\n\n| curve | tol/diag | min-# segs | min-# ms | DP segs (+%%) | DP ms | center segs | center ms |\n"
               "|---|---|---|---|---|---|---|---|\n", n);
-  for (TestCurve which : all_test_curves()) {
-    const DigitizedCurve curve = make_test_curve(which, {.points = n});
+  for (AppendixBCurve which : all_appendix_b_curves()) {
+    const DigitizedCurve curve = make_appendix_b_curve(which, {.points = n});
     Eigen::Vector3d low = curve.points[0], high = low;
     for (const auto& p : curve.points) {
       low = low.cwiseMin(p);
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
       const double t_center = bench::median_ms(1, [&] {
         center = linearize(curve, {.tolerance = tol, .method = Method::CenterOfMass});
       });
-      std::printf("| %s | %.0e | %d | %.0f | %d (+%.0f%%) | %.0f | %d | %.0f |\n", test_curve_name(which).c_str(),
+      std::printf("| %s | %.0e | %d | %.0f | %d (+%.0f%%) | %.0f | %d | %.0f |\n", appendix_b_curve_name(which).c_str(),
                   relative, exact.segments(), t_exact, dp.segments(),
                   100.0 * (dp.segments() - exact.segments()) / exact.segments(), t_dp, center.segments(), t_center);
       std::fflush(stdout);

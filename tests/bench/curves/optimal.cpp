@@ -16,7 +16,7 @@
 
 #include "bench_common.hpp"
 #include "curves/linearize.hpp"
-#include "curves/test_curves.hpp"
+#include "curves/appendix_b_curves.hpp"
 
 using namespace sculpt::curves;
 
@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
   const bool paper_only = argc > 1 && std::string(argv[1]) == "paper";
   std::printf("## 1. DYNAMIC vs optimal, m = 64, paper point counts\n\n");
   std::printf("| curve | n | DYNAMIC ms | optimal ms | speed-up | equal error |\n|---|---|---|---|---|---|\n");
-  for (TestCurve which : all_test_curves()) {
-    const DigitizedCurve curve = make_test_curve(which);
+  for (AppendixBCurve which : all_appendix_b_curves()) {
+    const DigitizedCurve curve = make_appendix_b_curve(which);
     Linearization dynamic, optimal;
     // Interleaved (one DYNAMIC run, then 17 optimal runs, three times) so that both see the
     // same conditions on a shared machine; medians of 3 and of 51 runs.
@@ -41,29 +41,29 @@ int main(int argc, char** argv) {
         }));
     }
     const double t_dynamic = bench::median(dynamic_ms), t_optimal = bench::median(optimal_ms);
-    std::printf("| %s | %zu | %.1f | %.3f | %.0fx | %s (%.6g) |\n", test_curve_name(which).c_str(), curve.points.size(),
+    std::printf("| %s | %zu | %.1f | %.3f | %.0fx | %s (%.6g) |\n", appendix_b_curve_name(which).c_str(), curve.points.size(),
                 t_dynamic, t_optimal, t_dynamic / t_optimal, dynamic.error == optimal.error ? "yes" : "NO",
                 optimal.error);
   }
 
   if (paper_only) return 0;
   std::printf("\n## 2. optimal, n = 5000, m = 300\n\n| curve | ms (median of 5) | error | probes |\n|---|---|---|---|\n");
-  for (TestCurve which : all_test_curves()) {
-    const DigitizedCurve curve = make_test_curve(which, {.points = 5000});
+  for (AppendixBCurve which : all_appendix_b_curves()) {
+    const DigitizedCurve curve = make_appendix_b_curve(which, {.points = 5000});
     Linearization la;
     const double t = bench::median_ms(quick ? 1 : 5, [&] { la = linearize(curve, {.segments = 300}); });
-    std::printf("| %s | %.1f | %.6g | %d |\n", test_curve_name(which).c_str(), t, la.error, la.iterations);
+    std::printf("| %s | %.1f | %.6g | %d |\n", appendix_b_curve_name(which).c_str(), t, la.error, la.iterations);
   }
 
   std::printf("\n## 3. growth (cubic and helix), ms of one run\n\n");
   const int sizes[] = {1000, 3000, 10000, 30000, 100000};
-  for (TestCurve which : {TestCurve::Cubic, TestCurve::Helix}) {
+  for (AppendixBCurve which : {AppendixBCurve::Cubic, AppendixBCurve::Helix}) {
     std::printf("%s:\n\n| n | m=16 | m=64 | m=300 | m=1000 | m=n/20 |\n|---|---|---|---|---|---|\n",
-                test_curve_name(which).c_str());
+                appendix_b_curve_name(which).c_str());
     std::map<int, std::pair<int, double>> previous;  // column -> (n, ms)
     for (int n : sizes) {
       if (quick && n > 10000) break;
-      const DigitizedCurve curve = make_test_curve(which, {.points = n});
+      const DigitizedCurve curve = make_appendix_b_curve(which, {.points = n});
       std::printf("| %d |", n);
       const int columns[] = {16, 64, 300, 1000, n / 20};
       for (int c = 0; c < 5; ++c) {

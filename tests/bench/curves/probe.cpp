@@ -7,19 +7,20 @@
 #include <string>
 
 #include "bench_common.hpp"
-#include "curves/dynamic_programming.hpp"
-#include "curves/fast_linearization.hpp"
-#include "curves/optimal_linearization.hpp"
-#include "curves/test_curves.hpp"
+#include "curves/methods/dynamic_programming.hpp"
+#include "curves/methods/fast_linearization.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
+#include "curves/appendix_b_curves.hpp"
 
 using namespace sculpt::curves;
+using namespace sculpt::curves::detail;  // the internal solvers measured here
 
 int main(int argc, char** argv) {
   const std::string name = argc > 1 ? argv[1] : "folium";
   const int n = argc > 2 ? std::atoi(argv[2]) : 3000;
   const int m = argc > 3 ? std::atoi(argv[3]) : 4;
   const int fast = argc > 4 ? std::atoi(argv[4]) : 0;
-  const auto curve = make_test_curve(*test_curve_from_name(name), {.points = n});
+  const auto curve = make_appendix_b_curve(*appendix_b_curve_from_name(name), {.points = n});
   const auto points = path_points(curve);
   Linearization la;
   const int runs = argc > 5 ? std::atoi(argv[5]) : 1;

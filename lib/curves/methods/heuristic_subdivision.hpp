@@ -9,7 +9,7 @@
 #include "curves/curve_measures.hpp"
 #include "curves/linearization.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 /// INIT(alpha): greedy subdivision into exactly m segments of (about) equal weight
 /// alpha * L_seg + (1 - alpha) * I_seg. alpha = 1 is LENGTH, alpha = 0 is IMAGE.
@@ -30,4 +30,4 @@ namespace sculpt::curves {
 [[nodiscard]] Linearization iterative_refinement(const std::vector<Eigen::Vector3d>& points, Linearization start,
                                                  Norm norm, int max_iterations);
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

@@ -26,9 +26,9 @@
 #include <vector>
 
 #include "curves/linearization.hpp"
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 struct OptimalOptions {
   /// Allowed break points (sorted indices into points, containing 0 and points.size() - 1);
@@ -54,4 +54,4 @@ struct OptimalOptions {
 [[nodiscard]] Linearization optimal_min_count(const std::vector<Eigen::Vector3d>& points, double tolerance,
                                               Norm norm);
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

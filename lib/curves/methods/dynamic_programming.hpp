@@ -11,7 +11,7 @@
 
 #include "curves/linearization.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 /// Largest point count accepted by dynamic_linearization (memory O(n^2 log m)).
 inline constexpr int kDynamicMaxPoints = 1500;
@@ -19,4 +19,4 @@ inline constexpr int kDynamicMaxPoints = 1500;
 /// \pre 1 <= m <= points.size() - 1. \throw InvalidInput if points.size() > kDynamicMaxPoints.
 [[nodiscard]] Linearization dynamic_linearization(const std::vector<Eigen::Vector3d>& points, int m, Norm norm);
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

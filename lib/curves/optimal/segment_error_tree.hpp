@@ -15,16 +15,23 @@
 
 #include "curves/segment_error.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
+
+/// Result of SegmentErrorTree::test.
+struct WithinTest {
+  bool within;   ///< segment_error(points, i, j, norm) <= eps
+  int violator;  ///< if not within: an index whose distance exceeds eps (L-inf), else -1
+};
 
 class SegmentErrorTree {
  public:
   SegmentErrorTree(const std::vector<Eigen::Vector3d>& points, Norm norm);
 
-  /// True iff segment_error(points, i, j, norm) <= eps. `hint` is an index to try first
-  /// (e.g. the violator found for a neighbouring chord); on false, *violator (if given) gets an
-  /// index whose distance exceeds eps (L-inf), or -1.
-  [[nodiscard]] bool within(int i, int j, double eps, int hint = -1, int* violator = nullptr) const;
+  /// Is segment_error(points, i, j, norm) <= eps, and if not, which point shows it? `hint` is an
+  /// index to try first (e.g. the violator found for a neighbouring chord).
+  [[nodiscard]] WithinTest test(int i, int j, double eps, int hint = -1) const;
+  /// test(i, j, eps, hint).within.
+  [[nodiscard]] bool within(int i, int j, double eps, int hint = -1) const { return test(i, j, eps, hint).within; }
 
   /// segment_error(points, i, j, norm), exactly, if it is <= limit; otherwise some value > limit
   /// (the search stops at the first point beyond the limit).
@@ -46,4 +53,4 @@ class SegmentErrorTree {
   std::vector<Node> nodes_;  // nodes_[0] is the root
 };
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

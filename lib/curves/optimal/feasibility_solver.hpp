@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "curves/segment_error.hpp"
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
 namespace sculpt::curves::detail {
 
@@ -27,8 +27,15 @@ inline constexpr int kUnreached = std::numeric_limits<int>::max();
 /// (best_exact_path, kWindow + 1 layers).
 inline constexpr int kWindow = 6;
 
-/// Shortest paths over the allowed vertices; positions 0..K-1 index `vertices()`. The state and
-/// the algorithms live in feasibility_solver.cpp (Impl).
+/// Result of FeasibilitySolver::exact_path.
+struct ExactPath {
+  std::optional<std::vector<int>> path;  ///< positions of a path of exactly m edges within eps, if any
+  bool optimal = false;                  ///< the path is the best of all paths of m edges
+};
+
+/// Shortest paths over the allowed vertices; positions 0..K-1 index `vertices()`. The state is
+/// Impl (feasibility_solver_impl.hpp); its four jobs live in edge_errors.cpp, cone_pruning.cpp,
+/// fewest_segments.cpp and exact_paths.cpp.
 class FeasibilitySolver {
  public:
   /// `vertices`: sorted point indices, first 0 and last points.size() - 1. `shared_tree` (optional)
@@ -74,10 +81,10 @@ class FeasibilitySolver {
   [[nodiscard]] int min_segments() const;
   [[nodiscard]] std::vector<int> min_path() const;
 
-  /// A path of exactly m edges with every edge within eps, or nullopt if none exists. In stored
+  /// A path of exactly m edges with every edge within eps, or none if none exists. In stored
   /// mode, if the fewest edges within eps are at least m - kWindow, the path is the best of all
-  /// paths of m edges (*optimal = true).
-  std::optional<std::vector<int>> exact_path(double eps, int m, bool* optimal = nullptr);
+  /// paths of m edges (.optimal = true).
+  [[nodiscard]] ExactPath exact_path(double eps, int m);
 
   /// Point indices of a position path.
   [[nodiscard]] std::vector<int> indices(const std::vector<int>& path) const;

@@ -1,4 +1,4 @@
-#include "curves/test_curves.hpp"
+#include "curves/appendix_b_curves.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -15,7 +15,7 @@ using Vec = Eigen::Vector3d;
 constexpr double kPi = std::numbers::pi;
 
 struct Info {
-  TestCurve which;
+  AppendixBCurve which;
   const char* name;
   int paper_points;
   bool closed;
@@ -23,48 +23,48 @@ struct Info {
 };
 
 constexpr Info kInfo[] = {
-    {TestCurve::Folium, "folium", 109, false, 2},  {TestCurve::Cubic, "cubic", 408, false, 2},
-    {TestCurve::Rose, "rose", 400, true, 2},       {TestCurve::Quartic, "quartic", 404, true, 3},
-    {TestCurve::Sextic, "sextic", 234, false, 3},  {TestCurve::Helix, "helix", 400, false, 3},
+    {AppendixBCurve::Folium, "folium", 109, false, 2},  {AppendixBCurve::Cubic, "cubic", 408, false, 2},
+    {AppendixBCurve::Rose, "rose", 400, true, 2},       {AppendixBCurve::Quartic, "quartic", 404, true, 3},
+    {AppendixBCurve::Sextic, "sextic", 234, false, 3},  {AppendixBCurve::Helix, "helix", 400, false, 3},
 };
 
-const Info& info(TestCurve which) {
+const Info& info(AppendixBCurve which) {
   for (const Info& i : kInfo)
     if (i.which == which) return i;
   return kInfo[0];
 }
 
 // Point k of n: u in [0, 1] (open curves, both ends included) or [0, 1) (closed curves).
-Vec sample(TestCurve which, double u) {
+Vec sample(AppendixBCurve which, double u) {
   switch (which) {
-    case TestCurve::Folium: {  // loop of x^3 - 3xy + y^3 = 0: t = tan(theta), theta in [0, pi/2]
+    case AppendixBCurve::Folium: {  // loop of x^3 - 3xy + y^3 = 0: t = tan(theta), theta in [0, pi/2]
       const double theta = 0.5 * kPi * u;
       const double s = std::sin(theta), c = std::cos(theta);
       const double d = c * c * c + s * s * s;  // (3t/(1+t^3), 3t^2/(1+t^3)) times cos^3/cos^3
       return {3.0 * s * c * c / d, 3.0 * s * s * c / d, 0.0};
     }
-    case TestCurve::Cubic: {
+    case AppendixBCurve::Cubic: {
       const double t = -1.0 + 2.0 * u;
       return {t, t * t * t, 0.0};
     }
-    case TestCurve::Rose: {  // (x^2 + y^2)^3 = 4 x^2 y^2  <=>  r = sin(2 theta)
+    case AppendixBCurve::Rose: {  // (x^2 + y^2)^3 = 4 x^2 y^2  <=>  r = sin(2 theta)
       const double theta = 2.0 * kPi * u;
       const double r = std::sin(2.0 * theta);
       return {r * std::cos(theta), r * std::sin(theta), 0.0};
     }
-    case TestCurve::Quartic: {  // upper loop of 36x^2+81y^2+9z^2=324 and x^2+y^2=3.94
+    case AppendixBCurve::Quartic: {  // upper loop of 36x^2+81y^2+9z^2=324 and x^2+y^2=3.94
       const double phi = 2.0 * kPi * u;
       const double r2 = 3.94, r = std::sqrt(r2);
       const double x = r * std::cos(phi), y = r * std::sin(phi);
       const double z = std::sqrt(std::max(0.0, (324.0 - 36.0 * x * x - 81.0 * y * y) / 9.0));
       return {x, y, z};
     }
-    case TestCurve::Sextic: {  // y^2 = x^2 + x^3 (x = t^2 - 1, y = t x) on z = x^2 - x + 2
+    case AppendixBCurve::Sextic: {  // y^2 = x^2 + x^3 (x = t^2 - 1, y = t x) on z = x^2 - x + 2
       const double t = -1.25 + 2.5 * u;
       const double x = t * t - 1.0, y = t * x;
       return {x, y, x * x - x + 2.0};
     }
-    case TestCurve::Helix: {
+    case AppendixBCurve::Helix: {
       const double t = 6.0 * kPi * u;
       return {std::cos(t), std::sin(t), t / (2.0 * kPi)};
     }
@@ -89,15 +89,15 @@ class Gaussian {
 
 }  // namespace
 
-const std::vector<TestCurve>& all_test_curves() {
-  static const std::vector<TestCurve> all{TestCurve::Folium,  TestCurve::Cubic,  TestCurve::Rose,
-                                          TestCurve::Quartic, TestCurve::Sextic, TestCurve::Helix};
+const std::vector<AppendixBCurve>& all_appendix_b_curves() {
+  static const std::vector<AppendixBCurve> all{AppendixBCurve::Folium,  AppendixBCurve::Cubic,  AppendixBCurve::Rose,
+                                          AppendixBCurve::Quartic, AppendixBCurve::Sextic, AppendixBCurve::Helix};
   return all;
 }
 
-std::string test_curve_name(TestCurve which) { return info(which).name; }
+std::string appendix_b_curve_name(AppendixBCurve which) { return info(which).name; }
 
-std::optional<TestCurve> test_curve_from_name(const std::string& name) {
+std::optional<AppendixBCurve> appendix_b_curve_from_name(const std::string& name) {
   std::string lower = name;
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
   for (const Info& i : kInfo)
@@ -105,9 +105,9 @@ std::optional<TestCurve> test_curve_from_name(const std::string& name) {
   return std::nullopt;
 }
 
-int paper_point_count(TestCurve which) { return info(which).paper_points; }
+int paper_point_count(AppendixBCurve which) { return info(which).paper_points; }
 
-DigitizedCurve make_test_curve(TestCurve which, const TestCurveOptions& options) {
+DigitizedCurve make_appendix_b_curve(AppendixBCurve which, const AppendixBCurveOptions& options) {
   const Info& about = info(which);
   const int n = options.points == 0 ? about.paper_points : options.points;
   const int minimum = about.closed ? 3 : 2;

@@ -7,7 +7,8 @@
 ///     exactly m (worst segment first). Exact if segment errors grew monotonically with the end
 ///     point, as they nearly do on densely sampled smooth curves; O(m log(n/m) log n) per cover.
 ///  2. for m <= 64 also: the exact optimum (optimal_min_error) over every s-th point,
-///     s ~ n / max(256, 16 m), refined by layered passes with halving steps; the better wins.
+///     s ~ n / max(256, 16 m) (FastOptions), refined by layered passes with halving steps; the
+///     better wins.
 ///  3. layered passes at step 1: break point k may move by up to +-2 points; the best joint
 ///     choice (a min-max path through m - 1 layers of 5 candidates) is found exactly by dynamic
 ///     programming over O(25 m) chords, measured only if they could improve their end and only
@@ -20,13 +21,14 @@
 
 #include "curves/linearization.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 struct FastOptions {
-  int exact_below = 20000;  ///< n at or below this: exact solver
+  int exact_below = 20000;          ///< n at or below this: exact solver
   int bisection_steps = 18;
-  int ladder_max_segments = 64;   ///< m up to this: also the coarse optimum with refinement
-  int candidates_per_segment = 16;
+  int ladder_max_segments = 64;     ///< m up to this: also the coarse optimum with refinement
+  int candidates_per_segment = 16;  ///< the coarse optimum's grid: max(min_candidates, this * m) points
+  int min_candidates = 256;
   int max_passes_at_step_one = 8;
 };
 
@@ -34,4 +36,4 @@ struct FastOptions {
 [[nodiscard]] Linearization fast_linearization(const std::vector<Eigen::Vector3d>& points, int m, Norm norm,
                                                const FastOptions& options = {});
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

@@ -14,7 +14,7 @@
 #include "curves/curve_measures.hpp"
 #include "curves/linearization.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 enum class SplitRule { FarthestPoint, CenterOfCurvature };
 
@@ -30,4 +30,4 @@ struct SplitOptions {
 [[nodiscard]] Linearization top_down_split(const std::vector<Eigen::Vector3d>& points, const CurveMeasures& measures,
                                            const SplitOptions& options);
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

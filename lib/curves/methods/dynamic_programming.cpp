@@ -1,11 +1,11 @@
-#include "curves/dynamic_programming.hpp"
+#include "curves/methods/dynamic_programming.hpp"
 
 #include <limits>
 #include <utility>
 
 #include "base/errors.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 Linearization dynamic_linearization(const std::vector<Eigen::Vector3d>& points, int m, Norm norm) {
   const int n = static_cast<int>(points.size());
@@ -100,4 +100,4 @@ Linearization dynamic_linearization(const std::vector<Eigen::Vector3d>& points, 
   return result;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

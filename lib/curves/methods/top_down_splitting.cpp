@@ -1,4 +1,4 @@
-#include "curves/top_down_splitting.hpp"
+#include "curves/methods/top_down_splitting.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <tuple>
 #include <utility>
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 namespace {
 
 int farthest_point(const std::vector<Eigen::Vector3d>& points, int i, int j) {
@@ -78,4 +78,4 @@ Linearization top_down_split(const std::vector<Eigen::Vector3d>& points, const C
   return result;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

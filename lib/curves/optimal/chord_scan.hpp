@@ -15,7 +15,7 @@
 #include <emmintrin.h>
 #endif
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 /// Points as three coordinate columns.
 struct PointColumns {
@@ -101,22 +101,26 @@ struct ChordScan {
   return {largest, -1};
 }
 
-/// out[t] = sqrt(cross2[t]) / sqrt(length2[t]) (the distance ChordDistance reports for a point
-/// with that squared cross product), two at a time; markers pass through: cross2[t] = -1 gives
-/// `beyond`, -2 gives `below`.
-inline void chord_distances(const double* cross2, const double* length2, std::size_t count, double beyond,
-                            double below, double* out) {
+/// sqrt(cross2[t]) / sqrt(length2[t]) for every t (the distance ChordDistance reports for a
+/// point with that squared cross product), two at a time; markers pass through: cross2[t] = -1
+/// gives `beyond`, -2 gives `below`. \pre cross2.size() == length2.size()
+[[nodiscard]] inline std::vector<double> chord_distances(const std::vector<double>& cross2,
+                                                         const std::vector<double>& length2, double beyond,
+                                                         double below) {
   const auto marker = [&](double c) { return c == -1.0 ? beyond : below; };
+  const std::size_t count = cross2.size();
+  std::vector<double> out(count);
   std::size_t t = 0;
 #if defined(__GNUC__) && defined(__SSE2__)
   for (; t + 1 < count; t += 2) {
-    const __m128d c = _mm_loadu_pd(cross2 + t), l = _mm_loadu_pd(length2 + t);
-    _mm_storeu_pd(out + t, _mm_div_pd(_mm_sqrt_pd(c), _mm_sqrt_pd(l)));
+    const __m128d c = _mm_loadu_pd(cross2.data() + t), l = _mm_loadu_pd(length2.data() + t);
+    _mm_storeu_pd(out.data() + t, _mm_div_pd(_mm_sqrt_pd(c), _mm_sqrt_pd(l)));
     if (cross2[t] < 0.0) out[t] = marker(cross2[t]);
     if (cross2[t + 1] < 0.0) out[t + 1] = marker(cross2[t + 1]);
   }
 #endif
   for (; t < count; ++t) out[t] = cross2[t] < 0.0 ? marker(cross2[t]) : std::sqrt(cross2[t]) / std::sqrt(length2[t]);
+  return out;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

@@ -1,9 +1,11 @@
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace sculpt::curves {
+#include "curves/optimal/tolerances.hpp"
+
+namespace sculpt::curves::detail {
 
 namespace {
 
@@ -36,7 +38,7 @@ SegmentErrorTree::SegmentErrorTree(const std::vector<Eigen::Vector3d>& points, N
     double radius = 0.0;
     for (int q = begin + 1; q < end - 1; ++q)
       radius = std::max(radius, distance_to_segment(points[q], points[begin], points[end - 1]));
-    nodes_[k].radius = radius * (1.0 + 1e-9);
+    nodes_[k].radius = radius * (1.0 + kRelativeMargin);
     if (end - begin > kLeafSize) {
       const int mid = begin + (end - begin) / 2;
       const int left = static_cast<int>(nodes_.size());
@@ -68,33 +70,27 @@ Bounds node_bounds(const Node& node, const std::vector<Eigen::Vector3d>& points,
   const double nearest = (u0 + t * du).norm();
   const double farthest = std::max(u0.norm(), u1.norm());
   // Margin far above the rounding of these few operations relative to the coordinates involved.
-  const double margin = 1e-9 * (w0.norm() + w1.norm() + node.radius) + 1e-300;
+  const double margin = kRelativeMargin * (w0.norm() + w1.norm() + node.radius) + kUnderflowMargin;
   return {nearest - node.radius - margin, farthest + node.radius + margin};
 }
 
 }  // namespace
 
-bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator) const {
-  if (violator) *violator = -1;
-  if (j - i < 2) return 0.0 <= eps;
+WithinTest SegmentErrorTree::test(int i, int j, double eps, int hint) const {
+  if (j - i < 2) return {0.0 <= eps, -1};
   const ChordDistance distance(points_[i], points_[j]);
   if (norm_ == Norm::L2) {
     double sum = 0.0;
     for (int k = i + 1; k < j; ++k) {
       const double d = distance(points_[k]);
       sum += d * d;
-      if (((k - i) & 15) == 0 && std::sqrt(sum) > eps) return false;  // partial sums only grow
+      if (((k - i) & 15) == 0 && std::sqrt(sum) > eps) return {false, -1};  // partial sums only grow
     }
-    return std::sqrt(sum) <= eps;
+    return {std::sqrt(sum) <= eps, -1};
   }
-  if (hint > i && hint < j && distance(points_[hint]) > eps) {
-    if (violator) *violator = hint;
-    return false;
-  }
-  if (const int middle = i + (j - i) / 2; distance(points_[middle]) > eps) {  // often the farthest
-    if (violator) *violator = middle;
-    return false;
-  }
+  if (hint > i && hint < j && distance(points_[hint]) > eps) return {false, hint};
+  const int middle = i + (j - i) / 2;  // often the farthest
+  if (distance(points_[middle]) > eps) return {false, middle};
   const Eigen::Vector3d direction = points_[j] - points_[i];
   const double length2 = direction.squaredNorm();
   const double inverse_length2 = length2 > 0.0 ? 1.0 / length2 : 0.0;
@@ -108,23 +104,17 @@ bool SegmentErrorTree::within(int i, int j, double eps, int hint, int* violator)
     const Bounds bounds = node_bounds(node, points_, distance, direction, inverse_length2);
     if (bounds.high <= eps) continue;  // every point of the node is within
     const bool inside = node.begin >= lo && node.end - 1 <= hi;
-    if (inside && bounds.low > eps) {  // every point of the node violates
-      if (violator) *violator = node.begin;
-      return false;
-    }
+    if (inside && bounds.low > eps) return {false, node.begin};  // every point of the node violates
     if (node.left < 0) {
       const int from = std::max(node.begin, lo), to = std::min(node.end - 1, hi);
       for (int k = from; k <= to; ++k)
-        if (distance(points_[k]) > eps) {
-          if (violator) *violator = k;
-          return false;
-        }
+        if (distance(points_[k]) > eps) return {false, k};
       continue;
     }
     stack[top++] = node.right;
     stack[top++] = node.left;
   }
-  return true;
+  return {true, -1};
 }
 
 double SegmentErrorTree::error(int i, int j, double limit) const {
@@ -164,4 +154,4 @@ double SegmentErrorTree::error(int i, int j, double limit) const {
   return best;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

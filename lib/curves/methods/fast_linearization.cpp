@@ -1,4 +1,4 @@
-#include "curves/fast_linearization.hpp"
+#include "curves/methods/fast_linearization.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,19 +8,23 @@
 #include <limits>
 #include <numeric>
 
-#include "curves/optimal_linearization.hpp"
-#include "curves/segment_error_tree.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
+#include "curves/optimal/segment_error_tree.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+struct LayeredPass {
+  std::vector<int> breaks;  // the new break points
+  double error;             // their error
+  bool moved_to_edge;       // some break point chose the outermost candidate of its window
+};
+
 // One refinement pass: break point k (1..m-1) chooses among q[k] + j * step, |j| <= half.
-// Exact min-max path through the layers; returns the new break points and sets `moved_to_edge`
-// if some break point chose the outermost candidate of its window.
-std::vector<int> layered_pass(const SegmentErrorTree& tree, const std::vector<int>& q, int step, int half,
-                              bool& moved_to_edge, double& error) {
+// Exact min-max path through the layers.
+LayeredPass layered_pass(const SegmentErrorTree& tree, const std::vector<int>& q, int step, int half) {
   const int m = static_cast<int>(q.size()) - 1;
   const int last = q.back();
   std::vector<std::vector<int>> layers(m + 1);
@@ -64,10 +68,9 @@ std::vector<int> layered_pass(const SegmentErrorTree& tree, const std::vector<in
     result[k] = layers[k][at];
     at = from[k][at];
   }
-  moved_to_edge = false;
+  bool moved_to_edge = false;
   for (int k = 1; k < m; ++k) moved_to_edge = moved_to_edge || std::abs(result[k] - q[k]) == half * step;
-  error = best[m][0];
-  return result;
+  return {std::move(result), best[m][0], moved_to_edge};
 }
 
 
@@ -167,7 +170,7 @@ Linearization fast_linearization(const std::vector<Eigen::Vector3d>& points, int
   // For few segments (cheap, and where greedy covers are weakest): the exact optimum over every
   // stride-th point, refined with halving steps; keep whichever is better.
   if (m <= options.ladder_max_segments) {
-    const int stride = std::max(1, last / std::max(256, options.candidates_per_segment * m));
+    const int stride = std::max(1, last / std::max(options.min_candidates, options.candidates_per_segment * m));
     std::vector<int> coarse;
     for (int k = 0; k < last; k += stride) coarse.push_back(k);
     coarse.push_back(last);
@@ -176,14 +179,12 @@ Linearization fast_linearization(const std::vector<Eigen::Vector3d>& points, int
     double r_error = start.error;
     for (int step = std::max(1, stride / 2); step > 1; step /= 2)
       for (int pass = 0; pass < 2; ++pass) {
-        bool moved_to_edge = false;
-        double pass_error = kInf;
-        std::vector<int> next = layered_pass(tree, r, step, 2, moved_to_edge, pass_error);
-        if (pass_error <= r_error) {
-          r = std::move(next);
-          r_error = pass_error;
+        LayeredPass next = layered_pass(tree, r, step, 2);
+        if (next.error <= r_error) {
+          r = std::move(next.breaks);
+          r_error = next.error;
         }
-        if (!moved_to_edge) break;
+        if (!next.moved_to_edge) break;
       }
     if (r_error < error) {
       q = std::move(r);
@@ -195,15 +196,13 @@ Linearization fast_linearization(const std::vector<Eigen::Vector3d>& points, int
   // Stage 2: layered refinement at step 1.
   int passes = 0;
   for (int pass = 0; pass < options.max_passes_at_step_one; ++pass) {
-    bool moved_to_edge = false;
-    double pass_error = kInf;
-    std::vector<int> next = layered_pass(tree, q, 1, 2, moved_to_edge, pass_error);
+    LayeredPass next = layered_pass(tree, q, 1, 2);
     ++passes;
-    if (pass_error <= error) {  // the old q is a candidate, so this always holds
-      q = std::move(next);
-      error = pass_error;
+    if (next.error <= error) {  // the old q is a candidate, so this always holds
+      q = std::move(next.breaks);
+      error = next.error;
     }
-    if (!moved_to_edge) break;
+    if (!next.moved_to_edge) break;
   }
   lap("passes", error);
   Linearization result;
@@ -213,4 +212,4 @@ Linearization fast_linearization(const std::vector<Eigen::Vector3d>& points, int
   return result;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

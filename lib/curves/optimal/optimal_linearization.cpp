@@ -1,4 +1,4 @@
-#include "curves/optimal_linearization.hpp"
+#include "curves/optimal/optimal_linearization.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,15 +11,11 @@
 #include <utility>
 
 #include "curves/curve_measures.hpp"
-#include "curves/feasibility_solver.hpp"
-#include "curves/heuristic_subdivision.hpp"
+#include "curves/methods/heuristic_subdivision.hpp"
+#include "curves/optimal/feasibility_solver.hpp"
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 namespace {
-
-using detail::FeasibilitySolver;
-using detail::kUnreached;
-using detail::kWindow;
 
 // Up to this many candidate edges the solver computes all their errors once (stored mode).
 // (memory: 8 bytes each), if evaluating them directly costs at most this many point distances.
@@ -42,6 +38,9 @@ constexpr double kSmallBudget = 6e7;
 // fraction of the start's error (INIT is within 1.0-1.7x of the optimum on the Appendix-B curves).
 constexpr int kGuesses = 4;
 constexpr double kFirstGuess = 1.0;
+// Streaming bisection with no infeasible tolerance known yet: halving, until hi falls below this
+// fraction of the start's error; then 0 itself is probed.
+constexpr double kZeroProbeFraction = 1e-9;
 
 std::vector<int> all_vertices(int n) {
   std::vector<int> v(n);
@@ -62,7 +61,7 @@ double path_error(FeasibilitySolver& solver, const std::vector<int>& path) {
 std::optional<double> middle(double lo, double hi, double first_hi) {
   if (lo < 0.0) {
     if (hi <= 0.0) return std::nullopt;
-    return hi < 1e-9 * first_hi ? 0.0 : 0.5 * hi;
+    return hi < kZeroProbeFraction * first_hi ? 0.0 : 0.5 * hi;
   }
   if (hi > 2.0 * lo) {
     const double mid = lo + 0.5 * (hi - lo);
@@ -119,9 +118,8 @@ struct Search {
   bool probe(double eps) {
     ++probes;
     const long long before = solver.tests();
-    bool optimal = false;
     if (eps < solver.floor()) solver.materialize();
-    std::optional<std::vector<int>> path = solver.exact_path(eps, m, &optimal);
+    auto [path, optimal] = solver.exact_path(eps, m);
     last = {eps, solver.min_segments()};
     (path ? feasible : infeasible) = last;
     if (debug)
@@ -298,4 +296,4 @@ Linearization optimal_min_count(const std::vector<Eigen::Vector3d>& points, doub
   return result;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail

@@ -1,8 +1,8 @@
-#include "curves/heuristic_subdivision.hpp"
+#include "curves/methods/heuristic_subdivision.hpp"
 
 #include <algorithm>
 
-namespace sculpt::curves {
+namespace sculpt::curves::detail {
 
 Linearization weighted_subdivision(const std::vector<Eigen::Vector3d>& points, const CurveMeasures& measures, int m,
                                    double alpha, Norm norm) {
@@ -80,4 +80,4 @@ Linearization iterative_refinement(const std::vector<Eigen::Vector3d>& points, L
   return best;
 }
 
-}  // namespace sculpt::curves
+}  // namespace sculpt::curves::detail
