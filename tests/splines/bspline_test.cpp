@@ -1,0 +1,3 @@
+#include "splines/bspline.hpp"
+
+#include <gtest/gtest.h>
