@@ -136,7 +136,7 @@ FitResult fit_curve(const std::vector<Eigen::Vector3d>& points, const FitOptions
                            .smoothing_decay = options.smoothing_decay,
                            .tolerance = options.tolerance,
                            .fixed = options.fixed,
-                           .line_search = options.method == Method::TDM};
+                           .line_search = options.method != Method::PDM};
   return detail::fit_points(points, start, loop);
 }
 

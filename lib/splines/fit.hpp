@@ -34,7 +34,7 @@ struct FitOptions {
   bool closed = false;
   Method method = Method::SDM;
   int iterations = 50;           ///< at most this many steps
-  double smoothing = 1e-3;       ///< relative weight of the bending term in the first step
+  double smoothing = 1e-1;       ///< relative weight of the bending term in the first step
   double smoothing_decay = 0.5;  ///< factor per step
   double tolerance = 1e-5;       ///< stop when the objective changes by less than this fraction
   std::optional<BSpline> start{};///< start curve; default initial_curve(...)

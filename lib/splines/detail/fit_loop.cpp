@@ -58,17 +58,16 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
 
 FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& start, const LoopOptions& options) {
   const Model model = options.model;
-  const Evaluate evaluate = [&points, model](const BSpline& curve, const Evaluation* previous, int iteration) {
+  const Evaluate evaluate = [&points, model](const BSpline& curve, const Evaluation*, int) {
     const FootPointSearch search(curve);
     const auto [a, b] = curve.domain();
-    const double radius = 2.0 * (b - a) / std::max<std::size_t>(1, curve.breaks().size() - 1);
     Evaluation e;
     e.terms.resize(points.size());
     double sum = 0.0;
     for (std::size_t k = 0; k < points.size(); ++k) {
-      // Global search while the curve still moves a lot, warm starts afterwards.
-      const FootPoint f = (previous == nullptr || iteration <= 2) ? search.global(points[k])
-                                                                  : search.local(points[k], previous->terms[k].t, radius);
+      // Always global: TDM and SDM slide control points along the curve, so a warm start from the
+      // previous parameter can land on a wrong local minimum.
+      const FootPoint f = search.global(points[k]);
       const auto d = curve.derivatives(f.parameter, 2);
       const bool at_end = !curve.closed() && (f.parameter <= a || f.parameter >= b);
       e.terms[k] = {f.parameter, distance_hessian(model, points[k], d[0], d[1], d[2], at_end), points[k]};

@@ -34,7 +34,7 @@ using Evaluate = std::function<Evaluation(const BSpline& curve, const Evaluation
 struct LoopOptions {
   Model model = Model::SDM;
   int iterations = 50;
-  double smoothing = 1e-3;
+  double smoothing = 1e-1;
   double smoothing_decay = 0.5;
   double tolerance = 1e-5;
   std::vector<int> fixed{};
