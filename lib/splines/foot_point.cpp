@@ -87,7 +87,11 @@ FootPoint FootPointSearch::global(const Eigen::Vector3d& x) const {
     if (d2[i] <= left && d2[i] <= right) minima.push_back(i);
   }
   std::sort(minima.begin(), minima.end(), [&](int i, int j) { return d2[i] < d2[j]; });
-  if (minima.size() > 4) minima.resize(4);
+  // Refine the best local minimum and the ones that could still beat it (sampled distance
+  // within twice the best: a curve coming close to itself); at most four.
+  std::size_t keep = 1;
+  while (keep < minima.size() && keep < 4 && d2[minima[keep]] <= 4.0 * d2[minima[0]] + 1e-300) ++keep;
+  minima.resize(std::min(keep, minima.size()));
   FootPoint best;
   best.distance = INFINITY;
   for (int i : minima) {
