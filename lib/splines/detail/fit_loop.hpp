@@ -1,0 +1,50 @@
+#pragma once
+/// \file fit_loop.hpp
+/// The active-curve iteration shared by both directions of the method:
+/// - fit_points: data points fixed, foot points on the moving curve (Wang, Pottmann & Liu 2006);
+/// - the target direction (approximate.hpp): sample points of the moving curve at fixed
+///   parameters, foot points on a fixed target (Pottmann, Leopoldseder & Hofer 2002, sec. 3).
+/// Each step builds the terms (parameter on the active curve, Hessian M, point x) of the quadratic
+/// objective, solves, and for TDM halves the step until the objective does not grow.
+
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "splines/bspline.hpp"
+#include "splines/detail/distance_models.hpp"
+#include "splines/fit.hpp"
+
+namespace sculpt::splines::detail {
+
+struct Term {
+  double t = 0.0;  ///< parameter on the active curve
+  Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+};
+
+struct Evaluation {
+  std::vector<Term> terms;
+  double objective = 0.0, max = 0.0, rms = 0.0;
+};
+
+/// Terms and objective for a curve; `previous` (may be null) offers warm-start parameters.
+using Evaluate = std::function<Evaluation(const BSpline& curve, const Evaluation* previous, int iteration)>;
+
+struct LoopOptions {
+  Model model = Model::SDM;
+  int iterations = 50;
+  double smoothing = 1e-1;
+  double smoothing_decay = 0.5;
+  double tolerance = 1e-5;
+  std::vector<int> fixed{};
+  bool line_search = false;
+};
+
+[[nodiscard]] FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const LoopOptions& options);
+
+/// Wang-Pottmann-Liu direction on a point cloud.
+[[nodiscard]] FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& start,
+                                   const LoopOptions& options);
+
+}  // namespace sculpt::splines::detail

@@ -1,0 +1,9 @@
+#pragma once
+/// \file splines.hpp
+/// The splines layer's public API in one include (see docs/splines.md).
+#include "splines/approximate.hpp"
+#include "splines/bspline.hpp"
+#include "splines/degree_reduction.hpp"
+#include "splines/fit.hpp"
+#include "splines/foot_point.hpp"
+#include "splines/spline_io.hpp"
