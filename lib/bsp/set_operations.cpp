@@ -1,4 +1,5 @@
 #include "bsp/set_operations.hpp"
+#include "bsp/tree/solid_access.hpp"
 
 #include <tuple>
 #include <utility>
@@ -241,7 +242,7 @@ class Merger {
 // The boundary of op(a, b) (to arena.boundary), then the merged tree; returns its root. Where the
 // result out of a does not depend on b (op[0][*] constant), b only matters inside a: b's planes
 // with a on one closed side are dropped first (extent_pruning.hpp).
-TreeRef merge_operands(Arena& arena, TreeRef ra, std::vector<BoundaryFragment> fa, FragmentBoxes boxes, TreeRef rb,
+TreeRef merge_operands(Arena& arena, TreeRef ra, std::vector<BoundaryFragment> fa, bsp::detail::FragmentBoxes boxes, TreeRef rb,
                        const std::vector<BoundaryFragment>& fb, const bool op[2][2]) {
   std::optional<bsp::detail::ExtentSides> sides;
   if (op[0][0] == op[0][1] && !is_leaf(rb)) {
@@ -270,7 +271,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   std::vector<BoundaryFragment> fa = arena.boundary_of(a);
   const TreeRef rb = arena.append(b);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(b);
-  const TreeRef r = merge_operands(arena, ra, std::move(fa), a.boundary_boxes(), rb, fb, op);
+  const TreeRef r = merge_operands(arena, ra, std::move(fa), bsp::detail::SolidAccess::boundary_boxes(a), rb, fb, op);
   return bsp::detail::compact(arena, r);
 }
 
@@ -309,7 +310,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
     return bsp::detail::compact(arena, r, {.keep_capacity = true});
   const std::size_t compacted = arena.compacted_size;
   if (is_leaf(r)) return Solid::leaf(r == kIn);
-  return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted,
+  return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted,
                std::move(arena.boundary), std::move(arena.boundary_boxes));
 }
 

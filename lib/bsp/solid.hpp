@@ -21,9 +21,14 @@
 #include <optional>
 #include <vector>
 
+#include "bsp/tree/fragment_boxes.hpp"
 #include "kernel/convex_polygon.hpp"
 
 namespace sculpt {
+
+namespace bsp::detail {
+struct SolidAccess;  // the tree algorithms' access to a solid's storage (bsp/tree/solid_access.hpp)
+}
 
 /// Reference to a subtree: a node index (>= 0) or a leaf.
 using TreeRef = std::int32_t;
@@ -44,25 +49,6 @@ struct BoundaryFragment {
   bool flip = false;  ///< true: the outward normal is the plane's negative normal
 };
 
-/// Box around a boundary fragment (grid units, rounded outwards to float), for quick culling.
-struct FragmentBox {
-  float lo[3], hi[3];
-  bool valid;  ///< false: unknown (a corner without a usable approximation)
-};
-FragmentBox fragment_box(const kernel::ConvexPolygon& polygon);
-
-/// Boxes of a solid's boundary fragments: one per fragment (same order), and one per run of
-/// kBlock consecutive fragments (the union of theirs; invalid if one of them is), so a set
-/// operation finds the fragments near the other operand without testing every fragment's box.
-struct FragmentBoxes {
-  static constexpr std::size_t kBlock = 32;
-  std::vector<FragmentBox> each;
-  std::vector<FragmentBox> blocks;  ///< block_count(each.size()) boxes, or empty if not computed
-  static std::size_t block_count(std::size_t fragments) { return (fragments + kBlock - 1) / kBlock; }
-  /// Recomputes blocks[j] from `each` (blocks must have its final size).
-  void update_block(std::size_t j);
-};
-
 class Solid {
  public:
   /// The empty solid (a single out leaf).
@@ -81,8 +67,10 @@ class Solid {
   [[nodiscard]] bool has_boundary() const { return boundary_.has_value(); }
   /// The carried boundary fragments (planes of planes()); empty unless has_boundary().
   [[nodiscard]] const std::vector<BoundaryFragment>& boundary() const;
-  /// Boxes of boundary() (same order), or empty if not computed.
-  [[nodiscard]] const FragmentBoxes& boundary_boxes() const { return boundary_boxes_; }
+
+ private:
+  friend struct bsp::detail::SolidAccess;
+  using FragmentBoxes = bsp::detail::FragmentBoxes;
 
   /// Low-level constructor used by the tree algorithms; checks sizes only. The storage may
   /// hold nodes that are not reachable from the root (left over by in-place operations);
@@ -105,7 +93,7 @@ class Solid {
   };
   Storage release() &&;
 
- private:
+
   kernel::PlaneTable planes_;
   std::vector<BspNode> nodes_;
   std::vector<kernel::ConvexPolygon> polygons_;

@@ -1,4 +1,5 @@
 #include "bsp/tree_builder.hpp"
+#include "bsp/tree/solid_access.hpp"
 
 #include <algorithm>
 
@@ -146,7 +147,7 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<Bounda
   std::vector<ConvexPolygon> polygons;
   polygons.reserve(room);
   for (const BspNode& n : nodes) polygons.push_back(ConvexPolygon{.support = n.plane, .corners = {}});
-  return Solid(std::move(planes_), std::move(nodes), std::move(polygons), 0, 0, std::move(boundary));
+  return bsp::detail::SolidAccess::make(std::move(planes_), std::move(nodes), std::move(polygons), 0, 0, std::move(boundary));
 }
 
 Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
@@ -230,7 +231,7 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
     arena.boundary = std::move(boundary);
     return bsp::detail::compact(arena, result_root);
   }
-  return Solid(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), result_root, 0,
+  return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), result_root, 0,
                std::move(boundary));
 }
 

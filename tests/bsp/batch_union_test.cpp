@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "bench/peers/cases.hpp"
+#include "bsp/tree/solid_access.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
 #include "bsp/primitives.hpp"
@@ -31,7 +32,7 @@ Solid pairwise(const std::vector<Solid>& solids) {
 }
 
 // The same tree without the carried boundary: to_mesh then extracts the boundary from the tree.
-Solid tree_only(const Solid& s) { return Solid(s.planes(), s.nodes(), s.polygons(), s.root()); }
+Solid tree_only(const Solid& s) { return bsp::detail::SolidAccess::make(s.planes(), s.nodes(), s.polygons(), s.root()); }
 
 // Exact classifications of both solids agree at every point of a grid that includes the
 // coordinates of faces, edges and corners (steps of `step`), and at random points.

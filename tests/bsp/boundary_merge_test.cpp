@@ -8,6 +8,8 @@
 #include <random>
 
 #include "bsp/boundary.hpp"
+#include "bsp/tree/fragment_boxes.hpp"
+#include "bsp/tree/solid_access.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
@@ -17,12 +19,16 @@
 namespace sculpt {
 namespace {
 
+using bsp::detail::FragmentBox;
+using bsp::detail::FragmentBoxes;
+using bsp::detail::fragment_box;
+
 Solid cube(double x, double y, double z, double s) { return box({x, y, z}, {x + s, y + s, z + s}); }
 
 // The same tree without its carried boundary: to_mesh extracts it from the tree.
 Solid without_boundary(const Solid& s) {
   if (is_leaf(s.root())) return s;
-  return Solid(s.planes(), s.nodes(), s.polygons(), s.root());
+  return bsp::detail::SolidAccess::make(s.planes(), s.nodes(), s.polygons(), s.root());
 }
 
 // The carried boundary gives a closed, oriented mesh with the extracted one's volume, area,
@@ -192,7 +198,7 @@ TEST(BoundaryMerge, RandomGridBoxesMatchAVoxelCount) {
 // The boxes a solid carries for its fragments are those of its fragments, and each block box is
 // the union of its fragments' boxes (recomputed here), after every in-place operation.
 ::testing::AssertionResult BoxesAreCurrent(const Solid& s) {
-  const FragmentBoxes& b = s.boundary_boxes();
+  const FragmentBoxes& b = bsp::detail::SolidAccess::boundary_boxes(s);
   const auto& f = s.boundary();
   if (b.each.empty()) return ::testing::AssertionFailure() << "no boxes carried";
   if (b.each.size() != f.size()) return ::testing::AssertionFailure() << "box count " << b.each.size();

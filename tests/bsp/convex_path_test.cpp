@@ -57,18 +57,18 @@ TEST(PathPolygon, RejectsNonConvexAndDegeneratePolygons) {
 TEST(PathPolygon, OrientationIsExactWhereDoublesFail) {
   // Three points on the line y = x shifted by tiny amounts: the naive determinant rounds.
   const Eigen::Vector2d a(0.5, 0.5), b(12.0, 12.0), c(24.0, 24.0);
-  EXPECT_EQ(mesh_predicates::orient2d(a, b, c), 0);
+  EXPECT_EQ(orient2d(a, b, c), 0);
   const Eigen::Vector2d c_up(24.0, std::nextafter(24.0, 25.0));
   const Eigen::Vector2d c_down(24.0, std::nextafter(24.0, 23.0));
-  EXPECT_EQ(mesh_predicates::orient2d(a, b, c_up), 1);
-  EXPECT_EQ(mesh_predicates::orient2d(a, b, c_down), -1);
+  EXPECT_EQ(orient2d(a, b, c_up), 1);
+  EXPECT_EQ(orient2d(a, b, c_down), -1);
   // Classic near-degenerate case (Kettner et al.): p = (0.5 + k u, 0.5 + l u) against a line.
   const double u = std::ldexp(1.0, -53);
   const Eigen::Vector2d q(12, 12), r(24, 24);
   int positive = 0, negative = 0, zero = 0;
   for (int k = 0; k < 16; ++k)
     for (int l = 0; l < 16; ++l) {
-      const int s = mesh_predicates::orient2d({0.5 + k * u, 0.5 + l * u}, q, r);
+      const int s = orient2d({0.5 + k * u, 0.5 + l * u}, q, r);
       // Exact sign: (l - k) decides, as the line is y = x.
       EXPECT_EQ(s, (l > k) - (l < k)) << k << " " << l;
       (s > 0 ? positive : s < 0 ? negative : zero)++;

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "bsp/boundary.hpp"
+#include "bsp/tree/fragment_boxes.hpp"
 #include "bsp/classify.hpp"
 #include "bsp/merge/extent_pruning.hpp"
 #include "bsp/primitives.hpp"
@@ -16,6 +17,10 @@
 
 namespace sculpt {
 namespace {
+
+using bsp::detail::FragmentBox;
+using bsp::detail::FragmentBoxes;
+using bsp::detail::fragment_box;
 
 using checks::EdgesManifoldAndOriented;
 using kernel::Side;

@@ -1,4 +1,5 @@
 #include "bsp/solid.hpp"
+#include "bsp/tree/fragment_boxes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,10 @@
 
 namespace sculpt {
 namespace {
+
+using bsp::detail::FragmentBox;
+using bsp::detail::FragmentBoxes;
+using bsp::detail::fragment_box;
 
 // fragment_box rounds the corner box outwards to float with its own steps on the bit pattern; the
 // reference is float(x) stepped with std::nextafter where the rounding went inwards, as it was.

@@ -1,4 +1,5 @@
 #include "bsp/tree/tree_arena.hpp"
+#include "bsp/tree/solid_access.hpp"
 
 #include <algorithm>
 
@@ -49,7 +50,7 @@ TreeRef Arena::append(const Solid& solid) {
 }
 
 TreeRef Arena::adopt(Solid&& solid) {
-  Solid::Storage s = std::move(solid).release();
+  SolidAccess::Storage s = SolidAccess::release(std::move(solid));
   planes = std::move(s.planes);
   nodes = std::move(s.nodes);
   polygons = std::move(s.polygons);
@@ -198,7 +199,7 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
       for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
     }
   }
-  return Solid(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), 0,
+  return SolidAccess::make(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), 0,
                std::move(boundary), std::move(boxes));
 }
 

@@ -1,0 +1,24 @@
+#pragma once
+/// \file solid_access.hpp
+/// Internal: the tree algorithms' access to a Solid's storage (its low-level constructor, moving
+/// the storage out for in-place operations, the boundary's boxes). Not part of the public API.
+
+#include <utility>
+
+#include "bsp/solid.hpp"
+
+namespace sculpt::bsp::detail {
+
+struct SolidAccess {
+  using Storage = Solid::Storage;
+  /// Solid's low-level constructor (planes, nodes, polygons, root, compacted size, boundary,
+  /// boundary boxes); checks sizes only (see Solid).
+  template <class... Args>
+  static Solid make(Args&&... args) { return Solid(std::forward<Args>(args)...); }
+  /// The storage moved out of `solid`, which becomes empty.
+  static Storage release(Solid&& solid) { return std::move(solid).release(); }
+  /// Boxes of solid.boundary() (same order), or empty if not computed.
+  static const FragmentBoxes& boundary_boxes(const Solid& solid) { return solid.boundary_boxes_; }
+};
+
+}  // namespace sculpt::bsp::detail
