@@ -53,13 +53,13 @@ ConvexPath polygon_path(std::vector<Eigen::Vector2d> v) {
       throw InvalidInput("path vertices " + std::to_string(i) + " and " + std::to_string((i + 1) % n) +
                          " coincide");
   // Orientation of the first non-collinear turn decides; every turn must then agree.
-  const int first = mesh_predicates::orient2d(v[n - 1], v[0], v[1]);
+  const int first = orient2d(v[n - 1], v[0], v[1]);
   if (first < 0) {
     std::vector<Eigen::Vector2d> reversed(v.rbegin(), v.rend());
     v = std::move(reversed);
   }
   for (std::size_t i = 0; i < n; ++i) {
-    const int turn = mesh_predicates::orient2d(v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+    const int turn = orient2d(v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
     if (turn == 0)
       throw InvalidInput("path is not strictly convex: vertex " + std::to_string(i) +
                          " is collinear with its neighbours");

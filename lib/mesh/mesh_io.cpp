@@ -14,7 +14,7 @@
 
 #include "base/errors.hpp"
 #include "mesh/edge_incidence.hpp"
-#include "mesh/mesh_formats.hpp"
+#include "mesh/formats/mesh_formats.hpp"
 
 namespace sculpt {
 namespace {
@@ -126,10 +126,10 @@ MeshFormat mesh_format_from_path(const fs::path& path) {
 std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary) {
   check_writable(mesh, format, binary);
   switch (format) {
-    case MeshFormat::Off: return mesh_formats::encode_off(mesh);
-    case MeshFormat::Obj: return mesh_formats::encode_obj(mesh);
-    case MeshFormat::Stl: return mesh_formats::encode_stl(mesh, binary);
-    case MeshFormat::Ply: return mesh_formats::encode_ply(mesh, binary);
+    case MeshFormat::Off: return mesh::detail::encode_off(mesh);
+    case MeshFormat::Obj: return mesh::detail::encode_obj(mesh);
+    case MeshFormat::Stl: return mesh::detail::encode_stl(mesh, binary);
+    case MeshFormat::Ply: return mesh::detail::encode_ply(mesh, binary);
     case MeshFormat::Auto: break;
   }
   throw InvalidInput("encode_mesh: the format must be given (not Auto)");
@@ -137,10 +137,10 @@ std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary)
 
 PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::string& name) {
   switch (format) {
-    case MeshFormat::Off: return mesh_formats::decode_off(data, name);
-    case MeshFormat::Obj: return mesh_formats::decode_obj(data, name);
-    case MeshFormat::Stl: return mesh_formats::decode_stl(data, name);
-    case MeshFormat::Ply: return mesh_formats::decode_ply(data, name);
+    case MeshFormat::Off: return mesh::detail::decode_off(data, name);
+    case MeshFormat::Obj: return mesh::detail::decode_obj(data, name);
+    case MeshFormat::Stl: return mesh::detail::decode_stl(data, name);
+    case MeshFormat::Ply: return mesh::detail::decode_ply(data, name);
     case MeshFormat::Auto: break;
   }
   throw InvalidInput("decode_mesh: the format must be given (not Auto)");

@@ -38,7 +38,6 @@ std::string vertex(const PolygonMesh& m, int v) { return "vertex " + std::to_str
 
 /// Corners of a face all on one line (exact: every axis projection has zero area).
 bool collinear(const PolygonMesh& m, const std::vector<int>& f) {
-  using mesh_predicates::orient2d;
   const Eigen::Vector3d& a = m.vertices[f[0]];
   for (size_t i = 1; i < f.size(); ++i) {
     const Eigen::Vector3d& b = m.vertices[f[i]];

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace sculpt::mesh_predicates {
+namespace sculpt {
 namespace {
 
 using Rational = boost::multiprecision::cpp_rational;
@@ -131,4 +131,4 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   return orient3d_exact(a, b, c, d);
 }
 
-}  // namespace sculpt::mesh_predicates
+}  // namespace sculpt

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-namespace sculpt::mesh_predicates {
+namespace sculpt {
 
 /// Sign (-1, 0, +1) of det[b-a, c-a]: +1 when a, b, c turn counter-clockwise.
 int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
@@ -19,4 +19,4 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d);
 
-}  // namespace sculpt::mesh_predicates
+}  // namespace sculpt

@@ -14,8 +14,6 @@
 namespace sculpt {
 namespace {
 
-using mesh_predicates::orient2d;
-using mesh_predicates::orient3d;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 

@@ -12,7 +12,6 @@
 namespace sculpt {
 namespace {
 
-using mesh_predicates::orient2d;
 
 /// Ear clipping on a doubly linked ring of polygon corners projected to 2D, counter-clockwise.
 class EarClipper {

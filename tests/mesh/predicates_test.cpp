@@ -11,8 +11,6 @@ namespace sculpt {
 namespace {
 
 using boost::multiprecision::cpp_rational;
-using mesh_predicates::orient2d;
-using mesh_predicates::orient3d;
 
 int reference2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   const cpp_rational det = (cpp_rational(b.x()) - a.x()) * (cpp_rational(c.y()) - a.y()) -

@@ -8,11 +8,11 @@
 
 #include <Eigen/Geometry>
 
-#include "mesh/mesh_formats.hpp"
-#include "mesh/text_scanner.hpp"
+#include "mesh/formats/mesh_formats.hpp"
+#include "mesh/formats/text_scanner.hpp"
 #include "mesh/triangulate.hpp"
 
-namespace sculpt::mesh_formats {
+namespace sculpt::mesh::detail {
 namespace {
 
 static_assert(std::endian::native == std::endian::little, "binary STL/PLY code assumes little endian");
@@ -178,4 +178,4 @@ PolygonMesh decode_stl(std::string_view data, const std::string& name) {
   throw IoError(name, "not an STL file (no 'solid' header, too short for binary STL)");
 }
 
-}  // namespace sculpt::mesh_formats
+}  // namespace sculpt::mesh::detail

@@ -13,10 +13,10 @@
 #include <string>
 
 #include "language/ast.hpp"
-#include "language/ast_adapted.hpp"
-#include "language/config.hpp"
-#include "language/error_handler.hpp"
-#include "language/grammar.hpp"
+#include "language/grammar/ast_adapted.hpp"
+#include "language/grammar/config.hpp"
+#include "language/grammar/error_handler.hpp"
+#include "language/grammar/grammar.hpp"
 
 namespace sculpt::language::grammar {
 namespace x3 = boost::spirit::x3;

@@ -12,7 +12,7 @@
 
 #include "base/errors.hpp"
 
-namespace sculpt::mesh_formats {
+namespace sculpt::mesh::detail {
 
 class TextScanner {
  public:
@@ -121,4 +121,4 @@ inline void append_face_line(std::string& out, const std::vector<int>& face) {
   out += '\n';
 }
 
-}  // namespace sculpt::mesh_formats
+}  // namespace sculpt::mesh::detail

@@ -6,7 +6,7 @@
 
 #include <functional>
 
-#include "language/error_handler.hpp"
+#include "language/grammar/error_handler.hpp"
 
 namespace sculpt::language::grammar {
 namespace x3 = boost::spirit::x3;

@@ -8,7 +8,7 @@
 
 #include "mesh/polygon_mesh.hpp"
 
-namespace sculpt::mesh_formats {
+namespace sculpt::mesh::detail {
 
 std::string encode_off(const PolygonMesh& mesh);
 std::string encode_obj(const PolygonMesh& mesh);
@@ -20,4 +20,4 @@ PolygonMesh decode_obj(std::string_view data, const std::string& name);
 PolygonMesh decode_stl(std::string_view data, const std::string& name);
 PolygonMesh decode_ply(std::string_view data, const std::string& name);
 
-}  // namespace sculpt::mesh_formats
+}  // namespace sculpt::mesh::detail

@@ -6,7 +6,7 @@
 #include <boost/spirit/home/x3.hpp>
 
 #include "language/ast.hpp"
-#include "language/config.hpp"
+#include "language/grammar/config.hpp"
 
 namespace sculpt::language::grammar {
 namespace x3 = boost::spirit::x3;

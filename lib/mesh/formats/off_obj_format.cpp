@@ -2,10 +2,10 @@
 #include <limits>
 #include <string>
 
-#include "mesh/mesh_formats.hpp"
-#include "mesh/text_scanner.hpp"
+#include "mesh/formats/mesh_formats.hpp"
+#include "mesh/formats/text_scanner.hpp"
 
-namespace sculpt::mesh_formats {
+namespace sculpt::mesh::detail {
 namespace {
 
 void append_point(std::string& out, const Eigen::Vector3d& p) {
@@ -142,4 +142,4 @@ PolygonMesh decode_obj(std::string_view data, const std::string& name) {
   return mesh;
 }
 
-}  // namespace sculpt::mesh_formats
+}  // namespace sculpt::mesh::detail

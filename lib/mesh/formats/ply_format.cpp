@@ -7,10 +7,10 @@
 #include <cstring>
 #include <limits>
 
-#include "mesh/mesh_formats.hpp"
-#include "mesh/text_scanner.hpp"
+#include "mesh/formats/mesh_formats.hpp"
+#include "mesh/formats/text_scanner.hpp"
 
-namespace sculpt::mesh_formats {
+namespace sculpt::mesh::detail {
 namespace {
 
 enum class Scalar { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
@@ -262,4 +262,4 @@ PolygonMesh decode_ply(std::string_view data, const std::string& name) {
   return mesh;
 }
 
-}  // namespace sculpt::mesh_formats
+}  // namespace sculpt::mesh::detail

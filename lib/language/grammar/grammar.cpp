@@ -1,5 +1,5 @@
 // The one translation unit that includes Spirit X3: instantiates the grammar and runs it.
-#include "language/grammar_def.hpp"
+#include "language/grammar/grammar_def.hpp"
 #include "language/parser.hpp"
 
 namespace sculpt::language {
