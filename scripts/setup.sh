@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
 # Installs whatever Debian packages are missing, then configures and builds sculpt.
 #   scripts/setup.sh [--sanitize] [--target NAME]
-#   build dir: build/release, or build/sanitize with ASan+UBSan; --target builds only that target
+#   build dir: build/release, or build/sanitize with ASan+UBSan (without the benchmark programs);
+#   --target builds only that target
 # Prints the build directory on its last line.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 sanitize=OFF
+bench=ON
 build="$root/build/release"
 target=()
 while (($#)); do
   case "$1" in
-    --sanitize) sanitize=ON; build="$root/build/sanitize" ;;
+    --sanitize) sanitize=ON; bench=OFF; build="$root/build/sanitize" ;;
     --target) shift; target=(--target "${1:?--target needs a name}") ;;
     *) echo "setup.sh: unknown option '$1'" >&2; exit 2 ;;
   esac
@@ -32,6 +34,6 @@ if ((${#missing[@]})); then
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSCULPT_SANITIZE="$sanitize" >&2
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSCULPT_SANITIZE="$sanitize" -DSCULPT_BUILD_BENCH="$bench" >&2
 cmake --build "$build" -j "$jobs" "${target[@]}" >&2
 echo "$build"
