@@ -96,7 +96,8 @@ std::string SplineValue::repr() const {
                   ", " + std::to_string(spline.dimension()) + "D, " + std::to_string(spline.control_count()) +
                   " controls, domain [" + format_number(t0) + ", " + format_number(t1) + "]";
   if (!history.empty())
-    s += ", fitted in " + std::to_string(history.size() - 1) + " steps" + (converged ? "" : " (not converged)");
+    s += ", fitted in " + std::to_string(history.size() - 1) + (history.size() == 2 ? " step" : " steps") +
+         (converged ? "" : " (not converged)");
   return s + ">";
 }
 
@@ -200,7 +201,7 @@ void register_splines(BuiltinTable& table) {
              .params = {{"s"}, {"n"}},
              .run = [](const Arguments& args) -> Value {
                const BSpline& s = spline_arg(args, 0).spline;
-               const int n = static_cast<int>(args.integer(1, 1, 10'000'000));
+               const int n = static_cast<int>(args.integer(1, 1, 1'000'000));
                args.charge(static_cast<std::uint64_t>(n));
                curves::DigitizedCurve curve;
                curve.points = splines::sample(s, n);
