@@ -181,9 +181,10 @@ void register_splines(BuiltinTable& table) {
   table.add({.name = "fit_history",
              .signature = "fit_history(s)",
              .doc = "The convergence of the fit (or degree reduction) that made spline s: one row "
-                    "[objective, max, rms] per step, row 0 for the start curve. objective is the mean squared "
-                    "distance of the data to the curve, max and rms the largest and root-mean-square distance "
-                    "(exact foot points). len(fit_history(s)) - 1 is the number of steps taken.",
+                    "[objective, max, rms] per step, row 0 for the start curve. For fit, objective is the mean "
+                    "squared distance of the data to the curve, max and rms the largest and root-mean-square "
+                    "distance (exact foot points); for reduce_degree the same figures for the samples of each "
+                    "curve against the other. len(fit_history(s)) - 1 is the number of steps taken.",
              .params = {{"s"}},
              .run = [](const Arguments& args) -> Value {
                const SplineValue& s = spline_arg(args, 0);
@@ -211,14 +212,19 @@ void register_splines(BuiltinTable& table) {
                return Value(std::shared_ptr<const Object>(std::make_shared<CurveValue>(std::move(curve))));
              }});
   table.add({.name = "reduce_degree",
-             .signature = "reduce_degree(b, k)",
-             .doc = "Bezier curve b reduced to degree k < degree(b) with its end points kept, by the active-curve "
-                    "method (Pottmann, Leopoldseder & Hofer 2002, sec. 3.1): the curves come close as point "
-                    "sets. fit_history() gives the convergence.",
-             .params = {{"b"}, {"k"}},
+             .signature = "reduce_degree(b, k, method=\"active\")",
+             .doc = "Bezier curve b reduced to degree k < degree(b) with its end points kept. method \"active\": "
+                    "the active-curve method (Pottmann, Leopoldseder & Hofer 2002, sec. 3.1), the curves come "
+                    "close as point sets, and fit_history() gives the convergence; \"l2\": Eck's constrained "
+                    "L2 reduction (the difference as functions of the parameter), for comparison.",
+             .params = {{"b"}, {"k"}, {"method", false}},
              .run = [](const Arguments& args) -> Value {
-               return fitted_value(splines::reduce_degree(spline_arg(args, 0).spline,
-                                                          static_cast<int>(args.integer(1, 0, kMaxDegree))));
+               const BSpline& b = spline_arg(args, 0).spline;
+               const int k = static_cast<int>(args.integer(1, 0, kMaxDegree));
+               const std::string method = args.has(2) ? args.string(2) : "active";
+               if (method == "l2") return spline_value(splines::reduce_degree_l2(b, k));
+               if (method != "active") args.fail(2, "method must be \"active\" or \"l2\"");
+               return fitted_value(splines::reduce_degree(b, k));
              }});
   table.add({.name = "distance",
              .signature = "distance(s, c)",

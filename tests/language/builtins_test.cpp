@@ -358,6 +358,18 @@ TEST(Builtins, SplineDegreeReductionKeepsTheEnds) {
   EXPECT_EQ(v[5], 0);
   EXPECT_GT(v[6], 0);
   EXPECT_LT(v[6], 0.5);
+  // Eck's L2 reduction keeps the ends too and is farther from b as a point set (the seed's claim).
+  const auto e = numbers(
+      "b = bezier([[0, 0], [1, 2], [2, -1], [3, 3], [4, -1], [5, 2], [6, 0]])\ne = reduce_degree(b, 4, method=\"l2\")\n"
+      "p = control_points(e)\nprint(p[0][0], p[0][1], p[4][0], p[4][1], distance(e, sample(b, 200))[0])");
+  ASSERT_EQ(e.size(), 5u);
+  EXPECT_NEAR(e[0], 0, 1e-12);
+  EXPECT_NEAR(e[1], 0, 1e-12);
+  EXPECT_NEAR(e[2], 6, 1e-12);
+  EXPECT_NEAR(e[3], 0, 1e-12);
+  EXPECT_GT(e[4], v[6]);
+  EXPECT_EQ(first_error_line("r = reduce_degree(bezier([[0, 0], [1, 1], [2, 0]]), 1, method=\"best\")"),
+            "t.bsp:1:56: error: reduce_degree: method must be \"active\" or \"l2\"");
 }
 
 TEST(Builtins, SampledSplineIsAProfileForRevolve) {
