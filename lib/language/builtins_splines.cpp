@@ -3,7 +3,9 @@
 // Leopoldseder & Hofer 2002, sec. 1-3; Wang, Pottmann & Liu 2006; lib/splines). See docs/splines.md.
 #include <cmath>
 #include <filesystem>
-#include <sstream>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "curves/digitized_curve.hpp"
 #include "language/builtins.hpp"
@@ -35,43 +37,13 @@ const SplineValue& spline_arg(const Arguments& args, std::size_t i) {
   return args.object<SplineValue>(i, "a spline");
 }
 
-/// Points given as a digitized curve or as a list of [x, y] / [x, y, z] (all of one kind).
-struct PointSet {
-  std::vector<Eigen::Vector3d> points;
-  int dimension = 3;
-  bool closed = false;
-};
-
-PointSet points_arg(const Arguments& args, std::size_t i, const char* what) {
-  PointSet out;
-  if (const auto* c = args.value(i).object<CurveValue>()) {
-    out.points = c->curve.points;
-    out.dimension = c->curve.dimension;
-    out.closed = c->curve.closed;
-    return out;
-  }
-  const List* items = args.value(i).list();
-  if (!items) args.fail_type(i, what);
-  out.dimension = 0;
-  for (const Value& item : *items) {
-    const List* xyz = item.list();
-    const std::size_t k = xyz ? xyz->size() : 0;
-    bool numbers = k == 2 || k == 3;
-    for (std::size_t a = 0; numbers && a < k; ++a) {
-      const double* x = (*xyz)[a].get<double>();
-      numbers = x && std::isfinite(*x);
-    }
-    const std::string n = std::to_string(out.points.size() + 1);
-    if (!numbers) args.fail(i, "point " + n + " must be [x, y] or [x, y, z] with finite numbers");
-    if (out.dimension != 0 && out.dimension != int(k))
-      args.fail(i, "point " + n + " has " + std::to_string(k) + " coordinates, the first had " +
-                       std::to_string(out.dimension) + " (all points must be 2D or all 3D)");
-    out.dimension = int(k);
-    out.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(), k == 3 ? *(*xyz)[2].get<double>() : 0.0);
-  }
-  if (out.points.empty()) args.fail(i, "the list of points is empty");
-  args.charge(out.points.size());
-  return out;
+/// Points given as a digitized curve or as a (non-empty) list of [x, y] / [x, y, z], all of one kind.
+curves::DigitizedCurve points_arg(const Arguments& args, std::size_t i, const char* what) {
+  if (const auto* c = args.value(i).object<CurveValue>()) return c->curve;
+  if (!args.value(i).list()) args.fail_type(i, what);
+  curves::DigitizedCurve c = curve_from_points(args, i);
+  if (c.points.empty()) args.fail(i, "the list of points is empty");
+  return c;
 }
 
 /// A point as the script sees it: [x, y] for a 2D spline, [x, y, z] for a 3D one.
@@ -110,7 +82,7 @@ void register_splines(BuiltinTable& table) {
                     "polygon closes; uniform break points 0, 1, ..., n or the given n + 1 break points.",
              .params = {{"controls"}, {"degree", false}, {"closed", false}, {"knots", false}},
              .run = [](const Arguments& args) -> Value {
-               const PointSet controls = points_arg(args, 0, "a list of points");
+               const curves::DigitizedCurve controls = points_arg(args, 0, "a list of points");
                const int degree = args.has(1) ? degree_arg(args, 1) : 3;
                const bool closed = args.has(2) && args.boolean(2);
                if (!args.has(3)) {
@@ -130,7 +102,7 @@ void register_splines(BuiltinTable& table) {
              .doc = "The Bezier curve of degree n - 1 over [0, 1] with the n control points [x, y] or [x, y, z].",
              .params = {{"controls"}},
              .run = [](const Arguments& args) -> Value {
-               const PointSet controls = points_arg(args, 0, "a list of points");
+               const curves::DigitizedCurve controls = points_arg(args, 0, "a list of points");
                return spline_value(BSpline::bezier(controls.points, controls.dimension));
              }});
 
@@ -153,7 +125,7 @@ void register_splines(BuiltinTable& table) {
                         {"smoothing", false},
                         {"start", false}},
              .run = [](const Arguments& args) -> Value {
-               const PointSet data = points_arg(args, 0, "a curve or a list of points");
+               const curves::DigitizedCurve data = points_arg(args, 0, "a curve or a list of points");
                splines::FitOptions options;
                options.dimension = data.dimension;
                options.closed = data.closed;
@@ -233,7 +205,7 @@ void register_splines(BuiltinTable& table) {
              .params = {{"s"}, {"c"}},
              .run = [](const Arguments& args) -> Value {
                const BSpline& s = spline_arg(args, 0).spline;
-               const PointSet data = points_arg(args, 1, "a curve or a list of points");
+               const curves::DigitizedCurve data = points_arg(args, 1, "a curve or a list of points");
                const splines::DistanceSummary d = splines::distance(s, data.points);
                return List{d.max, d.rms};
              }});
