@@ -117,6 +117,8 @@ const BuiltinTable& builtins() {
     register_curves(t);
     t.set_area("solids");
     register_solids(t);
+    t.set_area("splines");
+    register_splines(t);
     t.set_area("revolution");
     register_revolution(t);
     t.set_area("reports");

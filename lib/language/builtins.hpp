@@ -122,6 +122,7 @@ const BuiltinTable& builtins();
 void register_core(BuiltinTable& table);
 void register_curves(BuiltinTable& table);
 void register_solids(BuiltinTable& table);
+void register_splines(BuiltinTable& table);
 void register_revolution(BuiltinTable& table);
 void register_reports(BuiltinTable& table);
 

@@ -29,6 +29,32 @@ std::optional<curves::Method> method_named(std::string name) {
 
 }  // namespace
 
+curves::DigitizedCurve curve_from_points(const Arguments& args, std::size_t i) {
+  DigitizedCurve curve;
+  curve.name = "list";
+  const List& items = args.list(i);
+  curve.dimension = items.empty() ? 3 : 0;
+  for (const Value& item : items) {
+    const List* xyz = item.list();
+    const std::size_t k = xyz ? xyz->size() : 0;
+    bool numbers = k == 2 || k == 3;
+    for (std::size_t a = 0; numbers && a < k; ++a) {
+      const double* x = (*xyz)[a].get<double>();
+      numbers = x && std::isfinite(*x);
+    }
+    if (!numbers) args.fail(i, "point " + std::to_string(curve.points.size() + 1) +
+                                   " must be [x, y] or [x, y, z] with finite numbers");
+    if (curve.dimension != 0 && curve.dimension != int(k))
+      args.fail(i, "point " + std::to_string(curve.points.size() + 1) + " has " + std::to_string(k) +
+                       " coordinates, the first had " + std::to_string(curve.dimension) +
+                       " (all points must be 2D or all 3D)");
+    curve.dimension = int(k);
+    curve.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(), k == 3 ? *(*xyz)[2].get<double>() : 0.0);
+  }
+  args.charge(curve.points.size());
+  return curve;
+}
+
 std::string CurveValue::repr() const {
   return "<curve " + (curve.name.empty() ? std::string() : curve.name + ": ") +
          std::to_string(curve.points.size()) + " points, " + std::to_string(curve.dimension) + "D" +
@@ -52,28 +78,8 @@ void register_curves(BuiltinTable& table) {
                DigitizedCurve curve;
                if (args.value(0).get<std::string>()) {
                  curve = curves::load_curve(args.file_path(0));
-               } else if (const List* items = args.value(0).list()) {
-                 curve.name = "list";
-                 curve.dimension = items->empty() ? 3 : 0;
-                 for (const Value& item : *items) {
-                   const List* xyz = item.list();
-                   const std::size_t k = xyz ? xyz->size() : 0;
-                   bool numbers = k == 2 || k == 3;
-                   for (std::size_t a = 0; numbers && a < k; ++a) {
-                     const double* x = (*xyz)[a].get<double>();
-                     numbers = x && std::isfinite(*x);
-                   }
-                   if (!numbers) args.fail(0, "point " + std::to_string(curve.points.size() + 1) +
-                                                  " must be [x, y] or [x, y, z] with finite numbers");
-                   if (curve.dimension != 0 && curve.dimension != int(k))
-                     args.fail(0, "point " + std::to_string(curve.points.size() + 1) + " has " +
-                                      std::to_string(k) + " coordinates, the first had " +
-                                      std::to_string(curve.dimension) + " (all points must be 2D or all 3D)");
-                   curve.dimension = int(k);
-                   curve.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(),
-                                             k == 3 ? *(*xyz)[2].get<double>() : 0.0);
-                 }
-                 args.charge(curve.points.size());
+               } else if (args.value(0).list()) {
+                 curve = curve_from_points(args, 0);
                } else {
                  args.fail_type(0, "a file name or a list of points");
                }

@@ -6,6 +6,7 @@
 
 #include "curves/digitized_curve.hpp"
 #include "curves/linearization.hpp"
+#include "language/builtins.hpp"
 #include "language/value.hpp"
 
 namespace sculpt::language {
@@ -25,5 +26,9 @@ struct LinearizationValue final : Object {
   [[nodiscard]] std::string type_name() const override { return "linearization"; }
   [[nodiscard]] std::string repr() const override;
 };
+
+/// The open curve (named "list") of argument i, a list of [x, y] or [x, y, z] points with finite
+/// coordinates, all of one kind; errors at the argument. Also used by the splines area.
+[[nodiscard]] curves::DigitizedCurve curve_from_points(const Arguments& args, std::size_t i);
 
 }  // namespace sculpt::language

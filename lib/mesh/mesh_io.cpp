@@ -48,9 +48,10 @@ class TempFile {
   bool released_ = false;
 };
 
-/// Write `data` to a new file in the target's directory, flush it to disk, then rename it
-/// over the target, so readers see either the old file or the complete new one.
-void atomic_write(const fs::path& path, std::string_view data) {
+}  // namespace
+
+// Write to a hidden temporary beside the target, fsync, rename over the target (mesh_io.hpp).
+void write_file_atomically(const fs::path& path, std::string_view data) {
   const std::string target = path.string();
   if (path.filename().empty()) throw IoError(target, "cannot write: the path names no file");
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
@@ -86,6 +87,8 @@ void atomic_write(const fs::path& path, std::string_view data) {
     throw IoError(target, "cannot replace the file: " + errno_text(errno));
   file.release();
 }
+
+namespace {
 
 std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -149,7 +152,7 @@ PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::str
 void write_mesh(const PolygonMesh& mesh, const fs::path& path, WriteOptions options) {
   const MeshFormat format =
       options.format == MeshFormat::Auto ? mesh_format_from_path(path) : options.format;
-  atomic_write(path, encode_mesh(mesh, format, options.binary));
+  write_file_atomically(path, encode_mesh(mesh, format, options.binary));
 }
 
 PolygonMesh read_mesh(const fs::path& path, ReadOptions options) {

@@ -40,6 +40,11 @@ void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, Writ
 /// \throw IoError naming the path and, for text formats, the line of the first problem.
 PolygonMesh read_mesh(const std::filesystem::path& path, ReadOptions options = {});
 
+/// Writes `data` to `path` the way write_mesh does: a temporary file in the target's directory,
+/// flushed and renamed over the target, so readers see the old file or the complete new one.
+/// \throw IoError naming the path and what failed (the previous file is left as it was).
+void write_file_atomically(const std::filesystem::path& path, std::string_view data);
+
 /// The bytes write_mesh would write (format must not be Auto).
 std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary = false);
 

@@ -3,9 +3,12 @@
 // round trips. Errors from the libraries below appear at the script position of the call.
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include "language/builtins.hpp"
 #include "script_runner.hpp"
@@ -236,6 +239,208 @@ TEST(Builtins, ImportRefusesAMeshThatSelfIntersectsOnceSnapped) {
   const std::string e = first_error_line("s = import(\"" + near + "\")");
   EXPECT_NE(e.find("t.bsp:1:5: error: import: "), std::string::npos) << e;
   EXPECT_NE(e.find("meet when the vertices are snapped to the exact kernel's grid"), std::string::npos) << e;
+}
+
+// ---- splines (builtins_splines.cpp) ----
+
+/// Every number in `text`, in order (lists included).
+std::vector<double> all_numbers(const std::string& text) {
+  static const std::regex number(R"(-?[0-9]+(\.[0-9]+)?(e[-+]?[0-9]+)?)");
+  std::vector<double> out;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), number); it != std::sregex_iterator(); ++it)
+    out.push_back(std::stod(it->str()));
+  return out;
+}
+
+/// Distance from x to the closed polygon through `ring` (an independent check of foot points).
+double polygon_distance(const Eigen::Vector2d& x, const std::vector<Eigen::Vector2d>& ring) {
+  double best = INFINITY;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Eigen::Vector2d a = ring[i], b = ring[(i + 1) % ring.size()];
+    const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (a + t * (b - a) - x).norm());
+  }
+  return best;
+}
+
+const char* kCircleData =
+    "c = []\nfor i in range(0, 400) { t = 2 * pi * i / 400\n c = append(c, [cos(t), sin(t)]) }\n"
+    "data = curve(c, closed=true)\n";
+
+TEST(Builtins, SplineFromControlPoints) {
+  const auto r = run_script(
+      "s = bspline([[0, 0], [1, 1], [2, 0], [3, 1]])\nprint(s)\nprint(degree(s), knots(s), control_points(s))\n"
+      "print(bspline([[0, 0, 1], [1, 0, 1], [1, 1, 1]], degree=2, closed=true))\n"
+      "b = bezier([[0, 0], [1, 2], [2, 0]])\nprint(b, type(b))\nprint(points(sample(b, 3)))\n"
+      "print(knots(bspline([[0, 0], [1, 1], [2, 0], [3, 1]], degree=2, knots=[0, 0, 0, 0.3, 1, 1, 1])))");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.out,
+            "<spline: degree 3, open, 2D, 4 controls, domain [0, 1]>\n"
+            "3 [0, 0, 0, 0, 1, 1, 1, 1] [[0, 0], [1, 1], [2, 0], [3, 1]]\n"
+            "<spline: degree 2, closed, 3D, 3 controls, domain [0, 3]>\n"
+            "<spline: degree 2, open, 2D, 3 controls, domain [0, 1]> spline\n"
+            "[[0, 0, 0], [1, 1, 0], [2, 0, 0]]\n"
+            "[0, 0, 0, 0.3, 1, 1, 1]\n");
+}
+
+// 400 points of the unit circle, a closed cubic with 8 control points started from a circle of
+// radius 0.7 (the closed flag comes from the start). The fitted curve, sampled densely, stays within 1e-3 of the circle (|p| = 1), and
+// distance() agrees with the distance to the polygon of the samples computed here.
+TEST(Builtins, FitSampledCircleIsCloseByAnIndependentMeasure) {
+  const auto r = run_script(std::string(kCircleData) +
+                            "start = []\nfor i in range(0, 8) { start = append(start, [0.7 * cos(pi * i / 4), 0.7 * sin(pi * i / 4)]) }\n"
+                            "s = fit(data, start=bspline(start, closed=true), smoothing=0.001)\nprint(s)\nprint(distance(s, data))\n"
+                            "print(points(sample(s, 2000)))\nprint(len(fit_history(s)), fit_history(s)[0])");
+  ASSERT_EQ(r.error, "");
+  std::istringstream lines(r.out);
+  std::string repr, dist, samples, history;
+  std::getline(lines, repr);
+  std::getline(lines, dist);
+  std::getline(lines, samples);
+  std::getline(lines, history);
+  EXPECT_EQ(repr.rfind("<spline: degree 3, closed, 2D, 8 controls, domain [0, 8], fitted in ", 0), 0u) << repr;
+  const auto d = all_numbers(dist);
+  ASSERT_EQ(d.size(), 2u);
+  const auto xyz = all_numbers(samples);
+  ASSERT_EQ(xyz.size(), 3u * 2000u);
+  std::vector<Eigen::Vector2d> ring;
+  double radial = 0;
+  for (std::size_t i = 0; i < xyz.size(); i += 3) {
+    ring.emplace_back(xyz[i], xyz[i + 1]);
+    EXPECT_EQ(xyz[i + 2], 0.0);
+    radial = std::max(radial, std::abs(ring.back().norm() - 1));
+  }
+  EXPECT_LT(radial, 1e-3);
+  double max = 0, sum = 0;
+  for (int i = 0; i < 400; ++i) {
+    const double t = 2 * M_PI * i / 400;
+    const double e = polygon_distance({std::cos(t), std::sin(t)}, ring);
+    max = std::max(max, e);
+    sum += e * e;
+  }
+  // The polygon of 2000 samples lies within h^2 / 8 (h ~ 0.0035) of the curve.
+  EXPECT_NEAR(d[0], max, 2e-6);
+  EXPECT_NEAR(d[1], std::sqrt(sum / 400), 2e-6);
+  EXPECT_LT(d[0], 1e-3);
+  const auto h = all_numbers(history);
+  ASSERT_EQ(h.size(), 4u);
+  EXPECT_GE(h[0], 2);            // the start and at least one step
+  EXPECT_LE(h[0], 51);           // at most 50 steps
+  EXPECT_GT(h[3], 0.2);          // the start: rms about 0.3
+  EXPECT_NEAR(d[1], 4.03e-4, 0.02 * 4.03e-4);  // the optimum of docs/benchmarks (issue 15)
+}
+
+TEST(Builtins, FitMethodsAndOptions) {
+  // A list of points is open unless closed=true; pdm and tdm run; a start curve sets the count.
+  const auto r = run_script(std::string(kCircleData) +
+                            "for m in [\"sdm\", \"pdm\", \"tdm\"] { print(distance(fit(data, controls=10, method=m), data)[0] < 0.01) }\n"
+                            "print(fit(c, controls=6))\nprint(fit(c, controls=6, closed=true))\n"
+                            "print(fit(data, start=bspline([[1, 0], [0, 1], [-1, 0], [0, -1]], degree=2, closed=true), iterations=3))");
+  EXPECT_EQ(r.error, "");
+  const std::string out = r.out;
+  EXPECT_EQ(out.substr(0, 15), "true\ntrue\ntrue\n") << out;
+  EXPECT_NE(out.find("<spline: degree 3, open, 2D, 6 controls"), std::string::npos) << out;
+  EXPECT_NE(out.find("<spline: degree 3, closed, 2D, 6 controls"), std::string::npos) << out;
+  EXPECT_NE(out.find("<spline: degree 2, closed, 2D, 4 controls, domain [0, 4], fitted in 3 steps (not converged)>"),
+            std::string::npos) << out;
+}
+
+TEST(Builtins, SplineDegreeReductionKeepsTheEnds) {
+  const auto v = numbers(
+      "b = bezier([[0, 0], [1, 2], [2, -1], [3, 3], [4, -1], [5, 2], [6, 0]])\nr = reduce_degree(b, 4)\n"
+      "p = control_points(r)\nprint(degree(r), len(p), p[0][0], p[0][1], p[4][0], p[4][1], distance(r, sample(b, 200))[0])");
+  ASSERT_EQ(v.size(), 7u);
+  EXPECT_EQ(v[0], 4);
+  EXPECT_EQ(v[1], 5);
+  EXPECT_EQ(v[2], 0);
+  EXPECT_EQ(v[3], 0);
+  EXPECT_EQ(v[4], 6);
+  EXPECT_EQ(v[5], 0);
+  EXPECT_GT(v[6], 0);
+  EXPECT_LT(v[6], 0.5);
+  // Eck's L2 reduction keeps the ends too and is farther from b as a point set (the seed's claim).
+  const auto e = numbers(
+      "b = bezier([[0, 0], [1, 2], [2, -1], [3, 3], [4, -1], [5, 2], [6, 0]])\ne = reduce_degree(b, 4, method=\"l2\")\n"
+      "p = control_points(e)\nprint(p[0][0], p[0][1], p[4][0], p[4][1], distance(e, sample(b, 200))[0])");
+  ASSERT_EQ(e.size(), 5u);
+  EXPECT_NEAR(e[0], 0, 1e-12);
+  EXPECT_NEAR(e[1], 0, 1e-12);
+  EXPECT_NEAR(e[2], 6, 1e-12);
+  EXPECT_NEAR(e[3], 0, 1e-12);
+  EXPECT_GT(e[4], v[6]);
+  EXPECT_EQ(first_error_line("r = reduce_degree(bezier([[0, 0], [1, 1], [2, 0]]), 1, method=\"best\")"),
+            "t.bsp:1:56: error: reduce_degree: method must be \"active\" or \"l2\"");
+}
+
+TEST(Builtins, SampledSplineIsAProfileForRevolve) {
+  // A profile from r = 1 at z = 0 to r = 1 at z = 2 bulging to r = 1.5: sampled, linearized, revolved.
+  const auto v = numbers(
+      "s = bspline([[1, 0], [2, 1], [1, 2]], degree=2)\nc = sample(s, 50)\n"
+      "print(volume(revolve(c, circle(16))), volume(revolve(linearize(c, 8), circle(16))), len(points(c)))");
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_GT(v[0], 2 * M_PI * 0.9);  // more than the unit cylinder of height 2 inscribed in 16-gons
+  EXPECT_LT(v[0], 2 * M_PI * 1.5 * 1.5);
+  EXPECT_LE(v[1], v[0] + 1e-9);     // the linearization cuts the convex bulge
+  EXPECT_EQ(v[2], 50);
+}
+
+TEST(Builtins, SplineFileRoundTrip) {
+  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test" / "splines";
+  std::filesystem::remove_all(dir);
+  const std::string path = (dir / "s.spline").string();
+  const auto r = run_script(std::string(kCircleData) + "s = fit(data, controls=7, iterations=5)\nsave_spline(s, \"" +
+                            path + "\")\nt = load_spline(\"" + path +
+                            "\")\nprint(control_points(t) == control_points(s), knots(t) == knots(s), t)");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.out, "true true <spline: degree 3, closed, 2D, 7 controls, domain [0, 7]>\n");
+  for (const auto& entry : std::filesystem::directory_iterator(dir))  // no temporary left behind
+    EXPECT_EQ(entry.path().filename().string(), "s.spline");
+  {
+    std::ofstream f(dir / "bad.spline");
+    f << "# hand-written\ndegree 2\nclosed maybe\n";
+  }
+  const std::string e = first_error_line("t = load_spline(\"" + (dir / "bad.spline").string() + "\")");
+  EXPECT_EQ(e.rfind("t.bsp:1:5: error: load_spline: invalid input: ", 0), 0u) << e;
+  EXPECT_NE(e.find("bad.spline:3:"), std::string::npos) << e;
+}
+
+TEST(Builtins, SplineErrorsAtTheCall) {
+  EXPECT_EQ(first_error_line("s = fit([[0, 0], [1, 1], [2, 0]], controls=5)"),
+            "t.bsp:1:5: error: fit: invalid input: 5 control points need at least as many data points, got 3");
+  EXPECT_EQ(first_error_line("s = fit(cubic(), controls=3)"),
+            "t.bsp:1:5: error: fit: invalid input: degree 3 needs at least 4 control points, got 3");
+  EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, degree=0)"),
+            "t.bsp:1:30: error: fit: argument 'degree' must be a whole number from 1 to 50, got 0");
+  EXPECT_EQ(first_error_line("s = fit(cubic())"),
+            "t.bsp:1:5: error: fit: give controls=n (the number of control points) or start=s");
+  EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, method=\"best\")"),
+            "t.bsp:1:5: error: fit: invalid input: unknown fitting method 'best' (expected sdm, pdm or tdm)");
+  EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, closed=\"yes\")"),
+            "t.bsp:1:30: error: fit: closed must be true, false or \"auto\"");
+  EXPECT_EQ(first_error_line("s = fit([[1, 1], [1, 1], [1, 1], [1, 1], [1, 1]], controls=4)"),
+            "t.bsp:1:5: error: fit: invalid input: all data points coincide");
+  EXPECT_EQ(first_error_line("s = fit([[0, 0], [1, 1, 0]], controls=4)"),
+            "t.bsp:1:9: error: fit: point 2 has 3 coordinates, the first had 2 (all points must be 2D or all 3D)");
+  EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, smoothing=-1)"),
+            "t.bsp:1:30: error: fit: argument 'smoothing' must be a finite number >= 0");
+  EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, start=bspline([[0, 0], [1, 1], [2, 0], [3, 1]], closed=true))")
+                .substr(0, 46),
+            "t.bsp:1:5: error: fit: invalid input: the star");
+  EXPECT_EQ(first_error_line("s = bspline([[0, 0], [1, 1]])").substr(0, 42), "t.bsp:1:5: error: bspline: invalid input: ");
+  EXPECT_EQ(first_error_line("s = bspline([[0, 0], [1, 1], [2, 0]], degree=2, knots=[0, 0, 0, 1, 1])").substr(0, 42),
+            "t.bsp:1:5: error: bspline: invalid input: ");
+  EXPECT_EQ(first_error_line("s = bspline([])"), "t.bsp:1:13: error: bspline: the list of points is empty");
+  EXPECT_EQ(first_error_line("s = reduce_degree(bspline([[0, 0], [1, 1], [2, 0], [3, 1], [4, 0]]), 2)"),
+            "t.bsp:1:5: error: reduce_degree: invalid input: degree reduction: the curve is not a Bezier curve");
+  EXPECT_EQ(first_error_line("s = reduce_degree(bezier([[0, 0], [1, 1], [2, 0]]), 2)").substr(0, 48),
+            "t.bsp:1:5: error: reduce_degree: invalid input: ");
+  EXPECT_EQ(first_error_line("h = fit_history(bezier([[0, 0], [1, 1]]))"),
+            "t.bsp:1:17: error: fit_history: this spline was not made by fit or reduce_degree");
+  EXPECT_EQ(first_error_line("c = sample(bezier([[0, 0], [1, 1]]), 1)").substr(0, 41),
+            "t.bsp:1:5: error: sample: invalid input: ");
+  EXPECT_EQ(first_error_line("d = degree(cubic())"), "t.bsp:1:12: error: degree: argument 's' must be a spline, got curve");
+  EXPECT_EQ(first_error_line("s = load_spline(\"/nonexistent/s.spline\")").substr(0, 52),
+            "t.bsp:1:5: error: load_spline: /nonexistent/s.spline");
 }
 
 }  // namespace
