@@ -1,0 +1,212 @@
+// Tests of trace() (lib/implicit/trace.hpp) on the curves of Ihm & Naylor's Appendix B, traced
+// from their implicit equations and checked against their analytic parametrizations.
+#include "implicit/trace.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "implicit/implicit_testing.hpp"
+
+using namespace sculpt;
+using namespace sculpt::implicit;
+using namespace sculpt::implicit::testing;
+
+namespace {
+
+// Every chord within tol of the curve: the distance from each chord's midpoint to the curve
+// (measured on the parametrization), and the largest over the curve.
+double max_chord_height(const TracedCurve& c, const std::vector<Parametrization>& curve) {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < chord_count(c); ++k) {
+    const Vec mid = 0.5 * (c.points[k] + c.points[(k + 1) % c.points.size()]);
+    double d = std::numeric_limits<double>::infinity();
+    for (const Parametrization& p : curve) d = std::min(d, distance_to_curve(p, mid));
+    worst = std::max(worst, d);
+  }
+  return worst;
+}
+
+// Total signed turning of the projection onto the xy-plane around the axis (x0, 0).
+double winding_angle(const TracedCurve& c, double x0) {
+  double total = 0.0;
+  for (std::size_t k = 0; k < chord_count(c); ++k) {
+    const Vec& a = c.points[k];
+    const Vec& b = c.points[(k + 1) % c.points.size()];
+    const double da = std::atan2(b.y(), b.x() - x0) - std::atan2(a.y(), a.x() - x0);
+    total += std::remainder(da, 2.0 * kPi);
+  }
+  return total;
+}
+
+const Box kFig7Box{.lo = Vec(-2.5, -2.5, -5.0), .hi = Vec(2.5, 2.5, 5.0)};
+
+}  // namespace
+
+class Fig7Quartic : public ::testing::TestWithParam<double> {};
+
+TEST_P(Fig7Quartic, GivesExactlyItsTwoClosedLoops) {
+  const double tol = GetParam();
+  const CurvePair pair = fig7_quartic();
+  const TraceResult r = trace(pair.f, pair.g, {.box = kFig7Box, .tolerance = tol});
+  EXPECT_FALSE(r.budget_exhausted);
+  EXPECT_TRUE(r.singular_points.empty());
+  ASSERT_EQ(r.curves.size(), 2u);
+  int upper = 0, lower = 0;
+  const double diagonal = (kFig7Box.hi - kFig7Box.lo).norm();
+  for (const TracedCurve& c : r.curves) {
+    EXPECT_TRUE(c.closed);
+    ASSERT_GE(c.points.size(), 8u);
+    const double sign = c.points[0].z() > 0 ? 1.0 : -1.0;
+    (sign > 0 ? upper : lower)++;
+    // Each point on the analytic loop: on the cylinder (to the residual target), and z from the
+    // ellipsoid (dz/dy reaches 25 where the loops come closest, hence the looser bound).
+    for (const Vec& p : c.points) {
+      EXPECT_NEAR(p.head<2>().norm(), std::sqrt(3.94), 1e-12 * diagonal);
+      EXPECT_NEAR(p.z(), sign * std::sqrt((324.0 - 36.0 * p.x() * p.x() - 81.0 * p.y() * p.y()) / 9.0), 1e-9);
+    }
+    EXPECT_NEAR(std::abs(winding_angle(c, 0.0)), 2.0 * kPi, 1e-9);  // once around, no back-tracking
+    EXPECT_LE(max_residual(pair, c.points), 1e-12 * diagonal);
+    const Parametrization loop = fig7_loop(sign);
+    EXPECT_LE(max_chord_height(c, {loop}), tol);
+    const double ideal = ideal_point_count(loop, tol);
+    EXPECT_LE(static_cast<double>(c.points.size()), 1.3 * ideal) << "ideal " << ideal;
+    EXPECT_GE(static_cast<double>(c.points.size()), ideal);  // fewer would break the chord heights
+  }
+  EXPECT_EQ(upper, 1);
+  EXPECT_EQ(lower, 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Tolerances, Fig7Quartic, ::testing::Values(1e-2, 1e-3, 1e-4));
+
+TEST(Trace, VivianiCurveIsTracedThroughItsSelfCrossing) {
+  const CurvePair pair = viviani();
+  const Box box{.lo = Vec(-0.5, -1.5, -2.5), .hi = Vec(2.5, 1.5, 2.5)};
+  const double tol = 1e-4;
+  const TraceResult r = trace(pair.f, pair.g, {.box = box, .tolerance = tol});
+  EXPECT_FALSE(r.budget_exhausted);
+  ASSERT_EQ(r.singular_points.size(), 1u);
+  EXPECT_LE((r.singular_points[0].point - Vec(2, 0, 0)).norm(), 10 * tol);
+  EXPECT_EQ(r.singular_points[0].passes, 2);  // both branches through it, each once
+  EXPECT_TRUE(r.singular_points[0].resolved);
+  ASSERT_EQ(r.curves.size(), 1u);
+  const TracedCurve& c = r.curves[0];
+  EXPECT_TRUE(c.closed);
+  EXPECT_LE(max_residual(pair, c.points), 1e-12 * (box.hi - box.lo).norm());
+  const Parametrization exact = viviani_curve();
+  // Length from the quadrature of the parametrization: chords are a little shorter than arcs.
+  const double length = arc_length(exact);
+  EXPECT_NEAR(length, 15.280791156, 1e-8);  // 8 sqrt(2) E(k^2 = 1/2), E the complete elliptic integral
+  EXPECT_LE(polyline_length(c), length);
+  EXPECT_GE(polyline_length(c), length * (1.0 - 1e-4));
+  EXPECT_LE(max_chord_height(c, {exact}), tol);
+  EXPECT_LE(static_cast<double>(c.points.size()), 1.3 * ideal_point_count(exact, tol));
+}
+
+TEST(Trace, Fig8SexticIsTracedThroughItsNode) {
+  const CurvePair pair = fig8_sextic();
+  const Box box{.lo = Vec(-1.3, -1.5, 1.0), .hi = Vec(0.7, 1.5, 5.0)};
+  const double tol = 1e-3;
+  const TraceResult r = trace(pair.f, pair.g, {.box = box, .tolerance = tol});
+  EXPECT_FALSE(r.budget_exhausted);
+  ASSERT_EQ(r.singular_points.size(), 1u);
+  EXPECT_LE((r.singular_points[0].point - Vec(0, 0, 2)).norm(), 10 * tol);
+  EXPECT_EQ(r.singular_points[0].passes, 2);
+  ASSERT_EQ(r.curves.size(), 1u);  // the loop and both tails, one piece
+  const TracedCurve& c = r.curves[0];
+  EXPECT_FALSE(c.closed);
+  EXPECT_NEAR(c.points.front().x(), 0.7, 1e-9);  // open pieces end on the box
+  EXPECT_NEAR(c.points.back().x(), 0.7, 1e-9);
+  EXPECT_LE(max_residual(pair, c.points), 1e-12 * (box.hi - box.lo).norm());
+  const Parametrization exact = fig8_sextic_curve(std::sqrt(1.7));
+  const double length = arc_length(exact);
+  EXPECT_LE(polyline_length(c), length + 1e-9);
+  EXPECT_GE(polyline_length(c), length * (1.0 - 1e-3));
+  EXPECT_LE(max_chord_height(c, {exact}), tol);
+}
+
+TEST(Trace, CloseConcentricCirclesAreNotMixed) {
+  // Two circles 0.05 apart on the plane z = 0, traced with steps longer than the gap.
+  ExpressionBuilder b;
+  const Term r2 = b.add(b.pow(b.x(), 2), b.pow(b.y(), 2));
+  const Expression g = b.finish(b.mul(b.sub(r2, b.constant(1.0)), b.sub(r2, b.constant(1.05 * 1.05))));
+  ExpressionBuilder c;
+  const Expression f = c.finish(c.z());
+  const TraceResult r = trace(f, g, {.box = {.lo = Vec(-1.3, -1.3, -0.5), .hi = Vec(1.3, 1.3, 0.5)}, .tolerance = 1e-3});
+  ASSERT_EQ(r.curves.size(), 2u);
+  std::vector<double> radii;
+  for (const TracedCurve& curve : r.curves) {
+    EXPECT_TRUE(curve.closed);
+    const double radius = curve.points[0].head<2>().norm();
+    radii.push_back(radius);
+    for (const Vec& p : curve.points) EXPECT_NEAR(p.head<2>().norm(), radius, 1e-9);
+    EXPECT_NEAR(std::abs(winding_angle(curve, 0.0)), 2.0 * kPi, 1e-9);
+  }
+  std::sort(radii.begin(), radii.end());
+  EXPECT_NEAR(radii[0], 1.0, 1e-9);
+  EXPECT_NEAR(radii[1], 1.05, 1e-9);
+}
+
+TEST(Trace, SmallComponentIsFoundWithoutSeeds) {
+  // A circle of radius 0.02 (sphere cut by a plane through its centre) in a box 100 times larger.
+  ExpressionBuilder b;
+  const Term dx = b.sub(b.x(), b.constant(0.31)), dy = b.sub(b.y(), b.constant(-0.27)),
+             dz = b.sub(b.z(), b.constant(0.13));
+  const Expression f = b.finish(b.sub(b.add(b.add(b.pow(dx, 2), b.pow(dy, 2)), b.pow(dz, 2)), b.constant(4e-4)));
+  ExpressionBuilder c;
+  const Expression g = c.finish(c.sub(c.z(), c.constant(0.13)));
+  const TraceResult r = trace(f, g, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)}, .tolerance = 1e-5});
+  ASSERT_EQ(r.curves.size(), 1u);
+  EXPECT_TRUE(r.curves[0].closed);
+  for (const Vec& p : r.curves[0].points) EXPECT_NEAR((p - Vec(0.31, -0.27, 0.13)).norm(), 0.02, 1e-12);
+}
+
+TEST(Trace, BoxWithoutCurveGivesNothing) {
+  const CurvePair pair = fig7_quartic();
+  const TraceResult r = trace(pair.f, pair.g, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)}, .tolerance = 1e-3});
+  EXPECT_TRUE(r.curves.empty());
+  EXPECT_FALSE(r.budget_exhausted);
+  EXPECT_EQ(r.steps, 0);
+}
+
+TEST(Trace, OpenPiecesEndOnTheBox) {
+  // The quartic's loops cut by a box that holds only x >= 0.5: four arcs, each ending on x = 0.5.
+  const CurvePair pair = fig7_quartic();
+  const TraceResult r = trace(pair.f, pair.g, {.box = {.lo = Vec(0.5, -2.5, -5), .hi = Vec(2.5, 2.5, 5)}, .tolerance = 1e-3});
+  ASSERT_EQ(r.curves.size(), 2u);
+  for (const TracedCurve& c : r.curves) {
+    EXPECT_FALSE(c.closed);
+    EXPECT_NEAR(c.points.front().x(), 0.5, 1e-9);
+    EXPECT_NEAR(c.points.back().x(), 0.5, 1e-9);
+    EXPECT_LE(max_chord_height(c, {fig7_loop(c.points[0].z() > 0 ? 1.0 : -1.0)}), 1e-3);
+  }
+}
+
+TEST(Trace, StepBudgetRunsOutWithoutHanging) {
+  const CurvePair pair = fig7_quartic();
+  const TraceResult r = trace(pair.f, pair.g, {.box = kFig7Box, .tolerance = 1e-4, .max_steps = 50});
+  EXPECT_TRUE(r.budget_exhausted);
+  EXPECT_LE(r.steps, 50);
+}
+
+TEST(Trace, BadOptionsAreRejected) {
+  const CurvePair pair = fig7_quartic();
+  EXPECT_THROW((void)trace(pair.f, pair.g, {.box = {.lo = Vec(0, 0, 0), .hi = Vec(1, 0, 1)}, .tolerance = 1e-3}),
+               InvalidInput);  // empty box
+  EXPECT_THROW((void)trace(pair.f, pair.g, {.box = {.lo = Vec(1, 0, 0), .hi = Vec(0, 1, 1)}, .tolerance = 1e-3}),
+               InvalidInput);
+  EXPECT_THROW((void)trace(pair.f, pair.g, {.box = kFig7Box, .tolerance = 0.0}), InvalidInput);
+  EXPECT_THROW((void)trace(pair.f, pair.g, {.box = kFig7Box, .tolerance = 1e-14}), InvalidInput);
+  EXPECT_THROW((void)trace(pair.f, pair.g, {.box = kFig7Box, .tolerance = std::nan("")}), InvalidInput);
+  EXPECT_THROW((void)trace(pair.f, pair.g, {.box = kFig7Box, .tolerance = 1e-3, .max_steps = 0}), InvalidInput);
+}
+
+TEST(Trace, FunctionNotFiniteInTheBoxIsAnError) {
+  // sqrt(x) + y = 0 is not defined for x < 0, and its gradient is infinite at x = 0.
+  ExpressionBuilder b;
+  const Expression f = b.finish(b.add(b.sqrt(b.x()), b.y()));
+  ExpressionBuilder c;
+  const Expression g = c.finish(c.z());
+  EXPECT_THROW((void)trace(f, g, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)}, .tolerance = 1e-3}),
+               NonFiniteValue);
+}
