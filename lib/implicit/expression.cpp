@@ -28,13 +28,13 @@ class Scratch {
   T& operator[](std::size_t i) { return large_.empty() ? small_[i] : large_[i]; }
 
  private:
-  std::array<T, 64> small_{};
+  std::array<T, 64> small_;  // not value-initialized: every slot is written before it is read
   std::vector<T> large_;
 };
 
-struct Dual {
-  double v = 0.0;
-  Vec d = Vec::Zero();
+struct Dual {  // trivially constructible, so that Scratch<Dual> costs nothing to set up
+  double v;
+  Vec d;
 };
 
 }  // namespace
@@ -56,7 +56,7 @@ double Expression::value(const Vec& p) const {
       case Op::Cos: r = std::cos(a); break;
       case Op::Exp: r = std::exp(a); break;
       case Op::Abs: r = std::abs(a); break;
-      case Op::Pow: r = std::pow(a, n.exponent); break;
+      case Op::Pow: r = detail::power_by_squaring(a, n.exponent); break;
       case Op::Add: r = a + b; break;
       case Op::Sub: r = a - b; break;
       case Op::Mul: r = a * b; break;
@@ -76,8 +76,9 @@ ValueGradient Expression::value_gradient(const Vec& p) const {
   Scratch<Dual> s(nodes_.size());
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const ExpressionNode& n = nodes_[i];
-    const Dual a = n.a >= 0 ? s[n.a] : Dual{}, b = n.b >= 0 ? s[n.b] : Dual{};
-    Dual r;
+    const Dual zero{0.0, Vec::Zero()};
+    const Dual a = n.a >= 0 ? s[n.a] : zero, b = n.b >= 0 ? s[n.b] : zero;
+    Dual r = zero;
     switch (n.op) {
       case Op::Constant: r.v = n.constant; break;
       case Op::X: r = {p.x(), Vec::UnitX()}; break;
@@ -90,8 +91,8 @@ ValueGradient Expression::value_gradient(const Vec& p) const {
       case Op::Exp: r.v = std::exp(a.v); r.d = r.v * a.d; break;
       case Op::Abs: r = {std::abs(a.v), (a.v > 0.0 ? 1.0 : a.v < 0.0 ? -1.0 : 0.0) * a.d}; break;
       case Op::Pow:
-        r.v = std::pow(a.v, n.exponent);
-        r.d = n.exponent == 0 ? Vec::Zero() : Vec(n.exponent * std::pow(a.v, n.exponent - 1) * a.d);
+        r.v = detail::power_by_squaring(a.v, n.exponent);
+        r.d = n.exponent == 0 ? Vec::Zero() : Vec(n.exponent * detail::power_by_squaring(a.v, n.exponent - 1) * a.d);
         break;
       case Op::Add: r = {a.v + b.v, a.d + b.d}; break;
       case Op::Sub: r = {a.v - b.v, a.d - b.d}; break;

@@ -16,7 +16,7 @@ using detail::CurvePoint;
 using detail::Walk;
 using detail::WalkEnd;
 
-constexpr int kLeafDivisions = 64;  // start cells: 1/64 of the box's longest side
+constexpr int kLeafDivisions = 32;  // start cells: 1/32 of the box's longest side
 constexpr int kExtraLevels = 3;     // further splits of a cell whose centre does not project nearby
 
 void validate(const TraceOptions& o) {

@@ -1,6 +1,7 @@
 #include "implicit/detail/interval_arithmetic.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -10,15 +11,17 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// One ulp of v is at most |v| 2^-52, so subtracting that much (rounded to nearest) moves v
+// down by at least one ulp; denorm_min covers 0. Cheaper than std::nextafter.
 double down(double v, int ulps = 1) {
   if (std::isnan(v)) return -kInf;
-  for (int k = 0; k < ulps; ++k) v = std::nextafter(v, -kInf);
-  return v;
+  if (!std::isfinite(v)) return v;
+  return v - ulps * (std::abs(v) * 0x1p-52 + std::numeric_limits<double>::denorm_min());
 }
 double up(double v, int ulps = 1) {
   if (std::isnan(v)) return kInf;
-  for (int k = 0; k < ulps; ++k) v = std::nextafter(v, kInf);
-  return v;
+  if (!std::isfinite(v)) return v;
+  return v + ulps * (std::abs(v) * 0x1p-52 + std::numeric_limits<double>::denorm_min());
 }
 Interval widen(double lo, double hi, int ulps = 1) { return {down(lo, ulps), up(hi, ulps)}; }
 
@@ -31,6 +34,18 @@ bool contains_point_of(Interval a, double phase, double period) {
 }
 
 }  // namespace
+
+double power_by_squaring(double x, int exponent) {
+  const bool invert = exponent < 0;
+  unsigned n = invert ? -static_cast<unsigned>(exponent) : static_cast<unsigned>(exponent);
+  double result = 1.0;
+  while (n > 0) {
+    if (n & 1U) result *= x;
+    x *= x;
+    n >>= 1U;
+  }
+  return invert ? 1.0 / result : result;
+}
 
 Interval whole_line() { return {-kInf, kInf}; }
 Interval point_interval(double v) { return {v, v}; }
@@ -60,12 +75,13 @@ Interval div(Interval a, Interval b) {
 Interval pow(Interval a, int exponent) {
   if (exponent == 0) return {1.0, 1.0};
   if (exponent < 0) return div({1.0, 1.0}, pow(a, -exponent));
-  // std::pow with an integer exponent is accurate to about an ulp; widen by two per bound.
-  const double l = std::pow(a.lo, exponent), h = std::pow(a.hi, exponent);
-  if (exponent % 2 == 1) return widen(l, h, 2);
-  if (a.lo >= 0.0) return widen(l, h, 2);
-  if (a.hi <= 0.0) return widen(h, l, 2);
-  return {0.0, up(std::max(l, h), 2)};  // even power of an interval around 0
+  // power_by_squaring rounds at most 2 log2(n) times, each within half an ulp.
+  const int ulps = 2 * static_cast<int>(std::bit_width(static_cast<unsigned>(exponent)));
+  const double l = power_by_squaring(a.lo, exponent), h = power_by_squaring(a.hi, exponent);
+  if (exponent % 2 == 1) return widen(l, h, ulps);
+  if (a.lo >= 0.0) return widen(l, h, ulps);
+  if (a.hi <= 0.0) return widen(h, l, ulps);
+  return {0.0, up(std::max(l, h), ulps)};  // even power of an interval around 0
 }
 
 Interval sqrt(Interval a, bool& domain_error) {

@@ -9,6 +9,9 @@
 
 namespace sculpt::implicit::detail {
 
+/// x^n by repeated squaring (the value the expression uses too, so bounds and values agree).
+[[nodiscard]] double power_by_squaring(double x, int exponent);
+
 [[nodiscard]] Interval whole_line();
 [[nodiscard]] Interval point_interval(double v);
 [[nodiscard]] Interval add(Interval a, Interval b);

@@ -96,7 +96,7 @@ void Walker::record_singular(const Vec& point, bool resolved) {
 // branch, not the one crossing it). The crossing point itself joins the polyline when Newton
 // puts it on the curve.
 bool Walker::step_over(double distance, double margin) {
-  for (const double factor : {1.0, 2.0, 0.5, 4.0}) {
+  for (const double factor : {1.0, 0.5, 0.25, 2.0}) {
     if (c_.steps >= c_.max_steps) return false;
     ++c_.steps;
     const double m = factor * margin, length = distance + m;
@@ -111,9 +111,17 @@ bool Walker::step_over(double distance, double margin) {
     std::optional<CurvePoint> s;
     if (distance > 1e-3 * tol_) s = sys_.project_on_plane(s0, t_, 0.5 * distance + 4.0 * tol_, 60);
     if (!s) s = sys_.project(s0, 0.5 * distance + 4.0 * tol_, 80);
-    const bool s_between = s && (s->p - p_.p).dot(t_) > 0.0 && (q->p - s->p).dot(tq) > 0.0;
+    const bool s_between = s && (s->p - p_.p).dot(t_) > 1e-6 * tol_ && (q->p - s->p).dot(tq) > 1e-6 * tol_;
+    // Chord heights as for any step (the crossing point splits the chord in two).
+    bool chords_ok = true;
+    const std::vector<Vec> chain = s_between ? std::vector<Vec>{p_.p, s->p, q->p} : std::vector<Vec>{p_.p, q->p};
+    for (std::size_t k = 0; k + 1 < chain.size() && chords_ok; ++k) {
+      const auto height = sagitta(chain[k], chain[k + 1]);
+      chords_ok = height && *height <= tol_;
+    }
+    if (!chords_ok) continue;
     record_singular(s_between ? s->p : s0, true);
-    if (s_between && (s->p - p_.p).norm() > 1e-6 * tol_) w_.points.push_back(s->p);
+    if (s_between) w_.points.push_back(s->p);
     kappa_ = Vec::Zero();  // the curvature estimate does not carry across the crossing
     p_ = *q;
     t_ = tq;
