@@ -79,39 +79,43 @@ TEST_P(Fig7Quartic, GivesExactlyItsTwoClosedLoops) {
 
 INSTANTIATE_TEST_SUITE_P(Tolerances, Fig7Quartic, ::testing::Values(1e-2, 1e-3, 1e-4));
 
-TEST(Trace, VivianiCurveIsTracedThroughItsSelfCrossing) {
+class SingularCurves : public ::testing::TestWithParam<double> {};
+
+TEST_P(SingularCurves, VivianiCurveIsTracedThroughItsSelfCrossing) {
   const CurvePair pair = viviani();
   const Box box{.lo = Vec(-0.5, -1.5, -2.5), .hi = Vec(2.5, 1.5, 2.5)};
-  const double tol = 1e-4;
+  const double tol = GetParam();
   const TraceResult r = trace(pair.f, pair.g, {.box = box, .tolerance = tol});
   EXPECT_FALSE(r.budget_exhausted);
   ASSERT_EQ(r.singular_points.size(), 1u);
   EXPECT_LE((r.singular_points[0].point - Vec(2, 0, 0)).norm(), 10 * tol);
   EXPECT_EQ(r.singular_points[0].passes, 2);  // both branches through it, each once
   EXPECT_TRUE(r.singular_points[0].resolved);
-  ASSERT_EQ(r.curves.size(), 1u);
+  ASSERT_EQ(r.curves.size(), 1u);  // the figure eight, one closed walk through the crossing
   const TracedCurve& c = r.curves[0];
   EXPECT_TRUE(c.closed);
   EXPECT_LE(max_residual(pair, c.points), 1e-12 * (box.hi - box.lo).norm());
   const Parametrization exact = viviani_curve();
-  // Length from the quadrature of the parametrization: chords are a little shorter than arcs.
+  // Length from the quadrature of the parametrization: chords are a little shorter than arcs
+  // (by about kappa^2 h^2 / 24 = kappa tol / 3 relative, kappa <= 1.2 here).
   const double length = arc_length(exact);
   EXPECT_NEAR(length, 15.280791156, 1e-8);  // 8 sqrt(2) E(k^2 = 1/2), E the complete elliptic integral
   EXPECT_LE(polyline_length(c), length);
-  EXPECT_GE(polyline_length(c), length * (1.0 - 1e-4));
+  EXPECT_GE(polyline_length(c), length * (1.0 - 0.5 * tol));
   EXPECT_LE(max_chord_height(c, {exact}), tol);
   EXPECT_LE(static_cast<double>(c.points.size()), 1.3 * ideal_point_count(exact, tol));
 }
 
-TEST(Trace, Fig8SexticIsTracedThroughItsNode) {
+TEST_P(SingularCurves, Fig8SexticIsTracedThroughItsNode) {
   const CurvePair pair = fig8_sextic();
   const Box box{.lo = Vec(-1.3, -1.5, 1.0), .hi = Vec(0.7, 1.5, 5.0)};
-  const double tol = 1e-3;
+  const double tol = GetParam();
   const TraceResult r = trace(pair.f, pair.g, {.box = box, .tolerance = tol});
   EXPECT_FALSE(r.budget_exhausted);
   ASSERT_EQ(r.singular_points.size(), 1u);
   EXPECT_LE((r.singular_points[0].point - Vec(0, 0, 2)).norm(), 10 * tol);
   EXPECT_EQ(r.singular_points[0].passes, 2);
+  EXPECT_TRUE(r.singular_points[0].resolved);
   ASSERT_EQ(r.curves.size(), 1u);  // the loop and both tails, one piece
   const TracedCurve& c = r.curves[0];
   EXPECT_FALSE(c.closed);
@@ -121,9 +125,14 @@ TEST(Trace, Fig8SexticIsTracedThroughItsNode) {
   const Parametrization exact = fig8_sextic_curve(std::sqrt(1.7));
   const double length = arc_length(exact);
   EXPECT_LE(polyline_length(c), length + 1e-9);
-  EXPECT_GE(polyline_length(c), length * (1.0 - 1e-3));
+  EXPECT_GE(polyline_length(c), length * (1.0 - tol));
   EXPECT_LE(max_chord_height(c, {exact}), tol);
+  // Chords against the ideal count; an open curve adds up to one chord at each box face and
+  // one at each pass through the node (measured: 1.33 at tol 1e-2, see docs/implicit.md).
+  EXPECT_LE(static_cast<double>(chord_count(c)), 1.3 * ideal_point_count(exact, tol) + 4.0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Tolerances, SingularCurves, ::testing::Values(1e-2, 1e-3, 1e-4));
 
 TEST(Trace, CloseConcentricCirclesAreNotMixed) {
   // Two circles 0.05 apart on the plane z = 0, traced with steps longer than the gap.
