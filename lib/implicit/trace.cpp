@@ -1,5 +1,6 @@
 #include "implicit/trace.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -89,8 +90,23 @@ void Tracer::trace_from(const CurvePoint& seed) {
     if (forward.end == WalkEnd::Budget || backward.end == WalkEnd::Budget) result_.budget_exhausted = true;
   }
   if (forward.end == WalkEnd::Budget) result_.budget_exhausted = true;
+  Eigen::AlignedBox3d extent;
+  for (const Vec& p : curve.points) extent.extend(p);
+  if (curve.points.size() < 2 || extent.diagonal().norm() <= options_.tolerance) {
+    // Nothing to walk: an isolated point of the curve, where f = 0 and g = 0 touch (a sphere and
+    // a tangent plane). Report it once, with no passes, and cover it.
+    coverage_.add_polyline({seed.p, seed.p}, false);
+    for (SingularPoint& s : context_.singular_points) {
+      if ((s.point - seed.p).norm() <= 10.0 * options_.tolerance) {
+        s = {.point = seed.p, .passes = 0, .resolved = true};
+        return;
+      }
+    }
+    context_.singular_points.push_back({.point = seed.p, .passes = 0, .resolved = true});
+    return;
+  }
   coverage_.add_polyline(curve.points, curve.closed);
-  if (curve.points.size() >= 2) result_.curves.push_back(std::move(curve));
+  result_.curves.push_back(std::move(curve));
 }
 
 TraceResult Tracer::run() {

@@ -36,7 +36,8 @@ struct TracedCurve {
 /// A point where grad f x grad g vanishes (the curve crosses itself or f, g are tangent).
 struct SingularPoint {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< located to about the tolerance
-  int passes = 0;         ///< how many times a traced branch went through it
+  int passes = 0;         ///< how many times a traced branch went through it; 0: an isolated
+                          ///< point of the curve (f = 0 and g = 0 touch there), no curve output
   bool resolved = true;   ///< false: a branch stopped here (it could not be stepped over)
 };
 
