@@ -35,7 +35,9 @@ struct TracedCurve {
 
 /// A point where grad f x grad g vanishes (the curve crosses itself or f, g are tangent).
 struct SingularPoint {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< located to about the tolerance
+  /// Located by Gauss-Newton on f = g = 0, grad f x grad g = 0 where that converges on the
+  /// curve, else a curve point within about the tolerance of it.
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
   int passes = 0;         ///< how many times a traced branch went through it; 0: an isolated
                           ///< point of the curve (f = 0 and g = 0 touch there), no curve output
   bool resolved = true;   ///< false: a branch stopped here (it could not be stepped over)

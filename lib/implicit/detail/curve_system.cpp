@@ -72,4 +72,37 @@ std::optional<CurvePoint> CurveSystem::project_on_plane(const Vec& start, const 
   return std::nullopt;
 }
 
+std::optional<CurvePoint> CurveSystem::locate_singular(const Vec& start, double max_move) const {
+  Vec q = start;
+  const CurvePoint first = eval(start);
+  // Row scales fixed at the start, so that the three kinds of equation weigh alike.
+  const double sf = 1.0 / std::max(first.grad_f.norm(), 1e-300), sg = 1.0 / std::max(first.grad_g.norm(), 1e-300);
+  const double sc = sf * sg;
+  const double step = 1e-7 * std::max(max_move, 1e-300);
+  std::optional<CurvePoint> best;
+  for (int k = 0; k < 30; ++k) {
+    const CurvePoint c = k == 0 ? first : eval(q);
+    Eigen::Matrix<double, 5, 3> J;
+    Eigen::Matrix<double, 5, 1> F;
+    J.row(0) = sf * c.grad_f.transpose();
+    J.row(1) = sg * c.grad_g.transpose();
+    F << sf * c.f, sg * c.g, sc * c.cross;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Vec h = step * Vec::Unit(axis);
+      J.block<3, 1>(2, axis) = sc * (eval(q + h).cross - eval(q - h).cross) / (2.0 * step);
+    }
+    if (c.on_curve && (!best || c.mu() < best->mu())) best = c;
+    const Vec delta = J.colPivHouseholderQr().solve(-F);
+    if (!delta.allFinite()) break;
+    q += delta;
+    if ((q - start).norm() > max_move) break;
+    if (delta.norm() <= 1e-14 * max_move) {
+      const CurvePoint e = eval(q);
+      if (e.on_curve && (!best || e.mu() <= best->mu())) best = e;
+      break;
+    }
+  }
+  return best;
+}
+
 }  // namespace sculpt::implicit::detail

@@ -38,6 +38,10 @@ class CurveSystem {
   [[nodiscard]] std::optional<CurvePoint> project_on_plane(const Eigen::Vector3d& start,
                                                            const Eigen::Vector3d& normal, double max_move,
                                                            int max_iterations = 16) const;
+  /// A singular point near `start`: Gauss-Newton on f = g = 0 and grad f x grad g = 0 (the
+  /// cross product's Jacobian by central differences of the exact gradients). Fails if it moves
+  /// further than max_move or the result is not on the curve.
+  [[nodiscard]] std::optional<CurvePoint> locate_singular(const Eigen::Vector3d& start, double max_move) const;
   [[nodiscard]] long evaluations() const { return evaluations_; }
 
  private:

@@ -120,7 +120,9 @@ bool Walker::step_over(double distance, double margin) {
       chords_ok = height && *height <= tol_;
     }
     if (!chords_ok) continue;
-    record_singular(s_between ? s->p : s0, true);
+    // Report the crossing itself, located more precisely than the polyline point near it.
+    const auto exact = sys_.locate_singular(s_between ? s->p : s0, 4.0 * tol_ + 0.5 * distance);
+    record_singular(exact ? exact->p : s_between ? s->p : s0, true);
     if (s_between) w_.points.push_back(s->p);
     kappa_ = Vec::Zero();  // the curvature estimate does not carry across the crossing
     p_ = *q;
