@@ -134,6 +134,46 @@ TEST_P(SingularCurves, Fig8SexticIsTracedThroughItsNode) {
 
 INSTANTIATE_TEST_SUITE_P(Tolerances, SingularCurves, ::testing::Values(1e-2, 1e-3, 1e-4));
 
+TEST(Trace, VillarceauCirclesAreTwoLoopsCrossingTwice) {
+  // A torus (R = 1, r = 0.5) cut by its bitangent plane through the centre: two circles of
+  // radius R centred at (0, +-r, 0), crossing where the plane touches the torus, at
+  // +-(R cos^2 a, 0, R cos a sin a) with sin a = r / R. Each circle must come out as one loop.
+  const double R = 1.0, r = 0.5, sa = r / R, ca = std::sqrt(1.0 - sa * sa);
+  ExpressionBuilder b;
+  const Term x = b.x(), y = b.y(), z = b.z();
+  const Term rho2 = b.add(b.pow(x, 2), b.pow(y, 2));
+  const Expression torus = b.finish(b.sub(b.pow(b.add(b.add(rho2, b.pow(z, 2)), b.constant(R * R - r * r)), 2),
+                                          b.mul(b.constant(4 * R * R), rho2)));
+  ExpressionBuilder c;
+  const Expression plane = c.finish(c.sub(c.mul(c.constant(ca), c.z()), c.mul(c.constant(sa), c.x())));
+  const double tol = 1e-3;
+  const TraceResult result =
+      trace(torus, plane, {.box = {.lo = Vec(-1.7, -1.6, -0.7), .hi = Vec(1.6, 1.7, 0.8)}, .tolerance = tol});
+  ASSERT_EQ(result.singular_points.size(), 2u);
+  for (const SingularPoint& s : result.singular_points) {
+    EXPECT_EQ(s.passes, 2);
+    EXPECT_LE((s.point.cwiseAbs() - Vec(R * ca * ca, 0, R * ca * sa)).norm(), 1e-9);
+  }
+  ASSERT_EQ(result.curves.size(), 2u);
+  std::vector<double> centres;
+  for (const TracedCurve& curve : result.curves) {
+    EXPECT_TRUE(curve.closed);
+    // The circle it lies on: the centre with the smaller largest deviation, which must be tiny.
+    auto deviation = [&](double cy) {
+      double worst = 0.0;
+      for (const Vec& p : curve.points) worst = std::max(worst, std::abs((p - Vec(0, cy, 0)).norm() - R));
+      return worst;
+    };
+    const double cy = deviation(r) < deviation(-r) ? r : -r;
+    EXPECT_LE(deviation(cy), 1e-9);
+    centres.push_back(cy);
+    const double length = polyline_length(curve);
+    EXPECT_LE(length, 2 * kPi * R);
+    EXPECT_GE(length, 2 * kPi * R * (1 - tol));
+  }
+  EXPECT_NE(centres[0], centres[1]);
+}
+
 TEST(Trace, CloseConcentricCirclesAreNotMixed) {
   // Two circles 0.05 apart on the plane z = 0, traced with steps longer than the gap.
   ExpressionBuilder b;
