@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "implicit/implicit_testing.hpp"
 
@@ -194,6 +195,70 @@ TEST(Trace, CloseConcentricCirclesAreNotMixed) {
   std::sort(radii.begin(), radii.end());
   EXPECT_NEAR(radii[0], 1.0, 1e-9);
   EXPECT_NEAR(radii[1], 1.05, 1e-9);
+}
+
+TEST(Trace, RandomPlaneSectionsOfSpheresAreOneCircleEach) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 40; ++k) {
+    const double radius = 0.05 + 0.8 * u(rng);
+    const Vec centre = Vec(u(rng), u(rng), u(rng)) * (2.0 - 2.0 * radius) - Vec::Constant(1.0 - radius);
+    const Vec normal = Vec(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
+    const double offset = (1.8 * u(rng) - 0.9) * radius, tol = std::pow(10.0, -2.0 - 2.0 * u(rng));
+    ExpressionBuilder b;
+    const Expression f = b.finish(b.sub(b.add(b.add(b.pow(b.sub(b.x(), b.constant(centre.x())), 2),
+                                                    b.pow(b.sub(b.y(), b.constant(centre.y())), 2)),
+                                              b.pow(b.sub(b.z(), b.constant(centre.z())), 2)),
+                                        b.constant(radius * radius)));
+    ExpressionBuilder c;
+    const Expression g = c.finish(c.sub(c.add(c.add(c.mul(c.constant(normal.x()), c.x()), c.mul(c.constant(normal.y()), c.y())),
+                                              c.mul(c.constant(normal.z()), c.z())),
+                                        c.constant(normal.dot(centre) + offset)));
+    const TraceResult r = trace(f, g, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)}, .tolerance = tol});
+    const double circle_radius = std::sqrt(radius * radius - offset * offset);
+    const Vec circle_centre = centre + offset * normal;
+    ASSERT_EQ(r.curves.size(), 1u) << "case " << k;
+    EXPECT_TRUE(r.curves[0].closed);
+    EXPECT_TRUE(r.singular_points.empty());
+    for (const Vec& p : r.curves[0].points) EXPECT_NEAR((p - circle_centre).norm(), circle_radius, 1e-9);
+    const double length = polyline_length(r.curves[0]);
+    EXPECT_LE(length, 2 * kPi * circle_radius);
+    EXPECT_GE(length, 2 * kPi * circle_radius - 2 * kPi * tol);  // chord heights <= tol
+  }
+}
+
+TEST(Trace, NearlyTouchingLoopsStaySeparate) {
+  // Fig. 7's configuration with random axes: an ellipsoid cut by a cylinder slightly thinner than
+  // its middle axis b gives an upper and a lower loop that come within 2 c sqrt(1 - rho^2/b^2)
+  // of each other where the surfaces nearly touch: here from 4.5 tol up (0.045 at tol 1e-2).
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 40; ++k) {
+    const double a = 1.5 + 1.5 * u(rng), b = 0.8 + (a - 1.1) * u(rng), c = 0.5 + 2 * u(rng);
+    const double rho = b * (1 - std::pow(10.0, -3 + 2 * u(rng))), tol = std::pow(10.0, -2 - 2 * u(rng));
+    ExpressionBuilder e;
+    const Expression f = e.finish(e.sub(e.add(e.add(e.mul(e.constant(1 / (a * a)), e.pow(e.x(), 2)),
+                                                    e.mul(e.constant(1 / (b * b)), e.pow(e.y(), 2))),
+                                              e.mul(e.constant(1 / (c * c)), e.pow(e.z(), 2))),
+                                        e.constant(1)));
+    ExpressionBuilder h;
+    const Expression g = h.finish(h.sub(h.add(h.pow(h.x(), 2), h.pow(h.y(), 2)), h.constant(rho * rho)));
+    const Box box{.lo = Vec(-a - 0.31, -b - 0.27, -c - 0.33), .hi = Vec(a + 0.29, b + 0.35, c + 0.23)};
+    const TraceResult r = trace(f, g, {.box = box, .tolerance = tol});
+    ASSERT_EQ(r.curves.size(), 2u) << "case " << k;
+    EXPECT_TRUE(r.singular_points.empty());
+    int upper = 0;
+    for (const TracedCurve& curve : r.curves) {
+      EXPECT_TRUE(curve.closed);
+      const double sign = curve.points[0].z() > 0 ? 1.0 : -1.0;
+      upper += sign > 0;
+      for (const Vec& p : curve.points) {
+        EXPECT_GT(sign * p.z(), 0.0) << "case " << k << ": a loop jumped to the other";
+        EXPECT_NEAR(p.head<2>().norm(), rho, 1e-9);
+      }
+    }
+    EXPECT_EQ(upper, 1);
+  }
 }
 
 TEST(Trace, SmallComponentIsFoundWithoutSeeds) {

@@ -13,6 +13,8 @@ constexpr double kMaxTurn = 0.6;     // radians of tangent turn allowed across o
 constexpr double kAim = 0.9;         // aim at a chord height of 0.9 tol (kappa h^2 / 8)
 constexpr double kSingularDrop = 0.5;  // |grad f x grad g| below half its largest value on the walk
 constexpr double kSingularConfirm = 0.35;  // ... and at the extrapolated zero below 0.35 of its value here
+constexpr double kMidpointDip = 0.6;       // |grad f x grad g| at a chord's midpoint below 0.6 of its ends' mean
+constexpr double kSingularMu = 1e-8;       // a located singular point: |grad f x grad g| below 1e-8 of the largest
 
 class Walker {
  public:
@@ -30,7 +32,7 @@ class Walker {
   }
   std::optional<double> sagitta(const Vec& a, const Vec& b) const;
   std::optional<CurvePoint> exit_point(const Vec& p, const Vec& q) const;
-  bool step_over(double distance, double margin);
+  bool step_over(double distance, double margin, double mu_ref);
   void record_singular(const Vec& point, bool resolved);
 
   MarchContext& c_;
@@ -39,6 +41,7 @@ class Walker {
   // Walk state.
   Walk w_;
   CurvePoint p_;
+  mutable double last_midpoint_mu_ = 0.0;  // |grad f x grad g| at the last sagitta() midpoint
   Vec t_ = Vec::Zero(), kappa_ = Vec::Zero();  // tangent and curvature vector (from the last step)
 };
 
@@ -53,6 +56,7 @@ std::optional<double> Walker::sagitta(const Vec& a, const Vec& b) const {
   if (!m) return std::nullopt;
   // The curve must cross the midplane along the chord, not across it (another branch).
   if (m->tangent(dir).dot(dir) < cos_turn_) return std::nullopt;
+  last_midpoint_mu_ = m->mu();
   return (m->p - mid).norm();
 }
 
@@ -95,7 +99,13 @@ void Walker::record_singular(const Vec& point, bool resolved) {
 // point stays near the prediction and its tangent continues the incoming one (the same smooth
 // branch, not the one crossing it). The crossing point itself joins the polyline when Newton
 // puts it on the curve.
-bool Walker::step_over(double distance, double margin) {
+bool Walker::step_over(double distance, double margin, double mu_ref) {
+  // Only a true singular point is stepped over: Gauss-Newton must find a curve point near the
+  // prediction where grad f x grad g vanishes. Two branches that merely come close (surfaces
+  // nearly tangent) have no such point, and are walked with ordinary, shorter steps.
+  const Vec s0 = p_.p + distance * t_ + 0.5 * distance * distance * kappa_;
+  const auto crossing = sys_.locate_singular(s0, 4.0 * tol_ + 0.5 * distance);
+  if (!crossing || crossing->mu() > kSingularMu * mu_ref) return false;
   for (const double factor : {1.0, 0.5, 0.25, 2.0}) {
     if (c_.steps >= c_.max_steps) return false;
     ++c_.steps;
@@ -106,24 +116,19 @@ bool Walker::step_over(double distance, double margin) {
     if (!q || !inside(q->p)) continue;
     const Vec tq = q->tangent(t_expected);
     if (tq.dot(t_expected) < std::cos(0.35)) continue;
-    // The crossing point: on the curve near the predicted position, between p and q.
-    const Vec s0 = p_.p + distance * t_ + 0.5 * distance * distance * kappa_;
-    std::optional<CurvePoint> s;
-    if (distance > 1e-3 * tol_) s = sys_.project_on_plane(s0, t_, 0.5 * distance + 4.0 * tol_, 60);
-    if (!s) s = sys_.project(s0, 0.5 * distance + 4.0 * tol_, 80);
-    const bool s_between = s && (s->p - p_.p).dot(t_) > 1e-6 * tol_ && (q->p - s->p).dot(tq) > 1e-6 * tol_;
+    // The crossing joins the polyline when it lies between p and q (it is on the curve).
+    const Vec& s = crossing->p;
+    const bool s_between = (s - p_.p).dot(t_) > 1e-6 * tol_ && (q->p - s).dot(tq) > 1e-6 * tol_;
     // Chord heights as for any step (the crossing point splits the chord in two).
     bool chords_ok = true;
-    const std::vector<Vec> chain = s_between ? std::vector<Vec>{p_.p, s->p, q->p} : std::vector<Vec>{p_.p, q->p};
+    const std::vector<Vec> chain = s_between ? std::vector<Vec>{p_.p, s, q->p} : std::vector<Vec>{p_.p, q->p};
     for (std::size_t k = 0; k + 1 < chain.size() && chords_ok; ++k) {
       const auto height = sagitta(chain[k], chain[k + 1]);
       chords_ok = height && *height <= tol_;
     }
     if (!chords_ok) continue;
-    // Report the crossing itself, located more precisely than the polyline point near it.
-    const auto exact = sys_.locate_singular(s_between ? s->p : s0, 4.0 * tol_ + 0.5 * distance);
-    record_singular(exact ? exact->p : s_between ? s->p : s0, true);
-    if (s_between) w_.points.push_back(s->p);
+    record_singular(s, true);
+    if (s_between) w_.points.push_back(s);
     kappa_ = Vec::Zero();  // the curvature estimate does not carry across the crossing
     p_ = *q;
     t_ = tq;
@@ -177,7 +182,7 @@ Walk Walker::run(const CurvePoint& start, const Vec& direction, bool allow_close
           sys_.eval(p_.p + d * t_ + 0.5 * d * d * kappa_).mu() < kSingularConfirm * p_.mu()) {
         if (d > h) {
           h = 0.5 * d;  // approach it first, so the chord up to it is not too long
-        } else if (step_over(d, h)) {
+        } else if (step_over(d, h, mu_ref)) {
           mu_prev = -1.0;
           mu_ref = std::max(mu_ref, p_.mu());
           continue;
@@ -188,14 +193,16 @@ Walk Walker::run(const CurvePoint& start, const Vec& direction, bool allow_close
     }
     // Predictor (second order once the curvature is known) and corrector on the normal plane.
     const Vec q0 = p_.p + h * t_ + 0.5 * h * h * kappa_;
-    const auto q = sys_.project_on_plane(q0, t_, 0.5 * h);
+    // The corrector may move at most 6 tol (a first-order prediction misses by 4 tol at the
+    // aimed chord height; the second-order one by far less): further away lies another branch.
+    const auto q = sys_.project_on_plane(q0, t_, std::min(0.5 * h, 6.0 * tol_));
     auto shrink = [&]() {
       h *= 0.5;
       return h >= h_min_;
     };
     auto stuck = [&]() {
       // The corrector keeps failing: an undetected singular point right ahead. Step over it.
-      if (step_over(0.0, last_good)) {
+      if (step_over(0.0, last_good, mu_ref)) {
         h = last_good;
         mu_prev = -1.0;
         return false;
@@ -240,6 +247,13 @@ Walk Walker::run(const CurvePoint& start, const Vec& direction, bool allow_close
     if (*s > tol_) {  // chord too high: shorten to the height aimed at (kappa h^2 / 8)
       h *= std::clamp(std::sqrt(kAim * tol_ / *s), 0.2, 0.9);  // h along t, not the chord: it shrinks
       if (h < h_min_ && stuck()) return w_;
+      continue;
+    }
+    // |grad f x grad g| dipping at the midpoint: the chord spans a feature smaller than the step,
+    // such as two branches nearly touching (nearly tangent surfaces), where the chord along
+    // their common asymptote stays within tol of the curve but jumps from one to the other.
+    if (last_midpoint_mu_ < kMidpointDip * 0.5 * (p_.mu() + q->mu())) {
+      if (!shrink() && stuck()) return w_;
       continue;
     }
     // Passing the start of a loop: close it there instead.
