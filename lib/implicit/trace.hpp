@@ -22,7 +22,7 @@ namespace sculpt::implicit {
 struct TraceOptions {
   Box box;                  ///< the curve is traced inside this box (lo < hi in every coordinate)
   double tolerance = 1e-3;  ///< chord height: every chord lies within this distance of the curve
-  long max_steps = 2'000'000;  ///< budget of marching steps (tried steps, accepted or not)
+  long max_steps = 200'000;  ///< budget of marching steps (tried or accepted); about 3 s at most
 };
 
 /// One traced component: points on the curve, in order. A closed loop does not repeat its
