@@ -8,6 +8,7 @@
 #include "kernel/kernel.hpp"
 #include "curves/curves.hpp"
 #include "splines/splines.hpp"
+#include "implicit/implicit.hpp"
 #include "mesh/mesh.hpp"
 #include "bsp/bsp.hpp"
 #include "revolution/revolution.hpp"
