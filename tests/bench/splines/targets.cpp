@@ -5,6 +5,8 @@
 #include <numbers>
 #include <random>
 
+#include <Eigen/Dense>
+
 #include "splines/analytic.hpp"
 #include "splines/splines.hpp"
 
@@ -33,9 +35,48 @@ int objective_steps(const FitResult& r, double fraction) {
     if (h.objective <= (1 + fraction) * r.history.back().objective) return h.iteration;
   return -1;
 }
+// A periodic cubic interpolating a closed analytic curve at n uniform parameters.
+BSpline interpolant(const t::Curve3& c, int n) {
+  const BSpline shape = BSpline::periodic(3, std::vector<V>(n, V::Zero()));
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n), X(n, 2);
+  for (int i = 0; i < n; ++i) {
+    const Basis b = shape.basis(i, 0);
+    for (int j = 0; j < 4; ++j) A(i, b.index[j]) += b.value(0, j);
+    const V x = c(2 * kPi * i / n)[0];
+    X.row(i) << x.x(), x.y();
+  }
+  const Eigen::MatrixXd P = A.partialPivLu().solve(X);
+  std::vector<V> controls(n);
+  for (int i = 0; i < n; ++i) controls[i] = V(P(i, 0), P(i, 1), 0);
+  return BSpline::periodic(3, controls, 2);
+}
+// The exact offset of the ellipse (2 cos t, sin t) along the outward normal (derivatives by differences).
+t::Curve3 ellipse_offset(double d) {
+  const auto o = [d](double s) {
+    const double w = std::hypot(std::cos(s), 2 * std::sin(s));
+    return V(2 * std::cos(s) + d * std::cos(s) / w, std::sin(s) + d * 2 * std::sin(s) / w, 0);
+  };
+  return [o](double s) {
+    const double h = 1e-4;
+    const V m = o(s - h), c = o(s), p = o(s + h);
+    return std::array<V, 3>{c, (p - m) / (2 * h), (p - 2 * c + m) / (h * h)};
+  };
+}
 }  // namespace
 
 int main() {
+  {
+    const BSpline e = interpolant(t::ellipse(2, 1), 96);
+    for (double d : {-0.3, 0.2, 0.5, 1.0, -0.6}) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const OffsetResult r = offset_curve(e, d, {.max_controls = 32});
+      const double ms = ms_since(t0);
+      double worst = 0;  // one-sided, exact (analytic offset; for d = -0.6 includes the corner regions)
+      for (const V& x : sample(r.curve, 400)) worst = std::max(worst, t::exact_distance(ellipse_offset(d), x, 0, 2 * kPi, false, 1000));
+      std::printf("ellipse 2x1 offset d = %+.1f: %d controls, %zu corners, reported two-sided error %.3e, exact one-sided %.3e, %d steps, %.0f ms\n", d,
+                  r.curve.control_count(), r.corners.size(), r.max_error, worst, static_cast<int>(r.history.size()) - 1, ms);
+    }
+  }
   {
     const auto data = ring(1000, 1.0);
     const auto t0 = std::chrono::steady_clock::now();
