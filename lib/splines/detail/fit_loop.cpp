@@ -30,7 +30,17 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
         system.add_term(b.index, b.value.row(0).transpose(), term.M, term.x);
       }
     }
-    system.add_smoothing(lambda);
+    // Noise-aware floor of the decaying weight: noise_smoothing * (rms / size)^2 keeps a fairing
+    // term proportional to the residual (WPL 2006 fair with a small fixed weight).
+    Eigen::Vector3d lo = curve.controls()[0], hi = lo;
+    for (const auto& c : curve.controls()) {
+      lo = lo.cwiseMin(c);
+      hi = hi.cwiseMax(c);
+    }
+    const double size = (hi - lo).norm();
+    const double floor = size > 0 ? options.noise_smoothing * std::pow(current.rms / size, 2) : 0.0;
+    const double weight = std::max(lambda, std::min(floor, options.smoothing));
+    system.add_smoothing(weight);
     const std::vector<Eigen::Vector3d> solved = system.solve(curve.controls(), options.fixed);
     double step = 1.0;
     BSpline candidate = curve;
@@ -47,7 +57,7 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
     }
     if (!std::isfinite(next.objective)) throw GeometryError("fit: the objective is not finite (diverged)");
     curve = candidate;
-    result.history.push_back({k, next.objective, next.max, next.rms, lambda, step});
+    result.history.push_back({k, next.objective, next.max, next.rms, weight, step});
     result.iterations = k;
     const double change = std::abs(current.objective - next.objective);
     current = std::move(next);
