@@ -144,3 +144,19 @@ TEST(Offset, BadInputIsATypedError) {
   EXPECT_THROW((void)offset_curve(BSpline::clamped(3, {V(0, 0, 0), V(1, 0, 1), V(2, 1, 0), V(3, 0, 0)}), 0.1), InvalidInput);
   EXPECT_THROW((void)offset_curve(e, -0.6, {.controls = 5}), InvalidInput);  // two corners need more
 }
+
+TEST(Offset, OpenCurveOffsetKeepsItsEndsAndItsDistance) {
+  // Every point of an offset without corners is |d| from the curve; the ends are c(a) + d n(a), c(b) + d n(b).
+  const BSpline c = BSpline::clamped(3, {V(0, 0, 0), V(1, 1, 0), V(2, -1, 0), V(3, 1, 0), V(4, 0, 0)});
+  for (double d : {0.1, -0.1}) {
+    const OffsetResult r = offset_curve(c, d, {.max_controls = 32});
+    EXPECT_FALSE(r.curve.closed());
+    const auto [a, b] = r.curve.domain();
+    // The ends: the tangents at the ends of this clamped curve are (1, 1) and (1, -1), so n = (1, -1)/sqrt2 and (-1, -1)/sqrt2.
+    EXPECT_LT((r.curve.point(a) - V(d / std::sqrt(2.0), -d / std::sqrt(2.0), 0)).norm(), 1e-9);
+    EXPECT_LT((r.curve.point(b) - V(4 - d / std::sqrt(2.0), -d / std::sqrt(2.0), 0)).norm(), 1e-9);
+    double worst = 0;
+    for (const V& x : sample(r.curve, 300)) worst = std::max(worst, std::abs(t::exact_distance(as_curve(c), x, 0, 1, true) - std::abs(d)));
+    EXPECT_LT(worst, 1e-3) << d;
+  }
+}
