@@ -13,7 +13,7 @@ namespace sculpt::splines {
 TargetCurve target_of(const BSpline& curve) {
   TargetCurve t;
   t.evaluate = [&curve](double s) {
-    const auto d = curve.derivatives(s, 2);
+    const auto d = curve.jet(s, 2);
     return std::array<Eigen::Vector3d, 3>{d[0], d[1], d[2]};
   };
   std::tie(t.t0, t.t1) = curve.domain();
@@ -58,10 +58,10 @@ FitResult approximate(const TargetCurve& target, const BSpline& start, const App
     double sum = 0.0;
     for (std::size_t j = 0; j < tau.size(); ++j) {
       const Eigen::Vector3d s = curve.point(tau[j]);
-      const FootPoint f = search.global(s);
-      const auto d = target.evaluate(f.parameter);
+      const detail::FootPointJet fj = search.global_jet(s);
+      const FootPoint& f = fj.foot;
       const bool at_end = !target.closed && (f.parameter <= target.t0 || f.parameter >= target.t1);
-      e.terms[j] = {tau[j], detail::distance_hessian(model, s, d[0], d[1], d[2], at_end), d[0]};
+      e.terms[j] = {tau[j], detail::distance_hessian(model, s, f.point, fj.d1, fj.d2, at_end), f.point};
       sum += f.distance * f.distance;
       e.max = std::max(e.max, f.distance);
     }
@@ -70,10 +70,10 @@ FitResult approximate(const TargetCurve& target, const BSpline& start, const App
       const detail::FootPointSearch on_active(curve);
       const auto [a, b] = curve.domain();
       for (const Eigen::Vector3d& x : target_points) {
-        const FootPoint f = on_active.global(x);
-        const auto d = curve.derivatives(f.parameter, 2);
+        const detail::FootPointJet fj = on_active.global_jet(x);
+        const FootPoint& f = fj.foot;
         const bool at_end = !curve.closed() && (f.parameter <= a || f.parameter >= b);
-        e.terms.push_back({f.parameter, detail::distance_hessian(model, x, d[0], d[1], d[2], at_end), x});
+        e.terms.push_back({f.parameter, detail::distance_hessian(model, x, f.point, fj.d1, fj.d2, at_end), x});
         sum += f.distance * f.distance;
         e.max = std::max(e.max, f.distance);
       }

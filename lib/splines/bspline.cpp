@@ -18,7 +18,7 @@ int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 Eigen::MatrixXd basis_derivatives(const std::vector<double>& U, int p, int r, double t, int order) {
   const int n = std::min(order, p);
   Eigen::MatrixXd ndu(p + 1, p + 1), ders = Eigen::MatrixXd::Zero(order + 1, p + 1), a(2, p + 1);
-  std::vector<double> left(p + 1), right(p + 1);
+  Eigen::VectorXd left(p + 1), right(p + 1);
   ndu(0, 0) = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = t - U[r + 1 - j];
@@ -63,6 +63,59 @@ Eigen::MatrixXd basis_derivatives(const std::vector<double>& U, int p, int r, do
     factor *= (p - k);
   }
   return ders;
+}
+
+// The same for degree <= kMaxFastDegree and order <= 3 on plain stack arrays (the hot path of the
+// foot point search): out[k][j] is the k-th derivative of basis function j.
+void basis_derivatives_fast(const std::vector<double>& U, int p, int r, double t, int order, double out[4][kMaxFastDegree + 1]) {
+  constexpr int S = kMaxFastDegree + 1;
+  double ndu[S][S], a[2][S], left[S], right[S];
+  ndu[0][0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = t - U[r + 1 - j];
+    right[j] = U[r + j] - t;
+    double saved = 0.0;
+    for (int k = 0; k < j; ++k) {
+      ndu[j][k] = right[k + 1] + left[j - k];
+      const double temp = ndu[k][j - 1] / ndu[j][k];
+      ndu[k][j] = saved + right[k + 1] * temp;
+      saved = left[j - k] * temp;
+    }
+    ndu[j][j] = saved;
+  }
+  for (int k = 0; k <= order; ++k)
+    for (int j = 0; j <= p; ++j) out[k][j] = 0.0;
+  for (int j = 0; j <= p; ++j) out[0][j] = ndu[j][p];
+  const int n = std::min(order, p);
+  for (int k = 0; k <= p && n > 0; ++k) {
+    int s1 = 0, s2 = 1;
+    a[0][0] = 1.0;
+    for (int m = 1; m <= n; ++m) {
+      double d = 0.0;
+      const int rk = k - m, pk = p - m;
+      if (k >= m) {
+        a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+        d = a[s2][0] * ndu[rk][pk];
+      }
+      const int j1 = rk >= -1 ? 1 : -rk;
+      const int j2 = (k - 1 <= pk) ? m - 1 : p - k;
+      for (int j = j1; j <= j2; ++j) {
+        a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+        d += a[s2][j] * ndu[rk + j][pk];
+      }
+      if (k <= pk) {
+        a[s2][m] = -a[s1][m - 1] / ndu[pk + 1][k];
+        d += a[s2][m] * ndu[k][pk];
+      }
+      out[m][k] = d;
+      std::swap(s1, s2);
+    }
+  }
+  double factor = p;
+  for (int k = 1; k <= n; ++k) {
+    for (int j = 0; j <= p; ++j) out[k][j] *= factor;
+    factor *= (p - k);
+  }
 }
 
 // Boehm's insertion of t into an arbitrary knot vector U with controls P (Piegl & Tiller A5.1, r = 1).
@@ -230,10 +283,45 @@ std::vector<Eigen::Vector3d> BSpline::derivatives(double t, int order) const {
   return out;
 }
 
-Eigen::Vector3d BSpline::point(double t) const { return derivatives(t, 0)[0]; }
+std::array<Eigen::Vector3d, 4> BSpline::jet(double t, int order) const {
+  if (order < 0 || order > 3) throw InvalidInput("B-spline: jet order must be in [0, 3]");
+  std::array<Eigen::Vector3d, 4> out;
+  out.fill(Eigen::Vector3d::Zero());
+  if (degree_ > kMaxFastDegree) {
+    const auto d = derivatives(t, order);
+    std::copy(d.begin(), d.end(), out.begin());
+    return out;
+  }
+  const double s = wrap(t);
+  const int r = span(s);
+  double v[4][kMaxFastDegree + 1];
+  basis_derivatives_fast(ext_knots_, degree_, r, s, order, v);
+  for (int j = 0; j <= degree_; ++j) {
+    const Eigen::Vector3d& c = ext_controls_[r - degree_ + j];
+    for (int k = 0; k <= order; ++k) out[k] += v[k][j] * c;
+  }
+  return out;
+}
+
+SmallBasis BSpline::small_basis(double t) const {
+  SmallBasis out;
+  if (degree_ > kMaxFastDegree) throw InvalidInput("B-spline: small_basis needs degree <= " + std::to_string(kMaxFastDegree));
+  const double s = wrap(t);
+  const int r = span(s), n = control_count();
+  double v[4][kMaxFastDegree + 1];
+  basis_derivatives_fast(ext_knots_, degree_, r, s, 0, v);
+  out.count = degree_ + 1;
+  for (int j = 0; j <= degree_; ++j) {
+    out.index[j] = (r - degree_ + j) % n;
+    out.value[j] = v[0][j];
+  }
+  return out;
+}
+
+Eigen::Vector3d BSpline::point(double t) const { return jet(t, 0)[0]; }
 
 double BSpline::curvature(double t) const {
-  const auto d = derivatives(t, 2);
+  const auto d = jet(t, 2);
   const double speed = d[1].norm();
   if (!(speed > 1e-300)) return 0.0;
   const Eigen::Vector3d cross = d[1].cross(d[2]);

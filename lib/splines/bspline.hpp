@@ -7,6 +7,7 @@
 /// point at a fixed parameter depends linearly on the control points.
 
 #include <Eigen/Core>
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,16 @@ namespace sculpt::splines {
 struct Basis {
   std::vector<int> index;  ///< indices into controls() (already wrapped for closed curves)
   Eigen::MatrixXd value;   ///< (order + 1) x (degree + 1)
+};
+
+/// Largest degree of the allocation-free paths (jet, small_basis).
+inline constexpr int kMaxFastDegree = 7;
+
+/// The nonzero basis function values at one parameter, without heap allocation (degree <= kMaxFastDegree).
+struct SmallBasis {
+  int count = 0;
+  std::array<int, kMaxFastDegree + 1> index{};
+  std::array<double, kMaxFastDegree + 1> value{};
 };
 
 /// A B-spline curve. Points are Eigen::Vector3d; a 2D curve (`dimension() == 2`) keeps z = 0.
@@ -62,6 +73,11 @@ class BSpline {
   [[nodiscard]] Eigen::Vector3d point(double t) const;
   /// Point and derivatives c(t), c'(t), ..., c^(order)(t) (order >= 0); right derivatives at knots.
   [[nodiscard]] std::vector<Eigen::Vector3d> derivatives(double t, int order) const;
+  /// c(t), c'(t), ..., c^(order)(t) for order <= 3 (higher entries zero), without heap allocation
+  /// for degree <= kMaxFastDegree: the form the foot point search and the fitters use.
+  [[nodiscard]] std::array<Eigen::Vector3d, 4> jet(double t, int order) const;
+  /// basis(t, 0) without heap allocation. \throw InvalidInput for degree > kMaxFastDegree.
+  [[nodiscard]] SmallBasis small_basis(double t) const;
   /// Curvature |c' x c''| / |c'|^3; for a 2D curve signed (positive turning left). 0 where c' = 0.
   [[nodiscard]] double curvature(double t) const;
   /// Nonzero basis functions at t and their derivatives up to `order`.

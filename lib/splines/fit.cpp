@@ -118,7 +118,8 @@ FitResult fit_curve(const std::vector<Eigen::Vector3d>& points, const FitOptions
   const int dimension = detect_dimension(points, options.dimension);
   if (options.iterations < 0) throw InvalidInput("fit: iterations must be >= 0");
   if (!(options.smoothing >= 0) || !std::isfinite(options.smoothing) || !(options.smoothing_decay >= 0) ||
-      !(options.smoothing_decay <= 1) || !(options.tolerance >= 0))
+      !(options.smoothing_decay <= 1) || !(options.tolerance >= 0) || !(options.noise_smoothing >= 0) ||
+      !std::isfinite(options.noise_smoothing))
     throw InvalidInput("fit: smoothing must be >= 0, smoothing_decay in [0, 1], tolerance >= 0");
   BSpline start = options.start ? *options.start : initial_curve(points, controls, degree, options.closed, dimension);
   if (options.start) {
@@ -136,7 +137,8 @@ FitResult fit_curve(const std::vector<Eigen::Vector3d>& points, const FitOptions
                            .smoothing_decay = options.smoothing_decay,
                            .tolerance = options.tolerance,
                            .fixed = options.fixed,
-                           .line_search = options.method != Method::PDM};
+                           .line_search = options.method != Method::PDM,
+                           .noise_smoothing = options.noise_smoothing};
   return detail::fit_points(points, start, loop);
 }
 

@@ -36,6 +36,9 @@ struct FitOptions {
   int iterations = 50;           ///< at most this many steps
   double smoothing = 1e-1;       ///< relative weight of the bending term in the first step
   double smoothing_decay = 0.5;  ///< factor per step
+  /// The weight does not fall below noise_smoothing * (rms distance / curve size)^2 (at most
+  /// `smoothing`): noisy data keep a fairing term that grows with their noise, clean data lose it.
+  double noise_smoothing = 200.0;
   double tolerance = 1e-5;       ///< stop when the objective changes by less than this fraction
   std::optional<BSpline> start{};///< start curve; default initial_curve(...)
   std::vector<int> fixed{};      ///< indices of start-curve control points kept in place

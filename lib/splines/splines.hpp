@@ -6,4 +6,5 @@
 #include "splines/degree_reduction.hpp"
 #include "splines/fit.hpp"
 #include "splines/foot_point.hpp"
+#include "splines/offset.hpp"
 #include "splines/spline_io.hpp"

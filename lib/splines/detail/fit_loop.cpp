@@ -22,10 +22,25 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
   for (int k = 1; k <= options.iterations; ++k) {
     NormalEquations system(n, curve.degree(), curve.dimension(), curve.closed());
     for (const Term& term : current.terms) {
-      const Basis b = curve.basis(term.t, 0);
-      system.add_term(b.index, b.value.row(0).transpose(), term.M, term.x);
+      if (curve.degree() <= kMaxFastDegree) {
+        const SmallBasis b = curve.small_basis(term.t);
+        system.add_term(b.count, b.index.data(), b.value.data(), term.M, term.x);
+      } else {
+        const Basis b = curve.basis(term.t, 0);
+        system.add_term(b.index, b.value.row(0).transpose(), term.M, term.x);
+      }
     }
-    system.add_smoothing(lambda);
+    // Noise-aware floor of the decaying weight: noise_smoothing * (rms / size)^2 keeps a fairing
+    // term proportional to the residual (WPL 2006 fair with a small fixed weight).
+    Eigen::Vector3d lo = curve.controls()[0], hi = lo;
+    for (const auto& c : curve.controls()) {
+      lo = lo.cwiseMin(c);
+      hi = hi.cwiseMax(c);
+    }
+    const double size = (hi - lo).norm();
+    const double floor = size > 0 ? options.noise_smoothing * std::pow(current.rms / size, 2) : 0.0;
+    const double weight = std::max(lambda, std::min(floor, options.smoothing));
+    system.add_smoothing(weight);
     const std::vector<Eigen::Vector3d> solved = system.solve(curve.controls(), options.fixed);
     double step = 1.0;
     BSpline candidate = curve;
@@ -42,7 +57,7 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
     }
     if (!std::isfinite(next.objective)) throw GeometryError("fit: the objective is not finite (diverged)");
     curve = candidate;
-    result.history.push_back({k, next.objective, next.max, next.rms, lambda, step});
+    result.history.push_back({k, next.objective, next.max, next.rms, weight, step});
     result.iterations = k;
     const double change = std::abs(current.objective - next.objective);
     current = std::move(next);
@@ -58,19 +73,21 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
 
 FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& start, const LoopOptions& options) {
   const Model model = options.model;
-  const Evaluate evaluate = [&points, model](const BSpline& curve, const Evaluation*, int) {
+  const Evaluate evaluate = [&points, model](const BSpline& curve, const Evaluation* previous, int) {
     const FootPointSearch search(curve);
     const auto [a, b] = curve.domain();
     Evaluation e;
     e.terms.resize(points.size());
     double sum = 0.0;
     for (std::size_t k = 0; k < points.size(); ++k) {
-      // Always global: TDM and SDM slide control points along the curve, so a warm start from the
-      // previous parameter can land on a wrong local minimum.
-      const FootPoint f = search.global(points[k]);
-      const auto d = curve.derivatives(f.parameter, 2);
+      // A warm start from the previous foot parameter is checked globally (no sample of the curve
+      // closer): SDM and TDM slide control points along the curve, and a warm start alone can land
+      // on a wrong local minimum.
+      const FootPointJet j = previous && previous->terms.size() == points.size() ? search.warm_jet(points[k], previous->terms[k].t)
+                                                                                 : search.global_jet(points[k]);
+      const FootPoint& f = j.foot;
       const bool at_end = !curve.closed() && (f.parameter <= a || f.parameter >= b);
-      e.terms[k] = {f.parameter, distance_hessian(model, points[k], d[0], d[1], d[2], at_end), points[k]};
+      e.terms[k] = {f.parameter, distance_hessian(model, points[k], f.point, j.d1, j.d2, at_end), points[k]};
       sum += f.distance * f.distance;
       e.max = std::max(e.max, f.distance);
     }

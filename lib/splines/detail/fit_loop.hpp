@@ -39,6 +39,7 @@ struct LoopOptions {
   double tolerance = 1e-5;
   std::vector<int> fixed{};
   bool line_search = false;
+  double noise_smoothing = 0.0;  ///< see FitOptions::noise_smoothing
 };
 
 [[nodiscard]] FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const LoopOptions& options);

@@ -27,10 +27,30 @@ Eigen::Matrix3d& NormalEquations::block(int i, int j) {
 
 void NormalEquations::add_term(const std::vector<int>& index, const Eigen::VectorXd& b, const Eigen::Matrix3d& M,
                                const Eigen::Vector3d& x) {
+  add_term(static_cast<int>(index.size()), index.data(), b.data(), M, x);
+}
+
+void NormalEquations::add_term(int count, const int* index, const double* b, const Eigen::Matrix3d& M,
+                               const Eigen::Vector3d& x) {
   const Eigen::Vector3d Mx = M * x;
-  for (std::size_t a = 0; a < index.size(); ++a) {
+  bool consecutive = banded_ && count <= p_ + 1;
+  for (int a = 1; a < count && consecutive; ++a) consecutive = index[a] == (index[0] + a) % n_;
+  if (consecutive) {  // the usual case: block (i, i + o) sits at column o + p + 1 of row i
+    const int width = 2 * p_ + 3;
+    for (int a = 0; a < count; ++a) {
+      rhs_[index[a]] += b[a] * Mx;
+      Eigen::Matrix3d* row = &blocks_[static_cast<std::size_t>(index[a]) * width + (p_ + 1 - a)];
+      if (dim_ == 2) {
+        for (int c = 0; c < count; ++c) row[c].topLeftCorner<2, 2>() += (b[a] * b[c]) * M.topLeftCorner<2, 2>();
+      } else {
+        for (int c = 0; c < count; ++c) row[c] += (b[a] * b[c]) * M;
+      }
+    }
+    return;
+  }
+  for (int a = 0; a < count; ++a) {
     rhs_[index[a]] += b[a] * Mx;
-    for (std::size_t c = 0; c < index.size(); ++c) block(index[a], index[c]) += (b[a] * b[c]) * M;
+    for (int c = 0; c < count; ++c) block(index[a], index[c]) += (b[a] * b[c]) * M;
   }
 }
 

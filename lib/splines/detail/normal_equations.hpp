@@ -22,6 +22,8 @@ class NormalEquations {
                 const Eigen::Vector3d& x);
   /// Adds the control polygon's bending energy (second differences; cyclic when closed) with weight
   /// `relative` times trace(data part) / trace(bending part), so the weight does not depend on scale or point count.
+  /// The same for `count` basis values given as arrays (no allocation).
+  void add_term(int count, const int* index, const double* b, const Eigen::Matrix3d& M, const Eigen::Vector3d& x);
   void add_smoothing(double relative);
   /// Solves with the given control points fixed; `current` serves as the anchor of a tiny
   /// proximal term (weight 1e-12 of the mean diagonal) that keeps the system definite.
