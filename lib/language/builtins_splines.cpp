@@ -255,9 +255,28 @@ void register_splines(BuiltinTable& table) {
              .params = {{"file"}},
              .run = [](const Arguments& args) -> Value { return spline_value(splines::load_spline(args.file_path(0))); }});
 
-  // offset(s, d, controls=..., tol=...) goes here once splines::offset_curve (lib/splines/offset.hpp,
-  // issue 15) is on main: a spline at signed distance d from planar spline s, returned with
-  // fitted_value() so fit_history() works on it, and documented in docs/language.md.
+  table.add({.name = "offset",
+             .signature = "offset(s, d, controls=auto, tol=1e-3)",
+             .doc = "The offset of planar spline s at signed distance d (positive: to the right of the direction "
+                    "of travel, outwards for a counter-clockwise closed curve), approximated by an active curve "
+                    "(Pottmann, Leopoldseder & Hofer 2002, sec. 3.2). Where the offset crosses the medial axis "
+                    "its swallowtail is trimmed and the result gets a sharp corner (a knot of multiplicity = "
+                    "degree). controls: the control-point count, by default the fewest (up to 64) within tol of "
+                    "the exact offset. An offset that would vanish or split into several loops is an error.",
+             .params = {{"s"}, {"d"}, {"controls", false}, {"tol", false}},
+             .run = [](const Arguments& args) -> Value {
+               const BSpline& s = spline_arg(args, 0).spline;
+               const double d = args.number(1);
+               splines::OffsetOptions options;
+               if (args.has(2)) options.controls = static_cast<int>(args.integer(2, 1, 10'000));
+               if (args.has(3)) {
+                 options.tolerance = non_negative(args, 3, "tol");
+                 if (!(options.tolerance > 0)) args.fail(3, "argument 'tol' must be > 0");
+               }
+               splines::OffsetResult r = splines::offset_curve(s, d, options);
+               return fitted_value({.curve = std::move(r.curve), .history = std::move(r.history),
+                                    .iterations = int(r.history.size()) - 1, .converged = true});
+             }});
 }
 
 }  // namespace sculpt::language

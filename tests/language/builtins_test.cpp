@@ -404,6 +404,33 @@ TEST(Builtins, SplineFileRoundTrip) {
   EXPECT_NE(e.find("bad.spline:3:"), std::string::npos) << e;
 }
 
+TEST(Builtins, OffsetOfACircleIsTheConcentricCircle) {
+  // A closed spline close to the unit circle (fitted to 400 points; its direction is the fit's);
+  // its offsets at +0.2 and -0.2 lie on the circles of radius 0.8 and 1.2, one each, measured from
+  // the sampled points' distances to the origin, independently of the offset code.
+  const auto v = numbers(
+      "c = []\nfor i in range(0, 400) {\n  t = 2 * 3.141592653589793 * i / 400\n  c = append(c, [cos(t), sin(t)])\n}\n"
+      "s = fit(c, controls=12, closed=true)\n"
+      "for d in [0.2, -0.2] {\n  o = offset(s, d)\n  lo = 10\n  hi = 0\n"
+      "  for p in points(sample(o, 500)) {\n    r = sqrt(p[0] * p[0] + p[1] * p[1])\n"
+      "    if r < lo { lo = r }\n    if r > hi { hi = r }\n  }\n  print(lo, hi)\n}");
+  ASSERT_EQ(v.size(), 4u);
+  const bool outwards_first = v[0] > 1;
+  EXPECT_NEAR(v[0], outwards_first ? 1.2 : 0.8, 2e-3);
+  EXPECT_NEAR(v[1], outwards_first ? 1.2 : 0.8, 2e-3);
+  EXPECT_NEAR(v[2], outwards_first ? 0.8 : 1.2, 2e-3);
+  EXPECT_NEAR(v[3], outwards_first ? 0.8 : 1.2, 2e-3);
+  // Positive d is to the right of the direction of travel: outwards for a counter-clockwise curve.
+  const auto w = numbers(
+      "s = bspline([[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1]], closed=true)\n"
+      "far = 0\nfor p in points(sample(offset(s, 0.1), 200)) { far = max(far, sqrt(p[0] * p[0] + p[1] * p[1])) }\n"
+      "near = 0\nfor p in points(sample(s, 200)) { near = max(near, sqrt(p[0] * p[0] + p[1] * p[1])) }\nprint(far - near)");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NEAR(w[0], 0.1, 0.02);
+  const auto r = run_script("s = bspline([[0, 0, 0], [1, 1, 1], [2, 0, 1], [3, 1, 0]])\noffset(s, 0.1)");
+  EXPECT_NE(r.error.find("offset"), std::string::npos) << r.error;  // a 3D curve has no offset
+}
+
 TEST(Builtins, SplineErrorsAtTheCall) {
   EXPECT_EQ(first_error_line("s = fit([[0, 0], [1, 1], [2, 0]], controls=5)"),
             "t.bsp:1:5: error: fit: invalid input: 5 control points need at least as many data points, got 3");
