@@ -1,10 +1,13 @@
 #include "bsp/transform.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
 
 #include "base/errors.hpp"
+#include "bsp/boundary.hpp"
+#include "bsp/from_mesh.hpp"
 #include "bsp/tree_builder.hpp"
 
 namespace sculpt {
@@ -89,6 +92,37 @@ Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror =
   return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = true});
 }
 
+// n' = M^-T n, offset' = d * step - n' . t (world units), then re-quantized: every plane moves
+// by about 2^-50 of the range and planes that met in one point generally no longer do.
+Solid map_planes_approximately(const Solid& solid, const Eigen::Matrix3d& m, const Eigen::Vector3d& tv) {
+  const Eigen::Matrix3d inv_t = m.inverse().transpose();
+  return map_planes(solid, [&](const Plane& p) {
+    const Eigen::Vector3d n = inv_t * p.normal();
+    const double scale = n.cwiseAbs().maxCoeff();
+    // Keep magnitudes moderate before quantizing: divide normal and offset by the same factor.
+    const double offset = (double(p.d) * kernel::kGridStep - n.dot(tv)) / scale;
+    return kernel::plane_from_normal(n / scale, offset);
+  }, false);
+}
+
+// The boundary mesh mapped vertex by vertex and rebuilt (from_mesh snaps each vertex to the grid
+// and gives every face whose snapped vertices are not coplanar one plane per triangle). Empty
+// when the solid is unbounded (its mesh reaches past the world range) or when snapping would
+// fold a face (features below the grid step).
+std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map) {
+  PolygonMesh mesh = to_mesh(solid);
+  for (const Eigen::Vector3d& v : mesh.vertices)
+    if (v.cwiseAbs().maxCoeff() > kernel::kMaxWorld) return std::nullopt;
+  for (Eigen::Vector3d& v : mesh.vertices) v = map * v;
+  if (map.linear().determinant() < 0)
+    for (auto& f : mesh.faces) std::reverse(f.begin(), f.end());
+  try {
+    return from_mesh(mesh);
+  } catch (const GeometryError&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 Solid translate(const Solid& solid, const Eigen::Vector3d& v) {
@@ -124,15 +158,12 @@ Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
       return kernel::make_plane(n[0], n[1], n[2], d);
     }, true, idet < 0);
   }
-  // General map: n' = M^-T n, offset' = d * step - n' . t (world units), then re-quantized.
-  const Eigen::Matrix3d inv_t = m.inverse().transpose();
-  return map_planes(solid, [&](const Plane& p) {
-    const Eigen::Vector3d n = inv_t * p.normal();
-    const double scale = n.cwiseAbs().maxCoeff();
-    // Keep magnitudes moderate before quantizing: divide normal and offset by the same factor.
-    const double offset = (double(p.d) * kernel::kGridStep - n.dot(tv)) / scale;
-    return kernel::plane_from_normal(n / scale, offset);
-  }, false);
+  // General map: through the boundary (docs/kernel.md, "What transforms do"). The vertices are
+  // mapped and snapped to the grid and the solid is rebuilt from them, so planes that met in one
+  // vertex still do: a rotated cone keeps one apex. Unbounded solids, and boundaries with
+  // features below the grid step that would fold when snapped, take the plane route instead.
+  if (auto through = map_boundary(solid, map)) return std::move(*through);
+  return map_planes_approximately(solid, m, tv);
 }
 
 Solid rotate(const Solid& solid, const Eigen::Vector3d& axis, double degrees) {

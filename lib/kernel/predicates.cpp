@@ -81,6 +81,30 @@ HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r) {
   return h;
 }
 
+double rounded_quotient(const Int256& n, const Int256& d) {
+  using boost::multiprecision::cpp_int;
+  if (n == 0) return 0.0;
+  const bool negative = (n < 0) != (d < 0);
+  cpp_int a = boost::multiprecision::abs(cpp_int(n)), b = boost::multiprecision::abs(cpp_int(d));
+  // Scale so that the integer quotient q has 62 or 63 bits: q and a sticky bit for the remainder
+  // fit a uint64, whose conversion to double rounds once, correctly (9+ bits below the last).
+  const long shift = 62 - (long(boost::multiprecision::msb(a)) - long(boost::multiprecision::msb(b)));
+  if (shift > 0) a <<= unsigned(shift);
+  else b <<= unsigned(-shift);
+  cpp_int q, rem;
+  boost::multiprecision::divide_qr(a, b, q, rem);
+  const std::uint64_t bits = q.convert_to<std::uint64_t>() | (rem != 0 ? 1u : 0u);
+  const double v = std::ldexp(double(bits), int(-shift));
+  return negative ? -v : v;
+}
+
+Eigen::Vector3d rounded_vertex(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& approx) {
+  const double largest = std::max(std::max(std::fabs(approx.x), std::fabs(approx.y)), std::fabs(approx.z));
+  if (approx.err >= 0 && approx.err <= 0x1p-50 * largest) return {approx.x, approx.y, approx.z};
+  const HomogeneousPoint h = exact_vertex(p, q, r);
+  return {rounded_quotient(h.x, h.w), rounded_quotient(h.y, h.w), rounded_quotient(h.z, h.w)};
+}
+
 Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& at, const Plane& s) {
   PredicateCounters& counters = predicate_counters();
   if (const Sign quick = filtered_orient(at, s); quick != Sign::Zero) {

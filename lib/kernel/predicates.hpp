@@ -46,6 +46,15 @@ Sign orient(const GridPoint& point, const Plane& s);
 /// Exact homogeneous coordinates (X, Y, Z, W) of p ∩ q ∩ r: the vertex is (X/W, Y/W, Z/W).
 struct HomogeneousPoint { Int256 x, y, z, w; };
 HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r);
+/// The vertex p ∩ q ∩ r in grid units as doubles for output (docs/kernel.md, "Mesh coordinates"):
+/// `approx` itself when its error bound is at most 2^-50 of its largest coordinate (then every
+/// coordinate is within a few units in the last place), else each coordinate of the exact vertex
+/// correctly rounded (round to nearest, ties to even). So a vertex that is a grid point, however
+/// ill-conditioned its defining planes, is written as exactly that grid point.
+/// `approx` must be approximate_vertex(p, q, r). \pre independent(p, q, r).
+Eigen::Vector3d rounded_vertex(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& approx);
+/// n / d correctly rounded to the nearest double (ties to even). \pre d != 0.
+double rounded_quotient(const Int256& n, const Int256& d);
 
 /// How often each path of the predicates ran in this thread (visible to tests, cork-style).
 struct PredicateCounters {

@@ -11,11 +11,6 @@ namespace sculpt::bsp::detail {
 
 namespace {
 
-Eigen::Vector3d position(const AssemblyVertices& v, int i) {
-  const kernel::ApproxPoint& a = v.at[std::size_t(i)];
-  return {a.x, a.y, a.z};
-}
-
 Eigen::Vector3d outward_normal(const FaceList& faces, int f, const kernel::PlaneTable& planes) {
   const Eigen::Vector3d n = planes[faces.support[std::size_t(f)]].normal().normalized();
   return faces.flip[std::size_t(f)] != 0 ? Eigen::Vector3d(-n) : n;
@@ -187,7 +182,8 @@ Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, cons
   return {std::move(faces), std::move(original)};
 }
 
-PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, bool triangulate) {
+PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
+                        bool triangulate) {
   const FaceList& faces = sheets.faces;
   PolygonMesh mesh;
   std::vector<int> index(sheets.original.size(), -1);  // only referenced vertices are written
@@ -195,7 +191,9 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
   for (const int v : faces.vertex)
     if (index[std::size_t(v)] < 0) {
       index[std::size_t(v)] = int(mesh.vertices.size());
-      mesh.vertices.push_back(position(vertices, sheets.original[std::size_t(v)]) * kernel::kGridStep);
+      const std::size_t o = std::size_t(sheets.original[std::size_t(v)]);
+      const PlaneTriple& t = vertices.triple[o];
+      mesh.vertices.push_back(kernel::rounded_vertex(planes[t.s], planes[t.p], planes[t.q], vertices.at[o]) * kernel::kGridStep);
     }
   mesh.faces.reserve(std::size_t(faces.size()));
   std::vector<int> face;
