@@ -21,7 +21,8 @@ while (($#)); do
 done
 
 packages=(g++ make cmake pkg-config libeigen3-dev libboost-dev libopenmesh-dev
-          libgtest-dev libgmock-dev libedit-dev python3)
+          libgtest-dev libgmock-dev libedit-dev python3
+          libcgal-dev)  # libcgal-dev: the tests' independent mesh validator (tests/support)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -108,7 +108,7 @@ Solid map_planes_approximately(const Solid& solid, const Eigen::Matrix3d& m, con
 // The boundary mesh mapped vertex by vertex and rebuilt (from_mesh snaps each vertex to the grid
 // and gives every face whose snapped vertices are not coplanar one plane per triangle). Empty
 // when the solid is unbounded (its mesh reaches past the world range) or when snapping would
-// fold a face (features below the grid step).
+// fold a face or collapse it to a line (features below the grid step).
 std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map) {
   PolygonMesh mesh = to_mesh(solid);
   for (const Eigen::Vector3d& v : mesh.vertices)
@@ -118,7 +118,9 @@ std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map
     for (auto& f : mesh.faces) std::reverse(f.begin(), f.end());
   try {
     return from_mesh(mesh);
-  } catch (const GeometryError&) {
+  } catch (const GeometryError&) {  // a face folds when snapped
+    return std::nullopt;
+  } catch (const InvalidInput&) {  // a face collapses to a line when snapped
     return std::nullopt;
   }
 }

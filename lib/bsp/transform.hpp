@@ -1,9 +1,11 @@
 #pragma once
 /// \file transform.hpp
-/// Affine transforms of solids: every plane of the tree is mapped and the tree is kept.
-/// Translations by grid vectors are exact. Other maps re-quantize each plane to the bit budget
-/// (kernel::plane_from_normal), moving it by about 2^-50 of the world range, and the tree is
-/// rebuilt so that the no-empty-cell invariant holds again (docs/kernel.md, "Transforms").
+/// Affine transforms of solids (docs/kernel.md, "What transforms do"). Translations by grid
+/// vectors and integer linear maps (quarter turns, mirrors, integer scales) map every plane
+/// exactly and keep the tree. Other maps map the boundary's vertices, snap them to the grid (each
+/// moves by at most sqrt(3)/2 grid steps) and rebuild the solid from them, so vertices stay single
+/// (a rotated cone keeps one apex); where snapping would fold or flatten a face, or for unbounded
+/// solids, each plane is mapped and re-quantized instead (slivers far below the grid step).
 
 #include <Eigen/Geometry>
 
