@@ -9,6 +9,8 @@
 #include "bsp/boundary.hpp"
 #include "bsp/from_mesh.hpp"
 #include "bsp/tree_builder.hpp"
+#include "mesh/mesh_measures.hpp"
+#include "mesh/triangulate.hpp"
 
 namespace sculpt {
 
@@ -113,16 +115,28 @@ std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map
   PolygonMesh mesh = to_mesh(solid);
   for (const Eigen::Vector3d& v : mesh.vertices)
     if (v.cwiseAbs().maxCoeff() > kernel::kMaxWorld) return std::nullopt;
-  for (Eigen::Vector3d& v : mesh.vertices) v = map * v;
+  for (Eigen::Vector3d& v : mesh.vertices) v = kernel::to_world(kernel::snap(map * v));
   if (map.linear().determinant() < 0)
     for (auto& f : mesh.faces) std::reverse(f.begin(), f.end());
+  std::optional<Solid> result;
   try {
-    return from_mesh(mesh);
+    result = from_mesh(mesh);
   } catch (const GeometryError&) {  // a face folds when snapped
     return std::nullopt;
   } catch (const InvalidInput&) {  // a face collapses to a line when snapped
     return std::nullopt;
   }
+  // Snapping can also make two nearly touching faces cross; from_mesh's precondition (no
+  // self-intersection) then fails and the tree bounds some other set. The solid bounded by a
+  // closed surface without self-intersections has that surface's volume and bounding box.
+  const PolygonMesh built = to_mesh(*result);
+  // (A face whose snapped corners are not coplanar is triangulated by from_mesh as by triangulate.)
+  const double v = mesh_volume(triangulate(mesh)), w = mesh_volume(built);
+  const Eigen::AlignedBox3d expected = mesh_bounding_box(mesh), got = mesh_bounding_box(built);
+  const bool same_box = !got.isEmpty() && (got.min() - expected.min()).cwiseAbs().maxCoeff() <= kernel::kGridStep &&
+                        (got.max() - expected.max()).cwiseAbs().maxCoeff() <= kernel::kGridStep;
+  if (!same_box || !(std::fabs(w - v) <= 1e-9 * std::max(1.0, std::fabs(v)))) return std::nullopt;
+  return result;
 }
 
 }  // namespace
