@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <utility>
 
+#include "bsp/tree/node_polygons.hpp"
 #include "bsp/tree_builder.hpp"
 
 namespace sculpt::bsp::detail {
@@ -27,6 +28,18 @@ struct Node {
   std::int32_t plane;
   TreeRef negative = kOut, positive = kOut;
   bool auxiliary = false;  // a splitting plane that carries no fragment
+  std::int32_t parent = -1;
+  int side = 0;  // of the parent
+};
+
+// An auxiliary plane with no fragment on one side (ExpectedDepth): that side's status is not
+// known when the node is made. The cell has no boundary there, and the plane carries none, so
+// the side has the status of the cells just across the plane: the node's polygon (plane ∩ cell),
+// pushed down the other child's subtree, reaches a leaf with that status.
+struct PendingSide {
+  TreeRef node;
+  int empty_side;
+  ConvexPolygon polygon;
 };
 
 // Side of a piece with respect to a plane, for scoring only (a heuristic: the split itself is
@@ -143,6 +156,8 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
     stack.push_back({std::move(all), -1, 0, std::move(all_points)});
   }
   TreeRef root = kOut;
+  std::vector<PendingSide> pending_sides;
+  std::vector<std::int32_t> path;
   const std::size_t candidates = std::size_t(std::max(1, options.candidates));
   const std::size_t sample = std::size_t(std::max(1, options.sample));
   // ExpectedDepth (Naylor 1993): the position in `pieces` of the face candidate of least
@@ -190,10 +205,28 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
     std::int32_t aux = -1;
     if (!options.auxiliary_splits) return {best, aux};
     kernel::Plane aux_value{};
-    for (int axis = 0; axis < 3; ++axis) {
-      for (int by_points = 0; by_points < 2; ++by_points) {
-        const std::size_t count = by_points ? q : s;
-        if (count < (by_points ? 16u : 2u)) continue;
+    // Only across the longest extent of the sampled pieces' centres, and of the points (kd-tree
+    // style): the other axes rarely win and scoring is most of the build's time.
+    for (int by_points = 0; by_points < 2; ++by_points) {
+      const std::size_t count = by_points ? q : s;
+      if (count < (by_points ? 16u : 2u)) continue;
+      double lo_c[3] = {1e300, 1e300, 1e300}, hi_c[3] = {-1e300, -1e300, -1e300};
+      for (std::size_t j = 0; j < count; ++j)
+        for (int a = 0; a < 3; ++a) {
+          double v = 0;
+          if (by_points) {
+            v = points[std::size_t(cell_points[j * m / q])][std::size_t(a)];
+          } else {
+            const CornerBox& b = boxes[std::size_t(pieces[j * n / s])];
+            v = b.valid ? 0.5 * (b.lo[a] + b.hi[a]) : 0.0;
+          }
+          lo_c[a] = std::min(lo_c[a], v), hi_c[a] = std::max(hi_c[a], v);
+        }
+      int longest = 0;
+      for (int a = 1; a < 3; ++a)
+        if (hi_c[a] - lo_c[a] > hi_c[longest] - lo_c[longest]) longest = a;
+      {
+        const int axis = longest;
         medians.resize(count);
         for (std::size_t j = 0; j < count; ++j) {
           if (by_points) {
@@ -208,6 +241,28 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
         if (!half_step_plane(axis, medians[count / 2], e)) continue;
         const double sc = cost(e, options.auxiliary_cost);
         if (sc < best_cost) best_cost = sc, aux_value = e, aux = 0;
+      }
+    }
+    // Planes just beyond the cell's pieces (half a grid step past their boxes' extremes), which
+    // cut off a region without boundary where the cell's points say it has volume.
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    bool boxed = q >= 16;
+    for (std::size_t j = 0; j < n && boxed; ++j) {
+      const CornerBox& b = boxes[std::size_t(pieces[j])];
+      boxed = b.valid;
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], b.lo[a]), hi[a] = std::max(hi[a], b.hi[a]);
+    }
+    if (boxed) {
+      for (int axis = 0; axis < 3; ++axis) {
+        kernel::Plane e{};
+        if (half_step_plane(axis, std::ceil(hi[axis]), e)) {
+          const double sc = cost(e, options.auxiliary_cost);
+          if (sc < best_cost) best_cost = sc, aux_value = e, aux = 0;
+        }
+        if (half_step_plane(axis, std::floor(lo[axis]) - 1.0, e)) {
+          const double sc = cost(e, options.auxiliary_cost);
+          if (sc < best_cost) best_cost = sc, aux_value = e, aux = 0;
+        }
       }
     }
     if (aux == 0) aux = arena.planes.add(aux_value, true);
@@ -304,16 +359,36 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
       }
       return true;
     };
-    // An auxiliary plane must have pieces on both sides (an empty side's status would be unknown).
-    bool auxiliary = aux_plane >= 0 && split_all(aux_plane, arena.opposite(aux_plane), true) && !negative.empty() &&
-                     !positive.empty();
+    // An auxiliary plane must have pieces on both sides (an empty side's status would be unknown),
+    // or (ExpectedDepth) cut the cell, the empty side's status found later (PendingSide).
+    bool auxiliary = aux_plane >= 0 && split_all(aux_plane, arena.opposite(aux_plane), true);
+    bool pending = false;
+    if (auxiliary && (negative.empty() || positive.empty())) {
+      auxiliary = false;
+      if (by_depth && !(negative.empty() && positive.empty())) {
+        path.clear();
+        for (std::int32_t up = f.parent, side = f.side; up >= 0;) {
+          const Node& a = nodes[std::size_t(up)];
+          path.push_back(side == 0 ? a.plane : arena.opposite(a.plane));
+          side = a.side;
+          up = a.parent;
+        }
+        std::reverse(path.begin(), path.end());
+        ConvexPolygon cut;
+        std::int32_t on = -1;
+        if (clip_to_cell(arena.planes, aux_plane, path, cut, on) == CellCut::Cuts) {
+          auxiliary = pending = true;
+          pending_sides.push_back({TreeRef(nodes.size()), negative.empty() ? 0 : 1, std::move(cut)});
+        }
+      }
+    }
     std::int32_t plane = aux_plane;
     if (!auxiliary) {
       plane = pool[std::size_t(f.pieces[best])].outward;
       split_all(plane, arena.opposite(plane), false);
     }
     const auto id = TreeRef(nodes.size());
-    nodes.push_back({plane, negative.empty() ? kIn : kOut, kOut, auxiliary});
+    nodes.push_back({plane, negative.empty() && !pending ? kIn : kOut, kOut, auxiliary, f.parent, f.side});
     if (f.parent < 0)
       root = id;
     else
@@ -329,6 +404,20 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
     }
     if (!negative.empty()) stack.push_back({std::move(negative), id, 0, std::move(neg_points)});
     if (!positive.empty()) stack.push_back({std::move(positive), id, 1, std::move(pos_points)});
+  }
+
+  // Pending sides, children first (they have larger indices, and a walk may reach them).
+  for (auto it = pending_sides.rbegin(); it != pending_sides.rend(); ++it) {
+    Node& nd = nodes[std::size_t(it->node)];
+    TreeRef t = it->empty_side == 0 ? nd.positive : nd.negative;
+    ConvexPolygon& poly = it->polygon;
+    while (!is_leaf(t)) {
+      const Node& below = nodes[std::size_t(t)];
+      const Side s = kernel::split(planes, poly, below.plane, arena.opposite(below.plane), neg_part, pos_part);
+      if (s == Side::Both) poly = neg_part;
+      t = s == Side::Positive ? below.positive : below.negative;
+    }
+    (it->empty_side == 0 ? nd.negative : nd.positive) = t;
   }
 
   // Bottom-up into the builder (children have larger indices), with the planes in use.

@@ -22,8 +22,14 @@
 ///   fragments left on that side and T(n) = log2(1 + n) the cost of a balanced subtree over n
 ///   fragments (0 for an empty side: a leaf). Splits are charged on top, and auxiliary planes
 ///   (axis-aligned, through the median of the fragments or of the cell's points, carrying no
-///   fragment) compete with the face planes for every cell, charged one node more. Only the
-///   choice is estimated (in doubles); the splits themselves are exact.
+///   fragment; only across the longest extent) compete with the face planes for every cell,
+///   charged `auxiliary_cost`. While a cell still has sample points, axis-aligned planes just
+///   past its fragments' box compete too: they cut off a region without boundary, whose status
+///   is found after the build by pushing the node's polygon (plane ∩ cell, which the plane must
+///   cut exactly) down the other child's subtree (the plane carries no boundary, so the cells
+///   just across it have that status). Only the choice is estimated (in doubles, fixed seed);
+///   the splits and the cut test are exact. Tried and dropped: face planes moved past all of a
+///   cell's fragments (Naylor's separating planes) made every tree deeper under this estimate.
 
 #include <vector>
 

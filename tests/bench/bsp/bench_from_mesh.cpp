@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <functional>
 #include <string>
@@ -78,14 +79,36 @@ Solid import_mesh(const std::string& path) {
   return from_mesh(mesh);
 }
 
+// Options from the environment (FROM_MESH_CANDIDATES etc.), for trying settings.
+FromMeshOptions options_from_env() {
+  FromMeshOptions o;
+  auto get = [](const char* name, double fallback) {
+    const char* v = std::getenv(name);
+    return v ? std::atof(v) : fallback;
+  };
+  o.candidates = int(get("FROM_MESH_CANDIDATES", o.candidates));
+  o.sample = int(get("FROM_MESH_SAMPLE", o.sample));
+  o.split_weight = get("FROM_MESH_SPLIT_WEIGHT", o.split_weight);
+  o.volume_samples = int(get("FROM_MESH_VOLUME_SAMPLES", o.volume_samples));
+  o.point_sample = int(get("FROM_MESH_POINT_SAMPLE", o.point_sample));
+  o.auxiliary_planes = get("FROM_MESH_AUXILIARY_PLANES", o.auxiliary_planes) != 0;
+  o.auxiliary_cost = get("FROM_MESH_AUXILIARY_COST", o.auxiliary_cost);
+  return o;
+}
+
 void run_case(const std::string& name, const PolygonMesh& mesh, int runs) {
   Solid s;
-  const Timing t = median_ms(runs, [&] { s = from_mesh(mesh); });
+  const FromMeshOptions options = options_from_env();
+  const Timing t = median_ms(runs, [&] { s = from_mesh(mesh, options); });
   const reports::DepthCost d = reports::depth_cost(s);
   std::printf("bench impl=sculpt case=%s faces=%zu runs=%d time_ms=%.2f cpu_ms=%.2f nodes=%d height=%d "
               "expected_depth=%.4f entropy_bound=%.4f ratio=%.3f volume=%.10g mesh_volume=%.10g\n",
               name.c_str(), mesh.faces.size(), runs, t.wall, t.cpu, d.nodes, d.height, d.expected_depth,
               d.entropy_bound, d.ratio, volume(s), mesh_volume(mesh));
+  if (std::getenv("BENCH_HISTOGRAM"))
+    for (const reports::DepthBin& b : d.histogram)
+      std::printf("  depth %3d: in %5d cells p %.4f, out %5d cells p %.4f\n", b.depth, b.in_cells, b.in_probability,
+                  b.out_cells, b.out_probability);
   std::fflush(stdout);
 }
 
