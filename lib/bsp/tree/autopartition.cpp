@@ -167,7 +167,7 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
                              const std::vector<std::int32_t>& cell_points) -> std::pair<std::size_t, std::int32_t> {
     const std::size_t n = pieces.size();
     if (n <= 1) return {0, -1};
-    const std::size_t s = std::min(n, std::size_t(std::max(1, options.sample)));
+    const std::size_t s = std::min(n, sample);
     const std::size_t m = cell_points.size();
     const std::size_t q = std::min(m, std::size_t(std::max(0, options.point_sample)));
     const double prior = 2.0;  // points' worth of the fragment shares where few points are left
