@@ -17,7 +17,7 @@ namespace sculpt {
 struct FromMeshOptions {
   int candidates = 6;           ///< face planes scored per node (drawn at random, fixed seed)
   int sample = 48;              ///< polygons of the cell each candidate is scored against
-  double split_weight = 2.0;    ///< charge for splitting all sampled polygons, in expected nodes
+  double split_weight = 3.0;    ///< charge for splitting all sampled polygons, in expected nodes
   int volume_samples = 4096;    ///< points uniform in the mesh's box estimating cell volumes
   int point_sample = 128;       ///< points of the cell each candidate is scored against
   bool auxiliary_planes = true; ///< also try axis-aligned planes that carry no face

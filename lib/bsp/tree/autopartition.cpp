@@ -393,14 +393,14 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
       root = id;
     else
       (f.side == 0 ? nodes[std::size_t(f.parent)].negative : nodes[std::size_t(f.parent)].positive) = id;
+    // The cell's points go with their sides (those of a leaf side are done with).
     std::vector<std::int32_t> neg_points, pos_points;
-    if (by_depth && !f.points.empty() && !negative.empty() && !positive.empty()) {
+    if (by_depth) {
       const kernel::Plane e = planes[plane];
-      for (const std::int32_t x : f.points) (plane_value(e, points[std::size_t(x)]) < 0 ? neg_points : pos_points).push_back(x);
-    } else if (!negative.empty()) {
-      neg_points = std::move(f.points);
-    } else {
-      pos_points = std::move(f.points);
+      for (const std::int32_t x : f.points) {
+        const bool below = plane_value(e, points[std::size_t(x)]) < 0;
+        if (below ? !negative.empty() : !positive.empty()) (below ? neg_points : pos_points).push_back(x);
+      }
     }
     if (!negative.empty()) stack.push_back({std::move(negative), id, 0, std::move(neg_points)});
     if (!positive.empty()) stack.push_back({std::move(positive), id, 1, std::move(pos_points)});
