@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <limits>
 #include <sstream>
 #include <string>
 
@@ -148,6 +147,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
                                      .volume_samples = options.volume_samples,
                                      .point_sample = options.point_sample,
                                      .auxiliary_cost = options.auxiliary_cost,
+                                     .separating_planes = options.separating_planes,
                                      .carry_boundary = false,
                                      .auxiliary_splits = options.auxiliary_planes,
                                      .approximate_scores = true});

@@ -22,6 +22,10 @@ struct FromMeshOptions {
   int point_sample = 128;       ///< points of the cell each candidate is scored against
   bool auxiliary_planes = true; ///< also try axis-aligned planes that carry no face
   double auxiliary_cost = 0.5;  ///< charge for such a plane (it adds a node), in expected nodes
+  /// Also try the scored face planes moved just past all of the cell's faces (Naylor's separating
+  /// planes). Off: slightly shallower and smaller trees for the goblet and a sphere, not for the
+  /// bunny, at 10-30 % more build time (docs/benchmarks.md, "Trees from meshes").
+  bool separating_planes = false;
 };
 
 /// Solid bounded by a closed mesh (world units, snapped to the grid; outward orientation).

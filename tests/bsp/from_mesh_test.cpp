@@ -131,6 +131,7 @@ TEST(FromMesh, EveryOptionSettingGivesTheSamePointSet) {
   const PolygonMesh grid_mesh = snapped(mesh);
   for (const FromMeshOptions& o : {FromMeshOptions{.auxiliary_planes = false}, FromMeshOptions{.auxiliary_cost = 0.0},
                                    FromMeshOptions{.candidates = 1, .sample = 1, .volume_samples = 0},
+                                   FromMeshOptions{.separating_planes = true},
                                    FromMeshOptions{.volume_samples = 100000, .point_sample = 1000, .auxiliary_cost = 0.0}}) {
     const Solid s = from_mesh(mesh, o);
     EXPECT_NEAR(volume(s), mesh_volume(grid_mesh), 1e-11 * mesh_volume(grid_mesh));

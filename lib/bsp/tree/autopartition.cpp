@@ -163,6 +163,7 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
   // ExpectedDepth (Naylor 1993): the position in `pieces` of the face candidate of least
   // estimated cost, and an auxiliary plane (arena index) if one costs less, else -1.
   std::vector<double> medians;
+  std::vector<std::int32_t> tried;
   auto choose_by_depth = [&](const std::vector<std::int32_t>& pieces,
                              const std::vector<std::int32_t>& cell_points) -> std::pair<std::size_t, std::int32_t> {
     const std::size_t n = pieces.size();
@@ -195,9 +196,11 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
     std::size_t best = 0;
     double best_cost = 1e300;
     const std::size_t k = std::min(n, candidates);
+    tried.clear();
     for (std::size_t c = 0; c < k; ++c) {
       const std::size_t i = k == n ? c : std::size_t(rng.next() % n);
-      const double sc = cost(planes[pool[std::size_t(pieces[i])].outward], 0.0);
+      tried.push_back(pool[std::size_t(pieces[i])].outward);
+      const double sc = cost(planes[tried.back()], 0.0);
       if (sc < best_cost) best_cost = sc, best = i;
     }
     // Auxiliary planes: x, y or z through the median of the pieces' box centres (balance in
@@ -262,6 +265,27 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
         if (half_step_plane(axis, std::floor(lo[axis]) - 1.0, e)) {
           const double sc = cost(e, options.auxiliary_cost);
           if (sc < best_cost) best_cost = sc, aux_value = e, aux = 0;
+        }
+      }
+    }
+    // Separating planes (Naylor 1993): each scored face plane moved just past all of the cell's
+    // pieces, behind them (inside a curved part) or in front; split_all finds the exact sides.
+    if (boxed && options.separating_planes) {
+      for (const std::int32_t t : tried) {
+        const kernel::Plane& e = planes[t];
+        const double a = double(e.a), b = double(e.b), c = double(e.c);
+        double vmin = 1e300, vmax = -1e300, err = 0;
+        for (const std::int32_t id : pieces)
+          for (const kernel::Corner& corner : pool[std::size_t(id)].polygon.corners) {
+            const double v = a * corner.at.x + b * corner.at.y + c * corner.at.z;
+            vmin = std::min(vmin, v), vmax = std::max(vmax, v), err = std::max(err, corner.at.err);
+          }
+        const double margin = (std::fabs(a) + std::fabs(b) + std::fabs(c)) * (1.0 + err) + 1e-12 * std::max(std::fabs(vmin), std::fabs(vmax));
+        for (const double offset : {std::floor(vmin - margin), std::ceil(vmax + margin)}) {
+          if (!(std::fabs(offset) < 0x1p100)) continue;
+          const kernel::Plane sep = kernel::make_plane(e.a, e.b, e.c, -kernel::Int128(offset));
+          const double sc = cost(sep, options.auxiliary_cost);
+          if (sc < best_cost) best_cost = sc, aux_value = sep, aux = 0;
         }
       }
     }

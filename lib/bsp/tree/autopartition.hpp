@@ -28,8 +28,8 @@
 ///   is found after the build by pushing the node's polygon (plane ∩ cell, which the plane must
 ///   cut exactly) down the other child's subtree (the plane carries no boundary, so the cells
 ///   just across it have that status). Only the choice is estimated (in doubles, fixed seed);
-///   the splits and the cut test are exact. Tried and dropped: face planes moved past all of a
-///   cell's fragments (Naylor's separating planes) made every tree deeper under this estimate.
+///   the splits and the cut test are exact. Optionally (`separating_planes`), the scored face planes
+///   moved past all of the cell's fragments compete as well.
 
 #include <vector>
 
@@ -55,6 +55,9 @@ struct AutopartitionOptions {
   /// ExpectedDepth: the charge (in expected nodes) of an auxiliary plane, which carries no
   /// fragment and so adds a node to the tree; higher values give smaller, less balanced trees.
   double auxiliary_cost = 0.5;
+  /// ExpectedDepth: also try each scored face plane moved just past all of the cell's pieces, on
+  /// either side (Naylor's separating planes: one side without pieces, handled as PendingSide).
+  bool separating_planes = false;
   /// The solid carries `fragments` as its boundary; otherwise it is extracted from the tree when
   /// needed (for fragments that may not tile a closed surface exactly, e.g. an unchecked mesh).
   bool carry_boundary = true;

@@ -93,6 +93,7 @@ FromMeshOptions options_from_env() {
   o.point_sample = int(get("FROM_MESH_POINT_SAMPLE", o.point_sample));
   o.auxiliary_planes = get("FROM_MESH_AUXILIARY_PLANES", o.auxiliary_planes) != 0;
   o.auxiliary_cost = get("FROM_MESH_AUXILIARY_COST", o.auxiliary_cost);
+  o.separating_planes = get("FROM_MESH_SEPARATING_PLANES", o.separating_planes) != 0;
   return o;
 }
 
