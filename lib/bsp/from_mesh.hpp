@@ -24,7 +24,7 @@ struct FromMeshOptions {
   double auxiliary_cost = 0.5;  ///< charge for such a plane (it adds a node), in expected nodes
   /// Also try the scored face planes moved just past all of the cell's faces (Naylor's separating
   /// planes). Off: slightly shallower and smaller trees for the goblet and a sphere, not for the
-  /// bunny, at 10-30 % more build time (docs/benchmarks.md, "Trees from meshes").
+  /// bunny, at 15-23 % more build time (docs/benchmarks.md, "Trees from meshes").
   bool separating_planes = false;
 };
 
