@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <limits>
 #include <sstream>
 #include <string>
 
@@ -141,12 +140,17 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
   fragments.reserve(polys.size());
   for (ConvexPolygon& p : polys) fragments.push_back({std::move(p), false});
   return bsp::detail::autopartition(arena, std::move(fragments),
-                               {.candidates = options.candidates,
-                                .sample = std::numeric_limits<int>::max(),
-                                .split_weight = options.split_weight,
-                                .carry_boundary = false,
-                                .auxiliary_splits = false,
-                                .approximate_scores = false});
+                                    {.candidates = options.candidates,
+                                     .sample = options.sample,
+                                     .split_weight = options.split_weight,
+                                     .score = bsp::detail::PartitionScore::ExpectedDepth,
+                                     .volume_samples = options.volume_samples,
+                                     .point_sample = options.point_sample,
+                                     .auxiliary_cost = options.auxiliary_cost,
+                                     .separating_planes = options.separating_planes,
+                                     .carry_boundary = false,
+                                     .auxiliary_splits = options.auxiliary_planes,
+                                     .approximate_scores = true});
 }
 
 }  // namespace sculpt

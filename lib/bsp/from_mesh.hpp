@@ -1,17 +1,31 @@
 #pragma once
 /// \file from_mesh.hpp
-/// B-rep to BSP (Thibault & Naylor 1987): each face polygon is inserted into the tree; the
-/// splitting plane of every subtree is chosen among a sample of the remaining faces by a score
-/// that penalizes faces it splits and imbalance between the sides (never just the first face).
+/// B-rep to BSP (Thibault & Naylor 1987): the tree is built top-down from the face polygons
+/// (explicit stack). Each node's plane, a face plane or an axis-aligned auxiliary plane, is the
+/// candidate of least estimated expected depth of a point query (Naylor, "Constructing good
+/// partitioning trees", 1993; Ihm & Naylor 1990 sec. 6): cell volumes are estimated from points
+/// sampled in the mesh's box (fixed seed: deterministic), polygon counts from a sample of the
+/// cell's polygons (docs/bsp.md, "B-rep to BSP"). Only the choice is estimated; the tree is exact.
 
 #include "bsp/solid.hpp"
 #include "mesh/polygon_mesh.hpp"
 
 namespace sculpt {
 
+/// How the planes are chosen (defaults tuned on the goblet, the bunny and the Menger sponge:
+/// docs/benchmarks.md, "Trees from meshes"). Every setting gives the same solid, only the tree differs.
 struct FromMeshOptions {
-  int candidates = 8;          ///< faces scored per node (sampled evenly from the remaining ones)
-  double split_weight = 8.0;   ///< score = split_weight * splits + |negative - positive|
+  int candidates = 6;           ///< face planes scored per node (drawn at random, fixed seed)
+  int sample = 48;              ///< polygons of the cell each candidate is scored against
+  double split_weight = 3.0;    ///< charge for splitting all sampled polygons, in expected nodes
+  int volume_samples = 4096;    ///< points uniform in the mesh's box estimating cell volumes
+  int point_sample = 128;       ///< points of the cell each candidate is scored against
+  bool auxiliary_planes = true; ///< also try axis-aligned planes that carry no face
+  double auxiliary_cost = 0.5;  ///< charge for such a plane (it adds a node), in expected nodes
+  /// Also try the scored face planes moved just past all of the cell's faces (Naylor's separating
+  /// planes). Off: slightly shallower and smaller trees for the goblet and a sphere, not for the
+  /// bunny, at 15-23 % more build time (docs/benchmarks.md, "Trees from meshes").
+  bool separating_planes = false;
 };
 
 /// Solid bounded by a closed mesh (world units, snapped to the grid; outward orientation).

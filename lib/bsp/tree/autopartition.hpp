@@ -10,6 +10,26 @@
 /// of the fragments, carrying none of them, may split the cell instead (kd-tree style), if it
 /// leaves fragments on both sides. Every node thus has fragments strictly inside its cell on its
 /// plane or on both sides of it, so its plane cuts the cell.
+///
+/// Two ways to choose a node's plane (AutopartitionOptions::score):
+/// - SplitsAndBalance: `split_weight * splits + |negative - positive|` over a sample of the
+///   cell's fragments (balance in fragment counts; the batch union's choice).
+/// - ExpectedDepth (Naylor, "Constructing good partitioning trees", Graphics Interface 1993): the
+///   greedy estimate of the expected depth of a point query, 1 + p- T(n-) + p+ T(n+), where p+-
+///   is the probability that a point of the cell lies on that side, estimated from points
+///   sampled uniformly in the fragments' bounding box and carried down with the cells (Ihm &
+///   Naylor 1990 sec. 6: the probability of reaching a cell is its share of the volume), n+- the
+///   fragments left on that side and T(n) = log2(1 + n) the cost of a balanced subtree over n
+///   fragments (0 for an empty side: a leaf). Splits are charged on top, and auxiliary planes
+///   (axis-aligned, through the median of the fragments or of the cell's points, carrying no
+///   fragment; only across the longest extent) compete with the face planes for every cell,
+///   charged `auxiliary_cost`. While a cell still has sample points, axis-aligned planes just
+///   past its fragments' box compete too: they cut off a region without boundary, whose status
+///   is found after the build by pushing the node's polygon (plane ∩ cell, which the plane must
+///   cut exactly) down the other child's subtree (the plane carries no boundary, so the cells
+///   just across it have that status). Only the choice is estimated (in doubles, fixed seed);
+///   the splits and the cut test are exact. Optionally (`separating_planes`), the scored face planes
+///   moved past all of the cell's fragments compete as well.
 
 #include <vector>
 
@@ -17,10 +37,27 @@
 
 namespace sculpt::bsp::detail {
 
+/// How a node's plane is chosen (autopartition.hpp).
+enum class PartitionScore { SplitsAndBalance, ExpectedDepth };
+
 struct AutopartitionOptions {
-  int candidates = 5;         ///< fragments whose planes are scored per node (evenly spaced)
+  int candidates = 5;         ///< fragments whose planes are scored per node (evenly spaced; random for ExpectedDepth)
   int sample = 48;            ///< fragments each candidate is scored against (evenly spaced)
-  double split_weight = 8.0;  ///< score = split_weight * splits + |negative - positive|
+  /// SplitsAndBalance: score = split_weight * splits + |negative - positive|. ExpectedDepth: the
+  /// charge for splitting every sampled fragment (added to the expected depth, in nodes).
+  double split_weight = 8.0;
+  PartitionScore score = PartitionScore::SplitsAndBalance;
+  /// ExpectedDepth: points sampled uniformly in the fragments' bounding box (fixed seed) whose
+  /// shares estimate the cells' volumes; each candidate is scored against at most
+  /// `point_sample` of a cell's points (evenly spaced).
+  int volume_samples = 4096;
+  int point_sample = 256;
+  /// ExpectedDepth: the charge (in expected nodes) of an auxiliary plane, which carries no
+  /// fragment and so adds a node to the tree; higher values give smaller, less balanced trees.
+  double auxiliary_cost = 0.5;
+  /// ExpectedDepth: also try each scored face plane moved just past all of the cell's pieces, on
+  /// either side (Naylor's separating planes: one side without pieces, handled as PendingSide).
+  bool separating_planes = false;
   /// The solid carries `fragments` as its boundary; otherwise it is extracted from the tree when
   /// needed (for fragments that may not tile a closed surface exactly, e.g. an unchecked mesh).
   bool carry_boundary = true;
@@ -37,6 +74,7 @@ struct AutopartitionOptions {
 /// a regularized set operation. The solid carries them as its boundary. Explicit stack; arena
 /// nodes are not used (only its planes). Empty `fragments` gives the empty solid. With `sample`
 /// at least the number of fragments, each candidate is scored against all of them in order.
+/// The build is deterministic (a fixed seed for sampling).
 Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options = {});
 
 }  // namespace sculpt::bsp::detail

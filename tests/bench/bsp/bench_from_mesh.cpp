@@ -1,0 +1,135 @@
+// Trees built from meshes (B-rep to BSP, lib/bsp/from_mesh.hpp): for each input mesh, the time of
+// from_mesh (median of RUNS, thread CPU time and wall time) and the tree's size, height, expected
+// depth and entropy bound (Ihm & Naylor 1990 sec. 6; lib/reports/depth_cost.hpp) in the rebuilt
+// solid's bounding box. docs/benchmarks.md, "Trees from meshes". One parseable line per case:
+//   bench impl=sculpt case=<name> faces=<mesh faces> runs=<r> time_ms=<median wall> cpu_ms=<median cpu>
+//         nodes=<partitioning nodes> height=<h> expected_depth=<E> entropy_bound=<H> ratio=<E/H>
+//         volume=<V(solid)> mesh_volume=<V(mesh)>
+// For the bunny also the whole of the language's `import` (read, validate, the snapped
+// self-intersection check, from_mesh): case=bunny_import, time only.
+//   bench_from_mesh [RUNS [CASE]]   CASE: goblet, bunny, menger, sphere64 (default: all; RUNS 15)
+//   models are read from SCULPT_MODELS_DIR (the source tree's models/)
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bsp/boundary.hpp"
+#include "bsp/from_mesh.hpp"
+#include "bsp/primitives.hpp"
+#include "curves/digitized_curve.hpp"
+#include "curves/profiles.hpp"
+#include "kernel/grid.hpp"
+#include "mesh/mesh_io.hpp"
+#include "mesh/mesh_measures.hpp"
+#include "mesh/mesh_validation.hpp"
+#include "mesh/self_intersection.hpp"
+#include "reports/depth_cost.hpp"
+#include "revolution/revolve.hpp"
+#include "support/bench_solids.hpp"
+
+using namespace sculpt;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+struct Timing {
+  double wall = 0, cpu = 0;
+};
+
+/// Medians over `runs` of the wall and CPU time of f.
+Timing median_ms(int runs, const std::function<void()>& f) {
+  std::vector<double> w, c;
+  for (int i = 0; i < runs; ++i) {
+    const auto start = Clock::now();
+    const double cpu = cpu_ms();
+    f();
+    c.push_back(cpu_ms() - cpu);
+    w.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+  }
+  std::sort(w.begin(), w.end());
+  std::sort(c.begin(), c.end());
+  return {w[w.size() / 2], c[c.size() / 2]};
+}
+
+const std::string kModels = SCULPT_MODELS_DIR;
+
+PolygonMesh goblet_mesh() {  // the outer goblet of Figure 11 (20 profile segments, 32-gon)
+  const auto profile = curves::planar_points(curves::load_curve(kModels + "/goblet_profile_20.txt").points);
+  return to_mesh(revolution::revolve(profile, circular_path(32)));
+}
+
+// The language's import (lib/language/builtins_solids.cpp) without the interpreter.
+Solid import_mesh(const std::string& path) {
+  const PolygonMesh mesh = read_mesh(path);
+  if (!check_closed_manifold(mesh).ok()) throw std::runtime_error(path + " is not a closed manifold");
+  PolygonMesh snapped = mesh;
+  for (Eigen::Vector3d& v : snapped.vertices) v = kernel::to_world(kernel::snap(v));
+  if (!find_self_intersections(snapped, {.max_pairs = 1}).empty()) throw std::runtime_error(path + ": snapped mesh self-intersects");
+  return from_mesh(mesh);
+}
+
+// Options from the environment (FROM_MESH_CANDIDATES etc.), for trying settings.
+FromMeshOptions options_from_env() {
+  FromMeshOptions o;
+  auto get = [](const char* name, double fallback) {
+    const char* v = std::getenv(name);
+    return v ? std::atof(v) : fallback;
+  };
+  o.candidates = int(get("FROM_MESH_CANDIDATES", o.candidates));
+  o.sample = int(get("FROM_MESH_SAMPLE", o.sample));
+  o.split_weight = get("FROM_MESH_SPLIT_WEIGHT", o.split_weight);
+  o.volume_samples = int(get("FROM_MESH_VOLUME_SAMPLES", o.volume_samples));
+  o.point_sample = int(get("FROM_MESH_POINT_SAMPLE", o.point_sample));
+  o.auxiliary_planes = get("FROM_MESH_AUXILIARY_PLANES", o.auxiliary_planes) != 0;
+  o.auxiliary_cost = get("FROM_MESH_AUXILIARY_COST", o.auxiliary_cost);
+  o.separating_planes = get("FROM_MESH_SEPARATING_PLANES", o.separating_planes) != 0;
+  return o;
+}
+
+void run_case(const std::string& name, const PolygonMesh& mesh, int runs) {
+  Solid s;
+  const FromMeshOptions options = options_from_env();
+  const Timing t = median_ms(runs, [&] { s = from_mesh(mesh, options); });
+  const reports::DepthCost d = reports::depth_cost(s);
+  std::printf("bench impl=sculpt case=%s faces=%zu runs=%d time_ms=%.2f cpu_ms=%.2f nodes=%d height=%d "
+              "expected_depth=%.4f entropy_bound=%.4f ratio=%.3f volume=%.10g mesh_volume=%.10g\n",
+              name.c_str(), mesh.faces.size(), runs, t.wall, t.cpu, d.nodes, d.height, d.expected_depth,
+              d.entropy_bound, d.ratio, volume(s), mesh_volume(mesh));
+  if (std::getenv("BENCH_HISTOGRAM"))
+    for (const reports::DepthBin& b : d.histogram)
+      std::printf("  depth %3d: in %5d cells p %.4f, out %5d cells p %.4f\n", b.depth, b.in_cells, b.in_probability,
+                  b.out_cells, b.out_probability);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 15;
+  const std::string only = argc > 2 ? argv[2] : "";
+  try {
+    if (only.empty() || only == "goblet") run_case("goblet", goblet_mesh(), runs);
+    if (only.empty() || only == "bunny") {
+      run_case("bunny", read_mesh(kModels + "/bunny.off"), runs);
+      const Timing t = median_ms(runs, [&] { (void)import_mesh(kModels + "/bunny.off"); });
+      std::printf("bench impl=sculpt case=bunny_import runs=%d time_ms=%.2f cpu_ms=%.2f\n", runs, t.wall, t.cpu);
+    }
+    if (only.empty() || only == "menger") run_case("menger", to_mesh(checks::menger_sponge(3)), runs);
+    if (only.empty() || only == "sphere64") run_case("sphere64", to_mesh(sphere(1.0, {.segments = 64})), runs);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_from_mesh: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
