@@ -88,7 +88,10 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
         best = kernel::plane_through(a, b, c);
       }
     }
-    if (best_len == 0) throw InvalidInput("from_mesh: face " + std::to_string(fi) + " is degenerate (collinear vertices)");
+    if (best_len == 0) {
+      if (options.skip_degenerate_faces) continue;
+      throw InvalidInput("from_mesh: face " + std::to_string(fi) + " is degenerate (collinear vertices)");
+    }
     // The largest corner may be a reflex corner of a non-convex face: orient the plane by the
     // face's area vector (Newell's method, exact on the snapped grid points) instead.
     Int128 area[3] = {0, 0, 0};

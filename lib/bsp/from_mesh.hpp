@@ -26,6 +26,10 @@ struct FromMeshOptions {
   /// planes). Off: slightly shallower and smaller trees for the goblet and a sphere, not for the
   /// bunny, at 15-23 % more build time (docs/benchmarks.md, "Trees from meshes").
   bool separating_planes = false;
+  /// Leave out faces whose snapped vertices are collinear (zero area after snapping) instead of
+  /// throwing InvalidInput: the rest still encloses the same volume. General transforms use it
+  /// (bsp/transform.hpp), where a face narrower than the grid step is no error of the user's.
+  bool skip_degenerate_faces = false;
 };
 
 /// Solid bounded by a closed mesh (world units, snapped to the grid; outward orientation).
@@ -33,7 +37,8 @@ struct FromMeshOptions {
 /// its triangulation gets its own plane through its three grid points (so the boundary still
 /// closes exactly; the face count of a later to_mesh can then grow). \pre the caller validated the mesh (lib/mesh/mesh_validation.hpp): closed,
 /// manifold, oriented, not self-intersecting. \throw RangeError for coordinates out of range,
-/// InvalidInput for faces with fewer than three non-collinear vertices.
+/// InvalidInput for faces with fewer than three non-collinear vertices (unless
+/// options.skip_degenerate_faces).
 Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options = {});
 
 }  // namespace sculpt

@@ -110,7 +110,8 @@ Solid map_planes_approximately(const Solid& solid, const Eigen::Matrix3d& m, con
 // The boundary mesh mapped vertex by vertex and rebuilt (from_mesh snaps each vertex to the grid
 // and gives every face whose snapped vertices are not coplanar one plane per triangle). Empty
 // when the solid is unbounded (its mesh reaches past the world range) or when snapping would
-// fold a face or collapse it to a line (features below the grid step).
+// fold a face or make faces cross (features below the grid step); faces that snapping flattens
+// to a line are left out.
 std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map) {
   PolygonMesh mesh = to_mesh(solid);
   for (const Eigen::Vector3d& v : mesh.vertices)
@@ -120,10 +121,10 @@ std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map
     for (auto& f : mesh.faces) std::reverse(f.begin(), f.end());
   std::optional<Solid> result;
   try {
-    result = from_mesh(mesh);
+    result = from_mesh(mesh, {.skip_degenerate_faces = true});
   } catch (const GeometryError&) {  // a face folds when snapped
     return std::nullopt;
-  } catch (const InvalidInput&) {  // a face collapses to a line when snapped
+  } catch (const InvalidInput&) {  // not expected of to_mesh's output: the plane route still works
     return std::nullopt;
   }
   // Snapping can also make two nearly touching faces cross; from_mesh's precondition (no
