@@ -96,6 +96,7 @@ class Compiler {
   const ImplicitCompileOptions& options_;
   ExpressionBuilder builder_;
   std::size_t nodes_ = 0;
+  std::size_t work_ = 0;
   SourcePtr source_;             ///< the script of the function being compiled (inlined calls swap it)
   std::vector<Frame*> frames_;   ///< innermost inlined call last
   std::uintptr_t stack_base_ = 0;
@@ -112,6 +113,12 @@ class Compiler {
     const auto here = reinterpret_cast<std::uintptr_t>(&marker);
     if (stack_base_ > here && stack_base_ - here > options_.stack_budget) {
       fail(where, "implicit function nested too deeply to compile");
+    }
+  }
+  void count_work(std::size_t where) {
+    if (++work_ > options_.max_work) {
+      fail(where, "implicit function too large: compiling it takes more than " + std::to_string(options_.max_work) +
+                      " steps after inlining its calls");
     }
   }
   Scalar counted(Term t, std::size_t where) {
@@ -276,6 +283,7 @@ class Compiler {
   // ---- expressions ----
   Compiled compile(const ast::Expression& e) {
     check_stack(e.where);
+    count_work(e.where);
     Compiled value = compile(e.first);
     for (const ast::Operation& operation : e.rest) {
       const ast::Op op = operation.op;

@@ -30,7 +30,12 @@ struct ImplicitCompileOptions {
   /// call; built-in names are looked up by the compiler itself).
   std::function<const Value*(const std::string&)> global{};
   /// Largest expression (nodes, before unused ones are dropped); inlining can multiply sizes.
-  std::size_t max_nodes = 1'000'000;
+  /// The tracer evaluates an expression tens of thousands of times, so a larger one would be
+  /// traced for minutes.
+  std::size_t max_nodes = 100'000;
+  /// Most syntax-tree expressions and calls compiled, inlined ones counted each time: a chain of
+  /// calls on constants doubles the work per level without making any node.
+  std::size_t max_work = 250'000;
   /// Calls of user functions may nest this deep (each is inlined).
   int max_call_depth = 64;
   /// Bytes of C++ stack the compiler may use (it recurses over the syntax tree, whose depth the

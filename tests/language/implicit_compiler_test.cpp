@@ -262,15 +262,24 @@ TEST(ImplicitCompiler, ParameterCountsAndCallBinding) {
 }
 
 TEST(ImplicitCompiler, SizeAndDepthLimitsAreErrors) {
-  // Each level doubles the expression: 2^30 nodes would be built without the limit.
-  std::string script = "fn f0(x) { x * x }\n";
+  // Each level doubles the expression: 100 * 2^30 nodes would be built without the limit.
+  std::string script = "fn f0(x) { x";
+  for (int i = 0; i < 100; ++i) script += " * x";
+  script += " }\n";
   for (int i = 1; i <= 30; ++i) {
     script += "fn f" + std::to_string(i) + "(x) { f" + std::to_string(i - 1) + "(x) + f" + std::to_string(i - 1) +
               "(x) }\n";
   }
   script += "fn f(x, y, z) { f30(x) }\n";
-  EXPECT_NE(compile_error(script).find("error: implicit function too large: more than 1000000 operations"),
+  EXPECT_NE(compile_error(script).find("error: implicit function too large: more than 100000 operations"),
             std::string::npos);
+  // The same chain on a constant makes no node, but the work doubles all the same.
+  std::string constants = script;
+  constants.replace(constants.find("fn f(x, y, z) { f30(x) }"), 24, "fn f(x, y, z) { f30(2) + x }");
+  EXPECT_NE(compile_error(constants).find("error: implicit function too large: compiling it takes more than 250000 "
+                                          "steps"),
+            std::string::npos)
+      << compile_error(constants);
   std::string chain = "fn c0(x) { x }\n";
   for (int i = 1; i <= 100; ++i) {
     chain += "fn c" + std::to_string(i) + "(x) { c" + std::to_string(i - 1) + "(x) }\n";
