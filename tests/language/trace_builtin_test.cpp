@@ -140,6 +140,23 @@ TEST(TraceBuiltin, ABoxWithoutTheCurveGivesAnEmptyList) {
   EXPECT_EQ(r.out, "trace: 0 curves, 0 points, 0 singular points, 0 steps\n[]\n");
 }
 
+TEST(TraceBuiltin, DegeneratePairsGiveDocumentedResults) {
+  // g = f, g = 2f, g = 0: the tangent grad f x grad g vanishes everywhere, no curve. A sphere
+  // and its tangent plane touch in one point: no curve, one singular point passed 0 times.
+  const auto r = run_script(R"(
+fn f(x, y, z) { x * x + y * y + z * z - 1 }
+fn twice(x, y, z) { 2 * f(x, y, z) }
+fn zero(x, y, z) { 0 }
+fn top(x, y, z) { z - 1 }
+b = [[-2, -2, -2], [2, 2, 2]]
+print(len(trace(f, f, box=b, quiet=true)), len(trace(f, twice, box=b, quiet=true)), len(trace(f, zero, box=b, quiet=true)))
+i = trace_info(f, top, box=b)
+print(len(i[0]), len(i[1]), i[1][0][1], norm(i[1][0][0] - [0, 0, 1]) < 1e-3)
+)");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.out, "0 0 0\n0 1 0 true\n");
+}
+
 TEST(TraceBuiltin, StepBudgetRunsOutWithAWarning) {
   const auto r = run_script(std::string(kFig7) + R"(
 cs = trace(ellipsoid, cyl, box=[[-2.5, -2.5, -5], [2.5, 2.5, 5]], tol=1e-4, steps=50)
