@@ -83,6 +83,12 @@ void Arguments::charge(std::uint64_t n) const {
   if (*settings_.steps > settings_.max_steps) fail("step limit of " + std::to_string(settings_.max_steps) + " exceeded");
 }
 
+const Value* Arguments::global(const std::string& name) const {
+  if (settings_.globals == nullptr) return nullptr;
+  auto it = settings_.globals->find(name);
+  return it == settings_.globals->end() ? nullptr : &it->second;
+}
+
 std::string Arguments::file_path(std::size_t i) const {
   const std::string& path = string(i);
   if (!settings_.allow_files) fail(i, "file access is disabled in this session");
@@ -123,6 +129,8 @@ const BuiltinTable& builtins() {
     register_revolution(t);
     t.set_area("reports");
     register_reports(t);
+    t.set_area("implicit");
+    register_implicit(t);
 #endif
     return t;
   }();

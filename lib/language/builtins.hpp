@@ -36,6 +36,9 @@ struct RunSettings {
   bool allow_files = true;       ///< false: built-ins that touch files raise an error (fuzzing)
   std::uint64_t* steps = nullptr;  ///< the run's step counter (see InterpreterOptions::max_steps)
   std::uint64_t max_steps = 0;     ///< 0 = no limit
+  /// The global variables of the run, for built-ins that compile user functions (trace), which
+  /// see the globals as the function would at a call.
+  const std::map<std::string, Value>* globals = nullptr;
 };
 
 /// The arguments of one call, bound to the built-in's parameters, with their script positions
@@ -75,6 +78,9 @@ class Arguments {
   void charge(std::uint64_t n) const;
   /// Refuses when files are disabled; else `path` resolved against the calling script's folder.
   [[nodiscard]] std::string file_path(std::size_t i) const;
+
+  /// The global variable `name` of the run, or null.
+  [[nodiscard]] const Value* global(const std::string& name) const;
 
   [[nodiscard]] std::ostream& out() const { return *settings_.out; }
   [[nodiscard]] const SourceRef& call() const { return call_; }
@@ -125,6 +131,7 @@ void register_solids(BuiltinTable& table);
 void register_splines(BuiltinTable& table);
 void register_revolution(BuiltinTable& table);
 void register_reports(BuiltinTable& table);
+void register_implicit(BuiltinTable& table);
 
 /// Names of the language's keywords (for completion and the docs check).
 std::span<const char* const> keywords();

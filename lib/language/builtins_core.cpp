@@ -135,6 +135,9 @@ void register_core(BuiltinTable& table) {
              .run = [](const Arguments& args) { return math1(args, [](double x) { return std::cos(x); }); }});
   table.add({.name = "tan", .signature = "tan(x)", .doc = "Tangent of x radians.", .params = {{"x"}},
              .run = [](const Arguments& args) { return math1(args, [](double x) { return std::tan(x); }); }});
+  table.add({.name = "exp", .signature = "exp(x)", .doc = "e to the power x (a finite result or an error).",
+             .params = {{"x"}},
+             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::exp(x); }); }});
   table.add({.name = "atan2", .signature = "atan2(y, x)", .doc = "Angle of the point (x, y) in radians, in [-pi, pi].",
              .params = {{"y"}, {"x"}},
              .run = [](const Arguments& args) -> Value { return std::atan2(args.number(0), args.number(1)); }});

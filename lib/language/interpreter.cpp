@@ -478,6 +478,7 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
   impl_->settings.allow_files = options.allow_files;
   impl_->settings.steps = &impl_->steps;
   impl_->settings.max_steps = options.max_steps;
+  impl_->settings.globals = &impl_->globals;
   // Keep the budget well inside the real stack limit.
   rlimit limit{};
   if (getrlimit(RLIMIT_STACK, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {

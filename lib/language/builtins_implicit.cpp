@@ -1,0 +1,198 @@
+// Built-ins of the implicit area: tracing the space curve f = g = 0 of two script functions
+// (Ihm & Naylor 1990, sec. 5.1; lib/implicit). The functions are compiled once into expressions
+// (implicit_compiler.hpp), so the tracer never runs the interpreter per point. See docs/implicit.md.
+#include <cmath>
+#include <memory>
+#include <ostream>
+#include <sstream>
+#include <string>
+
+#include "curves/digitized_curve.hpp"
+#include "implicit/trace.hpp"
+#include "language/builtins.hpp"
+#include "language/curve_values.hpp"
+#include "language/implicit_compiler.hpp"
+
+namespace sculpt::language {
+namespace {
+
+/// Tolerances below this times the box diagonal are refused (the tracer's own floor: its
+/// Newton residuals are held to 1e-12 of the diagonal, and the point count grows as tol^-1/2).
+constexpr double kMinRelativeTolerance = 1e-9;
+/// Largest step budget a script may give (about 150 s of tracing).
+constexpr long long kMaxSteps = 10'000'000;
+constexpr long kDefaultSteps = 200'000;
+
+// Parameter indices shared by trace and trace_info.
+enum : std::size_t { kF, kG, kBox, kTol, kSteps, kQuiet };
+
+std::string point_text(const Eigen::Vector3d& p) {
+  return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) + ")";
+}
+
+const UserFunction& function_arg(const Arguments& args, std::size_t i) {
+  if (const auto* f = args.value(i).get<std::shared_ptr<const UserFunction>>()) return **f;
+  args.fail_type(i, "a function fn f(x, y, z) or fn f(p)");
+}
+
+/// The script function of argument i compiled into an expression; a construct outside the
+/// compiled subset is an error at the construct, with a note at this call.
+implicit::Expression compiled_arg(const Arguments& args, std::size_t i) {
+  const UserFunction& f = function_arg(args, i);
+  ImplicitCompileOptions options;
+  options.global = [&args](const std::string& name) { return args.global(name); };
+  try {
+    return compile_implicit(f, options);
+  } catch (ScriptError& e) {
+    e.add_note({args.call(), "in compiling '" + f.name + "' for this call"});
+    throw;
+  }
+}
+
+implicit::Box box_arg(const Arguments& args, std::size_t i) {
+  const List& corners = args.list(i);
+  implicit::Box box;
+  if (corners.size() != 2) args.fail(i, "box must be [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
+  for (int c = 0; c < 2; ++c) {
+    const List* xyz = corners[c].list();
+    if (!xyz || xyz->size() != 3) args.fail(i, "box must be [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
+    for (int a = 0; a < 3; ++a) {
+      const double* v = (*xyz)[a].get<double>();
+      if (!v || !std::isfinite(*v)) args.fail(i, "box corners must be finite numbers");
+      (c == 0 ? box.lo : box.hi)[a] = *v;
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (!(box.lo[a] < box.hi[a])) {
+      args.fail(i, std::string("the box is empty: its first corner must be below its second in x, y and z (") +
+                       "xyz"[a] + ": " + format_number(box.lo[a]) + " >= " + format_number(box.hi[a]) + ")");
+    }
+  }
+  return box;
+}
+
+implicit::TraceOptions options_arg(const Arguments& args) {
+  implicit::TraceOptions options;
+  if (!args.has(kBox)) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region to trace in");
+  options.box = box_arg(args, kBox);
+  const double diagonal = (options.box.hi - options.box.lo).norm();
+  if (args.has(kTol)) {
+    const double tol = args.number(kTol);
+    if (!(tol > 0) || !std::isfinite(tol)) args.fail(kTol, "tol must be a finite number > 0");
+    if (tol < kMinRelativeTolerance * diagonal) {
+      args.fail(kTol, "tol=" + format_number(tol) + " is below the floor of 1e-9 times the box diagonal (" +
+                          format_number(kMinRelativeTolerance * diagonal) + " here)");
+    }
+    if (tol > diagonal) args.fail(kTol, "tol=" + format_number(tol) + " is larger than the box diagonal");
+    options.tolerance = tol;
+  }
+  options.max_steps = args.has(kSteps) ? static_cast<long>(args.integer(kSteps, 1, kMaxSteps)) : kDefaultSteps;
+  return options;
+}
+
+/// Traces f = g = 0; a point where f or g is not finite is an error at that function's argument.
+implicit::TraceResult run_trace(const Arguments& args) {
+  const implicit::Expression f = compiled_arg(args, kF);
+  const implicit::Expression g = compiled_arg(args, kG);
+  const implicit::TraceOptions options = options_arg(args);
+  implicit::TraceResult result;
+  try {
+    result = implicit::trace(f, g, options);
+  } catch (const implicit::NonFiniteValue& e) {
+    // Which of the two: evaluate both where the tracer stopped.
+    std::size_t culprit = kG;
+    try {
+      (void)f.value_gradient(e.point());
+    } catch (const implicit::NonFiniteValue&) {
+      culprit = kF;
+    }
+    const std::string name = function_arg(args, culprit).name;
+    args.fail(culprit, "'" + name + "' (or its gradient) is not finite at " + point_text(e.point()) +
+                           " (a division by zero, the square root of a negative number or an overflow); trace in a "
+                           "box where it is defined");
+  }
+  args.charge(static_cast<std::uint64_t>(result.steps));
+  return result;
+}
+
+Value curves_value(const implicit::TraceResult& r) {
+  List out;
+  for (const implicit::TracedCurve& c : r.curves) {
+    curves::DigitizedCurve curve;
+    curve.points = c.points;
+    curve.dimension = 3;
+    curve.closed = c.closed;
+    curve.name = "trace";
+    out.emplace_back(std::shared_ptr<const Object>(std::make_shared<CurveValue>(std::move(curve))));
+  }
+  return out;
+}
+
+/// "trace: 2 curves (2 closed), 306 points, 0 singular points, 404 steps", and a warning when
+/// the budget ran out or a singular point could not be passed.
+void print_summary(const Arguments& args, const implicit::TraceResult& r, long max_steps) {
+  std::size_t closed = 0, points = 0, unresolved = 0;
+  for (const auto& c : r.curves) {
+    closed += c.closed ? 1 : 0;
+    points += c.points.size();
+  }
+  for (const auto& s : r.singular_points) unresolved += s.resolved ? 0 : 1;
+  std::ostringstream s;
+  s << "trace: " << r.curves.size() << (r.curves.size() == 1 ? " curve" : " curves");
+  if (!r.curves.empty()) s << " (" << closed << " closed)";
+  s << ", " << points << " points, " << r.singular_points.size()
+    << (r.singular_points.size() == 1 ? " singular point" : " singular points");
+  if (unresolved > 0) s << " (" << unresolved << " not passed)";
+  s << ", " << r.steps << " steps\n";
+  if (r.budget_exhausted) {
+    s << "trace: warning: the step budget of " << max_steps
+      << " ran out; the curves may be incomplete (give steps=n for more)\n";
+  }
+  args.out() << s.str();
+}
+
+}  // namespace
+
+void register_implicit(BuiltinTable& table) {
+  const std::vector<Param> params = {{"f"}, {"g"}, {"box", false}, {"tol", false}, {"steps", false}};
+  std::vector<Param> trace_params = params;
+  trace_params.push_back({"quiet", false});
+  table.add({.name = "trace",
+             .signature = "trace(f, g, box=[lo, hi], tol=1e-3, steps=200000, quiet=false)",
+             .doc = "Every component of the space curve f = g = 0 inside the box, as a list of digitized curves "
+                    "(closed loops marked closed; open pieces end on the box), for linearize, points, fit. f and g "
+                    "are functions fn f(x, y, z) or fn f(p), compiled once (docs/language.md, \"Implicit "
+                    "functions\"). Start points are found without seeds; each chord lies within tol of the "
+                    "curve; singular points (crossings) are passed through and reported by trace_info. Prints "
+                    "a summary (curves, points, singular points, steps) unless quiet=true, and a warning when "
+                    "the step budget runs out.",
+             .params = trace_params,
+             .run = [](const Arguments& args) -> Value {
+               const implicit::TraceResult r = run_trace(args);
+               if (!(args.has(kQuiet) && args.boolean(kQuiet))) {
+                 print_summary(args, r, args.has(kSteps) ? static_cast<long>(args.integer(kSteps, 1, kMaxSteps))
+                                                         : kDefaultSteps);
+               }
+               return curves_value(r);
+             }});
+  table.add({.name = "trace_info",
+             .signature = "trace_info(f, g, box=[lo, hi], tol=1e-3, steps=200000)",
+             .doc = "trace() with everything it found, printing nothing: [curves, singular, steps, "
+                    "exhausted], where singular lists [[x, y, z], passes, resolved] per singular point "
+                    "(passes: how many traced branches go through it, 0 for an isolated point; resolved: "
+                    "false when a branch stopped there), steps the marching steps used and exhausted "
+                    "whether the step budget ran out.",
+             .params = params,
+             .run = [](const Arguments& args) -> Value {
+               const implicit::TraceResult r = run_trace(args);
+               List singular;
+               for (const implicit::SingularPoint& s : r.singular_points) {
+                 singular.emplace_back(List{List{s.point.x(), s.point.y(), s.point.z()},
+                                            static_cast<double>(s.passes), s.resolved});
+               }
+               return List{curves_value(r), Value(std::move(singular)), static_cast<double>(r.steps),
+                           r.budget_exhausted};
+             }});
+}
+
+}  // namespace sculpt::language
