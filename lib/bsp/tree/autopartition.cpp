@@ -42,26 +42,6 @@ struct PendingSide {
   ConvexPolygon polygon;
 };
 
-// Side of a piece with respect to a plane, for scoring only (a heuristic: the split itself is
-// exact): the box first, else exactly, or (`approximate`) from the signs of the plane at the
-// corners' approximations.
-Side side_of(const kernel::PlaneTable& planes, const Piece& p, const CornerBox& box, std::int32_t plane,
-             bool approximate) {
-  const kernel::Plane& e = planes[plane];
-  const Side quick = kernel::box_side(box, e);
-  if (quick != Side::Both) return quick;
-  if (!approximate) return kernel::classify(planes, p.polygon, plane);
-  const double a = double(e.a), b = double(e.b), c = double(e.c), d = e.d_nearest;
-  const double tolerance = 1e-9 * (std::fabs(a) + std::fabs(b) + std::fabs(c)) * (1.0 + std::fabs(box.lo[0]) + std::fabs(box.hi[0]));
-  bool neg = false, pos = false;
-  for (const kernel::Corner& k : p.polygon.corners) {
-    const double v = a * k.at.x + b * k.at.y + c * k.at.z + d;
-    neg |= v < -tolerance;
-    pos |= v > tolerance;
-  }
-  return neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
-}
-
 // Side of a piece with respect to a plane given by value, for scoring only: the box, else the
 // signs of the plane at the corners' approximations (with a small relative tolerance).
 Side approximate_side(const Piece& p, const CornerBox& box, const kernel::Plane& e) {
@@ -76,6 +56,16 @@ Side approximate_side(const Piece& p, const CornerBox& box, const kernel::Plane&
     pos |= v > tolerance;
   }
   return neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
+}
+
+// Side of a piece with respect to a plane, for scoring only (a heuristic: the split itself is
+// exact): the box first, else exactly, or (`approximate`) as approximate_side.
+Side side_of(const kernel::PlaneTable& planes, const Piece& p, const CornerBox& box, std::int32_t plane,
+             bool approximate) {
+  if (approximate) return approximate_side(p, box, planes[plane]);
+  const Side quick = kernel::box_side(box, planes[plane]);
+  if (quick != Side::Both) return quick;
+  return kernel::classify(planes, p.polygon, plane);
 }
 
 // Deterministic sampling (splitmix64): the same input gives the same tree.
