@@ -212,7 +212,7 @@ long double distance(const P& p, const Triangle& t) {
   if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
     return len(axpy((d4 - d3) / ((d4 - d3) + (d5 - d6)), sub(t.c, t.b), t.b));
   const long double denom = 1 / (va + vb + vc);
-  const P q = axpy(vc * denom, ab, axpy(vb * denom, ac, t.a));
+  const P q = axpy(vb * denom, ab, axpy(vc * denom, ac, t.a));  // a + v ab + w ac
   return len(q);
 }
 
