@@ -11,6 +11,7 @@
 #include "language/builtins.hpp"
 #include "language/solid_values.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/mesh_measures.hpp"
 #include "kernel/grid.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "mesh/self_intersection.hpp"
@@ -196,6 +197,14 @@ void register_solids(BuiltinTable& table) {
                const PolygonMesh mesh = read_mesh(path);
                const ValidationReport report = check_closed_manifold(mesh);
                if (!report.ok()) args.fail(path + " is not a closed manifold: " + report.summary(3));
+               // Consistently oriented is not enough: faces all turned inwards bound the complement,
+               // and from_mesh (which expects outward faces) made a "solid" of negative volume from it.
+               if (const double v = mesh_volume(mesh); !(v > 0)) {
+                 std::ostringstream message;
+                 message << path << ": the faces are oriented inwards (the mesh's signed volume is " << v
+                         << "): reverse the order of each face's vertices";
+                 args.fail(message.str());
+               }
                if (const std::string e = snapped_self_intersection(mesh); !e.empty()) args.fail(path + ": " + e);
                return solid_value(from_mesh(mesh));
              }});

@@ -241,6 +241,30 @@ TEST(Builtins, ImportRefusesAMeshThatSelfIntersectsOnceSnapped) {
   EXPECT_NE(e.find("meet when the vertices are snapped to the exact kernel's grid"), std::string::npos) << e;
 }
 
+// fuzz_geometry (tests/fuzz/regressions/import_inward_tetrahedron): a closed, consistently
+// oriented mesh whose faces all point inwards passed import's checks, and from_mesh built a
+// "solid" of volume -1/1024 from it. import must refuse it and say what to do.
+TEST(Builtins, ImportRefusesAMeshOrientedInwards) {
+  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  std::filesystem::create_directories(dir);
+  auto write_tetrahedron = [&](const std::string& name, bool inwards) {
+    const std::string path = (dir / name).string();
+    std::ofstream f(path);
+    f << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+    const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (const auto& t : faces)
+      f << "3 " << t[0] << ' ' << (inwards ? t[2] : t[1]) << ' ' << (inwards ? t[1] : t[2]) << '\n';
+    return path;
+  };
+  const auto ok = run_script("print(volume(import(\"" + write_tetrahedron("tetra_out.off", false) + "\")))");
+  if (ok.error.find("not available in this build") != std::string::npos) GTEST_SKIP();
+  EXPECT_EQ(ok.error, "");
+  EXPECT_NEAR(std::stod(ok.out), 1.0 / 6, 1e-15);
+  const std::string e = first_error_line("s = import(\"" + write_tetrahedron("tetra_in.off", true) + "\")");
+  EXPECT_NE(e.find("t.bsp:1:5: error: import: "), std::string::npos) << e;
+  EXPECT_NE(e.find("the faces are oriented inwards (the mesh's signed volume is -0.1666"), std::string::npos) << e;
+}
+
 // ---- splines (builtins_splines.cpp) ----
 
 /// Every number in `text`, in order (lists included).
