@@ -5,6 +5,9 @@
 // whose operands are constants are folded with the interpreter's own arithmetic.
 #include "language/implicit_compiler.hpp"
 
+#include <sys/resource.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -585,7 +588,13 @@ class Compiler {
 
 implicit::Expression compile_implicit(const UserFunction& f, const ImplicitCompileOptions& options) {
   if (f.body == nullptr) throw ScriptError(f.where, "'" + f.name + "' has no body");
-  return Compiler(options).run(f);
+  ImplicitCompileOptions bounded = options;
+  // The interpreter that calls us may itself use its budget: keep well inside the real limit.
+  rlimit limit{};
+  if (getrlimit(RLIMIT_STACK, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    bounded.stack_budget = std::min<std::size_t>(bounded.stack_budget, limit.rlim_cur / 4);
+  }
+  return Compiler(bounded).run(f);
 }
 
 }  // namespace sculpt::language

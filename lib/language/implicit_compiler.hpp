@@ -39,8 +39,10 @@ struct ImplicitCompileOptions {
   /// Calls of user functions may nest this deep (each is inlined).
   int max_call_depth = 64;
   /// Bytes of C++ stack the compiler may use (it recurses over the syntax tree, whose depth the
-  /// parser bounds, and into inlined calls, bounded by max_call_depth).
-  std::size_t stack_budget = 1u << 20;
+  /// parser bounds, and into inlined calls, bounded by max_call_depth: about 20 KiB per call
+  /// under AddressSanitizer, so max_call_depth is reached first). At most a quarter of the
+  /// process's stack limit is used.
+  std::size_t stack_budget = 2u << 20;
 };
 
 /// The function `f` as an expression of x, y, z. `f` takes three numbers (x, y, z) or one point.
