@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "kernel/wide_int.hpp"
@@ -190,6 +191,46 @@ TEST(Orient, NearlyDegenerateCasesAreDecidedExactly) {
   const Plane through{1, 0, 0, 0};
   EXPECT_EQ(int(orient(p, q, z, far, through)), reference_orient(p, q, z, through));
   (void)h;
+}
+
+// IEEE division of two doubles is correctly rounded: the independent reference for quotients of
+// integers that doubles hold exactly, scaled by powers of two (also past 2^64, past the double's
+// range of exact integers, and with remainders far below the last bit).
+TEST(RoundedQuotient, MatchesIeeeDivisionOfExactDoubles) {
+  std::mt19937_64 rng(23);
+  for (int i = 0; i < 20000; ++i) {
+    const std::int64_t n = std::int64_t(rng() >> 11) * (rng() % 2 ? 1 : -1);  // < 2^53: exact
+    std::int64_t d = std::int64_t(rng() >> (11 + rng() % 50));
+    if (d == 0) d = 1;
+    if (rng() % 2) d = -d;
+    const int sn = int(rng() % 120), sd = int(rng() % 120);
+    const Int256 bn = Int256(n) << sn, bd = Int256(d) << sd;
+    const double expected = std::ldexp(double(n), sn) / std::ldexp(double(d), sd);
+    ASSERT_EQ(rounded_quotient(bn, bd), expected) << n << " * 2^" << sn << " / " << d << " * 2^" << sd;
+  }
+  EXPECT_EQ(rounded_quotient(Int256(0), Int256(-7)), 0.0);
+  // Ties go to even: (2^53 + 1) / 1 and (2^53 + 3) / 1 are halfway between two doubles.
+  EXPECT_EQ(rounded_quotient(Int256((std::int64_t(1) << 53) + 1), Int256(1)), 0x1p53);
+  EXPECT_EQ(rounded_quotient(Int256((std::int64_t(1) << 53) + 3), Int256(1)), 0x1p53 + 4);
+  // Just above a tie (a remainder far below the last bit) rounds up.
+  const Int256 above = (Int256((std::int64_t(1) << 53) + 1) << 100) + 1;
+  EXPECT_EQ(rounded_quotient(above, Int256(1) << 100), 0x1p53 + 2);
+}
+
+// A grid point defined by ill-conditioned planes (two nearly coplanar planes through it) is written
+// as exactly that grid point, although the filter's approximation is off by far more than an ulp.
+TEST(RoundedVertex, GridPointOfIllConditionedPlanesIsExact) {
+  const GridPoint v{12345, -6789, 321};
+  const GridPoint a{v.x + 1000000, v.y + 3, v.z + 1}, b{v.x + 2, v.y + 1000000, v.z - 1};
+  const GridPoint c{v.x + 1000000, v.y + 3, v.z + 2};  // the second plane tilts by 1 step in 10^6
+  const Plane p = plane_through(v, a, b), q = plane_through(v, c, b);
+  const Plane r = plane_through(v, GridPoint{v.x, v.y, v.z + 5}, GridPoint{v.x + 7, v.y - 3, v.z + 5});
+  ASSERT_TRUE(independent(p, q, r));
+  const ApproxPoint at = approximate_vertex(p, q, r);
+  // The filter cannot vouch for the last bits here: rounded_vertex takes its exact path.
+  EXPECT_GT(at.err, 0x1p-50 * 12345.0);
+  const Eigen::Vector3d w = rounded_vertex(p, q, r, at);
+  EXPECT_EQ(w, Eigen::Vector3d(double(v.x), double(v.y), double(v.z)));
 }
 
 }  // namespace
