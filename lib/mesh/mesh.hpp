@@ -10,4 +10,5 @@
 #include "mesh/polygon_mesh.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/self_intersection.hpp"
+#include "mesh/shell_orientation.hpp"
 #include "mesh/triangulate.hpp"

@@ -12,6 +12,7 @@
 #include "mesh/edge_incidence.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/self_intersection.hpp"
+#include "mesh/shell_orientation.hpp"
 
 namespace sculpt {
 namespace {
@@ -64,6 +65,7 @@ class Validator {
     check_face_shapes();
     check_edges_and_vertices();
     if (opt_.check_self_intersections) check_self_intersections();
+    if (opt_.check_shell_orientation && report_.ok()) check_shell_orientation();
     return std::move(report_);
   }
 
@@ -220,6 +222,23 @@ class Validator {
               " (first corner " + point(m_, m_.faces[p.face_b][0]) + ") intersect");
   }
 
+  void check_shell_orientation() {
+    const auto shells = shell_orientations(m_);
+    for (size_t s = 0; s < shells.size(); ++s) {
+      const ShellOrientation& shell = shells[s];
+      if (shell.consistent()) continue;
+      const int depth = shell.enclosing_shells;
+      std::string where = "shell " + std::to_string(s) + " (" + std::to_string(shell.faces.size()) +
+                          " faces, first corner " + point(m_, m_.faces[shell.faces.front()][0]) + ")";
+      std::string why = depth % 2 == 0
+                            ? "faces inwards (signed volume " + number(shell.signed_volume) + ") but lies inside " +
+                                  std::to_string(depth) + " other shells, so it bounds material"
+                            : "faces outwards (signed volume " + number(shell.signed_volume) + ") but lies inside " +
+                                  std::to_string(depth) + " other shell(s), so it bounds a cavity";
+      add(DefectKind::MisorientedShell, shell.faces, {}, where + " " + why + ": reverse the order of its faces' vertices");
+    }
+  }
+
   const PolygonMesh& m_;
   ValidationOptions opt_;
   ValidationReport report_;
@@ -240,6 +259,7 @@ const char* defect_name(DefectKind kind) {
     case DefectKind::InconsistentOrientation: return "inconsistent orientation";
     case DefectKind::NonManifoldVertex: return "non-manifold vertex";
     case DefectKind::SelfIntersection: return "self-intersection";
+    case DefectKind::MisorientedShell: return "misoriented shell";
   }
   return "unknown defect";
 }

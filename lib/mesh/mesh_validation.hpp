@@ -23,6 +23,7 @@ enum class DefectKind {
   InconsistentOrientation,  ///< two faces run along their shared edge in the same direction
   NonManifoldVertex,        ///< faces around a vertex form more than one fan
   SelfIntersection,         ///< two faces meet away from their shared vertices and edge
+  MisorientedShell,         ///< a shell faces inwards outside any other, or outwards in a cavity
 };
 
 /// Short lower-case name of a defect kind ("open edge", ...).
@@ -45,6 +46,9 @@ struct ValidationReport {
 
 struct ValidationOptions {
   bool check_self_intersections = true;
+  /// Each shell must face the way its nesting asks (shell_orientation.hpp); checked only when
+  /// the mesh passed every other check, since nesting needs a closed, unintersecting surface.
+  bool check_shell_orientation = true;
   size_t max_defects_per_kind = 100;  ///< keep at most this many defects of each kind
   /// A face is non-planar when a corner lies farther than planarity_tolerance * (the face's
   /// radius around its centroid) from the plane through the centroid normal to the Newell normal.

@@ -299,7 +299,7 @@ void check_error(const Program& prog, const std::string& error) {
   }
   if (kind.empty() && error.find("meet when the vertices are snapped") != std::string::npos) kind = "import: snapped mesh self-intersects";
   if (kind.empty() && error.find("is not a closed manifold") != std::string::npos) kind = "import: not a closed manifold";
-  if (kind.empty() && error.find("the faces are oriented inwards") != std::string::npos) kind = "import: faces oriented inwards";
+  if (kind.empty() && error.find("oriented the wrong way") != std::string::npos) kind = "import: a shell oriented the wrong way";
   if (kind.empty()) finding(prog.script, "untyped error: " + error);
   kind = kind.substr(0, kind.find('\n'));
   ++known.error_kinds[kind];
