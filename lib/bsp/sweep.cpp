@@ -1,0 +1,69 @@
+#include "bsp/sweep.hpp"
+
+#include <vector>
+
+#include "base/errors.hpp"
+#include "bsp/boundary.hpp"
+#include "bsp/cells.hpp"
+#include "bsp/hull.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
+#include "kernel/grid.hpp"
+
+namespace sculpt {
+namespace {
+
+/// The convex pieces of the tool as vertex lists: the tool itself when it is convex, else its
+/// tree's in-cells. A tool counts as convex when its hull adds no more than the rounding of its
+/// vertices to the grid can (curved primitives' vertices are plane intersections, not grid
+/// points): at most its area times sqrt(3)/2 grid steps.
+std::vector<std::vector<Eigen::Vector3d>> convex_pieces(const Solid& tool) {
+  const std::vector<Eigen::Vector3d> vertices = to_mesh(tool).vertices;
+  if (vertices.empty()) return {};
+  const Solid h = hull(vertices);
+  // The tool lies in its hull up to that rounding, so the volumes alone tell (no set operation).
+  if (volume(h) - volume(tool) <= surface_area(tool) * kernel::kGridStep) return {vertices};
+  Eigen::AlignedBox3d box = bounding_box(tool);
+  box.extend(box.min() - Eigen::Vector3d::Constant(1.0));
+  box.extend(box.max() + Eigen::Vector3d::Constant(1.0));
+  std::vector<std::vector<Eigen::Vector3d>> pieces;
+  for (LeafCell& cell : leaf_cells(tool, box))
+    if (cell.inside) pieces.push_back(std::move(cell.vertices));
+  return pieces;
+}
+
+}  // namespace
+
+Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
+  if (path.empty()) throw InvalidInput("sweep: the path has no points");
+  std::vector<Eigen::Vector3d> at;  // the path on the grid, repeated points dropped
+  for (const Eigen::Vector3d& p : path) {
+    const Eigen::Vector3d g = kernel::to_world(kernel::snap(p));
+    if (at.empty() || g != at.back()) at.push_back(g);
+  }
+  if (at.size() == 1) return translate(tool, at[0]);
+  const auto pieces = convex_pieces(tool);
+  std::vector<Solid> parts;
+  parts.reserve(pieces.size() * (at.size() - 1));
+  std::vector<Eigen::Vector3d> ends;
+  for (const auto& piece : pieces)
+    for (std::size_t i = 0; i + 1 < at.size(); ++i) {
+      ends.clear();
+      for (const Eigen::Vector3d& v : piece) {
+        ends.push_back(v + at[i]);
+        ends.push_back(v + at[i + 1]);
+      }
+      parts.push_back(hull(ends));
+    }
+  return unite_all(std::move(parts));
+}
+
+Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
+  return work - sweep(tool, path);
+}
+
+Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
+  return work | sweep(tool, path);
+}
+
+}  // namespace sculpt

@@ -1,0 +1,93 @@
+// Interactive sculpting (issue target: a stroke of a ball tool, 16 segments, along a 20-segment path
+// carved into the goblet in at most 50 ms, and still at most 50 ms per stroke after 100 strokes):
+// 100 carving strokes, each along a different 20-segment arc around the goblet's bowl, with the
+// time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
+//   bench_sculpt [--strokes N]
+// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
+//          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "bsp/boundary.hpp"
+#include "bsp/convex_path.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/sweep.hpp"
+#include "curves/digitized_curve.hpp"
+#include "curves/profiles.hpp"
+#include "revolution/revolve.hpp"
+
+using namespace sculpt;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+const std::string kModels = SCULPT_MODELS_DIR;
+
+Solid revolved(const std::string& file) {
+  const auto profile = curves::planar_points(curves::load_curve(kModels + "/" + file).points);
+  return revolution::revolve(profile, circular_path(32));
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int strokes = 100;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--strokes" && i + 1 < argc) strokes = std::stoi(argv[++i]);
+    else {
+      std::fprintf(stderr, "usage: bench_sculpt [--strokes N]\n");
+      return 2;
+    }
+  }
+  // The goblet of scripts/goblet.bsp: the outer profile (20 segments) minus the cavity (12).
+  Solid work = revolved("goblet_profile_20.txt") - revolved("goblet_cavity_profile_12.txt");
+  const Eigen::AlignedBox3d box = bounding_box(work);
+  const Solid ball = sphere(0.15, {.segments = 16});
+  std::vector<double> cpu;
+  for (int k = 0; k < strokes; ++k) {
+    // An arc of 20 segments at a height and radius that cut into the bowl's wall.
+    const double z = box.min().z() + (0.55 + 0.4 * std::fmod(k * 0.618, 1.0)) * box.sizes().z();
+    const double r = 0.5 * box.sizes().x() * (0.85 + 0.1 * std::fmod(k * 0.377, 1.0));
+    const double start = k * 0.9;
+    std::vector<Eigen::Vector3d> path;
+    for (int i = 0; i <= 20; ++i) {
+      const double t = start + 1.2 * i / 20;
+      path.emplace_back(r * std::cos(t), r * std::sin(t), z + 0.05 * std::sin(3 * t));
+    }
+    const auto wall0 = Clock::now();
+    const double cpu0 = cpu_ms();
+    work = carve(work, ball, path);
+    const double c = cpu_ms() - cpu0;
+    const double w = std::chrono::duration<double, std::milli>(Clock::now() - wall0).count();
+    cpu.push_back(c);
+    if (k % 10 == 0 || k + 1 == strokes) {
+      const TreeStats t = tree_stats(work);
+      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d volume=%.6f\n", k + 1, c, w,
+                  t.nodes, t.height, volume(work));
+      std::fflush(stdout);
+    }
+  }
+  const std::vector<double> first(cpu.begin(), cpu.begin() + std::min<std::size_t>(10, cpu.size()));
+  const std::vector<double> last(cpu.end() - std::min<std::size_t>(10, cpu.size()), cpu.end());
+  std::printf("bench impl=sculpt case=strokes strokes=%d median_cpu_ms=%.2f max_cpu_ms=%.2f first10_cpu_ms=%.2f last10_cpu_ms=%.2f\n",
+              strokes, median(cpu), *std::max_element(cpu.begin(), cpu.end()), median(first), median(last));
+}
