@@ -1,6 +1,8 @@
 // Built-ins of the solids area: primitives, transforms, classification, measures, mesh export
 // and import (lib/bsp, lib/mesh; Ihm & Naylor 1990 sec. 6, Naylor et al. 1990).
+#include <cmath>
 #include <filesystem>
+#include <span>
 #include <sstream>
 
 #include "bsp/boundary.hpp"
@@ -9,6 +11,7 @@
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
 #include "language/builtins.hpp"
+#include "language/curve_values.hpp"
 #include "language/solid_values.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
@@ -16,6 +19,11 @@
 #include "mesh/mesh_validation.hpp"
 #include "mesh/self_intersection.hpp"
 #include "bsp/from_mesh.hpp"
+#include "bsp/extrude.hpp"
+#include "bsp/hull.hpp"
+#include "bsp/sweep.hpp"
+#include "curves/linearization.hpp"
+#include "curves/linearize.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -26,6 +34,34 @@ Eigen::Vector3d vector3(const Arguments& args, std::size_t i) {
 }
 
 const Solid& solid_arg(const Arguments& args, std::size_t i) { return args.object<SolidValue>(i, "a solid").solid; }
+
+/// A stroke's path (argument i): a linearization's vertices, or a curve or list of points, linearized
+/// with the fewest segments within tol=e (argument `tol`) when it is given, else taken as it is.
+std::vector<Eigen::Vector3d> path_arg(const Arguments& args, std::size_t i, std::size_t tol) {
+  if (const auto* la = args.value(i).object<LinearizationValue>())
+    return curves::linearization_points(la->curve->curve, la->result);
+  curves::DigitizedCurve c;
+  if (const auto* cv = args.value(i).object<CurveValue>()) c = cv->curve;
+  else if (args.value(i).list()) c = curve_from_points(args, i);
+  else args.fail_type(i, "a curve, a linearization or a list of points");
+  if (c.points.empty()) args.fail(i, "the path has no points");
+  if (!args.has(tol) || c.points.size() < 3) return c.points;
+  return curves::linearization_points(c, curves::linearize(c, {.tolerance = args.number(tol)}));
+}
+
+/// sweep, carve and add: the tool moved along a path (bsp/sweep.hpp).
+void add_stroke(BuiltinTable& table, const char* name, const char* signature, const char* doc,
+                Solid (*stroke)(const Solid&, const Solid&, std::span<const Eigen::Vector3d>)) {
+  table.add({.name = name,
+             .signature = signature,
+             .doc = doc,
+             .params = {{"work"}, {"tool"}, {"path"}, {"tol", false}},
+             .run = [stroke](const Arguments& args) -> Value {
+               const auto path = path_arg(args, 2, 3);
+               args.charge(path.size());
+               return solid_value(stroke(solid_arg(args, 0), solid_arg(args, 1), path));
+             }});
+}
 
 // The exact kernel snaps vertices to its grid (docs/kernel.md). A valid mesh with features below
 // the grid step can become self-intersecting that way (faces 1e-6 apart now touch) without any
@@ -126,11 +162,114 @@ void register_solids(BuiltinTable& table) {
                }
                return solid_value(unite_all(std::move(solids)));
              }});
+  table.add({.name = "extrude",
+             .signature = "extrude(profile, height)",
+             .doc = "The prism over a closed polygon in the xy-plane (a curve or a list of [x, y] or "
+                    "[x, y, z] points with one z; convex or not, either orientation) from its plane up by "
+                    "`height` (down if negative).",
+             .params = {{"profile"}, {"height"}},
+             .run = [](const Arguments& args) -> Value {
+               curves::DigitizedCurve c;
+               if (const auto* cv = args.value(0).object<CurveValue>()) c = cv->curve;
+               else if (args.value(0).list()) c = curve_from_points(args, 0);
+               else args.fail_type(0, "a curve or a list of points");
+               std::vector<Eigen::Vector2d> polygon;
+               for (const Eigen::Vector3d& p : c.points) {
+                 if (p.z() != c.points.front().z())
+                   args.fail(0, "the profile is not in a plane z = constant (rotate the result instead)");
+                 polygon.emplace_back(p.x(), p.y());
+               }
+               args.charge(polygon.size());
+               const double z = c.points.empty() ? 0.0 : c.points.front().z(), h = args.number(1);
+               if (!(h != 0) || !std::isfinite(h)) args.fail(1, "the height must be a non-zero finite number");
+               return solid_value(extrude(polygon, std::min(z, z + h), std::max(z, z + h)));
+             }});
+  table.add({.name = "hull",
+             .signature = "hull(x)",
+             .doc = "The convex hull of x: a list of points [x, y, z], a curve, a solid, or a list of "
+                    "solids, as a convex solid with one plane per face (exact on the kernel grid).",
+             .params = {{"x"}},
+             .run = [](const Arguments& args) -> Value {
+               const Value& x = args.value(0);
+               if (const auto* s = x.object<SolidValue>()) return solid_value(hull(std::span(&s->solid, 1)));
+               if (const auto* c = x.object<CurveValue>()) return solid_value(hull(c->curve.points));
+               const List& items = args.list(0);
+               if (!items.empty() && items.front().object<SolidValue>()) {
+                 std::vector<Solid> solids;
+                 for (std::size_t i = 0; i < items.size(); ++i) {
+                   const SolidValue* s = items[i].object<SolidValue>();
+                   if (!s) args.fail(0, "item " + std::to_string(i + 1) + " is " + type_name(items[i]) + ", not a solid");
+                   solids.push_back(s->solid);
+                 }
+                 args.charge(solids.size());
+                 return solid_value(hull(solids));
+               }
+               return solid_value(hull(curve_from_points(args, 0).points));
+             }});
+  table.add({.name = "sweep",
+             .signature = "sweep(tool, path, tol=e)",
+             .doc = "The volume swept by solid `tool` moved along `path` (a curve, a linearization or a "
+                    "list of points; a curve or list is first linearized with the fewest segments within "
+                    "tol=e when tol is given): the union of the hulls of the tool's convex pieces at the ends "
+                    "of each segment.",
+             .params = {{"tool"}, {"path"}, {"tol", false}},
+             .run = [](const Arguments& args) -> Value {
+               const auto path = path_arg(args, 1, 2);
+               args.charge(path.size());
+               return solid_value(sweep(solid_arg(args, 0), path));
+             }});
+  add_stroke(table, "carve", "carve(work, tool, path, tol=e)",
+             "Solid `work` minus `tool` swept along `path` (see sweep): a carving stroke.",
+             [](const Solid& w, const Solid& t, std::span<const Eigen::Vector3d> p) { return carve(w, t, p); });
+  add_stroke(table, "add", "add(work, tool, path, tol=e)",
+             "Solid `work` united with `tool` swept along `path` (see sweep): an adding stroke.",
+             [](const Solid& w, const Solid& t, std::span<const Eigen::Vector3d> p) { return add(w, t, p); });
+  table.add({.name = "transform",
+             .signature = "transform(s, matrix)",
+             .doc = "Solid s mapped by the affine map given as 3 rows of 4 numbers [[a, b, c, tx], ...] "
+                    "(x' = a x + b y + c z + tx); integer linear parts are exact, others move vertices to "
+                    "the grid like rotate. A singular map is an error.",
+             .params = {{"s"}, {"matrix"}},
+             .run = [](const Arguments& args) -> Value {
+               const List& rows = args.list(1);
+               if (rows.size() != 3) args.fail(1, "the matrix must have 3 rows of 4 numbers");
+               Eigen::Affine3d m = Eigen::Affine3d::Identity();
+               for (int r = 0; r < 3; ++r) {
+                 const List* row = rows[std::size_t(r)].list();
+                 if (!row || row->size() != 4) args.fail(1, "row " + std::to_string(r + 1) + " must have 4 numbers");
+                 for (int c = 0; c < 4; ++c) {
+                   const double* x = (*row)[std::size_t(c)].get<double>();
+                   if (!x || !std::isfinite(*x)) args.fail(1, "row " + std::to_string(r + 1) + " must have 4 finite numbers");
+                   m.matrix()(r, c) = *x;
+                 }
+               }
+               return solid_value(transform(solid_arg(args, 0), m));
+             }});
   table.add({.name = "translate",
              .signature = "translate(s, v)",
              .doc = "Solid s moved by the vector v (exact: v is snapped to the kernel grid).",
              .params = {{"s"}, {"v"}},
              .run = [](const Arguments& args) { return solid_value(translate(solid_arg(args, 0), vector3(args, 1))); }});
+  table.add({.name = "mirror",
+             .signature = "mirror(s, normal)",
+             .doc = "Solid s reflected in the plane through the origin with the given normal. Mirrors in "
+                    "the coordinate planes are exact; others move vertices to the grid like rotate.",
+             .params = {{"s"}, {"normal"}},
+             .run = [](const Arguments& args) -> Value {
+               const Eigen::Vector3d n = vector3(args, 1);
+               if (!(n.squaredNorm() > 0) || !n.allFinite()) args.fail(1, "the normal must be a non-zero finite vector");
+               const int axis = n.x() != 0 ? (n.y() == 0 && n.z() == 0 ? 0 : -1)
+                                           : (n.y() != 0 ? (n.z() == 0 ? 1 : -1) : 2);
+               if (axis >= 0) {  // an integer map: exact
+                 Eigen::Vector3d f = Eigen::Vector3d::Ones();
+                 f[axis] = -1;
+                 return solid_value(scale(solid_arg(args, 0), f));
+               }
+               const Eigen::Vector3d u = n.normalized();
+               Eigen::Affine3d m = Eigen::Affine3d::Identity();
+               m.linear() -= 2 * u * u.transpose();
+               return solid_value(transform(solid_arg(args, 0), m));
+             }});
   table.add({.name = "rotate",
              .signature = "rotate(s, axis, degrees)",
              .doc = "Solid s rotated by `degrees` about `axis` through the origin (right-handed). "
@@ -196,15 +335,13 @@ void register_solids(BuiltinTable& table) {
                const std::string path = args.file_path(0);
                const PolygonMesh mesh = read_mesh(path);
                const ValidationReport report = check_closed_manifold(mesh);
-               if (!report.ok()) args.fail(path + " is not a closed manifold: " + report.summary(3));
-               // Consistently oriented is not enough: faces all turned inwards bound the complement,
-               // and from_mesh (which expects outward faces) made a "solid" of negative volume from it.
-               if (const double v = mesh_volume(mesh); !(v > 0)) {
-                 std::ostringstream message;
-                 message << path << ": the faces are oriented inwards (the mesh's signed volume is " << v
-                         << "): reverse the order of each face's vertices";
-                 args.fail(message.str());
-               }
+               // A shell turned the wrong way (all faces inwards, or a cavity facing outwards) is
+               // closed and manifold but bounds the wrong side: say so in those words.
+               if (!report.ok())
+                 args.fail(path + (report.count(DefectKind::MisorientedShell) == report.defects.size()
+                                       ? ": the faces of a shell are oriented the wrong way: "
+                                       : " is not a closed manifold: ") +
+                           report.summary(3));
                if (const std::string e = snapped_self_intersection(mesh); !e.empty()) args.fail(path + ": " + e);
                return solid_value(from_mesh(mesh));
              }});

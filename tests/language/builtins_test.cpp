@@ -262,7 +262,69 @@ TEST(Builtins, ImportRefusesAMeshOrientedInwards) {
   EXPECT_NEAR(std::stod(ok.out), 1.0 / 6, 1e-15);
   const std::string e = first_error_line("s = import(\"" + write_tetrahedron("tetra_in.off", true) + "\")");
   EXPECT_NE(e.find("t.bsp:1:5: error: import: "), std::string::npos) << e;
-  EXPECT_NE(e.find("the faces are oriented inwards (the mesh's signed volume is -0.1666"), std::string::npos) << e;
+  EXPECT_NE(e.find("the faces of a shell are oriented the wrong way: misoriented shell: 1"), std::string::npos) << e;
+  const std::string all = run_script("s = import(\"" + write_tetrahedron("tetra_in.off", true) + "\")").error;
+  EXPECT_NE(all.find("faces inwards (signed volume -0.1666"), std::string::npos) << all;
+}
+
+// ---- hulls, strokes, extrusions, general maps (builtins_solids.cpp) ----
+
+TEST(Builtins, HullOfPointsCurvesAndSolids) {
+  // The unit cube's corners plus interior points; a cube and its translate (the swept box).
+  const auto v = numbers(
+      "pts = [[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1],[0.5,0.5,0.5],[0.25,0,0]]\n"
+      "print(volume(hull(pts)), volume(hull(curve(pts))), volume(hull([box([0,0,0],[1,1,1]), "
+      "box([2,1,0],[3,2,1])])), volume(hull(box([0,0,0],[2,1,1]))), volume(hull([[0,0,0],[1,0,0],[0,1,0]])))");
+  ASSERT_EQ(v.size(), 5u);
+  EXPECT_EQ(v[0], 1.0);
+  EXPECT_EQ(v[1], 1.0);
+  EXPECT_EQ(v[2], 1.0 + 2 + 1);  // 1 + |vx| + |vy| + |vz| for v = (2, 1, 0)
+  EXPECT_EQ(v[3], 2.0);
+  EXPECT_EQ(v[4], 0.0);  // coplanar: no volume
+  EXPECT_NE(first_error_line("hull([box([0,0,0],[1,1,1]), 3])").find("item 2 is number, not a solid"), std::string::npos);
+  EXPECT_NE(first_error_line("hull(3)").find("t.bsp:1:6: error: hull: "), std::string::npos);
+}
+
+TEST(Builtins, SweepCarveAndAddAlongPaths) {
+  const auto v = numbers(
+      "b = box([0,0,0],[1,1,1])\n"
+      "path = [[0,0,0],[3,0,0],[3,2,0]]\n"
+      "block = box([-1,-1,-1],[5,4,0.5])\n"
+      "print(volume(sweep(b, path)), volume(carve(block, b, path)), volume(add(block, b, path)), "
+      "volume(block))");
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_EQ(v[0], 6.0);                  // two slabs of 4 and 3 sharing the corner cube
+  EXPECT_EQ(v[1], v[3] - 6.0 * 0.5);     // the stroke cuts the lower half of the swept slabs
+  EXPECT_EQ(v[2], v[3] + 6.0 * 0.5);
+  // A curve linearized within tol: a quarter circle of radius 2 swept by a small cube stays within
+  // the annulus sector the exact sweep of the polyline covers.
+  const auto w = numbers(
+      "pts = []\nfor i in range(0, 101) { t = i * 3.14159265358979 / 200\n pts = append(pts, [2*cos(t), 2*sin(t), 0]) }\n"
+      "c = curve(pts)\nprint(volume(sweep(box([0,0,0],[0.1,0.1,0.1]), c, tol=0.001)), "
+      "volume(sweep(box([0,0,0],[0.1,0.1,0.1]), c)))");
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_NEAR(w[0], w[1], 0.01 * w[1]);
+  EXPECT_NE(first_error_line("sweep(box([0,0,0],[1,1,1]), [])").find("the path has no points"), std::string::npos);
+}
+
+TEST(Builtins, ExtrudeMirrorAndTransform) {
+  const auto v = numbers(
+      "u = [[0,0],[3,0],[3,3],[2,3],[2,1],[1,1],[1,3],[0,3]]\n"
+      "s = extrude(u, 2)\n"
+      "print(volume(s), volume(extrude(u, -2) & s), volume(mirror(s, [1,0,0]) & s), "
+      "volume(mirror(s, [1,1,0])), volume(transform(s, [[2,0,0,1],[0,1,0,0],[0,0,1,0]])), "
+      "volume(transform(s, [[1,0,0,-1.5],[0,1,0,0],[0,0,1,0]]) & mirror(transform(s, [[1,0,0,-1.5],[0,1,0,0],[0,0,1,0]]), [1,0,0])))");
+  ASSERT_EQ(v.size(), 6u);
+  EXPECT_EQ(v[0], 14.0);
+  EXPECT_EQ(v[1], 0.0);                     // below and above the plane: they only touch
+  EXPECT_EQ(v[2], 0.0);                     // mirrored to x < 0: touches along x = 0
+  EXPECT_NEAR(v[3], 14.0, 14.0 * 1e-4);     // a general mirror moves vertices to the grid
+  EXPECT_EQ(v[4], 28.0);                    // x scaled by 2 (integer map: exact)
+  EXPECT_EQ(v[5], 14.0);                    // the U centred on x = 0 is symmetric
+  EXPECT_NE(first_error_line("extrude([[0,0],[1,1],[1,0],[0,1.5]], 1)").find("crosses or touches itself"), std::string::npos);
+  EXPECT_NE(first_error_line("extrude([[0,0,0],[1,0,0],[0,1,1]], 1)").find("not in a plane z = constant"), std::string::npos);
+  EXPECT_NE(first_error_line("transform(box([0,0,0],[1,1,1]), [[1,0,0,0],[0,1,0,0]])").find("3 rows of 4 numbers"), std::string::npos);
+  EXPECT_NE(first_error_line("transform(box([0,0,0],[1,1,1]), [[1,0,0,0],[0,1,0,0],[0,0,0,0]])").find("error"), std::string::npos);
 }
 
 // ---- splines (builtins_splines.cpp) ----
