@@ -20,7 +20,7 @@ using kernel::GridPoint;
 using kernel::Int128;
 using kernel::Plane;
 
-constexpr std::size_t kChainFaces = 12;  ///< a cell with at most this many faces is a chain of them
+constexpr std::size_t kChainFaces = 32;  ///< a cell with at most this many faces is a chain of them
 constexpr int kMaxSplitDepth = 48;
 
 /// A cell of the splitting tree: an axis-aligned box [lo, hi] (grid units) and the hull's faces
