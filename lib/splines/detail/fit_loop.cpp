@@ -20,11 +20,20 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
   result.history.push_back({0, current.objective, current.max, current.rms, 0.0, 1.0});
   double lambda = options.smoothing;
   for (int k = 1; k <= options.iterations; ++k) {
+    const auto& h = result.history;
+    // The second-order phase starts once a step gained less than half of the objective: the foot
+    // points then move little, and SDM's missing terms (of the same order as its tangential
+    // stiffness) are what slows the tail.
+    const bool newton = options.second_order && k > 1 && h[k - 1].objective > 0.5 * h[k - 2].objective;
     NormalEquations system(n, curve.degree(), curve.dimension(), curve.closed());
     for (const Term& term : current.terms) {
+      const bool second_order = newton && term.newton_weight != 0.0;
       if (curve.degree() <= kMaxFastDegree) {
-        const SmallBasis b = curve.small_basis(term.t);
-        system.add_term(b.count, b.index.data(), b.value.data(), term.M, term.x);
+        const SmallBasis b = curve.small_basis(term.t, second_order);
+        system.add_term(b.count, b.index.data(), b.value.data(), second_order ? Eigen::Matrix3d::Identity() : term.M, term.x);
+        if (second_order)
+          system.add_newton_correction(b.count, b.index.data(), b.value.data(), b.derivative.data(),
+                                       term.x + term.residual, term.velocity, term.residual, term.newton_weight);
       } else {
         const Basis b = curve.basis(term.t, 0);
         system.add_term(b.index, b.value.row(0).transpose(), term.M, term.x);
@@ -39,6 +48,8 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
     }
     const double size = (hi - lo).norm();
     const double floor = size > 0 ? options.noise_smoothing * std::pow(current.rms / size, 2) : 0.0;
+    // The bending term only steadies the first steps; in the second-order phase it falls faster.
+    if (newton) lambda *= options.smoothing_decay * options.smoothing_decay;
     const double weight = std::max(lambda, std::min(floor, options.smoothing));
     system.add_smoothing(weight);
     const std::vector<Eigen::Vector3d> solved = system.solve(curve.controls(), options.fixed);
@@ -73,7 +84,7 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
 
 FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& start, const LoopOptions& options) {
   const Model model = options.model;
-  const Evaluate evaluate = [&points, model](const BSpline& curve, const Evaluation* previous, int) {
+  const Evaluate evaluate = [&points, model, &options](const BSpline& curve, const Evaluation* previous, int) {
     const FootPointSearch search(curve);
     const auto [a, b] = curve.domain();
     Evaluation e;
@@ -88,6 +99,21 @@ FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& 
       const FootPoint& f = j.foot;
       const bool at_end = !curve.closed() && (f.parameter <= a || f.parameter >= b);
       e.terms[k] = {f.parameter, distance_hessian(model, points[k], f.point, j.d1, j.d2, at_end), points[k]};
+      // Newton's model of |x - c|^2 for the moving curve (see LoopOptions::second_order): the point
+      // distance minus ((c'.a)^2 + 2 (c'.a)(r.b)) / D, with a and b the displacements of c(t) and
+      // c'(t), r = c - x and D = |c'|^2 + r.c''. Newton's (r.b)^2 / D, second order in the distance
+      // and negative, is left out: on noisy data it makes the model indefinite (halved steps).
+      // Used only while D > |c'|^2 / 2 (x not near its curvature centre).
+      if (options.second_order && model == Model::SDM && !at_end) {
+        const Eigen::Vector3d r = f.point - points[k];
+        const double speed2 = j.d1.squaredNorm(), D = speed2 + r.dot(j.d2);
+        if (D > 0.5 * speed2) {
+          Term& t = e.terms[k];
+          t.newton_weight = -1.0 / D;
+          t.velocity = j.d1;
+          t.residual = r;
+        }
+      }
       sum += f.distance * f.distance;
       e.max = std::max(e.max, f.distance);
     }
