@@ -64,7 +64,8 @@ struct FitIteration {
   double max_distance = 0.0;
   double rms_distance = 0.0;
   double smoothing = 0.0;     ///< relative smoothing weight used in the step that led here
-  double step = 1.0;          ///< step length accepted (TDM halves it when the objective would grow)
+  double step = 1.0;          ///< step length accepted (SDM and TDM halve it when the objective would grow;
+                              ///< 0: the full step changed the objective by less than the tolerance, the curve is kept)
 };
 
 struct FitResult {

@@ -56,6 +56,7 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
     double step = 1.0;
     BSpline candidate = curve;
     Evaluation next;
+    bool at_optimum = false;
     for (int halvings = 0;; ++halvings) {
       std::vector<Eigen::Vector3d> c(n);
       for (int i = 0; i < n; ++i) c[i] = curve.controls()[i] + step * (solved[i] - curve.controls()[i]);
@@ -64,7 +65,19 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
       candidate = curve.with_controls(std::move(c));
       next = evaluate(candidate, &current, k);
       if (!options.line_search || next.objective <= current.objective || halvings >= 8) break;
+      // A full step that changes the objective by less than the tolerance, up or down, finds the
+      // curve converged: halving it would only spend foot point searches on nothing.
+      if (halvings == 0 && next.objective - current.objective <= options.tolerance * current.objective) {
+        at_optimum = true;
+        break;
+      }
       step *= 0.5;
+    }
+    if (at_optimum) {
+      result.history.push_back({k, current.objective, current.max, current.rms, weight, 0.0});
+      result.iterations = k;
+      result.converged = true;
+      break;
     }
     if (!std::isfinite(next.objective)) throw GeometryError("fit: the objective is not finite (diverged)");
     curve = candidate;

@@ -62,17 +62,20 @@ void NormalEquations::add_newton_correction(int count, const int* index, const d
   // weight (alpha^2 + alpha beta + beta alpha): blocks weight (u_i u_j^T + u_i w_j^T + w_i u_j^T),
   // right-hand side weight (u_i (v.c + r.v) + w_i v.c).
   const double vc = velocity.dot(point), rv = residual.dot(velocity);
-  const bool banded = banded_ && count <= p_ + 1;
+  const Eigen::Matrix3d VV = weight * (velocity * velocity.transpose()), VR = weight * (velocity * residual.transpose()),
+                        RV = VR.transpose();
+  bool consecutive = banded_ && count <= p_ + 1;
+  for (int a = 1; a < count && consecutive; ++a) consecutive = index[a] == (index[0] + a) % n_;
   for (int a = 0; a < count; ++a) {
     rhs_[index[a]] += weight * ((b[a] * (vc + rv)) * velocity + (db[a] * vc) * residual);
+    Eigen::Matrix3d* row = consecutive ? &blocks_[static_cast<std::size_t>(index[a]) * (2 * p_ + 3) + (p_ + 1 - a)] : nullptr;
     for (int c = 0; c < count; ++c) {
-      const Eigen::Matrix3d m = weight * ((b[a] * b[c]) * (velocity * velocity.transpose()) +
-                                          (b[a] * db[c]) * (velocity * residual.transpose()) +
-                                          (db[a] * b[c]) * (residual * velocity.transpose()));
-      if (banded && index[c] == (index[0] + c) % n_ && index[a] == (index[0] + a) % n_)
-        blocks_[static_cast<std::size_t>(index[a]) * (2 * p_ + 3) + (p_ + 1 + c - a)] += m;
+      Eigen::Matrix3d& B = row ? row[c] : block(index[a], index[c]);
+      if (dim_ == 2)
+        B.topLeftCorner<2, 2>() += (b[a] * b[c]) * VV.topLeftCorner<2, 2>() + (b[a] * db[c]) * VR.topLeftCorner<2, 2>() +
+                                   (db[a] * b[c]) * RV.topLeftCorner<2, 2>();
       else
-        block(index[a], index[c]) += m;
+        B += (b[a] * b[c]) * VV + (b[a] * db[c]) * VR + (db[a] * b[c]) * RV;
     }
   }
 }
