@@ -66,6 +66,7 @@ struct FitIteration {
   double smoothing = 0.0;     ///< relative smoothing weight used in the step that led here
   double step = 1.0;          ///< step length accepted (SDM and TDM halve it when the objective would grow;
                               ///< 0: the full step changed the objective by less than the tolerance, the curve is kept)
+  int points = 0;             ///< data points the row was measured on (fewer: the coarse pass of a large fit)
 };
 
 struct FitResult {

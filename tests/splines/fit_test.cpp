@@ -109,6 +109,29 @@ TEST(FitCurve, NoisyStarIsCloserToTheCleanCurveThanTheNoise) {
   EXPECT_GT(exact_to(star, bare.curve).rms, e.rms);  // the floor is what helps
 }
 
+TEST(FitCurve, ManyPointsRunCoarseToFine) {
+  // 10^4 points on the star with Gaussian noise (sigma 0.002), 50 controls: the first-order steps
+  // run on a subset, the second-order phase on all points; the history says which.
+  const double sigma = 0.002;
+  std::vector<V> data = curve_points(t::star(0.3, 5), 10000);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, sigma);
+  for (V& p : data) p += V(noise(rng), noise(rng), 0);
+  const FitResult r = fit_curve(data, {.controls = 50, .closed = true});
+  EXPECT_TRUE(r.converged);
+  ASSERT_EQ(r.history.size(), static_cast<std::size_t>(r.iterations) + 1);
+  EXPECT_LT(r.history.front().points, 10000);
+  EXPECT_EQ(r.history.back().points, 10000);
+  for (std::size_t i = 0; i < r.history.size(); ++i) EXPECT_EQ(r.history[i].iteration, static_cast<int>(i));
+  // The last row is the exact distance of all points to the result.
+  const DistanceSummary d = distance(r.curve, data);
+  EXPECT_NEAR(d.rms, r.history.back().rms_distance, 1e-12);
+  // Only the normal component of the noise remains: rms about sigma; the curve stays within a
+  // fraction of sigma of the clean star.
+  EXPECT_NEAR(d.rms, sigma, 0.03 * sigma);
+  EXPECT_LT(exact_to(t::star(0.3, 5), r.curve).rms, 0.3 * sigma);
+}
+
 TEST(FitCurve, OpenArcFromTheChordAndThreeDimensionalData) {
   // Half an ellipse (open): the chord start, every method reaches it closely.
   std::vector<V> arc(300);

@@ -19,12 +19,19 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
   FitResult result{curve, {}, 0, false};
   result.history.push_back({0, current.objective, current.max, current.rms, 0.0, 1.0});
   double lambda = options.smoothing;
+  const auto finish = [&](FitResult& r) {
+    if (options.final_smoothing) *options.final_smoothing = lambda;
+    r.curve = curve;
+    return r;
+  };
   for (int k = 1; k <= options.iterations; ++k) {
     const auto& h = result.history;
     // The second-order phase starts once a step gained less than half of the objective: the foot
     // points then move little, and SDM's missing terms (of the same order as its tangential
     // stiffness) are what slows the tail.
-    const bool newton = options.second_order && k > 1 && h[k - 1].objective > 0.5 * h[k - 2].objective;
+    const bool newton = options.second_order && (options.second_order_from_start ||
+                                                 (k > 1 && h[k - 1].objective > 0.5 * h[k - 2].objective));
+    if (newton && options.stop_at_second_order) return finish(result);
     NormalEquations system(n, curve.degree(), curve.dimension(), curve.closed());
     for (const Term& term : current.terms) {
       const bool second_order = newton && term.newton_weight != 0.0;
@@ -91,11 +98,11 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
       break;
     }
   }
-  result.curve = curve;
-  return result;
+  return finish(result);
 }
 
-FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& start, const LoopOptions& options) {
+namespace {
+FitResult fit_all(const std::vector<Eigen::Vector3d>& points, const BSpline& start, const LoopOptions& options) {
   const Model model = options.model;
   const Evaluate evaluate = [&points, model, &options](const BSpline& curve, const Evaluation* previous, int) {
     const FootPointSearch search(curve);
@@ -134,7 +141,47 @@ FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& 
     e.rms = std::sqrt(e.objective);
     return e;
   };
-  return run_active_curve(start, evaluate, options);
+  FitResult r = run_active_curve(start, evaluate, options);
+  for (auto& row : r.history) row.points = static_cast<int>(points.size());
+  return r;
+}
+}  // namespace
+
+FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& start, const LoopOptions& options) {
+  const std::size_t n = static_cast<std::size_t>(start.control_count());
+  if (!(options.second_order && options.model == Model::SDM && start.closed() && points.size() >= 4000 &&
+        points.size() >= 64 * n) || options.stop_at_second_order || options.second_order_from_start)
+    return fit_all(points, start, options);
+  const std::size_t stride = points.size() / (16 * n);
+  std::vector<Eigen::Vector3d> subset;
+  for (std::size_t i = 0; i < points.size(); i += stride) subset.push_back(points[i]);
+  double lambda = options.smoothing;
+  LoopOptions coarse = options;
+  coarse.stop_at_second_order = true;
+  coarse.final_smoothing = &lambda;
+  FitResult first = fit_all(subset, start, coarse);
+  if (first.iterations >= options.iterations) return first;  // (never converged on the subset either)
+  LoopOptions fine = options;
+  fine.iterations = options.iterations - first.iterations;
+  fine.smoothing = lambda;
+  fine.second_order_from_start = true;
+  FitResult second = fit_all(points, first.curve, fine);
+  // One history: the subset's rows, then the full data's; the last subset row and the full data's
+  // row 0 describe the same curve, and the latter's figures (all points) replace the former's.
+  FitIteration& joint = first.history.back();
+  joint.objective = second.history[0].objective;
+  joint.max_distance = second.history[0].max_distance;
+  joint.rms_distance = second.history[0].rms_distance;
+  joint.points = second.history[0].points;
+  for (std::size_t i = 1; i < second.history.size(); ++i) {
+    FitIteration row = second.history[i];
+    row.iteration += first.iterations;
+    first.history.push_back(row);
+  }
+  first.curve = second.curve;
+  first.iterations += second.iterations;
+  first.converged = second.converged;
+  return first;
 }
 
 }  // namespace sculpt::splines::detail

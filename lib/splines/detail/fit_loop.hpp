@@ -46,11 +46,19 @@ struct LoopOptions {
   double noise_smoothing = 0.0;  ///< see FitOptions::noise_smoothing
   /// SDM on a point cloud: near convergence, replace the model by Newton's (FitOptions::second_order).
   bool second_order = false;
+  /// With second_order: stop when the second-order phase would start (coarse_to_fine's first pass),
+  /// or be in it from the first step (its second pass).
+  bool stop_at_second_order = false, second_order_from_start = false;
+  /// Out: the smoothing weight the next step would have used (coarse_to_fine carries it over).
+  double* final_smoothing = nullptr;
 };
 
 [[nodiscard]] FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const LoopOptions& options);
 
-/// Wang-Pottmann-Liu direction on a point cloud.
+/// Wang-Pottmann-Liu direction on a point cloud. A closed second-order fit of many points
+/// (at least 4000 and 64 per control point) runs coarse to fine: the first-order steps on every
+/// k-th point (16 per control point), the second-order phase on all of them; the history's rows of
+/// the first pass describe the subset (FitIteration::points).
 [[nodiscard]] FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& start,
                                    const LoopOptions& options);
 
