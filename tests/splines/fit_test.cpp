@@ -130,6 +130,12 @@ TEST(FitCurve, ManyPointsRunCoarseToFine) {
   // fraction of sigma of the clean star.
   EXPECT_NEAR(d.rms, sigma, 0.03 * sigma);
   EXPECT_LT(exact_to(t::star(0.3, 5), r.curve).rms, 0.3 * sigma);
+  // Stopped inside the coarse pass, the last row still measures all points.
+  const FitResult early = fit_curve(data, {.controls = 50, .closed = true, .iterations = 2});
+  EXPECT_EQ(early.iterations, 2);
+  EXPECT_EQ(early.history.size(), 3u);
+  EXPECT_EQ(early.history.back().points, 10000);
+  EXPECT_NEAR(distance(early.curve, data).rms, early.history.back().rms_distance, 1e-12);
 }
 
 TEST(FitCurve, OpenArcFromTheChordAndThreeDimensionalData) {

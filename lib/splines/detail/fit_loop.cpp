@@ -160,7 +160,7 @@ FitResult fit_points(const std::vector<Eigen::Vector3d>& points, const BSpline& 
   coarse.stop_at_second_order = true;
   coarse.final_smoothing = &lambda;
   FitResult first = fit_all(subset, start, coarse);
-  if (first.iterations >= options.iterations) return first;  // (never converged on the subset either)
+  // (With no steps left, the second pass only measures the curve on all points.)
   LoopOptions fine = options;
   fine.iterations = options.iterations - first.iterations;
   fine.smoothing = lambda;
