@@ -43,9 +43,9 @@ struct FitOptions {
   /// by less than 5e-5 of itself; on noisy data the tail beyond that is noise).
   double tolerance = 1e-4;
   /// SDM only: once a step gains less than half of the objective, use the full Newton model of the
-  /// squared distance of a data point to the moving curve. SDM's Hessian is that Newton model
-  /// without the terms of the derivative of the curve's displacement (WPL 2006, sec. 3: SDM is a
-  /// quasi-Newton method); those terms are of the order of the distance, like SDM's tangential
+  /// squared distance of a data point to the moving curve. SDM's (untruncated) Hessian is that
+  /// Newton model without the terms of the derivative of the curve's displacement (a quasi-Newton
+  /// method; docs/splines.md); those terms are of the order of the distance, like SDM's tangential
   /// stiffness itself, so without them the tail converges only linearly (star target: 50 steps to
   /// within 1e-3 of the optimum instead of 11). false: plain SDM throughout. Closed curves only:
   /// the data-to-curve objective does not hold the ends of an open curve (running on past the last
