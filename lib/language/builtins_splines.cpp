@@ -111,7 +111,8 @@ void register_splines(BuiltinTable& table) {
              .doc = "A B-spline with `controls` control points fitted to curve c (its points) or a list of points, "
                     "without given parameters: foot points, a local quadratic model of each squared distance, "
                     "a linear solve, repeated (Wang, Pottmann & Liu 2006). method: \"sdm\" (curvature-based), "
-                    "\"pdm\" (point distance) or \"tdm\" (tangent distance). closed: true, false, or by default "
+                    "\"pdm\" (point distance) or \"tdm\" (tangent distance); a closed \"sdm\" fit switches to Newton's "
+                    "model near the optimum (docs/splines.md). closed: true, false, or by default "
                     "the curve's own flag (a list is open). smoothing: the weight of the bending term in the "
                     "first step (halved each step). start: a spline to start from (default: an ellipse or a "
                     "chord along the data's main axis); controls then defaults to its count. fit_history() "
@@ -156,7 +157,9 @@ void register_splines(BuiltinTable& table) {
                     "[objective, max, rms] per step, row 0 for the start curve. For fit, objective is the mean "
                     "squared distance of the data to the curve, max and rms the largest and root-mean-square "
                     "distance (exact foot points); for reduce_degree the same figures for the samples of each "
-                    "curve against the other. len(fit_history(s)) - 1 is the number of steps taken.",
+                    "curve against the other. len(fit_history(s)) - 1 is the number of steps taken. A closed fit of "
+                    "many points (at least 4000 and 64 per control point) takes its first steps on a subset: "
+                    "those rows describe the subset, the later ones all points.",
              .params = {{"s"}},
              .run = [](const Arguments& args) -> Value {
                const SplineValue& s = spline_arg(args, 0);

@@ -303,17 +303,18 @@ std::array<Eigen::Vector3d, 4> BSpline::jet(double t, int order) const {
   return out;
 }
 
-SmallBasis BSpline::small_basis(double t) const {
+SmallBasis BSpline::small_basis(double t, bool with_derivative) const {
   SmallBasis out;
   if (degree_ > kMaxFastDegree) throw InvalidInput("B-spline: small_basis needs degree <= " + std::to_string(kMaxFastDegree));
   const double s = wrap(t);
   const int r = span(s), n = control_count();
   double v[4][kMaxFastDegree + 1];
-  basis_derivatives_fast(ext_knots_, degree_, r, s, 0, v);
+  basis_derivatives_fast(ext_knots_, degree_, r, s, with_derivative ? 1 : 0, v);
   out.count = degree_ + 1;
   for (int j = 0; j <= degree_; ++j) {
     out.index[j] = (r - degree_ + j) % n;
     out.value[j] = v[0][j];
+    if (with_derivative) out.derivative[j] = v[1][j];
   }
   return out;
 }

@@ -28,6 +28,7 @@ struct SmallBasis {
   int count = 0;
   std::array<int, kMaxFastDegree + 1> index{};
   std::array<double, kMaxFastDegree + 1> value{};
+  std::array<double, kMaxFastDegree + 1> derivative{};  ///< first derivatives (small_basis(t, true) only)
 };
 
 /// A B-spline curve. Points are Eigen::Vector3d; a 2D curve (`dimension() == 2`) keeps z = 0.
@@ -77,7 +78,7 @@ class BSpline {
   /// for degree <= kMaxFastDegree: the form the foot point search and the fitters use.
   [[nodiscard]] std::array<Eigen::Vector3d, 4> jet(double t, int order) const;
   /// basis(t, 0) without heap allocation. \throw InvalidInput for degree > kMaxFastDegree.
-  [[nodiscard]] SmallBasis small_basis(double t) const;
+  [[nodiscard]] SmallBasis small_basis(double t, bool with_derivative = false) const;
   /// Curvature |c' x c''| / |c'|^3; for a 2D curve signed (positive turning left). 0 where c' = 0.
   [[nodiscard]] double curvature(double t) const;
   /// Nonzero basis functions at t and their derivatives up to `order`.

@@ -138,7 +138,8 @@ FitResult fit_curve(const std::vector<Eigen::Vector3d>& points, const FitOptions
                            .tolerance = options.tolerance,
                            .fixed = options.fixed,
                            .line_search = options.method != Method::PDM,
-                           .noise_smoothing = options.noise_smoothing};
+                           .noise_smoothing = options.noise_smoothing,
+                           .second_order = options.second_order && options.method == Method::SDM && options.closed};
   return detail::fit_points(points, start, loop);
 }
 

@@ -49,6 +49,16 @@ void FootPointSearch::build_chunks() {
     box_lo_.push_back(lo);
     box_hi_.push_back(hi);
   }
+  const int chunks = static_cast<int>(box_lo_.size());
+  for (int c = 0; c < chunks; c += kChunk) {
+    Eigen::Vector3d lo = box_lo_[c], hi = box_hi_[c];
+    for (int i = c; i < std::min(chunks, c + kChunk); ++i) {
+      lo = lo.cwiseMin(box_lo_[i]);
+      hi = hi.cwiseMax(box_hi_[i]);
+    }
+    group_lo_.push_back(lo);
+    group_hi_.push_back(hi);
+  }
 }
 
 std::array<Eigen::Vector3d, 3> FootPointSearch::eval(double t) const {
@@ -214,7 +224,12 @@ FootPointJet FootPointSearch::warm_jet(const Eigen::Vector3d& x, double t0) cons
   // Global check, the rule of global_jet: no sample closer than the foot point found, and none
   // outside the bracket within twice its distance (another branch global_jet would refine too).
   const double d2 = f.foot.distance * f.foot.distance * (1 - 1e-12), far2 = 4.0 * d2;
-  for (std::size_t c = 0; c < box_lo_.size(); ++c) {
+  const int chunks = static_cast<int>(box_lo_.size());
+  for (int c = 0; c < chunks; ++c) {
+    if (c % kChunk == 0 && (group_lo_[c / kChunk] - x).cwiseMax(x - group_hi_[c / kChunk]).cwiseMax(0.0).squaredNorm() >= far2) {
+      c += kChunk - 1;  // the whole group of chunks is too far
+      continue;
+    }
     if ((box_lo_[c] - x).cwiseMax(x - box_hi_[c]).cwiseMax(0.0).squaredNorm() >= far2) continue;
     for (int j = static_cast<int>(c) * kChunk; j < std::min(m, static_cast<int>(c + 1) * kChunk); ++j) {
       const double dj = (points_[j] - x).squaredNorm();

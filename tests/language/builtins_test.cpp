@@ -8,7 +8,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <regex>
+#include <sstream>
 
 #include "language/builtins.hpp"
 #include "script_runner.hpp"
@@ -515,6 +517,74 @@ TEST(Builtins, OffsetOfACircleIsTheConcentricCircle) {
   EXPECT_NEAR(w[0], 0.1, 0.02);
   const auto r = run_script("s = bspline([[0, 0, 0], [1, 1, 1], [2, 0, 1], [3, 1, 0]])\noffset(s, 0.1)");
   EXPECT_NE(r.error.find("offset"), std::string::npos) << r.error;  // a 3D curve has no offset
+}
+
+// scripts/smooth_goblet.bsp: the bowl's inner surface is at the wall thickness from the outer
+// surface, and the hollow goblet's volume is the outer solid's minus the cavity's part inside it,
+// both computed here from the printed profiles by the frustum formula (not by the BSP code).
+TEST(Builtins, SmoothGobletHasAWallOfConstantThickness) {
+  const std::string script = std::string(SCULPT_SOURCE_DIR) + "/scripts/smooth_goblet.bsp";
+  const auto r = run_script("include \"" + script + "\"\nprint(\"@\")\nprint(points(line))\nprint(cavity_points)\n"
+                            "print([wall, error(line), error(inner_line), volume(goblet)])\n");
+  ASSERT_EQ(r.error, "");
+  const std::string tail = r.out.substr(r.out.rfind("\n@\n") + 3);
+  std::istringstream lines(tail);
+  std::string outer_text, cavity_text, figures_text;
+  std::getline(lines, outer_text);
+  std::getline(lines, cavity_text);
+  std::getline(lines, figures_text);
+  const auto pairs = [](const std::vector<double>& v, int stride) {
+    std::vector<Eigen::Vector2d> p;
+    for (std::size_t i = 0; i + stride <= v.size(); i += stride) p.emplace_back(v[i], v[i + 1]);
+    return p;
+  };
+  const std::vector<Eigen::Vector2d> outer = pairs(all_numbers(outer_text), 3);  // points() gives [x, y, 0]
+  const std::vector<Eigen::Vector2d> cavity = pairs(all_numbers(cavity_text), 2);
+  const std::vector<double> figures = all_numbers(figures_text);
+  ASSERT_EQ(figures.size(), 4u);
+  const double wall = figures[0], outer_error = figures[1], inner_error = figures[2], volume = figures[3];
+  ASSERT_GT(outer.size(), 10u);
+  ASSERT_GT(cavity.size(), 10u);
+  // Distance to the outer profile polyline (open).
+  const auto to_outer = [&outer](const Eigen::Vector2d& x) {
+    double best = INFINITY;
+    for (std::size_t i = 0; i + 1 < outer.size(); ++i) {
+      const Eigen::Vector2d a = outer[i], b = outer[i + 1];
+      const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (a + t * (b - a) - x).norm());
+    }
+    return best;
+  };
+  // The inner offset's vertices (all but the floor point on the axis and the point above the rim)
+  // lie on the offset curve at `wall` from the fitted profile, which the outer polyline follows
+  // within its linearization error; the offset's own tolerance is 1e-3, and the trimmed copy of the
+  // bowl that is offset is within 5e-4 of the fitted profile (the script prints 2.1e-4).
+  for (std::size_t i = 1; i + 1 < cavity.size(); ++i)
+    EXPECT_NEAR(to_outer(cavity[i]), wall, outer_error + 1e-3 + 5e-4) << "cavity vertex " << i;
+  // Between the vertices the inner polyline is within its own linearization error of the offset.
+  for (std::size_t i = 1; i + 2 < cavity.size(); ++i)
+    for (double t : {0.25, 0.5, 0.75}) {
+      const Eigen::Vector2d x = (1 - t) * cavity[i] + t * cavity[i + 1];
+      EXPECT_NEAR(to_outer(x), wall, outer_error + inner_error + 1e-3 + 5e-4) << "cavity edge " << i;
+    }
+  // Volume: a profile polygon (r, z) revolved along the regular 32-gon inscribed in the unit circle
+  // has cross-sections r^2 A with A = 16 sin(2 pi / 32): frusta A dz (r0^2 + r0 r1 + r1^2) / 3.
+  const double A = 16 * std::sin(2 * std::numbers::pi / 32);
+  const auto revolved = [A](const std::vector<Eigen::Vector2d>& p, double z_max) {
+    double v = 0;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+      Eigen::Vector2d a = p[i], b = p[i + 1];
+      if (a.y() >= z_max) break;
+      if (b.y() > z_max) b = a + (b - a) * ((z_max - a.y()) / (b.y() - a.y()));  // clip at the rim
+      v += A * (b.y() - a.y()) * (a.x() * a.x() + a.x() * b.x() + b.x() * b.x()) / 3;
+    }
+    return v;
+  };
+  const double rim = outer.back().y();
+  const double expected = revolved(outer, rim) - revolved(cavity, rim);
+  EXPECT_NEAR(volume, expected, 1e-6 * expected);
+  // The wall is thin: the goblet keeps well under the outer solid's volume.
+  EXPECT_LT(volume, revolved(outer, rim) - 50.0);
 }
 
 TEST(Builtins, SplineErrorsAtTheCall) {

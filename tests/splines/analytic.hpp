@@ -9,6 +9,10 @@
 #include <numbers>
 #include <vector>
 
+#include <Eigen/LU>
+
+#include "splines/bspline.hpp"
+
 namespace sculpt::splines::testing {
 
 using Curve3 = std::function<std::array<Eigen::Vector3d, 3>(double)>;  // point, first, second derivative
@@ -65,6 +69,37 @@ inline double exact_distance(const Curve3& c, const Eigen::Vector3d& x, double t
     best = std::min({best, d[i], (c(t)[0] - x).norm()});
   }
   return best;
+}
+
+/// The exact offset of the ellipse (a cos t, b sin t) at d along the outward normal; derivatives by
+/// central differences (only Newton's steps use them; the distance is |x - o(t)|).
+inline Curve3 ellipse_offset(double a, double b, double d) {
+  const auto o = [a, b, d](double s) {
+    const double w = std::hypot(b * std::cos(s), a * std::sin(s));
+    return Eigen::Vector3d(a * std::cos(s) + d * b * std::cos(s) / w, b * std::sin(s) + d * a * std::sin(s) / w, 0);
+  };
+  return [o](double s) {
+    const double h = 1e-4;
+    const Eigen::Vector3d m = o(s - h), c = o(s), p = o(s + h);
+    return std::array<Eigen::Vector3d, 3>{c, (p - m) / (2 * h), (p - 2 * c + m) / (h * h)};
+  };
+}
+
+/// An input built with the library (not a reference): the periodic cubic interpolating a closed
+/// planar analytic curve at n uniform parameters over [0, 2 pi).
+inline BSpline interpolant(const Curve3& c, int n) {
+  const BSpline shape = BSpline::periodic(3, std::vector<Eigen::Vector3d>(n, Eigen::Vector3d::Zero()));
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n), X(n, 2);
+  for (int i = 0; i < n; ++i) {
+    const Basis b = shape.basis(i, 0);
+    for (int j = 0; j < 4; ++j) A(i, b.index[j]) += b.value(0, j);
+    const Eigen::Vector3d x = c(2 * std::numbers::pi * i / n)[0];
+    X.row(i) << x.x(), x.y();
+  }
+  const Eigen::MatrixXd P = A.partialPivLu().solve(X);
+  std::vector<Eigen::Vector3d> controls(n);
+  for (int i = 0; i < n; ++i) controls[i] = Eigen::Vector3d(P(i, 0), P(i, 1), 0);
+  return BSpline::periodic(3, controls, 2);
 }
 
 }  // namespace sculpt::splines::testing

@@ -6,17 +6,11 @@
 #include <numbers>
 
 #include "base/errors.hpp"
-#include "splines/analytic.hpp"
+#include "test_names.hpp"
 #include "splines/degree_reduction.hpp"
 #include "splines/foot_point.hpp"
 
-using namespace sculpt;
-using namespace sculpt::splines;
-using V = Eigen::Vector3d;
-namespace t = sculpt::splines::testing;
-
 namespace {
-constexpr double kPi = std::numbers::pi;
 
 // Five degree-6 Bezier curves: an S, a hump, a loop-free spiral arc, a wave and a hook.
 std::vector<BSpline> degree_six_curves() {

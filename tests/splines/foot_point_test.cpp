@@ -7,16 +7,10 @@
 #include <random>
 
 #include "base/errors.hpp"
-#include "splines/analytic.hpp"
+#include "test_names.hpp"
 #include "splines/detail/foot_point_search.hpp"
 
-using namespace sculpt;
-using namespace sculpt::splines;
-using V = Eigen::Vector3d;
-namespace t = sculpt::splines::testing;
-
 namespace {
-constexpr double kPi = std::numbers::pi;
 
 // The library's generic search over an analytic parametrization; its answer is compared with the
 // test's own exact distance (a different sampling and Newton loop).

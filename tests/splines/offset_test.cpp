@@ -7,47 +7,14 @@
 #include <numbers>
 
 #include "base/errors.hpp"
-#include "splines/analytic.hpp"
+#include "test_names.hpp"
 #include "splines/foot_point.hpp"
 
-using namespace sculpt;
-using namespace sculpt::splines;
-using V = Eigen::Vector3d;
-namespace t = sculpt::splines::testing;
-
 namespace {
-constexpr double kPi = std::numbers::pi;
 constexpr double kA = 2.0, kB = 1.0;
 
-// A periodic cubic interpolating a closed analytic curve at n uniform parameters (the input).
-BSpline interpolant(const t::Curve3& c, int n) {
-  const BSpline shape = BSpline::periodic(3, std::vector<V>(n, V::Zero()));
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n), X(n, 2);
-  for (int i = 0; i < n; ++i) {
-    const Basis b = shape.basis(i, 0);
-    for (int j = 0; j < 4; ++j) A(i, b.index[j]) += b.value(0, j);
-    const V x = c(2 * kPi * i / n)[0];
-    X.row(i) << x.x(), x.y();
-  }
-  const Eigen::MatrixXd P = A.partialPivLu().solve(X);
-  std::vector<V> controls(n);
-  for (int i = 0; i < n; ++i) controls[i] = V(P(i, 0), P(i, 1), 0);
-  return BSpline::periodic(3, controls, 2);
-}
-
-// The exact offset of the ellipse (a cos t, b sin t) at d along the outward normal; derivatives by
-// central differences (only Newton's steps use them; the distance is |x - o(t)|).
-t::Curve3 ellipse_offset(double d) {
-  const auto o = [d](double s) {
-    const double w = std::hypot(kB * std::cos(s), kA * std::sin(s));
-    return V(kA * std::cos(s) + d * kB * std::cos(s) / w, kB * std::sin(s) + d * kA * std::sin(s) / w, 0);
-  };
-  return [o](double s) {
-    const double h = 1e-4;
-    const V m = o(s - h), c = o(s), p = o(s + h);
-    return std::array<V, 3>{c, (p - m) / (2 * h), (p - 2 * c + m) / (h * h)};
-  };
-}
+t::Curve3 ellipse_offset(double d) { return t::ellipse_offset(kA, kB, d); }
+using t::interpolant;
 
 // The spline as a test curve (for distances from the exact offset to the result).
 t::Curve3 as_curve(const BSpline& s) {

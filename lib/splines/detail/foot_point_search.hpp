@@ -53,7 +53,8 @@ class FootPointSearch {
   std::vector<double> span_start_;
   std::vector<std::array<Eigen::Vector3d, 4>> taylor_;
   Evaluator evaluate_;
-  std::vector<Eigen::Vector3d> box_lo_, box_hi_;  // per chunk of kChunk samples
+  std::vector<Eigen::Vector3d> box_lo_, box_hi_;      // per chunk of kChunk samples
+  std::vector<Eigen::Vector3d> group_lo_, group_hi_;  // per group of kChunk chunks (warm_jet's check)
   double a_ = 0.0, b_ = 1.0;
   bool closed_ = false;
   std::vector<double> params_;

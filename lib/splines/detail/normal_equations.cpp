@@ -4,6 +4,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "base/errors.hpp"
@@ -51,6 +52,31 @@ void NormalEquations::add_term(int count, const int* index, const double* b, con
   for (int a = 0; a < count; ++a) {
     rhs_[index[a]] += b[a] * Mx;
     for (int c = 0; c < count; ++c) block(index[a], index[c]) += (b[a] * b[c]) * M;
+  }
+}
+
+void NormalEquations::add_newton_correction(int count, const int* index, const double* b, const double* db,
+                                            const Eigen::Vector3d& point, const Eigen::Vector3d& velocity,
+                                            const Eigen::Vector3d& residual, double weight) {
+  // With alpha = u.P - v.c (u_j = b_j v) and beta = w.P - r.v (w_j = db_j r), the form is
+  // weight (alpha^2 + alpha beta + beta alpha): blocks weight (u_i u_j^T + u_i w_j^T + w_i u_j^T),
+  // right-hand side weight (u_i (v.c + r.v) + w_i v.c).
+  const double vc = velocity.dot(point), rv = residual.dot(velocity);
+  const Eigen::Matrix3d VV = weight * (velocity * velocity.transpose()), VR = weight * (velocity * residual.transpose()),
+                        RV = VR.transpose();
+  bool consecutive = banded_ && count <= p_ + 1;
+  for (int a = 1; a < count && consecutive; ++a) consecutive = index[a] == (index[0] + a) % n_;
+  for (int a = 0; a < count; ++a) {
+    rhs_[index[a]] += weight * ((b[a] * (vc + rv)) * velocity + (db[a] * vc) * residual);
+    Eigen::Matrix3d* row = consecutive ? &blocks_[static_cast<std::size_t>(index[a]) * (2 * p_ + 3) + (p_ + 1 - a)] : nullptr;
+    for (int c = 0; c < count; ++c) {
+      Eigen::Matrix3d& B = row ? row[c] : block(index[a], index[c]);
+      if (dim_ == 2)
+        B.topLeftCorner<2, 2>() += (b[a] * b[c]) * VV.topLeftCorner<2, 2>() + (b[a] * db[c]) * VR.topLeftCorner<2, 2>() +
+                                   (db[a] * b[c]) * RV.topLeftCorner<2, 2>();
+      else
+        B += (b[a] * b[c]) * VV + (b[a] * db[c]) * VR + (db[a] * b[c]) * RV;
+    }
   }
 }
 

@@ -25,6 +25,12 @@ class NormalEquations {
   /// The same for `count` basis values given as arrays (no allocation).
   void add_term(int count, const int* index, const double* b, const Eigen::Matrix3d& M, const Eigen::Vector3d& x);
   void add_smoothing(double relative);
+  /// Adds weight * ((sum_j b_j P_j - c) . v)^2 + 2 weight ((sum_j b_j P_j - c) . v)((sum_j db_j P_j - v) . r)
+  /// with c = sum_j b_j P_j and v = sum_j db_j P_j at the current control points (`point`, `velocity`):
+  /// the correction of Newton's model of a squared distance to a moving curve (fit_loop.cpp),
+  /// b the basis values, db their derivatives, r the residual.
+  void add_newton_correction(int count, const int* index, const double* b, const double* db, const Eigen::Vector3d& point,
+                             const Eigen::Vector3d& velocity, const Eigen::Vector3d& residual, double weight);
   /// Solves with the given control points fixed; `current` serves as the anchor of a tiny
   /// proximal term (weight 1e-12 of the mean diagonal) that keeps the system definite.
   /// \throw GeometryError if the system cannot be solved.
