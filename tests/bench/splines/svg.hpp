@@ -14,10 +14,7 @@ namespace sculpt::splines::bench {
 using Layer = render::PlotLayer;
 using Panel = render::PlotPanel;
 
-inline std::string svg_panels(const std::vector<Panel>& panels, bool oblique = false, double size = 320.0) {
-  return render::svg_panels(panels, {.projection = oblique ? render::Projection::Oblique : render::Projection::Plane,
-                                     .size = size});
-}
+using render::svg_panels;  // svg_panels(panels) in the plane; {.projection = Projection::Oblique} for 3D
 
 inline void write_file(const std::string& path, const std::string& text) {
   if (FILE* f = std::fopen(path.c_str(), "w")) {
