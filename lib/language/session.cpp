@@ -240,7 +240,7 @@ void Session::show(const std::string& argument) {
     if (!view.empty()) options.view = render::view_direction(view);
     std::filesystem::create_directories(show_dir_);
     const std::filesystem::path path = show_dir_ / (file + ".png");
-    render::write_png(render::render_meshes(meshes, options), path);
+    render::write_png(render::render_meshes(meshes, options), path, {.fast = true});
     out_ << path.string() << "\n";
   } catch (const std::exception& e) {
     err_ << "error: :show: " << e.what() << "\n";

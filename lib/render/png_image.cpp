@@ -13,7 +13,7 @@ namespace sculpt::render {
 // libpng's simplified API (png_image_*) reports errors through the png_image struct instead of
 // longjmp, so no C++ object is skipped by a jump.
 
-std::string encode_png(const Image& image) {
+std::string encode_png(const Image& image, const PngOptions& options) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
     throw InvalidInput("encode_png: the picture's size does not match its pixels");
@@ -22,6 +22,7 @@ std::string encode_png(const Image& image) {
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
   png.format = PNG_FORMAT_RGB;
+  if (options.fast) png.flags = PNG_IMAGE_FLAG_FAST;
   png_alloc_size_t size = 0;
   const png_int_32 stride = 3 * image.width;
   if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.rgb.data(), stride, nullptr))
@@ -50,8 +51,8 @@ Image decode_png(std::string_view data, const std::string& name) {
   return image;
 }
 
-void write_png(const Image& image, const std::filesystem::path& path) {
-  write_file_atomically(path, encode_png(image));
+void write_png(const Image& image, const std::filesystem::path& path, const PngOptions& options) {
+  write_file_atomically(path, encode_png(image, options));
 }
 
 Image read_png(const std::filesystem::path& path) {
