@@ -57,9 +57,11 @@ std::string svg_panels(const std::vector<PlotPanel>& panels, const PlotOptions& 
     if (!(lo.x() <= hi.x())) lo = hi = Eigen::Vector2d::Zero();  // an empty panel
     const double scale = (size - 2 * margin) / std::max(1e-300, (hi - lo).maxCoeff());
     const double x0 = margin + static_cast<double>(k) * (size + margin) + margin, y0 = title + size - margin;
+    // Centred in the panel along the shorter extent.
+    const Eigen::Vector2d slack = 0.5 * ((size - 2 * margin) * Eigen::Vector2d::Ones() - scale * (hi - lo));
     const auto screen = [&](const Eigen::Vector3d& p) {
       const Eigen::Vector2d q = to2d(p) - lo;
-      return Eigen::Vector2d(x0 + scale * q.x(), y0 - scale * q.y());
+      return Eigen::Vector2d(x0 + slack.x() + scale * q.x(), y0 - slack.y() - scale * q.y());
     };
     std::snprintf(b, sizeof b, "<text x=\"%.1f\" y=\"%.1f\">", x0 - margin, title - 4);
     svg += b + escape(panel.title) + "</text>\n";

@@ -47,7 +47,8 @@ struct PlotOptions {
   double size = 320.0;             ///< side of a panel, in SVG units
 };
 
-/// The SVG text of panels side by side, each scaled to fit its panel. Text is escaped.
+/// The SVG text of panels side by side, each scaled to fit its panel (same scale on both axes,
+/// centred). Text is escaped.
 std::string svg_panels(const std::vector<PlotPanel>& panels, const PlotOptions& options = {});
 
 /// Colour k of plots (as "#rrggbb"), the pictures' solid colours (picture.hpp) darkened.
