@@ -73,6 +73,8 @@ void register_render(BuiltinTable& table) {
                                       std::to_string(render::kMaxImageSide));
                  options.width = static_cast<int>(size[0]);
                  options.height = static_cast<int>(size[1]);
+                 if (static_cast<long long>(options.width) * options.height > render::kMaxImagePixels)
+                   args.fail(3, "size: at most " + std::to_string(render::kMaxImagePixels) + " pixels");
                }
                if (args.has(4)) {
                  options.scale = args.number(4);

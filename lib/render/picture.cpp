@@ -58,6 +58,8 @@ std::array<std::uint8_t, 3> solid_colour(std::size_t k) {
 Camera picture_camera(const std::vector<PolygonMesh>& meshes, const PictureOptions& options) {
   if (options.width < 1 || options.width > kMaxImageSide || options.height < 1 || options.height > kMaxImageSide)
     throw InvalidInput("render: the picture size must be 1 to " + std::to_string(kMaxImageSide) + " pixels per side");
+  if (static_cast<long long>(options.width) * options.height > kMaxImagePixels)
+    throw InvalidInput("render: the picture may have at most " + std::to_string(kMaxImagePixels) + " pixels");
   if (!std::isfinite(options.scale) || options.scale < 0)
     throw InvalidInput("render: the scale must be a finite number >= 0 (0: frame the solids)");
   if (!options.center.allFinite()) throw InvalidInput("render: the centre must be finite");

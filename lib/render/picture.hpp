@@ -58,11 +58,14 @@ struct PictureOptions {
 /// The colour of solid k (a fixed palette, repeating after 8): blue, orange, green, ...
 std::array<std::uint8_t, 3> solid_colour(std::size_t k);
 
-/// Largest image side accepted (pixels).
-inline constexpr int kMaxImageSide = 16384;
+/// Largest image side accepted (pixels), and largest pixel count (a picture holds about 16 bytes
+/// per pixel while it is made: 512 MiB at this bound).
+inline constexpr int kMaxImageSide = 8192;
+inline constexpr long long kMaxImagePixels = 1LL << 25;
 
 /// The camera `options` describe for these meshes (framing them when scale is 0).
-/// \throw InvalidInput for a bad view, size (1 to kMaxImageSide) or scale.
+/// \throw InvalidInput for a bad view, size (1 to kMaxImageSide per side, at most kMaxImagePixels)
+///        or scale.
 Camera picture_camera(const std::vector<PolygonMesh>& meshes, const PictureOptions& options);
 
 /// Picture of closed boundary meshes (faces convex, counter-clockwise from outside, as

@@ -130,6 +130,7 @@ TEST(Picture, BadOptionsAreTypedErrors) {
   const Solid s = box({0, 0, 0}, {1, 1, 1});
   EXPECT_THROW(render_solids({s}, {.width = 0}), InvalidInput);
   EXPECT_THROW(render_solids({s}, {.height = kMaxImageSide + 1}), InvalidInput);
+  EXPECT_THROW(render_solids({s}, {.width = kMaxImageSide, .height = kMaxImageSide}), InvalidInput);  // too many pixels
   EXPECT_THROW(render_solids({s}, {.view = {0, 0, 0}}), InvalidInput);
   EXPECT_THROW(render_solids({s}, {.scale = -1}), InvalidInput);
   EXPECT_THROW(view_direction("sideways"), InvalidInput);
