@@ -78,7 +78,7 @@ void register_render(BuiltinTable& table) {
                }
                if (args.has(4)) {
                  options.scale = args.number(4);
-                 if (!std::isfinite(options.scale) || options.scale < 0) args.fail(4, "scale must be >= 0");
+                 if (!(options.scale >= 0 && options.scale <= 1e6)) args.fail(4, "scale must be 0 to 10^6");
                }
                if (args.has(5)) {
                  const std::vector<double> c = args.vector(5, 3);

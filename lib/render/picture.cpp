@@ -60,8 +60,8 @@ Camera picture_camera(const std::vector<PolygonMesh>& meshes, const PictureOptio
     throw InvalidInput("render: the picture size must be 1 to " + std::to_string(kMaxImageSide) + " pixels per side");
   if (static_cast<long long>(options.width) * options.height > kMaxImagePixels)
     throw InvalidInput("render: the picture may have at most " + std::to_string(kMaxImagePixels) + " pixels");
-  if (!std::isfinite(options.scale) || options.scale < 0)
-    throw InvalidInput("render: the scale must be a finite number >= 0 (0: frame the solids)");
+  if (!std::isfinite(options.scale) || options.scale < 0 || options.scale > 1e6)
+    throw InvalidInput("render: the scale must be 0 to 10^6 pixels per unit (0: frame the solids)");
   if (!options.center.allFinite()) throw InvalidInput("render: the centre must be finite");
   if (!std::isfinite(options.edge_angle)) throw InvalidInput("render: the edge angle must be finite");
   if (options.line_width < 0 || options.line_width > 64) throw InvalidInput("render: the line width must be 0 to 64");

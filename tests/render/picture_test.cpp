@@ -133,6 +133,10 @@ TEST(Picture, BadOptionsAreTypedErrors) {
   EXPECT_THROW(render_solids({s}, {.width = kMaxImageSide, .height = kMaxImageSide}), InvalidInput);  // too many pixels
   EXPECT_THROW(render_solids({s}, {.view = {0, 0, 0}}), InvalidInput);
   EXPECT_THROW(render_solids({s}, {.scale = -1}), InvalidInput);
+  EXPECT_THROW(render_solids({s}, {.scale = 1e7}), InvalidInput);
+  // Far off screen, or much larger than the picture: drawn (or not) without trouble.
+  EXPECT_EQ(covered(render_solids({s}, {.width = 20, .height = 20, .scale = 1e6, .center = {-500, 0, 0}})), 0);
+  EXPECT_EQ(covered(render_solids({s}, {.width = 20, .height = 20, .scale = 1e6, .center = {0.5, 0.5, 0.5}})), 400);
   EXPECT_THROW(view_direction("sideways"), InvalidInput);
   PolygonMesh bad{.vertices = {{0, 0, 0}}, .faces = {{0, 1, 2}}};
   EXPECT_THROW(render_meshes({bad}), InvalidInput);

@@ -52,10 +52,12 @@ void rasterize(DepthBuffer& buffer, const ScreenPolygon& polygon) {
   }
   if (edges.size() < 3 || !(x_lo < x_hi) || !(y_lo < y_hi)) return;
   // Pixel i's centre is i + 0.5: the rows and columns whose centres lie in the bounding box.
-  const int row_lo = std::max(0, static_cast<int>(std::ceil(y_lo - 0.5)));
-  const int row_hi = std::min(buffer.height - 1, static_cast<int>(std::floor(y_hi - 0.5)));
-  const int col_lo = std::max(0, static_cast<int>(std::ceil(x_lo - 0.5)));
-  const int col_hi = std::min(buffer.width - 1, static_cast<int>(std::floor(x_hi - 0.5)));
+  // Clamped as doubles first: corners far off screen must not overflow the conversion to int.
+  auto clamp_to = [](double v, int hi) { return static_cast<int>(std::clamp(v, -1.0, static_cast<double>(hi) + 1)); };
+  const int row_lo = std::max(0, clamp_to(std::ceil(y_lo - 0.5), buffer.height));
+  const int row_hi = std::min(buffer.height - 1, clamp_to(std::floor(y_hi - 0.5), buffer.height));
+  const int col_lo = std::max(0, clamp_to(std::ceil(x_lo - 0.5), buffer.width));
+  const int col_hi = std::min(buffer.width - 1, clamp_to(std::floor(x_hi - 0.5), buffer.width));
   if (row_lo > row_hi || col_lo > col_hi) return;
   for (int row = row_lo; row <= row_hi; ++row) {
     const double y = row + 0.5;
