@@ -110,6 +110,12 @@ TEST(RenderBuiltin, SessionShowRendersANamedOrTheLastSolid) {
   out.str("");
   session.feed(":show a top");
   EXPECT_EQ(out.str(), (dir.path / "a.png").string() + "\n");
+  out.str("");
+  session.feed("parts = [a, translate(b, [3, 0, 0])]");
+  session.feed(":show parts front");
+  EXPECT_EQ(out.str(), (dir.path / "parts.png").string() + "\n");
+  const render::Image parts = render::read_png(dir.path / "parts.png");
+  EXPECT_EQ(parts.width, 800);
   err.str("");
   session.feed(":show n");
   EXPECT_NE(err.str().find("'n' is a number, not a solid"), std::string::npos) << err.str();
