@@ -13,3 +13,4 @@
 #include "bsp/bsp.hpp"
 #include "revolution/revolution.hpp"
 #include "reports/reports.hpp"
+#include "render/render.hpp"

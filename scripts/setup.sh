@@ -22,6 +22,7 @@ done
 
 packages=(g++ make cmake pkg-config libeigen3-dev libboost-dev libopenmesh-dev
           libgtest-dev libgmock-dev libedit-dev python3
+          libpng-dev  # libpng-dev: PNG pictures of solids (lib/render)
           libcgal-dev)  # libcgal-dev: the tests' independent mesh validator (tests/support)
 missing=()
 for p in "${packages[@]}"; do

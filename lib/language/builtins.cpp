@@ -131,6 +131,8 @@ const BuiltinTable& builtins() {
     register_reports(t);
     t.set_area("implicit");
     register_implicit(t);
+    t.set_area("render");
+    register_render(t);
 #endif
     return t;
   }();

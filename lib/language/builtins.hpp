@@ -132,6 +132,7 @@ void register_splines(BuiltinTable& table);
 void register_revolution(BuiltinTable& table);
 void register_reports(BuiltinTable& table);
 void register_implicit(BuiltinTable& table);
+void register_render(BuiltinTable& table);
 
 /// Names of the language's keywords (for completion and the docs check).
 std::span<const char* const> keywords();

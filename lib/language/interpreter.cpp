@@ -86,6 +86,8 @@ struct Interpreter::Impl {
   InterpreterOptions options;
   RunSettings settings;
   std::map<std::string, Value> globals;
+  std::map<std::string, std::uint64_t> assigned_at;  // global name -> serial of its last assignment
+  std::uint64_t assignments = 0;                    // global assignments so far
   std::vector<Frame*> frames;  // innermost user-function call last; empty at top level
   SourcePtr source;            // the script whose syntax tree is being walked
   std::shared_ptr<const ast::Program> program;
@@ -166,6 +168,7 @@ struct Interpreter::Impl {
     }
     if (frames.empty()) {
       globals[id.name] = std::move(value);
+      assigned_at[id.name] = ++assignments;
     } else {
       frames.back()->locals[id.name] = std::move(value);
     }
@@ -525,6 +528,13 @@ const Value* Interpreter::global(const std::string& name) const {
   auto it = impl_->globals.find(name);
   return it == impl_->globals.end() ? nullptr : &it->second;
 }
+
+std::uint64_t Interpreter::assigned_at(const std::string& name) const {
+  auto it = impl_->assigned_at.find(name);
+  return it == impl_->assigned_at.end() ? 0 : it->second;
+}
+
+std::uint64_t Interpreter::assignments() const { return impl_->assignments; }
 
 std::vector<std::string> Interpreter::global_names() const {
   std::vector<std::string> names;

@@ -49,6 +49,11 @@ class Interpreter {
   /// Binds a global (sculpt -D name=value). \throw ScriptError if `name` is a built-in.
   void define(const std::string& name, Value value);
   [[nodiscard]] const Value* global(const std::string& name) const;
+  /// The serial number of the last assignment to global `name` (1 for the session's first
+  /// global assignment, 2 for the next, ...), 0 if never assigned: tells which was bound last.
+  [[nodiscard]] std::uint64_t assigned_at(const std::string& name) const;
+  /// The number of global assignments so far (the latest serial).
+  [[nodiscard]] std::uint64_t assignments() const;
   /// Global names in alphabetical order.
   [[nodiscard]] std::vector<std::string> global_names() const;
 

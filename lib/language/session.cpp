@@ -1,17 +1,39 @@
 #include "language/session.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 
 #include "base/errors.hpp"
 #include "language/builtins.hpp"
 #include "language/parser.hpp"
+#include "language/solid_values.hpp"
+#include "render/camera.hpp"
+#include "render/picture.hpp"
+#include "render/png_image.hpp"
 #include "language/suggest.hpp"
 
 namespace sculpt::language {
 namespace {
 
-constexpr const char* kCommands[] = {":help", ":load", ":vars", ":quit"};
+constexpr const char* kCommands[] = {":help", ":load", ":quit", ":show", ":vars"};
+
+/// The boundaries of a solid or of a list of solids; empty if the value is neither.
+std::vector<PolygonMesh> solid_meshes(const Value& value) {
+  std::vector<PolygonMesh> meshes;
+  if (const auto* s = value.object<SolidValue>()) {
+    meshes.push_back(s->boundary());
+  } else if (const List* list = value.list(); list && !list->empty()) {
+    for (const Value& item : *list) {
+      const auto* part = item.object<SolidValue>();
+      if (!part) return {};
+      meshes.push_back(part->boundary());
+    }
+  }
+  return meshes;
+}
 
 const std::map<std::string, std::string>& keyword_help() {
   static const std::map<std::string, std::string> help = {
@@ -57,7 +79,7 @@ std::string help_text(std::string_view name) {
   const BuiltinTable& table = builtins();
   if (name.empty()) {
     std::string out =
-        "Commands: :help [name], :load file, :vars, :quit\n"
+        "Commands: :help [name], :load file, :vars, :show [name] [view], :quit\n"
         "Keywords: fn if else for in return include and or not true false\n"
         "Operators: + - * / % (numbers, vectors), == != < <= > >=, | & - (solids: union, "
         "intersection, difference)\n";
@@ -82,8 +104,19 @@ std::string help_text(std::string_view name) {
   return out + "\n";
 }
 
+std::filesystem::path show_directory_default() {
+  if (const char* dir = std::getenv("SCULPT_SHOW_DIR"); dir && *dir) return dir;
+  std::error_code ec;
+  std::filesystem::path tmp = std::filesystem::temp_directory_path(ec);
+  if (ec) tmp = "/tmp";
+  return tmp / ("sculpt-show-" + std::to_string(::getuid()));
+}
+
 Session::Session(std::ostream& out, std::ostream& err, const std::atomic<bool>* interrupt)
-    : out_(out), err_(err), interpreter_(InterpreterOptions{.out = &out, .interrupt = interrupt}) {}
+    : out_(out),
+      err_(err),
+      interpreter_(InterpreterOptions{.out = &out, .interrupt = interrupt}),
+      show_dir_(show_directory_default()) {}
 
 bool Session::discard_pending() {
   const bool had = !pending_.empty();
@@ -117,7 +150,13 @@ bool Session::feed(const std::string& line) {
 
 void Session::run(const SourcePtr& source) {
   try {
-    if (auto value = interpreter_.run(source); value && !value->is_none()) out_ << to_repr(*value) << "\n";
+    if (auto value = interpreter_.run(source); value && !value->is_none()) {
+      out_ << to_repr(*value) << "\n";
+      if (value->object<SolidValue>()) {
+        last_value_ = *value;
+        last_value_serial_ = interpreter_.assignments();
+      }
+    }
   } catch (const ScriptError& e) {
     err_ << format_error(e);
   }
@@ -140,6 +179,8 @@ void Session::command(const std::string& line) {
       if (shown.size() > 70) shown = shown.substr(0, 67) + "...";
       out_ << name << " : " << type_name(v) << " = " << shown << "\n";
     }
+  } else if (word == ":show") {
+    show(argument);
   } else if (word == ":load") {
     if (argument.empty()) {
       err_ << "error: :load needs a file name\n";
@@ -154,10 +195,56 @@ void Session::command(const std::string& line) {
     std::vector<std::string> commands(std::begin(kCommands), std::end(kCommands));
     err_ << "error: unknown command '" << word << "'";
     if (auto guess = closest_name(word, commands)) err_ << "; did you mean '" << *guess << "'?";
-    err_ << " (commands: :help, :load, :vars, :quit)\n";
+    err_ << " (commands: :help, :load, :vars, :show, :quit)\n";
   }
   out_.flush();
   err_.flush();
+}
+
+void Session::show(const std::string& argument) {
+  const std::string name = first_word(argument);
+  const std::string view = first_word(argument.substr(argument.find(name) + name.size()));
+  std::string file = name;
+  std::optional<Value> value;
+  if (!name.empty()) {
+    const Value* v = interpreter_.global(name);
+    if (!v) {
+      err_ << "error: :show: no variable named '" << name << "'\n";
+      return;
+    }
+    value = *v;
+  } else {
+    // The most recently bound global solid, unless an entry's solid value came later.
+    std::uint64_t best = 0;
+    for (const std::string& n : interpreter_.global_names()) {
+      const std::uint64_t at = interpreter_.assigned_at(n);
+      if (at > best && interpreter_.global(n)->object<SolidValue>()) best = at, file = n;
+    }
+    if (last_value_ && last_value_serial_ >= best) {
+      value = last_value_;
+      file = "last";
+    } else if (best > 0) {
+      value = *interpreter_.global(file);
+    } else {
+      err_ << "error: :show: no solid made yet (:show name shows the solid bound to name)\n";
+      return;
+    }
+  }
+  const std::vector<PolygonMesh> meshes = solid_meshes(*value);
+  if (meshes.empty()) {
+    err_ << "error: :show: '" << name << "' is a " << type_name(*value) << ", not a solid or a list of solids\n";
+    return;
+  }
+  try {
+    render::PictureOptions options;
+    if (!view.empty()) options.view = render::view_direction(view);
+    std::filesystem::create_directories(show_dir_);
+    const std::filesystem::path path = show_dir_ / (file + ".png");
+    render::write_png(render::render_meshes(meshes, options), path, {.fast = true});
+    out_ << path.string() << "\n";
+  } catch (const std::exception& e) {
+    err_ << "error: :show: " << e.what() << "\n";
+  }
 }
 
 std::vector<std::string> Session::complete(std::string_view text) const {

@@ -2,9 +2,17 @@
 /// \file session.hpp
 /// An interactive session without the terminal: lines in, output out. The REPL (repl/) puts
 /// libedit in front of it; tests drive it directly. Entries that leave brackets open, or stop
-/// right after an operator, continue on the next line (an empty line ends the latter); `:help [name]`, `:load file`, `:vars`, `:quit` are commands. An error is
-/// printed and the session goes on with every binding intact.
+/// right after an operator, continue on the next line (an empty line ends the latter); `:help [name]`,
+/// `:load file`, `:vars`, `:show [name] [view]`, `:quit` are commands. An error is printed and the
+/// session goes on with every binding intact.
+///
+/// `:show name` renders the solid (or list of solids) bound to `name` to `<show dir>/name.png` and
+/// prints the path, so an image viewer kept open on the file follows the sculpting; `:show` alone
+/// shows the last solid made: the value of the latest entry that was a solid expression, or the
+/// global most recently bound to a solid, whichever came later (`last.png` for the former).
 
+#include <filesystem>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -31,17 +39,28 @@ class Session {
   /// start with `text`, sorted.
   [[nodiscard]] std::vector<std::string> complete(std::string_view text) const;
   [[nodiscard]] Interpreter& interpreter() { return interpreter_; }
+  /// Where `:show` writes its pictures (created when needed). Default: show_directory_default().
+  void set_show_directory(std::filesystem::path dir) { show_dir_ = std::move(dir); }
+  [[nodiscard]] const std::filesystem::path& show_directory() const { return show_dir_; }
 
  private:
   void command(const std::string& line);
   void run(const SourcePtr& source);
+  void show(const std::string& argument);
 
   std::ostream& out_;
   std::ostream& err_;
   Interpreter interpreter_;
   std::string pending_;
   int next_line_ = 1;
+  std::filesystem::path show_dir_;
+  /// The latest entry value that was a solid, with the assignment serial at that time.
+  std::optional<Value> last_value_;
+  std::uint64_t last_value_serial_ = 0;
 };
+
+/// `$SCULPT_SHOW_DIR` if set, else `<temporary directory>/sculpt-show-<uid>` (one per user).
+std::filesystem::path show_directory_default();
 
 /// `:help` text: an overview of commands, keywords and built-ins when `name` is empty, else
 /// the signature and description of one built-in or keyword.

@@ -2,7 +2,7 @@
 # The example scripts without a .expect (scripts/*.bsp: the goblet of the README's main job, the
 # head profile, the tree comparison) run to completion on a copy of scripts/ and models/, and
 # every mesh they export reads back (import refuses open or non-manifold meshes) with a positive
-# volume.   example_scripts_test.sh SCULPT SOURCE_DIR
+# volume; every picture is a PNG.   example_scripts_test.sh SCULPT SOURCE_DIR
 set -u
 sculpt=$1
 source_dir=$2
@@ -34,6 +34,11 @@ done
 for svg in "$work"/out/*.svg; do
   [ -e "$svg" ] || continue
   grep -q "</svg>" "$svg" || { echo "FAIL $(basename "$svg"): not a complete SVG"; failures=$((failures + 1)); }
+done
+for png in "$work"/out/*.png; do
+  [ -e "$png" ] || continue
+  [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
+    { echo "FAIL $(basename "$png"): not a PNG"; failures=$((failures + 1)); }
 done
 echo "$ran scripts, $meshes meshes read back, $failures failures"
 [ "$ran" -ge 3 ] && [ "$meshes" -ge 3 ] || { echo "FAIL: expected at least 3 scripts and 3 meshes"; exit 1; }

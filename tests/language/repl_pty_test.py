@@ -18,6 +18,7 @@ class Terminal:
         if self.pid == 0:
             os.environ["HOME"] = home
             os.environ["TERM"] = "xterm"
+            os.environ["SCULPT_SHOW_DIR"] = os.path.join(home, "show")
             os.execv(SCULPT, [SCULPT])
         self.screen = ""
 
@@ -102,6 +103,12 @@ def main():
     time.sleep(0.5)
     t.type("\x03"); t.read_until("error: interrupted"); t.read_until("sculpt> ")
     t.mark(); t.type("x\r"); t.read_until("42")
+
+    # :show renders the solid and prints the picture's path.
+    t.mark(); t.type("b = box([0,0,0],[1,1,1])\r"); t.read_until("sculpt> ")
+    picture = os.path.join(home, "show", "b.png")
+    t.mark(); t.type(":show\r"); t.read_until(picture)
+    assert open(picture, "rb").read(8) == b"\x89PNG\r\n\x1a\n", "not a PNG"
 
     t.mark(); t.type(":help box\r"); t.read_until("box(min, max)")
     t.mark(); t.type(":vars\r"); t.read_until("x : number = 42")

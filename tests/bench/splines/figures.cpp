@@ -112,6 +112,6 @@ int main(int argc, char** argv) {
       if (k == 30) p.layers.push_back(polygon(r.curve, "#c0392b"));
       p.legend.emplace_back(colors[c++], k == 30 ? "final" : "step " + std::to_string(k));
     }
-    write_file(dir + "/splines_helix.svg", svg_panels({p}, true));
+    write_file(dir + "/splines_helix.svg", svg_panels({p}, {.projection = sculpt::render::Projection::Oblique}));
   }
 }

@@ -1,0 +1,169 @@
+// Built-ins of the render area: pictures of solids (PNG) and SVG plots of curves, linearizations
+// and splines (lib/render; docs/pictures.md).
+#include <cmath>
+#include <filesystem>
+
+#include "base/errors.hpp"
+#include "language/builtins.hpp"
+#include "language/curve_values.hpp"
+#include "language/solid_values.hpp"
+#include "language/spline_values.hpp"
+#include "mesh/mesh_io.hpp"
+#include "render/camera.hpp"
+#include "render/picture.hpp"
+#include "render/plot.hpp"
+#include "render/png_image.hpp"
+
+namespace sculpt::language {
+namespace {
+
+/// The view argument: a name ("iso", "front", ...) or a direction [x, y, z].
+Eigen::Vector3d view_arg(const Arguments& args, std::size_t i) {
+  if (const std::string* name = args.value(i).get<std::string>()) {
+    try {
+      return render::view_direction(*name);
+    } catch (const InvalidInput& e) {
+      args.fail(i, e.what());
+    }
+  }
+  const std::vector<double> v = args.vector(i, 3);
+  const Eigen::Vector3d d(v[0], v[1], v[2]);
+  if (!d.allFinite() || d.norm() == 0) args.fail(i, "the view direction must be a nonzero finite vector");
+  return d;
+}
+
+std::filesystem::path output_path(const Arguments& args, std::size_t i) {
+  const std::filesystem::path path = args.file_path(i);
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  return path;
+}
+
+}  // namespace
+
+void register_render(BuiltinTable& table) {
+  table.add({.name = "render",
+             .signature = "render(x, \"file.png\", view=\"iso\", size=[800, 600], scale=0, center=[0, 0, 0], "
+                          "edge_angle=30, edges=true)",
+             .doc = "Writes a shaded picture (PNG) of solid x, or of a list of solids each in its own colour, "
+                    "seen orthographically from direction `view` (a name: iso, front, back, left, right, top, "
+                    "bottom; or a vector pointing towards the viewer). Hidden surfaces are removed per pixel; "
+                    "lines mark silhouettes and faces meeting at more than `edge_angle` degrees. `scale` in "
+                    "pixels per unit with `center` at the image centre; 0 frames the solids. The file is "
+                    "replaced atomically; folders are created.",
+             .params = {{"x"}, {"file"}, {"view", false}, {"size", false}, {"scale", false}, {"center", false},
+                        {"edge_angle", false}, {"edges", false}},
+             .run = [](const Arguments& args) -> Value {
+               std::vector<PolygonMesh> meshes;
+               if (const List* list = args.value(0).list()) {
+                 for (std::size_t k = 0; k < list->size(); ++k) {
+                   const auto* s = (*list)[k].object<SolidValue>();
+                   if (!s) args.fail(0, "render: item " + std::to_string(k) + " of the list is not a solid");
+                   meshes.push_back(s->boundary());
+                 }
+               } else {
+                 meshes.push_back(args.object<SolidValue>(0, "a solid or a list of solids").boundary());
+               }
+               render::PictureOptions options;
+               if (args.has(2)) options.view = view_arg(args, 2);
+               if (args.has(3)) {
+                 const std::vector<double> size = args.vector(3, 2);
+                 for (double s : size)
+                   if (!(s >= 1 && s <= render::kMaxImageSide) || s != std::floor(s))
+                     args.fail(3, "size must be [width, height], whole numbers from 1 to " +
+                                      std::to_string(render::kMaxImageSide));
+                 options.width = static_cast<int>(size[0]);
+                 options.height = static_cast<int>(size[1]);
+                 if (static_cast<long long>(options.width) * options.height > render::kMaxImagePixels)
+                   args.fail(3, "size: at most " + std::to_string(render::kMaxImagePixels) + " pixels");
+               }
+               if (args.has(4)) {
+                 options.scale = args.number(4);
+                 if (!(options.scale >= 0 && options.scale <= 1e6)) args.fail(4, "scale must be 0 to 10^6");
+               }
+               if (args.has(5)) {
+                 const std::vector<double> c = args.vector(5, 3);
+                 options.center = Eigen::Vector3d(c[0], c[1], c[2]);
+               }
+               if (args.has(6)) {
+                 options.edge_angle = args.number(6);
+                 if (!(options.edge_angle >= 0 && options.edge_angle <= 180)) args.fail(6, "edge_angle must be 0 to 180");
+               }
+               if (args.has(7)) options.edges = args.boolean(7);
+               args.charge(static_cast<std::uint64_t>(options.width) * static_cast<std::uint64_t>(options.height) / 1024);
+               const render::Image image = render::render_meshes(meshes, options);
+               render::write_png(image, output_path(args, 1));
+               return {};
+             }});
+  table.add({.name = "plot",
+             .signature = "plot(xs, \"file.svg\", view=\"iso\", size=480, title=\"\")",
+             .doc = "Writes an SVG figure of xs: a curve, linearization, spline or list of points, or a list of "
+                    "them, each in its own colour: a curve as its points, a linearization as its polygon with "
+                    "the break points marked (and its curve's points), a spline as the curve with its dashed "
+                    "control polygon, a list of points as a polyline. 2D data is drawn in its plane; when any "
+                    "item is 3D (or `view` is given) everything is projected along `view` (as in render). "
+                    "`size`: the figure's side. The file is replaced atomically; folders are created.",
+             .params = {{"xs"}, {"file"}, {"view", false}, {"size", false}, {"title", false}},
+             .run = [](const Arguments& args) -> Value {
+               // A single item, or a list of items (a list of points alone is one item).
+               std::vector<const Value*> items;
+               const List* list = args.value(0).list();
+               const bool points_alone = list && !list->empty() && (*list)[0].list() &&
+                                         !(*list)[0].list()->empty() && (*list)[0].list()->front().get<double>();
+               if (list && !points_alone) {
+                 for (const Value& v : *list) items.push_back(&v);
+                 if (items.empty()) args.fail(0, "plot: the list is empty");
+               } else {
+                 items.push_back(&args.value(0));
+               }
+               render::PlotPanel panel;
+               if (args.has(4)) panel.title = args.string(4);
+               bool three_d = false;
+               for (std::size_t k = 0; k < items.size(); ++k) {
+                 const Value& v = *items[k];
+                 const std::string color = render::plot_color(k);
+                 const std::string what = items.size() > 1 ? "plot: item " + std::to_string(k) + " " : "plot: ";
+                 if (const auto* c = v.object<CurveValue>()) {
+                   panel.layers.push_back(render::curve_layer(c->curve, color));
+                   three_d |= c->curve.dimension == 3;
+                 } else if (const auto* l = v.object<LinearizationValue>()) {
+                   panel.layers.push_back(render::curve_layer(l->curve->curve, "#9a9a9a"));
+                   for (auto& layer : render::linearization_layers(l->curve->curve, l->result, color))
+                     panel.layers.push_back(std::move(layer));
+                   three_d |= l->curve->curve.dimension == 3;
+                 } else if (const auto* s = v.object<SplineValue>()) {
+                   for (auto& layer : render::spline_layers(s->spline, color)) panel.layers.push_back(std::move(layer));
+                   three_d |= s->spline.dimension() == 3;
+                 } else if (const List* points = v.list()) {
+                   curves::DigitizedCurve polyline;
+                   for (std::size_t p = 0; p < points->size(); ++p) {
+                     const List* xyz = (*points)[p].list();
+                     const std::size_t n = xyz ? xyz->size() : 0;
+                     bool ok = n == 2 || n == 3;
+                     for (std::size_t a = 0; ok && a < n; ++a)
+                       ok = (*xyz)[a].get<double>() && std::isfinite(*(*xyz)[a].get<double>());
+                     if (!ok) args.fail(0, what + "point " + std::to_string(p + 1) + " must be [x, y] or [x, y, z]");
+                     polyline.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(),
+                                                  n == 3 ? *(*xyz)[2].get<double>() : 0.0);
+                     three_d |= n == 3;
+                   }
+                   panel.layers.push_back({.lines = {polyline.points}, .color = color, .width = 1.5});
+                 } else {
+                   args.fail(0, what + "must be a curve, linearization, spline or list of points, not " + type_name(v));
+                 }
+               }
+               render::PlotOptions options;
+               if (three_d || args.has(2)) {
+                 options.projection = render::Projection::View;
+                 if (args.has(2)) options.view = view_arg(args, 2);
+               }
+               options.size = 480;
+               if (args.has(3)) {
+                 options.size = args.number(3);
+                 if (!(options.size >= 50 && options.size <= 10000)) args.fail(3, "size must be 50 to 10000");
+               }
+               write_file_atomically(output_path(args, 1), render::svg_panels({panel}, options));
+               return {};
+             }});
+}
+
+}  // namespace sculpt::language
