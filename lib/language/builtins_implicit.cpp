@@ -1,6 +1,8 @@
 // Built-ins of the implicit area: tracing the space curve f = g = 0 of two script functions
-// (Ihm & Naylor 1990, sec. 5.1; lib/implicit). The functions are compiled once into expressions
-// (implicit_compiler.hpp), so the tracer never runs the interpreter per point. See docs/implicit.md.
+// (Ihm & Naylor 1990, sec. 5.1; lib/implicit) and implicit solids {f <= 0} in a box, meshed by
+// lib/implicit (polygonize.hpp) and built into BSP solids here (the implicit layer knows no bsp).
+// The functions are compiled once into expressions (implicit_compiler.hpp), so the tracer and
+// the mesher never run the interpreter per point. See docs/implicit.md.
 #include <cmath>
 #include <memory>
 #include <ostream>
@@ -8,7 +10,12 @@
 #include <string>
 
 #include "curves/digitized_curve.hpp"
+#include "bsp/from_mesh.hpp"
+#include "implicit/polygonize.hpp"
 #include "implicit/trace.hpp"
+#include "kernel/grid.hpp"
+#include "language/solid_values.hpp"
+#include "mesh/mesh_validation.hpp"
 #include "language/builtins.hpp"
 #include "language/curve_values.hpp"
 #include "language/implicit_compiler.hpp"
@@ -151,9 +158,80 @@ void print_summary(const Arguments& args, const implicit::TraceResult& r, long m
   args.out() << s.str();
 }
 
+// Parameters of implicit().
+enum : std::size_t { kSolidF, kSolidBox, kSolidTol, kSolidCells, kSolidQuiet };
+/// The mesher's default work budget (cells; about 10 s on this machine) and the most a script may give.
+constexpr long kDefaultCells = 2'000'000;
+constexpr long long kMaxCells = 50'000'000;
+/// tol must be at least this many grid steps of the exact kernel: snapping moves each vertex by
+/// up to half a step's diagonal (0.87 steps).
+constexpr double kMinToleranceSteps = 4.0;
+
+/// implicit(f, box, tol): the solid {f <= 0} inside the box, meshed by implicit::polygonize and
+/// built into a BSP tree from its boundary.
+Value implicit_solid(const Arguments& args) {
+  const implicit::Expression f = compiled_arg(args, kSolidF);
+  if (!args.has(kSolidBox)) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region of the solid");
+  implicit::PolygonizeOptions options{.box = box_arg(args, kSolidBox)};
+  const double diagonal = (options.box.hi - options.box.lo).norm();
+  options.tolerance = args.has(kSolidTol) ? args.number(kSolidTol) : 1e-3;
+  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) args.fail(kSolidTol, "tol must be a finite number > 0");
+  const double floor = kMinToleranceSteps * kernel::kGridStep;
+  if (options.tolerance < floor) {
+    args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is below 4 steps of the exact kernel's grid (" +
+                             format_number(floor) + "): the solid's vertices are snapped to that grid");
+  }
+  const double longest = (options.box.hi - options.box.lo).maxCoeff();
+  if (options.tolerance < 4e-6 * longest) {
+    args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is below 4e-6 of the box's longest side (" +
+                             format_number(4e-6 * longest) + "), the mesher's finest cells");
+  }
+  if (options.tolerance > diagonal) args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is larger than the box diagonal");
+  options.max_cells = args.has(kSolidCells) ? static_cast<long>(args.integer(kSolidCells, 1, kMaxCells)) : kDefaultCells;
+  implicit::PolygonizeResult r;
+  try {
+    r = implicit::polygonize(f, options);
+  } catch (const implicit::NonFiniteValue& e) {
+    args.fail(kSolidF, "'" + function_arg(args, kSolidF).name + "' is not finite at " + point_text(e.point()) +
+                           " (a division by zero, the square root of a negative number or an overflow); give a box "
+                           "where it is defined");
+  } catch (const GeometryError& e) {
+    args.fail(std::string(e.what()) + (args.has(kSolidCells) ? "" : " (give cells=n)"));
+  }
+  args.charge(static_cast<std::uint64_t>(r.cells + r.search_cells));
+  const bool quiet = args.has(kSolidQuiet) && args.boolean(kSolidQuiet);
+  if (!quiet) {
+    std::ostringstream s;
+    s << "implicit: " << r.mesh.faces.size() << " triangles, " << r.leaves << " cells, depth " << r.max_level << "\n";
+    if (r.mesh.faces.empty()) {
+      s << "implicit: warning: '" << function_arg(args, kSolidF).name
+        << "' is > 0 everywhere the mesher looked in the box: the solid is empty\n";
+    }
+    args.out() << s.str();
+  }
+  if (r.mesh.faces.empty()) return solid_value(Solid{});
+  // The mesher guarantees a closed, oriented, unintersecting manifold; snapping to the kernel's
+  // grid can still make faces meet where the surface has features near the grid step.
+  const ValidationReport report = check_closed_manifold(r.mesh, {.check_self_intersections = false});
+  if (!report.ok()) args.fail("the mesh of '" + function_arg(args, kSolidF).name + "' is not closed: " + report.summary(3));
+  if (const std::string e = snapped_self_intersection(r.mesh); !e.empty()) args.fail("the solid's mesh: " + e + "; raise tol");
+  return solid_value(from_mesh(r.mesh, {.skip_degenerate_faces = true}));
+}
+
 }  // namespace
 
 void register_implicit(BuiltinTable& table) {
+  table.add({.name = "implicit",
+             .signature = "implicit(f, box=[lo, hi], tol=1e-3, cells=2000000, quiet=false)",
+             .doc = "The solid f <= 0 inside the box, as a BSP solid for | & -, volume, export. f is a function "
+                    "fn f(x, y, z) or fn f(p), compiled once. Its boundary is meshed by an adaptive octree (interval "
+                    "bounds prove cells empty or full; small parts are searched for) and marching tetrahedra: "
+                    "closed and manifold, about tol from the surface, finer where it bends; the box faces close "
+                    "it where the surface leaves the box. tol is at least 4 kernel grid steps (1.2e-4). Prints the "
+                    "triangle and cell counts unless quiet=true; an f > 0 in the whole box gives the empty solid "
+                    "with a warning; cells bounds the work (an error when it runs out).",
+             .params = {{"f"}, {"box", false}, {"tol", false}, {"cells", false}, {"quiet", false}},
+             .run = [](const Arguments& args) -> Value { return implicit_solid(args); }});
   const std::vector<Param> params = {{"f"}, {"g"}, {"box", false}, {"tol", false}, {"steps", false}};
   std::vector<Param> trace_params = params;
   trace_params.push_back({"quiet", false});

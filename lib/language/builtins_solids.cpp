@@ -27,6 +27,14 @@ Eigen::Vector3d vector3(const Arguments& args, std::size_t i) {
 
 const Solid& solid_arg(const Arguments& args, std::size_t i) { return args.object<SolidValue>(i, "a solid").solid; }
 
+CircularOptions circular(const Arguments& args, std::size_t i) {
+  CircularOptions options;
+  if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
+  return options;
+}
+
+}  // namespace
+
 // The exact kernel snaps vertices to its grid (docs/kernel.md). A valid mesh with features below
 // the grid step can become self-intersecting that way (faces 1e-6 apart now touch) without any
 // face turning over, which from_mesh would catch: check the snapped copy as well.
@@ -48,14 +56,6 @@ std::string snapped_self_intersection(const PolygonMesh& mesh) {
       << "): the mesh has features smaller than the grid step";
   return out.str();
 }
-
-CircularOptions circular(const Arguments& args, std::size_t i) {
-  CircularOptions options;
-  if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
-  return options;
-}
-
-}  // namespace
 
 std::string SolidValue::repr() const {
   if (solid.is_empty()) return "<solid: empty>";

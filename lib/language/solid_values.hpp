@@ -6,6 +6,7 @@
 /// `args.object<SolidValue>(i, "a solid").solid`.
 
 #include <optional>
+#include <string>
 
 #include "bsp/boundary.hpp"
 #include "bsp/solid.hpp"
@@ -32,5 +33,10 @@ struct SolidValue final : Object {
 
 /// Wraps a solid as a script value.
 Value solid_value(Solid solid);
+
+/// Empty when `mesh` (a valid closed mesh) stays free of self-intersections with its vertices
+/// snapped to the exact kernel's grid; else what meets where, for an error message. A valid
+/// mesh with features below the grid step can intersect itself once snapped (import, implicit).
+std::string snapped_self_intersection(const PolygonMesh& mesh);
 
 }  // namespace sculpt::language
