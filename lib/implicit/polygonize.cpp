@@ -1,6 +1,9 @@
 // Implicit solids: adaptive octree, conforming tetrahedra, marching tetrahedra (polygonize.hpp).
 #include "implicit/polygonize.hpp"
 
+#include "implicit/detail/simplify.hpp"
+#include "mesh/self_intersection.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -22,6 +25,7 @@ using Key = std::uint64_t;
 constexpr int kTop = 4;
 constexpr int kMaxLevel = 16;
 constexpr int kStartLevel = 1;  // cells are split at least this deep before any is kept
+constexpr double kSimplifyFraction = 0.8;  // collapsed triangles stay within this times tol
 constexpr double kBendFactor = 1.25;  // measured: the torus at 2e-3 stays within tol (1.5 does not)
 
 enum class Kind : std::uint8_t { Empty, Full, Mixed };
@@ -75,6 +79,8 @@ class Polygonizer {
     balance();
     march();
     result_.leaves = static_cast<long>(leaves_.size());
+    result_.marched_triangles = static_cast<long>(result_.mesh.faces.size());
+    if (o_.simplify && !result_.mesh.faces.empty()) simplify();
     return std::move(result_);
   }
 
@@ -154,6 +160,40 @@ class Polygonizer {
     return (box.hi - box.lo).norm() * theta / 8.0 > kBendFactor * o_.tolerance;
   }
 
+  /// True when an edge of a Kuhn tetrahedron of the cell (the 12 cube edges, the 6 face
+  /// diagonals from lowest to highest corner, the main diagonal) has ends of one sign and its
+  /// midpoint of the other: the surface crosses it twice (a thin part, or two sheets), which
+  /// marching tetrahedra on this cell would miss.
+  bool crossed_twice(const Cell& c) {
+    const std::int64_t s = step(c.level);
+    const std::int64_t x0 = c.i * s, y0 = c.j * s, z0 = c.k * s;
+    auto test = [&](const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b) {
+      const bool ia = inside(point_key(a[0], a[1], a[2])), ib = inside(point_key(b[0], b[1], b[2]));
+      if (ia != ib) return false;
+      return inside(point_key((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2)) != ia;
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (int e = 0; e < 4; ++e) {  // the 4 cube edges along axis
+        std::array<std::int64_t, 3> a = {x0, y0, z0};
+        a[u] += (e & 1) * s;
+        a[v] += (e >> 1) * s;
+        std::array<std::int64_t, 3> b = a;
+        b[axis] += s;
+        if (test(a, b)) return true;
+      }
+      for (int side = 0; side < 2; ++side) {  // the face diagonals of the faces normal to axis
+        std::array<std::int64_t, 3> a = {x0, y0, z0};
+        a[axis] += side * s;
+        std::array<std::int64_t, 3> b = a;
+        b[u] += s;
+        b[v] += s;
+        if (test(a, b)) return true;
+      }
+    }
+    return test({x0, y0, z0}, {x0 + s, y0 + s, z0 + s});
+  }
+
   /// Searches a cell whose corners are all inside (or all outside) for a point of the other
   /// sign, culling sub-cells by interval bounds, down to sub-cells of feature_size / 2 (a ball
   /// of diameter feature_size holds the centre of some sub-cell at every level below its size).
@@ -214,7 +254,7 @@ class Polygonizer {
           bool mixed = false;
           for (int b = 1; b < 8; ++b) mixed = mixed || inside(corner[b]) != first;
           if (mixed) {
-            split = bent(c, corner);
+            split = crossed_twice(c) || bent(c, corner);
           } else {
             const int s = search(box, first);
             split = s > 0;
@@ -281,6 +321,24 @@ class Polygonizer {
             dx = dy = 2;         // leave the loops (the cell is re-queued)
             break;
           }
+    }
+  }
+
+  /// Edge collapses where the surface is flat (detail/simplify.hpp), checked afterwards for
+  /// self-intersections by the exact test of the mesh layer; a mesh that fails it is not used.
+  void simplify() {
+    std::vector<bool> locked(result_.mesh.vertices.size(), false);
+    for (std::size_t v = 0; v < locked.size(); ++v) {
+      const Vec& p = result_.mesh.vertices[v];
+      for (int a = 0; a < 3; ++a) locked[v] = locked[v] || p[a] == o_.box.lo[a] || p[a] == o_.box.hi[a];
+    }
+    PolygonMesh simplified = result_.mesh;
+    result_.collapses = detail::simplify(simplified, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance});
+    if (find_self_intersections(simplified, {.max_pairs = 1}).empty()) {
+      result_.mesh = std::move(simplified);
+    } else {
+      result_.collapses = 0;
+      result_.simplify_rejected = true;
     }
   }
 

@@ -36,6 +36,10 @@ struct PolygonizeOptions {
   /// Work budget: octree cells and search cells visited, and leaves made by balancing. Running
   /// out is a GeometryError, never a hang.
   long max_cells = 4'000'000;
+  /// Collapse edges where the surface is flat (half-edge collapses that keep the mesh a manifold
+  /// and every changed triangle within 0.8 tol of f = 0 by the first-order distance |f| / |grad f|;
+  /// the result is checked for self-intersections exactly and dropped if it has any).
+  bool simplify = true;
 };
 
 struct PolygonizeResult {
@@ -44,6 +48,9 @@ struct PolygonizeResult {
   long search_cells = 0;        ///< cells visited while searching same-sign cells for hidden parts
   long leaves = 0;              ///< octree leaves after balancing
   long tetrahedra = 0;          ///< tetrahedra marched
+  long marched_triangles = 0;   ///< triangles before simplification
+  long collapses = 0;           ///< edge collapses kept
+  bool simplify_rejected = false;  ///< the simplified mesh intersected itself; the marched one is returned
   int max_level = 0;            ///< deepest leaf (the root, the box, is level 0)
   /// Cells whose search reached feature_size / 2 without proving the cell free of the surface or
   /// finding a point of the other sign (the surface may touch such a cell without crossing it).
@@ -56,7 +63,8 @@ struct PolygonizeResult {
 /// (every edge in two triangles, every vertex a single fan) and without self-intersections
 /// (each triangle lies in one tetrahedron of a conforming tetrahedral mesh, or on a box face);
 /// every vertex is on f = 0 (to root-finding accuracy, about 1e-12 of its edge) or on the box;
-/// a component of either sign that contains a ball of diameter feature_size is present.
+/// a component of either sign that contains a ball of diameter feature_size is present. With
+/// simplify, closed, oriented, manifold and unintersecting still hold (the last checked exactly).
 /// Not guaranteed, measured (tests/implicit/polygonize_test.cpp): the Hausdorff distance to
 /// the surface (about tol where the surface is smooth; sharp creases of f are cut off by up
 /// to a cell), and the topology inside cells whose corners differ in sign (a surface that

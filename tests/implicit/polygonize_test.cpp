@@ -221,15 +221,16 @@ TEST(Polygonize, TinySphereBetweenLatticePointsIsFound) {
 }
 
 TEST(Polygonize, ThinShellKeepsBothSides) {
-  // |(|p| - 0.5)| - 0.004 <= 0: a shell 0.008 thick, thinner than tol; feature_size 0.008 finds it.
+  // |(|p| - 0.3)| - 0.005 <= 0: a shell 0.01 thick, half of tol (cells where the sphere is flat
+  // would be about 0.05 wide); feature_size 0.01 finds it and splits the cells it crosses twice.
   ExpressionBuilder b;
   const Term norm = b.sqrt(b.add(b.add(b.pow(b.x(), 2), b.pow(b.y(), 2)), b.pow(b.z(), 2)));
-  const Expression f = b.finish(b.sub(b.abs(b.sub(norm, b.constant(0.5))), b.constant(0.004)));
+  const Expression f = b.finish(b.sub(b.abs(b.sub(norm, b.constant(0.3))), b.constant(0.005)));
   const PolygonizeResult r =
-      polygonize(f, {.box = {.lo = Vec(-0.7, -0.7, -0.7), .hi = Vec(0.7, 0.7, 0.7)}, .tolerance = 2e-2, .feature_size = 8e-3});
+      polygonize(f, {.box = {.lo = Vec(-0.4, -0.4, -0.4), .hi = Vec(0.4, 0.4, 0.4)}, .tolerance = 2e-2, .feature_size = 1e-2});
   expect_solid_mesh(r.mesh, 2, 4);
-  const double exact = 4.0 / 3.0 * kPi * (std::pow(0.504, 3) - std::pow(0.496, 3));
-  EXPECT_NEAR(mesh_volume(r.mesh), exact, 0.2 * exact);
+  const double exact = 4.0 / 3.0 * kPi * (std::pow(0.305, 3) - std::pow(0.295, 3));
+  EXPECT_NEAR(mesh_volume(r.mesh), exact, 0.05 * exact);
 }
 
 TEST(Polygonize, BoxFacesCloseTheSolid) {
