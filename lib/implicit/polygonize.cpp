@@ -25,7 +25,7 @@ using Key = std::uint64_t;
 constexpr int kTop = 4;
 constexpr int kMaxLevel = 16;
 constexpr int kStartLevel = 1;  // cells are split at least this deep before any is kept
-constexpr double kSimplifyFraction = 0.8;  // collapsed triangles stay within this times tol
+constexpr double kSimplifyFraction = 0.7;  // collapsed triangles stay within this times tol
 constexpr double kBendFactor = 1.25;  // measured: the torus at 2e-3 stays within tol (1.5 does not)
 
 enum class Kind : std::uint8_t { Empty, Full, Mixed };
@@ -333,11 +333,13 @@ class Polygonizer {
       for (int a = 0; a < 3; ++a) locked[v] = locked[v] || p[a] == o_.box.lo[a] || p[a] == o_.box.hi[a];
     }
     PolygonMesh simplified = result_.mesh;
-    result_.collapses = detail::simplify(simplified, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance});
+    const detail::SimplifyResult s = detail::simplify(
+        simplified, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
     if (find_self_intersections(simplified, {.max_pairs = 1}).empty()) {
       result_.mesh = std::move(simplified);
+      result_.collapses = s.collapses;
+      result_.thin_triangles = s.thin_triangles;
     } else {
-      result_.collapses = 0;
       result_.simplify_rejected = true;
     }
   }

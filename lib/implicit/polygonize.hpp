@@ -37,9 +37,13 @@ struct PolygonizeOptions {
   /// out is a GeometryError, never a hang.
   long max_cells = 4'000'000;
   /// Collapse edges where the surface is flat (half-edge collapses that keep the mesh a manifold
-  /// and every changed triangle within 0.8 tol of f = 0 by the first-order distance |f| / |grad f|;
+  /// and every changed triangle within 0.7 tol (0.8 tol for slivers) of f = 0 by the first-order distance |f| / |grad f|;
   /// the result is checked for self-intersections exactly and dropped if it has any).
   bool simplify = true;
+  /// With simplify: triangles less high than this (2 area / longest edge) are then collapsed
+  /// away where the checks allow (marching tetrahedra makes slivers where the surface passes
+  /// near a lattice point; snapping the vertices to a grid could turn them over).
+  double min_height = 0.0;
 };
 
 struct PolygonizeResult {
@@ -51,6 +55,7 @@ struct PolygonizeResult {
   long marched_triangles = 0;   ///< triangles before simplification
   long collapses = 0;           ///< edge collapses kept
   bool simplify_rejected = false;  ///< the simplified mesh intersected itself; the marched one is returned
+  long thin_triangles = 0;      ///< triangles still below min_height after simplification
   int max_level = 0;            ///< deepest leaf (the root, the box, is level 0)
   /// Cells whose search reached feature_size / 2 without proving the cell free of the surface or
   /// finding a point of the other sign (the surface may touch such a cell without crossing it).

@@ -166,6 +166,8 @@ constexpr long long kMaxCells = 50'000'000;
 /// tol must be at least this many grid steps of the exact kernel: snapping moves each vertex by
 /// up to half a step's diagonal (0.87 steps).
 constexpr double kMinToleranceSteps = 4.0;
+/// Triangles less high than this many grid steps are collapsed away by the mesher where it can.
+constexpr double kMinHeightSteps = 8.0;
 
 /// implicit(f, box, tol): the solid {f <= 0} inside the box, meshed by implicit::polygonize and
 /// built into a BSP tree from its boundary.
@@ -187,6 +189,8 @@ Value implicit_solid(const Arguments& args) {
                              format_number(4e-6 * longest) + "), the mesher's finest cells");
   }
   if (options.tolerance > diagonal) args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is larger than the box diagonal");
+  // Slivers below a few grid steps could turn over when the vertices are snapped to the grid.
+  options.min_height = kMinHeightSteps * kernel::kGridStep;
   options.max_cells = args.has(kSolidCells) ? static_cast<long>(args.integer(kSolidCells, 1, kMaxCells)) : kDefaultCells;
   implicit::PolygonizeResult r;
   try {

@@ -11,6 +11,7 @@ namespace sculpt::implicit::detail {
 namespace {
 
 using Vec = Eigen::Vector3d;
+constexpr double kRelaxed = 8.0 / 7.0;  // the slivers' pass: 0.8 tol where the first pass keeps 0.7 tol
 
 class Simplifier {
  public:
@@ -20,7 +21,7 @@ class Simplifier {
       for (int v : m.faces[t]) incident_[v].push_back(t);
   }
 
-  int run() {
+  SimplifyResult run() {
     int collapses = 0;
     for (int pass = 0; pass < o_.passes; ++pass) {
       int before = collapses;
@@ -39,8 +40,34 @@ class Simplifier {
       }
       if (collapses == before) break;
     }
+    // slivers: try every collapse among the corners of each thin triangle
+    relaxed_ = true;
+    int thin = 0;
+    for (int pass = 0; pass < 4; ++pass) {
+      thin = 0;
+      for (int t = 0; t < int(m_.faces.size()); ++t) {
+        if (!alive_[t] || height(t) >= o_.min_height) continue;
+        bool done = false;
+        for (int a = 0; a < 3 && !done; ++a)
+          for (int b = 0; b < 3 && !done; ++b) {
+            const int u = m_.faces[t][a], v = m_.faces[t][b];
+            if (u != v && !locked_[u] && try_collapse(u, v)) done = true;
+          }
+        if (!done) done = try_flip(t);
+        if (done) ++collapses;
+        else ++thin;
+      }
+      if (thin == 0) break;
+    }
     compact();
-    return collapses;
+    return {.collapses = collapses, .thin_triangles = thin};
+  }
+
+  double height(int t) const {
+    const auto& f = m_.faces[t];
+    const Vec &a = m_.vertices[f[0]], &b = m_.vertices[f[1]], &c = m_.vertices[f[2]];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    return longest > 0 ? (b - a).cross(c - a).norm() / longest : 0.0;
   }
 
  private:
@@ -84,6 +111,60 @@ class Simplifier {
     return std::min({point_segment(p, t[0], t[1]), point_segment(p, t[1], t[2]), point_segment(p, t[2], t[0])});
   }
 
+  /// Flips the longest edge of thin triangle t (a cap: a vertex near the middle of its longest
+  /// edge) when both new triangles are higher than t, face along the surface normal and stay
+  /// within the relaxed distance of f = 0.
+  bool try_flip(int t) {
+    auto& ft = m_.faces[t];
+    int e = 0;
+    double longest = -1;
+    for (int k = 0; k < 3; ++k) {
+      const double l = (m_.vertices[ft[(k + 1) % 3]] - m_.vertices[ft[k]]).squaredNorm();
+      if (l > longest) longest = l, e = k;
+    }
+    const int a = ft[e], b = ft[(e + 1) % 3], c = ft[(e + 2) % 3];
+    int n = -1, d = -1;
+    for (int o : incident_[a]) {
+      if (o == t) continue;
+      const auto& fo = m_.faces[o];
+      for (int k = 0; k < 3; ++k)
+        if (fo[k] == b && fo[(k + 1) % 3] == a) n = o, d = fo[(k + 2) % 3];
+    }
+    if (n < 0 || d == c) return false;
+    const std::vector<int> nc = neighbours(c);
+    if (std::find(nc.begin(), nc.end(), d) != nc.end()) return false;  // edge cd exists already
+    if (neighbours(a).size() <= 3 || neighbours(b).size() <= 3) return false;
+    const std::array<std::array<int, 3>, 2> fresh = {{{c, a, d}, {d, b, c}}};
+    const double before = std::min(height(t), height(n));
+    std::array<Vec, 2> normals;
+    for (int k = 0; k < 2; ++k) {
+      const std::array<Vec, 3> p = {m_.vertices[fresh[k][0]], m_.vertices[fresh[k][1]], m_.vertices[fresh[k][2]]};
+      normals[k] = normal(p);
+      const double l = std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
+      if (!(normals[k].norm() / l > before)) return false;
+      const Vec centroid = (p[0] + p[1] + p[2]) / 3.0;
+      if (distance(centroid) > o_.tolerance * kRelaxed) return false;
+      try {
+        const Vec g = f_.value_gradient(centroid).gradient;
+        if (!(normals[k].dot(g) > 0.5 * normals[k].norm() * g.norm())) return false;
+      } catch (const NonFiniteValue&) {
+        return false;
+      }
+    }
+    if (normals[0].dot(normals[1]) < 0.5 * normals[0].norm() * normals[1].norm()) return false;
+    ft = {fresh[0][0], fresh[0][1], fresh[0][2]};
+    m_.faces[n] = {fresh[1][0], fresh[1][1], fresh[1][2]};
+    auto drop = [&](int v, int face) {
+      auto& list = incident_[v];
+      list.erase(std::remove(list.begin(), list.end(), face), list.end());
+    };
+    drop(a, n);
+    drop(b, t);
+    incident_[c].push_back(n);
+    incident_[d].push_back(t);
+    return true;
+  }
+
   bool try_collapse(int u, int v) {
     // the two triangles on edge uv, and the link condition: u and v share exactly their third vertices
     std::vector<int> shared;
@@ -100,7 +181,8 @@ class Simplifier {
     int common = 0;
     for (int w : nu) common += std::find(nv.begin(), nv.end(), w) != nv.end() ? 1 : 0;
     if (common != 2 || opposite.size() != 2 || opposite[0] == opposite[1]) return false;
-    if (nu.size() <= 3 || nv.size() <= 3) return false;  // would leave a vertex of degree 2
+    // the opposite vertices lose an edge: none may be left with two
+    if (neighbours(opposite[0]).size() <= 3 || neighbours(opposite[1]).size() <= 3) return false;
 
     const Vec& pu = m_.vertices[u];
     bool near_removed = false;
@@ -114,8 +196,11 @@ class Simplifier {
       }
       const Vec n0 = normal(before), n1 = normal(after);
       const double l0 = n0.norm(), l1 = n1.norm();
-      if (!(l1 > 1e-14 * (after[1] - after[0]).squaredNorm() + 1e-300)) return false;
-      if (n0.dot(n1) < 0.5 * l0 * l1) return false;  // turns by more than 60 degrees
+      const double scale = std::max({(after[1] - after[0]).squaredNorm(), (after[2] - after[1]).squaredNorm(),
+                                     (after[0] - after[2]).squaredNorm()});
+      if (!(l1 > 1e-6 * scale)) return false;  // would make a sliver
+      // turns by more than 60 degrees (a sliver's own normal is not trusted)
+      if (l0 > 1e-6 * scale && n0.dot(n1) < 0.5 * l0 * l1) return false;
       const Vec centroid = (after[0] + after[1] + after[2]) / 3.0;
       try {
         const Vec g = f_.value_gradient(centroid).gradient;
@@ -123,13 +208,14 @@ class Simplifier {
       } catch (const NonFiniteValue&) {
         return false;
       }
-      if (distance(centroid) > o_.tolerance) return false;
+      const double tol = relaxed_ ? o_.tolerance * kRelaxed : o_.tolerance;
+      if (distance(centroid) > tol) return false;
       for (int c = 0; c < 3; ++c) {
         if (m_.faces[t][c] != u) continue;
-        if (distance(0.5 * (after[c] + after[(c + 1) % 3])) > o_.tolerance) return false;
-        if (distance(0.5 * (after[c] + after[(c + 2) % 3])) > o_.tolerance) return false;
+        if (distance(0.5 * (after[c] + after[(c + 1) % 3])) > tol) return false;
+        if (distance(0.5 * (after[c] + after[(c + 2) % 3])) > tol) return false;
       }
-      near_removed = near_removed || point_triangle(pu, after) <= o_.tolerance;
+      near_removed = near_removed || point_triangle(pu, after) <= tol;
     }
     if (!near_removed) return false;
 
@@ -172,11 +258,12 @@ class Simplifier {
   const SimplifyOptions& o_;
   std::vector<std::vector<int>> incident_;
   std::vector<bool> alive_;
+  bool relaxed_ = false;
 };
 
 }  // namespace
 
-int simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options) {
+SimplifyResult simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options) {
   return Simplifier(mesh, locked, f, options).run();
 }
 

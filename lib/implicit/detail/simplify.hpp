@@ -18,10 +18,19 @@ namespace sculpt::implicit::detail {
 struct SimplifyOptions {
   double tolerance = 0.0;  ///< absolute
   int passes = 4;          ///< sweeps over all vertices
+  /// Then triangles less high than this (2 area / longest edge) are collapsed away where the
+  /// same checks allow it with the distance bound relaxed to 8/7 tolerance: slivers that
+  /// snapping the vertices to a grid could turn over.
+  double min_height = 0.0;
+};
+
+struct SimplifyResult {
+  int collapses = 0;
+  int thin_triangles = 0;  ///< triangles still below min_height
 };
 
 /// Collapses edges of `mesh` in place (faces stay triangles; removed vertices are dropped and
-/// the rest renumbered). Returns the number of collapses.
-int simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options);
+/// the rest renumbered).
+SimplifyResult simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options);
 
 }  // namespace sculpt::implicit::detail
