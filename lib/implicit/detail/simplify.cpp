@@ -202,14 +202,15 @@ class Simplifier {
       // turns by more than 60 degrees (a sliver's own normal is not trusted)
       if (l0 > 1e-6 * scale && n0.dot(n1) < 0.5 * l0 * l1) return false;
       const Vec centroid = (after[0] + after[1] + after[2]) / 3.0;
+      const double tol = relaxed_ ? o_.tolerance * kRelaxed : o_.tolerance;
       try {
-        const Vec g = f_.value_gradient(centroid).gradient;
-        if (!(n1.dot(g) > 0.5 * l1 * g.norm())) return false;  // faces away from the surface normal
+        const ValueGradient vg = f_.value_gradient(centroid);
+        const double g = vg.gradient.norm();
+        if (!(n1.dot(vg.gradient) > 0.5 * l1 * g)) return false;  // faces away from the surface normal
+        if (!(std::abs(vg.value) <= tol * g)) return false;         // centroid farther than tol
       } catch (const NonFiniteValue&) {
         return false;
       }
-      const double tol = relaxed_ ? o_.tolerance * kRelaxed : o_.tolerance;
-      if (distance(centroid) > tol) return false;
       for (int c = 0; c < 3; ++c) {
         if (m_.faces[t][c] != u) continue;
         if (distance(0.5 * (after[c] + after[(c + 1) % 3])) > tol) return false;
