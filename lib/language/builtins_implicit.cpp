@@ -11,6 +11,7 @@
 
 #include "curves/digitized_curve.hpp"
 #include "bsp/from_mesh.hpp"
+#include "implicit/patch.hpp"
 #include "implicit/polygonize.hpp"
 #include "implicit/trace.hpp"
 #include "kernel/grid.hpp"
@@ -222,9 +223,58 @@ Value implicit_solid(const Arguments& args) {
   return solid_value(from_mesh(r.mesh, {.skip_degenerate_faces = true}));
 }
 
+// Parameters of patch().
+enum : std::size_t { kPatchF, kPatchCorners, kPatchDepth, kPatchTol };
+
+/// patch(f, corners, depth): the paper's adaptive polygonization of a triangular patch of f = 0
+/// (sec. 5.2) as a mesh value.
+Value surface_patch(const Arguments& args) {
+  const implicit::Expression f = compiled_arg(args, kPatchF);
+  if (!args.has(kPatchCorners)) args.fail("give corners=[P0, P1, P2], three points on f = 0");
+  const List& corners = args.list(kPatchCorners);
+  if (corners.size() != 3) args.fail(kPatchCorners, "corners must be three points [P0, P1, P2]");
+  implicit::PatchOptions options;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const List* xyz = corners[c].list();
+    if (!xyz || xyz->size() != 3) args.fail(kPatchCorners, "corners must be three points [x, y, z]");
+    for (int a = 0; a < 3; ++a) {
+      const double* v = (*xyz)[std::size_t(a)].get<double>();
+      if (!v || !std::isfinite(*v)) args.fail(kPatchCorners, "corners must be finite numbers");
+      options.corners[c][a] = *v;
+    }
+  }
+  options.depth = args.has(kPatchDepth) ? static_cast<int>(args.integer(kPatchDepth, 0, 8)) : 3;
+  if (args.has(kPatchTol)) {
+    options.tolerance = args.number(kPatchTol);
+    if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) args.fail(kPatchTol, "tol must be a finite number > 0");
+  }
+  implicit::PatchResult r;
+  try {
+    r = implicit::patch(f, options);
+  } catch (const implicit::NonFiniteValue& e) {
+    args.fail(kPatchF, "'" + function_arg(args, kPatchF).name + "' (or its gradient) is not finite at " +
+                           point_text(e.point()));
+  } catch (const InvalidInput& e) {
+    args.fail(e.what());
+  } catch (const GeometryError& e) {
+    args.fail(e.what());
+  }
+  args.charge(static_cast<std::uint64_t>(r.steps));
+  return Value(std::shared_ptr<const Object>(std::make_shared<MeshValue>(std::move(r.mesh))));
+}
+
 }  // namespace
 
 void register_implicit(BuiltinTable& table) {
+  table.add({.name = "patch",
+             .signature = "patch(f, corners=[P0, P1, P2], depth=3, tol=0)",
+             .doc = "The adaptive polygonization of the triangular patch of f = 0 with corners P0, P1, P2 on the "
+                    "surface (Ihm & Naylor 1990, sec. 5.2): boundary curves traced on the planes through two "
+                    "corners and the mean normal, split at the centres of their LAs of order 2^depth, four "
+                    "triangles per level, depth 0..8: 4^depth triangles as a mesh value for export. tol is the "
+                    "traced curves' chord height (0: 1e-3 of each curve's length).",
+             .params = {{"f"}, {"corners", false}, {"depth", false}, {"tol", false}},
+             .run = [](const Arguments& args) -> Value { return surface_patch(args); }});
   table.add({.name = "implicit",
              .signature = "implicit(f, box=[lo, hi], tol=1e-3, cells=2000000, quiet=false)",
              .doc = "The solid f <= 0 inside the box, as a BSP solid for | & -, volume, export. f is a function "

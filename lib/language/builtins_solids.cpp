@@ -178,11 +178,15 @@ void register_solids(BuiltinTable& table) {
              .run = [](const Arguments& args) -> Value { return surface_area(solid_arg(args, 0)); }});
   table.add({.name = "export",
              .signature = "export(s, \"file.off\")",
-             .doc = "Writes the boundary of solid s as a mesh; the format comes from the extension: "
-                    ".off, .obj, .stl, .ply. The file is replaced atomically.",
+             .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is); the "
+                    "format comes from the extension: .off, .obj, .stl, .ply. The file is replaced atomically.",
              .params = {{"s"}, {"file"}},
              .run = [](const Arguments& args) -> Value {
-               const auto& s = args.object<SolidValue>(0, "a solid");
+               if (const auto* m = args.value(0).object<MeshValue>()) {
+                 write_mesh(m->mesh, args.file_path(1));
+                 return {};
+               }
+               const auto& s = args.object<SolidValue>(0, "a solid or a mesh");
                const std::string path = args.file_path(1);
                write_mesh(s.boundary(), path);
                return {};

@@ -31,6 +31,18 @@ struct SolidValue final : Object {
   mutable std::optional<PolygonMesh> boundary_cache_;
 };
 
+/// A polygon mesh that is not a solid (type "mesh"): a surface patch (`patch`, sec. 5.2).
+/// `export` writes it as it is.
+struct MeshValue final : Object {
+  explicit MeshValue(PolygonMesh m) : mesh(std::move(m)) {}
+  PolygonMesh mesh;
+  [[nodiscard]] std::string type_name() const override { return "mesh"; }
+  [[nodiscard]] std::string repr() const override {
+    return "<mesh: " + std::to_string(mesh.vertices.size()) + " vertices, " + std::to_string(mesh.faces.size()) +
+           " faces>";
+  }
+};
+
 /// Wraps a solid as a script value.
 Value solid_value(Solid solid);
 

@@ -100,5 +100,26 @@ TEST(ImplicitBuiltin, BadInputIsAnErrorAtTheArgument) {
   EXPECT_NE(r.error.find("error:"), std::string::npos) << r.error;
 }
 
+TEST(ImplicitBuiltin, PatchIsAMeshForExport) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "sculpt_patch_octant.off";
+  const auto r = run_script(std::string(R"(
+fn ball(x, y, z) { x * x + y * y + z * z - 1 }
+octant = patch(ball, corners=[[1, 0, 0], [0, 1, 0], [0, 0, 1]], depth=3)
+print(octant, type(octant))
+export(octant, ")") + file.string() + "\")\n");
+  ASSERT_EQ(r.error, "");
+  EXPECT_EQ(r.out, "<mesh: 45 vertices, 64 faces> mesh\n");
+  const PolygonMesh mesh = read_mesh(file);
+  std::filesystem::remove(file);
+  ASSERT_EQ(mesh.faces.size(), 64u);
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    EXPECT_NEAR(v.norm(), 1.0, 1e-9);
+    EXPECT_GE(v.minCoeff(), -1e-12);  // in the positive octant
+  }
+  // a corner off the sphere is an error at the call
+  const auto bad = run_script("fn ball(x, y, z) { x * x + y * y + z * z - 1 }\npatch(ball, corners=[[1.1, 0, 0], [0, 1, 0], [0, 0, 1]])");
+  EXPECT_NE(bad.error.find("t.bsp:2:1: error: patch: "), std::string::npos) << bad.error;
+}
+
 }  // namespace
 }  // namespace sculpt::language
