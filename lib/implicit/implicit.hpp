@@ -6,4 +6,5 @@
 
 #include "implicit/expression.hpp"
 #include "implicit/patch.hpp"
+#include "implicit/polygonize.hpp"
 #include "implicit/trace.hpp"

@@ -1,6 +1,8 @@
 // Built-ins of the implicit area: tracing the space curve f = g = 0 of two script functions
-// (Ihm & Naylor 1990, sec. 5.1; lib/implicit). The functions are compiled once into expressions
-// (implicit_compiler.hpp), so the tracer never runs the interpreter per point. See docs/implicit.md.
+// (Ihm & Naylor 1990, sec. 5.1; lib/implicit) and implicit solids {f <= 0} in a box, meshed by
+// lib/implicit (polygonize.hpp) and built into BSP solids here (the implicit layer knows no bsp).
+// The functions are compiled once into expressions (implicit_compiler.hpp), so the tracer and
+// the mesher never run the interpreter per point. See docs/implicit.md.
 #include <cmath>
 #include <memory>
 #include <ostream>
@@ -8,7 +10,13 @@
 #include <string>
 
 #include "curves/digitized_curve.hpp"
+#include "bsp/from_mesh.hpp"
+#include "implicit/patch.hpp"
+#include "implicit/polygonize.hpp"
 #include "implicit/trace.hpp"
+#include "kernel/grid.hpp"
+#include "language/solid_values.hpp"
+#include "mesh/mesh_validation.hpp"
 #include "language/builtins.hpp"
 #include "language/curve_values.hpp"
 #include "language/implicit_compiler.hpp"
@@ -151,9 +159,133 @@ void print_summary(const Arguments& args, const implicit::TraceResult& r, long m
   args.out() << s.str();
 }
 
+// Parameters of implicit().
+enum : std::size_t { kSolidF, kSolidBox, kSolidTol, kSolidCells, kSolidQuiet };
+/// The mesher's default work budget (cells; about 10 s on this machine) and the most a script may give.
+constexpr long kDefaultCells = 2'000'000;
+constexpr long long kMaxCells = 50'000'000;
+/// tol must be at least this many grid steps of the exact kernel: snapping moves each vertex by
+/// up to half a step's diagonal (0.87 steps).
+constexpr double kMinToleranceSteps = 4.0;
+/// Triangles less high than this many grid steps are collapsed away by the mesher where it can.
+constexpr double kMinHeightSteps = 8.0;
+
+/// implicit(f, box, tol): the solid {f <= 0} inside the box, meshed by implicit::polygonize and
+/// built into a BSP tree from its boundary.
+Value implicit_solid(const Arguments& args) {
+  const implicit::Expression f = compiled_arg(args, kSolidF);
+  if (!args.has(kSolidBox)) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region of the solid");
+  implicit::PolygonizeOptions options{.box = box_arg(args, kSolidBox)};
+  const double diagonal = (options.box.hi - options.box.lo).norm();
+  options.tolerance = args.has(kSolidTol) ? args.number(kSolidTol) : 1e-3;
+  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) args.fail(kSolidTol, "tol must be a finite number > 0");
+  const double floor = kMinToleranceSteps * kernel::kGridStep;
+  if (options.tolerance < floor) {
+    args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is below 4 steps of the exact kernel's grid (" +
+                             format_number(floor) + "): the solid's vertices are snapped to that grid");
+  }
+  const double longest = (options.box.hi - options.box.lo).maxCoeff();
+  if (options.tolerance < 4e-6 * longest) {
+    args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is below 4e-6 of the box's longest side (" +
+                             format_number(4e-6 * longest) + "), the mesher's finest cells");
+  }
+  if (options.tolerance > diagonal) args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is larger than the box diagonal");
+  // Slivers below a few grid steps could turn over when the vertices are snapped to the grid.
+  options.min_height = kMinHeightSteps * kernel::kGridStep;
+  options.max_cells = args.has(kSolidCells) ? static_cast<long>(args.integer(kSolidCells, 1, kMaxCells)) : kDefaultCells;
+  implicit::PolygonizeResult r;
+  try {
+    r = implicit::polygonize(f, options);
+  } catch (const implicit::NonFiniteValue& e) {
+    args.fail(kSolidF, "'" + function_arg(args, kSolidF).name + "' is not finite at " + point_text(e.point()) +
+                           " (a division by zero, the square root of a negative number or an overflow); give a box "
+                           "where it is defined");
+  } catch (const GeometryError& e) {
+    args.fail(std::string(e.what()) + (args.has(kSolidCells) ? "" : " (give cells=n)"));
+  }
+  args.charge(static_cast<std::uint64_t>(r.cells + r.search_cells));
+  const bool quiet = args.has(kSolidQuiet) && args.boolean(kSolidQuiet);
+  if (!quiet) {
+    std::ostringstream s;
+    s << "implicit: " << r.mesh.faces.size() << " triangles, " << r.leaves << " cells, depth " << r.max_level << "\n";
+    if (r.mesh.faces.empty()) {
+      s << "implicit: warning: '" << function_arg(args, kSolidF).name
+        << "' is > 0 everywhere the mesher looked in the box: the solid is empty\n";
+    }
+    args.out() << s.str();
+  }
+  if (r.mesh.faces.empty()) return solid_value(Solid{});
+  // The mesher guarantees a closed, oriented, unintersecting manifold; snapping to the kernel's
+  // grid can still make faces meet where the surface has features near the grid step.
+  const ValidationReport report = check_closed_manifold(r.mesh, {.check_self_intersections = false});
+  if (!report.ok()) args.fail("the mesh of '" + function_arg(args, kSolidF).name + "' is not closed: " + report.summary(3));
+  if (const std::string e = snapped_self_intersection(r.mesh); !e.empty()) args.fail("the solid's mesh: " + e + "; raise tol");
+  return solid_value(from_mesh(r.mesh, {.skip_degenerate_faces = true}));
+}
+
+// Parameters of patch().
+enum : std::size_t { kPatchF, kPatchCorners, kPatchDepth, kPatchTol };
+
+/// patch(f, corners, depth): the paper's adaptive polygonization of a triangular patch of f = 0
+/// (sec. 5.2) as a mesh value.
+Value surface_patch(const Arguments& args) {
+  const implicit::Expression f = compiled_arg(args, kPatchF);
+  if (!args.has(kPatchCorners)) args.fail("give corners=[P0, P1, P2], three points on f = 0");
+  const List& corners = args.list(kPatchCorners);
+  if (corners.size() != 3) args.fail(kPatchCorners, "corners must be three points [P0, P1, P2]");
+  implicit::PatchOptions options;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const List* xyz = corners[c].list();
+    if (!xyz || xyz->size() != 3) args.fail(kPatchCorners, "corners must be three points [x, y, z]");
+    for (int a = 0; a < 3; ++a) {
+      const double* v = (*xyz)[std::size_t(a)].get<double>();
+      if (!v || !std::isfinite(*v)) args.fail(kPatchCorners, "corners must be finite numbers");
+      options.corners[c][a] = *v;
+    }
+  }
+  options.depth = args.has(kPatchDepth) ? static_cast<int>(args.integer(kPatchDepth, 0, 8)) : 3;
+  if (args.has(kPatchTol)) {
+    options.tolerance = args.number(kPatchTol);
+    if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) args.fail(kPatchTol, "tol must be a finite number > 0");
+  }
+  implicit::PatchResult r;
+  try {
+    r = implicit::patch(f, options);
+  } catch (const implicit::NonFiniteValue& e) {
+    args.fail(kPatchF, "'" + function_arg(args, kPatchF).name + "' (or its gradient) is not finite at " +
+                           point_text(e.point()));
+  } catch (const InvalidInput& e) {
+    args.fail(e.what());
+  } catch (const GeometryError& e) {
+    args.fail(e.what());
+  }
+  args.charge(static_cast<std::uint64_t>(r.steps));
+  return Value(std::shared_ptr<const Object>(std::make_shared<MeshValue>(std::move(r.mesh))));
+}
+
 }  // namespace
 
 void register_implicit(BuiltinTable& table) {
+  table.add({.name = "patch",
+             .signature = "patch(f, corners=[P0, P1, P2], depth=3, tol=0)",
+             .doc = "The adaptive polygonization of the triangular patch of f = 0 with corners P0, P1, P2 on the "
+                    "surface (Ihm & Naylor 1990, sec. 5.2): boundary curves traced on the planes through two "
+                    "corners and the mean normal, split at the centres of their LAs of order 2^depth, four "
+                    "triangles per level, depth 0..8: 4^depth triangles as a mesh value for export. tol is the "
+                    "traced curves' chord height (0: 1e-3 of each curve's length).",
+             .params = {{"f"}, {"corners", false}, {"depth", false}, {"tol", false}},
+             .run = [](const Arguments& args) -> Value { return surface_patch(args); }});
+  table.add({.name = "implicit",
+             .signature = "implicit(f, box=[lo, hi], tol=1e-3, cells=2000000, quiet=false)",
+             .doc = "The solid f <= 0 inside the box, as a BSP solid for | & -, volume, export. f is a function "
+                    "fn f(x, y, z) or fn f(p), compiled once. Its boundary is meshed by an adaptive octree (interval "
+                    "bounds prove cells empty or full; small parts are searched for) and marching tetrahedra: "
+                    "closed and manifold, about tol from the surface, finer where it bends; the box faces close "
+                    "it where the surface leaves the box. tol is at least 4 kernel grid steps (1.2e-4). Prints the "
+                    "triangle and cell counts unless quiet=true; an f > 0 in the whole box gives the empty solid "
+                    "with a warning; cells bounds the work (an error when it runs out).",
+             .params = {{"f"}, {"box", false}, {"tol", false}, {"cells", false}, {"quiet", false}},
+             .run = [](const Arguments& args) -> Value { return implicit_solid(args); }});
   const std::vector<Param> params = {{"f"}, {"g"}, {"box", false}, {"tol", false}, {"steps", false}};
   std::vector<Param> trace_params = params;
   trace_params.push_back({"quiet", false});

@@ -63,6 +63,14 @@ void add_stroke(BuiltinTable& table, const char* name, const char* signature, co
              }});
 }
 
+CircularOptions circular(const Arguments& args, std::size_t i) {
+  CircularOptions options;
+  if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
+  return options;
+}
+
+}  // namespace
+
 // The exact kernel snaps vertices to its grid (docs/kernel.md). A valid mesh with features below
 // the grid step can become self-intersecting that way (faces 1e-6 apart now touch) without any
 // face turning over, which from_mesh would catch: check the snapped copy as well.
@@ -84,14 +92,6 @@ std::string snapped_self_intersection(const PolygonMesh& mesh) {
       << "): the mesh has features smaller than the grid step";
   return out.str();
 }
-
-CircularOptions circular(const Arguments& args, std::size_t i) {
-  CircularOptions options;
-  if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
-  return options;
-}
-
-}  // namespace
 
 std::string SolidValue::repr() const {
   if (solid.is_empty()) return "<solid: empty>";
@@ -317,11 +317,15 @@ void register_solids(BuiltinTable& table) {
              .run = [](const Arguments& args) -> Value { return surface_area(solid_arg(args, 0)); }});
   table.add({.name = "export",
              .signature = "export(s, \"file.off\")",
-             .doc = "Writes the boundary of solid s as a mesh; the format comes from the extension: "
-                    ".off, .obj, .stl, .ply. The file is replaced atomically.",
+             .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is); the "
+                    "format comes from the extension: .off, .obj, .stl, .ply. The file is replaced atomically.",
              .params = {{"s"}, {"file"}},
              .run = [](const Arguments& args) -> Value {
-               const auto& s = args.object<SolidValue>(0, "a solid");
+               if (const auto* m = args.value(0).object<MeshValue>()) {
+                 write_mesh(m->mesh, args.file_path(1));
+                 return {};
+               }
+               const auto& s = args.object<SolidValue>(0, "a solid or a mesh");
                const std::string path = args.file_path(1);
                write_mesh(s.boundary(), path);
                return {};

@@ -6,6 +6,7 @@
 /// `args.object<SolidValue>(i, "a solid").solid`.
 
 #include <optional>
+#include <string>
 
 #include "bsp/boundary.hpp"
 #include "bsp/solid.hpp"
@@ -30,7 +31,24 @@ struct SolidValue final : Object {
   mutable std::optional<PolygonMesh> boundary_cache_;
 };
 
+/// A polygon mesh that is not a solid (type "mesh"): a surface patch (`patch`, sec. 5.2).
+/// `export` writes it as it is.
+struct MeshValue final : Object {
+  explicit MeshValue(PolygonMesh m) : mesh(std::move(m)) {}
+  PolygonMesh mesh;
+  [[nodiscard]] std::string type_name() const override { return "mesh"; }
+  [[nodiscard]] std::string repr() const override {
+    return "<mesh: " + std::to_string(mesh.vertices.size()) + " vertices, " + std::to_string(mesh.faces.size()) +
+           " faces>";
+  }
+};
+
 /// Wraps a solid as a script value.
 Value solid_value(Solid solid);
+
+/// Empty when `mesh` (a valid closed mesh) stays free of self-intersections with its vertices
+/// snapped to the exact kernel's grid; else what meets where, for an error message. A valid
+/// mesh with features below the grid step can intersect itself once snapped (import, implicit).
+std::string snapped_self_intersection(const PolygonMesh& mesh);
 
 }  // namespace sculpt::language

@@ -1,0 +1,271 @@
+// Half-edge collapses with a distance bound (simplify.hpp).
+#include "implicit/detail/simplify.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+namespace sculpt::implicit::detail {
+namespace {
+
+using Vec = Eigen::Vector3d;
+constexpr double kRelaxed = 8.0 / 7.0;  // the slivers' pass: 0.8 tol where the first pass keeps 0.7 tol
+
+class Simplifier {
+ public:
+  Simplifier(PolygonMesh& m, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& o)
+      : m_(m), locked_(locked), f_(f), o_(o), incident_(m.vertices.size()), alive_(m.faces.size(), true) {
+    for (int t = 0; t < int(m.faces.size()); ++t)
+      for (int v : m.faces[t]) incident_[v].push_back(t);
+  }
+
+  SimplifyResult run() {
+    int collapses = 0;
+    for (int pass = 0; pass < o_.passes; ++pass) {
+      int before = collapses;
+      for (int u = 0; u < int(m_.vertices.size()); ++u) {
+        if (locked_[u] || incident_[u].empty()) continue;
+        std::vector<int> ring = neighbours(u);
+        std::sort(ring.begin(), ring.end(), [&](int a, int b) {
+          return (m_.vertices[a] - m_.vertices[u]).squaredNorm() < (m_.vertices[b] - m_.vertices[u]).squaredNorm();
+        });
+        for (int v : ring) {
+          if (try_collapse(u, v)) {
+            ++collapses;
+            break;
+          }
+        }
+      }
+      if (collapses == before) break;
+    }
+    // slivers: try every collapse among the corners of each thin triangle
+    relaxed_ = true;
+    int thin = 0;
+    for (int pass = 0; pass < 4; ++pass) {
+      thin = 0;
+      for (int t = 0; t < int(m_.faces.size()); ++t) {
+        if (!alive_[t] || height(t) >= o_.min_height) continue;
+        bool done = false;
+        for (int a = 0; a < 3 && !done; ++a)
+          for (int b = 0; b < 3 && !done; ++b) {
+            const int u = m_.faces[t][a], v = m_.faces[t][b];
+            if (u != v && !locked_[u] && try_collapse(u, v)) done = true;
+          }
+        if (!done) done = try_flip(t);
+        if (done) ++collapses;
+        else ++thin;
+      }
+      if (thin == 0) break;
+    }
+    compact();
+    return {.collapses = collapses, .thin_triangles = thin};
+  }
+
+  double height(int t) const {
+    const auto& f = m_.faces[t];
+    const Vec &a = m_.vertices[f[0]], &b = m_.vertices[f[1]], &c = m_.vertices[f[2]];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    return longest > 0 ? (b - a).cross(c - a).norm() / longest : 0.0;
+  }
+
+ private:
+  std::vector<int> neighbours(int u) const {
+    std::vector<int> out;
+    for (int t : incident_[u])
+      for (int w : m_.faces[t])
+        if (w != u && std::find(out.begin(), out.end(), w) == out.end()) out.push_back(w);
+    return out;
+  }
+
+  [[nodiscard]] Vec normal(const std::array<Vec, 3>& p) const { return (p[1] - p[0]).cross(p[2] - p[0]); }
+
+  /// First-order distance of p from f = 0; infinite where it cannot be told.
+  double distance(const Vec& p) const {
+    try {
+      const ValueGradient vg = f_.value_gradient(p);
+      const double g = vg.gradient.norm();
+      if (!(g > 0)) return INFINITY;
+      return std::abs(vg.value) / g;
+    } catch (const NonFiniteValue&) {
+      return INFINITY;
+    }
+  }
+
+  static double point_segment(const Vec& p, const Vec& a, const Vec& b) {
+    const Vec ab = b - a;
+    const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    return (p - (a + t * ab)).norm();
+  }
+
+  static double point_triangle(const Vec& p, const std::array<Vec, 3>& t) {
+    const Vec n = (t[1] - t[0]).cross(t[2] - t[0]);
+    const double nn = n.squaredNorm();
+    if (nn > 0) {
+      const Vec q = p - n * ((p - t[0]).dot(n) / nn);
+      bool inside = true;
+      for (int e = 0; e < 3; ++e) inside = inside && (t[(e + 1) % 3] - t[e]).cross(q - t[e]).dot(n) >= 0;
+      if (inside) return (p - q).norm();
+    }
+    return std::min({point_segment(p, t[0], t[1]), point_segment(p, t[1], t[2]), point_segment(p, t[2], t[0])});
+  }
+
+  /// Flips the longest edge of thin triangle t (a cap: a vertex near the middle of its longest
+  /// edge) when both new triangles are higher than t, face along the surface normal and stay
+  /// within the relaxed distance of f = 0.
+  bool try_flip(int t) {
+    auto& ft = m_.faces[t];
+    int e = 0;
+    double longest = -1;
+    for (int k = 0; k < 3; ++k) {
+      const double l = (m_.vertices[ft[(k + 1) % 3]] - m_.vertices[ft[k]]).squaredNorm();
+      if (l > longest) longest = l, e = k;
+    }
+    const int a = ft[e], b = ft[(e + 1) % 3], c = ft[(e + 2) % 3];
+    int n = -1, d = -1;
+    for (int o : incident_[a]) {
+      if (o == t) continue;
+      const auto& fo = m_.faces[o];
+      for (int k = 0; k < 3; ++k)
+        if (fo[k] == b && fo[(k + 1) % 3] == a) n = o, d = fo[(k + 2) % 3];
+    }
+    if (n < 0 || d == c) return false;
+    const std::vector<int> nc = neighbours(c);
+    if (std::find(nc.begin(), nc.end(), d) != nc.end()) return false;  // edge cd exists already
+    if (neighbours(a).size() <= 3 || neighbours(b).size() <= 3) return false;
+    const std::array<std::array<int, 3>, 2> fresh = {{{c, a, d}, {d, b, c}}};
+    const double before = std::min(height(t), height(n));
+    std::array<Vec, 2> normals;
+    for (int k = 0; k < 2; ++k) {
+      const std::array<Vec, 3> p = {m_.vertices[fresh[k][0]], m_.vertices[fresh[k][1]], m_.vertices[fresh[k][2]]};
+      normals[k] = normal(p);
+      const double l = std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
+      if (!(normals[k].norm() / l > before)) return false;
+      const Vec centroid = (p[0] + p[1] + p[2]) / 3.0;
+      if (distance(centroid) > o_.tolerance * kRelaxed) return false;
+      try {
+        const Vec g = f_.value_gradient(centroid).gradient;
+        if (!(normals[k].dot(g) > 0.5 * normals[k].norm() * g.norm())) return false;
+      } catch (const NonFiniteValue&) {
+        return false;
+      }
+    }
+    if (normals[0].dot(normals[1]) < 0.5 * normals[0].norm() * normals[1].norm()) return false;
+    ft = {fresh[0][0], fresh[0][1], fresh[0][2]};
+    m_.faces[n] = {fresh[1][0], fresh[1][1], fresh[1][2]};
+    auto drop = [&](int v, int face) {
+      auto& list = incident_[v];
+      list.erase(std::remove(list.begin(), list.end(), face), list.end());
+    };
+    drop(a, n);
+    drop(b, t);
+    incident_[c].push_back(n);
+    incident_[d].push_back(t);
+    return true;
+  }
+
+  bool try_collapse(int u, int v) {
+    // the two triangles on edge uv, and the link condition: u and v share exactly their third vertices
+    std::vector<int> shared;
+    for (int t : incident_[u]) {
+      const auto& f = m_.faces[t];
+      if (std::find(f.begin(), f.end(), v) != f.end()) shared.push_back(t);
+    }
+    if (shared.size() != 2) return false;
+    std::vector<int> opposite;
+    for (int t : shared)
+      for (int w : m_.faces[t])
+        if (w != u && w != v) opposite.push_back(w);
+    const std::vector<int> nu = neighbours(u), nv = neighbours(v);
+    int common = 0;
+    for (int w : nu) common += std::find(nv.begin(), nv.end(), w) != nv.end() ? 1 : 0;
+    if (common != 2 || opposite.size() != 2 || opposite[0] == opposite[1]) return false;
+    // the opposite vertices lose an edge: none may be left with two
+    if (neighbours(opposite[0]).size() <= 3 || neighbours(opposite[1]).size() <= 3) return false;
+
+    const Vec& pu = m_.vertices[u];
+    bool near_removed = false;
+    for (int t : incident_[u]) {
+      if (std::find(shared.begin(), shared.end(), t) != shared.end()) continue;
+      std::array<Vec, 3> before, after;
+      for (int c = 0; c < 3; ++c) {
+        const int w = m_.faces[t][c];
+        before[c] = m_.vertices[w];
+        after[c] = w == u ? m_.vertices[v] : m_.vertices[w];
+      }
+      const Vec n0 = normal(before), n1 = normal(after);
+      const double l0 = n0.norm(), l1 = n1.norm();
+      const double scale = std::max({(after[1] - after[0]).squaredNorm(), (after[2] - after[1]).squaredNorm(),
+                                     (after[0] - after[2]).squaredNorm()});
+      if (!(l1 > 1e-6 * scale)) return false;  // would make a sliver
+      // turns by more than 60 degrees (a sliver's own normal is not trusted)
+      if (l0 > 1e-6 * scale && n0.dot(n1) < 0.5 * l0 * l1) return false;
+      const Vec centroid = (after[0] + after[1] + after[2]) / 3.0;
+      const double tol = relaxed_ ? o_.tolerance * kRelaxed : o_.tolerance;
+      try {
+        const ValueGradient vg = f_.value_gradient(centroid);
+        const double g = vg.gradient.norm();
+        if (!(n1.dot(vg.gradient) > 0.5 * l1 * g)) return false;  // faces away from the surface normal
+        if (!(std::abs(vg.value) <= tol * g)) return false;         // centroid farther than tol
+      } catch (const NonFiniteValue&) {
+        return false;
+      }
+      for (int c = 0; c < 3; ++c) {
+        if (m_.faces[t][c] != u) continue;
+        if (distance(0.5 * (after[c] + after[(c + 1) % 3])) > tol) return false;
+        if (distance(0.5 * (after[c] + after[(c + 2) % 3])) > tol) return false;
+      }
+      near_removed = near_removed || point_triangle(pu, after) <= tol;
+    }
+    if (!near_removed) return false;
+
+    for (int t : shared) alive_[t] = false;
+    for (int w : {u, v, opposite[0], opposite[1]}) {
+      auto& list = incident_[w];
+      list.erase(std::remove_if(list.begin(), list.end(), [&](int t) { return !alive_[t]; }), list.end());
+    }
+    for (int t : incident_[u]) {
+      for (int& w : m_.faces[t])
+        if (w == u) w = v;
+      incident_[v].push_back(t);
+    }
+    incident_[u].clear();
+    return true;
+  }
+
+  void compact() {
+    std::vector<int> index(m_.vertices.size(), -1);
+    std::vector<Vec> vertices;
+    std::vector<std::vector<int>> faces;
+    for (int t = 0; t < int(m_.faces.size()); ++t) {
+      if (!alive_[t]) continue;
+      for (int& w : m_.faces[t]) {
+        if (index[w] < 0) {
+          index[w] = int(vertices.size());
+          vertices.push_back(m_.vertices[w]);
+        }
+        w = index[w];
+      }
+      faces.push_back(std::move(m_.faces[t]));
+    }
+    m_.vertices = std::move(vertices);
+    m_.faces = std::move(faces);
+  }
+
+  PolygonMesh& m_;
+  const std::vector<bool>& locked_;
+  const Expression& f_;
+  const SimplifyOptions& o_;
+  std::vector<std::vector<int>> incident_;
+  std::vector<bool> alive_;
+  bool relaxed_ = false;
+};
+
+}  // namespace
+
+SimplifyResult simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options) {
+  return Simplifier(mesh, locked, f, options).run();
+}
+
+}  // namespace sculpt::implicit::detail

@@ -1,0 +1,36 @@
+#pragma once
+/// \file simplify.hpp
+/// Fewer triangles where the surface is flat: half-edge collapses on a closed triangle mesh whose
+/// vertices lie on f = 0 (the marching-tetrahedra mesh of polygonize.hpp). A vertex is merged
+/// into a neighbour only when the mesh stays a 2-manifold (link condition), no changed triangle
+/// turns by more than 60 degrees or away from the surface normal, and every changed triangle
+/// stays within `tolerance` of f = 0 (first-order distance |f| / |grad f| at its centroid and
+/// the midpoints of its new edges) and passes within it of the removed vertex. Vertices on the
+/// box (`locked`) are kept.
+
+#include <vector>
+
+#include "implicit/expression.hpp"
+#include "mesh/polygon_mesh.hpp"
+
+namespace sculpt::implicit::detail {
+
+struct SimplifyOptions {
+  double tolerance = 0.0;  ///< absolute
+  int passes = 4;          ///< sweeps over all vertices
+  /// Then triangles less high than this (2 area / longest edge) are collapsed away where the
+  /// same checks allow it with the distance bound relaxed to 8/7 tolerance: slivers that
+  /// snapping the vertices to a grid could turn over.
+  double min_height = 0.0;
+};
+
+struct SimplifyResult {
+  int collapses = 0;
+  int thin_triangles = 0;  ///< triangles still below min_height
+};
+
+/// Collapses edges of `mesh` in place (faces stay triangles; removed vertices are dropped and
+/// the rest renumbered).
+SimplifyResult simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options);
+
+}  // namespace sculpt::implicit::detail

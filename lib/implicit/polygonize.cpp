@@ -1,0 +1,603 @@
+// Implicit solids: adaptive octree, conforming tetrahedra, marching tetrahedra (polygonize.hpp).
+#include "implicit/polygonize.hpp"
+
+#include "implicit/detail/simplify.hpp"
+#include "mesh/self_intersection.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+namespace sculpt::implicit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+using Key = std::uint64_t;
+
+// The box is first cut into a grid of at most kTop^3 nearly cubic cells (level 0). A lattice
+// coordinate then needs 21 bits (kTop 2^(kMaxLevel + 1) + 1 values), a cell index 19.
+constexpr int kTop = 4;
+constexpr int kMaxLevel = 16;
+constexpr int kStartLevel = 1;  // cells are split at least this deep before any is kept
+constexpr double kSimplifyFraction = 0.7;  // collapsed triangles stay within this times tol
+constexpr double kBendFactor = 1.25;  // measured: the torus at 2e-3 stays within tol (1.5 does not)
+
+enum class Kind : std::uint8_t { Empty, Full, Mixed };
+
+struct Cell {
+  int level = 0;
+  std::int64_t i = 0, j = 0, k = 0;
+};
+
+Key cell_key(int level, std::int64_t i, std::int64_t j, std::int64_t k) {
+  return (Key(level) << 57) | (Key(i) << 38) | (Key(j) << 19) | Key(k);
+}
+
+Key point_key(std::int64_t x, std::int64_t y, std::int64_t z) { return Key(x) | (Key(y) << 21) | (Key(z) << 42); }
+std::array<std::int64_t, 3> point_of(Key p) {
+  constexpr Key m = (Key(1) << 21) - 1;
+  return {std::int64_t(p & m), std::int64_t((p >> 21) & m), std::int64_t((p >> 42) & m)};
+}
+
+struct PairHash {
+  std::size_t operator()(const std::pair<Key, Key>& e) const {
+    return std::hash<Key>()(e.first * 0x9E3779B97F4A7C15ull ^ e.second);
+  }
+};
+
+struct PointData {
+  double value = 0.0;
+  bool has_normal = false;
+  bool normal_valid = false;
+  Vec normal = Vec::Zero();
+};
+
+class Polygonizer {
+ public:
+  Polygonizer(const Expression& f, const PolygonizeOptions& o) : f_(f), o_(o) {
+    const Vec extent = o.box.hi - o.box.lo;
+    const double longest = extent.maxCoeff();
+    feature_ = o.feature_size > 0 ? o.feature_size : 4.0 * o.tolerance;
+    // The finest cells: at most tol, and at most half the feature size (a part that thin is cut
+    // by lattice points, not stepped over).
+    const double finest = std::min(o.tolerance, 0.5 * feature_);
+    const double top_side = longest / kTop;
+    for (int a = 0; a < 3; ++a) top_[a] = std::clamp<std::int64_t>(std::llround(extent[a] / top_side), 1, kTop);
+    lmax_ = 0;
+    while (lmax_ < kMaxLevel && top_side / double(std::int64_t(1) << lmax_) > finest) ++lmax_;
+    for (int a = 0; a < 3; ++a) resolution_[a] = top_[a] << (lmax_ + 1);
+  }
+
+  PolygonizeResult run() {
+    build();
+    balance();
+    march();
+    result_.leaves = static_cast<long>(leaves_.size());
+    result_.marched_triangles = static_cast<long>(result_.mesh.faces.size());
+    if (o_.simplify && !result_.mesh.faces.empty()) simplify();
+    return std::move(result_);
+  }
+
+ private:
+  // ---- geometry of the lattice -------------------------------------------------------------
+  [[nodiscard]] std::int64_t step(int level) const { return std::int64_t(1) << (lmax_ + 1 - level); }
+  [[nodiscard]] Vec world(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    const Vec t(double(x) / double(resolution_[0]), double(y) / double(resolution_[1]),
+                double(z) / double(resolution_[2]));
+    return o_.box.lo + (o_.box.hi - o_.box.lo).cwiseProduct(t);
+  }
+  [[nodiscard]] Vec world(Key p) const {
+    const auto c = point_of(p);
+    return world(c[0], c[1], c[2]);
+  }
+  [[nodiscard]] Box cell_box(const Cell& c) const {
+    const std::int64_t s = step(c.level);
+    return {.lo = world(c.i * s, c.j * s, c.k * s), .hi = world((c.i + 1) * s, (c.j + 1) * s, (c.k + 1) * s)};
+  }
+
+  PointData& point(Key p) {
+    auto [it, inserted] = points_.try_emplace(p);
+    if (inserted) it->second.value = f_.value(world(p));
+    return it->second;
+  }
+  bool inside(Key p) { return point(p).value <= 0.0; }
+
+  /// Unit normal at a lattice point, or false where the gradient vanishes or is not finite.
+  bool normal(Key p, Vec& n) {
+    PointData& d = point(p);
+    if (!d.has_normal) {
+      d.has_normal = true;
+      try {
+        const Vec g = f_.value_gradient(world(p)).gradient;
+        const double len = g.norm();
+        if (len > 0 && std::isfinite(len)) {
+          d.normal = g / len;
+          d.normal_valid = true;
+        }
+      } catch (const NonFiniteValue&) {
+        // a kink such as sqrt at 0: no normal here; the cell counts as bent
+      }
+    }
+    n = d.normal;
+    return d.normal_valid;
+  }
+
+  void charge(long& counter) {
+    ++counter;
+    if (result_.cells + result_.search_cells + long(leaves_.size()) > o_.max_cells) {
+      throw GeometryError("polygonize: the work budget of " + std::to_string(o_.max_cells) +
+                          " cells ran out (the surface is too large for the box and tol, or f's interval bounds "
+                          "cannot tell the cells apart); raise the budget, raise tol or shrink the box");
+    }
+  }
+
+  std::array<Key, 8> corners(const Cell& c) const {
+    const std::int64_t s = step(c.level);
+    std::array<Key, 8> out{};
+    for (int b = 0; b < 8; ++b) out[b] = point_key((c.i + (b & 1)) * s, (c.j + ((b >> 1) & 1)) * s, (c.k + (b >> 2)) * s);
+    return out;
+  }
+
+  // ---- octree ------------------------------------------------------------------------------
+  /// True when the normals at the corners say a flat piece of this cell's size would be off the
+  /// surface by more than tol / 2 (sagitta of a chord d turning by theta: d theta / 8).
+  bool bent(const Cell& c, const std::array<Key, 8>& corner) {
+    std::array<Vec, 8> n;
+    for (int b = 0; b < 8; ++b) {
+      if (!normal(corner[b], n[b])) return true;
+    }
+    double min_dot = 1.0;
+    for (int a = 0; a < 8; ++a)
+      for (int b = a + 1; b < 8; ++b) min_dot = std::min(min_dot, n[a].dot(n[b]));
+    const double theta = std::acos(std::clamp(min_dot, -1.0, 1.0));
+    const Box box = cell_box(c);
+    return (box.hi - box.lo).norm() * theta / 8.0 > kBendFactor * o_.tolerance;
+  }
+
+  /// True when an edge of a Kuhn tetrahedron of the cell (the 12 cube edges, the 6 face
+  /// diagonals from lowest to highest corner, the main diagonal) has ends of one sign and its
+  /// midpoint of the other: the surface crosses it twice (a thin part, or two sheets), which
+  /// marching tetrahedra on this cell would miss.
+  bool crossed_twice(const Cell& c) {
+    const std::int64_t s = step(c.level);
+    const std::int64_t x0 = c.i * s, y0 = c.j * s, z0 = c.k * s;
+    auto test = [&](const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b) {
+      const bool ia = inside(point_key(a[0], a[1], a[2])), ib = inside(point_key(b[0], b[1], b[2]));
+      if (ia != ib) return false;
+      return inside(point_key((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2)) != ia;
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (int e = 0; e < 4; ++e) {  // the 4 cube edges along axis
+        std::array<std::int64_t, 3> a = {x0, y0, z0};
+        a[u] += (e & 1) * s;
+        a[v] += (e >> 1) * s;
+        std::array<std::int64_t, 3> b = a;
+        b[axis] += s;
+        if (test(a, b)) return true;
+      }
+      for (int side = 0; side < 2; ++side) {  // the face diagonals of the faces normal to axis
+        std::array<std::int64_t, 3> a = {x0, y0, z0};
+        a[axis] += side * s;
+        std::array<std::int64_t, 3> b = a;
+        b[u] += s;
+        b[v] += s;
+        if (test(a, b)) return true;
+      }
+    }
+    return test({x0, y0, z0}, {x0 + s, y0 + s, z0 + s});
+  }
+
+  /// Searches a cell whose corners are all inside (or all outside) for a point of the other
+  /// sign, culling sub-cells by interval bounds, down to sub-cells of feature_size / 2 (a ball
+  /// of diameter feature_size holds the centre of some sub-cell at every level below its size).
+  /// Returns +1 found, 0 proven free, -1 unresolved.
+  int search(const Box& cell, bool corners_inside) {
+    std::vector<Box> stack{cell};
+    bool unresolved = false;
+    const double floor = 0.5 * feature_;
+    while (!stack.empty()) {
+      const Box b = stack.back();
+      stack.pop_back();
+      charge(result_.search_cells);
+      const Vec mid = 0.5 * (b.lo + b.hi);
+      if ((f_.value(mid) <= 0.0) != corners_inside) return 1;
+      const IntervalBounds r = f_.bounds(b);
+      if (!r.domain_error) {
+        if (corners_inside && r.range.hi <= 0.0) continue;
+        if (!corners_inside && r.range.lo > 0.0) continue;
+      }
+      if ((b.hi - b.lo).maxCoeff() <= floor) {
+        unresolved = true;
+        continue;
+      }
+      for (int o = 0; o < 8; ++o) {
+        Box child;
+        for (int a = 0; a < 3; ++a) {
+          const bool upper = (o >> a) & 1;
+          child.lo[a] = upper ? mid[a] : b.lo[a];
+          child.hi[a] = upper ? b.hi[a] : mid[a];
+        }
+        stack.push_back(child);
+      }
+    }
+    return unresolved ? -1 : 0;
+  }
+
+  void build() {
+    std::vector<Cell> stack;
+    for (std::int64_t i = 0; i < top_[0]; ++i)
+      for (std::int64_t j = 0; j < top_[1]; ++j)
+        for (std::int64_t k = 0; k < top_[2]; ++k) stack.push_back({0, i, j, k});
+    while (!stack.empty()) {
+      const Cell c = stack.back();
+      stack.pop_back();
+      charge(result_.cells);
+      const Box box = cell_box(c);
+      const IntervalBounds r = f_.bounds(box);
+      Kind kind = Kind::Mixed;
+      if (!r.domain_error && r.range.lo > 0.0) kind = Kind::Empty;
+      if (!r.domain_error && r.range.hi <= 0.0) kind = Kind::Full;
+      bool split = false;
+      if (kind == Kind::Mixed && c.level < lmax_) {
+        if (c.level < kStartLevel) {
+          split = true;
+        } else {
+          const std::array<Key, 8> corner = corners(c);
+          const bool first = inside(corner[0]);
+          bool mixed = false;
+          for (int b = 1; b < 8; ++b) mixed = mixed || inside(corner[b]) != first;
+          if (mixed) {
+            split = crossed_twice(c) || bent(c, corner);
+          } else {
+            const int s = search(box, first);
+            split = s > 0;
+            if (s < 0) ++result_.unresolved_cells;
+          }
+        }
+      }
+      if (!split) {
+        leaves_[cell_key(c.level, c.i, c.j, c.k)] = kind;
+        result_.max_level = std::max(result_.max_level, c.level);
+        continue;
+      }
+      for (int o = 0; o < 8; ++o) {
+        stack.push_back({c.level + 1, 2 * c.i + (o & 1), 2 * c.j + ((o >> 1) & 1), 2 * c.k + (o >> 2)});
+      }
+    }
+  }
+
+  /// The leaf containing cell (level, i, j, k) or one of its ancestors; false when the cell is
+  /// split further (its region holds finer leaves).
+  bool leaf_over(int level, std::int64_t i, std::int64_t j, std::int64_t k, Cell& out) const {
+    for (int l = level; l >= 0; --l) {
+      const int d = level - l;
+      const Key key = cell_key(l, i >> d, j >> d, k >> d);
+      if (leaves_.count(key)) {
+        out = {l, i >> d, j >> d, k >> d};
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// 2:1 balance over faces, edges and corners: a leaf next to one more than a level finer is split.
+  void balance() {
+    std::vector<Cell> queue;
+    for (const auto& [key, kind] : leaves_) {
+      constexpr Key m = (Key(1) << 19) - 1;
+      queue.push_back({int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m),
+                       std::int64_t(key & m)});
+    }
+    while (!queue.empty()) {
+      const Cell c = queue.back();
+      queue.pop_back();
+      if (c.level < 1 || !leaves_.count(cell_key(c.level, c.i, c.j, c.k))) continue;
+      const std::array<std::int64_t, 3> n = {top_[0] << c.level, top_[1] << c.level, top_[2] << c.level};
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            const std::int64_t x = c.i + dx, y = c.j + dy, z = c.k + dz;
+            if ((dx | dy | dz) == 0 || x < 0 || y < 0 || z < 0 || x >= n[0] || y >= n[1] || z >= n[2]) continue;
+            Cell big;
+            if (!leaf_over(c.level, x, y, z, big) || big.level >= c.level - 1) continue;
+            // split `big` into its 8 children, which are balanced in turn
+            const Key key = cell_key(big.level, big.i, big.j, big.k);
+            const Kind kind = leaves_.at(key);
+            leaves_.erase(key);
+            for (int o = 0; o < 8; ++o) {
+              const Cell child{big.level + 1, 2 * big.i + (o & 1), 2 * big.j + ((o >> 1) & 1), 2 * big.k + (o >> 2)};
+              leaves_[cell_key(child.level, child.i, child.j, child.k)] = kind;
+              charge(result_.cells);
+              queue.push_back(child);
+            }
+            queue.push_back(c);  // look again: the neighbour's children may still be too coarse
+            dx = dy = 2;         // leave the loops (the cell is re-queued)
+            break;
+          }
+    }
+  }
+
+  /// Edge collapses where the surface is flat (detail/simplify.hpp), checked afterwards for
+  /// self-intersections by the exact test of the mesh layer; a mesh that fails it is not used.
+  void simplify() {
+    std::vector<bool> locked(result_.mesh.vertices.size(), false);
+    for (std::size_t v = 0; v < locked.size(); ++v) {
+      const Vec& p = result_.mesh.vertices[v];
+      for (int a = 0; a < 3; ++a) locked[v] = locked[v] || p[a] == o_.box.lo[a] || p[a] == o_.box.hi[a];
+    }
+    PolygonMesh simplified = result_.mesh;
+    const detail::SimplifyResult s = detail::simplify(
+        simplified, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
+    if (find_self_intersections(simplified, {.max_pairs = 1}).empty()) {
+      result_.mesh = std::move(simplified);
+      result_.collapses = s.collapses;
+      result_.thin_triangles = s.thin_triangles;
+    } else {
+      result_.simplify_rejected = true;
+    }
+  }
+
+  // ---- tetrahedra and marching -------------------------------------------------------------
+  using Triangle = std::array<Key, 3>;
+
+  /// The triangles of face (axis, side) of a leaf. Both leaves sharing a face compute the same
+  /// triangles from the same global facts (which lattice points are leaf corners), so the
+  /// tetrahedra conform:
+  /// - no edge midpoint is a leaf corner: two triangles, cut by the diagonal from the face's
+  ///   lowest to its highest corner (as the Kuhn tetrahedra cut it);
+  /// - the face centre is a leaf corner (finer leaves on the other side; then every edge
+  ///   midpoint is one too): the four quarters, each cut the same way (as the finer leaves cut them);
+  /// - else (a finer leaf touches only an edge): a fan from the face centre over the corners and
+  ///   the edge midpoints that are leaf corners.
+  void face_triangles(const Cell& c, int axis, int side, std::vector<Triangle>& out) const {
+    const std::int64_t s = step(c.level), h = s / 2;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    std::array<std::int64_t, 3> base = {c.i * s, c.j * s, c.k * s};
+    base[axis] += side * s;
+    auto at = [&](std::int64_t du, std::int64_t dv) {
+      std::array<std::int64_t, 3> p = base;
+      p[u] += du;
+      p[v] += dv;
+      return point_key(p[0], p[1], p[2]);
+    };
+    // the boundary counter-clockwise in (u, v): corner, edge midpoint, corner, ...
+    const std::array<Key, 8> ring = {at(0, 0), at(h, 0), at(s, 0), at(s, h), at(s, s), at(h, s), at(0, s), at(0, h)};
+    bool any_midpoint = false;
+    for (int m = 1; m < 8; m += 2) any_midpoint = any_midpoint || present_.count(ring[m]) > 0;
+    if (!any_midpoint || present_.count(at(h, h))) {
+      const std::int64_t q = any_midpoint ? h : s;
+      for (std::int64_t a = 0; a < s; a += q)
+        for (std::int64_t b = 0; b < s; b += q) {
+          out.push_back({at(a, b), at(a + q, b), at(a + q, b + q)});
+          out.push_back({at(a, b), at(a + q, b + q), at(a, b + q)});
+        }
+      return;
+    }
+    const Key centre = at(h, h);
+    Key previous = ring[0];
+    for (int m = 1; m <= 8; ++m) {
+      const Key p = ring[m % 8];
+      if (m % 2 == 1 && !present_.count(p)) continue;
+      out.push_back({centre, previous, p});
+      previous = p;
+    }
+  }
+
+  /// A mesh vertex on the edge between an inside and an outside lattice point.
+  int root(Key in, Key out) {
+    const std::pair<Key, Key> edge = in < out ? std::pair{in, out} : std::pair{out, in};
+    const auto it = roots_.find(edge);
+    if (it != roots_.end()) return it->second;
+    const Vec a = world(in), b = world(out);
+    double fa = point(in).value, fb = point(out).value;  // fa <= 0 < fb
+    double ta = 0.0, tb = 1.0;
+    int side = 0;
+    // Illinois regula falsi, safeguarded by bisection when it stalls.
+    for (int iter = 0; iter < 60 && tb - ta > 1e-13; ++iter) {
+      double t = ta + (tb - ta) * (fa / (fa - fb));
+      if (!(t > ta && t < tb) || iter % 4 == 3) t = 0.5 * (ta + tb);
+      const double ft = f_.value(a + t * (b - a));
+      if (ft <= 0.0) {
+        ta = t;
+        fa = ft;
+        if (side == -1) fb *= 0.5;
+        side = -1;
+      } else {
+        tb = t;
+        fb = ft;
+        if (side == 1) fa *= 0.5;
+        side = 1;
+      }
+      if (ft == 0.0) break;
+    }
+    // Keep the vertex off the lattice point (a vertex there would be shared by several edges).
+    const double t = std::clamp(0.5 * (ta + tb), 1e-7, 1.0 - 1e-7);
+    const int id = static_cast<int>(result_.mesh.vertices.size());
+    result_.mesh.vertices.push_back(a + t * (b - a));
+    roots_.emplace(edge, id);
+    return id;
+  }
+
+  int lattice_vertex(Key p) {
+    const auto [it, inserted] = box_vertices_.try_emplace(p, static_cast<int>(result_.mesh.vertices.size()));
+    if (inserted) result_.mesh.vertices.push_back(world(p));
+    return it->second;
+  }
+
+  /// Orientation sign of (b - a, c - a, d - a) on small integer coordinates.
+  static std::int64_t orient(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b,
+                             const std::array<std::int64_t, 3>& c, const std::array<std::int64_t, 3>& d) {
+    const std::int64_t b0 = b[0] - a[0], b1 = b[1] - a[1], b2 = b[2] - a[2];
+    const std::int64_t c0 = c[0] - a[0], c1 = c[1] - a[1], c2 = c[2] - a[2];
+    const std::int64_t d0 = d[0] - a[0], d1 = d[1] - a[1], d2 = d[2] - a[2];
+    return b0 * (c1 * d2 - c2 * d1) - b1 * (c0 * d2 - c2 * d0) + b2 * (c0 * d1 - c1 * d0);
+  }
+
+  void emit(int a, int b, int c) { result_.mesh.faces.push_back({a, b, c}); }
+
+  /// Marching tetrahedra on one tetrahedron. Triangles are oriented on the combinatorial
+  /// structure (edge midpoints in lattice coordinates, exact integers), so every triangle has
+  /// the inside on its back whatever the roots' positions.
+  void march_tet(const std::array<Key, 4>& t, std::int64_t scale) {
+    std::array<bool, 4> in{};
+    int count = 0;
+    for (int a = 0; a < 4; ++a) count += (in[a] = inside(t[a])) ? 1 : 0;
+    if (count == 0 || count == 4) return;
+    ++result_.tetrahedra;
+    std::array<std::array<std::int64_t, 3>, 4> p{};
+    const auto origin = point_of(t[0]);
+    for (int a = 0; a < 4; ++a) {
+      const auto q = point_of(t[a]);
+      for (int x = 0; x < 3; ++x) p[a][x] = (q[x] - origin[x]) / scale;
+    }
+    auto mid = [&](int a, int b) {
+      return std::array<std::int64_t, 3>{p[a][0] + p[b][0], p[a][1] + p[b][1], p[a][2] + p[b][2]};
+    };
+    auto twice = [&](int a) { return std::array<std::int64_t, 3>{2 * p[a][0], 2 * p[a][1], 2 * p[a][2]}; };
+    auto edge = [&](int a, int b) { return in[a] ? root(t[a], t[b]) : root(t[b], t[a]); };
+    // emit triangle on edges (a0 b0), (a1 b1), (a2 b2) with the inside vertex `ref_in` behind it
+    auto triangle = [&](std::array<std::array<int, 2>, 3> e, int ref, bool ref_inside) {
+      const auto m0 = mid(e[0][0], e[0][1]), m1 = mid(e[1][0], e[1][1]), m2 = mid(e[2][0], e[2][1]);
+      const std::int64_t o = orient(m0, m1, m2, twice(ref));
+      // the normal must point away from the inside: an inside reference on the negative side
+      if ((o > 0) == ref_inside) std::swap(e[1], e[2]);
+      emit(edge(e[0][0], e[0][1]), edge(e[1][0], e[1][1]), edge(e[2][0], e[2][1]));
+    };
+    if (count == 1 || count == 3) {
+      int lone = 0;
+      for (int a = 0; a < 4; ++a)
+        if (in[a] == (count == 1)) lone = a;
+      std::array<std::array<int, 2>, 3> e{};
+      int n = 0;
+      for (int a = 0; a < 4; ++a)
+        if (a != lone) e[n++] = {lone, a};
+      triangle(e, lone, in[lone]);
+      return;
+    }
+    int i0 = -1, i1 = -1, o0 = -1, o1 = -1;
+    for (int a = 0; a < 4; ++a) {
+      if (in[a]) (i0 < 0 ? i0 : i1) = a;
+      else (o0 < 0 ? o0 : o1) = a;
+    }
+    // quad (i0 o0) (i0 o1) (i1 o1) (i1 o0), cut by its diagonal (i0 o0)-(i1 o1)
+    triangle({{{i0, o0}, {i0, o1}, {i1, o1}}}, i0, true);
+    triangle({{{i0, o0}, {i1, o1}, {i1, o0}}}, i0, true);
+  }
+
+  /// The part of a box-face triangle inside the solid, oriented outwards (normal = sign * e_axis).
+  void close_box(Triangle tri, int axis, int sign) {
+    const auto a = point_of(tri[0]), b = point_of(tri[1]), c = point_of(tri[2]);
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const std::int64_t normal = (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
+    if ((normal > 0) != (sign > 0)) std::swap(tri[1], tri[2]);
+    std::array<int, 4> poly{};
+    int n = 0;
+    for (int e = 0; e < 3; ++e) {
+      const Key p = tri[e], q = tri[(e + 1) % 3];
+      const bool pin = inside(p), qin = inside(q);
+      if (pin) poly[n++] = lattice_vertex(p);
+      if (pin != qin) poly[n++] = pin ? root(p, q) : root(q, p);
+    }
+    for (int k = 1; k + 1 < n; ++k) emit(poly[0], poly[k], poly[k + 1]);
+  }
+
+  void march() {
+    std::vector<Cell> cells;
+    cells.reserve(leaves_.size());
+    for (const auto& [key, kind] : leaves_) {
+      constexpr Key m = (Key(1) << 19) - 1;
+      const Cell c{int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m), std::int64_t(key & m)};
+      for (const Key p : corners(c)) present_.insert(p);
+      if (kind != Kind::Empty) cells.push_back(c);
+    }
+    // A fixed order, so the output does not depend on the hash tables' iteration order.
+    std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) {
+      return std::tie(a.level, a.i, a.j, a.k) < std::tie(b.level, b.i, b.j, b.k);
+    });
+    std::vector<Triangle> faces;
+    for (const Cell& c : cells) {
+      const Kind kind = leaves_.at(cell_key(c.level, c.i, c.j, c.k));
+      const std::int64_t s = step(c.level);
+      faces.clear();
+      std::array<std::size_t, 7> first{};
+      for (int f = 0; f < 6; ++f) {
+        first[f] = faces.size();
+        face_triangles(c, f / 2, f % 2, faces);
+      }
+      first[6] = faces.size();
+      if (kind == Kind::Mixed) {
+        if (faces.size() == 12) {
+          // the 6 Kuhn tetrahedra: paths from the lowest to the highest corner along the axes
+          const std::array<std::int64_t, 3> lo = {c.i * s, c.j * s, c.k * s};
+          static constexpr std::array<std::array<int, 3>, 6> kOrders = {
+              {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+          for (const auto& order : kOrders) {
+            std::array<Key, 4> t{};
+            std::array<std::int64_t, 3> q = lo;
+            t[0] = point_key(q[0], q[1], q[2]);
+            for (int m = 0; m < 3; ++m) {
+              q[order[m]] += s;
+              t[m + 1] = point_key(q[0], q[1], q[2]);
+            }
+            march_tet(t, s);
+          }
+        } else {
+          const Key centre = point_key(c.i * s + s / 2, c.j * s + s / 2, c.k * s + s / 2);
+          for (const Triangle& tri : faces) march_tet({centre, tri[0], tri[1], tri[2]}, s / 2);
+        }
+      }
+      for (int f = 0; f < 6; ++f) {
+        const int axis = f / 2, side = f % 2;
+        const std::int64_t index = axis == 0 ? c.i : axis == 1 ? c.j : c.k;
+        if (side == 0 ? index != 0 : index != (top_[axis] << c.level) - 1) continue;
+        for (std::size_t t = first[f]; t < first[f + 1]; ++t) close_box(faces[t], axis, side == 0 ? -1 : 1);
+      }
+    }
+  }
+
+  const Expression& f_;
+  const PolygonizeOptions& o_;
+  int lmax_ = 0;
+  std::array<std::int64_t, 3> top_ = {1, 1, 1};         // level-0 cells per axis
+  std::array<std::int64_t, 3> resolution_ = {2, 2, 2};  // lattice steps per axis
+  double feature_ = 0.0;
+  PolygonizeResult result_;
+  std::unordered_map<Key, Kind> leaves_;
+  std::unordered_map<Key, PointData> points_;
+  std::unordered_set<Key> present_;
+  std::unordered_map<std::pair<Key, Key>, int, PairHash> roots_;
+  std::unordered_map<Key, int> box_vertices_;
+};
+
+}  // namespace
+
+PolygonizeResult polygonize(const Expression& f, const PolygonizeOptions& options) {
+  const Box& box = options.box;
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(box.lo[a]) || !std::isfinite(box.hi[a]) || !(box.lo[a] < box.hi[a])) {
+      throw InvalidInput("polygonize: the box must be finite with lo < hi in x, y and z");
+    }
+  }
+  const double longest = (box.hi - box.lo).maxCoeff();
+  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) {
+    throw InvalidInput("polygonize: the tolerance must be a finite number > 0");
+  }
+  if (options.tolerance < 4e-6 * longest) {
+    throw InvalidInput("polygonize: the tolerance is below 4e-6 of the box's longest side (" +
+                       std::to_string(4e-6 * longest) + "), the octree's finest level");
+  }
+  if (!(options.feature_size >= 0) || !std::isfinite(options.feature_size)) {
+    throw InvalidInput("polygonize: feature_size must be a finite number >= 0");
+  }
+  if (options.max_cells <= 0) throw InvalidInput("polygonize: max_cells must be > 0");
+  return Polygonizer(f, options).run();
+}
+
+}  // namespace sculpt::implicit

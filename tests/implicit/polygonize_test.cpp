@@ -1,0 +1,289 @@
+// Implicit solids (lib/implicit/polygonize.hpp): meshes of {f <= 0} in a box checked against the
+// analytic surfaces (sphere, torus: distances in closed form, both ways), mesh invariants
+// (closed, oriented, manifold, no self-intersections by our validator and by CGAL; Euler
+// characteristic, components) and analytic volumes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <unordered_map>
+#include <vector>
+
+#include "implicit/polygonize.hpp"
+#include "mesh/mesh_measures.hpp"
+#include "mesh/mesh_validation.hpp"
+#include "support/cgal_mesh_check.hpp"
+
+namespace sculpt::implicit {
+namespace {
+
+using Vec = Eigen::Vector3d;
+constexpr double kPi = std::numbers::pi;
+
+Expression sphere(const Vec& c, double r) {
+  ExpressionBuilder b;
+  const Term d = b.add(b.add(b.pow(b.sub(b.x(), b.constant(c.x())), 2), b.pow(b.sub(b.y(), b.constant(c.y())), 2)),
+                       b.pow(b.sub(b.z(), b.constant(c.z())), 2));
+  return b.finish(b.sub(d, b.constant(r * r)));
+}
+
+/// (sqrt(x^2 + y^2) - R)^2 + z^2 - r^2
+Expression torus(double R, double r) {
+  ExpressionBuilder b;
+  const Term rho = b.sqrt(b.add(b.pow(b.x(), 2), b.pow(b.y(), 2)));
+  return b.finish(b.sub(b.add(b.pow(b.sub(rho, b.constant(R)), 2), b.pow(b.z(), 2)), b.constant(r * r)));
+}
+
+double torus_distance(const Vec& p, double R, double r) {
+  const double rho = std::hypot(p.x(), p.y());
+  return std::abs(std::hypot(rho - R, p.z()) - r);
+}
+
+Vec torus_point(double u, double v, double R, double r) {
+  return {(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)};
+}
+
+double point_triangle_distance(const Vec& p, const Vec& a, const Vec& b, const Vec& c) {
+  // Ericson, Real-Time Collision Detection, 5.1.5 (closest point on a triangle)
+  const Vec ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
+  const Vec bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).norm();
+  const Vec cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
+}
+
+/// Distance from points to a triangle mesh, by a uniform grid of triangle boxes; only distances
+/// up to `reach` are exact (farther ones come back as at least `reach`).
+class MeshDistance {
+ public:
+  MeshDistance(const PolygonMesh& m, double reach) : m_(m), cell_(reach) {
+    for (int f = 0; f < int(m.faces.size()); ++f) {
+      Eigen::AlignedBox3d box;
+      for (int v : m.faces[f]) box.extend(m.vertices[v]);
+      const auto lo = index(box.min()), hi = index(box.max());
+      for (long x = lo[0]; x <= hi[0]; ++x)
+        for (long y = lo[1]; y <= hi[1]; ++y)
+          for (long z = lo[2]; z <= hi[2]; ++z) grid_[key(x, y, z)].push_back(f);
+    }
+  }
+  double operator()(const Vec& p) const {
+    double best = cell_;
+    const auto c = index(p);
+    for (long x = c[0] - 1; x <= c[0] + 1; ++x)
+      for (long y = c[1] - 1; y <= c[1] + 1; ++y)
+        for (long z = c[2] - 1; z <= c[2] + 1; ++z) {
+          const auto it = grid_.find(key(x, y, z));
+          if (it == grid_.end()) continue;
+          for (int f : it->second) {
+            const auto& t = m_.faces[f];
+            best = std::min(best, point_triangle_distance(p, m_.vertices[t[0]], m_.vertices[t[1]], m_.vertices[t[2]]));
+          }
+        }
+    return best;
+  }
+
+ private:
+  std::array<long, 3> index(const Vec& p) const {
+    return {long(std::floor(p.x() / cell_)), long(std::floor(p.y() / cell_)), long(std::floor(p.z() / cell_))};
+  }
+  static long long key(long x, long y, long z) { return ((x + 100000LL) * 200000LL + (y + 100000LL)) * 200000LL + z; }
+  const PolygonMesh& m_;
+  double cell_;
+  std::unordered_map<long long, std::vector<int>> grid_;
+};
+
+/// Largest analytic distance of the mesh's vertices and of points spread over each triangle.
+double mesh_to_surface(const PolygonMesh& m, const std::function<double(const Vec&)>& distance) {
+  double worst = 0;
+  for (const Vec& v : m.vertices) worst = std::max(worst, distance(v));
+  for (const auto& f : m.faces) {
+    const Vec &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
+    for (int i = 0; i <= 4; ++i)
+      for (int j = 0; i + j <= 4; ++j) worst = std::max(worst, distance((a * (4 - i - j) + b * i + c * j) / 4.0));
+  }
+  return worst;
+}
+
+void expect_solid_mesh(const PolygonMesh& m, int components, int euler) {
+  ASSERT_FALSE(m.faces.empty());
+  for (const auto& f : m.faces) ASSERT_EQ(f.size(), 3u);
+  const ValidationReport report = check_closed_manifold(m);
+  EXPECT_TRUE(report.ok()) << report.summary(5);
+  EXPECT_EQ(component_count(m), components);
+  EXPECT_EQ(euler_characteristic(m), euler);
+  EXPECT_GT(mesh_volume(m), 0.0);
+  EXPECT_TRUE(checks::CleanForOtherTools(m.vertices, m.faces));
+}
+
+TEST(Polygonize, SphereIsAClosedManifoldWithinTol) {
+  const double tol = 5e-3;
+  const PolygonizeResult r = polygonize(sphere({0.1, -0.05, 0.02}, 1.0), {.box = {.lo = Vec(-1.5, -1.5, -1.5), .hi = Vec(1.5, 1.5, 1.5)}, .tolerance = tol});
+  expect_solid_mesh(r.mesh, 1, 2);
+  const auto distance = [](const Vec& p) { return std::abs((p - Vec(0.1, -0.05, 0.02)).norm() - 1.0); };
+  EXPECT_LE(mesh_to_surface(r.mesh, distance), tol);
+  const MeshDistance to_mesh(r.mesh, 4 * tol);
+  double worst = 0;
+  for (int i = 0; i <= 200; ++i)
+    for (int j = 0; j < 400; ++j) {
+      const double th = kPi * i / 200, ph = 2 * kPi * j / 400;
+      worst = std::max(worst, to_mesh(Vec(0.1, -0.05, 0.02) + Vec(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th))));
+    }
+  EXPECT_LE(worst, tol);
+  EXPECT_NEAR(mesh_volume(r.mesh), 4.0 / 3.0 * kPi, 4 * kPi * tol);
+}
+
+TEST(Polygonize, SurfaceThroughLatticePointsExactly) {
+  // The box [-2, 2]^3 puts lattice points on the unit sphere (f == 0 there, counted as inside).
+  const PolygonizeResult r = polygonize(sphere({0, 0, 0}, 1.0), {.box = {.lo = Vec(-2, -2, -2), .hi = Vec(2, 2, 2)}, .tolerance = 1e-2});
+  expect_solid_mesh(r.mesh, 1, 2);
+  EXPECT_LE(mesh_to_surface(r.mesh, [](const Vec& p) { return std::abs(p.norm() - 1.0); }), 1e-2);
+}
+
+TEST(Polygonize, TorusWithinTolBothWaysGenusOne) {
+  const double R = 1.0, rr = 0.4;
+  for (const double tol : {1e-2, 2e-3}) {
+    SCOPED_TRACE(tol);
+    const PolygonizeResult r = polygonize(torus(R, rr), {.box = {.lo = Vec(-1.5, -1.5, -0.5), .hi = Vec(1.5, 1.5, 0.5)}, .tolerance = tol});
+    expect_solid_mesh(r.mesh, 1, 0);
+    EXPECT_EQ(genus(r.mesh), 1);
+    EXPECT_LE(mesh_to_surface(r.mesh, [&](const Vec& p) { return torus_distance(p, R, rr); }), tol);
+    const MeshDistance to_mesh(r.mesh, 4 * tol);
+    double worst = 0;
+    const int n = tol < 5e-3 ? 1200 : 500;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n / 2; ++j) worst = std::max(worst, to_mesh(torus_point(2 * kPi * (i + 0.37) / n, 2 * kPi * (j + 0.61) / (n / 2), R, rr)));
+    EXPECT_LE(worst, tol);
+  }
+}
+
+TEST(Polygonize, TorusVolumeConverges) {
+  const double R = 1.0, rr = 0.4, exact = 2 * kPi * kPi * R * rr * rr, area = 4 * kPi * kPi * R * rr;
+  double previous = 1e9;
+  for (const double tol : {2e-2, 8e-3, 2e-3, 5e-4}) {
+    SCOPED_TRACE(tol);
+    const PolygonizeResult r = polygonize(torus(R, rr), {.box = {.lo = Vec(-1.5, -1.5, -0.5), .hi = Vec(1.5, 1.5, 0.5)}, .tolerance = tol});
+    const double error = std::abs(mesh_volume(r.mesh) - exact);
+    EXPECT_LE(error, area * tol);  // what a Hausdorff distance of tol allows
+    EXPECT_LT(error, previous);
+    previous = error;
+  }
+  EXPECT_LT(previous, 1e-3 * exact);
+}
+
+TEST(Polygonize, TwoSeparateSpheresAreTwoComponents) {
+  ExpressionBuilder b;
+  auto ball = [&](double cx, double r) {
+    return b.sub(b.add(b.add(b.pow(b.sub(b.x(), b.constant(cx)), 2), b.pow(b.y(), 2)), b.pow(b.z(), 2)), b.constant(r * r));
+  };
+  const Expression f = b.finish(b.min(ball(-0.6, 0.5), ball(0.7, 0.4)));
+  const PolygonizeResult r = polygonize(f, {.box = {.lo = Vec(-1.3, -0.7, -0.7), .hi = Vec(1.3, 0.7, 0.7)}, .tolerance = 5e-3});
+  expect_solid_mesh(r.mesh, 2, 4);
+  EXPECT_NEAR(mesh_volume(r.mesh), 4.0 / 3.0 * kPi * (0.125 + 0.064), 0.02);
+}
+
+TEST(Polygonize, TinySphereBetweenLatticePointsIsFound) {
+  // A ball of diameter 0.05 in a box of side 4 at tol 0.01: a uniform grid at the cells' size
+  // where the big sphere is flat (about 0.125) steps over it; the interval search finds it.
+  ExpressionBuilder b;
+  auto ball = [&](const Vec& c, double r) {
+    return b.sub(b.add(b.add(b.pow(b.sub(b.x(), b.constant(c.x())), 2), b.pow(b.sub(b.y(), b.constant(c.y())), 2)),
+                       b.pow(b.sub(b.z(), b.constant(c.z())), 2)),
+                 b.constant(r * r));
+  };
+  const Vec small(1.4321, 1.2345, -1.3579);
+  const Expression f = b.finish(b.min(ball({0, 0, 0}, 1.0), ball(small, 0.025)));
+  const PolygonizeResult r = polygonize(f, {.box = {.lo = Vec(-2, -2, -2), .hi = Vec(2, 2, 2)}, .tolerance = 1e-2});
+  expect_solid_mesh(r.mesh, 2, 4);
+  int near_small = 0;
+  for (const Vec& v : r.mesh.vertices) {
+    if ((v - small).norm() < 0.1) {
+      ++near_small;
+      EXPECT_NEAR((v - small).norm(), 0.025, 1e-2);
+    }
+  }
+  EXPECT_GT(near_small, 4);
+}
+
+TEST(Polygonize, ThinShellKeepsBothSides) {
+  // |(|p| - 0.3)| - 0.005 <= 0: a shell 0.01 thick, half of tol (cells where the sphere is flat
+  // would be about 0.05 wide); feature_size 0.01 finds it and splits the cells it crosses twice.
+  ExpressionBuilder b;
+  const Term norm = b.sqrt(b.add(b.add(b.pow(b.x(), 2), b.pow(b.y(), 2)), b.pow(b.z(), 2)));
+  const Expression f = b.finish(b.sub(b.abs(b.sub(norm, b.constant(0.3))), b.constant(0.005)));
+  const Box box{.lo = Vec(-0.4, -0.4, -0.4), .hi = Vec(0.4, 0.4, 0.4)};
+  expect_solid_mesh(polygonize(f, {.box = box, .tolerance = 2e-2, .feature_size = 1e-2}).mesh, 2, 4);
+  // Unsimplified, the marched shell has its volume (simplified, each sheet may move by up to tol,
+  // more than the shell is thick).
+  const PolygonizeResult r = polygonize(f, {.box = box, .tolerance = 2e-2, .feature_size = 1e-2, .simplify = false});
+  expect_solid_mesh(r.mesh, 2, 4);
+  const double exact = 4.0 / 3.0 * kPi * (std::pow(0.305, 3) - std::pow(0.295, 3));
+  EXPECT_NEAR(mesh_volume(r.mesh), exact, 0.05 * exact);
+}
+
+TEST(Polygonize, BoxFacesCloseTheSolid) {
+  // The unit sphere cut by the box at z = 0.3: a spherical cap closed by a disc on the face.
+  const PolygonizeResult r = polygonize(sphere({0, 0, 0}, 1.0), {.box = {.lo = Vec(-1.2, -1.2, 0.3), .hi = Vec(1.2, 1.2, 1.2)}, .tolerance = 2e-3});
+  expect_solid_mesh(r.mesh, 1, 2);
+  const double h = 0.7, exact = kPi * h * h * (3 - h) / 3;
+  EXPECT_NEAR(mesh_volume(r.mesh), exact, 0.01 * exact);
+  // A function negative everywhere gives the box itself; positive everywhere, nothing.
+  ExpressionBuilder b;
+  const Expression negative = b.finish(b.sub(b.pow(b.x(), 2), b.constant(10)));
+  const PolygonizeResult full = polygonize(negative, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 2, 1)}, .tolerance = 1e-2});
+  expect_solid_mesh(full.mesh, 1, 2);
+  EXPECT_NEAR(mesh_volume(full.mesh), 12.0, 1e-12);
+  ExpressionBuilder c;
+  const Expression positive = c.finish(c.add(c.pow(c.x(), 2), c.constant(1)));
+  EXPECT_TRUE(polygonize(positive, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)}, .tolerance = 1e-2}).mesh.faces.empty());
+}
+
+TEST(Polygonize, AdaptiveMoreTrianglesWhereItBends) {
+  // An ellipsoid with semi-axes 1, 1, 0.25: curvature 16 at its rim, 0.25 at its poles.
+  ExpressionBuilder b;
+  const Expression f = b.finish(b.sub(b.add(b.add(b.pow(b.x(), 2), b.pow(b.y(), 2)), b.mul(b.constant(16), b.pow(b.z(), 2))), b.constant(1)));
+  const PolygonizeResult r = polygonize(f, {.box = {.lo = Vec(-1.3, -1.3, -0.4), .hi = Vec(1.3, 1.3, 0.4)}, .tolerance = 2e-3});
+  expect_solid_mesh(r.mesh, 1, 2);
+  double rim = 0, pole = 0;
+  int rim_n = 0, pole_n = 0;
+  for (const auto& t : r.mesh.faces) {
+    const Vec c = (r.mesh.vertices[t[0]] + r.mesh.vertices[t[1]] + r.mesh.vertices[t[2]]) / 3;
+    const double edge = (r.mesh.vertices[t[0]] - r.mesh.vertices[t[1]]).norm();
+    if (std::hypot(c.x(), c.y()) > 0.97) rim += edge, ++rim_n;
+    if (std::hypot(c.x(), c.y()) < 0.3) pole += edge, ++pole_n;
+  }
+  ASSERT_GT(rim_n, 0);
+  ASSERT_GT(pole_n, 0);
+  EXPECT_GT(pole / pole_n, 2.5 * rim / rim_n);
+}
+
+TEST(Polygonize, BadInput) {
+  const Expression f = sphere({0, 0, 0}, 1.0);
+  EXPECT_THROW((void)polygonize(f, {.box = {.lo = Vec(0, 0, 0), .hi = Vec(0, 1, 1)}}), InvalidInput);
+  EXPECT_THROW((void)polygonize(f, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)}, .tolerance = 0}), InvalidInput);
+  EXPECT_THROW((void)polygonize(f, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)}, .tolerance = 1e-7}), InvalidInput);
+  EXPECT_THROW((void)polygonize(f, {.box = {.lo = Vec(-2, -2, -2), .hi = Vec(2, 2, 2)}, .tolerance = 1e-3, .max_cells = 1000}),
+               GeometryError);
+  // 1 / x - 2 is not finite on the plane x = 0, which holds lattice points of this box.
+  ExpressionBuilder b;
+  const Expression pole = b.finish(b.sub(b.div(b.constant(1), b.x()), b.constant(2)));
+  EXPECT_THROW((void)polygonize(pole, {.box = {.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)}, .tolerance = 1e-2}), NonFiniteValue);
+}
+
+}  // namespace
+}  // namespace sculpt::implicit
