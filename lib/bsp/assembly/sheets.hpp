@@ -23,6 +23,6 @@ Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, cons
 /// kernel::rounded_vertex), optionally with each face triangulated by mesh/triangulate.hpp's
 /// exact ear clipping.
 PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate, const kernel::Grid& grid);
+                        bool triangulate, const kernel::Grid& grid = {});
 
 }  // namespace sculpt::bsp::detail
