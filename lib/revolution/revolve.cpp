@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "base/errors.hpp"
@@ -73,9 +74,11 @@ SnappedRevolution snap_revolution(const std::vector<Eigen::Vector2d>& profile_in
   for (const auto& v : path.vertices) reach = std::max(reach, v.cwiseAbs().maxCoeff());
   const kernel::Grid& grid = options.grid;
   for (auto& p : profile) {
-    if (p.x() * reach > grid.max_world())
-      throw RangeError(grid.out_of_range("revolved solid reaching " + std::to_string(p.x() * reach) + " from the axis",
-                                         p.x() * reach));
+    if (p.x() * reach > grid.max_world()) {
+      std::ostringstream what;
+      what << "revolved solid reaching " << p.x() * reach << " from the axis";
+      throw RangeError(grid.out_of_range(what.str(), p.x() * reach));
+    }
     p = Eigen::Vector2d(grid.to_world(double(grid.snap(p.x()))), grid.to_world(double(grid.snap(p.y()))));
   }
   monotone_profile(profile);  // snapping keeps z monotone but may flatten it: check again

@@ -8,6 +8,7 @@
 #include <new>
 #include <numbers>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 #include "base/errors.hpp"
@@ -75,9 +76,12 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   }
   auto c_of = [&](std::size_t k, int j) -> Int128 {
     const double c = grid.to_grid(rings[k].scale * offset[std::size_t(j)]);
-    if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord))
-      throw RangeError(grid.out_of_range("revolved solid (reach " + std::to_string(grid.to_world(std::fabs(c) * 1.5)) + ")",
-                                         grid.to_world(std::fabs(c) * 1.5)));
+    if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord)) {
+      const double reach = grid.to_world(std::fabs(c) * 1.5);  // with the margin of the check
+      std::ostringstream what;
+      what << "revolved solid (reach " << reach << ")";
+      throw RangeError(grid.out_of_range(what.str(), reach));
+    }
     return Int128(std::llround(c * kPathScale));
   };
 
