@@ -29,6 +29,8 @@ constexpr const char* kUsage =
     "  -D NAME=VALUE   bind NAME before any script runs. VALUE is a number, true, false, a\n"
     "                  sculpt list or string literal ([1, 2, 3], \"text\"); anything else is\n"
     "                  bound as a string\n"
+    "  --grid STEP     make solids at grid step STEP, a power of two written 2^-13 or 0.0001220703125:\n"
+    "                  coordinates up to 2^25 steps (default 2^-15: [-1024, 1024]); see grid()\n"
     "  --help          show this help\n"
     "  --version       show the version\n"
     "Exit status: 0 on success, 1 on a script error, 2 on a usage error.\n";
@@ -58,6 +60,24 @@ bool is_name(const std::string& s) {
   return true;
 }
 
+/// The grid of `--grid STEP`: "2^K" (K an integer) or a decimal number, a power of two.
+/// \throw InvalidInput (Grid::from_step's message) for anything else.
+sculpt::kernel::Grid grid_option(const std::string& text) {
+  if (text.rfind("2^", 0) == 0) {
+    int k = 0;
+    const char* begin = text.data() + 2;
+    const char* end = text.data() + text.size();
+    const auto [stop, ec] = std::from_chars(begin, end, k);
+    if (ec == std::errc() && stop == end && begin != end) return sculpt::kernel::Grid::from_shift(-k);
+    throw sculpt::InvalidInput("--grid: '" + text + "' is not 2^K with an integer K");
+  }
+  double step = 0;
+  const auto [stop, ec] = std::from_chars(text.data(), text.data() + text.size(), step);
+  if (ec != std::errc() || stop != text.data() + text.size() || text.empty())
+    throw sculpt::InvalidInput("--grid: '" + text + "' is not a number or 2^K");
+  return sculpt::kernel::Grid::from_step(step);
+}
+
 /// The value of `-D name=value` (see kUsage).
 Value definition_value(Interpreter& interpreter, const std::string& text) {
   double number = 0;
@@ -77,6 +97,7 @@ Value definition_value(Interpreter& interpreter, const std::string& text) {
 int main(int argc, char** argv) {
   std::vector<Job> jobs;
   std::vector<std::pair<std::string, std::string>> definitions;
+  sculpt::kernel::Grid grid;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
@@ -97,6 +118,13 @@ int main(int argc, char** argv) {
         return usage_error("-D needs NAME=VALUE, got '" + definition + "'");
       }
       definitions.emplace_back(definition.substr(0, equals), definition.substr(equals + 1));
+    } else if (arg == "--grid" || arg.rfind("--grid=", 0) == 0) {
+      std::string text = arg.size() > 6 ? arg.substr(7) : (i + 1 < argc ? argv[++i] : "");
+      try {
+        grid = grid_option(text);
+      } catch (const sculpt::InvalidInput& e) {
+        return usage_error(e.what());
+      }
     } else if (arg == "-") {
       jobs.push_back({Job::Stdin, ""});
     } else if (arg.size() > 1 && arg[0] == '-') {
@@ -107,6 +135,7 @@ int main(int argc, char** argv) {
   }
 
   auto define_all = [&](Interpreter& interpreter) {
+    interpreter.set_grid(grid);
     for (const auto& [name, value] : definitions) interpreter.define(name, definition_value(interpreter, value));
   };
   if (jobs.empty() && isatty(STDIN_FILENO)) return sculpt::repl::run_interactive(define_all);

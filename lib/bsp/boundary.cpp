@@ -11,7 +11,7 @@ PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
   // A carried boundary (set operation results) is used as is; otherwise it is extracted.
   bsp::detail::Fragments f = solid.has_boundary() ? bsp::detail::Fragments{solid.planes(), solid.boundary()}
                                              : bsp::detail::boundary_fragments(solid);
-  return bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate});
+  return bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate, .grid = solid.grid()});
 }
 
 // Measures of the assembled mesh: one implementation (compensated sums) for meshes and solids.

@@ -55,7 +55,7 @@ Cell clip(bsp::detail::Arena& a, const Cell& cell, std::int32_t q) {
   return out;
 }
 
-LeafCell to_leaf_cell(const Cell& cell, int depth, bool inside) {
+LeafCell to_leaf_cell(const Cell& cell, int depth, bool inside, const kernel::Grid& grid) {
   LeafCell lc;
   lc.depth = depth;
   lc.inside = inside;
@@ -64,10 +64,10 @@ LeafCell to_leaf_cell(const Cell& cell, int depth, bool inside) {
   for (const ConvexPolygon& f : cell) {
     std::vector<int> face;
     for (const auto& c : f.corners) {
-      const Eigen::Vector3d p = Eigen::Vector3d(c.at.x, c.at.y, c.at.z) * kernel::kGridStep;
+      const Eigen::Vector3d p = grid.to_world(Eigen::Vector3d(c.at.x, c.at.y, c.at.z));
       int id = -1;
       for (std::size_t v = 0; v < lc.vertices.size() && id < 0; ++v)
-        if ((lc.vertices[v] - p).norm() <= 1e-12 * (1 + p.norm())) id = int(v);
+        if ((lc.vertices[v] - p).norm() <= 1e-12 * (grid.unit() + p.norm())) id = int(v);
       if (id < 0) {
         id = int(lc.vertices.size());
         lc.vertices.push_back(p);
@@ -91,7 +91,7 @@ LeafCell to_leaf_cell(const Cell& cell, int depth, bool inside) {
 
 std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& box) {
   if (box.isEmpty()) throw InvalidInput("leaf_cells: empty sample box");
-  const kernel::GridPoint lo = kernel::snap(box.min()), hi = kernel::snap(box.max());
+  const kernel::GridPoint lo = solid.grid().snap(box.min()), hi = solid.grid().snap(box.max());
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) throw InvalidInput("leaf_cells: sample box thinner than the grid step");
   bsp::detail::Arena a;
   a.planes = solid.planes();
@@ -122,7 +122,7 @@ std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& 
     Frame f = std::move(stack.back());
     stack.pop_back();
     if (is_leaf(f.t)) {
-      out.push_back(to_leaf_cell(f.cell, f.depth, f.t == kIn));
+      out.push_back(to_leaf_cell(f.cell, f.depth, f.t == kIn, solid.grid()));
       continue;
     }
     const BspNode& n = solid.nodes()[std::size_t(f.t)];

@@ -5,7 +5,7 @@
 namespace sculpt {
 
 Classification classify(const Solid& solid, const Eigen::Vector3d& point) {
-  return classify(kernel::snap(point), solid.root(), solid.nodes(), solid.planes());
+  return classify(solid.grid().snap(point), solid.root(), solid.nodes(), solid.planes());
 }
 
 Classification classify(const kernel::GridPoint& g, TreeRef root, std::span<const BspNode> nodes,

@@ -11,9 +11,9 @@
 namespace sculpt {
 
 /// The right prism over `polygon` (x, y, in either orientation; a repeated closing point is
-/// dropped) from z = z0 to z = z1.
+/// dropped) from z = z0 to z = z1, snapped to `grid`.
 /// \throw InvalidInput for fewer than 3 distinct points, zero area, or z0 >= z1 after snapping;
 /// GeometryError if the polygon's boundary crosses or touches itself (named where).
-Solid extrude(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1);
+Solid extrude(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1, const kernel::Grid& grid = {});
 
 }  // namespace sculpt

@@ -10,6 +10,7 @@
 #include "base/errors.hpp"
 #include "mesh/triangulate.hpp"
 #include "bsp/tree/autopartition.hpp"
+#include "bsp/tree/solid_access.hpp"
 
 namespace sculpt {
 
@@ -47,10 +48,10 @@ ConvexPolygon triangle_polygon(kernel::PlaneTable& t, std::int32_t support, cons
   return poly;
 }
 
-std::string folded_message(std::size_t face, const Eigen::Vector3d& near) {
+std::string folded_message(std::size_t face, const Eigen::Vector3d& near, const kernel::Grid& grid) {
   std::ostringstream s;
   s << "from_mesh: face " << face << " near (" << near.x() << ", " << near.y() << ", " << near.z()
-    << ") folds when its vertices are snapped to the exact kernel's grid (step 2^-" << kernel::kGridShift
+    << ") folds when its vertices are snapped to the exact kernel's grid (step " << grid.name()
     << "): the mesh has features smaller than the grid step";
   return s.str();
 }
@@ -58,10 +59,11 @@ std::string folded_message(std::size_t face, const Eigen::Vector3d& near) {
 }  // namespace
 
 Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
-  if (mesh.faces.empty()) return Solid();
+  const kernel::Grid& grid = options.grid;
+  if (mesh.faces.empty()) return Solid::leaf(false, grid);
   std::vector<GridPoint> g;
   g.reserve(mesh.vertices.size());
-  for (const auto& v : mesh.vertices) g.push_back(kernel::snap(v));
+  for (const auto& v : mesh.vertices) g.push_back(grid.snap(v));
 
   kernel::PlaneTable table;
   std::vector<ConvexPolygon> polys;
@@ -103,7 +105,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       area[2] += Int128(a.x) * b.y - Int128(a.y) * b.x;
     }
     const Int128 along = area[0] * best.a + area[1] * best.b + area[2] * best.c;
-    if (along == 0) throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[0])]));
+    if (along == 0) throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[0])], grid));
     if (along < 0) best = best.opposite();
     // Orientation of the face before snapping: a snapped triangle turned against it is a fold.
     Eigen::Vector3d original = Eigen::Vector3d::Zero();
@@ -118,7 +120,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
     std::vector<Eigen::Vector3d> pts;
     std::vector<int> local;
     for (std::size_t i = 0; i < m; ++i) {
-      pts.push_back(kernel::to_world(g[std::size_t(f[i])]));
+      pts.push_back(grid.to_world(g[std::size_t(f[i])]));
       local.push_back(int(i));
     }
     for (const IndexTriangle& tri : triangulate_polygon(pts, local)) {
@@ -131,7 +133,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       const Eigen::Vector3d tn(double(Int128(u.y) * w.z - Int128(u.z) * w.y), double(Int128(u.z) * w.x - Int128(u.x) * w.z),
                                double(Int128(u.x) * w.y - Int128(u.y) * w.x));
       if (!(tn.dot(original) > 0))
-        throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[std::size_t(tri[0])])]));
+        throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[std::size_t(tri[0])])], grid));
       polys.push_back(triangle_polygon(table, planar ? support : table.add(kernel::plane_through(v[0], v[1], v[2])), v));
     }
   }
@@ -142,7 +144,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
   std::vector<BoundaryFragment> fragments;
   fragments.reserve(polys.size());
   for (ConvexPolygon& p : polys) fragments.push_back({std::move(p), false});
-  return bsp::detail::autopartition(arena, std::move(fragments),
+  Solid solid = bsp::detail::autopartition(arena, std::move(fragments),
                                     {.candidates = options.candidates,
                                      .sample = options.sample,
                                      .split_weight = options.split_weight,
@@ -154,6 +156,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
                                      .carry_boundary = false,
                                      .auxiliary_splits = options.auxiliary_planes,
                                      .approximate_scores = true});
+  return bsp::detail::SolidAccess::at_grid(std::move(solid), grid);
 }
 
 }  // namespace sculpt

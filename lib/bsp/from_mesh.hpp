@@ -30,9 +30,11 @@ struct FromMeshOptions {
   /// throwing InvalidInput: the rest still encloses the same volume. General transforms use it
   /// (bsp/transform.hpp), where a face narrower than the grid step is no error of the user's.
   bool skip_degenerate_faces = false;
+  /// The grid the vertices are snapped to, which the solid carries (docs/kernel.md, "World range").
+  kernel::Grid grid{};
 };
 
-/// Solid bounded by a closed mesh (world units, snapped to the grid; outward orientation).
+/// Solid bounded by a closed mesh (world units of options.grid, snapped to it; outward orientation).
 /// A face whose snapped vertices are exactly coplanar keeps one plane; otherwise each triangle of
 /// its triangulation gets its own plane through its three grid points (so the boundary still
 /// closes exactly; the face count of a later to_mesh can then grow). \pre the caller validated the mesh (lib/mesh/mesh_validation.hpp): closed,

@@ -40,7 +40,7 @@ struct Cell {
 /// through a face that meets R); a cell that no face meets is all inside or all outside.
 class ConvexTree {
  public:
-  explicit ConvexTree(const kernel::ConvexHull& h) : h_(h) {
+  ConvexTree(const kernel::ConvexHull& h, const kernel::Grid& grid) : h_(h), grid_(grid) {
     for (const auto& t : h.triangles) planes_.push_back(kernel::plane_through(h.vertices[t[0]], h.vertices[t[1]], h.vertices[t[2]]));
     // A grid point strictly inside: the apex of the cone splits (else the polytope is thinner than
     // the grid somewhere near its centre, and axis-aligned splits are used).
@@ -67,7 +67,7 @@ class ConvexTree {
       else (cell.side == 0 ? splits_[cell.parent].negative : splits_[cell.parent].positive) = made;
     }
     for (const Split& s : splits_) b_.set_node(s.node, s.plane, s.negative, s.positive);
-    return std::move(b_).build(top);
+    return std::move(b_).build(top, BuildOptions{.grid = grid_});
   }
 
  private:
@@ -215,6 +215,7 @@ class ConvexTree {
   static std::int64_t coordinate(const GridPoint& p, int axis) { return axis == 0 ? p.x : axis == 1 ? p.y : p.z; }
 
   const kernel::ConvexHull& h_;
+  kernel::Grid grid_;
   std::vector<Plane> planes_;
   std::optional<GridPoint> apex_;  ///< a grid point strictly inside, if there is one
   TreeBuilder b_;
@@ -228,22 +229,25 @@ class ConvexTree {
 
 }  // namespace
 
-Solid hull(std::span<const Eigen::Vector3d> points) {
-  std::vector<GridPoint> grid;
-  grid.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) grid.push_back(kernel::snap(p));
-  const kernel::ConvexHull h = kernel::convex_hull(grid);
-  if (h.dimension < 3) return Solid();
-  return ConvexTree(h).build();
+Solid hull(std::span<const Eigen::Vector3d> points, const kernel::Grid& grid) {
+  std::vector<GridPoint> snapped;
+  snapped.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) snapped.push_back(grid.snap(p));
+  const kernel::ConvexHull h = kernel::convex_hull(snapped);
+  if (h.dimension < 3) return Solid::leaf(false, grid);
+  return ConvexTree(h, grid).build();
 }
 
 Solid hull(std::span<const Solid> solids) {
   std::vector<Eigen::Vector3d> points;
+  Solid common;  // a leaf until the first solid with planes: its grid is the result's
   for (const Solid& s : solids) {
+    (void)common_grid(common, s);  // GridMismatch for a second grid
+    if (!is_leaf(s.root())) common = s;
     const PolygonMesh m = to_mesh(s);
     points.insert(points.end(), m.vertices.begin(), m.vertices.end());
   }
-  return hull(points);
+  return hull(points, common.grid());
 }
 
 }  // namespace sculpt

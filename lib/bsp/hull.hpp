@@ -11,14 +11,15 @@
 
 namespace sculpt {
 
-/// The convex hull of `points` (world units, snapped to the grid first). Coplanar, collinear and
+/// The convex hull of `points` (world units, snapped to `grid` first). Coplanar, collinear and
 /// repeated points are fine; points that all lie in one plane give the empty solid (no volume).
-/// \throw RangeError for a coordinate outside the world range.
-Solid hull(std::span<const Eigen::Vector3d> points);
+/// \throw RangeError for a coordinate outside the grid's range.
+Solid hull(std::span<const Eigen::Vector3d> points, const kernel::Grid& grid = {});
 
 /// The convex hull of solids: the hull of their boundary vertices. Exact when those vertices are
 /// grid points (primitives, transformed solids, imported meshes); a vertex made by a set operation
 /// is first rounded to the nearest grid point (it moves by at most sqrt(3)/2 grid steps).
+/// The result is at the solids' common grid. \throw GridMismatch for solids of different grids.
 Solid hull(std::span<const Solid> solids);
 
 }  // namespace sculpt

@@ -8,16 +8,14 @@
 namespace sculpt {
 namespace {
 
-constexpr double kScale = double(std::int64_t(1) << kernel::kGridShift);  // world -> grid units
-
-/// Grid coordinates of a point as exact doubles: the rounding of kernel::snap (half away from
+/// Grid coordinates of a point as exact doubles: the rounding of Grid::snap (half away from
 /// zero) on an exact power-of-two scaling. False if a coordinate is out of range or not finite.
-bool to_grid(const Eigen::Vector3d& p, double g[3]) {
+bool to_grid(const kernel::Grid& grid, const Eigen::Vector3d& p, double g[3]) {
   for (int a = 0; a < 3; ++a) {
-    if (!(std::fabs(p[a]) <= kernel::kMaxWorld)) return false;
+    if (!(std::fabs(p[a]) <= grid.max_world())) return false;
     // |t| <= 2^25: adding and subtracting 1.5 * 2^52 rounds to the nearest integer, ties to
     // even (default rounding mode); ties then go away from zero as in std::llround.
-    const double t = p[a] * kScale;
+    const double t = grid.to_grid(p[a]);
     double r = (t + 0x1.8p52) - 0x1.8p52;
     if (std::fabs(t - r) == 0.5) r = t + std::copysign(0.5, t);
     g[a] = r;
@@ -28,7 +26,7 @@ bool to_grid(const Eigen::Vector3d& p, double g[3]) {
 }  // namespace
 
 PointClassifier::PointClassifier(const Solid& solid)
-    : root_(solid.root()), tree_(solid.nodes()), planes_(solid.planes()) {
+    : root_(solid.root()), tree_(solid.nodes()), planes_(solid.planes()), grid_(solid.grid()) {
   // Error bound (Higham, Accuracy and Stability, sec. 3.1): with |X|, |Y|, |Z| <= M (grid units,
   // exact), a, b, c exact and d rounded once, the left-to-right evaluation of aX + bY + cZ + d
   // errs by at most gamma_4 (|a| + |b| + |c|) M + (gamma_4 + u) |d| < 5.001 u S with
@@ -46,12 +44,12 @@ PointClassifier::PointClassifier(const Solid& solid)
 }
 
 Classification PointClassifier::exact(const Eigen::Vector3d& point) const {
-  return sculpt::classify(kernel::snap(point), root_, tree_, planes_);  // snap throws RangeError
+  return sculpt::classify(grid_.snap(point), root_, tree_, planes_);  // snap throws RangeError
 }
 
 Classification PointClassifier::classify(const Eigen::Vector3d& point) const {
   double g[3];
-  if (!to_grid(point, g)) return exact(point);
+  if (!to_grid(grid_, point, g)) return exact(point);
   TreeRef k = root_;
   int visited = 0;
   while (k >= 0) {
@@ -73,7 +71,7 @@ void PointClassifier::classify(std::span<const Eigen::Vector3d> points, std::spa
     int visited[kLanes] = {};
     double g[kLanes][3];
     bool any = root_ >= 0;
-    for (std::size_t l = 0; l < kLanes; ++l) k[l] = to_grid(points[i + l], g[l]) ? root_ : kUndecided;
+    for (std::size_t l = 0; l < kLanes; ++l) k[l] = to_grid(grid_, points[i + l], g[l]) ? root_ : kUndecided;
     while (any) {
       any = false;
       for (std::size_t l = 0; l < kLanes; ++l) {

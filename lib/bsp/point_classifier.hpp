@@ -46,6 +46,7 @@ class PointClassifier {
   TreeRef root_ = kOut;
   std::vector<BspNode> tree_;  ///< the solid's nodes and planes, for the exact walk
   kernel::PlaneTable planes_;
+  kernel::Grid grid_;  // the solid's: points are snapped to it
 };
 
 }  // namespace sculpt

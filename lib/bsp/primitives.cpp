@@ -11,11 +11,13 @@
 #include "bsp/rings/ring_solid.hpp"
 #include "bsp/rings/sector_tree.hpp"
 #include "bsp/transform.hpp"
+#include "bsp/tree/solid_access.hpp"
 #include "bsp/tree_builder.hpp"
 
 namespace sculpt {
 
 using bsp::detail::Ring;
+using bsp::detail::SolidAccess;
 using bsp::detail::SectorTree;
 using kernel::Int128;
 using kernel::Plane;
@@ -40,8 +42,8 @@ std::vector<Eigen::Vector2d> circle_points(int segments) {
 
 }  // namespace
 
-Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
-  const kernel::GridPoint lo = kernel::snap(min), hi = kernel::snap(max);
+Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max, const kernel::Grid& grid) {
+  const kernel::GridPoint lo = grid.snap(min), hi = grid.snap(max);
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
     throw InvalidInput("box: min must be below max in every axis (after snapping to the grid)");
   TreeBuilder b;
@@ -68,18 +70,18 @@ Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
       }
       boundary.push_back({std::move(poly), false});
     }
-  return std::move(b).build(b.add_convex_chain(faces), std::move(boundary), {.nodes_cut_cells = true});
+  return SolidAccess::at_grid(std::move(b).build(b.add_convex_chain(faces), std::move(boundary), {.nodes_cut_cells = true}), grid);
 }
 
-Solid convex_polytope(const std::vector<HalfSpace>& half_spaces) {
+Solid convex_polytope(const std::vector<HalfSpace>& half_spaces, const kernel::Grid& grid) {
   if (half_spaces.empty()) throw InvalidInput("convex_polytope needs at least one half-space");
   TreeBuilder b;
   std::vector<std::int32_t> faces;
-  for (const HalfSpace& h : half_spaces) faces.push_back(b.add_plane(kernel::plane_from_normal(h.normal, h.offset)));
-  return std::move(b).build(b.add_convex_chain(faces));
+  for (const HalfSpace& h : half_spaces) faces.push_back(b.add_plane(kernel::plane_from_normal(h.normal, h.offset, grid)));
+  return SolidAccess::at_grid(std::move(b).build(b.add_convex_chain(faces)), grid);
 }
 
-Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1) {
+Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1, const kernel::Grid& grid) {
   if (polygon.size() < 3) throw InvalidInput("prism: polygon needs at least 3 vertices");
   if (!(z0 < z1)) throw InvalidInput("prism: z0 must be below z1");
   // Exact side planes through grid points; a balanced tree needs the axis inside: build around
@@ -87,12 +89,11 @@ Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1) {
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   for (const auto& p : polygon) centroid += p;
   centroid /= double(polygon.size());
-  const Eigen::Vector3d shift(kernel::snap(centroid.x()) * kernel::kGridStep,
-                              kernel::snap(centroid.y()) * kernel::kGridStep, 0.0);
-  const std::int64_t gz0 = kernel::snap(z0), gz1 = kernel::snap(z1);
+  const Eigen::Vector3d shift = grid.to_world(kernel::GridPoint{grid.snap(centroid.x()), grid.snap(centroid.y()), 0});
+  const std::int64_t gz0 = grid.snap(z0), gz1 = grid.snap(z1);
   if (gz0 >= gz1) throw InvalidInput("prism: height below the grid step");
   std::vector<kernel::GridPoint> g;
-  for (const auto& p : polygon) g.push_back(kernel::snap(Eigen::Vector3d(p.x() - shift.x(), p.y() - shift.y(), 0.0)));
+  for (const auto& p : polygon) g.push_back(grid.snap(Eigen::Vector3d(p.x() - shift.x(), p.y() - shift.y(), 0.0)));
   TreeBuilder b;
   const int n = int(g.size());
   std::vector<std::int32_t> faces;
@@ -114,11 +115,11 @@ Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1) {
   const std::int32_t bottom = b.add_plane(kernel::make_plane(0, 0, -1, Int128(gz0)));
   const std::int32_t top = b.add_plane(kernel::make_plane(0, 0, 1, -Int128(gz1)));
   const TreeRef root = b.add_node(bottom, b.add_node(top, sides, kOut), kOut);
-  return translate(std::move(b).build(root), shift);
+  return translate(SolidAccess::at_grid(std::move(b).build(root), grid), shift);
 }
 
 Solid cylinder(double radius, double height, const CircularOptions& options) {
-  return cone(radius, height, {.segments = options.segments, .center = options.center, .top_radius = radius});
+  return cone(radius, height, {.segments = options.segments, .center = options.center, .top_radius = radius, .grid = options.grid});
 }
 
 Solid cone(double radius, double height, const ConeOptions& options) {
@@ -126,7 +127,8 @@ Solid cone(double radius, double height, const ConeOptions& options) {
   check_positive(height, "cone height");
   if (!(options.top_radius >= 0)) throw InvalidInput("cone top radius must be >= 0");
   const double z0 = options.center ? -height / 2 : 0.0;
-  return bsp::detail::revolve_rings(circle_points(options.segments), {{z0, radius}, {z0 + height, options.top_radius}});
+  return bsp::detail::revolve_rings(circle_points(options.segments), {{z0, radius}, {z0 + height, options.top_radius}},
+                                    options.grid);
 }
 
 Solid sphere(double radius, const CircularOptions& options) {
@@ -138,7 +140,7 @@ Solid sphere(double radius, const CircularOptions& options) {
     const double phi = (k + 0.5) * std::numbers::pi / rings;
     r.push_back({radius * std::cos(phi), radius * std::sin(phi)});
   }
-  return bsp::detail::revolve_rings(circle_points(options.segments), r);
+  return bsp::detail::revolve_rings(circle_points(options.segments), r, options.grid);
 }
 
 }  // namespace sculpt

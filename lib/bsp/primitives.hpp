@@ -5,7 +5,8 @@
 /// band, planes through the axis (a balanced tree over the sectors), then the face planes.
 /// Curved primitives are exact polyhedra whose faces are planar quadrilaterals between rings
 /// (ring polygons of one solid have parallel edges, so every face plane is exact).
-/// All sizes in world units; coordinates are snapped to the grid (docs/kernel.md).
+/// All sizes in world units of the grid given (a parameter or the options' `grid`, default step
+/// 2^-15); coordinates are snapped to it and the solid carries it (docs/kernel.md, "World range").
 
 #include <Eigen/Core>
 #include <vector>
@@ -15,7 +16,7 @@
 namespace sculpt {
 
 /// Axis-aligned box [min, max]. \throw InvalidInput if min >= max in some axis (after snapping).
-Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max);
+Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max, const kernel::Grid& grid = {});
 
 /// Half-space n.x + offset <= 0 in world units.
 struct HalfSpace {
@@ -24,14 +25,15 @@ struct HalfSpace {
 };
 /// The convex polytope ∩ half-spaces; redundant half-spaces are dropped. \throw InvalidInput if
 /// the intersection is unbounded (it is clipped by the world box otherwise) — empty gives Solid().
-Solid convex_polytope(const std::vector<HalfSpace>& half_spaces);
+Solid convex_polytope(const std::vector<HalfSpace>& half_spaces, const kernel::Grid& grid = {});
 
 /// Right prism over a convex polygon (x, y, counter-clockwise) from z0 to z1.
-Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1);
+Solid prism(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1, const kernel::Grid& grid = {});
 
 struct CircularOptions {
   int segments = 32;     ///< edges around the equator / rim (like manifold-3d circularSegments), >= 3
   bool center = false;   ///< cylinder/cone: centre the height on z = 0 instead of z in [0, h]
+  kernel::Grid grid{};   ///< the grid of the solid (docs/kernel.md, "World range")
 };
 /// Cylinder of radius r around the z axis, z in [0, h]; the polygon has its vertices on the circle.
 Solid cylinder(double radius, double height, const CircularOptions& options = {});
@@ -39,6 +41,7 @@ struct ConeOptions {
   int segments = 32;        ///< as CircularOptions::segments
   bool center = false;      ///< centre the height on z = 0 instead of z in [0, h]
   double top_radius = 0;    ///< > 0: a frustum with this radius at the top
+  kernel::Grid grid{};      ///< as CircularOptions::grid
 };
 /// Cone (frustum if top_radius > 0) around the z axis, base radius r at z = 0, apex at z = h.
 Solid cone(double radius, double height, const ConeOptions& options = {});

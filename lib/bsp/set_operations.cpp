@@ -14,6 +14,7 @@
 namespace sculpt {
 
 using bsp::detail::Arena;
+using bsp::detail::SolidAccess;
 using kernel::ConvexPolygon;
 using kernel::Side;
 
@@ -318,20 +319,38 @@ constexpr bool kUnion[2][2] = {{false, true}, {true, true}};
 constexpr bool kIntersection[2][2] = {{false, false}, {false, true}};
 constexpr bool kDifference[2][2] = {{false, false}, {true, false}};
 
+// The operations work in grid units; the operands' common grid labels the result.
+Solid operate(const Solid& a, const Solid& b, const bool table[2][2]) {
+  const kernel::Grid grid = common_grid(a, b);
+  return SolidAccess::at_grid(apply(a, b, table), grid);
+}
+Solid operate(Solid&& a, const Solid& b, const bool table[2][2]) {
+  const kernel::Grid grid = common_grid(a, b);
+  return SolidAccess::at_grid(apply_in_place(std::move(a), b, table), grid);
+}
+
 }  // namespace
 
-Solid unite(const Solid& a, const Solid& b) { return apply(a, b, kUnion); }
-Solid unite(Solid&& a, const Solid& b) { return apply_in_place(std::move(a), b, kUnion); }
-Solid intersect(Solid&& a, const Solid& b) { return apply_in_place(std::move(a), b, kIntersection); }
-Solid subtract(Solid&& a, const Solid& b) { return apply_in_place(std::move(a), b, kDifference); }
-Solid intersect(const Solid& a, const Solid& b) { return apply(a, b, kIntersection); }
-Solid subtract(const Solid& a, const Solid& b) { return apply(a, b, kDifference); }
+Solid unite(const Solid& a, const Solid& b) { return operate(a, b, kUnion); }
+Solid unite(Solid&& a, const Solid& b) { return operate(std::move(a), b, kUnion); }
+Solid intersect(Solid&& a, const Solid& b) { return operate(std::move(a), b, kIntersection); }
+Solid subtract(Solid&& a, const Solid& b) { return operate(std::move(a), b, kDifference); }
+Solid intersect(const Solid& a, const Solid& b) { return operate(a, b, kIntersection); }
+Solid subtract(const Solid& a, const Solid& b) { return operate(a, b, kDifference); }
 
 Solid unite_all(std::vector<Solid> solids) {
   if (solids.empty()) return Solid();
-  if (solids.size() > 2) return bsp::detail::unite_by_boundaries(std::move(solids));
-  if (solids.size() == 1) return std::move(solids.front());
-  return unite(std::move(solids[0]), solids[1]);
+  // The common grid of the operands with planes (leaves take any: see Solid).
+  const Solid* first = nullptr;
+  for (const Solid& s : solids)
+    if (!is_leaf(s.root())) {
+      if (first && s.grid() != first->grid()) throw GridMismatch(first->grid(), s.grid());
+      if (!first) first = &s;
+    }
+  const kernel::Grid grid = first ? first->grid() : solids.front().grid();
+  if (solids.size() > 2) return SolidAccess::at_grid(bsp::detail::unite_by_boundaries(std::move(solids)), grid);
+  if (solids.size() == 1) return SolidAccess::at_grid(std::move(solids.front()), grid);
+  return SolidAccess::at_grid(unite(std::move(solids[0]), solids[1]), grid);
 }
 
 Solid complement(const Solid& a) {
@@ -342,7 +361,7 @@ Solid complement(const Solid& a) {
     for (BoundaryFragment& f : *arena.boundary) f.flip = !f.flip;
   }
   bsp::detail::complement_in_place(arena, r);
-  return bsp::detail::compact(arena, r);
+  return SolidAccess::at_grid(bsp::detail::compact(arena, r), a.grid());
 }
 
 std::pair<Solid, Solid> partition(const Solid& solid, const kernel::Plane& plane) {
@@ -362,7 +381,8 @@ std::pair<Solid, Solid> partition(const Solid& solid, const kernel::Plane& plane
   arena.polygons.push_back(kernel::world_polygon(arena.planes, cut));
   // The two trees share no nodes; compact each separately from a copy of the arena.
   Arena second = arena;
-  return {bsp::detail::compact(arena, id_neg), bsp::detail::compact(second, id_pos)};
+  return {SolidAccess::at_grid(bsp::detail::compact(arena, id_neg), solid.grid()),
+          SolidAccess::at_grid(bsp::detail::compact(second, id_pos), solid.grid())};
 }
 
 }  // namespace sculpt

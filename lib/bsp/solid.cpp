@@ -36,10 +36,21 @@ const std::vector<BoundaryFragment>& Solid::boundary() const {
   return boundary_ ? *boundary_ : none;
 }
 
-Solid Solid::leaf(bool inside) {
+Solid Solid::leaf(bool inside, const kernel::Grid& grid) {
   Solid s;
   s.root_ = inside ? kIn : kOut;
+  s.grid_ = grid;
   return s;
+}
+
+GridMismatch::GridMismatch(const kernel::Grid& a, const kernel::Grid& b)
+    : InvalidInput("solids made at different grids (step " + a.name() + " and step " + b.name() +
+                   ") cannot be combined: make every solid of a model at one grid") {}
+
+kernel::Grid common_grid(const Solid& a, const Solid& b) {
+  if (a.grid() == b.grid() || is_leaf(b.root())) return a.grid();
+  if (is_leaf(a.root())) return b.grid();
+  throw GridMismatch(a.grid(), b.grid());
 }
 
 TreeStats tree_stats(const Solid& solid) {

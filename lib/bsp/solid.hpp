@@ -16,13 +16,20 @@
 /// the surface between in- and out-cells. Set operations compute the result's boundary from the
 /// operands' boundaries (each operand's fragments clipped by the other tree), so boundary
 /// extraction from the whole tree is needed only for solids built without one.
+///
+/// A solid carries the kernel::Grid its planes are in (world = grid units * step; docs/kernel.md,
+/// "World range"): operations take it from their operands or parameters, and binary operations
+/// on solids of different grids throw GridMismatch. A leaf solid (empty, or all of space) has no
+/// coordinates: it combines with a solid of any grid, and the result takes the other's grid.
 
 #include <cstdint>
 #include <optional>
 #include <vector>
 
+#include "base/errors.hpp"
 #include "bsp/tree/fragment_boxes.hpp"
 #include "kernel/convex_polygon.hpp"
+#include "kernel/grid.hpp"
 
 namespace sculpt {
 
@@ -51,10 +58,13 @@ struct BoundaryFragment {
 
 class Solid {
  public:
-  /// The empty solid (a single out leaf).
+  /// The empty solid (a single out leaf), at the default grid.
   Solid() = default;
   /// The solid whose tree is a single leaf: empty (false) or all of space (true).
-  static Solid leaf(bool inside);
+  static Solid leaf(bool inside, const kernel::Grid& grid = {});
+
+  /// The grid of the solid's planes: world coordinates are grid units * grid().step().
+  [[nodiscard]] const kernel::Grid& grid() const { return grid_; }
 
   [[nodiscard]] TreeRef root() const { return root_; }
   [[nodiscard]] bool is_empty() const { return root_ == kOut; }
@@ -101,7 +111,18 @@ class Solid {
   std::size_t compacted_size_ = 0;
   std::optional<std::vector<BoundaryFragment>> boundary_ = std::vector<BoundaryFragment>{};
   FragmentBoxes boundary_boxes_;
+  kernel::Grid grid_;
 };
+
+/// Two solids of different grids given to one operation (a set operation, union_all): the
+/// message names both grids. An InvalidInput, so it reaches a script as a positioned error.
+class GridMismatch : public InvalidInput {
+ public:
+  GridMismatch(const kernel::Grid& a, const kernel::Grid& b);
+};
+/// The grid of a result of operands a and b: their common grid, or the grid of the one that is
+/// not a leaf (see Solid). \throw GridMismatch if both have planes and their grids differ.
+kernel::Grid common_grid(const Solid& a, const Solid& b);
 
 /// Size and shape of a tree.
 struct TreeStats {

@@ -20,9 +20,9 @@ namespace {
 std::vector<std::vector<Eigen::Vector3d>> convex_pieces(const Solid& tool) {
   const std::vector<Eigen::Vector3d> vertices = to_mesh(tool).vertices;
   if (vertices.empty()) return {};
-  const Solid h = hull(vertices);
+  const Solid h = hull(vertices, tool.grid());
   // The tool lies in its hull up to that rounding, so the volumes alone tell (no set operation).
-  if (volume(h) - volume(tool) <= surface_area(tool) * kernel::kGridStep) return {vertices};
+  if (volume(h) - volume(tool) <= surface_area(tool) * tool.grid().step()) return {vertices};
   Eigen::AlignedBox3d box = bounding_box(tool);
   box.extend(box.min() - Eigen::Vector3d::Constant(1.0));
   box.extend(box.max() + Eigen::Vector3d::Constant(1.0));
@@ -38,7 +38,7 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
   if (path.empty()) throw InvalidInput("sweep: the path has no points");
   std::vector<Eigen::Vector3d> at;  // the path on the grid, repeated points dropped
   for (const Eigen::Vector3d& p : path) {
-    const Eigen::Vector3d g = kernel::to_world(kernel::snap(p));
+    const Eigen::Vector3d g = tool.grid().to_world(tool.grid().snap(p));
     if (at.empty() || g != at.back()) at.push_back(g);
   }
   if (at.size() == 1) return translate(tool, at[0]);
@@ -53,7 +53,7 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
         ends.push_back(v + at[i]);
         ends.push_back(v + at[i + 1]);
       }
-      parts.push_back(hull(ends));
+      parts.push_back(hull(ends, tool.grid()));
     }
   return unite_all(std::move(parts));
 }

@@ -15,7 +15,7 @@
 
 namespace sculpt {
 
-/// The tool (placed as given) moved along `path` (world units, snapped to the grid): the union over
+/// The tool (placed as given) moved along `path` (world units, snapped to the tool's grid): the union over
 /// the path's segments of the tool swept along each. One point gives the tool moved there.
 /// \throw InvalidInput if the path is empty.
 Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path);

@@ -8,12 +8,14 @@
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/from_mesh.hpp"
+#include "bsp/tree/solid_access.hpp"
 #include "bsp/tree_builder.hpp"
 #include "mesh/mesh_measures.hpp"
 #include "mesh/triangulate.hpp"
 
 namespace sculpt {
 
+using bsp::detail::SolidAccess;
 using kernel::Int128;
 using kernel::Plane;
 
@@ -66,9 +68,10 @@ Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror =
     made[std::size_t(r)] = b.add_node(mapped(n.plane), child(n.negative), child(n.positive));
   }
   const TreeRef root = made[std::size_t(solid.root())];
-  if (!exact) return std::move(b).build(root);
+  const kernel::Grid grid = solid.grid();  // the image is at the solid's grid
+  if (!exact) return SolidAccess::at_grid(std::move(b).build(root), grid);
   // An exact map takes each plane to its exact image (an affine bijection): every node still cuts its cell.
-  if (!solid.has_boundary()) return std::move(b).build(root, BuildOptions{.nodes_cut_cells = true});
+  if (!solid.has_boundary()) return SolidAccess::at_grid(std::move(b).build(root, BuildOptions{.nodes_cut_cells = true}), grid);
   // An exact map takes the boundary along: same plane triples on the mapped planes. A mirror
   // (negative determinant) reverses the corner order about the mapped support planes.
   std::vector<BoundaryFragment> boundary;
@@ -91,7 +94,7 @@ Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror =
     }
     boundary.push_back({std::move(poly), f.flip});
   }
-  return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = true});
+  return SolidAccess::at_grid(std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = true}), grid);
 }
 
 // n' = M^-T n, offset' = d * step - n' . t (world units), then re-quantized: every plane moves
@@ -102,8 +105,8 @@ Solid map_planes_approximately(const Solid& solid, const Eigen::Matrix3d& m, con
     const Eigen::Vector3d n = inv_t * p.normal();
     const double scale = n.cwiseAbs().maxCoeff();
     // Keep magnitudes moderate before quantizing: divide normal and offset by the same factor.
-    const double offset = (double(p.d) * kernel::kGridStep - n.dot(tv)) / scale;
-    return kernel::plane_from_normal(n / scale, offset);
+    const double offset = (solid.grid().to_world(double(p.d)) - n.dot(tv)) / scale;
+    return kernel::plane_from_normal(n / scale, offset, solid.grid());
   }, false);
 }
 
@@ -113,15 +116,16 @@ Solid map_planes_approximately(const Solid& solid, const Eigen::Matrix3d& m, con
 // fold a face or make faces cross (features below the grid step); faces that snapping flattens
 // to a line are left out.
 std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map) {
+  const kernel::Grid& grid = solid.grid();
   PolygonMesh mesh = to_mesh(solid);
   for (const Eigen::Vector3d& v : mesh.vertices)
-    if (v.cwiseAbs().maxCoeff() > kernel::kMaxWorld) return std::nullopt;
-  for (Eigen::Vector3d& v : mesh.vertices) v = kernel::to_world(kernel::snap(map * v));
+    if (v.cwiseAbs().maxCoeff() > grid.max_world()) return std::nullopt;
+  for (Eigen::Vector3d& v : mesh.vertices) v = grid.to_world(grid.snap(map * v));
   if (map.linear().determinant() < 0)
     for (auto& f : mesh.faces) std::reverse(f.begin(), f.end());
   std::optional<Solid> result;
   try {
-    result = from_mesh(mesh, {.skip_degenerate_faces = true});
+    result = from_mesh(mesh, {.skip_degenerate_faces = true, .grid = grid});
   } catch (const GeometryError&) {  // a face folds when snapped
     return std::nullopt;
   } catch (const InvalidInput&) {  // not expected of to_mesh's output: the plane route still works
@@ -134,16 +138,17 @@ std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map
   // (A face whose snapped corners are not coplanar is triangulated by from_mesh as by triangulate.)
   const double v = mesh_volume(triangulate(mesh)), w = mesh_volume(built);
   const Eigen::AlignedBox3d expected = mesh_bounding_box(mesh), got = mesh_bounding_box(built);
-  const bool same_box = !got.isEmpty() && (got.min() - expected.min()).cwiseAbs().maxCoeff() <= kernel::kGridStep &&
-                        (got.max() - expected.max()).cwiseAbs().maxCoeff() <= kernel::kGridStep;
-  if (!same_box || !(std::fabs(w - v) <= 1e-9 * std::max(1.0, std::fabs(v)))) return std::nullopt;
+  const bool same_box = !got.isEmpty() && (got.min() - expected.min()).cwiseAbs().maxCoeff() <= grid.step() &&
+                        (got.max() - expected.max()).cwiseAbs().maxCoeff() <= grid.step();
+  const double unit_volume = grid.unit() * grid.unit() * grid.unit();  // 1 at the default grid
+  if (!same_box || !(std::fabs(w - v) <= 1e-9 * std::max(unit_volume, std::fabs(v)))) return std::nullopt;
   return result;
 }
 
 }  // namespace
 
 Solid translate(const Solid& solid, const Eigen::Vector3d& v) {
-  const kernel::GridPoint t = kernel::snap(v);
+  const kernel::GridPoint t = solid.grid().snap(v);
   return map_planes(solid, [&](const Plane& p) {
     return kernel::make_plane(p.a, p.b, p.c, p.d - (Int128(p.a) * t.x + Int128(p.b) * t.y + Int128(p.c) * t.z));
   }, true);
@@ -157,7 +162,7 @@ Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
   const auto exact = integer_matrix(m);
   if (exact) {
     // n'' = sign(det) cof(M) n, d'' = |det| d - n'' . t (grid units): f'(M x + t) = |det| f(x).
-    const kernel::GridPoint t = kernel::snap(tv);
+    const kernel::GridPoint t = solid.grid().snap(tv);
     const Eigen::Matrix<std::int64_t, 3, 3>& im = *exact;
     Eigen::Matrix<std::int64_t, 3, 3> cof;
     for (int i = 0; i < 3; ++i)

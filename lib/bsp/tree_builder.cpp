@@ -119,15 +119,17 @@ Solid TreeBuilder::build(TreeRef root) && { return std::move(*this).build(root, 
 Solid TreeBuilder::build(TreeRef root, std::vector<BoundaryFragment> boundary, const BuildOptions& options) && {
   if (unset_ != 0) throw std::logic_error("TreeBuilder: a node made by open_nodes was never set");
   check_child(root, nodes_.size());
-  if (options.nodes_cut_cells) return std::move(*this).build_as_given(root, std::move(boundary));
-  return std::move(*this).build_with(root, std::move(boundary));
+  using bsp::detail::SolidAccess;
+  if (options.nodes_cut_cells) return SolidAccess::at_grid(std::move(*this).build_as_given(root, std::move(boundary)), options.grid);
+  return SolidAccess::at_grid(std::move(*this).build_with(root, std::move(boundary)), options.grid);
 }
 
 Solid TreeBuilder::build(TreeRef root, const BuildOptions& options) && {
   if (unset_ != 0) throw std::logic_error("TreeBuilder: a node made by open_nodes was never set");
   check_child(root, nodes_.size());
-  if (options.nodes_cut_cells) return std::move(*this).build_as_given(root, std::nullopt);
-  return std::move(*this).build_with(root, std::nullopt);
+  using bsp::detail::SolidAccess;
+  if (options.nodes_cut_cells) return SolidAccess::at_grid(std::move(*this).build_as_given(root, std::nullopt), options.grid);
+  return SolidAccess::at_grid(std::move(*this).build_with(root, std::nullopt), options.grid);
 }
 
 // Every node cuts its cell: the tree in pre-order from the root (as laid out, or copied), with

@@ -24,6 +24,8 @@ struct BuildOptions {
   /// pending until a set operation or boundary extraction needs them, which checks this claim
   /// for every node it computes (std::logic_error if it is false).
   bool nodes_cut_cells = false;
+  /// The grid of the planes (they are in grid units): the solid carries it (docs/kernel.md).
+  kernel::Grid grid{};
 };
 
 class TreeBuilder {

@@ -106,8 +106,8 @@ Plane divide_exactly(Int128 a, Int128 b, Int128 c, Int128 d, UInt128 g) {
       !fits(d, kOffsetBits)) {
     std::ostringstream s;
     s << "plane coefficients exceed the exact kernel's budget (|a|,|b|,|c| <= 2^" << kNormalBits
-      << ", |d| <= 2^" << kOffsetBits << " in grid units); coordinates must lie in "
-      << range_text();
+      << ", |d| <= 2^" << kOffsetBits << " in grid units); coordinates must lie within 2^" << kCoordBits
+      << " grid steps of the origin";
     throw RangeError(s.str());
   }
   return {std::int64_t(a), std::int64_t(b), std::int64_t(c), d};
@@ -139,7 +139,8 @@ Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d, const PlaneFactors& kno
 Plane plane_through(const GridPoint& p0, const GridPoint& p1, const GridPoint& p2) {
   for (const GridPoint* p : {&p0, &p1, &p2})
     if (std::abs(p->x) > kMaxCoord || std::abs(p->y) > kMaxCoord || std::abs(p->z) > kMaxCoord)
-      throw RangeError("grid point outside the exact kernel's range " + range_text());
+      throw RangeError("grid point outside the exact kernel's range (2^" + std::to_string(kCoordBits) +
+                       " grid steps from the origin)");
   const Int128 ux = p1.x - p0.x, uy = p1.y - p0.y, uz = p1.z - p0.z;
   const Int128 vx = p2.x - p0.x, vy = p2.y - p0.y, vz = p2.z - p0.z;
   const Int128 a = uy * vz - uz * vy, b = uz * vx - ux * vz, c = ux * vy - uy * vx;
@@ -163,14 +164,15 @@ ScaledNormal scale_normal(const Eigen::Vector3d& normal) {
   return n;
 }
 
-Plane plane_from_scaled_normal(const ScaledNormal& n, double offset_world) {
+Plane plane_from_scaled_normal(const ScaledNormal& n, double offset_world, const Grid& grid) {
   if (!std::isfinite(offset_world)) throw InvalidInput("plane with a zero or non-finite normal");
   // n.x + offset = 0 with x = g * step  =>  (n s) . g + offset * s / step = 0.
-  const double d = offset_world * n.scale / kGridStep;
+  const double d = grid.to_grid(offset_world * n.scale);
   if (!(std::fabs(d) < std::ldexp(1.0, kOffsetBits - 1))) {
-    std::ostringstream msg;
-    msg << "plane offset " << offset_world << " is outside the exact kernel's range " << range_text();
-    throw RangeError(msg.str());
+    std::ostringstream what;
+    what << "plane offset " << offset_world;
+    // The offset's reach in world units: |d| / (|n s| ~ 2^(kNormalBits - 1)) grid units.
+    throw RangeError(grid.out_of_range(what.str(), grid.to_world(std::fabs(d) / std::ldexp(1.0, kNormalBits - 1))));
   }
   // |a|, |b|, |c| <= 2^52 and most offsets convert through 64 bits (the 128-bit conversion is a
   // library call); the values are the same.
@@ -179,8 +181,8 @@ Plane plane_from_scaled_normal(const ScaledNormal& n, double offset_world) {
   return divide_by_gcd(n.a, n.b, n.c, id, n.gcd);
 }
 
-Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world) {
-  return plane_from_scaled_normal(scale_normal(normal), offset_world);  // the same message for either error
+Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world, const Grid& grid) {
+  return plane_from_scaled_normal(scale_normal(normal), offset_world, grid);  // the same message for either error
 }
 
 }  // namespace sculpt::kernel

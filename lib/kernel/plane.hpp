@@ -49,10 +49,10 @@ Plane make_plane(Int128 a, Int128 b, Int128 c, Int128 d, const PlaneFactors& kno
 /// The plane through three grid points, positive side where (p1-p0) x (p2-p0) points
 /// (counter-clockwise seen from the positive side). \throw InvalidInput if they are collinear.
 Plane plane_through(const GridPoint& p0, const GridPoint& p1, const GridPoint& p2);
-/// The nearest representable plane n.x + offset = 0 (world units), with the normal scaled
-/// to kNormalBits - 1 bits before rounding. Used after rotations and for analytic planes;
+/// The nearest representable plane n.x + offset = 0 (world units of `grid`), with the normal
+/// scaled to kNormalBits - 1 bits before rounding. Used after rotations and for analytic planes;
 /// moves the plane by at most about 2^-50 of the range. \throw RangeError if out of range.
-Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world);
+Plane plane_from_normal(const Eigen::Vector3d& normal, double offset_world, const Grid& grid = {});
 /// What plane_from_normal computes from the normal alone, for many planes with one normal and
 /// different offsets (the axial planes of a solid of revolution: the same directions in every band).
 struct ScaledNormal {
@@ -62,9 +62,9 @@ struct ScaledNormal {
 };
 /// \throw InvalidInput for a zero or non-finite normal.
 ScaledNormal scale_normal(const Eigen::Vector3d& normal);
-/// plane_from_normal(normal, offset_world) for n = scale_normal(normal): the same plane, the same
-/// errors for the offset. \throw RangeError, InvalidInput (non-finite offset).
-Plane plane_from_scaled_normal(const ScaledNormal& n, double offset_world);
+/// plane_from_normal(normal, offset_world, grid) for n = scale_normal(normal): the same plane,
+/// the same errors for the offset. \throw RangeError, InvalidInput (non-finite offset).
+Plane plane_from_scaled_normal(const ScaledNormal& n, double offset_world, const Grid& grid = {});
 /// True if p and q are the same plane with the same or with opposite orientation.
 inline bool same_or_opposite(const Plane& p, const Plane& q) { return p == q || p == q.opposite(); }
 

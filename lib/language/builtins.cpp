@@ -89,6 +89,16 @@ const Value* Arguments::global(const std::string& name) const {
   return it == settings_.globals->end() ? nullptr : &it->second;
 }
 
+const std::map<std::string, Value>& Arguments::globals() const {
+  static const std::map<std::string, Value> none;
+  return settings_.globals ? *settings_.globals : none;
+}
+
+void Arguments::set_grid(const kernel::Grid& grid) const {
+  if (!settings_.grid) throw std::logic_error("Arguments::set_grid: the run has no grid setting");
+  *settings_.grid = grid;
+}
+
 std::string Arguments::file_path(std::size_t i) const {
   const std::string& path = string(i);
   if (!settings_.allow_files) fail(i, "file access is disabled in this session");

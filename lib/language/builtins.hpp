@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/grid.hpp"
 #include "language/value.hpp"
 
 namespace sculpt::language {
@@ -39,6 +40,9 @@ struct RunSettings {
   /// The global variables of the run, for built-ins that compile user functions (trace), which
   /// see the globals as the function would at a call.
   const std::map<std::string, Value>* globals = nullptr;
+  /// The grid new solids are made at (grid(), sculpt --grid; docs/kernel.md, "World range"),
+  /// kept across runs by the interpreter; null: the default grid, not settable.
+  kernel::Grid* grid = nullptr;
 };
 
 /// The arguments of one call, bound to the built-in's parameters, with their script positions
@@ -81,6 +85,13 @@ class Arguments {
 
   /// The global variable `name` of the run, or null.
   [[nodiscard]] const Value* global(const std::string& name) const;
+  /// The global variables of the run (empty when the run has none).
+  [[nodiscard]] const std::map<std::string, Value>& globals() const;
+
+  /// The grid new solids are made at (RunSettings::grid).
+  [[nodiscard]] kernel::Grid grid() const { return settings_.grid ? *settings_.grid : kernel::Grid{}; }
+  /// Sets it (the built-in grid()). \throw std::logic_error if the run has no grid setting.
+  void set_grid(const kernel::Grid& grid) const;
 
   [[nodiscard]] std::ostream& out() const { return *settings_.out; }
   [[nodiscard]] const SourceRef& call() const { return call_; }

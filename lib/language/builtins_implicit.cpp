@@ -179,7 +179,8 @@ Value implicit_solid(const Arguments& args) {
   const double diagonal = (options.box.hi - options.box.lo).norm();
   options.tolerance = args.has(kSolidTol) ? args.number(kSolidTol) : 1e-3;
   if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) args.fail(kSolidTol, "tol must be a finite number > 0");
-  const double floor = kMinToleranceSteps * kernel::kGridStep;
+  const kernel::Grid grid = args.grid();
+  const double floor = kMinToleranceSteps * grid.step();
   if (options.tolerance < floor) {
     args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is below 4 steps of the exact kernel's grid (" +
                              format_number(floor) + "): the solid's vertices are snapped to that grid");
@@ -191,7 +192,7 @@ Value implicit_solid(const Arguments& args) {
   }
   if (options.tolerance > diagonal) args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is larger than the box diagonal");
   // Slivers below a few grid steps could turn over when the vertices are snapped to the grid.
-  options.min_height = kMinHeightSteps * kernel::kGridStep;
+  options.min_height = kMinHeightSteps * grid.step();
   options.max_cells = args.has(kSolidCells) ? static_cast<long>(args.integer(kSolidCells, 1, kMaxCells)) : kDefaultCells;
   implicit::PolygonizeResult r;
   try {
@@ -214,13 +215,13 @@ Value implicit_solid(const Arguments& args) {
     }
     args.out() << s.str();
   }
-  if (r.mesh.faces.empty()) return solid_value(Solid{});
+  if (r.mesh.faces.empty()) return solid_value(Solid::leaf(false, grid));
   // The mesher guarantees a closed, oriented, unintersecting manifold; snapping to the kernel's
   // grid can still make faces meet where the surface has features near the grid step.
   const ValidationReport report = check_closed_manifold(r.mesh, {.check_self_intersections = false});
   if (!report.ok()) args.fail("the mesh of '" + function_arg(args, kSolidF).name + "' is not closed: " + report.summary(3));
-  if (const std::string e = snapped_self_intersection(r.mesh); !e.empty()) args.fail("the solid's mesh: " + e + "; raise tol");
-  return solid_value(from_mesh(r.mesh, {.skip_degenerate_faces = true}));
+  if (const std::string e = snapped_self_intersection(r.mesh, grid); !e.empty()) args.fail("the solid's mesh: " + e + "; raise tol");
+  return solid_value(from_mesh(r.mesh, {.skip_degenerate_faces = true, .grid = grid}));
 }
 
 // Parameters of patch().

@@ -99,7 +99,8 @@ void register_reports(BuiltinTable& table) {
                     "comparing trees built different ways with stats([s, rebuild(s)]).",
              .params = {{"s"}},
              .run = [](const Arguments& args) -> Value {
-               return solid_value(from_mesh(to_mesh(args.object<SolidValue>(0, "a solid").solid)));
+               const Solid& s = args.object<SolidValue>(0, "a solid").solid;
+               return solid_value(from_mesh(to_mesh(s), {.grid = s.grid()}));
              }});
 }
 

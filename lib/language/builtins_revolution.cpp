@@ -88,7 +88,7 @@ void register_revolution(BuiltinTable& table) {
              .run = [](const Arguments& args) {
                const auto profile = profile_arg(args, 0);
                const auto& path = args.object<PathValue>(1, "a path (circle, ellipse, convex_path)").path;
-               revolution::RevolveOptions options;
+               revolution::RevolveOptions options{.grid = args.grid()};
                if (args.has(2)) options.face_only_below = static_cast<int>(args.integer(2, 2, 1000000));
                // About 1.4 nodes per profile segment and path edge (docs/revolution.md).
                args.charge(static_cast<std::uint64_t>(profile.size()) * static_cast<std::uint64_t>(path.edges()));

@@ -64,9 +64,22 @@ void add_stroke(BuiltinTable& table, const char* name, const char* signature, co
 }
 
 CircularOptions circular(const Arguments& args, std::size_t i) {
-  CircularOptions options;
+  CircularOptions options{.grid = args.grid()};
   if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
   return options;
+}
+
+// grid(step): the names of global solids made at another grid than `grid` (they cannot be
+// combined with the solids made from now on), at most `limit` of them, and how many there are.
+std::pair<std::string, std::size_t> solids_at_other_grids(const Arguments& args, const kernel::Grid& grid,
+                                                          std::size_t limit) {
+  std::string names;
+  std::size_t count = 0;
+  for (const auto& [name, value] : args.globals())
+    if (const SolidValue* s = value.object<SolidValue>(); s && !is_leaf(s->solid.root()) && s->solid.grid() != grid) {
+      if (count++ < limit) names += (names.empty() ? "" : ", ") + name;
+    }
+  return {names, count};
 }
 
 }  // namespace
@@ -74,11 +87,11 @@ CircularOptions circular(const Arguments& args, std::size_t i) {
 // The exact kernel snaps vertices to its grid (docs/kernel.md). A valid mesh with features below
 // the grid step can become self-intersecting that way (faces 1e-6 apart now touch) without any
 // face turning over, which from_mesh would catch: check the snapped copy as well.
-std::string snapped_self_intersection(const PolygonMesh& mesh) {
+std::string snapped_self_intersection(const PolygonMesh& mesh, const kernel::Grid& grid) {
   PolygonMesh snapped = mesh;
   bool moved = false;
   for (Eigen::Vector3d& v : snapped.vertices) {
-    const Eigen::Vector3d g = kernel::to_world(kernel::snap(v));
+    const Eigen::Vector3d g = grid.to_world(grid.snap(v));
     moved = moved || g != v;
     v = g;
   }
@@ -88,15 +101,17 @@ std::string snapped_self_intersection(const PolygonMesh& mesh) {
   const Eigen::Vector3d& near = mesh.vertices[std::size_t(mesh.faces[std::size_t(pairs[0].face_a)][0])];
   std::ostringstream out;
   out << "faces " << pairs[0].face_a << " and " << pairs[0].face_b << " (near " << near.x() << ", " << near.y() << ", "
-      << near.z() << ") meet when the vertices are snapped to the exact kernel's grid (step 2^-" << kernel::kGridShift
+      << near.z() << ") meet when the vertices are snapped to the exact kernel's grid (step " << grid.name()
       << "): the mesh has features smaller than the grid step";
   return out.str();
 }
 
 std::string SolidValue::repr() const {
-  if (solid.is_empty()) return "<solid: empty>";
+  // The grid is shown when it is not the default (docs/language.md, "World range").
+  const std::string grid = solid.grid() == kernel::Grid{} ? "" : ", grid " + solid.grid().name();
+  if (solid.is_empty()) return "<solid: empty" + grid + ">";
   const TreeStats stats = tree_stats(solid);
-  return "<solid: " + std::to_string(stats.nodes) + " nodes, height " + std::to_string(stats.height) + ">";
+  return "<solid: " + std::to_string(stats.nodes) + " nodes, height " + std::to_string(stats.height) + grid + ">";
 }
 
 std::optional<Value> SolidValue::binary(ast::Op op, const Value& other, bool self_on_left) const {
@@ -117,11 +132,39 @@ Value solid_value(Solid solid) {
 }
 
 void register_solids(BuiltinTable& table) {
+  table.add({.name = "grid",
+             .signature = "grid(step)",
+             .doc = "The world range (docs/kernel.md, \"World range\"): solids made after grid(step) snap their "
+                    "coordinates to multiples of step, a power of two 2^-k with k in [-32, 64] (pow(2, -10)), and "
+                    "hold coordinates up to 2^25 steps: the default 2^-15 gives [-1024, 1024], 2^-13 gives "
+                    "[-4096, 4096]. Returns the step in effect (grid() only reads it). Call it before the first "
+                    "solid: solids made at different grids cannot be combined (a later call says which solids "
+                    "are at the old grid). `sculpt --grid STEP` sets it for a whole run.",
+             .params = {{"step", false}},
+             .run = [](const Arguments& args) -> Value {
+               if (!args.has(0)) return args.grid().step();
+               kernel::Grid grid;
+               try {
+                 grid = kernel::Grid::from_step(args.number(0));
+               } catch (const InvalidInput& e) {
+                 args.fail(0, e.what());
+               }
+               const kernel::Grid old = args.grid();
+               args.set_grid(grid);
+               if (grid != old) {
+                 const auto [names, count] = solids_at_other_grids(args, grid, 5);
+                 if (count > 0)
+                   args.out() << "note: grid(" << grid.name() << "): " << count << (count == 1 ? " solid" : " solids")
+                              << " (" << names << (count > 5 ? ", ..." : "") << ") made at another grid cannot be "
+                              << "combined with solids made from now on\n";
+               }
+               return grid.step();
+             }});
   table.add({.name = "box",
              .signature = "box(min, max)",
              .doc = "The axis-aligned box with corners min and max ([x, y, z] each, min < max).",
              .params = {{"min"}, {"max"}},
-             .run = [](const Arguments& args) { return solid_value(box(vector3(args, 0), vector3(args, 1))); }});
+             .run = [](const Arguments& args) { return solid_value(box(vector3(args, 0), vector3(args, 1), args.grid())); }});
   table.add({.name = "sphere",
              .signature = "sphere(r, segments=32)",
              .doc = "Sphere of radius r at the origin: a polyhedron with `segments` edges around the "
@@ -142,7 +185,7 @@ void register_solids(BuiltinTable& table) {
              .params = {{"r"}, {"h"}, {"segments", false}},
              .run = [](const Arguments& args) {
                const CircularOptions c = circular(args, 2);
-               return solid_value(cone(args.number(0), args.number(1), {.segments = c.segments, .center = c.center}));
+               return solid_value(cone(args.number(0), args.number(1), {.segments = c.segments, .center = c.center, .grid = c.grid}));
              }});
   table.add({.name = "union_all",
              .signature = "union_all(solids)",
@@ -182,7 +225,7 @@ void register_solids(BuiltinTable& table) {
                args.charge(polygon.size());
                const double z = c.points.empty() ? 0.0 : c.points.front().z(), h = args.number(1);
                if (!(h != 0) || !std::isfinite(h)) args.fail(1, "the height must be a non-zero finite number");
-               return solid_value(extrude(polygon, std::min(z, z + h), std::max(z, z + h)));
+               return solid_value(extrude(polygon, std::min(z, z + h), std::max(z, z + h), args.grid()));
              }});
   table.add({.name = "hull",
              .signature = "hull(x)",
@@ -192,7 +235,7 @@ void register_solids(BuiltinTable& table) {
              .run = [](const Arguments& args) -> Value {
                const Value& x = args.value(0);
                if (const auto* s = x.object<SolidValue>()) return solid_value(hull(std::span(&s->solid, 1)));
-               if (const auto* c = x.object<CurveValue>()) return solid_value(hull(c->curve.points));
+               if (const auto* c = x.object<CurveValue>()) return solid_value(hull(c->curve.points, args.grid()));
                const List& items = args.list(0);
                if (!items.empty() && items.front().object<SolidValue>()) {
                  std::vector<Solid> solids;
@@ -204,7 +247,7 @@ void register_solids(BuiltinTable& table) {
                  args.charge(solids.size());
                  return solid_value(hull(solids));
                }
-               return solid_value(hull(curve_from_points(args, 0).points));
+               return solid_value(hull(curve_from_points(args, 0).points, args.grid()));
              }});
   table.add({.name = "sweep",
              .signature = "sweep(tool, path, tol=e)",
@@ -346,8 +389,8 @@ void register_solids(BuiltinTable& table) {
                                        ? ": the faces of a shell are oriented the wrong way: "
                                        : " is not a closed manifold: ") +
                            report.summary(3));
-               if (const std::string e = snapped_self_intersection(mesh); !e.empty()) args.fail(path + ": " + e);
-               return solid_value(from_mesh(mesh));
+               if (const std::string e = snapped_self_intersection(mesh, args.grid()); !e.empty()) args.fail(path + ": " + e);
+               return solid_value(from_mesh(mesh, {.grid = args.grid()}));
              }});
 }
 

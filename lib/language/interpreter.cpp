@@ -94,6 +94,7 @@ struct Interpreter::Impl {
   std::vector<std::string> includes;  // files being included, to refuse cycles
   std::uintptr_t stack_base = 0;
   std::uint64_t steps = 0;
+  kernel::Grid grid;  // the grid new solids are made at (RunSettings::grid points here)
 
   SourceRef at(std::size_t where) const { return {source, where}; }
 
@@ -482,6 +483,8 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
   impl_->settings.steps = &impl_->steps;
   impl_->settings.max_steps = options.max_steps;
   impl_->settings.globals = &impl_->globals;
+  impl_->grid = options.grid;
+  impl_->settings.grid = &impl_->grid;
   // Keep the budget well inside the real stack limit.
   rlimit limit{};
   if (getrlimit(RLIMIT_STACK, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
@@ -490,6 +493,9 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
 }
 
 Interpreter::~Interpreter() = default;
+
+kernel::Grid Interpreter::grid() const { return impl_->grid; }
+void Interpreter::set_grid(const kernel::Grid& grid) { impl_->grid = grid; }
 
 std::optional<Value> Interpreter::run(const SourcePtr& source) {
   Impl& impl = *impl_;

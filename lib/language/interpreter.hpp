@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/grid.hpp"
 #include "language/source.hpp"
 #include "language/value.hpp"
 
@@ -31,6 +32,8 @@ struct InterpreterOptions {
   /// error "interrupted"; the REPL points it at a flag its SIGINT handler sets. A built-in that
   /// is working (a set operation, say) finishes first.
   const std::atomic<bool>* interrupt = nullptr;
+  /// The grid solids are made at until a script calls grid(step) (sculpt --grid; docs/kernel.md).
+  kernel::Grid grid{};
 };
 
 class Interpreter {
@@ -54,6 +57,9 @@ class Interpreter {
   [[nodiscard]] std::uint64_t assigned_at(const std::string& name) const;
   /// The number of global assignments so far (the latest serial).
   [[nodiscard]] std::uint64_t assignments() const;
+  /// The grid new solids are made at (InterpreterOptions::grid, then grid(step) in a script).
+  [[nodiscard]] kernel::Grid grid() const;
+  void set_grid(const kernel::Grid& grid);
   /// Global names in alphabetical order.
   [[nodiscard]] std::vector<std::string> global_names() const;
 

@@ -47,8 +47,8 @@ struct MeshValue final : Object {
 Value solid_value(Solid solid);
 
 /// Empty when `mesh` (a valid closed mesh) stays free of self-intersections with its vertices
-/// snapped to the exact kernel's grid; else what meets where, for an error message. A valid
-/// mesh with features below the grid step can intersect itself once snapped (import, implicit).
-std::string snapped_self_intersection(const PolygonMesh& mesh);
+/// snapped to `grid`; else what meets where, for an error message. A valid mesh with features
+/// below the grid step can intersect itself once snapped (import, implicit).
+std::string snapped_self_intersection(const PolygonMesh& mesh, const kernel::Grid& grid);
 
 }  // namespace sculpt::language

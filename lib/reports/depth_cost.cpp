@@ -23,8 +23,8 @@ DepthCost depth_cost(const Solid& solid, const DepthCostOptions& options) {
   // Snapped to the kernel grid (nearest), as bsp/cells.hpp clips to the snapped box: the sample
   // space is then exactly the union of the cells.
   if (!out.sample_box.isEmpty() && out.sample_box.min().allFinite() && out.sample_box.max().allFinite())
-    out.sample_box = Eigen::AlignedBox3d(kernel::to_world(kernel::snap(out.sample_box.min())),
-                                         kernel::to_world(kernel::snap(out.sample_box.max())));
+    out.sample_box = Eigen::AlignedBox3d(solid.grid().to_world(solid.grid().snap(out.sample_box.min())),
+                                         solid.grid().to_world(solid.grid().snap(out.sample_box.max())));
   const Eigen::Vector3d size = out.sample_box.sizes();
   if (out.sample_box.isEmpty() || !(size.minCoeff() > 0.0) || !size.allFinite())
     throw InvalidInput("depth cost: the sample box must have positive, finite extent in x, y and z");

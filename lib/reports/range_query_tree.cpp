@@ -12,7 +12,7 @@ RangeQueryTree::RangeQueryTree(const Solid& solid) : root_(solid.root()) {
     const kernel::Plane& p = solid.planes()[n.plane];
     // f(grid point) = a X + b Y + c Z + d with X = x / step: in world units divide d by step.
     const double a = double(p.a), b = double(p.b), c = double(p.c);
-    const double d = double(p.d) * kernel::kGridStep;
+    const double d = solid.grid().to_world(double(p.d));
     const double norm = std::sqrt(a * a + b * b + c * c);
     nodes_.push_back({a / norm, b / norm, c / norm, d / norm, {n.negative, n.positive}});
   }

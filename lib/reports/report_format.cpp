@@ -55,6 +55,8 @@ std::string report_text(const std::vector<TreeReport>& reports) {
     rows.emplace_back(label, std::move(cells));
   };
   row("", [](const TreeReport& r) { return r.name; });
+  if (std::any_of(reports.begin(), reports.end(), [](const TreeReport& r) { return r.grid != kernel::Grid{}; }))
+    row("grid step", [](const TreeReport& r) { return r.grid.name(); });
   row("partitioning nodes", [](const TreeReport& r) { return std::to_string(r.depth.nodes); });
   row("leaves (in / out)", [](const TreeReport& r) {
     return std::to_string(r.depth.leaves) + " (" + std::to_string(r.depth.in_leaves) + " / " +
@@ -124,6 +126,7 @@ std::string report_json(const std::vector<TreeReport>& reports) {
     const DepthCost& d = r.depth;
     out += i ? ",\n  " : "\n  ";
     out += "{\"name\": " + json_string(r.name) + ", \"sample_box\": " + json_box(d.sample_box) +
+           (r.grid != kernel::Grid{} ? ", \"grid_step\": " + num(r.grid.step()) : std::string()) +
            ", \"sample_volume\": " + num(d.sample_volume) + ", \"cell_volume_sum\": " + num(d.cell_volume_sum) +
            ", \"nodes\": " + std::to_string(d.nodes) + ", \"leaves\": " + std::to_string(d.leaves) +
            ", \"in_leaves\": " + std::to_string(d.in_leaves) + ", \"out_leaves\": " + std::to_string(d.out_leaves) +

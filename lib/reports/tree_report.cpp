@@ -6,7 +6,7 @@
 namespace sculpt::reports {
 
 TreeReport analyze(const Solid& solid, const std::string& name, const ReportOptions& options) {
-  TreeReport r{name, depth_cost(solid, {.sample_box = options.sample_box}), {}};
+  TreeReport r{name, depth_cost(solid, {.sample_box = options.sample_box}), {}, solid.grid()};
   if (options.query_samples > 0) {
     const double diagonal = r.depth.sample_box.diagonal().norm();
     const struct { QueryShape shape; double size; } kinds[] = {

@@ -31,6 +31,7 @@ struct TreeReport {
   std::string name;
   DepthCost depth;
   std::vector<QueryCost> queries;  ///< point, segment, box (empty if query_samples == 0)
+  kernel::Grid grid{};             ///< the solid's grid (reports show it when it is not the default)
 };
 
 /// \throw InvalidInput (see depth_cost, query_cost)

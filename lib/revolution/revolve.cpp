@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "base/errors.hpp"
@@ -48,16 +49,16 @@ struct ExactRevolution {
   std::vector<std::int64_t> levels;                 // Z of each level
   std::vector<std::array<std::int64_t, 4>> slabs;   // Z0, Z1, R0, R1
 
-  ExactRevolution(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& path, int shift) {
+  ExactRevolution(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& path, int shift, const kernel::Grid& grid) {
     const double scale = std::ldexp(1.0, shift);
     lattice.shift = shift;
     for (const auto& p : path.vertices) {
       lattice.x.push_back(std::llround(p.x() * scale));
       lattice.y.push_back(std::llround(p.y() * scale));
     }
-    for (double z : revolve_levels(profile)) levels.push_back(kernel::snap(z));
+    for (double z : revolve_levels(profile)) levels.push_back(grid.snap(z));
     for (const auto& s : revolve_slabs(profile))
-      slabs.push_back({kernel::snap(s.z0), kernel::snap(s.z1), kernel::snap(s.r0), kernel::snap(s.r1)});
+      slabs.push_back({grid.snap(s.z0), grid.snap(s.z1), grid.snap(s.r0), grid.snap(s.r1)});
   }
   [[nodiscard]] kernel::Plane plane(const PlaneTree::Node& node) const { return exact_plane(node, lattice, levels, slabs); }
 };
@@ -71,11 +72,14 @@ SnappedRevolution snap_revolution(const std::vector<Eigen::Vector2d>& profile_in
   std::vector<Eigen::Vector2d> profile = monotone_profile(profile_in);
   double reach = 0.0;
   for (const auto& v : path.vertices) reach = std::max(reach, v.cwiseAbs().maxCoeff());
+  const kernel::Grid& grid = options.grid;
   for (auto& p : profile) {
-    if (p.x() * reach > kernel::kMaxWorld)
-      throw RangeError("revolved solid reaches " + std::to_string(p.x() * reach) + " from the axis, outside " +
-                       kernel::range_text());
-    p = Eigen::Vector2d(double(kernel::snap(p.x())) * kernel::kGridStep, double(kernel::snap(p.y())) * kernel::kGridStep);
+    if (p.x() * reach > grid.max_world()) {
+      std::ostringstream what;
+      what << "revolved solid reaching " << p.x() * reach << " from the axis";
+      throw RangeError(grid.out_of_range(what.str(), p.x() * reach));
+    }
+    p = Eigen::Vector2d(grid.to_world(double(grid.snap(p.x()))), grid.to_world(double(grid.snap(p.y()))));
   }
   monotone_profile(profile);  // snapping keeps z monotone but may flatten it: check again
   const int magnitude = std::max(0, static_cast<int>(std::ceil(std::log2(reach))));
@@ -89,7 +93,7 @@ SnappedRevolution snap_revolution(const std::vector<Eigen::Vector2d>& profile_in
       // Every plane must fit the kernel's bit budget. The largest coefficients come from the
       // largest path-line and slab factors (a = h 2^shift N, c = C dR, d = C (R0 Z1 - R1 Z0)):
       // one plane built from those maxima (before dividing by a gcd: conservative) decides.
-      const ExactRevolution exact(out.profile, out.path, shift);
+      const ExactRevolution exact(out.profile, out.path, shift, grid);
       Int128 n_max = 0, c_max = 0, h_max = 0, dr_max = 0, e_max = 0;
       for (const auto& line : build_path_tree(out.path, {.face_only_below = options.face_only_below}).nodes) {
         const Int128 nx = exact.lattice.y[line.to] - exact.lattice.y[line.from];
@@ -119,7 +123,7 @@ SnappedRevolution snap_revolution(const std::vector<Eigen::Vector2d>& profile_in
 Solid revolve(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& path, const RevolveOptions& options) {
   const SnappedRevolution snapped = snap_revolution(profile, path, options);
   const PlaneTree tree = revolve_plane_tree(snapped.profile, snapped.path, options);
-  const ExactRevolution exact(snapped.profile, snapped.path, snapped.path_bits);
+  const ExactRevolution exact(snapped.profile, snapped.path, snapped.path_bits, options.grid);
 
   // Children have larger indices than their parents: build bottom-up.
   TreeBuilder builder;
@@ -130,7 +134,7 @@ Solid revolve(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& pat
     const std::int32_t plane = builder.add_plane(exact.plane(node));
     ref[k] = builder.add_node(plane, child(node.below), child(node.above));
   }
-  return std::move(builder).build(tree.root >= 0 ? ref[tree.root] : tree.root);
+  return std::move(builder).build(tree.root >= 0 ? ref[tree.root] : tree.root, BuildOptions{.grid = options.grid});
 }
 
 }  // namespace sculpt::revolution

@@ -26,6 +26,7 @@ namespace sculpt::revolution {
 /// Options of the section 6 construction.
 struct RevolveOptions {
   int face_only_below = 6;  ///< path sub-curves this short use face planes only (paper: "say 6")
+  kernel::Grid grid{};      ///< the grid the profile is snapped to, carried by the solid (docs/kernel.md)
 };
 
 /// The inputs revolve() actually revolves: the profile made monotone (increasing z) and snapped to

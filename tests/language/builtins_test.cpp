@@ -329,6 +329,52 @@ TEST(Builtins, ExtrudeMirrorAndTransform) {
   EXPECT_NE(first_error_line("transform(box([0,0,0],[1,1,1]), [[1,0,0,0],[0,1,0,0],[0,0,0,0]])").find("error"), std::string::npos);
 }
 
+// ---- the world range: grid(step) (builtins_solids.cpp; docs/kernel.md, "World range") ----
+
+TEST(Builtins, GridSetsTheWorldRangeOfSolidsMadeAfterIt) {
+  // 3 m in millimetres at step 2^-13 (range 4096): volumes exact against the analytic values.
+  EXPECT_EQ(numbers("grid(pow(2, -13))\n"
+                    "part = box([0, 0, 0], [3000, 400, 50]) | box([0, 0, 0], [200, 400, 1200])\n"
+                    "print(volume(part), volume(part - box([1000, 100, -1], [1500, 300, 51])))"),
+            (std::vector<double>{3000.0 * 400 * 50 + 200.0 * 400 * 1150, 3000.0 * 400 * 50 + 200.0 * 400 * 1150 - 500.0 * 200 * 50}));
+  // 10 um in metres at step 2^-20: ten steps wide.
+  EXPECT_EQ(numbers("grid(pow(2, -20))\nprint(volume(box([0, 0, 0], [0.00001, 1, 1])))"),
+            (std::vector<double>{10 * std::ldexp(1.0, -20)}));
+  // grid() reads the step; grid(step) returns it; printing a solid names a grid that is not the default.
+  EXPECT_EQ(numbers("print(grid(), grid(0.125), grid())"), (std::vector<double>{std::ldexp(1.0, -15), 0.125, 0.125}));
+  EXPECT_EQ(run_script("print(box([0, 0, 0], [1, 1, 1]))").out, "<solid: 6 nodes, height 6>\n");
+  EXPECT_EQ(run_script("grid(pow(2, -13))\nprint(box([0, 0, 0], [1, 1, 1]))").out, "<solid: 6 nodes, height 6, grid 2^-13>\n");
+  // stats names a grid that is not the default.
+  const std::string report = run_script("grid(pow(2, -13))\nstats(box([0, 0, 0], [3000, 10, 10]), samples=0)").out;
+  EXPECT_NE(report.find("grid step                               2^-13\n"), std::string::npos) << report;
+  EXPECT_EQ(run_script("stats(box([0, 0, 0], [3, 1, 1]), samples=0)").out.find("grid step"), std::string::npos);
+  // revolve, cylinder, sphere and cone follow the grid too.
+  const auto r = run_script("grid(pow(2, -13))\nprint(revolve([[0, 0], [2000, 0], [2000, 100], [0, 100]], circle(4)), "
+                            "cylinder(2000, 10), sphere(2500), cone(2500, 3000))");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '^'), 4) << r.out;
+}
+
+TEST(Builtins, GridErrorsSayWhatFits) {
+  EXPECT_EQ(first_error_line("s = box([0, 0, 0], [3000, 1, 1])"),
+            "t.bsp:1:5: error: box: out of range: coordinate 3000 is outside the exact kernel's range [-1024, 1024] world units "
+            "(grid step 2^-15); a grid of step 2^-13 would fit coordinates up to 4096");
+  const std::string e = first_error_line("grid(0.001)");
+  EXPECT_NE(e.find("t.bsp:1:6: error: grid: grid step must be a power of two"), std::string::npos) << e;
+  EXPECT_NE(e.find("the nearest is 2^-10"), std::string::npos) << e;
+  // Solids of different grids do not combine; the message names both grids.
+  EXPECT_EQ(first_error_line("a = box([0, 0, 0], [1, 1, 1])\ngrid(pow(2, -13))\nb = box([0, 0, 0], [1, 1, 1])\nc = a | b"),
+            "t.bsp:4:7: error: invalid input: solids made at different grids (step 2^-15 and step 2^-13) cannot be combined: "
+            "make every solid of a model at one grid");
+  EXPECT_NE(first_error_line("a = box([0, 0, 0], [1, 1, 1])\ngrid(pow(2, -13))\nc = union_all([a, box([0, 0, 0], [1, 1, 1])])")
+                .find("different grids"),
+            std::string::npos);
+  // A later grid() says which solids keep the old grid.
+  EXPECT_EQ(run_script("a = box([0, 0, 0], [1, 1, 1])\ngrid(pow(2, -13))").out,
+            "note: grid(2^-13): 1 solid (a) made at another grid cannot be combined with solids made from now on\n");
+  EXPECT_EQ(run_script("grid(pow(2, -13))\na = box([0, 0, 0], [1, 1, 1])\ngrid(pow(2, -13))").out, "");
+}
+
 // ---- splines (builtins_splines.cpp) ----
 
 /// Every number in `text`, in order (lists included).

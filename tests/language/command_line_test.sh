@@ -45,6 +45,12 @@ check e_without_code 2 "sculpt: -e needs code" first_line "$sculpt" -e
 check bad_define 2 "sculpt: -D needs NAME=VALUE, got '1x=2'" first_line "$sculpt" -D 1x=2
 check help 0 "usage: sculpt [options] [FILE.bsp ... | -]" first_line "$sculpt" --help
 check version 0 "sculpt 0.1.0" "$sculpt" --version
+# --grid STEP: the world range of the run's solids (docs/kernel.md, "World range").
+check grid_power 0 "3e+05 0.0001220703125" "$sculpt" --grid 2^-13 -e 'print(volume(box([0, 0, 0], [3000, 10, 10])), grid())'
+check grid_decimal 0 "<solid: 6 nodes, height 6, grid 2^-13>" "$sculpt" --grid=0.0001220703125 -e 'print(box([0, 0, 0], [3000, 1, 1]))'
+check grid_not_a_power 2 "sculpt: grid step must be a power of two (2^k, k in [-64, 32]), got 0.001; the nearest is 2^-10 = 0.000976562" first_line "$sculpt" --grid 0.001
+check grid_missing 2 "sculpt: --grid: '' is not a number or 2^K" first_line "$sculpt" --grid
+check grid_outside 2 "sculpt: grid step 2^-70 is outside the supported steps 2^-64 .. 2^32" first_line "$sculpt" --grid 2^-70
 
 # Files run in order; include and relative paths resolve against the including script's folder.
 mkdir -p "$tmp/lib"

@@ -26,6 +26,25 @@ TEST(Session, EchoesExpressionsNotAssignments) {
   EXPECT_EQ(f.err.str(), "");
 }
 
+// A later grid(step) in a session (docs/language.md, "World range"): a note names the solids that
+// keep the old grid, and combining one of them with a new solid is an error naming both grids;
+// the session goes on and new solids combine.
+TEST(Session, ChangingTheGridLaterSaysWhichSolidsKeepTheOldOne) {
+  Fixture f;
+  f.session.feed("a = box([0, 0, 0], [1, 1, 1])");
+  f.session.feed("b = a | box([0, 0, 0], [2, 1, 1])");
+  f.session.feed("grid(pow(2, -13))");
+  EXPECT_EQ(f.out.str(),
+            "note: grid(2^-13): 2 solids (a, b) made at another grid cannot be combined with solids made from now on\n"
+            "0.0001220703125\n");
+  f.session.feed("c = box([0, 0, 0], [3000, 1, 1])");
+  f.session.feed("d = a | c");
+  EXPECT_NE(f.err.str().find("<stdin>:5:7: error: invalid input: solids made at different grids (step 2^-15 and step 2^-13)"),
+            std::string::npos) << f.err.str();
+  f.session.feed("volume(c | box([1000, 0, 0], [3500, 1, 1]))");
+  EXPECT_NE(f.out.str().find("\n3500\n"), std::string::npos) << f.out.str();
+}
+
 TEST(Session, InterruptStopsARunAndDiscardDropsAnUnfinishedEntry) {
   std::ostringstream out, err;
   std::atomic<bool> flag{false};

@@ -159,3 +159,29 @@ TEST(Revolve, ReportsUnrepresentableInput) {
   EXPECT_THROW(revolve({{1, 0}, {1, 1}}, circular_path(4000)), GeometryError);    // too fine to stay convex
   EXPECT_THROW(revolve({{1, 0}, {1, 1}}, circular_path(8), {.face_only_below = 1}), InvalidInput);
 }
+
+// At another grid (docs/kernel.md, "World range"): a goblet in millimetres, 4 times the size of
+// the default one at a grid 4 times coarser, is the default goblet scaled exactly; the reach of
+// 1200 that the default grid refuses fits a coarser grid, which the message names.
+TEST(Revolve, AtAnotherGridIsTheDefaultScaledExactly) {
+  const kernel::Grid grid = kernel::Grid::from_shift(13);
+  std::vector<Eigen::Vector2d> profile = sampled(curves::goblet_profile(), 21), big;
+  for (const auto& p : profile) big.push_back(4 * p);
+  const ConvexPath path = circular_path(32);
+  const Solid s = revolve(profile, path), b = revolve(big, path, {.grid = grid});
+  EXPECT_EQ(b.grid(), grid);
+  EXPECT_EQ(volume(b), 64 * volume(s));
+  const SnappedRevolution snapped = snap_revolution(big, path, {.grid = grid});
+  EXPECT_NEAR(volume(b), revolved_volume(snapped.profile, snapped.path), 1e-9 * volume(b));
+  try {
+    (void)revolve({{600, 0}, {600, 1}}, circular_path(8, 2.0));
+    FAIL();
+  } catch (const RangeError& e) {
+    EXPECT_NE(std::string(e.what()).find("a grid of step 2^-14 would fit coordinates up to 2048"), std::string::npos)
+        << e.what();
+  }
+  const RevolveOptions coarser{.grid = kernel::Grid::from_shift(14)};
+  const SnappedRevolution far = snap_revolution({{600, 0}, {600, 1}}, circular_path(8, 2.0), coarser);
+  const double expected = revolved_volume(far.profile, far.path);
+  EXPECT_NEAR(volume(revolve({{600, 0}, {600, 1}}, circular_path(8, 2.0), coarser)), expected, 1e-9 * expected);
+}

@@ -11,6 +11,7 @@ namespace sculpt::bsp::detail {
 
 struct AssemblyOptions {
   bool triangulate = false;
+  kernel::Grid grid{};  ///< the solid's grid: output vertices in its world units
 };
 
 PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& options);

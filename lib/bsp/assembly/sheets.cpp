@@ -183,7 +183,7 @@ Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, cons
 }
 
 PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate) {
+                        bool triangulate, const kernel::Grid& grid) {
   const FaceList& faces = sheets.faces;
   PolygonMesh mesh;
   std::vector<int> index(sheets.original.size(), -1);  // only referenced vertices are written
@@ -193,7 +193,7 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
       index[std::size_t(v)] = int(mesh.vertices.size());
       const std::size_t o = std::size_t(sheets.original[std::size_t(v)]);
       const PlaneTriple& t = vertices.triple[o];
-      mesh.vertices.push_back(kernel::rounded_vertex(planes[t.s], planes[t.p], planes[t.q], vertices.at[o]) * kernel::kGridStep);
+      mesh.vertices.push_back(grid.to_world(kernel::rounded_vertex(planes[t.s], planes[t.p], planes[t.q], vertices.at[o])));
     }
   mesh.faces.reserve(std::size_t(faces.size()));
   std::vector<int> face;

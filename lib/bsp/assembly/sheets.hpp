@@ -19,10 +19,10 @@ struct Sheets {
 /// connected through paired edges share a vertex; other corners get a copy.
 Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, const kernel::PlaneTable& planes);
 
-/// The mesh in world units (only vertices used by faces are written; coordinates by
+/// The mesh in world units of `grid` (only vertices used by faces are written; coordinates by
 /// kernel::rounded_vertex), optionally with each face triangulated by mesh/triangulate.hpp's
 /// exact ear clipping.
 PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate);
+                        bool triangulate, const kernel::Grid& grid = {});
 
 }  // namespace sculpt::bsp::detail

@@ -8,11 +8,13 @@
 #include <new>
 #include <numbers>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 #include "base/errors.hpp"
 #include "bsp/rings/ring_boundary.hpp"
 #include "bsp/rings/sector_tree.hpp"
+#include "bsp/tree/solid_access.hpp"
 #include "bsp/tree_builder.hpp"
 
 namespace sculpt::bsp::detail {
@@ -27,7 +29,7 @@ constexpr double kPathScale = double(std::int64_t(1) << kPathNormalBits);  // sc
 
 }  // namespace
 
-Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings) {
+Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings, const kernel::Grid& grid) {
   const int n = int(path.size());
   if (n < 3) throw InvalidInput("revolution path needs at least 3 vertices");
   if (rings.size() < 2) throw InvalidInput("revolution needs at least 2 rings");
@@ -65,17 +67,21 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
       throw InvalidInput("ring scale must be finite and >= 0");
     if (rings[k].scale == 0 && k != 0 && k + 1 != r)
       throw InvalidInput("only the first and the last ring may have scale 0");
-    z[k] = kernel::snap(rings[k].z);
+    z[k] = grid.snap(rings[k].z);
     if (k > 0 && z[k] <= z[k - 1]) {
       std::ostringstream s;
-      s << "ring heights must increase by at least one grid step (" << kernel::kGridStep << ")";
+      s << "ring heights must increase by at least one grid step (" << grid.step() << ")";
       throw InvalidInput(s.str());
     }
   }
   auto c_of = [&](std::size_t k, int j) -> Int128 {
-    const double c = rings[k].scale * offset[std::size_t(j)] / kernel::kGridStep;
-    if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord))
-      throw RangeError("revolved solid exceeds the exact kernel's range " + kernel::range_text());
+    const double c = grid.to_grid(rings[k].scale * offset[std::size_t(j)]);
+    if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord)) {
+      const double reach = grid.to_world(std::fabs(c) * 1.5);  // with the margin of the check
+      std::ostringstream what;
+      what << "revolved solid (reach " << reach << ")";
+      throw RangeError(grid.out_of_range(what.str(), reach));
+    }
     return Int128(std::llround(c * kPathScale));
   };
 
@@ -107,7 +113,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   for (std::size_t k = 0; k < r; ++k) {
     scale[k] = rings[k].scale;
     largest = std::max(largest, scale[k]);
-    if (scale[k] > 0) shortest = std::min(shortest, scale[k] * min_edge / kernel::kGridStep);
+    if (scale[k] > 0) shortest = std::min(shortest, grid.to_grid(scale[k] * min_edge));
   }
   for (int j = 0; j < n; ++j) {
     const Eigen::Vector2d& a = normal[std::size_t(j)];
@@ -119,7 +125,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // rounded to 2^-27 grid units: delta below (R + 1) 2^-25, taken with a margin of 2. Two lines
   // moved by delta at exterior angle t meet at most 2 delta / sin t away, so an edge of length L
   // survives if L sin t > 4 delta; 8 delta leaves another factor of 2.
-  const double delta = (largest * far / kernel::kGridStep + 1) * std::ldexp(1.0, -24);
+  const double delta = (grid.to_grid(largest * far) + 1) * std::ldexp(1.0, -24);
   const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
   const bool direct = !degenerate && shortest * min_sin > 8 * delta;
 
@@ -169,7 +175,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     }
     for (std::size_t j = 0; j < std::size_t(n); ++j) faces[j] = b.add_plane(face_plane[j]);
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
-    const TreeRef t = sectors.build(faces, 0.05 * min_scale * min_edge);
+    const TreeRef t = sectors.build(faces, 0.05 * min_scale * min_edge, grid);
     face_index[k] = std::move(faces);
     return t;
   };
@@ -187,13 +193,13 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   };
   b.set_node(top, ring_plane[r - 1], slabs(slabs, 0, r - 2), kOut);
   b.set_node(root, ring_plane[0], kOut, top);
-  if (!direct) return std::move(b).build(root);
+  if (!direct) return SolidAccess::at_grid(std::move(b).build(root), grid);
   // Every node then cuts its cell: ring planes cut their slabs and axial planes their wedges (both
   // reach the world box), and each chain face keeps the middle part of its facet inside its wedge
   // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as
   // built. Widened chains may hold faces outside their wedges: those are left to the full build.
   std::vector<BoundaryFragment> boundary = ring_boundary(b, ring_plane, face_index, scale);
-  return std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors.widened()});
+  return SolidAccess::at_grid(std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors.widened()}), grid);
 }
 
 }  // namespace sculpt::bsp::detail

@@ -22,7 +22,9 @@ struct Ring {
 /// band face is an exact planar quadrilateral (or triangle at an apex), caps are flat. The tree
 /// is Ihm & Naylor's sec. 6 structure: a balanced tree of the ring planes, in each band a
 /// balanced tree of planes through the axis, then the face planes. Only the first and the last
-/// ring may have scale 0. \throw InvalidInput for a bad path or rings.
-Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings);
+/// ring may have scale 0. Heights and scales in world units of `grid`, which the solid carries.
+/// \throw InvalidInput for a bad path or rings, RangeError beyond the grid's range.
+Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings,
+                    const kernel::Grid& grid = {});
 
 }  // namespace sculpt::bsp::detail

@@ -46,8 +46,9 @@ class SectorTree {
       : b_(b), start_(start), n_(int(start.size())), options_(options) {}
 
   /// The tree over `faces` (plane indices, face i starting at start[i]), added to the builder in
-  /// pre-order (TreeBuilder::open_node); axial planes are moved off the axis by at most `max_offset`.
-  TreeRef build(const std::vector<std::int32_t>& faces, double max_offset = 0) {
+  /// pre-order (TreeBuilder::open_node); axial planes are moved off the axis by at most `max_offset`
+  /// (world units of `grid`).
+  TreeRef build(const std::vector<std::int32_t>& faces, double max_offset = 0, const kernel::Grid& grid = {}) {
     if (shape_.empty()) make_shape();
     // Axial planes in the order the recursion met them: their offsets depend on that order.
     axial_id_.clear();
@@ -55,7 +56,7 @@ class SectorTree {
     for (std::size_t i = 0; i < axial_.size(); ++i) {
       const Axial& x = axial_[i];
       ::new (&axial_plane_[i]) kernel::Plane(x.exact ? kernel::make_plane(x.exact_a, x.exact_b, 0, 0)
-                                                     : kernel::plane_from_scaled_normal(x.normal, max_offset * x.fraction));
+                                                     : kernel::plane_from_scaled_normal(x.normal, max_offset * x.fraction, grid));
     }
     for (const kernel::Plane& p : axial_plane_) axial_id_.push_back(b_.add_plane(p, options_.auxiliary_axes));
     const TreeRef base = b_.open_nodes(std::int32_t(shape_.size()));

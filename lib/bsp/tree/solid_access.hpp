@@ -17,6 +17,12 @@ struct SolidAccess {
   static Solid make(Args&&... args) { return Solid(std::forward<Args>(args)...); }
   /// The storage moved out of `solid`, which becomes empty.
   static Storage release(Solid&& solid) { return std::move(solid).release(); }
+  /// `solid` labelled with `grid` (the tree algorithms work in grid units and build solids at
+  /// the default grid; the public operations label their results).
+  static Solid at_grid(Solid&& solid, const kernel::Grid& grid) {
+    solid.grid_ = grid;
+    return std::move(solid);
+  }
   /// Boxes of solid.boundary() (same order), or empty if not computed.
   static const FragmentBoxes& boundary_boxes(const Solid& solid) { return solid.boundary_boxes_; }
 };
