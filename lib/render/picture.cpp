@@ -6,6 +6,8 @@
 
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
+#include "mesh/predicates.hpp"
+#include "mesh/triangulate.hpp"
 #include "render/detail/edges.hpp"
 #include "render/detail/rasterizer.hpp"
 #include "render/detail/scene.hpp"
@@ -83,6 +85,26 @@ Camera picture_camera(const std::vector<PolygonMesh>& meshes, const PictureOptio
 }
 
 namespace detail {
+namespace {
+
+/// True if the face's corners turn the same way at every corner on screen (a convex polygon).
+bool convex_on_screen(const std::vector<Eigen::Vector3d>& screen, const std::vector<int>& face) {
+  if (face.size() == 3) return true;
+  int sign = 0;
+  const std::size_t n = face.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d a = screen[static_cast<std::size_t>(face[k])].head<2>();
+    const Eigen::Vector2d b = screen[static_cast<std::size_t>(face[(k + 1) % n])].head<2>();
+    const Eigen::Vector2d c = screen[static_cast<std::size_t>(face[(k + 2) % n])].head<2>();
+    const int s = orient2d(a, b, c);
+    if (s == 0) continue;
+    if (sign != 0 && s != sign) return false;
+    sign = s;
+  }
+  return true;
+}
+
+}  // namespace
 
 Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera) {
   Scene scene{.buffer = DepthBuffer(camera.width, camera.height), .faces = {}};
@@ -109,13 +131,24 @@ Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera) {
       polygon.dx = -nr / (camera.scale * nz);
       polygon.dy = nu / (camera.scale * nz);
       polygon.d0 = unit.dot(p0 - camera.center) / nz - polygon.dx * 0.5 * camera.width - polygon.dy * 0.5 * camera.height;
-      polygon.corners.clear();
-      for (int v : face) polygon.corners.emplace_back(screen[static_cast<std::size_t>(v)].head<2>());
       polygon.id = static_cast<int>(scene.faces.size());
       FaceInfo info{.solid = static_cast<int>(m), .face = static_cast<int>(f), .normal = unit, .vertices = face};
       std::sort(info.vertices.begin(), info.vertices.end());
       scene.faces.push_back(std::move(info));
-      rasterize(scene.buffer, polygon);
+      // The rasterizer takes convex polygons; a boundary face of a set operation's result is often
+      // not convex (a face around a groove): it is drawn as the triangles of its exact ear
+      // clipping, all with the face's id, which share their edges watertightly.
+      if (convex_on_screen(screen, face)) {
+        polygon.corners.clear();
+        for (int v : face) polygon.corners.emplace_back(screen[static_cast<std::size_t>(v)].head<2>());
+        rasterize(scene.buffer, polygon);
+      } else {
+        for (const IndexTriangle& t : triangulate_polygon(mesh.vertices, face)) {
+          polygon.corners.clear();
+          for (int v : t) polygon.corners.emplace_back(screen[static_cast<std::size_t>(v)].head<2>());
+          rasterize(scene.buffer, polygon);
+        }
+      }
     }
   }
   return scene;

@@ -14,6 +14,7 @@
 #include "bsp/classify.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
+#include "bsp/sweep.hpp"
 #include "bsp/transform.hpp"
 #include "render/detail/scene.hpp"
 #include "render/picture.hpp"
@@ -71,6 +72,25 @@ TEST(Picture, BoxAlongAnAxisIsARectangleWithExactPixelBounds) {
       }
     EXPECT_EQ(wrong, 0) << c.view;
   }
+}
+
+TEST(Picture, NonConvexFacesAreDrawnWhole) {
+  // A block with a groove carved by a ball along a bent path (the groove stays above the floor):
+  // seen from the top it covers exactly its rectangle. Its top face around the groove is not
+  // convex, and the rasterizer takes convex polygons, so such a face must be split first (before
+  // it was, parts of the groove's faces were left out and the background showed through).
+  const Solid block = box({-50.25, -30.25, -20}, {50.25, 30.25, 10});
+  const std::vector<Eigen::Vector3d> path{{-40, -15, 10}, {0, 5, 10}, {40, -15, 10}};
+  const Solid carved = carve(block, sphere(8, {.segments = 16}), path);
+  const Image image = through_png(render_solids({carved}, {.view = view_direction("top"), .width = 200, .height = 200, .scale = 1}));
+  long wrong = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 200; ++x) {
+      const double wx = x + 0.5 - 100, wy = 100 - (y + 0.5);  // top view: right = x, up = y
+      const bool inside = std::abs(wx) < 50.25 && std::abs(wy) < 30.25;
+      if ((image.pixel(x, y) != std::array<std::uint8_t, 3>{255, 255, 255}) != inside) ++wrong;
+    }
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(Picture, HiddenSolidDoesNotAppear) {
