@@ -19,35 +19,13 @@
 #include "bsp/boundary.hpp"
 #include "bsp/hull.hpp"
 #include "kernel/convex_hull.hpp"
+#include "bench/bench_timing.hpp"
 
 using namespace sculpt;
-using Clock = std::chrono::steady_clock;
+using bench::median_ms;
+using bench::Timing;
 
 namespace {
-
-double cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-struct Timing {
-  double wall = 0, cpu = 0;
-};
-
-Timing median_ms(int runs, const std::function<void()>& f) {
-  std::vector<double> w, c;
-  for (int i = 0; i < runs; ++i) {
-    const auto start = Clock::now();
-    const double cpu = cpu_ms();
-    f();
-    c.push_back(cpu_ms() - cpu);
-    w.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-  }
-  std::sort(w.begin(), w.end());
-  std::sort(c.begin(), c.end());
-  return {w[w.size() / 2], c[c.size() / 2]};
-}
 
 std::vector<Eigen::Vector3d> points(const std::string& kind, int n) {
   std::mt19937_64 rng(12345);

@@ -22,17 +22,13 @@
 #include "curves/digitized_curve.hpp"
 #include "curves/profiles.hpp"
 #include "revolution/revolve.hpp"
+#include "bench/bench_timing.hpp"
 
 using namespace sculpt;
 using Clock = std::chrono::steady_clock;
+using bench::cpu_ms;
 
 namespace {
-
-double cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
 
 const std::string kModels = SCULPT_MODELS_DIR;
 

@@ -21,36 +21,14 @@
 #include "render/png_image.hpp"
 #include "bsp/convex_path.hpp"
 #include "revolution/revolve.hpp"
+#include "bench/bench_timing.hpp"
 
 using namespace sculpt;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-struct Timing {
-  double cpu = 0, wall = 0;
-};
-
-/// Medians over `runs` of the thread CPU and wall times (ms) of f.
-Timing median(int runs, const std::function<void()>& f) {
-  std::vector<double> c, w;
-  for (int i = 0; i < runs; ++i) {
-    const double c0 = cpu_ms();
-    const auto w0 = Clock::now();
-    f();
-    c.push_back(cpu_ms() - c0);
-    w.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count());
-  }
-  std::sort(c.begin(), c.end());
-  std::sort(w.begin(), w.end());
-  return {c[c.size() / 2], w[w.size() / 2]};
-}
+using bench::median_ms;
+using bench::Timing;
 
 std::vector<Eigen::Vector2d> load(const std::string& path) { return curves::planar_points(curves::load_curve(path).points); }
 
@@ -64,14 +42,14 @@ int main(int argc, char** argv) {
 
   const ConvexPath path = circular_path(32);
   Solid goblet;
-  const Timing build = median(runs, [&] {
+  const Timing build = median_ms(runs, [&] {
     const Solid outer = revolution::revolve(load(models + "/goblet_profile_20.txt"), path);
     const Solid cavity = revolution::revolve(load(models + "/goblet_cavity_profile_12.txt"), path);
     const Solid ball = revolution::revolve(load(models + "/ball_profile_16.txt"), path);
     goblet = (outer - cavity) | ball;
   });
   PolygonMesh mesh;
-  const Timing extract = median(runs, [&] { mesh = to_mesh(goblet); });
+  const Timing extract = median_ms(runs, [&] { mesh = to_mesh(goblet); });
   std::printf("goblet: %zu boundary faces, %zu vertices\n", mesh.faces.size(), mesh.vertices.size());
 
   std::printf("%-34s %10s %10s\n", "stage (1024 x 1024 unless said)", "cpu ms", "wall ms");
@@ -80,7 +58,7 @@ int main(int argc, char** argv) {
   render::Image image;
   for (int side : {512, 1024, 2048}) {
     const render::PictureOptions options{.width = side, .height = side};
-    const Timing picture = median(runs, [&] { image = render::render_meshes({mesh}, options); });
+    const Timing picture = median_ms(runs, [&] { image = render::render_meshes({mesh}, options); });
     char label[64];
     std::snprintf(label, sizeof label, "picture %d x %d", side, side);
     std::printf("%-34s %10.2f %10.2f\n", label, picture.cpu, picture.wall);
@@ -88,21 +66,21 @@ int main(int argc, char** argv) {
   const render::PictureOptions options{.width = 1024, .height = 1024};
   image = render::render_meshes({mesh}, options);
   std::string png;
-  const Timing encode = median(runs, [&] { png = render::encode_png(image); });
+  const Timing encode = median_ms(runs, [&] { png = render::encode_png(image); });
   std::printf("%-34s %10.2f %10.2f   (%zu bytes)\n", "encode_png", encode.cpu, encode.wall, png.size());
-  const Timing encode_fast = median(runs, [&] { png = render::encode_png(image, {.fast = true}); });
+  const Timing encode_fast = median_ms(runs, [&] { png = render::encode_png(image, {.fast = true}); });
   std::printf("%-34s %10.2f %10.2f   (%zu bytes)\n", "encode_png fast (as :show)", encode_fast.cpu, encode_fast.wall,
               png.size());
   std::filesystem::create_directories(out);
-  const Timing whole = median(runs, [&] {
+  const Timing whole = median_ms(runs, [&] {
     // What render(goblet, "file.png", size=[1024, 1024]) does on a fresh solid value.
     render::write_png(render::render_meshes({to_mesh(goblet)}, options), out + "/goblet_1024.png");
   });
-  const Timing write = median(runs, [&] { render::write_png(image, out + "/goblet_1024.png"); });
+  const Timing write = median_ms(runs, [&] { render::write_png(image, out + "/goblet_1024.png"); });
   std::printf("%-34s %10.2f %10.2f\n", "write_png (encode, fsync, rename)", write.cpu, write.wall);
   std::printf("%-34s %10.2f %10.2f   target <= 100 ms: %s\n", "render(goblet) total", whole.cpu, whole.wall,
               whole.cpu <= 100 ? "met" : "MISSED");
-  const Timing whole_fast = median(runs, [&] {
+  const Timing whole_fast = median_ms(runs, [&] {
     render::write_png(render::render_meshes({to_mesh(goblet)}, options), out + "/goblet_1024.png", {.fast = true});
   });
   std::printf("%-34s %10.2f %10.2f\n", "the same, fast PNG (as :show)", whole_fast.cpu, whole_fast.wall);
