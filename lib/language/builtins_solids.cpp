@@ -13,6 +13,7 @@
 #include "language/builtins.hpp"
 #include "language/curve_values.hpp"
 #include "language/solid_values.hpp"
+#include "language/spline_values.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
 #include "kernel/grid.hpp"
@@ -24,6 +25,7 @@
 #include "bsp/sweep.hpp"
 #include "curves/linearization.hpp"
 #include "curves/linearize.hpp"
+#include "splines/foot_point.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -35,18 +37,30 @@ Eigen::Vector3d vector3(const Arguments& args, std::size_t i) {
 
 const Solid& solid_arg(const Arguments& args, std::size_t i) { return args.object<SolidValue>(i, "a solid").solid; }
 
-/// A stroke's path (argument i): a linearization's vertices, or a curve or list of points, linearized
-/// with the fewest segments within tol=e (argument `tol`) when it is given, else taken as it is.
+/// A stroke's path (argument i): a linearization's vertices, or a curve, a spline (sampled at 32
+/// points per control point) or a list of points, linearized with the fewest segments within
+/// tol=e (argument `tol`) when it is given, else taken as it is. A closed path returns to its start.
 std::vector<Eigen::Vector3d> path_arg(const Arguments& args, std::size_t i, std::size_t tol) {
   if (const auto* la = args.value(i).object<LinearizationValue>())
     return curves::linearization_points(la->curve->curve, la->result);
   curves::DigitizedCurve c;
-  if (const auto* cv = args.value(i).object<CurveValue>()) c = cv->curve;
-  else if (args.value(i).list()) c = curve_from_points(args, i);
-  else args.fail_type(i, "a curve, a linearization or a list of points");
+  if (const auto* cv = args.value(i).object<CurveValue>()) {
+    c = cv->curve;
+  } else if (const auto* sv = args.value(i).object<SplineValue>()) {
+    c.points = splines::sample(sv->spline, std::max(256, 32 * sv->spline.control_count()));
+    c.dimension = sv->spline.dimension();
+    c.closed = sv->spline.closed();
+  } else if (args.value(i).list()) {
+    c = curve_from_points(args, i);
+  } else {
+    args.fail_type(i, "a curve, a spline, a linearization or a list of points");
+  }
   if (c.points.empty()) args.fail(i, "the path has no points");
-  if (!args.has(tol) || c.points.size() < 3) return c.points;
-  return curves::linearization_points(c, curves::linearize(c, {.tolerance = args.number(tol)}));
+  std::vector<Eigen::Vector3d> path = c.points;
+  if (args.has(tol) && c.points.size() >= 3)
+    path = curves::linearization_points(c, curves::linearize(c, {.tolerance = args.number(tol)}));
+  if (c.closed && path.back() != path.front()) path.push_back(path.front());
+  return path;
 }
 
 /// sweep, carve and add: the tool moved along a path (bsp/sweep.hpp).
@@ -251,10 +265,10 @@ void register_solids(BuiltinTable& table) {
              }});
   table.add({.name = "sweep",
              .signature = "sweep(tool, path, tol=e)",
-             .doc = "The volume swept by solid `tool` moved along `path` (a curve, a linearization or a "
-                    "list of points; a curve or list is first linearized with the fewest segments within "
-                    "tol=e when tol is given): the union of the hulls of the tool's convex pieces at the ends "
-                    "of each segment.",
+             .doc = "The volume swept by solid `tool` moved along `path` (a curve, a spline, a linearization "
+                    "or a list of points; all but a linearization are first linearized with the fewest segments "
+                    "within tol=e when tol is given): the union of the hulls of the tool's convex pieces at the "
+                    "ends of each segment.",
              .params = {{"tool"}, {"path"}, {"tol", false}},
              .run = [](const Arguments& args) -> Value {
                const auto path = path_arg(args, 1, 2);

@@ -307,6 +307,16 @@ TEST(Builtins, SweepCarveAndAddAlongPaths) {
   ASSERT_EQ(w.size(), 2u);
   EXPECT_NEAR(w[0], w[1], 0.01 * w[1]);
   EXPECT_NE(first_error_line("sweep(box([0,0,0],[1,1,1]), [])").find("the path has no points"), std::string::npos);
+  // A straight spline path (a Bezier curve with collinear controls) gives the box's exact sweep;
+  // a closed spline (a periodic cubic around a square) comes back to its start: the sweep is a ring.
+  const auto s = numbers(
+      "b = box([0,0,0],[1,1,1])\n"
+      "print(volume(sweep(b, bezier([[0,0,0],[1,0,0],[3,0,0]]), tol=0.001)), "
+      "volume(sweep(b, bspline([[0,0,0],[4,0,0],[4,4,0],[0,4,0]], closed=true), tol=0.01)))");
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0], 4.0);
+  EXPECT_GT(s[1], 4 * 2.0);  // a closed loop of the unit box around a curve of length > 8
+  EXPECT_LT(s[1], 5.0 * 5.0);
 }
 
 TEST(Builtins, ExtrudeMirrorAndTransform) {
