@@ -15,11 +15,13 @@
 #include "mesh/mesh_measures.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "support/cgal_mesh_check.hpp"
+#include "support/point_triangle.hpp"
 
 namespace sculpt::implicit {
 namespace {
 
 using Vec = Eigen::Vector3d;
+using test_support::point_triangle_distance;
 constexpr double kPi = std::numbers::pi;
 
 Expression sphere(const Vec& c, double r) {
@@ -45,28 +47,6 @@ Vec torus_point(double u, double v, double R, double r) {
   return {(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)};
 }
 
-double point_triangle_distance(const Vec& p, const Vec& a, const Vec& b, const Vec& c) {
-  // Ericson, Real-Time Collision Detection, 5.1.5 (closest point on a triangle)
-  const Vec ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
-  const Vec bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).norm();
-  const Vec cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
-}
 
 /// Distance from points to a triangle mesh, by a uniform grid of triangle boxes; only distances
 /// up to `reach` are exact (farther ones come back as at least `reach`).

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "implicit/polygonize.hpp"
+#include "support/point_triangle.hpp"
 
 using namespace sculpt;
 using namespace sculpt::implicit;
@@ -52,25 +53,6 @@ double cpu_ms() {
 
 // ---- the error, both ways ------------------------------------------------------------------
 
-double point_triangle(const Vec& p, const Vec& a, const Vec& b, const Vec& c) {
-  const Vec ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
-  const Vec bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).norm();
-  const Vec cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
-}
 
 struct Error {
   double to_surface = 0, to_mesh = 0;
@@ -112,7 +94,7 @@ Error measure(const PolygonMesh& m) {
             if (it == grid.end()) continue;
             for (int t : it->second) {
               const auto& f = m.faces[t];
-              best = std::min(best, point_triangle(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]));
+              best = std::min(best, test_support::point_triangle_distance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]));
             }
           }
       e.to_mesh = std::max(e.to_mesh, best);
