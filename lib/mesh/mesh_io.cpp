@@ -123,7 +123,8 @@ MeshFormat mesh_format_from_path(const fs::path& path) {
   if (ext == ".obj") return MeshFormat::Obj;
   if (ext == ".stl") return MeshFormat::Stl;
   if (ext == ".ply") return MeshFormat::Ply;
-  throw IoError(path.string(), "unknown mesh format '" + ext + "' (use .off, .obj, .stl or .ply)");
+  if (ext == ".om") return MeshFormat::Om;
+  throw IoError(path.string(), "unknown mesh format '" + ext + "' (use .off, .obj, .stl, .ply or .om)");
 }
 
 std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary) {
@@ -133,6 +134,7 @@ std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary)
     case MeshFormat::Obj: return mesh::detail::encode_obj(mesh);
     case MeshFormat::Stl: return mesh::detail::encode_stl(mesh, binary);
     case MeshFormat::Ply: return mesh::detail::encode_ply(mesh, binary);
+    case MeshFormat::Om: return mesh::detail::encode_om(mesh);
     case MeshFormat::Auto: break;
   }
   throw InvalidInput("encode_mesh: the format must be given (not Auto)");
@@ -144,6 +146,7 @@ PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::str
     case MeshFormat::Obj: return mesh::detail::decode_obj(data, name);
     case MeshFormat::Stl: return mesh::detail::decode_stl(data, name);
     case MeshFormat::Ply: return mesh::detail::decode_ply(data, name);
+    case MeshFormat::Om: return mesh::detail::decode_om(data, name);
     case MeshFormat::Auto: break;
   }
   throw InvalidInput("decode_mesh: the format must be given (not Auto)");

@@ -319,6 +319,21 @@ TEST(Builtins, SweepCarveAndAddAlongPaths) {
   EXPECT_LT(s[1], 5.0 * 5.0);
 }
 
+TEST(Builtins, ExportAndImportOpenMeshFormat) {
+  // The same doubles through .om (OpenMesh) and .off (ours, shortest round-trip decimals): the
+  // imported solids are the same (import snaps both to the grid the same way).
+  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  std::filesystem::create_directories(dir);
+  const std::string om = (dir / "part.om").string(), off = (dir / "part.off").string();
+  const auto v = numbers("s = sphere(1, segments=12) - box([0,0,0],[2,2,2])\nexport(s, \"" + om + "\")\nexport(s, \"" + off +
+                         "\")\na = import(\"" + om + "\")\nb = import(\"" + off +
+                         "\")\nprint(volume(a), volume(b), volume(a - b) + volume(b - a), volume(s))");
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_EQ(v[0], v[1]);
+  EXPECT_EQ(v[2], 0.0);
+  EXPECT_NEAR(v[0], v[3], 1e-4);  // the grid snapping on import
+}
+
 TEST(Builtins, ExtrudeMirrorAndTransform) {
   const auto v = numbers(
       "u = [[0,0],[3,0],[3,3],[2,3],[2,1],[1,1],[1,3],[0,3]]\n"

@@ -93,17 +93,40 @@ TEST_P(RoundTrip, CubeKeepsVolumeAndTopology) {
 
 INSTANTIATE_TEST_SUITE_P(Formats, PolygonRoundTrip,
                          ::testing::Values(Case{".off", false}, Case{".obj", false}, Case{".ply", false},
-                                           Case{".ply", true}),
+                                           Case{".ply", true}, Case{".om", false}),
                          [](const auto& param_info) {
                            return std::string(param_info.param.ext + 1) + (param_info.param.binary ? "_binary" : "_ascii");
                          });
 
 INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip,
                          ::testing::Values(Case{".off", false}, Case{".obj", false}, Case{".ply", false},
-                                           Case{".ply", true}, Case{".stl", false}, Case{".stl", true}),
+                                           Case{".ply", true}, Case{".stl", false}, Case{".stl", true},
+                                           Case{".om", false}),
                          [](const auto& param_info) {
                            return std::string(param_info.param.ext + 1) + (param_info.param.binary ? "_binary" : "_ascii");
                          });
+
+TEST(OmFormat, TruncatedOrForeignDataIsAnErrorOrAMeshNeverACrash) {
+  // OpenMesh's reader is not ours: feed it every prefix of a valid file and some foreign bytes.
+  const std::string om = encode_mesh(test_shapes::uv_sphere(8), MeshFormat::Om);
+  int errors = 0;
+  for (std::size_t n = 0; n < om.size(); ++n) {
+    try {
+      (void)decode_mesh(std::string_view(om).substr(0, n), MeshFormat::Om, "cut.om");
+    } catch (const IoError&) {
+      ++errors;
+    }
+  }
+  EXPECT_GT(errors, 0);
+  EXPECT_THROW((void)decode_mesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Om, "off.om"), IoError);
+}
+
+TEST(OmFormat, ANonManifoldFaceIsRefusedNotDropped) {
+  PolygonMesh fin = test_shapes::unit_cube();
+  fin.vertices.emplace_back(0.5, -1, 0.5);
+  fin.faces.push_back({0, 1, static_cast<int>(fin.vertices.size()) - 1});  // a third face on edge 0-1
+  EXPECT_THROW((void)encode_mesh(fin, MeshFormat::Om), InvalidInput);
+}
 
 TEST(StlRoundTrip, AsciiKeepsDoublesAndMergesCornersExactly) {
   // Planar faces, so that triangulation keeps them all: subnormal, tiny, negative zero.

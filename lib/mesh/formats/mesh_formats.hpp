@@ -14,10 +14,13 @@ std::string encode_off(const PolygonMesh& mesh);
 std::string encode_obj(const PolygonMesh& mesh);
 std::string encode_stl(const PolygonMesh& mesh, bool binary);
 std::string encode_ply(const PolygonMesh& mesh, bool binary);
+/// OpenMesh's .om through OpenMesh, points as doubles. \throw InvalidInput for a non-manifold face.
+std::string encode_om(const PolygonMesh& mesh);
 
 PolygonMesh decode_off(std::string_view data, const std::string& name);
 PolygonMesh decode_obj(std::string_view data, const std::string& name);
 PolygonMesh decode_stl(std::string_view data, const std::string& name);
 PolygonMesh decode_ply(std::string_view data, const std::string& name);
+PolygonMesh decode_om(std::string_view data, const std::string& name);
 
 }  // namespace sculpt::mesh::detail
