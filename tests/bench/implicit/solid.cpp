@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "implicit/polygonize.hpp"
+#include "bench/bench_timing.hpp"
 #include "support/point_triangle.hpp"
 
 using namespace sculpt;
@@ -45,14 +46,7 @@ Expression torus() {
 
 double torus_distance(const Vec& p) { return std::abs(std::hypot(std::hypot(p.x(), p.y()) - kR, p.z()) - kr); }
 
-double cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
-
 // ---- the error, both ways ------------------------------------------------------------------
-
 
 struct Error {
   double to_surface = 0, to_mesh = 0;
@@ -211,17 +205,8 @@ PolygonMesh marching_cubes(double h, bool roots, const Expression* compiled = nu
   return mesh;
 }
 
-template <class F>
-double median_cpu_ms(F&& run, int runs = 5) {
-  std::vector<double> ms;
-  for (int r = 0; r < runs; ++r) {
-    const double t0 = cpu_ms();
-    run();
-    ms.push_back(cpu_ms() - t0);
-  }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
-}
+/// Median thread CPU time of 5 runs (tests/bench/bench_timing.hpp).
+double median_cpu_ms(const std::function<void()>& run) { return bench::median_ms(5, run).cpu; }
 
 /// The coarsest grid (cells h = 3 / n) whose measured error is at most kTol.
 double coarsest_within(bool roots, PolygonMesh& mesh, Error& error) {
