@@ -334,6 +334,23 @@ TEST(Builtins, ExportAndImportOpenMeshFormat) {
   EXPECT_NEAR(v[0], v[3], 1e-4);  // the grid snapping on import
 }
 
+TEST(Builtins, ABallSweptAlongACircleIsATorusWithinTheLinearizationBound) {
+  // A ball polytope (radius r, its faces at least r cos^2(pi/16) from the centre) swept along a
+  // circle of radius R linearized within tol: every polyline point is within tol of the circle, so
+  // the sweep lies between the tori of tube radius 0.96 r - tol and r + tol (2 pi^2 R rho^2).
+  const double R = 2, r = 0.5, tol = 0.01;
+  const auto v = numbers(
+      "pts = []\nfor i in range(0, 400) { t = 2 * 3.141592653589793 * i / 400\n pts = append(pts, [2 * cos(t), 2 * sin(t), 0]) }\n"
+      "path = linearize(curve(pts, closed=true), tol=0.01)\n"
+      "print(volume(sweep(sphere(0.5, segments=16), path)), len(points(path)))");
+  ASSERT_EQ(v.size(), 2u);
+  const double torus = 2 * std::numbers::pi * std::numbers::pi * R;
+  const double inner = r * std::cos(std::numbers::pi / 16) * std::cos(std::numbers::pi / 16) - tol;
+  EXPECT_GT(v[0], torus * inner * inner);
+  EXPECT_LT(v[0], torus * (r + tol) * (r + tol));
+  EXPECT_LT(v[1], 60);  // the fewest segments within tol: far fewer than the 400 samples
+}
+
 TEST(Builtins, ExtrudeMirrorAndTransform) {
   const auto v = numbers(
       "u = [[0,0],[3,0],[3,3],[2,3],[2,1],[1,1],[1,3],[0,3]]\n"
