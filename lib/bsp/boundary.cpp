@@ -3,6 +3,7 @@
 #include "bsp/tree/boundary_fragments.hpp"
 #include "bsp/assembly/mesh_assembly.hpp"
 #include "mesh/mesh_measures.hpp"
+#include "mesh/output_rounding.hpp"
 
 namespace sculpt {
 
@@ -11,12 +12,14 @@ PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
   // A carried boundary (set operation results) is used as is; otherwise it is extracted.
   bsp::detail::Fragments f = solid.has_boundary() ? bsp::detail::Fragments{solid.planes(), solid.boundary()}
                                              : bsp::detail::boundary_fragments(solid);
-  return bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate, .grid = solid.grid()});
+  PolygonMesh exact = bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate, .grid = solid.grid()});
+  if (!options.clean) return exact;
+  return round_for_output(exact, {.precision = OutputPrecision::Double, .max_feature = solid.grid().step()});
 }
 
 // Measures of the assembled mesh: one implementation (compensated sums) for meshes and solids.
-double volume(const Solid& solid) { return mesh_volume(to_mesh(solid)); }
-double surface_area(const Solid& solid) { return mesh_surface_area(to_mesh(solid)); }
-Eigen::AlignedBox3d bounding_box(const Solid& solid) { return mesh_bounding_box(to_mesh(solid)); }
+double volume(const Solid& solid) { return mesh_volume(to_mesh(solid, {.clean = false})); }
+double surface_area(const Solid& solid) { return mesh_surface_area(to_mesh(solid, {.clean = false})); }
+Eigen::AlignedBox3d bounding_box(const Solid& solid) { return mesh_bounding_box(to_mesh(solid, {.clean = false})); }
 
 }  // namespace sculpt

@@ -16,6 +16,11 @@ namespace sculpt {
 
 struct MeshOptions {
   bool triangulate = false;  ///< fan-triangulate the convex faces (no zero-area triangles)
+  /// Round for other tools (mesh/output_rounding.hpp): no two vertices at one point, no zero-area
+  /// face, no self-intersection in doubles; features below the solid's grid step may be collapsed
+  /// (docs/kernel.md, "Clean output"). false: the exact boundary, each vertex correctly rounded,
+  /// copies of a vertex where the solid touches itself included.
+  bool clean = true;
 };
 
 /// Closed, consistently oriented (counter-clockwise from outside) mesh of the solid's boundary,

@@ -244,7 +244,7 @@ Solid hull(std::span<const Solid> solids) {
   for (const Solid& s : solids) {
     (void)common_grid(common, s);  // GridMismatch for a second grid
     if (!is_leaf(s.root())) common = s;
-    const PolygonMesh m = to_mesh(s);
+    const PolygonMesh m = to_mesh(s, {.clean = false});
     points.insert(points.end(), m.vertices.begin(), m.vertices.end());
   }
   return hull(points, common.grid());

@@ -18,7 +18,7 @@ namespace {
 /// vertices to the grid can (curved primitives' vertices are plane intersections, not grid
 /// points): at most its area times sqrt(3)/2 grid steps.
 std::vector<std::vector<Eigen::Vector3d>> convex_pieces(const Solid& tool) {
-  const std::vector<Eigen::Vector3d> vertices = to_mesh(tool).vertices;
+  const std::vector<Eigen::Vector3d> vertices = to_mesh(tool, {.clean = false}).vertices;
   if (vertices.empty()) return {};
   const Solid h = hull(vertices, tool.grid());
   // The tool lies in its hull up to that rounding, so the volumes alone tell (no set operation).

@@ -11,6 +11,7 @@
 #include "bsp/tree/solid_access.hpp"
 #include "bsp/tree_builder.hpp"
 #include "mesh/mesh_measures.hpp"
+#include "mesh/output_rounding.hpp"
 #include "mesh/triangulate.hpp"
 
 namespace sculpt {
@@ -115,14 +116,24 @@ Solid map_planes_approximately(const Solid& solid, const Eigen::Matrix3d& m, con
 // when the solid is unbounded (its mesh reaches past the world range) or when snapping would
 // fold a face or make faces cross (features below the grid step); faces that snapping flattens
 // to a line are left out.
+/// Largest feature (in grid steps) that the boundary route may collapse after snapping.
+constexpr double kSnapFeatureSteps = 4;
+
 std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map) {
   const kernel::Grid& grid = solid.grid();
-  PolygonMesh mesh = to_mesh(solid);
+  PolygonMesh mesh = to_mesh(solid, {.clean = false});
   for (const Eigen::Vector3d& v : mesh.vertices)
     if (v.cwiseAbs().maxCoeff() > grid.max_world()) return std::nullopt;
   for (Eigen::Vector3d& v : mesh.vertices) v = grid.to_world(grid.snap(map * v));
   if (map.linear().determinant() < 0)
     for (auto& f : mesh.faces) std::reverse(f.begin(), f.end());
+  // Snapping can fold faces, make them cross or collapse them below the grid step: features
+  // below a few grid steps are collapsed (mesh/output_rounding.hpp) so that the snapped surface
+  // bounds a solid again. Copies of a vertex where the solid touches itself stay.
+  OutputRoundingReport rounding;
+  mesh = round_for_output(mesh, {.precision = OutputPrecision::Grid, .max_feature = kSnapFeatureSteps * grid.step(),
+                                 .triangles = true, .grid_step = grid.step(), .keep_copies = true}, &rounding);
+  if (!rounding.clean) return std::nullopt;
   std::optional<Solid> result;
   try {
     result = from_mesh(mesh, {.skip_degenerate_faces = true, .grid = grid});
@@ -134,7 +145,7 @@ std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map
   // Snapping can also make two nearly touching faces cross; from_mesh's precondition (no
   // self-intersection) then fails and the tree bounds some other set. The solid bounded by a
   // closed surface without self-intersections has that surface's volume and bounding box.
-  const PolygonMesh built = to_mesh(*result);
+  const PolygonMesh built = to_mesh(*result, {.clean = false});
   // (A face whose snapped corners are not coplanar is triangulated by from_mesh as by triangulate.)
   const double v = mesh_volume(triangulate(mesh)), w = mesh_volume(built);
   const Eigen::AlignedBox3d expected = mesh_bounding_box(mesh), got = mesh_bounding_box(built);

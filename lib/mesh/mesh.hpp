@@ -7,6 +7,7 @@
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
 #include "mesh/mesh_validation.hpp"
+#include "mesh/output_rounding.hpp"
 #include "mesh/polygon_mesh.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/self_intersection.hpp"

@@ -62,7 +62,7 @@ class Validator {
   ValidationReport run() {
     if (!check_indices() || !check_coordinates()) return std::move(report_);
     check_degenerate_faces();
-    check_face_shapes();
+    if (opt_.check_face_shapes) check_face_shapes();
     check_edges_and_vertices();
     if (opt_.check_self_intersections) check_self_intersections();
     if (opt_.check_shell_orientation && report_.ok()) check_shell_orientation();

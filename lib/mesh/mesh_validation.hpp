@@ -46,6 +46,9 @@ struct ValidationReport {
 
 struct ValidationOptions {
   bool check_self_intersections = true;
+  /// Planarity and self-crossing boundaries of faces with more than three corners (quadratic in a
+  /// face's corner count).
+  bool check_face_shapes = true;
   /// Each shell must face the way its nesting asks (shell_orientation.hpp); checked only when
   /// the mesh passed every other check, since nesting needs a closed, unintersecting surface.
   bool check_shell_orientation = true;

@@ -130,7 +130,25 @@ int projection_axis(const PolygonMesh& mesh, const std::vector<int>& face) {
   return normal[axis] == 0 ? -1 : axis;
 }
 
+Tri make_tri(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
+  Tri t;
+  t.canon = ids;
+  t.p = p;
+  t.axis = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    if (orient2d(drop(p[0], axis), drop(p[1], axis), drop(p[2], axis)) != 0) {
+      t.axis = axis;
+      break;
+    }
+  return t;
+}
+
 }  // namespace
+
+bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Vector3d, 3>& a,
+                    const std::array<int, 3>& ids_b, const std::array<Vector3d, 3>& b) {
+  return triangles_conflict(make_tri(ids_a, a), make_tri(ids_b, b));
+}
 
 std::vector<int> find_self_crossing_faces(const PolygonMesh& mesh, size_t max_faces) {
   std::vector<int> out;
@@ -153,8 +171,12 @@ std::vector<int> find_self_crossing_faces(const PolygonMesh& mesh, size_t max_fa
   return out;
 }
 
-std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
-                                              SelfIntersectionOptions options) {
+std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh, SelfIntersectionOptions options) {
+  return search_self_intersections(mesh, options).pairs;
+}
+
+SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIntersectionOptions options) {
+  SelfIntersectionSearch result;
   // Canonical ids: vertices with equal coordinates get the same id.
   const size_t nv = mesh.vertices.size();
   std::vector<int> order(nv);
@@ -191,14 +213,23 @@ std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
             [](const Tri& a, const Tri& b) { return a.box.min().x() < b.box.min().x(); });
 
   std::set<std::pair<int, int>> found;
-  for (size_t i = 0; i < tris.size() && found.size() < options.max_pairs; ++i) {
+  size_t candidates = 0, scanned = 0;
+  for (size_t i = 0; i < tris.size() && found.size() < options.max_pairs && result.complete; ++i) {
     const Tri& s = tris[i];
     for (size_t j = i + 1; j < tris.size() && tris[j].box.min().x() <= s.box.max().x(); ++j) {
+      if (++scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
+        result.complete = false;
+        break;
+      }
       const Tri& t = tris[j];
       if (s.face == t.face) continue;
       if (t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
           t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())
         continue;
+      if (++candidates > options.max_candidates) {
+        result.complete = false;
+        break;
+      }
       const auto key = std::minmax(s.face, t.face);
       if (found.count(key)) continue;
       if (triangles_conflict(s, t)) {
@@ -207,9 +238,8 @@ std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
       }
     }
   }
-  std::vector<FacePair> out;
-  for (auto [a, b] : found) out.push_back({a, b});
-  return out;
+  for (auto [a, b] : found) result.pairs.push_back({a, b});
+  return result;
 }
 
 }  // namespace sculpt

@@ -6,7 +6,9 @@
 /// Vertices at the same position count as the same vertex, so faces that meet at a
 /// duplicated vertex (a solid touching itself at an edge or a corner) are not reported.
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "mesh/polygon_mesh.hpp"
@@ -21,7 +23,20 @@ struct FacePair {
 
 struct SelfIntersectionOptions {
   size_t max_pairs = 100;  ///< stop after this many pairs were found
+  /// Stop after this many candidate pairs (overlapping boxes) were examined, or 64 times as many
+  /// pairs were scanned; the search is then incomplete. Long fan triangles of faces with thousands of corners can make the candidates
+  /// quadratic in number.
+  size_t max_candidates = SIZE_MAX;
 };
+
+/// The pairs found, and whether the search looked at every candidate.
+struct SelfIntersectionSearch {
+  std::vector<FacePair> pairs;
+  bool complete = true;
+};
+
+/// find_self_intersections with its budget reported.
+SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIntersectionOptions options = {});
 
 /// Pairs of faces (face_a < face_b) whose closed point sets meet other than along what they
 /// share: crossing, touching, overlapping coplanar faces, or the same triangle twice.
@@ -29,6 +44,12 @@ struct SelfIntersectionOptions {
 /// \pre face indices are valid (see check_face_indices).
 std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
                                               SelfIntersectionOptions options = {});
+
+/// Two triangles meet beyond the corners they share and the edge they share: corners are the
+/// same when their ids are equal (ids_a, ids_b). Decided exactly; neither may be degenerate
+/// (collinear corners).
+bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Eigen::Vector3d, 3>& a,
+                    const std::array<int, 3>& ids_b, const std::array<Eigen::Vector3d, 3>& b);
 
 /// Faces with more than three corners whose boundary crosses or touches itself (two edges that
 /// are not neighbours meet), decided exactly in the projection on the coordinate plane where the

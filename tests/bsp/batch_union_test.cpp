@@ -23,7 +23,7 @@ namespace {
 using checks::EdgesManifoldAndOriented;
 using checks::GenusIs;
 
-double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s))); }
+double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s, {.clean = false}))); }
 
 Solid pairwise(const std::vector<Solid>& solids) {
   Solid acc;

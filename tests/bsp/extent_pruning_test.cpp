@@ -25,7 +25,7 @@ using bsp::detail::fragment_box;
 using checks::EdgesManifoldAndOriented;
 using kernel::Side;
 
-double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s))); }
+double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s, {.clean = false}))); }
 
 // A's sides of every plane of B (both in one arena, as a set operation has them).
 struct Sides {

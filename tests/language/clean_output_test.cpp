@@ -98,8 +98,9 @@ TEST(CleanOutput, TransformedPrimitivesAreCleanInEveryFormat) {
 }
 
 // The random cases: every result must have manifold-3d's volume (within what snapping moves) and
-// a mesh whose volume is volume(); how many meshes CGAL finds clean in every format is reported
-// (issue 14: not all are yet, see the issue's notes); at least 75 % must be (78 % on the 300 stored cases).
+// a mesh whose volume is volume() within what output rounding may move; how many meshes CGAL finds
+// clean in every format is reported (issue 14: not all are yet, see the issue's notes); at least
+// 97 % must be (240 of 242 on the 300 stored cases since output rounding, 78 % before).
 TEST(CleanOutput, RandomSetOperationsOverTransformedPrimitives) {
   const char* env = std::getenv("SCULPT_CSG_CASES");
   const std::string path = env != nullptr ? env : std::string(SCULPT_MODELS_DIR) + "/fuzz/csg_cases.txt";
@@ -124,7 +125,10 @@ TEST(CleanOutput, RandomSetOperationsOverTransformedPrimitives) {
     const double v = volume(solid->solid);
     const double tolerance = (1 + transform_levels(c.expr)) * c.area * kernel::kGridStep + 1e-12;
     EXPECT_NEAR(v, c.volume, tolerance) << "manifold-3d's volume";
-    EXPECT_NEAR(mesh_volume(mesh), v, 1e-9 * std::max(1.0, v)) << "mesh volume vs volume()";
+    // The written mesh may collapse features below the grid step (every vertex moves less than one
+    // step: docs/kernel.md, "Clean output"), so its volume is volume() within area x step.
+    EXPECT_NEAR(mesh_volume(mesh), v, mesh_surface_area(mesh) * kernel::kGridStep + 1e-9 * std::max(1.0, v))
+        << "mesh volume vs volume()";
     if (mesh.faces.empty()) {
       ++empty;
       continue;
@@ -149,7 +153,7 @@ TEST(CleanOutput, RandomSetOperationsOverTransformedPrimitives) {
   std::cout << "[ info ] " << clean << " of " << checked << " non-empty results clean in all 5 formats (" << empty
             << " empty, " << cases.size() << " cases, " << path << ")\n";
   for (const auto& [kind, n] : problems) std::cout << "[ info ]   " << n << " x " << kind << "\n";
-  EXPECT_GE(clean, 0.75 * checked);
+  EXPECT_GE(clean, 0.97 * checked);
 }
 }  // namespace
 }  // namespace sculpt::language

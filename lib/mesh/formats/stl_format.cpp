@@ -10,6 +10,7 @@
 
 #include "mesh/formats/mesh_formats.hpp"
 #include "mesh/formats/text_scanner.hpp"
+#include "mesh/output_rounding.hpp"
 #include "mesh/triangulate.hpp"
 
 namespace sculpt::mesh::detail {
@@ -115,7 +116,10 @@ PolygonMesh decode_ascii(std::string_view data, const std::string& name) {
 
 }  // namespace
 
-std::string encode_stl(const PolygonMesh& mesh, bool binary) {
+std::string encode_stl(const PolygonMesh& given, bool binary) {
+  // STL holds triangles, binary STL float32: a closed mesh is rounded so that it stays clean.
+  const PolygonMesh mesh = round_for_output(
+      given, {.precision = binary ? OutputPrecision::Float32 : OutputPrecision::Double, .triangles = true});
   const std::vector<IndexTriangle> tris = all_triangles(mesh);
   std::string out;
   if (binary) {

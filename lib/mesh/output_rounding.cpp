@@ -1,0 +1,663 @@
+#include "mesh/output_rounding.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "base/errors.hpp"
+#include "mesh/mesh_validation.hpp"
+#include "mesh/predicates.hpp"
+#include "mesh/self_intersection.hpp"
+#include "mesh/triangulate.hpp"
+
+namespace sculpt {
+namespace {
+
+using Eigen::Vector3d;
+using Tri = std::array<int, 3>;
+
+/// Rounds coordinates to the numbers of the output.
+struct Rounder {
+  OutputPrecision precision = OutputPrecision::Double;
+  double step = 0;
+  explicit Rounder(const OutputRoundingOptions& o) : precision(o.precision), step(o.grid_step) {
+    if (precision == OutputPrecision::Grid && !(step > 0)) throw InvalidInput("round_for_output: grid_step must be positive");
+  }
+  double operator()(double x) const {
+    switch (precision) {
+      case OutputPrecision::Float32: {
+        // volatile: GCC 12's loop vectorizer at -O3 drops a float round trip inside a loop
+        // (seen in output_problem's rounding loop), leaving the double unrounded.
+        const volatile float f = static_cast<float>(x);
+        return static_cast<double>(f);
+      }
+      case OutputPrecision::Grid: return std::nearbyint(x / step) * step;
+      case OutputPrecision::Double: break;
+    }
+    return x;
+  }
+  Vector3d operator()(const Vector3d& v) const {
+    Vector3d out;
+    for (int k = 0; k < 3; ++k) out[k] = (*this)(v[k]);
+    return out;
+  }
+  /// The smallest distance rounding can tell apart near the largest coordinate of `points`.
+  double resolution(const std::vector<Vector3d>& points) const {
+    if (precision == OutputPrecision::Grid) return step;
+    double m = std::numeric_limits<double>::min();
+    for (const Vector3d& p : points) m = std::max(m, p.cwiseAbs().maxCoeff());
+    const int digits = precision == OutputPrecision::Float32 ? 24 : 53;
+    return std::ldexp(1.0, std::ilogb(m) + 1 - digits);
+  }
+};
+
+/// Exact: a, b, c on one line (all three coordinate projections have zero orientation).
+bool collinear(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    if (orient2d({a[u], a[v]}, {b[u], b[v]}, {c[u], c[v]}) != 0) return false;
+  }
+  return true;
+}
+
+/// The triangle mesh being cleaned: positions always representable in the target precision,
+/// per vertex the input points it stands for (to bound how far anything moves).
+class Cleaner {
+ public:
+  Cleaner(const PolygonMesh& mesh, const Rounder& round, double max_feature, bool keep_copies)
+      : round_(round), resolution_(round.resolution(mesh.vertices)), max_feature_(max_feature), keep_copies_(keep_copies) {
+    p_.reserve(mesh.vertices.size());
+    members_.resize(mesh.vertices.size());
+    for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+      p_.push_back(round_(mesh.vertices[i]));
+      members_[i].push_back(mesh.vertices[i]);
+    }
+    incident_.resize(p_.size());
+    // Cells of the spatial hash: about the mean edge length of the faces' corners.
+    double total = 0;
+    size_t edges = 0;
+    for (const auto& f : mesh.faces)
+      for (size_t k = 0; k < f.size(); ++k, ++edges) total += (mesh.vertices[f[k]] - mesh.vertices[f[(k + 1) % f.size()]]).norm();
+    cell_ = edges > 0 && total > 0 ? 2 * total / static_cast<double>(edges) : 1.0;
+    // Every face as n - 2 triangles: ear clipping where it covers the face, else a fan (a face
+    // of zero area after rounding keeps its edges; its zero-area triangles are removed below).
+    for (const auto& f : mesh.faces) {
+      std::vector<IndexTriangle> tris = triangulate_polygon(p_, f);
+      if (tris.size() + 2 != f.size()) {
+        tris.clear();
+        for (size_t k = 1; k + 1 < f.size(); ++k) tris.push_back({f[0], f[k], f[k + 1]});
+      }
+      for (const IndexTriangle& t : tris) add_triangle(t);
+    }
+  }
+
+  /// One round of local operations at feature size `delta`; true if anything changed.
+  bool sweep(double delta, OutputRoundingReport& report) {
+    bool changed = false;
+    // Copies of one point that no edge joins: move each but the first into its own sheet.
+    std::map<std::array<double, 3>, std::vector<int>> at;
+    for (size_t v = 0; v < p_.size(); ++v)
+      if (vertex_alive(static_cast<int>(v))) at[{p_[v].x(), p_[v].y(), p_[v].z()}].push_back(static_cast<int>(v));
+    for (auto& [point, copies] : at) {
+      if (keep_copies_) break;
+      for (size_t i = 1; i < copies.size(); ++i) {
+        const std::set<int> n = neighbours(copies[i]);
+        if (std::any_of(copies.begin(), copies.end(), [&](int c) { return n.count(c) != 0; })) continue;  // a zero-length edge
+        if (separate(copies[i], delta)) {
+          ++report.separated_vertices;
+          changed = true;
+        }
+      }
+    }
+    // Clusters of vertices joined by edges shorter than delta.
+    std::vector<int> parent(p_.size());
+    for (size_t v = 0; v < parent.size(); ++v) parent[v] = static_cast<int>(v);
+    auto find = [&](int v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    bool short_edges = false;
+    for (size_t t = 0; t < tris_.size(); ++t) {
+      if (!alive_[t]) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int a = tris_[t][k], b = tris_[t][(k + 1) % 3];
+        if ((p_[a] - p_[b]).norm() < delta) {
+          parent[find(a)] = find(b);
+          short_edges = true;
+        }
+      }
+    }
+    if (short_edges) {
+      std::map<int, std::vector<int>> clusters;
+      for (size_t v = 0; v < parent.size(); ++v)
+        if (vertex_alive(static_cast<int>(v))) clusters[find(static_cast<int>(v))].push_back(static_cast<int>(v));
+      for (const auto& [root, cluster] : clusters) {
+        if (cluster.size() < 2) continue;
+        bool alive = true;
+        for (int v : cluster) alive = alive && vertex_alive(v);
+        if (alive && collapse_cluster(cluster, delta, report)) changed = true;
+      }
+    }
+    // Slivers without a short edge (a corner close to the opposite edge): flip that edge.
+    for (size_t t = 0, count = tris_.size(); t < count; ++t) {
+      if (!alive_[t]) continue;
+      const Tri& tri = tris_[t];
+      int longest = 0;
+      double longest_length = -1;
+      for (int k = 0; k < 3; ++k) {
+        const double l = (p_[tri[(k + 1) % 3]] - p_[tri[k]]).norm();
+        if (l > longest_length) longest_length = l, longest = k;
+      }
+      const Vector3d n = normal(tri);
+      if (longest_length <= 0 || n.norm() / longest_length >= delta) continue;
+      if (flip(static_cast<int>(t), longest)) {
+        ++report.flipped_edges;
+        changed = true;
+      }
+    }
+    return changed;
+  }
+
+  PolygonMesh mesh() const {
+    PolygonMesh out;
+    std::vector<int> index(p_.size(), -1);
+    for (size_t t = 0; t < tris_.size(); ++t) {
+      if (!alive_[t]) continue;
+      std::vector<int> face;
+      for (int v : tris_[t]) {
+        if (index[v] < 0) {
+          index[v] = static_cast<int>(out.vertices.size());
+          out.vertices.push_back(p_[v]);
+        }
+        face.push_back(index[v]);
+      }
+      out.faces.push_back(std::move(face));
+    }
+    return out;
+  }
+
+  /// Farthest an input vertex is from the vertex standing for it.
+  double max_move() const {
+    double m = 0;
+    for (size_t v = 0; v < p_.size(); ++v)
+      if (vertex_alive(static_cast<int>(v)))
+        for (const Vector3d& q : members_[v]) m = std::max(m, (q - p_[v]).norm());
+    return m;
+  }
+
+ private:
+  void add_triangle(const Tri& t) {
+    const int id = static_cast<int>(tris_.size());
+    tris_.push_back(t);
+    alive_.push_back(true);
+    boxes_.emplace_back();
+    update_box(id);
+    for (int v : t) incident_[v].push_back(id);
+  }
+
+  void kill_triangle(int t) {
+    alive_[t] = false;
+    index(t, -1);
+    for (int v : tris_[t]) std::erase(incident_[v], t);
+  }
+
+  bool vertex_alive(int v) const { return !incident_[v].empty(); }
+
+  Vector3d normal(const Tri& t) const { return (p_[t[1]] - p_[t[0]]).cross(p_[t[2]] - p_[t[0]]); }
+
+  std::set<int> neighbours(int v) const {
+    std::set<int> n;
+    for (int t : incident_[v])
+      for (int w : tris_[t])
+        if (w != v) n.insert(w);
+    return n;
+  }
+
+  /// Pairs (triangle in `group`, live triangle outside `replaced`) that meet beyond what they
+  /// share, plus pairs within `group`; `group` holds corner ids with the current positions.
+  int meetings(const std::vector<Tri>& group, const std::vector<int>& replaced) const {
+    int count = 0;
+    for (size_t i = 0; i < group.size(); ++i) {
+      const Tri& a = group[i];
+      const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
+      if (collinear(pa[0], pa[1], pa[2])) continue;
+      Eigen::AlignedBox3d box;
+      for (const Vector3d& q : pa) box.extend(q);
+      for (int t : near(box)) {
+        if (!alive_[t] || !box.intersects(boxes_[t])) continue;
+        if (std::find(replaced.begin(), replaced.end(), t) != replaced.end()) continue;
+        const Tri& b = tris_[t];
+        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
+        if (collinear(pb[0], pb[1], pb[2])) continue;  // degenerate: removed later or reported
+        if (triangles_meet(a, pa, b, pb)) ++count;
+      }
+      for (size_t j = 0; j < i; ++j) {
+        const Tri& b = group[j];
+        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
+        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb)) ++count;
+      }
+    }
+    return count;
+  }
+
+  /// Replacing the triangles `replaced` by `added` (corners at the positions in `added_at`, which
+  /// differ from the current ones only for `moved`) would add meetings of triangles: more pairs
+  /// meet afterwards than before. Meetings that rounding made before are not held against an
+  /// operation that keeps or removes them.
+  bool conflicts(const std::vector<Tri>& added, const std::vector<int>& replaced,
+                 int moved = -1, const Vector3d& moved_to = Vector3d::Zero()) {
+    const int after_moving = [&] {
+      if (moved < 0) return meetings(added, replaced);
+      const Vector3d keep = p_[moved];
+      p_[moved] = moved_to;
+      const int n = meetings(added, replaced);
+      p_[moved] = keep;
+      return n;
+    }();
+    if (after_moving == 0) return false;
+    std::vector<Tri> before;
+    for (int t : replaced) before.push_back(tris_[t]);
+    return after_moving > meetings(before, replaced);
+  }
+
+  /// Cell range of a box in the spatial hash, or false if it spans too many cells (kept in big_).
+  bool cell_range(const Eigen::AlignedBox3d& box, Eigen::Array3i& lo, Eigen::Array3i& hi) const {
+    const Eigen::Array3d a = (box.min().array() / cell_).floor(), b = (box.max().array() / cell_).floor();
+    if (((b - a + 1).prod()) > 64 || !a.allFinite() || !b.allFinite() || a.abs().maxCoeff() > 1e9 || b.abs().maxCoeff() > 1e9)
+      return false;
+    lo = a.cast<int>();
+    hi = b.cast<int>();
+    return true;
+  }
+
+  static std::int64_t cell_key(int x, int y, int z) {
+    return (static_cast<std::int64_t>(x) * 73856093) ^ (static_cast<std::int64_t>(y) * 19349663) ^
+           (static_cast<std::int64_t>(z) * 83492791);
+  }
+
+  /// Adds (sign > 0) or removes triangle t under its current box.
+  void index(int t, int sign) {
+    Eigen::Array3i lo, hi;
+    if (!cell_range(boxes_[t], lo, hi)) {
+      if (sign > 0) big_.push_back(t);
+      else std::erase(big_, t);
+      return;
+    }
+    for (int x = lo.x(); x <= hi.x(); ++x)
+      for (int y = lo.y(); y <= hi.y(); ++y)
+        for (int z = lo.z(); z <= hi.z(); ++z) {
+          auto& list = cells_[cell_key(x, y, z)];
+          if (sign > 0) list.push_back(t);
+          else std::erase(list, t);
+        }
+  }
+
+  /// Triangles whose boxes may meet `box` (each once).
+  std::vector<int> near(const Eigen::AlignedBox3d& box) const {
+    std::vector<int> out = big_;
+    Eigen::Array3i lo, hi;
+    if (!cell_range(box, lo, hi)) {
+      for (size_t t = 0; t < tris_.size(); ++t)
+        if (alive_[t]) out.push_back(static_cast<int>(t));
+    } else {
+      for (int x = lo.x(); x <= hi.x(); ++x)
+        for (int y = lo.y(); y <= hi.y(); ++y)
+          for (int z = lo.z(); z <= hi.z(); ++z) {
+            const auto it = cells_.find(cell_key(x, y, z));
+            if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+          }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  void update_box(int t) {
+    if (!boxes_[t].isEmpty()) index(t, -1);
+    Eigen::AlignedBox3d box;
+    for (int v : tris_[t]) box.extend(p_[v]);
+    boxes_[t] = box;
+    index(t, +1);
+  }
+
+  /// Farthest input point of u's and v's members from `target`.
+  double spread(int u, int v, const Vector3d& target) const {
+    double m = 0;
+    for (int w : {u, v})
+      for (const Vector3d& q : members_[w]) m = std::max(m, (q - target).norm());
+    return m;
+  }
+
+  /// A triangle with the corners of t (any order) is alive, other than the ones in `except`.
+  bool triangle_exists(const Tri& t, const std::vector<int>& except) const {
+    Tri sorted = t;
+    std::sort(sorted.begin(), sorted.end());
+    for (int id : incident_[t[0]]) {
+      if (std::find(except.begin(), except.end(), id) != except.end()) continue;
+      Tri other = tris_[id];
+      std::sort(other.begin(), other.end());
+      if (other == sorted) return true;
+    }
+    return false;
+  }
+
+  /// A triangle whose shape says nothing about its orientation: its height is below `delta`.
+  bool sliver(const Tri& t, double delta) const {
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) longest = std::max(longest, (p_[t[(k + 1) % 3]] - p_[t[k]]).norm());
+    return normal(t).norm() < delta * longest;
+  }
+
+  /// Contracts the vertices of `cluster` (joined by edges shorter than delta) into its member
+  /// `target`: triangles with two or more corners in the cluster disappear, the others are
+  /// rewritten. Done only if the mesh stays a closed 2-manifold (the rewritten triangles form one
+  /// fan around target), no triangle degenerates, no triangle larger than delta turns over, no
+  /// two triangles come to meet, and nothing moves farther than max_feature. A cluster that is a
+  /// whole shell (nothing outside it) disappears.
+  bool collapse(const std::vector<int>& cluster, int target, double delta) {
+    std::set<int> in(cluster.begin(), cluster.end());
+    std::set<int> region;
+    for (int v : cluster) region.insert(incident_[v].begin(), incident_[v].end());
+    std::vector<int> removed, changed;
+    std::vector<Tri> afters;
+    for (int t : region) {
+      int count = 0;
+      for (int w : tris_[t]) count += in.count(w) != 0 ? 1 : 0;
+      if (count >= 2) {
+        removed.push_back(t);
+        continue;
+      }
+      Tri after = tris_[t];
+      for (int& w : after)
+        if (in.count(w) != 0) w = target;
+      changed.push_back(t);
+      afters.push_back(after);
+    }
+    double reach = 0;
+    for (int v : cluster)
+      for (const Vector3d& q : members_[v]) reach = std::max(reach, (q - p_[target]).norm());
+    if (reach > max_feature_) return false;
+    if (changed.empty()) {  // a closed shell smaller than delta
+      bool closed = true;
+      for (int t : removed)
+        for (int w : tris_[t]) closed = closed && in.count(w) != 0;
+      if (!closed) return false;
+      for (int t : removed) kill_triangle(t);
+      return true;
+    }
+    // One fan: each edge target->w once and w->target once, and the rim a single cycle.
+    std::map<int, int> next;  // rim: w1 -> w2 for each rewritten triangle (target, w1, w2)
+    for (const Tri& a : afters) {
+      int k = 0;
+      while (a[k] != target) ++k;
+      const int w1 = a[(k + 1) % 3], w2 = a[(k + 2) % 3];
+      if (!next.insert({w1, w2}).second) return false;
+    }
+    int steps = 0;
+    for (int w = next.begin()->first; steps == 0 || w != next.begin()->first; ++steps) {
+      const auto it = next.find(w);
+      if (it == next.end() || steps > static_cast<int>(next.size())) return false;
+      w = it->second;
+    }
+    if (steps != static_cast<int>(next.size())) return false;
+    for (size_t i = 0; i < changed.size(); ++i) {
+      // A triangle that was a sliver may become degenerate (a later flip removes it); others
+      // must keep a positive area and their orientation.
+      const Tri& a = afters[i];
+      const Tri& before = tris_[changed[i]];
+      if (sliver(before, delta)) continue;
+      if (collinear(p_[a[0]], p_[a[1]], p_[a[2]])) return false;
+      if (normal(before).dot(normal(a)) <= 0) return false;
+    }
+    std::vector<int> replaced = changed;
+    replaced.insert(replaced.end(), removed.begin(), removed.end());
+    if (conflicts(afters, replaced)) return false;
+    for (int t : removed) kill_triangle(t);
+    for (size_t i = 0; i < changed.size(); ++i) {
+      const int t = changed[i];
+      for (int w : tris_[t]) std::erase(incident_[w], t);
+      tris_[t] = afters[i];
+      for (int w : tris_[t]) incident_[w].push_back(t);
+      update_box(t);
+    }
+    for (int v : cluster) {
+      if (v == target) continue;
+      incident_[v].clear();
+      members_[target].insert(members_[target].end(), members_[v].begin(), members_[v].end());
+      members_[v].clear();
+    }
+    return true;
+  }
+
+  /// Collapses the cluster into the member that works, nearest the cluster's centre first; failing
+  /// that, its edges one at a time.
+  bool collapse_cluster(const std::vector<int>& cluster, double delta, OutputRoundingReport& report) {
+    Vector3d centre = Vector3d::Zero();
+    for (int v : cluster) centre += p_[v];
+    centre /= static_cast<double>(cluster.size());
+    std::vector<int> order = cluster;
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return (p_[a] - centre).norm() < (p_[b] - centre).norm(); });
+    for (int target : order)
+      if (collapse(cluster, target, delta)) {
+        report.collapsed_edges += static_cast<int>(cluster.size()) - 1;
+        return true;
+      }
+    bool any = false;
+    for (size_t i = 0; i < cluster.size(); ++i)
+      for (size_t j = 0; j < cluster.size(); ++j) {
+        const int u = cluster[i], v = cluster[j];
+        if (u == v || !vertex_alive(u) || !vertex_alive(v) || (p_[u] - p_[v]).norm() >= delta) continue;
+        if (neighbours(u).count(v) == 0) continue;
+        if (collapse({u, v}, v, delta)) {
+          ++report.collapsed_edges;
+          any = true;
+        }
+      }
+    return any;
+  }
+
+  /// Flips the edge starting at corner k of triangle t (a sliver whose third corner lies close
+  /// to that edge) if the two new triangles keep the orientation and the edge is new.
+  bool flip(int t, int k) {
+    const Tri tri = tris_[t];
+    const int a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
+    int other = -1, d = -1;
+    for (int s : incident_[b]) {
+      if (s == t) continue;
+      const Tri& q = tris_[s];
+      for (int j = 0; j < 3; ++j)
+        if (q[j] == b && q[(j + 1) % 3] == a) other = s, d = q[(j + 2) % 3];
+    }
+    if (other < 0 || d == c) return false;
+    const std::set<int> nc = neighbours(c);
+    if (nc.count(d) != 0) return false;
+    const Tri first = {a, d, c}, second = {d, b, c};
+    if (collinear(p_[a], p_[d], p_[c]) || collinear(p_[d], p_[b], p_[c])) return false;
+    // c lies close to edge ab, so both new triangles face as the neighbour (b, a, d) does.
+    const Vector3d reference = normal(tris_[other]);
+    const Vector3d n1 = normal(first), n2 = normal(second);
+    if (n1.dot(reference) <= 0 || n2.dot(reference) <= 0) return false;
+    if (conflicts({first, second}, {t, other})) return false;
+    kill_triangle(t);
+    kill_triangle(other);
+    add_triangle(first);
+    add_triangle(second);
+    return true;
+  }
+
+  /// Moves v by about `delta` against the mean normal of its triangles (into its own sheet),
+  /// rounded to the precision, if no triangle turns over or degenerates.
+  bool separate(int v, double delta) {
+    Vector3d n = Vector3d::Zero();
+    for (int t : incident_[v]) {
+      const Vector3d m = normal(tris_[t]);
+      if (m.squaredNorm() > 0) n += m.normalized();
+    }
+    if (n.squaredNorm() == 0) return false;
+    n.normalize();
+    const Vector3d old = p_[v];
+    for (double step = resolution_; step <= delta; step *= 2) {
+      const Vector3d target = round_(Vector3d(old - step * n));
+      if (target == old) continue;
+      if (spread(v, v, target) > max_feature_) return false;
+      std::vector<Vector3d> before;
+      for (int t : incident_[v]) before.push_back(normal(tris_[t]));
+      p_[v] = target;
+      bool ok = true;
+      for (size_t i = 0; i < incident_[v].size() && ok; ++i) {
+        const Tri& q = tris_[incident_[v][i]];
+        ok = !collinear(p_[q[0]], p_[q[1]], p_[q[2]]) && (before[i].squaredNorm() == 0 || before[i].dot(normal(q)) > 0);
+      }
+      p_[v] = old;
+      if (ok) {
+        std::vector<Tri> moved;
+        for (int t : incident_[v]) moved.push_back(tris_[t]);
+        ok = !conflicts(moved, incident_[v], v, target);
+      }
+      if (ok) {
+        p_[v] = target;
+        for (int t : incident_[v]) update_box(t);
+        return true;
+      }
+      p_[v] = old;
+    }
+    return false;
+  }
+
+  Rounder round_;
+  double resolution_;
+  double max_feature_;
+  bool keep_copies_;
+  std::vector<Vector3d> p_;
+  std::vector<std::vector<Vector3d>> members_;
+  std::vector<Tri> tris_;
+  std::vector<bool> alive_;
+  std::vector<Eigen::AlignedBox3d> boxes_;
+  double cell_ = 1;
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::vector<int> big_;
+  std::vector<std::vector<int>> incident_;
+};
+
+/// Budget of the self-intersection search (candidate pairs): enough for any mesh whose faces are
+/// not long fans (thousands of corners in one face); beyond it the check gives up (kUnchecked).
+constexpr size_t kCandidatesPerCorner = 16;
+constexpr size_t kMinCandidates = 500'000;
+/// Faces with more corners are not triangulated for the search (ear clipping is quadratic).
+constexpr size_t kMaxJudgedCorners = 2048;
+constexpr const char* kUnchecked = "self-intersections not checked: the search exceeded its budget";
+
+size_t corner_count(const PolygonMesh& mesh) {
+  size_t n = 0;
+  for (const auto& f : mesh.faces) n += f.size();
+  return n;
+}
+
+}  // namespace
+
+std::string output_problem(const PolygonMesh& mesh, const OutputRoundingOptions& options) {
+  const Rounder round(options);
+  PolygonMesh rounded = mesh;
+  for (Vector3d& v : rounded.vertices) v = round(v);
+  std::vector<bool> used(rounded.vertices.size(), false);
+  for (const auto& f : rounded.faces)
+    for (int v : f)
+      if (v >= 0 && static_cast<size_t>(v) < used.size()) used[v] = true;
+  std::map<std::array<double, 3>, int> seen;
+  for (size_t v = 0; v < rounded.vertices.size(); ++v) {
+    if (!used[v]) continue;
+    const Vector3d& p = rounded.vertices[v];
+    const auto [it, inserted] = seen.insert({{p.x(), p.y(), p.z()}, static_cast<int>(v)});
+    if (!inserted && !options.keep_copies)
+      return "vertices " + std::to_string(it->second) + " and " + std::to_string(v) + " are at the same point";
+  }
+  const ValidationReport report =
+      check_closed_manifold(rounded, {.check_self_intersections = false, .check_face_shapes = false,
+                                      .check_shell_orientation = false, .max_defects_per_kind = 1});
+  if (!report.ok()) return report.defects.front().message;
+  for (const auto& f : rounded.faces)
+    if (f.size() > kMaxJudgedCorners) return std::string(kUnchecked);
+  const SelfIntersectionSearch search = search_self_intersections(
+      rounded, {.max_pairs = 1, .max_candidates = kCandidatesPerCorner * corner_count(rounded) + kMinCandidates});
+  if (!search.pairs.empty()) {
+    const FacePair& p = search.pairs.front();
+    return "faces " + std::to_string(p.face_a) + " and " + std::to_string(p.face_b) + " intersect";
+  }
+  if (!search.complete) return std::string(kUnchecked);
+  return {};
+}
+
+PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOptions& options,
+                             OutputRoundingReport* report) {
+  OutputRoundingReport local;
+  OutputRoundingReport& r = report != nullptr ? *report : local;
+  r = {};
+  if (mesh.faces.empty()) return mesh;
+  // Only closed, oriented 2-manifolds are rounded: anything else (an open patch) is left as it is.
+  const ValidationReport topology =
+      check_closed_manifold(mesh, {.check_self_intersections = false, .check_face_shapes = false,
+                                   .check_shell_orientation = false, .max_defects_per_kind = 1});
+  for (const Defect& d : topology.defects) {
+    if (d.kind == DefectKind::DegenerateFace || d.kind == DefectKind::NonPlanarFace ||
+        d.kind == DefectKind::SelfCrossingFace)
+      continue;
+    r.clean = false;
+    r.problem = d.message;
+    return mesh;
+  }
+  const Rounder round(options);
+  const std::string first = options.triangles ? std::string("triangles asked for") : output_problem(mesh, options);
+  if (first == kUnchecked) {  // too costly to judge: written as it is, and said so
+    r.clean = false;
+    r.problem = first;
+    return mesh;
+  }
+  if (first.empty()) {
+    if (options.precision == OutputPrecision::Double) return mesh;
+    PolygonMesh rounded = mesh;
+    for (Vector3d& v : rounded.vertices) v = round(v);
+    return rounded;
+  }
+  r.changed = true;
+  // Grid points: edges shorter than one step have length zero; otherwise 4 units in the last place.
+  const double resolution = round.resolution(mesh.vertices);
+  const double smallest = options.precision == OutputPrecision::Grid ? resolution / 2 : 4 * resolution;
+  double max_feature = options.max_feature;
+  if (max_feature <= 0) {
+    Eigen::AlignedBox3d box;
+    for (const Vector3d& v : mesh.vertices) box.extend(v);
+    max_feature = std::ldexp(box.sizes().maxCoeff(), -20);
+  }
+  max_feature = std::max(max_feature, options.precision == OutputPrecision::Grid ? smallest : 256 * resolution);
+
+  Cleaner cleaner(mesh, round, max_feature, options.keep_copies);
+  PolygonMesh result = cleaner.mesh();
+  if (options.triangles && output_problem(result, options).empty()) {
+    r.changed = false;
+    return result;
+  }
+  const double growth = options.precision == OutputPrecision::Grid ? 2 : 16;
+  for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
+    for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) {
+    }
+    r.feature = delta;
+    result = cleaner.mesh();
+    r.problem = output_problem(result, options);
+    if (r.problem.empty() || delta >= max_feature) break;
+  }
+  r.clean = r.problem.empty();
+  r.max_move = cleaner.max_move();
+  return result;
+}
+
+}  // namespace sculpt
