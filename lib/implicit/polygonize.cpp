@@ -11,7 +11,6 @@
 #include <string>
 #include <tuple>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 namespace sculpt::implicit {
@@ -45,10 +44,73 @@ std::array<std::int64_t, 3> point_of(Key p) {
   return {std::int64_t(p & m), std::int64_t((p >> 21) & m), std::int64_t((p >> 42) & m)};
 }
 
+/// splitmix64's finalizer: lattice keys differ in few, high bits; this spreads them over all.
+inline std::uint64_t mix(std::uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 27;
+  x *= 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+struct KeyHash {
+  std::uint64_t operator()(Key k) const { return mix(k); }
+};
 struct PairHash {
-  std::size_t operator()(const std::pair<Key, Key>& e) const {
-    return std::hash<Key>()(e.first * 0x9E3779B97F4A7C15ull ^ e.second);
+  std::uint64_t operator()(const std::pair<Key, Key>& e) const { return mix(e.first ^ mix(e.second)); }
+};
+
+/// An open-addressing hash map (linear probing, load at most 1/2) for the lattice's hot tables:
+/// insert and find only, no erase. The table holds keys and indices; the values lie in one array
+/// in insertion order (points made together, near in space, stay near in memory). A reference
+/// is valid until the next insertion.
+template <typename K, typename V, typename Hash>
+class FlatMap {
+ public:
+  /// The value at k, default-constructed when k is new; second: whether it was inserted.
+  std::pair<V*, bool> try_emplace(const K& k) {
+    if (2 * (values_.size() + 1) > slots_.size()) grow();
+    std::size_t i = Hash()(k) & mask_;
+    while (slots_[i].index != kEmpty) {
+      if (slots_[i].key == k) return {&values_[slots_[i].index], false};
+      i = (i + 1) & mask_;
+    }
+    slots_[i] = {k, std::uint32_t(values_.size())};
+    values_.emplace_back();
+    return {&values_.back(), true};
   }
+  [[nodiscard]] const V* find(const K& k) const {
+    if (slots_.empty()) return nullptr;
+    std::size_t i = Hash()(k) & mask_;
+    while (slots_[i].index != kEmpty) {
+      if (slots_[i].key == k) return &values_[slots_[i].index];
+      i = (i + 1) & mask_;
+    }
+    return nullptr;
+  }
+  [[nodiscard]] bool contains(const K& k) const { return find(k) != nullptr; }
+  [[nodiscard]] std::size_t size() const { return values_.size(); }
+
+ private:
+  static constexpr std::uint32_t kEmpty = ~std::uint32_t(0);
+  struct Slot {
+    K key{};
+    std::uint32_t index = kEmpty;
+  };
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(std::max<std::size_t>(1024, 2 * old.size()), Slot{});
+    mask_ = slots_.size() - 1;
+    for (const Slot& s : old) {
+      if (s.index == kEmpty) continue;
+      std::size_t i = Hash()(s.key) & mask_;
+      while (slots_[i].index != kEmpty) i = (i + 1) & mask_;
+      slots_[i] = s;
+    }
+  }
+  std::vector<Slot> slots_;
+  std::vector<V> values_;
+  std::size_t mask_ = 0;
 };
 
 struct PointData {
@@ -102,9 +164,9 @@ class Polygonizer {
   }
 
   PointData& point(Key p) {
-    auto [it, inserted] = points_.try_emplace(p);
-    if (inserted) it->second.value = f_.value(world(p));
-    return it->second;
+    auto [d, inserted] = points_.try_emplace(p);
+    if (inserted) d->value = f_.value(world(p));
+    return *d;
   }
   bool inside(Key p) { return point(p).value <= 0.0; }
 
@@ -370,8 +432,8 @@ class Polygonizer {
     // the boundary counter-clockwise in (u, v): corner, edge midpoint, corner, ...
     const std::array<Key, 8> ring = {at(0, 0), at(h, 0), at(s, 0), at(s, h), at(s, s), at(h, s), at(0, s), at(0, h)};
     bool any_midpoint = false;
-    for (int m = 1; m < 8; m += 2) any_midpoint = any_midpoint || present_.count(ring[m]) > 0;
-    if (!any_midpoint || present_.count(at(h, h))) {
+    for (int m = 1; m < 8; m += 2) any_midpoint = any_midpoint || present_.contains(ring[m]);
+    if (!any_midpoint || present_.contains(at(h, h))) {
       const std::int64_t q = any_midpoint ? h : s;
       for (std::int64_t a = 0; a < s; a += q)
         for (std::int64_t b = 0; b < s; b += q) {
@@ -384,7 +446,7 @@ class Polygonizer {
     Key previous = ring[0];
     for (int m = 1; m <= 8; ++m) {
       const Key p = ring[m % 8];
-      if (m % 2 == 1 && !present_.count(p)) continue;
+      if (m % 2 == 1 && !present_.contains(p)) continue;
       out.push_back({centre, previous, p});
       previous = p;
     }
@@ -393,8 +455,7 @@ class Polygonizer {
   /// A mesh vertex on the edge between an inside and an outside lattice point.
   int root(Key in, Key out) {
     const std::pair<Key, Key> edge = in < out ? std::pair{in, out} : std::pair{out, in};
-    const auto it = roots_.find(edge);
-    if (it != roots_.end()) return it->second;
+    if (const int* known = roots_.find(edge)) return *known;
     const Vec a = world(in), b = world(out);
     double fa = point(in).value, fb = point(out).value;  // fa <= 0 < fb
     double ta = 0.0, tb = 1.0;
@@ -421,14 +482,17 @@ class Polygonizer {
     const double t = std::clamp(0.5 * (ta + tb), 1e-7, 1.0 - 1e-7);
     const int id = static_cast<int>(result_.mesh.vertices.size());
     result_.mesh.vertices.push_back(a + t * (b - a));
-    roots_.emplace(edge, id);
+    *roots_.try_emplace(edge).first = id;
     return id;
   }
 
   int lattice_vertex(Key p) {
-    const auto [it, inserted] = box_vertices_.try_emplace(p, static_cast<int>(result_.mesh.vertices.size()));
-    if (inserted) result_.mesh.vertices.push_back(world(p));
-    return it->second;
+    const auto [id, inserted] = box_vertices_.try_emplace(p);
+    if (inserted) {
+      *id = static_cast<int>(result_.mesh.vertices.size());
+      result_.mesh.vertices.push_back(world(p));
+    }
+    return *id;
   }
 
   /// Orientation sign of (b - a, c - a, d - a) on small integer coordinates.
@@ -514,7 +578,7 @@ class Polygonizer {
     for (const auto& [key, kind] : leaves_) {
       constexpr Key m = (Key(1) << 19) - 1;
       const Cell c{int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m), std::int64_t(key & m)};
-      for (const Key p : corners(c)) present_.insert(p);
+      for (const Key p : corners(c)) present_.try_emplace(p);
       if (kind != Kind::Empty) cells.push_back(c);
     }
     // A fixed order, so the output does not depend on the hash tables' iteration order.
@@ -570,10 +634,10 @@ class Polygonizer {
   double feature_ = 0.0;
   PolygonizeResult result_;
   std::unordered_map<Key, Kind> leaves_;
-  std::unordered_map<Key, PointData> points_;
-  std::unordered_set<Key> present_;
-  std::unordered_map<std::pair<Key, Key>, int, PairHash> roots_;
-  std::unordered_map<Key, int> box_vertices_;
+  FlatMap<Key, PointData, KeyHash> points_;
+  FlatMap<Key, char, KeyHash> present_;                  // lattice points that are leaf corners
+  FlatMap<std::pair<Key, Key>, int, PairHash> roots_;    // mesh vertex on a tetrahedron edge
+  FlatMap<Key, int, KeyHash> box_vertices_;
 };
 
 }  // namespace
