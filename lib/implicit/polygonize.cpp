@@ -394,11 +394,10 @@ class Polygonizer {
       const Vec& p = result_.mesh.vertices[v];
       for (int a = 0; a < 3; ++a) locked[v] = locked[v] || p[a] == o_.box.lo[a] || p[a] == o_.box.hi[a];
     }
-    PolygonMesh simplified = result_.mesh;
-    const detail::SimplifyResult s = detail::simplify(
-        simplified, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
-    if (find_self_intersections(simplified, {.max_pairs = 1}).empty()) {
-      result_.mesh = std::move(simplified);
+    detail::SimplifyResult s = detail::simplify(
+        result_.mesh, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
+    if (find_self_intersections(s.mesh, {.max_pairs = 1}).empty()) {
+      result_.mesh = std::move(s.mesh);
       result_.collapses = s.collapses;
       result_.thin_triangles = s.thin_triangles;
     } else {
@@ -589,11 +588,17 @@ class Polygonizer {
     for (const Cell& c : cells) {
       const Kind kind = leaves_.at(cell_key(c.level, c.i, c.j, c.k));
       const std::int64_t s = step(c.level);
+      // the faces' triangles: all six for the tetrahedra of a mixed leaf, else only those on the box
+      auto on_box = [&](int f) {
+        const int axis = f / 2, side = f % 2;
+        const std::int64_t index = axis == 0 ? c.i : axis == 1 ? c.j : c.k;
+        return side == 0 ? index == 0 : index == (top_[axis] << c.level) - 1;
+      };
       faces.clear();
       std::array<std::size_t, 7> first{};
       for (int f = 0; f < 6; ++f) {
         first[f] = faces.size();
-        face_triangles(c, f / 2, f % 2, faces);
+        if (kind == Kind::Mixed || on_box(f)) face_triangles(c, f / 2, f % 2, faces);
       }
       first[6] = faces.size();
       if (kind == Kind::Mixed) {
@@ -618,10 +623,8 @@ class Polygonizer {
         }
       }
       for (int f = 0; f < 6; ++f) {
-        const int axis = f / 2, side = f % 2;
-        const std::int64_t index = axis == 0 ? c.i : axis == 1 ? c.j : c.k;
-        if (side == 0 ? index != 0 : index != (top_[axis] << c.level) - 1) continue;
-        for (std::size_t t = first[f]; t < first[f + 1]; ++t) close_box(faces[t], axis, side == 0 ? -1 : 1);
+        if (!on_box(f)) continue;
+        for (std::size_t t = first[f]; t < first[f + 1]; ++t) close_box(faces[t], f / 2, f % 2 == 0 ? -1 : 1);
       }
     }
   }

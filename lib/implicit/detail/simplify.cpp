@@ -15,7 +15,7 @@ constexpr double kRelaxed = 8.0 / 7.0;  // the slivers' pass: 0.8 tol where the 
 
 class Simplifier {
  public:
-  Simplifier(PolygonMesh& m, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& o)
+  Simplifier(const PolygonMesh& m, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& o)
       : m_(m), locked_(locked), f_(f), o_(o), incident_(m.vertices.size()), alive_(m.faces.size(), true),
         stamp_(m.vertices.size(), 0) {
     faces_.reserve(m.faces.size());
@@ -70,7 +70,7 @@ class Simplifier {
       if (thin == 0) break;
     }
     compact();
-    return {.collapses = collapses, .thin_triangles = thin};
+    return {.mesh = std::move(out_), .collapses = collapses, .thin_triangles = thin};
   }
 
   double height(int t) const {
@@ -98,20 +98,16 @@ class Simplifier {
         }
   }
 
-  /// The number of neighbours of u (no allocation).
-  int degree(int u) {
-    neighbours(u, degree_scratch_);
-    return int(degree_scratch_.size());
-  }
+  /// The number of neighbours of u: on a closed 2-manifold (the marched mesh, and every
+  /// collapse keeps it one) a vertex has as many neighbours as triangles around it.
+  [[nodiscard]] int degree(int u) const { return int(incident_[u].size()); }
 
-  void mark_two_ring(int v, std::vector<char>& dirty) {
-    neighbours(v, ring_);
-    dirty[v] = 1;
-    for (int w : ring_) {
-      dirty[w] = 1;
-      neighbours(w, second_);
-      for (int x : second_) dirty[x] = 1;
-    }
+  /// Marks v, its neighbours and theirs (every vertex of a triangle that touches a triangle at v).
+  void mark_two_ring(int v, std::vector<char>& dirty) const {
+    for (int t : incident_[v])
+      for (int w : faces_[t])
+        for (int t2 : incident_[w])
+          for (int x : faces_[t2]) dirty[x] = 1;
   }
 
   [[nodiscard]] Vec normal(const std::array<Vec, 3>& p) const { return (p[1] - p[0]).cross(p[2] - p[0]); }
@@ -299,11 +295,12 @@ class Simplifier {
       }
       faces.push_back({faces_[t][0], faces_[t][1], faces_[t][2]});
     }
-    m_.vertices = std::move(vertices);
-    m_.faces = std::move(faces);
+    out_.vertices = std::move(vertices);
+    out_.faces = std::move(faces);
   }
 
-  PolygonMesh& m_;
+  const PolygonMesh& m_;
+  PolygonMesh out_;
   const std::vector<bool>& locked_;
   const Expression& f_;
   const SimplifyOptions& o_;
@@ -313,14 +310,14 @@ class Simplifier {
   std::vector<std::array<int, 3>> faces_;               // m_.faces while simplifying
   mutable std::vector<int> stamp_;                       // neighbours(): seen in the current call
   mutable int stamp_counter_ = 0;
-  std::vector<int> nu_, nv_, degree_scratch_, ring_, second_;           // scratch of try_collapse
+  std::vector<int> nu_, nv_;           // scratch of try_collapse
   std::vector<std::pair<Vec, Vec>> changed_;            // centroid and normal of each changed triangle
 
 };
 
 }  // namespace
 
-SimplifyResult simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options) {
+SimplifyResult simplify(const PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options) {
   return Simplifier(mesh, locked, f, options).run();
 }
 

@@ -25,12 +25,12 @@ struct SimplifyOptions {
 };
 
 struct SimplifyResult {
+  PolygonMesh mesh;        ///< the simplified mesh (removed vertices dropped, the rest renumbered)
   int collapses = 0;
   int thin_triangles = 0;  ///< triangles still below min_height
 };
 
-/// Collapses edges of `mesh` in place (faces stay triangles; removed vertices are dropped and
-/// the rest renumbered).
-SimplifyResult simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options);
+/// Collapses edges of a copy of `mesh` (faces stay triangles); `mesh` itself is not changed.
+SimplifyResult simplify(const PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options);
 
 }  // namespace sculpt::implicit::detail
