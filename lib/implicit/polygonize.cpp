@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <string>
 #include <tuple>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace sculpt::implicit {
@@ -27,7 +27,8 @@ constexpr int kStartLevel = 1;  // cells are split at least this deep before any
 constexpr double kSimplifyFraction = 0.7;  // collapsed triangles stay within this times tol
 constexpr double kBendFactor = 1.25;  // measured: the torus at 2e-3 stays within tol (1.5 does not)
 
-enum class Kind : std::uint8_t { Empty, Full, Mixed };
+/// A leaf's content; Split: a former leaf that balancing split (its entry stays in the table).
+enum class Kind : std::uint8_t { Empty, Full, Mixed, Split };
 
 struct Cell {
   int level = 0;
@@ -77,7 +78,14 @@ class FlatMap {
     }
     slots_[i] = {k, std::uint32_t(values_.size())};
     values_.emplace_back();
+    keys_.push_back(k);
     return {&values_.back(), true};
+  }
+  [[nodiscard]] V* find(const K& k) { return const_cast<V*>(std::as_const(*this).find(k)); }
+  /// f(key, value) for every entry, in insertion order.
+  template <typename F>
+  void for_each(F f) const {
+    for (std::size_t i = 0; i < keys_.size(); ++i) f(keys_[i], values_[i]);
   }
   [[nodiscard]] const V* find(const K& k) const {
     if (slots_.empty()) return nullptr;
@@ -110,6 +118,7 @@ class FlatMap {
   }
   std::vector<Slot> slots_;
   std::vector<V> values_;
+  std::vector<K> keys_;
   std::size_t mask_ = 0;
 };
 
@@ -140,7 +149,7 @@ class Polygonizer {
     build();
     balance();
     march();
-    result_.leaves = static_cast<long>(leaves_.size());
+    result_.leaves = leaf_count_;
     result_.marched_triangles = static_cast<long>(result_.mesh.faces.size());
     if (o_.simplify && !result_.mesh.faces.empty()) simplify();
     return std::move(result_);
@@ -192,7 +201,7 @@ class Polygonizer {
 
   void charge(long& counter) {
     ++counter;
-    if (result_.cells + result_.search_cells + long(leaves_.size()) > o_.max_cells) {
+    if (result_.cells + result_.search_cells + leaf_count_ > o_.max_cells) {
       throw GeometryError("polygonize: the work budget of " + std::to_string(o_.max_cells) +
                           " cells ran out (the surface is too large for the box and tol, or f's interval bounds "
                           "cannot tell the cells apart); raise the budget, raise tol or shrink the box");
@@ -325,7 +334,8 @@ class Polygonizer {
         }
       }
       if (!split) {
-        leaves_[cell_key(c.level, c.i, c.j, c.k)] = kind;
+        *leaves_.try_emplace(cell_key(c.level, c.i, c.j, c.k)).first = kind;
+        ++leaf_count_;
         result_.max_level = std::max(result_.max_level, c.level);
         continue;
       }
@@ -341,7 +351,7 @@ class Polygonizer {
     for (int l = level; l >= 0; --l) {
       const int d = level - l;
       const Key key = cell_key(l, i >> d, j >> d, k >> d);
-      if (leaves_.count(key)) {
+      if (is_leaf(key)) {
         out = {l, i >> d, j >> d, k >> d};
         return true;
       }
@@ -349,18 +359,26 @@ class Polygonizer {
     return false;
   }
 
+  [[nodiscard]] bool is_leaf(Key key) const {
+    const Kind* kind = leaves_.find(key);
+    return kind && *kind != Kind::Split;
+  }
+
+  static Cell cell_of(Key key) {
+    constexpr Key m = (Key(1) << 19) - 1;
+    return {int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m), std::int64_t(key & m)};
+  }
+
   /// 2:1 balance over faces, edges and corners: a leaf next to one more than a level finer is split.
   void balance() {
     std::vector<Cell> queue;
-    for (const auto& [key, kind] : leaves_) {
-      constexpr Key m = (Key(1) << 19) - 1;
-      queue.push_back({int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m),
-                       std::int64_t(key & m)});
-    }
+    leaves_.for_each([&](Key key, Kind kind) {
+      if (kind != Kind::Split) queue.push_back(cell_of(key));
+    });
     while (!queue.empty()) {
       const Cell c = queue.back();
       queue.pop_back();
-      if (c.level < 1 || !leaves_.count(cell_key(c.level, c.i, c.j, c.k))) continue;
+      if (c.level < 1 || !is_leaf(cell_key(c.level, c.i, c.j, c.k))) continue;
       const std::array<std::int64_t, 3> n = {top_[0] << c.level, top_[1] << c.level, top_[2] << c.level};
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
@@ -371,11 +389,14 @@ class Polygonizer {
             if (!leaf_over(c.level, x, y, z, big) || big.level >= c.level - 1) continue;
             // split `big` into its 8 children, which are balanced in turn
             const Key key = cell_key(big.level, big.i, big.j, big.k);
-            const Kind kind = leaves_.at(key);
-            leaves_.erase(key);
+            Kind* entry = leaves_.find(key);
+            const Kind kind = *entry;
+            *entry = Kind::Split;  // before the children's insertions move the table
+            --leaf_count_;
             for (int o = 0; o < 8; ++o) {
               const Cell child{big.level + 1, 2 * big.i + (o & 1), 2 * big.j + ((o >> 1) & 1), 2 * big.k + (o >> 2)};
-              leaves_[cell_key(child.level, child.i, child.j, child.k)] = kind;
+              *leaves_.try_emplace(cell_key(child.level, child.i, child.j, child.k)).first = kind;
+              ++leaf_count_;
               charge(result_.cells);
               queue.push_back(child);
             }
@@ -572,21 +593,20 @@ class Polygonizer {
   }
 
   void march() {
-    std::vector<Cell> cells;
-    cells.reserve(leaves_.size());
-    for (const auto& [key, kind] : leaves_) {
-      constexpr Key m = (Key(1) << 19) - 1;
-      const Cell c{int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m), std::int64_t(key & m)};
+    std::vector<std::pair<Cell, Kind>> cells;
+    cells.reserve(std::size_t(leaf_count_));
+    leaves_.for_each([&](Key key, Kind kind) {
+      if (kind == Kind::Split) return;
+      const Cell c = cell_of(key);
       for (const Key p : corners(c)) present_.try_emplace(p);
-      if (kind != Kind::Empty) cells.push_back(c);
-    }
-    // A fixed order, so the output does not depend on the hash tables' iteration order.
-    std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) {
-      return std::tie(a.level, a.i, a.j, a.k) < std::tie(b.level, b.i, b.j, b.k);
+      if (kind != Kind::Empty) cells.emplace_back(c, kind);
+    });
+    // A fixed order, so the output does not depend on the tables' order.
+    std::sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) {
+      return std::tie(a.first.level, a.first.i, a.first.j, a.first.k) < std::tie(b.first.level, b.first.i, b.first.j, b.first.k);
     });
     std::vector<Triangle> faces;
-    for (const Cell& c : cells) {
-      const Kind kind = leaves_.at(cell_key(c.level, c.i, c.j, c.k));
+    for (const auto& [c, kind] : cells) {
       const std::int64_t s = step(c.level);
       // the faces' triangles: all six for the tetrahedra of a mixed leaf, else only those on the box
       auto on_box = [&](int f) {
@@ -636,7 +656,8 @@ class Polygonizer {
   std::array<std::int64_t, 3> resolution_ = {2, 2, 2};  // lattice steps per axis
   double feature_ = 0.0;
   PolygonizeResult result_;
-  std::unordered_map<Key, Kind> leaves_;
+  FlatMap<Key, Kind, KeyHash> leaves_;                  // leaves (and split former leaves) by cell key
+  long leaf_count_ = 0;
   FlatMap<Key, PointData, KeyHash> points_;
   FlatMap<Key, char, KeyHash> present_;                  // lattice points that are leaf corners
   FlatMap<std::pair<Key, Key>, int, PairHash> roots_;    // mesh vertex on a tetrahedron edge
