@@ -34,7 +34,7 @@ class Simplifier {
     for (int pass = 0; pass < o_.passes; ++pass) {
       int before = collapses;
       for (int u = 0; u < int(m_.vertices.size()); ++u) {
-        if (locked_[u] || incident_[u].empty() || !dirty[u]) continue;
+        if (locked_[u] || incident_[u].empty() || (!dirty[u] && !o_.retry_all)) continue;
         dirty[u] = 0;
         neighbours(u, ring);
         std::sort(ring.begin(), ring.end(), [&](int a, int b) {

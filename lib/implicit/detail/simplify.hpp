@@ -22,6 +22,10 @@ struct SimplifyOptions {
   /// same checks allow it with the distance bound relaxed to 8/7 tolerance: slivers that
   /// snapping the vertices to a grid could turn over.
   double min_height = 0.0;
+  /// Try every vertex in every sweep. Off (the default), a vertex is tried again only when a
+  /// collapse changed its 2-ring since its last try, which skips only tries that would fail
+  /// again; the result is the same (tests compare both), the work less.
+  bool retry_all = false;
 };
 
 struct SimplifyResult {

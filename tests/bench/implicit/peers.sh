@@ -19,7 +19,7 @@ OUT=$(mktemp -d)
 g++ -O2 -std=c++17 -DNDEBUG -DCGAL_NDEBUG tests/bench/implicit/cgal_peer.cpp -o "$OUT/cgal_peer" -lgmp -lmpfr
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); CGAL $(grep -m1 'define CGAL_VERSION ' /usr/include/CGAL/version.h | cut -d' ' -f3)," \
      "manifold-3d $(node -p "require('./tests/bench/peers/node_modules/manifold-3d/package.json').version"), node $(node --version)"
-"$OUT/cgal_peer" "$OUT" 0.003 0.002 0.0015 0.001 0.0007
-node tests/bench/implicit/levelset_peer.mjs "$OUT" 0.07 0.06 0.05 0.045 0.04 0.035 0.03
+"$OUT/cgal_peer" "$OUT" 0.0015 0.0013 0.0012 0.0011 0.001
+node tests/bench/implicit/levelset_peer.mjs "$OUT" 0.07 0.068 0.066 0.064 0.062 0.06
 "$BUILD"/tests/bench/implicit/implicit_solid --peers "$OUT"
 rm -rf "$OUT"
