@@ -4,7 +4,10 @@
 // every mesh is measured the same way, against the analytic torus, both ways: mesh vertices and
 // points spread over each triangle to the torus (closed-form distance), and 600 x 300 points
 // of the parametrization to the mesh. Times are thread CPU time, median of 5 runs.
-//   implicit_solid
+//   implicit_solid               the table
+//   implicit_solid --peers DIR   the table plus the peers' meshes and times that
+//                                tests/bench/implicit/peers.sh left in DIR (run that script)
+//   implicit_solid --ours        only polygonize, 20 times, and a fingerprint of its mesh (profiling)
 // See docs/implicit.md, "Implicit solids", and docs/benchmarks.md.
 #include <Eigen/Geometry>
 #include <algorithm>
