@@ -73,12 +73,13 @@ double Expression::value(const Vec& p) const {
 
 // Forward-mode automatic differentiation: each node carries its value and its gradient.
 ValueGradient Expression::value_gradient(const Vec& p) const {
+  static const Dual kZero{0.0, Vec::Zero()};
   Scratch<Dual> s(nodes_.size());
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const ExpressionNode& n = nodes_[i];
-    const Dual zero{0.0, Vec::Zero()};
-    const Dual a = n.a >= 0 ? s[n.a] : zero, b = n.b >= 0 ? s[n.b] : zero;
-    Dual r = zero;
+    const Dual& a = n.a >= 0 ? s[n.a] : kZero;
+    const Dual& b = n.b >= 0 ? s[n.b] : kZero;
+    Dual r = kZero;
     switch (n.op) {
       case Op::Constant: r.v = n.constant; break;
       case Op::X: r = {p.x(), Vec::UnitX()}; break;

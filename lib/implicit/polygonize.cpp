@@ -10,8 +10,7 @@
 #include <cstdint>
 #include <string>
 #include <tuple>
-#include <unordered_map>
-#include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace sculpt::implicit {
@@ -28,7 +27,8 @@ constexpr int kStartLevel = 1;  // cells are split at least this deep before any
 constexpr double kSimplifyFraction = 0.7;  // collapsed triangles stay within this times tol
 constexpr double kBendFactor = 1.25;  // measured: the torus at 2e-3 stays within tol (1.5 does not)
 
-enum class Kind : std::uint8_t { Empty, Full, Mixed };
+/// A leaf's content; Split: a former leaf that balancing split (its entry stays in the table).
+enum class Kind : std::uint8_t { Empty, Full, Mixed, Split };
 
 struct Cell {
   int level = 0;
@@ -45,10 +45,81 @@ std::array<std::int64_t, 3> point_of(Key p) {
   return {std::int64_t(p & m), std::int64_t((p >> 21) & m), std::int64_t((p >> 42) & m)};
 }
 
+/// splitmix64's finalizer: lattice keys differ in few, high bits; this spreads them over all.
+inline std::uint64_t mix(std::uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 27;
+  x *= 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+struct KeyHash {
+  std::uint64_t operator()(Key k) const { return mix(k); }
+};
 struct PairHash {
-  std::size_t operator()(const std::pair<Key, Key>& e) const {
-    return std::hash<Key>()(e.first * 0x9E3779B97F4A7C15ull ^ e.second);
+  std::uint64_t operator()(const std::pair<Key, Key>& e) const { return mix(e.first ^ mix(e.second)); }
+};
+
+/// An open-addressing hash map (linear probing, load at most 1/2) for the lattice's hot tables:
+/// insert and find only, no erase. The table holds keys and indices; the values lie in one array
+/// in insertion order (points made together, near in space, stay near in memory). A reference
+/// is valid until the next insertion.
+template <typename K, typename V, typename Hash>
+class FlatMap {
+ public:
+  /// The value at k, default-constructed when k is new; second: whether it was inserted.
+  std::pair<V*, bool> try_emplace(const K& k) {
+    if (2 * (values_.size() + 1) > slots_.size()) grow();
+    std::size_t i = Hash()(k) & mask_;
+    while (slots_[i].index != kEmpty) {
+      if (slots_[i].key == k) return {&values_[slots_[i].index], false};
+      i = (i + 1) & mask_;
+    }
+    slots_[i] = {k, std::uint32_t(values_.size())};
+    values_.emplace_back();
+    keys_.push_back(k);
+    return {&values_.back(), true};
   }
+  [[nodiscard]] V* find(const K& k) { return const_cast<V*>(std::as_const(*this).find(k)); }
+  /// f(key, value) for every entry, in insertion order.
+  template <typename F>
+  void for_each(F f) const {
+    for (std::size_t i = 0; i < keys_.size(); ++i) f(keys_[i], values_[i]);
+  }
+  [[nodiscard]] const V* find(const K& k) const {
+    if (slots_.empty()) return nullptr;
+    std::size_t i = Hash()(k) & mask_;
+    while (slots_[i].index != kEmpty) {
+      if (slots_[i].key == k) return &values_[slots_[i].index];
+      i = (i + 1) & mask_;
+    }
+    return nullptr;
+  }
+  [[nodiscard]] bool contains(const K& k) const { return find(k) != nullptr; }
+  [[nodiscard]] std::size_t size() const { return values_.size(); }
+
+ private:
+  static constexpr std::uint32_t kEmpty = ~std::uint32_t(0);
+  struct Slot {
+    K key{};
+    std::uint32_t index = kEmpty;
+  };
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(std::max<std::size_t>(1024, 2 * old.size()), Slot{});
+    mask_ = slots_.size() - 1;
+    for (const Slot& s : old) {
+      if (s.index == kEmpty) continue;
+      std::size_t i = Hash()(s.key) & mask_;
+      while (slots_[i].index != kEmpty) i = (i + 1) & mask_;
+      slots_[i] = s;
+    }
+  }
+  std::vector<Slot> slots_;
+  std::vector<V> values_;
+  std::vector<K> keys_;
+  std::size_t mask_ = 0;
 };
 
 struct PointData {
@@ -78,7 +149,7 @@ class Polygonizer {
     build();
     balance();
     march();
-    result_.leaves = static_cast<long>(leaves_.size());
+    result_.leaves = leaf_count_;
     result_.marched_triangles = static_cast<long>(result_.mesh.faces.size());
     if (o_.simplify && !result_.mesh.faces.empty()) simplify();
     return std::move(result_);
@@ -102,9 +173,9 @@ class Polygonizer {
   }
 
   PointData& point(Key p) {
-    auto [it, inserted] = points_.try_emplace(p);
-    if (inserted) it->second.value = f_.value(world(p));
-    return it->second;
+    auto [d, inserted] = points_.try_emplace(p);
+    if (inserted) d->value = f_.value(world(p));
+    return *d;
   }
   bool inside(Key p) { return point(p).value <= 0.0; }
 
@@ -130,7 +201,7 @@ class Polygonizer {
 
   void charge(long& counter) {
     ++counter;
-    if (result_.cells + result_.search_cells + long(leaves_.size()) > o_.max_cells) {
+    if (result_.cells + result_.search_cells + leaf_count_ > o_.max_cells) {
       throw GeometryError("polygonize: the work budget of " + std::to_string(o_.max_cells) +
                           " cells ran out (the surface is too large for the box and tol, or f's interval bounds "
                           "cannot tell the cells apart); raise the budget, raise tol or shrink the box");
@@ -263,7 +334,8 @@ class Polygonizer {
         }
       }
       if (!split) {
-        leaves_[cell_key(c.level, c.i, c.j, c.k)] = kind;
+        *leaves_.try_emplace(cell_key(c.level, c.i, c.j, c.k)).first = kind;
+        ++leaf_count_;
         result_.max_level = std::max(result_.max_level, c.level);
         continue;
       }
@@ -279,7 +351,7 @@ class Polygonizer {
     for (int l = level; l >= 0; --l) {
       const int d = level - l;
       const Key key = cell_key(l, i >> d, j >> d, k >> d);
-      if (leaves_.count(key)) {
+      if (is_leaf(key)) {
         out = {l, i >> d, j >> d, k >> d};
         return true;
       }
@@ -287,18 +359,26 @@ class Polygonizer {
     return false;
   }
 
+  [[nodiscard]] bool is_leaf(Key key) const {
+    const Kind* kind = leaves_.find(key);
+    return kind && *kind != Kind::Split;
+  }
+
+  static Cell cell_of(Key key) {
+    constexpr Key m = (Key(1) << 19) - 1;
+    return {int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m), std::int64_t(key & m)};
+  }
+
   /// 2:1 balance over faces, edges and corners: a leaf next to one more than a level finer is split.
   void balance() {
     std::vector<Cell> queue;
-    for (const auto& [key, kind] : leaves_) {
-      constexpr Key m = (Key(1) << 19) - 1;
-      queue.push_back({int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m),
-                       std::int64_t(key & m)});
-    }
+    leaves_.for_each([&](Key key, Kind kind) {
+      if (kind != Kind::Split) queue.push_back(cell_of(key));
+    });
     while (!queue.empty()) {
       const Cell c = queue.back();
       queue.pop_back();
-      if (c.level < 1 || !leaves_.count(cell_key(c.level, c.i, c.j, c.k))) continue;
+      if (c.level < 1 || !is_leaf(cell_key(c.level, c.i, c.j, c.k))) continue;
       const std::array<std::int64_t, 3> n = {top_[0] << c.level, top_[1] << c.level, top_[2] << c.level};
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
@@ -309,11 +389,14 @@ class Polygonizer {
             if (!leaf_over(c.level, x, y, z, big) || big.level >= c.level - 1) continue;
             // split `big` into its 8 children, which are balanced in turn
             const Key key = cell_key(big.level, big.i, big.j, big.k);
-            const Kind kind = leaves_.at(key);
-            leaves_.erase(key);
+            Kind* entry = leaves_.find(key);
+            const Kind kind = *entry;
+            *entry = Kind::Split;  // before the children's insertions move the table
+            --leaf_count_;
             for (int o = 0; o < 8; ++o) {
               const Cell child{big.level + 1, 2 * big.i + (o & 1), 2 * big.j + ((o >> 1) & 1), 2 * big.k + (o >> 2)};
-              leaves_[cell_key(child.level, child.i, child.j, child.k)] = kind;
+              *leaves_.try_emplace(cell_key(child.level, child.i, child.j, child.k)).first = kind;
+              ++leaf_count_;
               charge(result_.cells);
               queue.push_back(child);
             }
@@ -332,11 +415,10 @@ class Polygonizer {
       const Vec& p = result_.mesh.vertices[v];
       for (int a = 0; a < 3; ++a) locked[v] = locked[v] || p[a] == o_.box.lo[a] || p[a] == o_.box.hi[a];
     }
-    PolygonMesh simplified = result_.mesh;
-    const detail::SimplifyResult s = detail::simplify(
-        simplified, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
-    if (find_self_intersections(simplified, {.max_pairs = 1}).empty()) {
-      result_.mesh = std::move(simplified);
+    detail::SimplifyResult s = detail::simplify(
+        result_.mesh, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
+    if (find_self_intersections(s.mesh, {.max_pairs = 1}).empty()) {
+      result_.mesh = std::move(s.mesh);
       result_.collapses = s.collapses;
       result_.thin_triangles = s.thin_triangles;
     } else {
@@ -370,8 +452,8 @@ class Polygonizer {
     // the boundary counter-clockwise in (u, v): corner, edge midpoint, corner, ...
     const std::array<Key, 8> ring = {at(0, 0), at(h, 0), at(s, 0), at(s, h), at(s, s), at(h, s), at(0, s), at(0, h)};
     bool any_midpoint = false;
-    for (int m = 1; m < 8; m += 2) any_midpoint = any_midpoint || present_.count(ring[m]) > 0;
-    if (!any_midpoint || present_.count(at(h, h))) {
+    for (int m = 1; m < 8; m += 2) any_midpoint = any_midpoint || present_.contains(ring[m]);
+    if (!any_midpoint || present_.contains(at(h, h))) {
       const std::int64_t q = any_midpoint ? h : s;
       for (std::int64_t a = 0; a < s; a += q)
         for (std::int64_t b = 0; b < s; b += q) {
@@ -384,7 +466,7 @@ class Polygonizer {
     Key previous = ring[0];
     for (int m = 1; m <= 8; ++m) {
       const Key p = ring[m % 8];
-      if (m % 2 == 1 && !present_.count(p)) continue;
+      if (m % 2 == 1 && !present_.contains(p)) continue;
       out.push_back({centre, previous, p});
       previous = p;
     }
@@ -393,8 +475,7 @@ class Polygonizer {
   /// A mesh vertex on the edge between an inside and an outside lattice point.
   int root(Key in, Key out) {
     const std::pair<Key, Key> edge = in < out ? std::pair{in, out} : std::pair{out, in};
-    const auto it = roots_.find(edge);
-    if (it != roots_.end()) return it->second;
+    if (const int* known = roots_.find(edge)) return *known;
     const Vec a = world(in), b = world(out);
     double fa = point(in).value, fb = point(out).value;  // fa <= 0 < fb
     double ta = 0.0, tb = 1.0;
@@ -421,14 +502,17 @@ class Polygonizer {
     const double t = std::clamp(0.5 * (ta + tb), 1e-7, 1.0 - 1e-7);
     const int id = static_cast<int>(result_.mesh.vertices.size());
     result_.mesh.vertices.push_back(a + t * (b - a));
-    roots_.emplace(edge, id);
+    *roots_.try_emplace(edge).first = id;
     return id;
   }
 
   int lattice_vertex(Key p) {
-    const auto [it, inserted] = box_vertices_.try_emplace(p, static_cast<int>(result_.mesh.vertices.size()));
-    if (inserted) result_.mesh.vertices.push_back(world(p));
-    return it->second;
+    const auto [id, inserted] = box_vertices_.try_emplace(p);
+    if (inserted) {
+      *id = static_cast<int>(result_.mesh.vertices.size());
+      result_.mesh.vertices.push_back(world(p));
+    }
+    return *id;
   }
 
   /// Orientation sign of (b - a, c - a, d - a) on small integer coordinates.
@@ -509,27 +593,32 @@ class Polygonizer {
   }
 
   void march() {
-    std::vector<Cell> cells;
-    cells.reserve(leaves_.size());
-    for (const auto& [key, kind] : leaves_) {
-      constexpr Key m = (Key(1) << 19) - 1;
-      const Cell c{int(key >> 57), std::int64_t((key >> 38) & m), std::int64_t((key >> 19) & m), std::int64_t(key & m)};
-      for (const Key p : corners(c)) present_.insert(p);
-      if (kind != Kind::Empty) cells.push_back(c);
-    }
-    // A fixed order, so the output does not depend on the hash tables' iteration order.
-    std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) {
-      return std::tie(a.level, a.i, a.j, a.k) < std::tie(b.level, b.i, b.j, b.k);
+    std::vector<std::pair<Cell, Kind>> cells;
+    cells.reserve(std::size_t(leaf_count_));
+    leaves_.for_each([&](Key key, Kind kind) {
+      if (kind == Kind::Split) return;
+      const Cell c = cell_of(key);
+      for (const Key p : corners(c)) present_.try_emplace(p);
+      if (kind != Kind::Empty) cells.emplace_back(c, kind);
+    });
+    // A fixed order, so the output does not depend on the tables' order.
+    std::sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) {
+      return std::tie(a.first.level, a.first.i, a.first.j, a.first.k) < std::tie(b.first.level, b.first.i, b.first.j, b.first.k);
     });
     std::vector<Triangle> faces;
-    for (const Cell& c : cells) {
-      const Kind kind = leaves_.at(cell_key(c.level, c.i, c.j, c.k));
+    for (const auto& [c, kind] : cells) {
       const std::int64_t s = step(c.level);
+      // the faces' triangles: all six for the tetrahedra of a mixed leaf, else only those on the box
+      auto on_box = [&](int f) {
+        const int axis = f / 2, side = f % 2;
+        const std::int64_t index = axis == 0 ? c.i : axis == 1 ? c.j : c.k;
+        return side == 0 ? index == 0 : index == (top_[axis] << c.level) - 1;
+      };
       faces.clear();
       std::array<std::size_t, 7> first{};
       for (int f = 0; f < 6; ++f) {
         first[f] = faces.size();
-        face_triangles(c, f / 2, f % 2, faces);
+        if (kind == Kind::Mixed || on_box(f)) face_triangles(c, f / 2, f % 2, faces);
       }
       first[6] = faces.size();
       if (kind == Kind::Mixed) {
@@ -554,10 +643,8 @@ class Polygonizer {
         }
       }
       for (int f = 0; f < 6; ++f) {
-        const int axis = f / 2, side = f % 2;
-        const std::int64_t index = axis == 0 ? c.i : axis == 1 ? c.j : c.k;
-        if (side == 0 ? index != 0 : index != (top_[axis] << c.level) - 1) continue;
-        for (std::size_t t = first[f]; t < first[f + 1]; ++t) close_box(faces[t], axis, side == 0 ? -1 : 1);
+        if (!on_box(f)) continue;
+        for (std::size_t t = first[f]; t < first[f + 1]; ++t) close_box(faces[t], f / 2, f % 2 == 0 ? -1 : 1);
       }
     }
   }
@@ -569,11 +656,12 @@ class Polygonizer {
   std::array<std::int64_t, 3> resolution_ = {2, 2, 2};  // lattice steps per axis
   double feature_ = 0.0;
   PolygonizeResult result_;
-  std::unordered_map<Key, Kind> leaves_;
-  std::unordered_map<Key, PointData> points_;
-  std::unordered_set<Key> present_;
-  std::unordered_map<std::pair<Key, Key>, int, PairHash> roots_;
-  std::unordered_map<Key, int> box_vertices_;
+  FlatMap<Key, Kind, KeyHash> leaves_;                  // leaves (and split former leaves) by cell key
+  long leaf_count_ = 0;
+  FlatMap<Key, PointData, KeyHash> points_;
+  FlatMap<Key, char, KeyHash> present_;                  // lattice points that are leaf corners
+  FlatMap<std::pair<Key, Key>, int, PairHash> roots_;    // mesh vertex on a tetrahedron edge
+  FlatMap<Key, int, KeyHash> box_vertices_;
 };
 
 }  // namespace

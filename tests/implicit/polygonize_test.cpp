@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "implicit/detail/simplify.hpp"
 #include "implicit/polygonize.hpp"
 #include "mesh/mesh_measures.hpp"
 #include "mesh/mesh_validation.hpp"
@@ -126,6 +127,45 @@ TEST(Polygonize, SphereIsAClosedManifoldWithinTol) {
     }
   EXPECT_LE(worst, tol);
   EXPECT_NEAR(mesh_volume(r.mesh), 4.0 / 3.0 * kPi, 4 * kPi * tol);
+}
+
+// The collapses on their own: the input stays as it was, the output is a closed manifold of the
+// same topology whose vertices are input vertices (half-edge collapses move none), and retrying
+// only vertices whose 2-ring changed gives exactly the mesh of retrying all of them every sweep.
+TEST(Polygonize, SimplifyKeepsItsInputAndSkipsOnlyTriesThatFailAgain) {
+  const double tol = 1e-2;
+  struct Case {
+    Expression f;
+    Box box;
+    int components, euler;
+  };
+  const Box torus_box{.lo = Vec(-1.5, -1.5, -0.5), .hi = Vec(1.5, 1.5, 0.5)};
+  const Box cut_box{.lo = Vec(-0.3, -1.5, -1.5), .hi = Vec(1.5, 1.5, 1.5)};  // the sphere cut by x = -0.3
+  for (const Case& c : {Case{torus(1.0, 0.4), torus_box, 1, 0}, Case{sphere({0.1, 0, 0}, 1.0), cut_box, 1, 2}}) {
+    const PolygonizeResult marched = polygonize(c.f, {.box = c.box, .tolerance = tol, .simplify = false});
+    const PolygonMesh before = marched.mesh;
+    std::vector<bool> locked(before.vertices.size(), false);
+    for (std::size_t v = 0; v < locked.size(); ++v)
+      for (int a = 0; a < 3; ++a)
+        locked[v] = locked[v] || before.vertices[v][a] == c.box.lo[a] || before.vertices[v][a] == c.box.hi[a];
+    const detail::SimplifyResult fast = detail::simplify(marched.mesh, locked, c.f, {.tolerance = 0.7 * tol});
+    const detail::SimplifyResult all = detail::simplify(marched.mesh, locked, c.f, {.tolerance = 0.7 * tol, .retry_all = true});
+    EXPECT_EQ(marched.mesh.vertices, before.vertices);
+    EXPECT_EQ(marched.mesh.faces, before.faces);
+    expect_solid_mesh(fast.mesh, c.components, c.euler);
+    EXPECT_LT(fast.mesh.faces.size(), before.faces.size() / 4);
+    EXPECT_GT(fast.collapses, 0);
+    std::unordered_map<double, std::vector<Vec>> by_x;  // input vertices by x, to look each output vertex up
+    for (const Vec& v : before.vertices) by_x[v.x()].push_back(v);
+    for (const Vec& v : fast.mesh.vertices) {
+      const auto it = by_x.find(v.x());
+      ASSERT_TRUE(it != by_x.end());
+      EXPECT_TRUE(std::find(it->second.begin(), it->second.end(), v) != it->second.end());
+    }
+    EXPECT_EQ(fast.collapses, all.collapses);
+    EXPECT_EQ(fast.mesh.vertices, all.mesh.vertices);
+    EXPECT_EQ(fast.mesh.faces, all.mesh.faces);
+  }
 }
 
 TEST(Polygonize, SurfaceThroughLatticePointsExactly) {

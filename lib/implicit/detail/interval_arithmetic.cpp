@@ -35,18 +35,6 @@ bool contains_point_of(Interval a, double phase, double period) {
 
 }  // namespace
 
-double power_by_squaring(double x, int exponent) {
-  const bool invert = exponent < 0;
-  unsigned n = invert ? -static_cast<unsigned>(exponent) : static_cast<unsigned>(exponent);
-  double result = 1.0;
-  while (n > 0) {
-    if (n & 1U) result *= x;
-    x *= x;
-    n >>= 1U;
-  }
-  return invert ? 1.0 / result : result;
-}
-
 Interval whole_line() { return {-kInf, kInf}; }
 Interval point_interval(double v) { return {v, v}; }
 

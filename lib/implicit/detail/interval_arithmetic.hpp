@@ -10,7 +10,18 @@
 namespace sculpt::implicit::detail {
 
 /// x^n by repeated squaring (the value the expression uses too, so bounds and values agree).
-[[nodiscard]] double power_by_squaring(double x, int exponent);
+/// Inline: the evaluators call it for every power node at every point.
+[[nodiscard]] inline double power_by_squaring(double x, int exponent) {
+  const bool invert = exponent < 0;
+  unsigned n = invert ? -static_cast<unsigned>(exponent) : static_cast<unsigned>(exponent);
+  double result = 1.0;
+  while (n > 0) {
+    if (n & 1U) result *= x;
+    x *= x;
+    n >>= 1U;
+  }
+  return invert ? 1.0 / result : result;
+}
 
 [[nodiscard]] Interval whole_line();
 [[nodiscard]] Interval point_interval(double v);

@@ -15,25 +15,35 @@ constexpr double kRelaxed = 8.0 / 7.0;  // the slivers' pass: 0.8 tol where the 
 
 class Simplifier {
  public:
-  Simplifier(PolygonMesh& m, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& o)
-      : m_(m), locked_(locked), f_(f), o_(o), incident_(m.vertices.size()), alive_(m.faces.size(), true) {
-    for (int t = 0; t < int(m.faces.size()); ++t)
-      for (int v : m.faces[t]) incident_[v].push_back(t);
+  Simplifier(const PolygonMesh& m, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& o)
+      : m_(m), locked_(locked), f_(f), o_(o), incident_(m.vertices.size()), alive_(m.faces.size(), true),
+        stamp_(m.vertices.size(), 0) {
+    faces_.reserve(m.faces.size());
+    for (const auto& face : m.faces) faces_.push_back({face[0], face[1], face[2]});
+    for (int t = 0; t < int(faces_.size()); ++t)
+      for (int v : faces_[t]) incident_[v].push_back(t);
   }
 
   SimplifyResult run() {
     int collapses = 0;
+    // A vertex is tried again only when something in its 2-ring changed since its last try: a
+    // collapse's outcome depends only on the triangles around u and around its neighbours (and
+    // the fixed vertex positions), so skipping a clean vertex skips a try that would fail again.
+    std::vector<char> dirty(m_.vertices.size(), 1);
+    std::vector<int> ring;
     for (int pass = 0; pass < o_.passes; ++pass) {
       int before = collapses;
       for (int u = 0; u < int(m_.vertices.size()); ++u) {
-        if (locked_[u] || incident_[u].empty()) continue;
-        std::vector<int> ring = neighbours(u);
+        if (locked_[u] || incident_[u].empty() || (!dirty[u] && !o_.retry_all)) continue;
+        dirty[u] = 0;
+        neighbours(u, ring);
         std::sort(ring.begin(), ring.end(), [&](int a, int b) {
           return (m_.vertices[a] - m_.vertices[u]).squaredNorm() < (m_.vertices[b] - m_.vertices[u]).squaredNorm();
         });
         for (int v : ring) {
           if (try_collapse(u, v)) {
             ++collapses;
+            mark_two_ring(v, dirty);
             break;
           }
         }
@@ -45,12 +55,12 @@ class Simplifier {
     int thin = 0;
     for (int pass = 0; pass < 4; ++pass) {
       thin = 0;
-      for (int t = 0; t < int(m_.faces.size()); ++t) {
+      for (int t = 0; t < int(faces_.size()); ++t) {
         if (!alive_[t] || height(t) >= o_.min_height) continue;
         bool done = false;
         for (int a = 0; a < 3 && !done; ++a)
           for (int b = 0; b < 3 && !done; ++b) {
-            const int u = m_.faces[t][a], v = m_.faces[t][b];
+            const int u = faces_[t][a], v = faces_[t][b];
             if (u != v && !locked_[u] && try_collapse(u, v)) done = true;
           }
         if (!done) done = try_flip(t);
@@ -60,11 +70,11 @@ class Simplifier {
       if (thin == 0) break;
     }
     compact();
-    return {.collapses = collapses, .thin_triangles = thin};
+    return {.mesh = std::move(out_), .collapses = collapses, .thin_triangles = thin};
   }
 
   double height(int t) const {
-    const auto& f = m_.faces[t];
+    const auto& f = faces_[t];
     const Vec &a = m_.vertices[f[0]], &b = m_.vertices[f[1]], &c = m_.vertices[f[2]];
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     return longest > 0 ? (b - a).cross(c - a).norm() / longest : 0.0;
@@ -73,10 +83,31 @@ class Simplifier {
  private:
   std::vector<int> neighbours(int u) const {
     std::vector<int> out;
-    for (int t : incident_[u])
-      for (int w : m_.faces[t])
-        if (w != u && std::find(out.begin(), out.end(), w) == out.end()) out.push_back(w);
+    neighbours(u, out);
     return out;
+  }
+
+  void neighbours(int u, std::vector<int>& out) const {
+    out.clear();
+    const int stamp = ++stamp_counter_;
+    for (int t : incident_[u])
+      for (int w : faces_[t])
+        if (w != u && stamp_[w] != stamp) {
+          stamp_[w] = stamp;
+          out.push_back(w);
+        }
+  }
+
+  /// The number of neighbours of u: on a closed 2-manifold (the marched mesh, and every
+  /// collapse keeps it one) a vertex has as many neighbours as triangles around it.
+  [[nodiscard]] int degree(int u) const { return int(incident_[u].size()); }
+
+  /// Marks v, its neighbours and theirs (every vertex of a triangle that touches a triangle at v).
+  void mark_two_ring(int v, std::vector<char>& dirty) const {
+    for (int t : incident_[v])
+      for (int w : faces_[t])
+        for (int t2 : incident_[w])
+          for (int x : faces_[t2]) dirty[x] = 1;
   }
 
   [[nodiscard]] Vec normal(const std::array<Vec, 3>& p) const { return (p[1] - p[0]).cross(p[2] - p[0]); }
@@ -115,7 +146,7 @@ class Simplifier {
   /// edge) when both new triangles are higher than t, face along the surface normal and stay
   /// within the relaxed distance of f = 0.
   bool try_flip(int t) {
-    auto& ft = m_.faces[t];
+    auto& ft = faces_[t];
     int e = 0;
     double longest = -1;
     for (int k = 0; k < 3; ++k) {
@@ -126,7 +157,7 @@ class Simplifier {
     int n = -1, d = -1;
     for (int o : incident_[a]) {
       if (o == t) continue;
-      const auto& fo = m_.faces[o];
+      const auto& fo = faces_[o];
       for (int k = 0; k < 3; ++k)
         if (fo[k] == b && fo[(k + 1) % 3] == a) n = o, d = fo[(k + 2) % 3];
     }
@@ -153,7 +184,7 @@ class Simplifier {
     }
     if (normals[0].dot(normals[1]) < 0.5 * normals[0].norm() * normals[1].norm()) return false;
     ft = {fresh[0][0], fresh[0][1], fresh[0][2]};
-    m_.faces[n] = {fresh[1][0], fresh[1][1], fresh[1][2]};
+    faces_[n] = {fresh[1][0], fresh[1][1], fresh[1][2]};
     auto drop = [&](int v, int face) {
       auto& list = incident_[v];
       list.erase(std::remove(list.begin(), list.end(), face), list.end());
@@ -167,32 +198,46 @@ class Simplifier {
 
   bool try_collapse(int u, int v) {
     // the two triangles on edge uv, and the link condition: u and v share exactly their third vertices
-    std::vector<int> shared;
+    std::array<int, 2> shared{};
+    int shared_count = 0;
     for (int t : incident_[u]) {
-      const auto& f = m_.faces[t];
-      if (std::find(f.begin(), f.end(), v) != f.end()) shared.push_back(t);
+      const auto& f = faces_[t];
+      if (std::find(f.begin(), f.end(), v) != f.end()) {
+        if (shared_count < 2) shared[shared_count] = t;
+        ++shared_count;
+      }
     }
-    if (shared.size() != 2) return false;
-    std::vector<int> opposite;
+    if (shared_count != 2) return false;
+    std::array<int, 2> opposite{};
+    int opposite_count = 0;
     for (int t : shared)
-      for (int w : m_.faces[t])
-        if (w != u && w != v) opposite.push_back(w);
-    const std::vector<int> nu = neighbours(u), nv = neighbours(v);
+      for (int w : faces_[t])
+        if (w != u && w != v) {
+          if (opposite_count < 2) opposite[opposite_count] = w;
+          ++opposite_count;
+        }
+    if (opposite_count != 2 || opposite[0] == opposite[1]) return false;
+    neighbours(v, nv_);
+    neighbours(u, nu_);  // leaves u's neighbours stamped
     int common = 0;
-    for (int w : nu) common += std::find(nv.begin(), nv.end(), w) != nv.end() ? 1 : 0;
-    if (common != 2 || opposite.size() != 2 || opposite[0] == opposite[1]) return false;
+    for (int w : nv_) common += stamp_[w] == stamp_counter_ ? 1 : 0;
+    if (common != 2) return false;
     // the opposite vertices lose an edge: none may be left with two
-    if (neighbours(opposite[0]).size() <= 3 || neighbours(opposite[1]).size() <= 3) return false;
+    if (degree(opposite[0]) <= 3 || degree(opposite[1]) <= 3) return false;
 
+    // Geometry first (cheap), then f: every check must pass, so their order does not matter.
     const Vec& pu = m_.vertices[u];
+    const Vec& pv = m_.vertices[v];
+    const double tol = relaxed_ ? o_.tolerance * kRelaxed : o_.tolerance;
     bool near_removed = false;
+    changed_.clear();
     for (int t : incident_[u]) {
-      if (std::find(shared.begin(), shared.end(), t) != shared.end()) continue;
+      if (t == shared[0] || t == shared[1]) continue;
       std::array<Vec, 3> before, after;
       for (int c = 0; c < 3; ++c) {
-        const int w = m_.faces[t][c];
+        const int w = faces_[t][c];
         before[c] = m_.vertices[w];
-        after[c] = w == u ? m_.vertices[v] : m_.vertices[w];
+        after[c] = w == u ? pv : m_.vertices[w];
       }
       const Vec n0 = normal(before), n1 = normal(after);
       const double l0 = n0.norm(), l1 = n1.norm();
@@ -201,24 +246,25 @@ class Simplifier {
       if (!(l1 > 1e-6 * scale)) return false;  // would make a sliver
       // turns by more than 60 degrees (a sliver's own normal is not trusted)
       if (l0 > 1e-6 * scale && n0.dot(n1) < 0.5 * l0 * l1) return false;
-      const Vec centroid = (after[0] + after[1] + after[2]) / 3.0;
-      const double tol = relaxed_ ? o_.tolerance * kRelaxed : o_.tolerance;
+      near_removed = near_removed || point_triangle(pu, after) <= tol;
+      changed_.push_back({(after[0] + after[1] + after[2]) / 3.0, n1});
+    }
+    if (!near_removed) return false;
+    for (const auto& [centroid, n1] : changed_) {
       try {
         const ValueGradient vg = f_.value_gradient(centroid);
         const double g = vg.gradient.norm();
-        if (!(n1.dot(vg.gradient) > 0.5 * l1 * g)) return false;  // faces away from the surface normal
-        if (!(std::abs(vg.value) <= tol * g)) return false;         // centroid farther than tol
+        if (!(n1.dot(vg.gradient) > 0.5 * n1.norm() * g)) return false;  // faces away from the surface normal
+        if (!(std::abs(vg.value) <= tol * g)) return false;               // centroid farther than tol
       } catch (const NonFiniteValue&) {
         return false;
       }
-      for (int c = 0; c < 3; ++c) {
-        if (m_.faces[t][c] != u) continue;
-        if (distance(0.5 * (after[c] + after[(c + 1) % 3])) > tol) return false;
-        if (distance(0.5 * (after[c] + after[(c + 2) % 3])) > tol) return false;
-      }
-      near_removed = near_removed || point_triangle(pu, after) <= tol;
     }
-    if (!near_removed) return false;
+    // the new edges' midpoints: v with every other vertex of u's remaining triangles (each once)
+    for (int w : nu_) {
+      if (w == v) continue;
+      if (distance(0.5 * (pv + m_.vertices[w])) > tol) return false;
+    }
 
     for (int t : shared) alive_[t] = false;
     for (int w : {u, v, opposite[0], opposite[1]}) {
@@ -226,7 +272,7 @@ class Simplifier {
       list.erase(std::remove_if(list.begin(), list.end(), [&](int t) { return !alive_[t]; }), list.end());
     }
     for (int t : incident_[u]) {
-      for (int& w : m_.faces[t])
+      for (int& w : faces_[t])
         if (w == u) w = v;
       incident_[v].push_back(t);
     }
@@ -238,33 +284,40 @@ class Simplifier {
     std::vector<int> index(m_.vertices.size(), -1);
     std::vector<Vec> vertices;
     std::vector<std::vector<int>> faces;
-    for (int t = 0; t < int(m_.faces.size()); ++t) {
+    for (int t = 0; t < int(faces_.size()); ++t) {
       if (!alive_[t]) continue;
-      for (int& w : m_.faces[t]) {
+      for (int& w : faces_[t]) {
         if (index[w] < 0) {
           index[w] = int(vertices.size());
           vertices.push_back(m_.vertices[w]);
         }
         w = index[w];
       }
-      faces.push_back(std::move(m_.faces[t]));
+      faces.push_back({faces_[t][0], faces_[t][1], faces_[t][2]});
     }
-    m_.vertices = std::move(vertices);
-    m_.faces = std::move(faces);
+    out_.vertices = std::move(vertices);
+    out_.faces = std::move(faces);
   }
 
-  PolygonMesh& m_;
+  const PolygonMesh& m_;
+  PolygonMesh out_;
   const std::vector<bool>& locked_;
   const Expression& f_;
   const SimplifyOptions& o_;
   std::vector<std::vector<int>> incident_;
   std::vector<bool> alive_;
   bool relaxed_ = false;
+  std::vector<std::array<int, 3>> faces_;               // m_.faces while simplifying
+  mutable std::vector<int> stamp_;                       // neighbours(): seen in the current call
+  mutable int stamp_counter_ = 0;
+  std::vector<int> nu_, nv_;           // scratch of try_collapse
+  std::vector<std::pair<Vec, Vec>> changed_;            // centroid and normal of each changed triangle
+
 };
 
 }  // namespace
 
-SimplifyResult simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options) {
+SimplifyResult simplify(const PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options) {
   return Simplifier(mesh, locked, f, options).run();
 }
 

@@ -22,15 +22,19 @@ struct SimplifyOptions {
   /// same checks allow it with the distance bound relaxed to 8/7 tolerance: slivers that
   /// snapping the vertices to a grid could turn over.
   double min_height = 0.0;
+  /// Try every vertex in every sweep. Off (the default), a vertex is tried again only when a
+  /// collapse changed its 2-ring since its last try, which skips only tries that would fail
+  /// again; the result is the same (tests compare both), the work less.
+  bool retry_all = false;
 };
 
 struct SimplifyResult {
+  PolygonMesh mesh;        ///< the simplified mesh (removed vertices dropped, the rest renumbered)
   int collapses = 0;
   int thin_triangles = 0;  ///< triangles still below min_height
 };
 
-/// Collapses edges of `mesh` in place (faces stay triangles; removed vertices are dropped and
-/// the rest renumbered).
-SimplifyResult simplify(PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options);
+/// Collapses edges of a copy of `mesh` (faces stay triangles); `mesh` itself is not changed.
+SimplifyResult simplify(const PolygonMesh& mesh, const std::vector<bool>& locked, const Expression& f, const SimplifyOptions& options);
 
 }  // namespace sculpt::implicit::detail

@@ -4,7 +4,10 @@
 // every mesh is measured the same way, against the analytic torus, both ways: mesh vertices and
 // points spread over each triangle to the torus (closed-form distance), and 600 x 300 points
 // of the parametrization to the mesh. Times are thread CPU time, median of 5 runs.
-//   implicit_solid
+//   implicit_solid               the table
+//   implicit_solid --peers DIR   the table plus the peers' meshes and times that
+//                                tests/bench/implicit/peers.sh left in DIR (run that script)
+//   implicit_solid --ours        only polygonize, 20 times, and a fingerprint of its mesh (profiling)
 // See docs/implicit.md, "Implicit solids", and docs/benchmarks.md.
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -222,9 +225,68 @@ double coarsest_within(bool roots, PolygonMesh& mesh, Error& error) {
   return 0;
 }
 
+/// A triangle mesh from an OFF file (the peers' output); empty when it cannot be read.
+PolygonMesh read_off(const std::string& file) {
+  PolygonMesh m;
+  std::ifstream in(file);
+  std::string magic;
+  long nv = 0, nf = 0, ne = 0;
+  if (!(in >> magic >> nv >> nf >> ne) || magic != "OFF") return {};
+  m.vertices.resize(std::size_t(nv));
+  for (Vec& v : m.vertices) in >> v.x() >> v.y() >> v.z();
+  m.faces.resize(std::size_t(nf));
+  for (auto& f : m.faces) {
+    int k = 0;
+    in >> k;
+    f.resize(std::size_t(k));
+    for (int& i : f) in >> i;
+  }
+  return in ? m : PolygonMesh{};
+}
+
+/// One peer result as tests/bench/implicit/peers.sh lists it: "name|setting|ms|file".
+struct PeerRun {
+  std::string name, setting, file;
+  double ms = 0;
+  PolygonMesh mesh;
+  Error error;
+};
+
+std::vector<PeerRun> read_peers(const std::string& dir) {
+  std::vector<PeerRun> out;
+  std::ifstream list(dir + "/peers.txt");
+  std::string line;
+  while (std::getline(list, line)) {
+    PeerRun r;
+    std::size_t a = line.find('|'), b = line.find('|', a + 1), c = line.find('|', b + 1);
+    if (c == std::string::npos) continue;
+    r.name = line.substr(0, a);
+    r.setting = line.substr(a + 1, b - a - 1);
+    r.ms = std::stod(line.substr(b + 1, c - b - 1));
+    r.file = line.substr(c + 1);
+    r.mesh = read_off(r.file);
+    if (r.mesh.faces.empty()) continue;
+    r.error = measure(r.mesh);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--ours") {  // only polygonize, 20 times (for a profiler)
+    const Expression f = torus();
+    PolygonizeResult r;
+    for (int i = 0; i < 20; ++i) r = polygonize(f, {.box = kBox, .tolerance = kTol});
+    double sum = 0;  // a fingerprint of the mesh, to see that a change of speed changed nothing else
+    for (const Vec& v : r.mesh.vertices) sum += v.x() + 2 * v.y() + 3 * v.z();
+    std::printf("%zu triangles, %zu vertices, %ld marched, fingerprint %.17g\n", r.mesh.faces.size(),
+                r.mesh.vertices.size(), r.marched_triangles, sum);
+    return 0;
+  }
+  // --peers DIR: also the peers' meshes and times that tests/bench/implicit/peers.sh left in DIR
+  const std::string peers_dir = argc > 2 && std::string(argv[1]) == "--peers" ? argv[2] : "";
   double load[3] = {0, 0, 0};
   if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
     if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = -1;
@@ -257,6 +319,24 @@ int main() {
     // the same grid evaluating the compiled expression, as polygonize does, instead of C++ code
     const double compiled_ms = median_cpu_ms([&] { mc = marching_cubes(h, roots, &f); });
     row(roots ? "uniform MC, roots, f compiled" : "uniform MC, interpolated, f compiled", setting, mc, e, compiled_ms);
+  }
+  if (!peers_dir.empty()) {
+    // per peer, the setting with the fewest triangles whose measured error is within kTol
+    const std::vector<PeerRun> peers = read_peers(peers_dir);
+    std::vector<std::string> names;
+    for (const PeerRun& p : peers)
+      if (std::find(names.begin(), names.end(), p.name) == names.end()) names.push_back(p.name);
+    for (const std::string& name : names) {
+      const PeerRun* best = nullptr;
+      for (const PeerRun& p : peers)
+        if (p.name == name && p.error.hausdorff() <= kTol && (!best || p.mesh.faces.size() < best->mesh.faces.size())) best = &p;
+      if (best) row(name.c_str(), best->setting, best->mesh, best->error, best->ms);
+      else std::printf("| %s | no setting within %.0e | | | | | | | |\n", name.c_str(), kTol);
+    }
+    std::printf("\nall peer settings tried:\n\n| peer | setting | triangles | mesh->surface | surface->mesh | CPU ms |\n|---|---|---|---|---|---|\n");
+    for (const PeerRun& p : peers)
+      std::printf("| %s | %s | %zu | %.2e | %.2e | %.1f |\n", p.name.c_str(), p.setting.c_str(), p.mesh.faces.size(),
+                  p.error.to_surface, p.error.to_mesh, p.ms);
   }
   std::printf("\npolygonize: %ld octree cells, %ld search cells, %ld leaves, depth %d, %ld tetrahedra marched, "
               "%ld triangles before %ld collapses/flips\n",
