@@ -6,6 +6,7 @@
 #include "bsp/boundary.hpp"
 #include "bsp/cells.hpp"
 #include "bsp/hull.hpp"
+#include "bsp/merge/convex_union.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
 #include "kernel/grid.hpp"
@@ -42,20 +43,24 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
     if (at.empty() || g != at.back()) at.push_back(g);
   }
   if (at.size() == 1) return translate(tool, at[0]);
-  const auto pieces = convex_pieces(tool);
-  std::vector<Solid> parts;
-  parts.reserve(pieces.size() * (at.size() - 1));
-  std::vector<Eigen::Vector3d> ends;
-  for (const auto& piece : pieces)
+  const kernel::Grid& grid = tool.grid();
+  // Each convex piece's vertices on the grid; translated by grid points, they stay there (exact).
+  std::vector<std::vector<kernel::GridPoint>> sets;
+  for (const auto& piece : convex_pieces(tool)) {
+    std::vector<kernel::GridPoint> snapped;
+    snapped.reserve(piece.size());
+    for (const Eigen::Vector3d& v : piece) snapped.push_back(grid.snap(v));
     for (std::size_t i = 0; i + 1 < at.size(); ++i) {
-      ends.clear();
-      for (const Eigen::Vector3d& v : piece) {
-        ends.push_back(v + at[i]);
-        ends.push_back(v + at[i + 1]);
-      }
-      parts.push_back(hull(ends, tool.grid()));
+      const kernel::GridPoint a = grid.snap(at[i]), b = grid.snap(at[i + 1]);
+      std::vector<kernel::GridPoint> ends;
+      ends.reserve(2 * snapped.size());
+      for (const kernel::GridPoint& v : snapped)
+        for (const kernel::GridPoint& t : {a, b})  // snap() checks the range of the sum
+          ends.push_back(grid.snap(grid.to_world(kernel::GridPoint{v.x + t.x, v.y + t.y, v.z + t.z})));
+      sets.push_back(std::move(ends));
     }
-  return unite_all(std::move(parts));
+  }
+  return bsp::detail::unite_convex_hulls(sets, grid);
 }
 
 Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {

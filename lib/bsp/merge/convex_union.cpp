@@ -1,0 +1,165 @@
+#include "bsp/merge/convex_union.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+
+#include "bsp/tree/autopartition.hpp"
+#include "bsp/tree/solid_access.hpp"
+#include "kernel/convex_hull.hpp"
+#include "kernel/convex_polygon.hpp"
+#include "kernel/plane.hpp"
+
+namespace sculpt::bsp::detail {
+
+using kernel::ConvexPolygon;
+using kernel::CornerBox;
+using kernel::GridPoint;
+using kernel::Plane;
+using kernel::Side;
+
+namespace {
+
+/// A convex polytope: its face planes (arena indices, outward normals), its faces as boundary
+/// fragments on them, and the box of its vertices (grid units).
+struct Polytope {
+  std::vector<std::int32_t> planes;
+  std::vector<BoundaryFragment> faces;
+  CornerBox box;
+  std::size_t hint = 0;  ///< the plane that last decided a piece: tried first for the next one
+};
+
+/// The polytope of a 3-dimensional hull: coplanar triangles (equal normalized planes) form one
+/// face, and each face is its plane's world polygon clipped by the planes of the faces across
+/// its edges. For a convex polytope that is the face exactly: a face is the intersection, in its
+/// plane, of the half-planes of its edges, and each edge lies on a neighbouring face's plane.
+Polytope make_polytope(Arena& arena, const kernel::ConvexHull& h) {
+  const std::size_t n = h.triangles.size();
+  std::vector<Plane> plane(n);
+  for (std::size_t t = 0; t < n; ++t)
+    plane[t] = kernel::plane_through(h.vertices[std::size_t(h.triangles[t][0])], h.vertices[std::size_t(h.triangles[t][1])],
+                                     h.vertices[std::size_t(h.triangles[t][2])]);
+  // Faces: triangles grouped by plane.
+  auto key = [](const Plane& p) { return std::tuple(p.a, p.b, p.c, p.d); };
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t t = 0; t < n; ++t) order[t] = std::uint32_t(t);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return key(plane[x]) < key(plane[y]); });
+  std::vector<std::int32_t> face_of(n);
+  Polytope poly;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i == 0 || !(plane[order[i]] == plane[order[i - 1]])) poly.planes.push_back(arena.planes.add(plane[order[i]]));
+    face_of[order[i]] = std::int32_t(poly.planes.size() - 1);
+  }
+  // Neighbouring faces across every triangle edge: the directed edge (u, v) of one triangle is
+  // (v, u) in the triangle across it.
+  const auto nv = std::uint64_t(h.vertices.size());
+  std::vector<std::pair<std::uint64_t, std::int32_t>> edges;
+  edges.reserve(3 * n);
+  for (std::size_t t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k)
+      edges.push_back({std::uint64_t(h.triangles[t][std::size_t(k)]) * nv + std::uint64_t(h.triangles[t][std::size_t((k + 1) % 3)]),
+                       face_of[t]});
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::vector<std::int32_t>> neighbours(poly.planes.size());
+  for (std::size_t t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t back =
+          std::uint64_t(h.triangles[t][std::size_t((k + 1) % 3)]) * nv + std::uint64_t(h.triangles[t][std::size_t(k)]);
+      const auto it = std::lower_bound(edges.begin(), edges.end(), std::pair{back, std::int32_t(-1)});
+      if (it == edges.end() || it->first != back) throw std::logic_error("unite_convex_hulls: the hull is not closed");
+      if (it->second != face_of[t]) neighbours[std::size_t(face_of[t])].push_back(it->second);
+    }
+  poly.faces.reserve(poly.planes.size());
+  for (std::size_t f = 0; f < poly.planes.size(); ++f) {
+    std::vector<std::int32_t>& around = neighbours[f];
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    ConvexPolygon buffers[2] = {kernel::world_polygon(arena.planes, poly.planes[f], {.quick_corners = true}), {}};
+    int current = 0;
+    CornerBox box = kernel::corner_box(buffers[0]);
+    for (const std::int32_t g : around) {
+      const Side s = kernel::clip_to_negative(arena.planes, buffers[current], buffers[1 - current], box, poly.planes[std::size_t(g)]);
+      if (s == Side::Both) current = 1 - current;
+      else if (s != Side::Negative) throw std::logic_error("unite_convex_hulls: a face lies outside its neighbour's plane");
+    }
+    kernel::refresh_world_corners(arena.planes, buffers[current]);
+    poly.faces.push_back({std::move(buffers[current]), false});
+  }
+  poly.box.valid = true;
+  for (int k = 0; k < 3; ++k) poly.box.lo[k] = 1e300, poly.box.hi[k] = -1e300;
+  for (const GridPoint& v : h.vertices) {
+    const double c[3] = {double(v.x), double(v.y), double(v.z)};  // exact: |coordinates| <= 2^25
+    for (int k = 0; k < 3; ++k) poly.box.lo[k] = std::min(poly.box.lo[k], c[k]), poly.box.hi[k] = std::max(poly.box.hi[k], c[k]);
+  }
+  return poly;
+}
+
+bool overlap(const CornerBox& a, const CornerBox& b) {
+  for (int k = 0; k < 3; ++k)
+    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
+  return true;
+}
+
+/// Appends to `kept` the parts of `piece` (outward normal along its support) that are not inside
+/// polytope q: the parts in front of one of q's planes, and the part on q's face when it is
+/// q's face with the same orientation and `first` (the piece's polytope is listed before q).
+void clip_outside(Arena& arena, ConvexPolygon piece, Polytope& q, bool first, std::vector<ConvexPolygon>& kept) {
+  CornerBox box = kernel::corner_box(piece);
+  if (!overlap(box, q.box)) {  // box_side would find a separating plane, but this is cheaper
+    kept.push_back(std::move(piece));
+    return;
+  }
+  const std::size_t m = q.planes.size();
+  std::int32_t on = -1;
+  ConvexPolygon neg, pos;
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::size_t i = (q.hint + k) % m;
+    const std::int32_t p = q.planes[i];
+    const Side quick = kernel::box_side(box, arena.planes[p]);
+    if (quick == Side::Negative) continue;
+    const Side s = quick == Side::Positive ? Side::Positive : kernel::split(arena.planes, piece, p, arena.opposite(p), neg, pos);
+    if (s == Side::Positive) {  // wholly in front of q's face plane: outside q
+      q.hint = i;
+      kept.push_back(std::move(piece));
+      return;
+    }
+    if (s == Side::On) on = p;
+    if (s == Side::Both) {
+      kept.push_back(std::move(pos));
+      std::swap(piece, neg);
+      box = kernel::corner_box(piece);
+    }
+  }
+  // What is left lies in q's closed interior: inside q unless it lies on one of q's faces.
+  if (on >= 0 && first && arena.planes[on] == arena.planes[piece.support]) kept.push_back(std::move(piece));
+}
+
+}  // namespace
+
+Solid unite_convex_hulls(const std::vector<std::vector<GridPoint>>& point_sets, const kernel::Grid& grid) {
+  Arena arena;
+  std::vector<Polytope> polys;
+  for (const auto& points : point_sets) {
+    const kernel::ConvexHull h = kernel::convex_hull(points);
+    if (h.dimension == 3) polys.push_back(make_polytope(arena, h));
+  }
+  std::vector<BoundaryFragment> result;
+  std::vector<ConvexPolygon> pieces, kept;
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    pieces.clear();
+    for (BoundaryFragment& f : polys[i].faces) pieces.push_back(std::move(f.polygon));
+    for (std::size_t j = 0; j < polys.size() && !pieces.empty(); ++j) {
+      if (j == i || !overlap(polys[i].box, polys[j].box)) continue;
+      kept.clear();
+      for (ConvexPolygon& piece : pieces) clip_outside(arena, std::move(piece), polys[j], i < j, kept);
+      std::swap(pieces, kept);
+    }
+    for (ConvexPolygon& piece : pieces) result.push_back({std::move(piece), false});
+  }
+  if (result.empty()) return SolidAccess::at_grid(Solid(), grid);
+  return SolidAccess::at_grid(autopartition(arena, std::move(result)), grid);
+}
+
+}  // namespace sculpt::bsp::detail
