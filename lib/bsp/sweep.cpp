@@ -1,5 +1,6 @@
 #include "bsp/sweep.hpp"
 
+#include <utility>
 #include <vector>
 
 #include "base/errors.hpp"
@@ -69,6 +70,14 @@ Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3
 
 Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
   return work | sweep(tool, path);
+}
+
+Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
+  return std::move(work) - sweep(tool, path);
+}
+
+Solid add(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
+  return std::move(work) | sweep(tool, path);
 }
 
 }  // namespace sculpt

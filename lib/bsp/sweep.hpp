@@ -26,4 +26,10 @@ Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3
 /// `work` united with the tool swept along `path` (an adding stroke).
 Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path);
 
+/// In place: `work` is consumed and its storage reused (set_operations.hpp, the in-place
+/// variants), so a stroke costs what it touches instead of a copy of the workpiece's tree:
+/// `work = carve(std::move(work), tool, path)`.
+Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path);
+Solid add(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path);
+
 }  // namespace sculpt

@@ -3,7 +3,7 @@
 // 100 carving strokes, each along a different 20-segment arc around the goblet's bowl, with the
 // time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
 //   bench_sculpt [--strokes N]
-// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
+// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
 //          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m>
 #include <algorithm>
 #include <chrono>
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   Solid work = revolved("goblet_profile_20.txt") - revolved("goblet_cavity_profile_12.txt");
   const Eigen::AlignedBox3d box = bounding_box(work);
   const Solid ball = sphere(0.15, {.segments = 16});
-  std::vector<double> cpu;
+  std::vector<double> cpu, sweep_cpu, subtract_cpu;
   for (int k = 0; k < strokes; ++k) {
     // An arc of 20 segments at a height and radius that cut into the bowl's wall.
     const double z = box.min().z() + (0.55 + 0.4 * std::fmod(k * 0.618, 1.0)) * box.sizes().z();
@@ -71,19 +71,26 @@ int main(int argc, char** argv) {
     }
     const auto wall0 = Clock::now();
     const double cpu0 = cpu_ms();
-    work = carve(work, ball, path);
+    // carve(std::move(work), ball, path), in its two steps, timed separately.
+    const Solid swept = sweep(ball, path);
+    const double cpu1 = cpu_ms();
+    work = std::move(work) - swept;
     const double c = cpu_ms() - cpu0;
+    sweep_cpu.push_back(cpu1 - cpu0);
+    subtract_cpu.push_back(c - (cpu1 - cpu0));
     const double w = std::chrono::duration<double, std::milli>(Clock::now() - wall0).count();
     cpu.push_back(c);
     if (k % 10 == 0 || k + 1 == strokes) {
       const TreeStats t = tree_stats(work);
-      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d volume=%.6f\n", k + 1, c, w,
-                  t.nodes, t.height, volume(work));
+      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d volume=%.6f\n",
+                  k + 1, c, sweep_cpu.back(), subtract_cpu.back(), w, t.nodes, t.height, volume(work));
       std::fflush(stdout);
     }
   }
   const std::vector<double> first(cpu.begin(), cpu.begin() + std::min<std::size_t>(10, cpu.size()));
   const std::vector<double> last(cpu.end() - std::min<std::size_t>(10, cpu.size()), cpu.end());
-  std::printf("bench impl=sculpt case=strokes strokes=%d median_cpu_ms=%.2f max_cpu_ms=%.2f first10_cpu_ms=%.2f last10_cpu_ms=%.2f\n",
-              strokes, median(cpu), *std::max_element(cpu.begin(), cpu.end()), median(first), median(last));
+  std::printf("bench impl=sculpt case=strokes strokes=%d median_cpu_ms=%.2f max_cpu_ms=%.2f first10_cpu_ms=%.2f last10_cpu_ms=%.2f "
+              "median_sweep_cpu_ms=%.2f median_subtract_cpu_ms=%.2f\n",
+              strokes, median(cpu), *std::max_element(cpu.begin(), cpu.end()), median(first), median(last), median(sweep_cpu),
+              median(subtract_cpu));
 }
