@@ -10,7 +10,9 @@
 #include "bsp/merge/convex_union.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
+#include "kernel/convex_hull.hpp"
 #include "kernel/grid.hpp"
+#include "mesh/mesh_measures.hpp"
 
 namespace sculpt {
 namespace {
@@ -20,12 +22,26 @@ namespace {
 /// vertices to the grid can (curved primitives' vertices are plane intersections, not grid
 /// points): at most its area times sqrt(3)/2 grid steps.
 std::vector<std::vector<Eigen::Vector3d>> convex_pieces(const Solid& tool) {
-  const std::vector<Eigen::Vector3d> vertices = to_mesh(tool).vertices;
+  const PolygonMesh mesh = to_mesh(tool);
+  const std::vector<Eigen::Vector3d>& vertices = mesh.vertices;
   if (vertices.empty()) return {};
-  const Solid h = hull(vertices, tool.grid());
+  // The hull of the vertices on the grid (what the sweep's hulls are made of), its volume from
+  // its triangles (no tree is built for it).
+  std::vector<kernel::GridPoint> snapped;
+  snapped.reserve(vertices.size());
+  for (const Eigen::Vector3d& v : vertices) snapped.push_back(tool.grid().snap(v));
+  const kernel::ConvexHull h = kernel::convex_hull(snapped);
+  double hull_volume = 0;
+  if (h.dimension == 3) {
+    const Eigen::Vector3d o = tool.grid().to_world(h.vertices[0]);
+    for (const auto& t : h.triangles)
+      hull_volume += (tool.grid().to_world(h.vertices[std::size_t(t[0])]) - o)
+                         .dot((tool.grid().to_world(h.vertices[std::size_t(t[1])]) - o)
+                                  .cross(tool.grid().to_world(h.vertices[std::size_t(t[2])]) - o)) / 6;
+  }
   // The tool lies in its hull up to that rounding, so the volumes alone tell (no set operation).
-  if (volume(h) - volume(tool) <= surface_area(tool) * tool.grid().step()) return {vertices};
-  Eigen::AlignedBox3d box = bounding_box(tool);
+  if (hull_volume - mesh_volume(mesh) <= mesh_surface_area(mesh) * tool.grid().step()) return {vertices};
+  Eigen::AlignedBox3d box = mesh_bounding_box(mesh);
   box.extend(box.min() - Eigen::Vector3d::Constant(1.0));
   box.extend(box.max() + Eigen::Vector3d::Constant(1.0));
   std::vector<std::vector<Eigen::Vector3d>> pieces;

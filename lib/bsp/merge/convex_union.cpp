@@ -112,24 +112,44 @@ void clip_outside(Arena& arena, ConvexPolygon piece, Polytope& q, bool first, st
     return;
   }
   const std::size_t m = q.planes.size();
-  std::int32_t on = -1;
-  ConvexPolygon neg, pos;
+  // A piece wholly in front of one of q's planes is outside q and stays whole: look for such a
+  // plane by the box tests first (from the one that decided the last piece), then exactly, and
+  // split only a piece that no plane separates from q (one that crosses q's boundary).
+  thread_local std::vector<std::uint32_t> crossing;
+  crossing.clear();
   for (std::size_t k = 0; k < m; ++k) {
     const std::size_t i = (q.hint + k) % m;
-    const std::int32_t p = q.planes[i];
-    const Side quick = kernel::box_side(box, arena.planes[p]);
-    if (quick == Side::Negative) continue;
-    const Side s = quick == Side::Positive ? Side::Positive : kernel::split(arena.planes, piece, p, arena.opposite(p), neg, pos);
-    if (s == Side::Positive) {  // wholly in front of q's face plane: outside q
+    const Side quick = kernel::box_side(box, arena.planes[q.planes[i]]);
+    if (quick == Side::Positive) {
       q.hint = i;
       kept.push_back(std::move(piece));
       return;
     }
-    if (s == Side::On) on = p;
+    if (quick == Side::Both) crossing.push_back(std::uint32_t(i));
+  }
+  std::int32_t on = -1;
+  std::size_t live = 0;  // planes of `crossing` the piece crosses exactly
+  for (const std::uint32_t i : crossing) {
+    const Side s = kernel::classify(arena.planes, piece, q.planes[i]);
+    if (s == Side::Positive) {
+      q.hint = i;
+      kept.push_back(std::move(piece));
+      return;
+    }
+    if (s == Side::On) on = q.planes[i];
+    if (s == Side::Both) crossing[live++] = i;
+  }
+  ConvexPolygon neg, pos;
+  for (std::size_t k = 0; k < live; ++k) {
+    const std::int32_t p = q.planes[crossing[k]];
+    const Side s = kernel::split(arena.planes, piece, p, arena.opposite(p), neg, pos);
+    if (s == Side::Positive) {  // the part left after earlier splits is in front of this plane
+      kept.push_back(std::move(piece));
+      return;
+    }
     if (s == Side::Both) {
       kept.push_back(std::move(pos));
       std::swap(piece, neg);
-      box = kernel::corner_box(piece);
     }
   }
   // What is left lies in q's closed interior: inside q unless it lies on one of q's faces.
