@@ -12,6 +12,7 @@
 #include "bsp/boundary.hpp"
 #include "bsp/hull.hpp"
 #include "bsp/primitives.hpp"
+#include "bsp/rebuild.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
 #include "kernel/grid.hpp"
@@ -133,6 +134,14 @@ TEST(Sweep, ManyStrokesCarveWhatEachSweepCovers) {
     EXPECT_TRUE((work & swept).is_empty()) << "stroke " << k;
   }
   EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(work)));
+  // A new tree from the boundary: the same solid exactly, with fewer nodes than the carved tree.
+  const Solid rebuilt = rebuild_from_boundary(work);
+  EXPECT_TRUE((rebuilt - work).is_empty());
+  EXPECT_TRUE((work - rebuilt).is_empty());
+  EXPECT_LT(tree_stats(rebuilt).nodes, tree_stats(work).nodes);
+  EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(rebuilt)));
+  EXPECT_TRUE(rebuild_from_boundary(Solid()).is_empty());
+  EXPECT_EQ(rebuild_from_boundary(Solid::leaf(true)).root(), kIn);
 }
 
 }  // namespace

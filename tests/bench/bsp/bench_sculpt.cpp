@@ -2,7 +2,7 @@
 // carved into the goblet in at most 50 ms, and still at most 50 ms per stroke after 100 strokes):
 // 100 carving strokes, each along a different 20-segment arc around the goblet's bowl, with the
 // time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
-//   bench_sculpt [--strokes N]
+//   bench_sculpt [--strokes N] [--rebuild-every K]   (K: rebuild the tree from the boundary every K strokes)
 // Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
 //          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m>
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include "bsp/boundary.hpp"
 #include "bsp/convex_path.hpp"
 #include "bsp/primitives.hpp"
+#include "bsp/rebuild.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/sweep.hpp"
 #include "curves/digitized_curve.hpp"
@@ -46,11 +47,13 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   int strokes = 100;
+  int rebuild_every = 0;  // 0: never
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--strokes" && i + 1 < argc) strokes = std::stoi(argv[++i]);
+    else if (a == "--rebuild-every" && i + 1 < argc) rebuild_every = std::stoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_sculpt [--strokes N]\n");
+      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--rebuild-every K]\n");
       return 2;
     }
   }
@@ -58,7 +61,7 @@ int main(int argc, char** argv) {
   Solid work = revolved("goblet_profile_20.txt") - revolved("goblet_cavity_profile_12.txt");
   const Eigen::AlignedBox3d box = bounding_box(work);
   const Solid ball = sphere(0.15, {.segments = 16});
-  std::vector<double> cpu, sweep_cpu, subtract_cpu;
+  std::vector<double> cpu, sweep_cpu, subtract_cpu, rebuild_cpu;
   for (int k = 0; k < strokes; ++k) {
     // An arc of 20 segments at a height and radius that cut into the bowl's wall.
     const double z = box.min().z() + (0.55 + 0.4 * std::fmod(k * 0.618, 1.0)) * box.sizes().z();
@@ -80,6 +83,17 @@ int main(int argc, char** argv) {
     subtract_cpu.push_back(c - (cpu1 - cpu0));
     const double w = std::chrono::duration<double, std::milli>(Clock::now() - wall0).count();
     cpu.push_back(c);
+    if (rebuild_every > 0 && (k + 1) % rebuild_every == 0) {
+      // A new tree from the workpiece's boundary (bsp/rebuild.hpp), timed on its own.
+      const TreeStats before = tree_stats(work);
+      const double r0 = cpu_ms();
+      work = rebuild_from_boundary(work);
+      const double rebuild_ms = cpu_ms() - r0;
+      const TreeStats after = tree_stats(work);
+      std::printf("bench impl=sculpt case=rebuild_after_%d cpu_ms=%.2f nodes=%d->%d height=%d->%d\n", k + 1, rebuild_ms, before.nodes,
+                  after.nodes, before.height, after.height);
+      rebuild_cpu.push_back(rebuild_ms);
+    }
     if (k % 10 == 0 || k + 1 == strokes) {
       const TreeStats t = tree_stats(work);
       std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d volume=%.6f\n",
