@@ -4,7 +4,8 @@
 // time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
 //   bench_sculpt [--strokes N] [--rebuild-every K]   (K: rebuild the tree from the boundary every K strokes)
 // Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
-//          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m>
+//          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m> ... strokes_over_50ms=<n>
+//          (--rebuild-every: case=rebuild_after_<k> per rebuild; --compare-old: impl=old lines and the median ratio)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -111,6 +112,9 @@ int main(int argc, char** argv) {
     subtract_cpu.push_back(c - (cpu1 - cpu0));
     const double w = std::chrono::duration<double, std::milli>(Clock::now() - wall0).count();
     cpu.push_back(c);
+    if (c > 50)
+      std::printf("bench impl=sculpt case=slow_stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f storage_nodes=%zu\n", k + 1, c,
+                  cpu1 - cpu0, c - (cpu1 - cpu0), work.nodes().size());
     if (compare_old) {
       const double o0 = cpu_ms();
       work_old = old_carve(work_old, ball, path);
@@ -141,10 +145,14 @@ int main(int argc, char** argv) {
   }
   const std::vector<double> first(cpu.begin(), cpu.begin() + std::min<std::size_t>(10, cpu.size()));
   const std::vector<double> last(cpu.end() - std::min<std::size_t>(10, cpu.size()), cpu.end());
+  const auto over_50 = std::count_if(cpu.begin(), cpu.end(), [](double c) { return c > 50; });
   std::printf("bench impl=sculpt case=strokes strokes=%d median_cpu_ms=%.2f max_cpu_ms=%.2f first10_cpu_ms=%.2f last10_cpu_ms=%.2f "
-              "median_sweep_cpu_ms=%.2f median_subtract_cpu_ms=%.2f\n",
+              "median_sweep_cpu_ms=%.2f median_subtract_cpu_ms=%.2f strokes_over_50ms=%d\n",
               strokes, median(cpu), *std::max_element(cpu.begin(), cpu.end()), median(first), median(last), median(sweep_cpu),
-              median(subtract_cpu));
+              median(subtract_cpu), int(over_50));
+  if (!rebuild_cpu.empty())
+    std::printf("bench impl=sculpt case=rebuilds count=%zu median_cpu_ms=%.2f max_cpu_ms=%.2f\n", rebuild_cpu.size(), median(rebuild_cpu),
+                *std::max_element(rebuild_cpu.begin(), rebuild_cpu.end()));
   if (compare_old) {
     std::vector<double> ratio;
     for (std::size_t i = 0; i < cpu.size(); ++i) ratio.push_back(old_cpu[i] / cpu[i]);
