@@ -165,16 +165,27 @@ Solid unite_convex_hulls(const std::vector<std::vector<GridPoint>>& point_sets, 
     const kernel::ConvexHull h = kernel::convex_hull(points);
     if (h.dimension == 3) polys.push_back(make_polytope(arena, h));
   }
+  // Pairs of polytopes whose boxes meet (sorted by their lower x, a sweep over x), each list
+  // ordered nearest in the list first (in a sweep, the hulls of the neighbouring segments): they
+  // cover most of what gets dropped, so fewer pieces reach the others.
+  const std::size_t n = polys.size();
+  std::vector<std::vector<std::size_t>> near(n);
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return polys[a].box.lo[0] < polys[b].box.lo[0]; });
+  for (std::size_t x = 0; x < n; ++x)
+    for (std::size_t y = x + 1; y < n && polys[order[y]].box.lo[0] <= polys[order[x]].box.hi[0]; ++y)
+      if (overlap(polys[order[x]].box, polys[order[y]].box)) near[order[x]].push_back(order[y]), near[order[y]].push_back(order[x]);
   std::vector<BoundaryFragment> result;
   std::vector<ConvexPolygon> pieces, kept;
-  for (std::size_t i = 0; i < polys.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     pieces.clear();
     for (BoundaryFragment& f : polys[i].faces) pieces.push_back(std::move(f.polygon));
-    // The nearest polytopes in the list first (in a sweep, the hulls of the neighbouring
-    // segments): they cover most of what gets dropped, so fewer pieces reach the others.
-    for (std::size_t step = 1; step < 2 * polys.size() && !pieces.empty(); ++step) {
-      const std::size_t j = step % 2 ? i + (step + 1) / 2 : i - step / 2;  // i+1, i-1, i+2, ...
-      if (j >= polys.size() || !overlap(polys[i].box, polys[j].box)) continue;  // j < 0 wraps around
+    auto distance = [i](std::size_t j) { return j > i ? j - i : i - j; };
+    std::sort(near[i].begin(), near[i].end(),
+              [&](std::size_t a, std::size_t b) { return std::pair(distance(a), a) < std::pair(distance(b), b); });
+    for (const std::size_t j : near[i]) {
+      if (pieces.empty()) break;
       kept.clear();
       for (ConvexPolygon& piece : pieces) clip_outside(arena, std::move(piece), polys[j], i < j, kept);
       std::swap(pieces, kept);
