@@ -23,6 +23,7 @@ done
 packages=(g++ make cmake pkg-config libeigen3-dev libboost-dev libopenmesh-dev
           libgtest-dev libgmock-dev libedit-dev python3
           libpng-dev  # libpng-dev: PNG pictures of solids (lib/render)
+          lib3mf-dev  # lib3mf-dev: export and import of 3MF (lib/mesh/formats/threemf_format.cpp)
           libcgal-dev)  # libcgal-dev: the tests' independent mesh validator (tests/support)
 missing=()
 for p in "${packages[@]}"; do

@@ -1,14 +1,18 @@
 #include "bsp/sweep.hpp"
 
+#include <utility>
 #include <vector>
 
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/cells.hpp"
 #include "bsp/hull.hpp"
+#include "bsp/merge/convex_union.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
+#include "kernel/convex_hull.hpp"
 #include "kernel/grid.hpp"
+#include "mesh/mesh_measures.hpp"
 
 namespace sculpt {
 namespace {
@@ -18,12 +22,26 @@ namespace {
 /// vertices to the grid can (curved primitives' vertices are plane intersections, not grid
 /// points): at most its area times sqrt(3)/2 grid steps.
 std::vector<std::vector<Eigen::Vector3d>> convex_pieces(const Solid& tool) {
-  const std::vector<Eigen::Vector3d> vertices = to_mesh(tool, {.clean = false}).vertices;
+  const PolygonMesh mesh = to_mesh(tool, {.clean = false});
+  const std::vector<Eigen::Vector3d>& vertices = mesh.vertices;
   if (vertices.empty()) return {};
-  const Solid h = hull(vertices, tool.grid());
+  // The hull of the vertices on the grid (what the sweep's hulls are made of), its volume from
+  // its triangles (no tree is built for it).
+  std::vector<kernel::GridPoint> snapped;
+  snapped.reserve(vertices.size());
+  for (const Eigen::Vector3d& v : vertices) snapped.push_back(tool.grid().snap(v));
+  const kernel::ConvexHull h = kernel::convex_hull(snapped);
+  double hull_volume = 0;
+  if (h.dimension == 3) {
+    const Eigen::Vector3d o = tool.grid().to_world(h.vertices[0]);
+    for (const auto& t : h.triangles)
+      hull_volume += (tool.grid().to_world(h.vertices[std::size_t(t[0])]) - o)
+                         .dot((tool.grid().to_world(h.vertices[std::size_t(t[1])]) - o)
+                                  .cross(tool.grid().to_world(h.vertices[std::size_t(t[2])]) - o)) / 6;
+  }
   // The tool lies in its hull up to that rounding, so the volumes alone tell (no set operation).
-  if (volume(h) - volume(tool) <= surface_area(tool) * tool.grid().step()) return {vertices};
-  Eigen::AlignedBox3d box = bounding_box(tool);
+  if (hull_volume - mesh_volume(mesh) <= mesh_surface_area(mesh) * tool.grid().step()) return {vertices};
+  Eigen::AlignedBox3d box = mesh_bounding_box(mesh);
   box.extend(box.min() - Eigen::Vector3d::Constant(1.0));
   box.extend(box.max() + Eigen::Vector3d::Constant(1.0));
   std::vector<std::vector<Eigen::Vector3d>> pieces;
@@ -42,20 +60,24 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
     if (at.empty() || g != at.back()) at.push_back(g);
   }
   if (at.size() == 1) return translate(tool, at[0]);
-  const auto pieces = convex_pieces(tool);
-  std::vector<Solid> parts;
-  parts.reserve(pieces.size() * (at.size() - 1));
-  std::vector<Eigen::Vector3d> ends;
-  for (const auto& piece : pieces)
+  const kernel::Grid& grid = tool.grid();
+  // Each convex piece's vertices on the grid; translated by grid points, they stay there (exact).
+  std::vector<std::vector<kernel::GridPoint>> sets;
+  for (const auto& piece : convex_pieces(tool)) {
+    std::vector<kernel::GridPoint> snapped;
+    snapped.reserve(piece.size());
+    for (const Eigen::Vector3d& v : piece) snapped.push_back(grid.snap(v));
     for (std::size_t i = 0; i + 1 < at.size(); ++i) {
-      ends.clear();
-      for (const Eigen::Vector3d& v : piece) {
-        ends.push_back(v + at[i]);
-        ends.push_back(v + at[i + 1]);
-      }
-      parts.push_back(hull(ends, tool.grid()));
+      const kernel::GridPoint a = grid.snap(at[i]), b = grid.snap(at[i + 1]);
+      std::vector<kernel::GridPoint> ends;
+      ends.reserve(2 * snapped.size());
+      for (const kernel::GridPoint& v : snapped)
+        for (const kernel::GridPoint& t : {a, b})  // snap() checks the range of the sum
+          ends.push_back(grid.snap(grid.to_world(kernel::GridPoint{v.x + t.x, v.y + t.y, v.z + t.z})));
+      sets.push_back(std::move(ends));
     }
-  return unite_all(std::move(parts));
+  }
+  return bsp::detail::unite_convex_hulls(sets, grid);
 }
 
 Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
@@ -64,6 +86,14 @@ Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3
 
 Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
   return work | sweep(tool, path);
+}
+
+Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
+  return std::move(work) - sweep(tool, path);
+}
+
+Solid add(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
+  return std::move(work) | sweep(tool, path);
 }
 
 }  // namespace sculpt

@@ -375,7 +375,7 @@ void register_solids(BuiltinTable& table) {
   table.add({.name = "export",
              .signature = "export(s, \"file.off\")",
              .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is); the "
-                    "format comes from the extension: .off, .obj, .stl, .ply, .om. The file is replaced atomically.",
+                    "format comes from the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres). The file is replaced atomically.",
              .params = {{"s"}, {"file"}},
              .run = [](const Arguments& args) -> Value {
                if (const auto* m = args.value(0).object<MeshValue>()) {
@@ -389,7 +389,7 @@ void register_solids(BuiltinTable& table) {
              }});
   table.add({.name = "import",
              .signature = "import(\"file.off\")",
-             .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om), checks that it is a closed, oriented, "
+             .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om, .3mf), checks that it is a closed, oriented, "
                     "non-self-intersecting 2-manifold, and builds its BSP solid.",
              .params = {{"file"}},
              .run = [](const Arguments& args) -> Value {

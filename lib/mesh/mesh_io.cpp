@@ -124,7 +124,8 @@ MeshFormat mesh_format_from_path(const fs::path& path) {
   if (ext == ".stl") return MeshFormat::Stl;
   if (ext == ".ply") return MeshFormat::Ply;
   if (ext == ".om") return MeshFormat::Om;
-  throw IoError(path.string(), "unknown mesh format '" + ext + "' (use .off, .obj, .stl, .ply or .om)");
+  if (ext == ".3mf") return MeshFormat::ThreeMf;
+  throw IoError(path.string(), "unknown mesh format '" + ext + "' (use .off, .obj, .stl, .ply, .om or .3mf)");
 }
 
 std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary) {
@@ -135,6 +136,7 @@ std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary)
     case MeshFormat::Stl: return mesh::detail::encode_stl(mesh, binary);
     case MeshFormat::Ply: return mesh::detail::encode_ply(mesh, binary);
     case MeshFormat::Om: return mesh::detail::encode_om(mesh);
+    case MeshFormat::ThreeMf: return mesh::detail::encode_3mf(mesh);
     case MeshFormat::Auto: break;
   }
   throw InvalidInput("encode_mesh: the format must be given (not Auto)");
@@ -147,6 +149,7 @@ PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::str
     case MeshFormat::Stl: return mesh::detail::decode_stl(data, name);
     case MeshFormat::Ply: return mesh::detail::decode_ply(data, name);
     case MeshFormat::Om: return mesh::detail::decode_om(data, name);
+    case MeshFormat::ThreeMf: return mesh::detail::decode_3mf(data, name);
     case MeshFormat::Auto: break;
   }
   throw InvalidInput("decode_mesh: the format must be given (not Auto)");

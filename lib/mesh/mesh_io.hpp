@@ -1,8 +1,10 @@
 #pragma once
 /// \file mesh_io.hpp
 /// Reading and writing polygon meshes as OFF, OBJ, STL (ASCII and binary), PLY (ASCII and
-/// binary) and OpenMesh's .om (written and read by OpenMesh itself, points as doubles). Text formats and binary PLY carry doubles exactly (shortest round-trip decimal
-/// text, IEEE binary64); binary STL carries float32 by definition. Writes are atomic: the
+/// binary), OpenMesh's .om (written and read by OpenMesh itself, points as doubles) and 3MF
+/// (through lib3mf: triangles, float32 positions, millimetres). Text formats and binary PLY carry
+/// doubles exactly (shortest round-trip decimal text, IEEE binary64); binary STL and 3MF carry
+/// float32. Writes are atomic: the
 /// data goes to a temporary file in the target directory that is renamed over the target
 /// only when complete. Nothing is printed. Precision per format: docs/mesh_io.md.
 
@@ -14,9 +16,9 @@
 
 namespace sculpt {
 
-enum class MeshFormat { Auto, Off, Obj, Stl, Ply, Om };
+enum class MeshFormat { Auto, Off, Obj, Stl, Ply, Om, ThreeMf };
 
-/// Format named by the extension (.off, .obj, .stl, .ply, .om; any case).
+/// Format named by the extension (.off, .obj, .stl, .ply, .om, .3mf; any case).
 /// \throw IoError naming the path if the extension is none of these.
 MeshFormat mesh_format_from_path(const std::filesystem::path& path);
 

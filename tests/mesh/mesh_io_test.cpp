@@ -6,6 +6,8 @@
 
 #include <bit>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -88,7 +90,7 @@ TEST_P(RoundTrip, CubeKeepsVolumeAndTopology) {
   EXPECT_TRUE(checks::GenusIs(r, 0));
   EXPECT_TRUE(checks::VolumeNear(r, 1.5 * 2.25 * 7, 1e-15));
   EXPECT_EQ(r.vertices.size(), 8u);
-  EXPECT_EQ(r.faces.size(), std::string(c.ext) == ".stl" ? 12u : 6u);
+  EXPECT_EQ(r.faces.size(), std::string(c.ext) == ".stl" || std::string(c.ext) == ".3mf" ? 12u : 6u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, PolygonRoundTrip,
@@ -101,7 +103,7 @@ INSTANTIATE_TEST_SUITE_P(Formats, PolygonRoundTrip,
 INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip,
                          ::testing::Values(Case{".off", false}, Case{".obj", false}, Case{".ply", false},
                                            Case{".ply", true}, Case{".stl", false}, Case{".stl", true},
-                                           Case{".om", false}),
+                                           Case{".om", false}, Case{".3mf", false}),
                          [](const auto& param_info) {
                            return std::string(param_info.param.ext + 1) + (param_info.param.binary ? "_binary" : "_ascii");
                          });
@@ -119,6 +121,72 @@ TEST(OmFormat, TruncatedOrForeignDataIsAnErrorOrAMeshNeverACrash) {
   }
   EXPECT_GT(errors, 0);
   EXPECT_THROW((void)decode_mesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Om, "off.om"), IoError);
+}
+
+/// What lib3mf 1.8 keeps of a coordinate (its mesh writer, putFloat): the float32 nearest to the
+/// double, times 10^6 in float32 arithmetic, truncated towards zero to an integer, written as
+/// that integer / 10^6 with six decimals, and parsed back into a float32.
+double lib3mf_stored(double x) {
+  const float f = static_cast<float>(x);
+  const auto n = static_cast<std::int64_t>(f * 1000000.0f);
+  char text[64];
+  const std::int64_t a = n < 0 ? -n : n;
+  std::snprintf(text, sizeof text, "%s%lld.%06lld", f < 0 && a ? "-" : "", static_cast<long long>(a / 1000000),
+                static_cast<long long>(a % 1000000));
+  return double(std::strtof(text, nullptr));
+}
+
+TEST(ThreeMfFormat, KeepsMicrometresOfEachFloat32CoordinateAndTheVolume) {
+  // 3MF through lib3mf 1.8: a position is a float32 (MODELMESHVERTEX) that lib3mf writes as XML
+  // text with six decimals (micrometres when the unit is the millimetre). Every coordinate must
+  // read back as exactly lib3mf_stored() of it, within a micrometre plus float32 roundings of
+  // it; the vertices in the same order, the triangles as written, closed and oriented.
+  PolygonMesh m = test_shapes::uv_sphere(24);
+  for (Eigen::Vector3d& v : m.vertices) v = v * 37.123456789 + Eigen::Vector3d(1.0 / 3, -250.000001, 1e-7);
+  const fs::path path = test_dir() / "sphere.3mf";
+  write_mesh(m, path);
+  const PolygonMesh r = read_mesh(path);
+  const PolygonMesh t = triangulate(m);
+  ASSERT_EQ(r.vertices.size(), m.vertices.size());
+  PolygonMesh stored = t;  // the model of what 3MF keeps, computed here
+  for (size_t i = 0; i < m.vertices.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      stored.vertices[i][k] = lib3mf_stored(m.vertices[i][k]);
+      EXPECT_LE(std::abs(r.vertices[i][k] - m.vertices[i][k]), 1e-6 + 3 * std::abs(m.vertices[i][k]) * 0x1p-24);
+    }
+    EXPECT_TRUE(bit_equal(r.vertices[i], stored.vertices[i])) << "vertex " << i << ": " << r.vertices[i].transpose();
+  }
+  EXPECT_EQ(r.faces, t.faces);
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(r));
+  EXPECT_NEAR(mesh_volume(r), mesh_volume(stored), 1e-12 * mesh_volume(stored));
+  // The narrowing is real: this mesh's doubles are not kept.
+  EXPECT_GT(std::abs(mesh_volume(r) - mesh_volume(m)), 0.0);
+}
+
+TEST(ThreeMfFormat, TheSameMeshGivesTheSameBytes) {
+  const PolygonMesh m = test_shapes::uv_sphere(8);
+  EXPECT_EQ(encode_mesh(m, MeshFormat::ThreeMf), encode_mesh(m, MeshFormat::ThreeMf));
+  PolygonMesh moved = m;
+  moved.vertices[0].x() += 0.5;
+  EXPECT_NE(encode_mesh(m, MeshFormat::ThreeMf), encode_mesh(moved, MeshFormat::ThreeMf));
+}
+
+TEST(ThreeMfFormat, TruncatedOrForeignDataIsAnErrorOrAMeshNeverACrash) {
+  const std::string package = encode_mesh(test_shapes::uv_sphere(8), MeshFormat::ThreeMf);
+  ASSERT_GT(package.size(), 100u);
+  int errors = 0;
+  for (std::size_t n = 0; n < package.size(); n += 1 + n / 16) {
+    try {
+      (void)decode_mesh(std::string_view(package).substr(0, n), MeshFormat::ThreeMf, "cut.3mf");
+    } catch (const IoError&) {
+      ++errors;
+    }
+  }
+  EXPECT_GT(errors, 0);
+  EXPECT_THROW((void)decode_mesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::ThreeMf, "off.3mf"), IoError);
+  PolygonMesh far = test_shapes::unit_cube();
+  far.vertices[0].x() = 1e300;
+  EXPECT_THROW((void)encode_mesh(far, MeshFormat::ThreeMf), InvalidInput);
 }
 
 TEST(OmFormat, ANonManifoldFaceIsRefusedNotDropped) {

@@ -16,11 +16,15 @@ std::string encode_stl(const PolygonMesh& mesh, bool binary);
 std::string encode_ply(const PolygonMesh& mesh, bool binary);
 /// OpenMesh's .om through OpenMesh, points as doubles. \throw InvalidInput for a non-manifold face.
 std::string encode_om(const PolygonMesh& mesh);
+/// 3MF through lib3mf: triangulated, float32 positions, millimetres. \throw InvalidInput beyond float32.
+std::string encode_3mf(const PolygonMesh& mesh);
 
 PolygonMesh decode_off(std::string_view data, const std::string& name);
 PolygonMesh decode_obj(std::string_view data, const std::string& name);
 PolygonMesh decode_stl(std::string_view data, const std::string& name);
 PolygonMesh decode_ply(std::string_view data, const std::string& name);
 PolygonMesh decode_om(std::string_view data, const std::string& name);
+/// Every build item's mesh (its transform applied), scaled from the file's unit to millimetres.
+PolygonMesh decode_3mf(std::string_view data, const std::string& name);
 
 }  // namespace sculpt::mesh::detail

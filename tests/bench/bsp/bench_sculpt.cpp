@@ -2,9 +2,10 @@
 // carved into the goblet in at most 50 ms, and still at most 50 ms per stroke after 100 strokes):
 // 100 carving strokes, each along a different 20-segment arc around the goblet's bowl, with the
 // time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
-//   bench_sculpt [--strokes N]
-// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
-//          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m>
+//   bench_sculpt [--strokes N] [--rebuild-every K]   (K: rebuild the tree from the boundary every K strokes)
+// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
+//          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m> ... strokes_over_50ms=<n>
+//          (--rebuild-every: case=rebuild_after_<k> per rebuild; --compare-old: impl=old lines and the median ratio)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,7 +17,9 @@
 
 #include "bsp/boundary.hpp"
 #include "bsp/convex_path.hpp"
+#include "bsp/hull.hpp"
 #include "bsp/primitives.hpp"
+#include "bsp/rebuild.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/sweep.hpp"
 #include "curves/digitized_curve.hpp"
@@ -37,6 +40,30 @@ Solid revolved(const std::string& file) {
   return revolution::revolve(profile, circular_path(32));
 }
 
+/// The construction before issue 17's rework, for side-by-side ratios (--compare-old): each
+/// segment's hull as a solid with its own tree (bsp/hull.hpp), united by unite_all, subtracted
+/// from a copy of the workpiece (carve took it by const reference).
+Solid old_carve(const Solid& work, const Solid& ball, const std::vector<Eigen::Vector3d>& path) {
+  const kernel::Grid& grid = ball.grid();
+  std::vector<Eigen::Vector3d> at;
+  for (const Eigen::Vector3d& p : path) {
+    const Eigen::Vector3d g = grid.to_world(grid.snap(p));
+    if (at.empty() || g != at.back()) at.push_back(g);
+  }
+  const std::vector<Eigen::Vector3d> vertices = to_mesh(ball).vertices;
+  (void)hull(vertices, grid);  // the old convexity test built the tool's hull
+  std::vector<Solid> parts;
+  for (std::size_t i = 0; i + 1 < at.size(); ++i) {
+    std::vector<Eigen::Vector3d> ends;
+    for (const Eigen::Vector3d& v : vertices) {
+      ends.push_back(v + at[i]);
+      ends.push_back(v + at[i + 1]);
+    }
+    parts.push_back(hull(ends, grid));
+  }
+  return work - unite_all(std::move(parts));
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -46,19 +73,24 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   int strokes = 100;
+  int rebuild_every = 0;  // 0: never
+  bool compare_old = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--strokes" && i + 1 < argc) strokes = std::stoi(argv[++i]);
+    else if (a == "--rebuild-every" && i + 1 < argc) rebuild_every = std::stoi(argv[++i]);
+    else if (a == "--compare-old") compare_old = true;
     else {
-      std::fprintf(stderr, "usage: bench_sculpt [--strokes N]\n");
+      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--rebuild-every K] [--compare-old]\n");
       return 2;
     }
   }
   // The goblet of scripts/goblet.bsp: the outer profile (20 segments) minus the cavity (12).
   Solid work = revolved("goblet_profile_20.txt") - revolved("goblet_cavity_profile_12.txt");
+  Solid work_old = work;  // carved the old way with --compare-old
   const Eigen::AlignedBox3d box = bounding_box(work);
   const Solid ball = sphere(0.15, {.segments = 16});
-  std::vector<double> cpu;
+  std::vector<double> cpu, sweep_cpu, subtract_cpu, rebuild_cpu, old_cpu;
   for (int k = 0; k < strokes; ++k) {
     // An arc of 20 segments at a height and radius that cut into the bowl's wall.
     const double z = box.min().z() + (0.55 + 0.4 * std::fmod(k * 0.618, 1.0)) * box.sizes().z();
@@ -71,19 +103,61 @@ int main(int argc, char** argv) {
     }
     const auto wall0 = Clock::now();
     const double cpu0 = cpu_ms();
-    work = carve(work, ball, path);
+    // carve(std::move(work), ball, path), in its two steps, timed separately.
+    const Solid swept = sweep(ball, path);
+    const double cpu1 = cpu_ms();
+    work = std::move(work) - swept;
     const double c = cpu_ms() - cpu0;
+    sweep_cpu.push_back(cpu1 - cpu0);
+    subtract_cpu.push_back(c - (cpu1 - cpu0));
     const double w = std::chrono::duration<double, std::milli>(Clock::now() - wall0).count();
     cpu.push_back(c);
+    if (c > 50)
+      std::printf("bench impl=sculpt case=slow_stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f storage_nodes=%zu\n", k + 1, c,
+                  cpu1 - cpu0, c - (cpu1 - cpu0), work.nodes().size());
+    if (compare_old) {
+      const double o0 = cpu_ms();
+      work_old = old_carve(work_old, ball, path);
+      old_cpu.push_back(cpu_ms() - o0);
+    }
+    if (rebuild_every > 0 && (k + 1) % rebuild_every == 0) {
+      // A new tree from the workpiece's boundary (bsp/rebuild.hpp), timed on its own.
+      const TreeStats before = tree_stats(work);
+      const double r0 = cpu_ms();
+      work = rebuild_from_boundary(work);
+      const double rebuild_ms = cpu_ms() - r0;
+      const TreeStats after = tree_stats(work);
+      std::printf("bench impl=sculpt case=rebuild_after_%d cpu_ms=%.2f nodes=%d->%d height=%d->%d\n", k + 1, rebuild_ms, before.nodes,
+                  after.nodes, before.height, after.height);
+      rebuild_cpu.push_back(rebuild_ms);
+    }
     if (k % 10 == 0 || k + 1 == strokes) {
       const TreeStats t = tree_stats(work);
-      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d volume=%.6f\n", k + 1, c, w,
-                  t.nodes, t.height, volume(work));
+      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d volume=%.6f\n",
+                  k + 1, c, sweep_cpu.back(), subtract_cpu.back(), w, t.nodes, t.height, volume(work));
+      if (compare_old) {
+        const TreeStats o = tree_stats(work_old);
+        std::printf("bench impl=old case=stroke_%d cpu_ms=%.2f nodes=%d height=%d volume=%.6f\n", k + 1, old_cpu.back(), o.nodes,
+                    o.height, volume(work_old));
+      }
       std::fflush(stdout);
     }
   }
   const std::vector<double> first(cpu.begin(), cpu.begin() + std::min<std::size_t>(10, cpu.size()));
   const std::vector<double> last(cpu.end() - std::min<std::size_t>(10, cpu.size()), cpu.end());
-  std::printf("bench impl=sculpt case=strokes strokes=%d median_cpu_ms=%.2f max_cpu_ms=%.2f first10_cpu_ms=%.2f last10_cpu_ms=%.2f\n",
-              strokes, median(cpu), *std::max_element(cpu.begin(), cpu.end()), median(first), median(last));
+  const auto over_50 = std::count_if(cpu.begin(), cpu.end(), [](double c) { return c > 50; });
+  std::printf("bench impl=sculpt case=strokes strokes=%d median_cpu_ms=%.2f max_cpu_ms=%.2f first10_cpu_ms=%.2f last10_cpu_ms=%.2f "
+              "median_sweep_cpu_ms=%.2f median_subtract_cpu_ms=%.2f strokes_over_50ms=%d\n",
+              strokes, median(cpu), *std::max_element(cpu.begin(), cpu.end()), median(first), median(last), median(sweep_cpu),
+              median(subtract_cpu), int(over_50));
+  if (!rebuild_cpu.empty())
+    std::printf("bench impl=sculpt case=rebuilds count=%zu median_cpu_ms=%.2f max_cpu_ms=%.2f\n", rebuild_cpu.size(), median(rebuild_cpu),
+                *std::max_element(rebuild_cpu.begin(), rebuild_cpu.end()));
+  if (compare_old) {
+    std::vector<double> ratio;
+    for (std::size_t i = 0; i < cpu.size(); ++i) ratio.push_back(old_cpu[i] / cpu[i]);
+    const std::vector<double> old_last(old_cpu.end() - std::min<std::size_t>(10, old_cpu.size()), old_cpu.end());
+    std::printf("bench impl=old case=strokes median_cpu_ms=%.2f last10_cpu_ms=%.2f median_ratio_old_over_new=%.2f same_volume=%d\n",
+                median(old_cpu), median(old_last), median(ratio), int((work - work_old).is_empty() && (work_old - work).is_empty()));
+  }
 }
