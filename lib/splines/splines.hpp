@@ -8,3 +8,4 @@
 #include "splines/foot_point.hpp"
 #include "splines/offset.hpp"
 #include "splines/spline_io.hpp"
+#include "splines/surface_curves.hpp"
