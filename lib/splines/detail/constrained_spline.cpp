@@ -86,7 +86,11 @@ void ConstrainedSpline::add_term(double t, const Eigen::MatrixXd& L, const Eigen
 }
 
 void ConstrainedSpline::add_constraint(double t, const Eigen::VectorXd& value, int order) {
-  constraints_.push_back({basis_curve_.basis(t, order), order, value});
+  constraints_.push_back({basis_curve_.basis(t, order), order, Eigen::MatrixXd::Identity(dim_, dim_), value});
+}
+
+void ConstrainedSpline::add_constraint(double t, const Eigen::MatrixXd& G, const Eigen::VectorXd& value, int order) {
+  constraints_.push_back({basis_curve_.basis(t, order), order, G, value});
 }
 
 void ConstrainedSpline::clear_terms() {
@@ -96,7 +100,8 @@ void ConstrainedSpline::clear_terms() {
 
 Eigen::MatrixXd ConstrainedSpline::solve(const Eigen::MatrixXd* anchor) const {
   const Eigen::Index n = static_cast<Eigen::Index>(controls_) * dim_;
-  const Eigen::Index m = static_cast<Eigen::Index>(constraints_.size()) * dim_;
+  Eigen::Index m = 0;
+  for (const Constraint& c : constraints_) m += c.G.rows();
   // Scale the constraint rows like the Hessian's diagonal so the KKT matrix is balanced.
   double diag = 0.0;
   for (const auto& e : hessian_)
@@ -107,15 +112,16 @@ Eigen::MatrixXd ConstrainedSpline::solve(const Eigen::MatrixXd* anchor) const {
   rhs.head(n) = gradient_;
   Eigen::Index row = n;
   for (const Constraint& c : constraints_) {
-    for (int a = 0; a < dim_; ++a, ++row) {
-      for (std::size_t j = 0; j < c.basis.index.size(); ++j) {
-        const double v = scale * c.basis.value(c.order, static_cast<Eigen::Index>(j));
-        if (v == 0.0) continue;
-        const Eigen::Index col = static_cast<Eigen::Index>(c.basis.index[j]) * dim_ + a;
-        kkt.emplace_back(row, col, v);
-        kkt.emplace_back(col, row, v);
-      }
-      rhs(row) = scale * c.value(a);
+    for (Eigen::Index g = 0; g < c.G.rows(); ++g, ++row) {
+      for (std::size_t j = 0; j < c.basis.index.size(); ++j)
+        for (int a = 0; a < dim_; ++a) {
+          const double v = scale * c.basis.value(c.order, static_cast<Eigen::Index>(j)) * c.G(g, a);
+          if (v == 0.0) continue;
+          const Eigen::Index col = static_cast<Eigen::Index>(c.basis.index[j]) * dim_ + a;
+          kkt.emplace_back(row, col, v);
+          kkt.emplace_back(col, row, v);
+        }
+      rhs(row) = scale * c.value(g);
     }
   }
   Eigen::SparseMatrix<double> K(n + m, n + m);

@@ -38,8 +38,10 @@ class ConstrainedSpline {
   void add_bending(double weight);
   /// Adds |L c(t) - r|^2 (L: rows x dimension).
   void add_term(double t, const Eigen::MatrixXd& L, const Eigen::VectorXd& r);
-  /// Requires c^(order)(t) = value exactly (order 0 or 1).
+  /// Requires c^(order)(t) = value exactly (order 0, 1 or 2).
   void add_constraint(double t, const Eigen::VectorXd& value, int order = 0);
+  /// Requires G c^(order)(t) = value exactly (G: rows x dimension, rows independent).
+  void add_constraint(double t, const Eigen::MatrixXd& G, const Eigen::VectorXd& value, int order);
   /// Drops the quadratic terms, keeps the constraints.
   void clear_terms();
 
@@ -52,6 +54,7 @@ class ConstrainedSpline {
   struct Constraint {
     Basis basis;
     int order;
+    Eigen::MatrixXd G;
     Eigen::VectorXd value;
   };
   std::vector<double> knots_;
