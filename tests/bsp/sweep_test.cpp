@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "base/errors.hpp"
@@ -74,6 +75,39 @@ TEST(Sweep, CarveAndAddAreTheSetOperationsWithTheSweep) {
   const double bound = surface_area(ball) * std::sqrt(3.0) / 2 * kernel::kGridStep;
   EXPECT_LE(volume(translate(ball, path[0]) - swept), bound);
   EXPECT_LE(volume(translate(ball, path[2]) - swept), bound);
+}
+
+TEST(SweepMotion, TranslationsGiveThePathSweep) {
+  const Solid cube = box({0, 0, 0}, {1, 1, 1});
+  const std::vector<Eigen::Vector3d> path{{0, 0, 0}, {3, 0, 0}, {3, 2, 0}};
+  std::vector<Eigen::Isometry3d> poses;
+  for (const auto& p : path) poses.push_back(Eigen::Isometry3d(Eigen::Translation3d(p)));
+  EXPECT_DOUBLE_EQ(volume(sweep(cube, poses)), volume(sweep(cube, path)));
+  EXPECT_THROW(sweep(cube, std::vector<Eigen::Isometry3d>{}), InvalidInput);
+}
+
+TEST(SweepMotion, ABarTurningAboutItsEndCoversAQuarterDisk) {
+  // A bar [0, L] x [-w, w] x [-h, h] turning by 90 degrees about the z axis: the swept region is
+  // the quarter disk of radius R = sqrt(L^2 + w^2) and two strips L x w, times 2 h.
+  const double L = 4, w = 0.5, h = 0.5, R = std::hypot(L, w);
+  const Solid bar = box({0, -w, -h}, {L, w, h});
+  const int steps = 64;
+  std::vector<Eigen::Isometry3d> poses;
+  for (int i = 0; i <= steps; ++i)
+    poses.push_back(Eigen::Isometry3d(Eigen::AngleAxisd(M_PI / 2 * i / steps, Eigen::Vector3d::UnitZ())));
+  const Solid s = sweep(bar, poses);
+  EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(s)));
+  const double exact = 2 * h * (M_PI * R * R / 4 + 2 * L * w);
+  // The bound of sweep.hpp: chord error R (1 - cos(d/2)) plus 1/4 |R_i - R_i+1| diam = 1/4 * 2 sin(d/2) * diam,
+  // times the area, plus the grid rounding of the rotated vertices.
+  const double d = M_PI / 2 / steps, diam = std::sqrt(L * L + 4 * w * w + 4 * h * h);
+  const double hausdorff = R * (1 - std::cos(d / 2)) + 0.5 * std::sin(d / 2) * diam + kernel::kGridStep;
+  EXPECT_NEAR(volume(s), exact, hausdorff * surface_area(s));
+  EXPECT_GT(volume(s), 2 * h * (M_PI * L * L / 4));  // far more than a translation could give
+  for (int i : {0, steps / 3, steps}) {
+    const Solid at = transform(bar, Eigen::Affine3d(poses[i].matrix()));
+    EXPECT_LE(volume(at - s), surface_area(at) * std::sqrt(3.0) * kernel::kGridStep) << i;
+  }
 }
 
 }  // namespace
