@@ -64,6 +64,14 @@ std::vector<Eigen::Vector3d> path_arg(const Arguments& args, std::size_t i, std:
   return path;
 }
 
+/// The tol=e of a stroke along a motion (argument i): 0 when not given (motion_poses' default).
+double motion_tolerance(const Arguments& args, std::size_t i) {
+  if (!args.has(i)) return 0.0;
+  const double t = args.number(i);
+  if (!(t > 0) || !std::isfinite(t)) args.fail(i, "tol must be a finite number > 0");
+  return t;
+}
+
 /// sweep, carve and add: the tool moved along a path (bsp/sweep.hpp).
 void add_stroke(BuiltinTable& table, const char* name, const char* signature, const char* doc,
                 Solid (*stroke)(const Solid&, const Solid&, std::span<const Eigen::Vector3d>),
@@ -74,7 +82,7 @@ void add_stroke(BuiltinTable& table, const char* name, const char* signature, co
              .params = {{"work"}, {"tool"}, {"path"}, {"tol", false}},
              .run = [stroke, moved](const Arguments& args) -> Value {
                if (const auto* m = args.value(2).object<MotionValue>()) {
-                 const auto poses = motion_poses(*m, solid_arg(args, 1), args.has(3) ? args.number(3) : 0.0);
+                 const auto poses = motion_poses(*m, solid_arg(args, 1), motion_tolerance(args, 3));
                  args.charge(poses.size());
                  return solid_value(moved(solid_arg(args, 0), solid_arg(args, 1), poses));
                }
@@ -281,7 +289,7 @@ void register_solids(BuiltinTable& table) {
              .params = {{"tool"}, {"path"}, {"tol", false}},
              .run = [](const Arguments& args) -> Value {
                if (const auto* m = args.value(1).object<MotionValue>()) {
-                 const auto poses = motion_poses(*m, solid_arg(args, 0), args.has(2) ? args.number(2) : 0.0);
+                 const auto poses = motion_poses(*m, solid_arg(args, 0), motion_tolerance(args, 2));
                  args.charge(poses.size());
                  return solid_value(sweep(solid_arg(args, 0), poses));
                }
