@@ -88,7 +88,8 @@ TEST(SweepMotion, TranslationsGiveThePathSweep) {
 
 TEST(SweepMotion, ABarTurningAboutItsEndCoversAQuarterDisk) {
   // A bar [0, L] x [-w, w] x [-h, h] turning by 90 degrees about the z axis: the swept region is
-  // the quarter disk of radius R = sqrt(L^2 + w^2) and two strips L x w, times 2 h.
+  // the quarter disk of radius R = sqrt(L^2 + w^2) and the two strips {0 <= -y <= w, x >= 0} and
+  // {0 <= -x <= w, y >= 0} inside that radius (area integral_0^w sqrt(R^2 - y^2) dy each), times 2 h.
   const double L = 4, w = 0.5, h = 0.5, R = std::hypot(L, w);
   const Solid bar = box({0, -w, -h}, {L, w, h});
   const int steps = 64;
@@ -97,7 +98,8 @@ TEST(SweepMotion, ABarTurningAboutItsEndCoversAQuarterDisk) {
     poses.push_back(Eigen::Isometry3d(Eigen::AngleAxisd(M_PI / 2 * i / steps, Eigen::Vector3d::UnitZ())));
   const Solid s = sweep(bar, poses);
   EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(s)));
-  const double exact = 2 * h * (M_PI * R * R / 4 + 2 * L * w);
+  const double strip = 0.5 * (w * L + R * R * std::asin(w / R));
+  const double exact = 2 * h * (M_PI * R * R / 4 + 2 * strip);
   // The bound of sweep.hpp: chord error R (1 - cos(d/2)) plus 1/4 |R_i - R_i+1| diam = 1/4 * 2 sin(d/2) * diam,
   // times the area, plus the grid rounding of the rotated vertices.
   const double d = M_PI / 2 / steps, diam = std::sqrt(L * L + 4 * w * w + 4 * h * h);
