@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "base/errors.hpp"
@@ -282,7 +283,12 @@ GeodesicResult geodesic(const Surface& surface, const Eigen::Vector3d& p, const 
   GeodesicResult result{.curve = BSpline::clamped(1, {a, b}), .polygon = {}};
   std::vector<V>& poly = result.polygon;
   const int n0 = levels.front();
-  for (int i = 0; i <= n0; ++i) poly.push_back(i == 0 ? a : i == n0 ? b : surface.closest_point(a + (b - a) * (double(i) / n0)));
+  // The straight segment, bulged by 1e-3 of its length to one side before projecting: where the
+  // segment passes through a symmetry centre (antipodal points of a sphere) the straight one's
+  // projections collapse onto p and q, and the tangent steps cannot separate them.
+  const V side = perpendicular((b - a).normalized()) * (1e-3 * (b - a).norm());
+  for (int i = 0; i <= n0; ++i)
+    poly.push_back(i == 0 ? a : i == n0 ? b : surface.closest_point(a + (b - a) * (double(i) / n0) + std::sin(std::numbers::pi * i / n0) * side));
   result.converged = true;
   for (std::size_t level = 0; level < levels.size(); ++level) {
     if (level > 0) {  // midpoints projected

@@ -122,6 +122,14 @@ TEST(Geodesic, PointsOffTheSurfaceAreMovedToTheirFootPoints) {
   EXPECT_LT(std::abs(g.length - kPi / 2) / (kPi / 2), 1e-4);
 }
 
+TEST(Geodesic, AntipodalPointsGiveAHalfGreatCircle) {
+  // The straight segment passes through the centre: one of the many half great circles.
+  const Surface s = sphere_surface(V::Zero(), 1.0);
+  const GeodesicResult g = geodesic(s, V(1, 0, 0), V(-1, 0, 0));
+  EXPECT_LT(std::abs(g.length - kPi) / kPi, 1e-4);
+  EXPECT_LE(sphere_gap(g.curve, V::Zero(), 1.0), 1e-4);
+}
+
 TEST(Geodesic, BadInputIsRefused) {
   const Surface s = sphere_surface(V::Zero(), 1.0);
   EXPECT_THROW(geodesic(s, V(1, 0, 0), V(2, 0, 0)), InvalidInput);  // the same foot point
