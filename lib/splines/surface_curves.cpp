@@ -283,12 +283,23 @@ GeodesicResult geodesic(const Surface& surface, const Eigen::Vector3d& p, const 
   GeodesicResult result{.curve = BSpline::clamped(1, {a, b}), .polygon = {}};
   std::vector<V>& poly = result.polygon;
   const int n0 = levels.front();
-  // The straight segment, bulged by 1e-3 of its length to one side before projecting: where the
-  // segment passes through a symmetry centre (antipodal points of a sphere) the straight one's
-  // projections collapse onto p and q, and the tangent steps cannot separate them.
-  const V side = perpendicular((b - a).normalized()) * (1e-3 * (b - a).norm());
-  for (int i = 0; i <= n0; ++i)
-    poly.push_back(i == 0 ? a : i == n0 ? b : surface.closest_point(a + (b - a) * (double(i) / n0) + std::sin(std::numbers::pi * i / n0) * side));
+  // The straight segment projected. Where it passes through a symmetry centre (antipodal points
+  // of a sphere) the projections collapse onto p and q (one edge carries the whole length) and
+  // the tangent steps cannot separate them: then the segment is bulged by 1e-3 of its length to
+  // one side first (only then: the bulge costs steps near conjugate points).
+  auto start = [&](double bulge) {
+    const V side = perpendicular((b - a).normalized()) * (bulge * (b - a).norm());
+    poly.clear();
+    for (int i = 0; i <= n0; ++i)
+      poly.push_back(i == 0    ? a
+                     : i == n0 ? b
+                               : surface.closest_point(a + (b - a) * (double(i) / n0) +
+                                                       std::sin(std::numbers::pi * i / n0) * side));
+    double longest = 0.0;
+    for (std::size_t i = 0; i + 1 < poly.size(); ++i) longest = std::max(longest, (poly[i + 1] - poly[i]).norm());
+    return longest <= 4.0 * polygon_length(poly) / n0;
+  };
+  if (!start(0.0)) start(1e-3);
   result.converged = true;
   for (std::size_t level = 0; level < levels.size(); ++level) {
     if (level > 0) {  // midpoints projected
