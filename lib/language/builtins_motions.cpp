@@ -28,7 +28,14 @@ V vector3(const Arguments& args, std::size_t i) {
 }
 
 std::string point_text(const V& p) {
-  return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) + ")";
+  std::string s = "(";  // appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on the chained +
+  s += format_number(p.x());
+  s += ", ";
+  s += format_number(p.y());
+  s += ", ";
+  s += format_number(p.z());
+  s += ")";
+  return s;
 }
 
 double positive(const Arguments& args, std::size_t i, const char* name) {
