@@ -4,6 +4,7 @@
 // See docs/motions.md.
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -250,7 +251,7 @@ void register_motions(BuiltinTable& table) {
              .run = [](const Arguments& args) -> Value { return spline_value(motion_arg(args, 0).result.motion.path()); }});
   table.add({.name = "pose",
              .signature = "pose(m, t)",
-             .doc = "The rigid map of motion m at time t as 3 rows [r0, r1, r2, tx] (for transform).",
+             .doc = "The rigid map of motion m at time t (clamped to the motion's time span) as 3 rows [r0, r1, r2, tx] (for transform).",
              .params = {{"m"}, {"t"}},
              .run = [](const Arguments& args) -> Value {
                const double t = args.number(1);
