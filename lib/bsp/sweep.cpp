@@ -80,6 +80,38 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
   return bsp::detail::unite_convex_hulls(sets, grid);
 }
 
+Solid sweep(const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
+  if (poses.empty()) throw InvalidInput("sweep: the motion has no poses");
+  std::vector<Eigen::Isometry3d> at;  // repeated poses dropped
+  for (const Eigen::Isometry3d& p : poses) {
+    if (!p.matrix().allFinite()) throw InvalidInput("sweep: a pose is not finite");
+    if (at.empty() || p.matrix() != at.back().matrix()) at.push_back(p);
+  }
+  if (at.size() == 1) return transform(tool, Eigen::Affine3d(at[0].matrix()));
+  const auto pieces = convex_pieces(tool);
+  std::vector<Solid> parts;
+  parts.reserve(pieces.size() * (at.size() - 1));
+  std::vector<Eigen::Vector3d> ends;
+  for (const auto& piece : pieces)
+    for (std::size_t i = 0; i + 1 < at.size(); ++i) {
+      ends.clear();
+      for (const Eigen::Vector3d& v : piece) {
+        ends.push_back(at[i] * v);
+        ends.push_back(at[i + 1] * v);
+      }
+      parts.push_back(hull(ends, tool.grid()));
+    }
+  return unite_all(std::move(parts));
+}
+
+Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
+  return work - sweep(tool, poses);
+}
+
+Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
+  return work | sweep(tool, poses);
+}
+
 Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
   return work - sweep(tool, path);
 }

@@ -11,6 +11,7 @@
 /// A tool whose hull exceeds it by no more than that rounding counts as convex.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <span>
 
 #include "bsp/solid.hpp"
@@ -33,5 +34,22 @@ Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d>
 /// `work = carve(std::move(work), tool, path)`.
 Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path);
 Solid add(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path);
+
+/// The tool carried by a rigid motion given by consecutive poses (tool coordinates -> world): the
+/// union over steps i and convex pieces C of hull(pose_i(C) ∪ pose_{i+1}(C)). Rotating between two
+/// poses, a piece's points move on curves, not segments, so this is an approximation of the true
+/// swept volume: it holds the straight-line interpolants (1 - s) pose_i(x) + s pose_{i+1}(x), which
+/// are within the chord error e of the trajectories, and exceeds them by at most
+/// 1/4 |R_i - R_{i+1}|_2 diam(C) (a hull point is a combination of two different points' images);
+/// sample the motion so that both are small (splines::sample_motion, docs/motions.md). Pure
+/// translations give the exact sweep of `sweep(tool, path)`. One pose gives the tool moved there.
+/// \throw InvalidInput if `poses` is empty or a pose is not finite.
+Solid sweep(const Solid& tool, std::span<const Eigen::Isometry3d> poses);
+
+/// `work` minus the tool carried by the poses.
+Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses);
+
+/// `work` united with the tool carried by the poses.
+Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses);
 
 }  // namespace sculpt

@@ -143,6 +143,8 @@ const BuiltinTable& builtins() {
     register_implicit(t);
     t.set_area("render");
     register_render(t);
+    t.set_area("motions");
+    register_motions(t);
 #endif
     return t;
   }();

@@ -144,6 +144,7 @@ void register_revolution(BuiltinTable& table);
 void register_reports(BuiltinTable& table);
 void register_implicit(BuiltinTable& table);
 void register_render(BuiltinTable& table);
+void register_motions(BuiltinTable& table);
 
 /// Names of the language's keywords (for completion and the docs check).
 std::span<const char* const> keywords();

@@ -23,6 +23,7 @@
 #include "bsp/extrude.hpp"
 #include "bsp/hull.hpp"
 #include "bsp/sweep.hpp"
+#include "language/motion_values.hpp"
 #include "curves/linearization.hpp"
 #include "curves/linearize.hpp"
 #include "splines/foot_point.hpp"
@@ -63,14 +64,28 @@ std::vector<Eigen::Vector3d> path_arg(const Arguments& args, std::size_t i, std:
   return path;
 }
 
+/// The tol=e of a stroke along a motion (argument i): 0 when not given (motion_poses' default).
+double motion_tolerance(const Arguments& args, std::size_t i) {
+  if (!args.has(i)) return 0.0;
+  const double t = args.number(i);
+  if (!(t > 0) || !std::isfinite(t)) args.fail(i, "tol must be a finite number > 0");
+  return t;
+}
+
 /// sweep, carve and add: the tool moved along a path (bsp/sweep.hpp).
 void add_stroke(BuiltinTable& table, const char* name, const char* signature, const char* doc,
-                Solid (*stroke)(const Solid&, const Solid&, std::span<const Eigen::Vector3d>)) {
+                Solid (*stroke)(const Solid&, const Solid&, std::span<const Eigen::Vector3d>),
+                Solid (*moved)(const Solid&, const Solid&, std::span<const Eigen::Isometry3d>)) {
   table.add({.name = name,
              .signature = signature,
              .doc = doc,
              .params = {{"work"}, {"tool"}, {"path"}, {"tol", false}},
-             .run = [stroke](const Arguments& args) -> Value {
+             .run = [stroke, moved](const Arguments& args) -> Value {
+               if (const auto* m = args.value(2).object<MotionValue>()) {
+                 const auto poses = motion_poses(*m, solid_arg(args, 1), motion_tolerance(args, 3));
+                 args.charge(poses.size());
+                 return solid_value(moved(solid_arg(args, 0), solid_arg(args, 1), poses));
+               }
                const auto path = path_arg(args, 2, 3);
                args.charge(path.size());
                return solid_value(stroke(solid_arg(args, 0), solid_arg(args, 1), path));
@@ -268,19 +283,28 @@ void register_solids(BuiltinTable& table) {
              .doc = "The volume swept by solid `tool` moved along `path` (a curve, a spline, a linearization "
                     "or a list of points; all but a linearization are first linearized with the fewest segments "
                     "within tol=e when tol is given): the union of the hulls of the tool's convex pieces at the "
-                    "ends of each segment.",
+                    "ends of each segment. `path` may be a motion (motion(...)): the tool, in body coordinates "
+                    "(its origin follows the motion), is carried along it turning, sampled so that the result "
+                    "is within tol (default 1 % of the tool's size) of the true swept volume (docs/motions.md).",
              .params = {{"tool"}, {"path"}, {"tol", false}},
              .run = [](const Arguments& args) -> Value {
+               if (const auto* m = args.value(1).object<MotionValue>()) {
+                 const auto poses = motion_poses(*m, solid_arg(args, 0), motion_tolerance(args, 2));
+                 args.charge(poses.size());
+                 return solid_value(sweep(solid_arg(args, 0), poses));
+               }
                const auto path = path_arg(args, 1, 2);
                args.charge(path.size());
                return solid_value(sweep(solid_arg(args, 0), path));
              }});
   add_stroke(table, "carve", "carve(work, tool, path, tol=e)",
              "Solid `work` minus `tool` swept along `path` (see sweep): a carving stroke.",
-             [](const Solid& w, const Solid& t, std::span<const Eigen::Vector3d> p) { return carve(w, t, p); });
+             [](const Solid& w, const Solid& t, std::span<const Eigen::Vector3d> p) { return carve(w, t, p); },
+             [](const Solid& w, const Solid& t, std::span<const Eigen::Isometry3d> p) { return carve(w, t, p); });
   add_stroke(table, "add", "add(work, tool, path, tol=e)",
              "Solid `work` united with `tool` swept along `path` (see sweep): an adding stroke.",
-             [](const Solid& w, const Solid& t, std::span<const Eigen::Vector3d> p) { return add(w, t, p); });
+             [](const Solid& w, const Solid& t, std::span<const Eigen::Vector3d> p) { return add(w, t, p); },
+             [](const Solid& w, const Solid& t, std::span<const Eigen::Isometry3d> p) { return add(w, t, p); });
   table.add({.name = "transform",
              .signature = "transform(s, matrix)",
              .doc = "Solid s mapped by the affine map given as 3 rows of 4 numbers [[a, b, c, tx], ...] "

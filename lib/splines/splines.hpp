@@ -6,5 +6,7 @@
 #include "splines/degree_reduction.hpp"
 #include "splines/fit.hpp"
 #include "splines/foot_point.hpp"
+#include "splines/motion.hpp"
 #include "splines/offset.hpp"
 #include "splines/spline_io.hpp"
+#include "splines/surface_curves.hpp"

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <utility>
 
@@ -142,6 +143,41 @@ TEST(Sweep, ManyStrokesCarveWhatEachSweepCovers) {
   EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(rebuilt)));
   EXPECT_TRUE(rebuild_from_boundary(Solid()).is_empty());
   EXPECT_EQ(rebuild_from_boundary(Solid::leaf(true)).root(), kIn);
+}
+
+TEST(SweepMotion, TranslationsGiveThePathSweep) {
+  const Solid cube = box({0, 0, 0}, {1, 1, 1});
+  const std::vector<Eigen::Vector3d> path{{0, 0, 0}, {3, 0, 0}, {3, 2, 0}};
+  std::vector<Eigen::Isometry3d> poses;
+  for (const auto& p : path) poses.push_back(Eigen::Isometry3d(Eigen::Translation3d(p)));
+  EXPECT_DOUBLE_EQ(volume(sweep(cube, poses)), volume(sweep(cube, path)));
+  EXPECT_THROW(sweep(cube, std::vector<Eigen::Isometry3d>{}), InvalidInput);
+}
+
+TEST(SweepMotion, ABarTurningAboutItsEndCoversAQuarterDisk) {
+  // A bar [0, L] x [-w, w] x [-h, h] turning by 90 degrees about the z axis: the swept region is
+  // the quarter disk of radius R = sqrt(L^2 + w^2) and the two strips {0 <= -y <= w, x >= 0} and
+  // {0 <= -x <= w, y >= 0} inside that radius (area integral_0^w sqrt(R^2 - y^2) dy each), times 2 h.
+  const double L = 4, w = 0.5, h = 0.5, R = std::hypot(L, w);
+  const Solid bar = box({0, -w, -h}, {L, w, h});
+  const int steps = 64;
+  std::vector<Eigen::Isometry3d> poses;
+  for (int i = 0; i <= steps; ++i)
+    poses.push_back(Eigen::Isometry3d(Eigen::AngleAxisd(M_PI / 2 * i / steps, Eigen::Vector3d::UnitZ())));
+  const Solid s = sweep(bar, poses);
+  EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(s)));
+  const double strip = 0.5 * (w * L + R * R * std::asin(w / R));
+  const double exact = 2 * h * (M_PI * R * R / 4 + 2 * strip);
+  // The bound of sweep.hpp: chord error R (1 - cos(d/2)) plus 1/4 |R_i - R_i+1| diam = 1/4 * 2 sin(d/2) * diam,
+  // times the area, plus the grid rounding of the rotated vertices.
+  const double d = M_PI / 2 / steps, diam = std::sqrt(L * L + 4 * w * w + 4 * h * h);
+  const double hausdorff = R * (1 - std::cos(d / 2)) + 0.5 * std::sin(d / 2) * diam + kernel::kGridStep;
+  EXPECT_NEAR(volume(s), exact, hausdorff * surface_area(s));
+  EXPECT_GT(volume(s), 2 * h * (M_PI * L * L / 4));  // far more than a translation could give
+  for (int i : {0, steps / 3, steps}) {
+    const Solid at = transform(bar, Eigen::Affine3d(poses[i].matrix()));
+    EXPECT_LE(volume(at - s), surface_area(at) * std::sqrt(3.0) * kernel::kGridStep) << i;
+  }
 }
 
 }  // namespace

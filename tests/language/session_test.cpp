@@ -113,7 +113,7 @@ TEST(Session, HelpOverviewListsEveryBuiltin) {
 TEST(Session, Completion) {
   Fixture f;
   f.session.feed("cylinder_height = 3");
-  EXPECT_EQ(f.session.complete("cyl"), (std::vector<std::string>{"cylinder", "cylinder_height"}));
+  EXPECT_EQ(f.session.complete("cyl"), (std::vector<std::string>{"cylinder", "cylinder_height", "cylinder_surface"}));
   EXPECT_EQ(f.session.complete("for"), (std::vector<std::string>{"for"}));
   EXPECT_EQ(f.session.complete(":l"), (std::vector<std::string>{":load"}));
 }
