@@ -8,6 +8,7 @@
 /// linearly on the control points.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <utility>
 #include <vector>

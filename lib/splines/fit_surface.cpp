@@ -8,6 +8,7 @@
 #include <string>
 
 #include "base/errors.hpp"
+#include "splines/detail/distance_models.hpp"
 #include "splines/detail/surface_foot_point_search.hpp"
 #include "splines/detail/surface_normal_equations.hpp"
 
@@ -24,11 +25,20 @@ double thread_cpu_ms() {
 struct Term {
   double u = 0.0, v = 0.0;
   Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
+  double edge_u = 0.0, edge_v = 0.0;  // boundary points: the foot point on their edge curve
+  Eigen::Matrix3d edge_M = Eigen::Matrix3d::Zero();
 };
 
 struct Evaluation {
   std::vector<Term> terms;
-  double objective = 0.0, max = 0.0, rms = 0.0;
+  double objective = 0.0, max = 0.0, rms = 0.0;  ///< true distances to the surface
+  double merit = 0.0;  ///< with the boundary points' squared distances to their edges: the line search's objective
+};
+
+// A data point assigned to a boundary curve: the edge where parameter `direction` equals `at`.
+struct Edge {
+  int direction = -1;  // -1: not a boundary point
+  double at = 0.0;
 };
 
 // The Hessian of the local quadratic model of the squared distance at data point p with foot
@@ -58,25 +68,65 @@ Eigen::Matrix3d distance_hessian(Method method, const Eigen::Vector3d& p, const 
   return M;
 }
 
-Evaluation evaluate(const BSplineSurface& s, const std::vector<Eigen::Vector3d>& points, Method method, const Evaluation* previous) {
+Evaluation evaluate(const BSplineSurface& s, const std::vector<Eigen::Vector3d>& points, Method method, const Evaluation* previous,
+                    const std::vector<Edge>& edges) {
   const detail::SurfaceFootPointSearch search(s);
   const auto [a0, a1] = s.domain(0);
   const auto [b0, b1] = s.domain(1);
   Evaluation e;
   e.terms.resize(points.size());
-  double sum = 0.0;
+  double sum = 0.0, merit = 0.0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const detail::SurfaceFootJet f =
         previous ? search.warm(points[k], previous->terms[k].u, previous->terms[k].v) : search.global(points[k]);
-    const bool on_boundary = (!s.closed(0) && (f.foot.u <= a0 || f.foot.u >= a1)) ||
-                             (!s.closed(1) && (f.foot.v <= b0 || f.foot.v >= b1));
-    e.terms[k] = {f.foot.u, f.foot.v, distance_hessian(method, points[k], f.jet, on_boundary)};
     sum += f.foot.distance * f.foot.distance;
     e.max = std::max(e.max, f.foot.distance);
+    const bool on_boundary = (!s.closed(0) && (f.foot.u <= a0 || f.foot.u >= a1)) ||
+                             (!s.closed(1) && (f.foot.v <= b0 || f.foot.v >= b1));
+    Term& term = e.terms[k];
+    term.u = f.foot.u;
+    term.v = f.foot.v;
+    term.M = distance_hessian(method, points[k], f.jet, on_boundary);
+    merit += f.foot.distance * f.foot.distance;
+    if (!edges.empty() && edges[k].direction >= 0) {
+      // The seed's boundary approximation term (sec. 4, item 2), added to the surface term: the
+      // point also pulls its edge curve, with the curve's distance model (detail/distance_models.hpp).
+      const Edge& edge = edges[k];
+      const double t0 = previous ? (edge.direction == 0 ? previous->terms[k].edge_v : previous->terms[k].edge_u)
+                                 : (edge.direction == 0 ? f.foot.v : f.foot.u);
+      const detail::SurfaceFootJet g = search.along_edge(points[k], edge.direction, edge.at, t0);
+      const double t = edge.direction == 0 ? g.foot.v : g.foot.u;
+      const auto [c0, c1] = edge.direction == 0 ? std::pair{b0, b1} : std::pair{a0, a1};
+      const bool at_end = !s.closed(1 - edge.direction) && (t <= c0 || t >= c1);
+      const detail::Model model = method == Method::PDM ? detail::Model::PDM : method == Method::TDM ? detail::Model::TDM : detail::Model::SDM;
+      const Eigen::Vector3d& velocity = edge.direction == 0 ? g.jet.dv : g.jet.du;
+      const Eigen::Vector3d& acceleration = edge.direction == 0 ? g.jet.dvv : g.jet.duu;
+      term.edge_u = g.foot.u;
+      term.edge_v = g.foot.v;
+      term.edge_M = detail::distance_hessian(model, points[k], g.foot.point, velocity, acceleration, at_end);
+      merit += g.foot.distance * g.foot.distance;
+    }
   }
   e.objective = sum / static_cast<double>(points.size());
+  e.merit = merit / static_cast<double>(points.size());
   e.rms = std::sqrt(e.objective);
   return e;
+}
+
+// Boundary points: those whose foot point on the start surface lies on an edge of an open direction.
+std::vector<Edge> boundary_edges(const BSplineSurface& s, const std::vector<Eigen::Vector3d>& points) {
+  const detail::SurfaceFootPointSearch search(s);
+  std::vector<Edge> edges(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const SurfaceFootPoint f = search.global(points[k]).foot;
+    for (int d = 0; d < 2 && edges[k].direction < 0; ++d) {
+      if (s.closed(d)) continue;
+      const auto [c0, c1] = s.domain(d);
+      const double t = d == 0 ? f.u : f.v;
+      if (t <= c0 || t >= c1) edges[k] = {d, t <= c0 ? c0 : c1};
+    }
+  }
+  return edges;
 }
 
 }  // namespace
@@ -157,7 +207,8 @@ FitSurfaceResult fit_surface(const std::vector<Eigen::Vector3d>& points, const F
   const bool line_search = options.method != Method::PDM;
 
   double t0 = thread_cpu_ms();
-  Evaluation current = evaluate(surface, points, options.method, nullptr);
+  const std::vector<Edge> edges = options.fit_boundary ? boundary_edges(surface, points) : std::vector<Edge>{};
+  Evaluation current = evaluate(surface, points, options.method, nullptr, edges);
   FitSurfaceResult result{surface, {}, 0, false};
   result.history.push_back({0, current.objective, current.max, current.rms, 0.0, 1.0, thread_cpu_ms() - t0});
   double lambda = options.smoothing;
@@ -167,6 +218,8 @@ FitSurfaceResult fit_surface(const std::vector<Eigen::Vector3d>& points, const F
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Term& term = current.terms[i];
       system.add_term(surface.basis(0).basis_jet(term.u, 0), surface.basis(1).basis_jet(term.v, 0), term.M, points[i]);
+      if (!edges.empty() && edges[i].direction >= 0)
+        system.add_term(surface.basis(0).basis_jet(term.edge_u, 0), surface.basis(1).basis_jet(term.edge_v, 0), term.edge_M, points[i]);
     }
     system.add_smoothing(lambda);
     const std::vector<Eigen::Vector3d> solved = system.solve(surface.controls(), fixed);
@@ -177,8 +230,8 @@ FitSurfaceResult fit_surface(const std::vector<Eigen::Vector3d>& points, const F
       std::vector<Eigen::Vector3d> c(n);
       for (int i = 0; i < n; ++i) c[i] = surface.controls()[i] + step * (solved[i] - surface.controls()[i]);
       candidate = surface.with_controls(std::move(c));
-      next = evaluate(candidate, points, options.method, &current);
-      if (!line_search || next.objective <= current.objective) break;
+      next = evaluate(candidate, points, options.method, &current, edges);
+      if (!line_search || next.merit <= current.merit) break;
       if (halvings >= 8) {  // no descent along the step (rounding level near the optimum): keep the surface
         step = 0.0;
         break;
@@ -195,10 +248,10 @@ FitSurfaceResult fit_surface(const std::vector<Eigen::Vector3d>& points, const F
     surface = candidate;
     result.history.push_back({k, next.objective, next.max, next.rms, lambda, step, thread_cpu_ms() - t0});
     result.iterations = k;
-    const double change = std::abs(current.objective - next.objective);
+    const double change = std::abs(current.merit - next.merit);
     current = std::move(next);
     lambda *= options.smoothing_decay;
-    if (change <= options.tolerance * std::max(current.objective, 1e-300) || current.objective == 0.0) {
+    if (change <= options.tolerance * std::max(current.merit, 1e-300) || current.merit == 0.0) {
       result.converged = true;
       break;
     }

@@ -13,6 +13,7 @@
 ///   3. solves one sparse linear system for the control points with a thin-plate smoothing term
 ///      whose weight falls by a constant factor per step; SDM and TDM halve a step that would
 ///      increase the objective.
+/// Data points on the data's boundary pull the surface's edge curves instead (FitSurfaceOptions::fit_boundary).
 /// The default start is the seed's: the bilinear patch through the data's four corners, which
 /// stay fixed (sec. 4, "the vertices of the model patch have been fixed").
 
@@ -37,6 +38,13 @@ struct FitSurfaceOptions {
   double tolerance = 1e-4;
   bool fix_corners = true;    ///< keep the four corner control points (open-open surfaces) in place
   bool fix_boundary = false;  ///< keep every control point of an open direction's boundary rows in place
+  /// The seed's boundary approximation term (sec. 4, item 2): data points whose foot point on the
+  /// start surface lies on an edge of an open direction are the data's boundary; each step they
+  /// pull that edge curve (their distance to it, modelled by the curve SDM) instead of the surface.
+  /// Off by default: on the benchmark patches (docs/benchmarks.md, "Active surfaces") it moved the
+  /// largest distances from the edges to the corner regions and made them larger (sphere cap,
+  /// 8 x 8, 7 steps: 4.6e-5 instead of 2.7e-5).
+  bool fit_boundary = false;
   /// Corners of the start patch in the order S(0,0), S(1,0), S(0,1), S(1,1); default corner_points(points).
   std::optional<std::array<Eigen::Vector3d, 4>> corners{};
   std::optional<BSplineSurface> start{};  ///< start surface instead of the bilinear patch (any closedness)

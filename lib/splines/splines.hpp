@@ -10,3 +10,4 @@
 #include "splines/foot_point.hpp"
 #include "splines/offset.hpp"
 #include "splines/spline_io.hpp"
+#include "splines/tessellate_surface.hpp"

@@ -149,4 +149,22 @@ SurfaceFootJet SurfaceFootPointSearch::warm(const Eigen::Vector3d& x, double u0,
   return best;
 }
 
+SurfaceFootJet SurfaceFootPointSearch::along_edge(const Eigen::Vector3d& x, int direction, double at, double t0) const {
+  const auto [a0, a1] = surface_->domain(0);
+  const auto [b0, b1] = surface_->domain(1);
+  // Sampled start along the edge (a closer sample than t0 wins), then Newton with the other parameter pinned.
+  const auto [c0, c1] = direction == 0 ? std::pair{b0, b1} : std::pair{a0, a1};
+  const auto at_t = [&](double t) { return direction == 0 ? surface_->point(at, t) : surface_->point(t, at); };
+  double best_t = t0, best = (at_t(t0) - x).squaredNorm();
+  const int n = 4 * static_cast<int>(surface_->breaks(1 - direction).size());
+  for (int i = 0; i <= n; ++i) {
+    const double t = c0 + (c1 - c0) * i / n, d = (at_t(t) - x).squaredNorm();
+    if (d < best) {
+      best = d;
+      best_t = t;
+    }
+  }
+  return direction == 0 ? newton(x, at, best_t, at, at, b0, b1, true) : newton(x, best_t, at, a0, a1, at, at, true);
+}
+
 }  // namespace sculpt::splines::detail

@@ -28,6 +28,9 @@ class SurfaceFootPointSearch {
   explicit SurfaceFootPointSearch(const BSplineSurface& surface, int samples_per_span = kSurfaceSamplesPerSpan);
   [[nodiscard]] SurfaceFootJet global(const Eigen::Vector3d& x) const;
   [[nodiscard]] SurfaceFootJet warm(const Eigen::Vector3d& x, double u0, double v0) const;
+  /// The foot point on the boundary curve where parameter `direction` (0: u, 1: v) equals `at`
+  /// (an end of an open direction), by Newton along the curve from the other parameter t0.
+  [[nodiscard]] SurfaceFootJet along_edge(const Eigen::Vector3d& x, int direction, double at, double t0) const;
 
  private:
   struct Span {

@@ -1,7 +1,7 @@
 // OpenCascade's side of the active-surface comparison in tests/bench/splines/peers.sh (built by
 // that script against Debian's libocct-modeling-algorithms-dev, not by CMake):
 // GeomAPI_PointsToBSplineSurface (bicubic, C2, chord-length parameters) on a grid of points.
-// OCCT chooses the knots itself to meet a tolerance Tol3D, so the tolerance is bisected (in log
+// OCCT chooses the knots itself to meet a tolerance Tol3D, so the tolerance is scanned (in log
 // scale) for the smallest one whose result has at most `controls` poles in each direction: the
 // closest OCCT gets with that many control points.
 // Usage: occt_surface_peer <data.txt> <rows> <columns> <controls> <out.txt>
@@ -54,12 +54,15 @@ int main(int argc, char** argv) {
     const Handle(Geom_BSplineSurface) s = fit(tol);
     return !s.IsNull() && s->NbUPoles() <= controls && s->NbVPoles() <= controls;
   };
-  double lo = std::log(1e-9), hi = std::log(1.0);  // fits(exp(hi)) holds, fits(exp(lo)) does not
-  if (!fits(std::exp(hi))) return 1;
-  for (int k = 0; k < 40; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (fits(std::exp(mid)) ? hi : lo) = mid;
+  // Pole counts do not fall monotonically with the tolerance: scan 400 tolerances from 1 down to
+  // 1e-9 (log scale) and keep the smallest that stays within the budget.
+  double best = -1;
+  for (int k = 0; k <= 400; ++k) {
+    const double tol = std::pow(10.0, -9.0 * k / 400);
+    if (fits(tol)) best = tol;
   }
+  if (best < 0) return 1;
+  const double hi = std::log(best);
   const double tol = std::exp(hi);
   std::vector<double> times;
   Handle(Geom_BSplineSurface) s;
