@@ -207,8 +207,11 @@ FitSurfaceResult fit_surface(const std::vector<Eigen::Vector3d>& points, const F
   const bool line_search = options.method != Method::PDM;
 
   double t0 = thread_cpu_ms();
-  const std::vector<Edge> edges = options.fit_boundary ? boundary_edges(surface, points) : std::vector<Edge>{};
-  Evaluation current = evaluate(surface, points, options.method, nullptr, edges);
+  const std::vector<Edge> edges =
+      options.fit_boundary ? boundary_edges(surface, points) : std::vector<Edge>{};
+  const std::vector<Edge> no_edges;
+  const std::vector<Edge>& term_edges = options.fit_boundary ? edges : no_edges;
+  Evaluation current = evaluate(surface, points, options.method, nullptr, term_edges);
   FitSurfaceResult result{surface, {}, 0, false};
   result.history.push_back({0, current.objective, current.max, current.rms, 0.0, 1.0, thread_cpu_ms() - t0});
   double lambda = options.smoothing;
@@ -218,7 +221,7 @@ FitSurfaceResult fit_surface(const std::vector<Eigen::Vector3d>& points, const F
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Term& term = current.terms[i];
       system.add_term(surface.basis(0).basis_jet(term.u, 0), surface.basis(1).basis_jet(term.v, 0), term.M, points[i]);
-      if (!edges.empty() && edges[i].direction >= 0)
+      if (options.fit_boundary && edges[i].direction >= 0)
         system.add_term(surface.basis(0).basis_jet(term.edge_u, 0), surface.basis(1).basis_jet(term.edge_v, 0), term.edge_M, points[i]);
     }
     system.add_smoothing(lambda);
@@ -230,7 +233,7 @@ FitSurfaceResult fit_surface(const std::vector<Eigen::Vector3d>& points, const F
       std::vector<Eigen::Vector3d> c(n);
       for (int i = 0; i < n; ++i) c[i] = surface.controls()[i] + step * (solved[i] - surface.controls()[i]);
       candidate = surface.with_controls(std::move(c));
-      next = evaluate(candidate, points, options.method, &current, edges);
+      next = evaluate(candidate, points, options.method, &current, term_edges);
       if (!line_search || next.merit <= current.merit) break;
       if (halvings >= 8) {  // no descent along the step (rounding level near the optimum): keep the surface
         step = 0.0;

@@ -68,6 +68,10 @@ TEST(FitSurface, SphereCapWithinSevenSteps) {
   EXPECT_LE(r.iterations, 7);
   EXPECT_LT(r.history.back().max_distance, 1e-4);
   EXPECT_LT(r.history.back().max_distance, 1e-3 * r.history[0].max_distance);
+  // The history's figures (warm-started foot points) agree with a fresh global search.
+  const DistanceSummary d = distance(r.surface, data);
+  EXPECT_NEAR(r.history.back().max_distance, d.max, 1e-12);
+  EXPECT_NEAR(r.history.back().rms_distance, d.rms, 1e-12);
 }
 
 TEST(FitSurface, SquaredDistanceModelBeatsPointDistanceAtTheSameStepCount) {

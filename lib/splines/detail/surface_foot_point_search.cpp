@@ -16,7 +16,7 @@ double box_distance2(const Eigen::Vector3d& x, const Eigen::Vector3d& lo, const 
 }  // namespace
 
 SurfaceFootPointSearch::SurfaceFootPointSearch(const BSplineSurface& surface, int samples_per_span)
-    : surface_(&surface), k_(std::max(samples_per_span, 1)) {
+    : surface_(&surface), k_(std::clamp(samples_per_span, 1, kMaxSamplesPerSpan)) {
   const std::vector<double> bu = surface.breaks(0), bv = surface.breaks(1);
   const int m = surface.count(1);
   for (std::size_t i = 0; i + 1 < bu.size(); ++i)
@@ -37,6 +37,12 @@ SurfaceFootPointSearch::SurfaceFootPointSearch(const BSplineSurface& surface, in
           const double u = s.u0 + (s.u1 - s.u0) * a / k_, v = s.v0 + (s.v1 - s.v0) * b / k_;
           sample_uv_.emplace_back(u, v);
           samples_.push_back(surface.point(u, v));
+        }
+      for (int a = 0; a < k_; ++a)
+        for (int b = 0; b < k_; ++b) {
+          const int i00 = s.first_sample + a * (k_ + 1) + b;
+          s.reach = std::max({s.reach, (samples_[i00] - samples_[i00 + k_ + 2]).norm(),
+                              (samples_[i00 + 1] - samples_[i00 + k_ + 1]).norm()});
         }
       spans_.push_back(s);
     }
@@ -102,17 +108,28 @@ SurfaceFootJet SurfaceFootPointSearch::newton(const Eigen::Vector3d& x, double u
 }
 
 SurfaceFootJet SurfaceFootPointSearch::search_span(const Eigen::Vector3d& x, const Span& s) const {
-  const int count = (k_ + 1) * (k_ + 1);
-  int best = s.first_sample;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (int i = s.first_sample; i < s.first_sample + count; ++i) {
-    const double d2 = (samples_[i] - x).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best = i;
+  // Newton from every local minimum of the distance over the span's sample grid (usually one).
+  const int w = k_ + 1;
+  double d2[(kMaxSamplesPerSpan + 1) * (kMaxSamplesPerSpan + 1)];
+  for (int i = 0; i < w * w; ++i) d2[i] = (samples_[s.first_sample + i] - x).squaredNorm();
+  SurfaceFootJet best;
+  best.foot.distance = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < w; ++a)
+    for (int b = 0; b < w; ++b) {
+      const double v = d2[a * w + b];
+      bool minimum = true;
+      // Against the 4 edge neighbours (not the diagonal ones: a fold can hide a valley between them).
+      const int steps[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+      for (const auto& st : steps) {
+        const int a2 = a + st[0], b2 = b + st[1];
+        if (a2 >= 0 && a2 < w && b2 >= 0 && b2 < w && d2[a2 * w + b2] < v) minimum = false;
+      }
+      if (!minimum) continue;
+      const Eigen::Vector2d& uv = sample_uv_[s.first_sample + a * w + b];
+      SurfaceFootJet c = newton(x, uv[0], uv[1], s.u0, s.u1, s.v0, s.v1, false);
+      if (c.foot.distance < best.foot.distance) best = c;
     }
-  }
-  return newton(x, sample_uv_[best][0], sample_uv_[best][1], s.u0, s.u1, s.v0, s.v1, false);
+  return best;
 }
 
 SurfaceFootJet SurfaceFootPointSearch::global(const Eigen::Vector3d& x) const {
@@ -133,18 +150,20 @@ SurfaceFootJet SurfaceFootPointSearch::warm(const Eigen::Vector3d& x, double u0,
   const auto [a0, a1] = surface_->domain(0);
   const auto [b0, b1] = surface_->domain(1);
   SurfaceFootJet best = newton(x, u0, v0, a0, a1, b0, b1, true);
-  // Accepted unless a sample of a span whose box is closer beats it (then that span is searched).
   const int count = (k_ + 1) * (k_ + 1);
+  const double u_found = best.foot.u, v_found = best.foot.v;
   for (const Span& s : spans_) {
-    const double d2 = best.foot.distance * best.foot.distance;
-    if (box_distance2(x, s.lo, s.hi) >= d2) continue;
-    const double margin = d2 * (1.0 - 1e-12);
-    for (int i = s.first_sample; i < s.first_sample + count; ++i)
-      if ((samples_[i] - x).squaredNorm() < margin) {
-        SurfaceFootJet c = search_span(x, s);
-        if (c.foot.distance < best.foot.distance) best = c;
-        break;
-      }
+    const double d = best.foot.distance;
+    if (box_distance2(x, s.lo, s.hi) >= d * d) continue;
+    double ds2 = std::numeric_limits<double>::infinity();
+    for (int i = s.first_sample; i < s.first_sample + count; ++i) ds2 = std::min(ds2, (samples_[i] - x).squaredNorm());
+    const double ds = std::sqrt(ds2);
+    if (ds - s.reach >= d) continue;  // no point of the span is closer
+    // The span of the Newton result itself needs another look only if a sample beats it.
+    const bool home = u_found >= s.u0 && u_found <= s.u1 && v_found >= s.v0 && v_found <= s.v1;
+    if (home && ds >= d * (1.0 - 1e-12)) continue;
+    SurfaceFootJet c = search_span(x, s);
+    if (c.foot.distance < best.foot.distance) best = c;
   }
   return best;
 }

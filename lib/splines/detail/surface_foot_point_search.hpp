@@ -4,9 +4,11 @@
 /// Per knot span: the box of the span's (p + 1) x (q + 1) control points, which holds the span's
 /// piece of the surface (convex hull property), and a small grid of samples. The global search
 /// visits spans in the order of their box distance and stops once a box is farther than the best
-/// point found; in each visited span Newton on (u, v) starts from the span's nearest sample and is
-/// clamped to the span. The warm start (fitting) runs Newton from a previous parameter pair and
-/// accepts the result when no sample of a span whose box is closer beats it.
+/// point found; in each visited span Newton on (u, v) starts from every local minimum of the distance
+/// over the span's samples and is clamped to the span. The warm start (fitting) runs Newton from a previous parameter pair, then
+/// searches every span whose box is closer than that result and whose nearest sample, less the
+/// span's largest sample-cell diagonal, is too (a surface point of the span is taken to lie within
+/// one cell diagonal of a sample: an estimate, not a bound, for spans much flatter than their cells).
 
 #include <Eigen/Core>
 #include <vector>
@@ -17,6 +19,7 @@ namespace sculpt::splines::detail {
 
 /// Samples per span and direction (the span's grid has (k + 1)^2 points).
 inline constexpr int kSurfaceSamplesPerSpan = 4;
+inline constexpr int kMaxSamplesPerSpan = 8;
 
 struct SurfaceFootJet {
   SurfaceFootPoint foot;
@@ -37,6 +40,7 @@ class SurfaceFootPointSearch {
     double u0, u1, v0, v1;
     Eigen::Vector3d lo, hi;  // box of the span's control points
     int first_sample;        // into samples_ / sample_uv_
+    double reach = 0.0;      // largest diagonal of the span's sample cells
   };
   /// Projected Newton for |S(u, v) - x|^2 on [u0, u1] x [v0, v1]; closed directions wrap instead
   /// of clamping when `wrap` (the warm start over the whole domain).
