@@ -13,7 +13,7 @@ SurfaceTriangles tessellate(const BSplineSurface& s, const TessellateOptions& op
     throw InvalidInput("tessellate: the tolerance must be a positive finite number");
   if (options.max_cells < 1) throw InvalidInput("tessellate: max_cells must be at least 1");
   const std::vector<double> bu = s.breaks(0), bv = s.breaks(1);
-  // Second derivative maxima on 8 x 8 samples per span (with the span ends), times 1.25.
+  // Second derivative maxima on 9 x 9 samples per span (with the span ends), times 1.25.
   double A = 0, B = 0, C = 0;
   constexpr int k = 8;
   for (std::size_t i = 0; i + 1 < bu.size(); ++i)

@@ -7,7 +7,7 @@
 /// and sum_i l_i (x_i - x)_a^2 <= 1/4 on the half cell) bounds the chord error by
 ///     (A hu^2 + 2 C hu hv + B hv^2) / 8,   A >= |S_uu|, B >= |S_vv|, C >= |S_uv|,
 /// and the cell sizes are chosen so that this is at most the tolerance. A, B and C are the largest
-/// second derivatives on a sampling of 8 x 8 points per span, times 1.25: an estimate, not a
+/// second derivatives on 9 x 9 samples per span, times 1.25: an estimate, not a
 /// certified bound (tests measure the error at cell centres). Closed directions share the seam's
 /// vertices, so a surface closed in both directions gives a closed mesh.
 

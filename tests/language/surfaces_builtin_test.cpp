@@ -75,7 +75,7 @@ for i in range(0, 12) {
   rows = append(rows, row)
 }
 s = bspline_surface(rows, closed=true)
-t = surface_solid(s, tol=1e-3)
+t = surface_solid(s, tol=1e-2)
 print(volume(t))
 print(classify(t, [3, 0, 0]), classify(t, [0, 0, 0]), classify(t, [4.5, 0, 0]))
 )");

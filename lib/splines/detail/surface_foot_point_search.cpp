@@ -86,10 +86,13 @@ SurfaceFootJet SurfaceFootPointSearch::newton(const Eigen::Vector3d& x, double u
     double t = 1.0;
     bool accepted = false;
     double q[2] = {p[0], p[1]};
+    SurfaceJet trial;
     for (int halving = 0; halving < 40; ++halving, t *= 0.5) {
       q[0] = place(p[0] + t * step[0], 0);
       q[1] = place(p[1] + t * step[1], 1);
-      const double fq = (surface_->point(q[0], q[1]) - x).squaredNorm();
+      // The full step is usually taken: evaluate its derivatives at once (the next iteration's).
+      trial = halving == 0 ? surface_->jet(q[0], q[1], 2) : SurfaceJet{surface_->point(q[0], q[1])};
+      const double fq = (trial.point - x).squaredNorm();
       if (fq <= f) {
         accepted = true;
         f = fq;
@@ -99,9 +102,10 @@ SurfaceFootJet SurfaceFootPointSearch::newton(const Eigen::Vector3d& x, double u
     if (!accepted) break;
     const double moved = std::max(std::abs(q[0] - p[0]) / std::max(hi[0] - lo[0], 1e-300),
                                   std::abs(q[1] - p[1]) / std::max(hi[1] - lo[1], 1e-300));
+    const bool full = t == 1.0;
     p[0] = q[0];
     p[1] = q[1];
-    J = surface_->jet(p[0], p[1], 2);
+    J = full ? trial : surface_->jet(p[0], p[1], 2);
     if (moved < 1e-12) break;  // quadratic convergence: the next step would be below rounding
   }
   return {{p[0], p[1], J.point, (J.point - x).norm()}, J};
@@ -158,7 +162,7 @@ SurfaceFootJet SurfaceFootPointSearch::warm(const Eigen::Vector3d& x, double u0,
     double ds2 = std::numeric_limits<double>::infinity();
     for (int i = s.first_sample; i < s.first_sample + count; ++i) ds2 = std::min(ds2, (samples_[i] - x).squaredNorm());
     const double ds = std::sqrt(ds2);
-    if (ds - s.reach >= d) continue;  // no point of the span is closer
+    if (ds - 0.5 * s.reach >= d) continue;  // no point of the span is closer
     // The span of the Newton result itself needs another look only if a sample beats it.
     const bool home = u_found >= s.u0 && u_found <= s.u1 && v_found >= s.v0 && v_found <= s.v1;
     if (home && ds >= d * (1.0 - 1e-12)) continue;

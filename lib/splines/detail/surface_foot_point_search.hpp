@@ -18,7 +18,7 @@
 namespace sculpt::splines::detail {
 
 /// Samples per span and direction (the span's grid has (k + 1)^2 points).
-inline constexpr int kSurfaceSamplesPerSpan = 4;
+inline constexpr int kSurfaceSamplesPerSpan = 8;
 inline constexpr int kMaxSamplesPerSpan = 8;
 
 struct SurfaceFootJet {
