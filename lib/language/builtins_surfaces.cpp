@@ -226,7 +226,7 @@ void register_surfaces(BuiltinTable& table) {
                     "curvature-based model), \"pdm\" (point distance) or \"tdm\" (tangent plane). Starts from the "
                     "bilinear patch through the data's four corners (extreme along the diagonals of the two "
                     "main axes), which stay fixed, or from surface `start` (any closedness). smoothing: the "
-                    "thin-plate weight of the first step (quartered each step). surface_history() gives the "
+                    "thin-plate weight of the first step (a tenth of it each further step). surface_history() gives the "
                     "convergence figures.",
              .params = {{"points"}, {"controls", false}, {"degree", false}, {"method", false}, {"iterations", false},
                         {"smoothing", false}, {"start", false}},

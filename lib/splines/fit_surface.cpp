@@ -43,8 +43,8 @@ struct Edge {
 
 // The Hessian of the local quadratic model of the squared distance at data point p with foot
 // point jet J (fit_surface.hpp, seed sec. 2 Proposition 1 and eq. 7). `on_boundary`: the foot
-// point lies on the boundary of an open direction, where the distance is to a boundary curve or
-// corner; PDM's isotropic form is used there, as the curve fitter does at its end points.
+// point is a corner (edges take the edge curve's model, see evaluate), where the distance is the
+// point distance, as the curve fitter's at its end points.
 Eigen::Matrix3d distance_hessian(Method method, const Eigen::Vector3d& p, const SurfaceJet& J, bool on_boundary) {
   if (method == Method::PDM || on_boundary) return Eigen::Matrix3d::Identity();
   const Eigen::Vector3d cross = J.du.cross(J.dv);
@@ -81,12 +81,19 @@ Evaluation evaluate(const BSplineSurface& s, const std::vector<Eigen::Vector3d>&
         previous ? search.warm(points[k], previous->terms[k].u, previous->terms[k].v) : search.global(points[k]);
     sum += f.foot.distance * f.foot.distance;
     e.max = std::max(e.max, f.foot.distance);
-    const bool on_boundary = (!s.closed(0) && (f.foot.u <= a0 || f.foot.u >= a1)) ||
-                             (!s.closed(1) && (f.foot.v <= b0 || f.foot.v >= b1));
+    const bool on_u_edge = !s.closed(0) && (f.foot.u <= a0 || f.foot.u >= a1),
+               on_v_edge = !s.closed(1) && (f.foot.v <= b0 || f.foot.v >= b1);
     Term& term = e.terms[k];
     term.u = f.foot.u;
     term.v = f.foot.v;
-    term.M = distance_hessian(method, points[k], f.jet, on_boundary);
+    if (on_u_edge != on_v_edge && method != Method::PDM) {
+      // On an edge (not a corner) the distance is to the edge curve: the curve's model along it.
+      const detail::Model model = method == Method::TDM ? detail::Model::TDM : detail::Model::SDM;
+      term.M = on_u_edge ? detail::distance_hessian(model, points[k], f.foot.point, f.jet.dv, f.jet.dvv, false)
+                         : detail::distance_hessian(model, points[k], f.foot.point, f.jet.du, f.jet.duu, false);
+    } else {
+      term.M = distance_hessian(method, points[k], f.jet, on_u_edge || on_v_edge);
+    }
     merit += f.foot.distance * f.foot.distance;
     if (!edges.empty() && edges[k].direction >= 0) {
       // The seed's boundary approximation term (sec. 4, item 2), added to the surface term: the

@@ -9,7 +9,8 @@
 ///          F(x) ~ c1 (x.e1)^2 + c2 (x.e2)^2 + (x.n)^2,  c_i = d k_i / (d k_i - 1) if d k_i < 0, else 0,
 ///      in the principal frame (e1, e2, n) at the foot point, d = (p - f).n, k_i the principal
 ///      curvatures signed with respect to n; or PDM (the squared distance to the foot point) or
-///      TDM (the tangent plane, c_i = 0);
+///      TDM (the tangent plane, c_i = 0). A foot point on an edge of an open direction takes the
+///      edge curve's model (detail/distance_models.hpp), a corner PDM's;
 ///   3. solves one sparse linear system for the control points with a thin-plate smoothing term
 ///      whose weight falls by a constant factor per step; SDM and TDM halve a step that would
 ///      increase the objective.
@@ -32,8 +33,8 @@ struct FitSurfaceOptions {
   std::array<int, 2> degree{3, 3};    ///< (ignored with `start`)
   Method method = Method::SDM;
   int iterations = 20;               ///< at most this many steps
-  double smoothing = 1e-2;           ///< relative thin-plate weight in the first step
-  double smoothing_decay = 0.25;     ///< factor per step
+  double smoothing = 1e-2;           ///< relative thin-plate weight in the first step (then times smoothing_decay per step)
+  double smoothing_decay = 0.1;      ///< factor per step
   /// Stop when a step changes the objective (mean squared distance) by less than this fraction.
   double tolerance = 1e-4;
   bool fix_corners = true;    ///< keep the four corner control points (open-open surfaces) in place
@@ -41,9 +42,8 @@ struct FitSurfaceOptions {
   /// The seed's boundary approximation term (sec. 4, item 2): data points whose foot point on the
   /// start surface lies on an edge of an open direction are the data's boundary; each step they
   /// pull that edge curve (their distance to it, modelled by the curve SDM) instead of the surface.
-  /// Off by default: on the benchmark patches (docs/benchmarks.md, "Active surfaces") it moved the
-  /// largest distances from the edges to the corner regions and made them larger (sphere cap,
-  /// 8 x 8, 7 steps: 4.6e-5 instead of 2.7e-5).
+  /// Off by default: on the benchmark patches it changes little (cap, 8 x 8, 7 steps: max 4.38e-7
+  /// against 4.52e-7; wave 3.80e-4 against 3.78e-4; docs/splines.md).
   bool fit_boundary = false;
   /// Corners of the start patch in the order S(0,0), S(1,0), S(0,1), S(1,1); default corner_points(points).
   std::optional<std::array<Eigen::Vector3d, 4>> corners{};

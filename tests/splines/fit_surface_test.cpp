@@ -66,7 +66,9 @@ TEST(FitSurface, SphereCapWithinSevenSteps) {
   const auto data = sphere_points(40);
   const FitSurfaceResult r = fit_surface(data, {.iterations = 7});
   EXPECT_LE(r.iterations, 7);
-  EXPECT_LT(r.history.back().max_distance, 1e-4);
+  // OpenCascade's GeomAPI_PointsToBSplineSurface with 8 x 8 poles on the same 40 x 40 grid is at
+  // max 1.41e-5 (tests/bench/splines/peers.sh, measured by the same exact foot points).
+  EXPECT_LT(r.history.back().max_distance, 1.4e-5);
   EXPECT_LT(r.history.back().max_distance, 1e-3 * r.history[0].max_distance);
   // The history's figures (warm-started foot points) agree with a fresh global search.
   const DistanceSummary d = distance(r.surface, data);
