@@ -6,9 +6,9 @@
 /// visits spans in the order of their box distance and stops once a box is farther than the best
 /// point found; in each visited span Newton on (u, v) starts from every local minimum of the distance
 /// over the span's samples and is clamped to the span. The warm start (fitting) runs Newton from a previous parameter pair, then
-/// searches every span whose box is closer than that result and whose nearest sample, less the
+/// searches every span whose box is closer than that result and whose nearest sample, less half the
 /// span's largest sample-cell diagonal, is too (a surface point of the span is taken to lie within
-/// one cell diagonal of a sample: an estimate, not a bound, for spans much flatter than their cells).
+/// half a cell diagonal of a sample: an estimate, not a bound).
 
 #include <Eigen/Core>
 #include <vector>
