@@ -135,6 +135,8 @@ const BuiltinTable& builtins() {
     register_solids(t);
     t.set_area("splines");
     register_splines(t);
+    t.set_area("surfaces");
+    register_surfaces(t);
     t.set_area("revolution");
     register_revolution(t);
     t.set_area("reports");

@@ -140,6 +140,7 @@ void register_core(BuiltinTable& table);
 void register_curves(BuiltinTable& table);
 void register_solids(BuiltinTable& table);
 void register_splines(BuiltinTable& table);
+void register_surfaces(BuiltinTable& table);
 void register_revolution(BuiltinTable& table);
 void register_reports(BuiltinTable& table);
 void register_implicit(BuiltinTable& table);

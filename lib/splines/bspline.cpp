@@ -319,6 +319,22 @@ SmallBasis BSpline::small_basis(double t, bool with_derivative) const {
   return out;
 }
 
+BasisJet BSpline::basis_jet(double t, int order) const {
+  if (degree_ > kMaxFastDegree) throw InvalidInput("B-spline: basis_jet needs degree <= " + std::to_string(kMaxFastDegree));
+  if (order < 0 || order > 2) throw InvalidInput("B-spline: basis_jet order must be in [0, 2]");
+  BasisJet out;
+  const double s = wrap(t);
+  const int r = span(s), n = control_count();
+  double v[4][kMaxFastDegree + 1];
+  basis_derivatives_fast(ext_knots_, degree_, r, s, order, v);
+  out.count = degree_ + 1;
+  for (int j = 0; j <= degree_; ++j) {
+    out.index[j] = (r - degree_ + j) % n;
+    for (int k = 0; k <= order; ++k) out.value[k][j] = v[k][j];
+  }
+  return out;
+}
+
 Eigen::Vector3d BSpline::point(double t) const { return jet(t, 0)[0]; }
 
 double BSpline::curvature(double t) const {

@@ -31,6 +31,16 @@ struct SmallBasis {
   std::array<double, kMaxFastDegree + 1> derivative{};  ///< first derivatives (small_basis(t, true) only)
 };
 
+/// The nonzero basis functions and their first and second derivatives at one parameter, without
+/// heap allocation: value[k][j] is the k-th derivative of the basis function of control index[j]
+/// (index already wrapped for closed curves; entries above the requested order are zero). The
+/// tensor-product surfaces (bspline_surface.hpp) evaluate through it.
+struct BasisJet {
+  int count = 0;
+  std::array<int, kMaxFastDegree + 1> index{};
+  std::array<std::array<double, kMaxFastDegree + 1>, 3> value{};
+};
+
 /// A B-spline curve. Points are Eigen::Vector3d; a 2D curve (`dimension() == 2`) keeps z = 0.
 ///
 /// Knots, as given to the constructor and returned by knots():
@@ -79,6 +89,9 @@ class BSpline {
   [[nodiscard]] std::array<Eigen::Vector3d, 4> jet(double t, int order) const;
   /// basis(t, 0) without heap allocation. \throw InvalidInput for degree > kMaxFastDegree.
   [[nodiscard]] SmallBasis small_basis(double t, bool with_derivative = false) const;
+  /// Basis values and derivatives up to `order` (0..2) at t (wrapped or clamped like point()).
+  /// \throw InvalidInput for degree > kMaxFastDegree or an order outside [0, 2].
+  [[nodiscard]] BasisJet basis_jet(double t, int order) const;
   /// Curvature |c' x c''| / |c'|^3; for a 2D curve signed (positive turning left). 0 where c' = 0.
   [[nodiscard]] double curvature(double t) const;
   /// Nonzero basis functions at t and their derivatives up to `order`.

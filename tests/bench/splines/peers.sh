@@ -54,4 +54,19 @@ for name in star star10k; do
   "$PEERS" measure "$OUT" $name "sculpt SDM" "$OUT/${name}_sculpt.txt" "scipy splprep(task=-1)" "$OUT/${name}_scipy.txt" \
     "occt AppDef_BSplineCompute" "$OUT/${name}_occt.txt"
 done
+# Active surfaces (issue 18): our SDM fit (8 x 8 bicubic controls, at most 7 steps, corners fixed)
+# and OpenCascade's GeomAPI_PointsToBSplineSurface (occt_surface_peer.cpp: bicubic C2, chord-length
+# parameters, the smallest Tol3D that keeps at most 8 x 8 poles) on 40 x 40 grids of a spherical cap
+# and a wave; every surface measured by our exact foot points. Then the timing target (10^4 points).
+g++ -O2 -std=c++17 -Wno-deprecated-declarations -I/usr/include/opencascade tests/bench/splines/occt_surface_peer.cpp \
+  -o "$OUT/occt_surface_peer" -lTKGeomAlgo -lTKG3d -lTKGeomBase -lTKMath -lTKernel
+cmake --build "$BUILD" -j2 --target splines_surfaces >/dev/null
+SURF="$BUILD"/tests/bench/splines/splines_surfaces
+mkdir -p "$OUT/s"
+"$SURF" fit "$OUT/s"
+for name in sphere wave; do
+  printf "%s " $name; "$OUT/occt_surface_peer" "$OUT/s/${name}_data.txt" 40 40 8 "$OUT/s/${name}_occt.txt"
+  "$SURF" measure "$OUT/s" $name "sculpt SDM" "$OUT/s/${name}_sculpt.txt" "occt GeomAPI_PointsToBSplineSurface" "$OUT/s/${name}_occt.txt"
+done
+"$SURF" timing
 rm -rf "$OUT"
