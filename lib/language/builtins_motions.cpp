@@ -15,6 +15,7 @@
 #include "language/implicit_compiler.hpp"
 #include "language/motion_values.hpp"
 #include "language/spline_values.hpp"
+#include "language/surface_values.hpp"
 #include "splines/motion.hpp"
 #include "splines/surface_curves.hpp"
 
@@ -46,7 +47,7 @@ double positive(const Arguments& args, std::size_t i, const char* name) {
 }
 
 Value surface_value(splines::Surface s, std::string description) {
-  return Value(std::shared_ptr<const Object>(std::make_shared<SurfaceValue>(std::move(s), std::move(description))));
+  return Value(std::shared_ptr<const Object>(std::make_shared<ConstraintSurfaceValue>(std::move(s), std::move(description))));
 }
 
 Value spline_value(splines::BSpline s) {
@@ -56,7 +57,7 @@ Value spline_value(splines::BSpline s) {
 /// The implicit surface f = 0 of a script function, compiled once (value and exact gradient).
 splines::Surface implicit_from_function(const Arguments& args, std::size_t i, double scale) {
   const auto* f = args.value(i).get<std::shared_ptr<const UserFunction>>();
-  if (!f) args.fail_type(i, "a surface (sphere_surface, ...) or a function fn f(x, y, z)");
+  if (!f) args.fail_type(i, "a surface (sphere_surface, ..., a B-spline surface) or a function fn f(x, y, z)");
   ImplicitCompileOptions options;
   options.global = [&args](const std::string& name) { return args.global(name); };
   std::shared_ptr<const implicit::Expression> e;
@@ -73,7 +74,8 @@ splines::Surface implicit_from_function(const Arguments& args, std::size_t i, do
 
 /// Argument i as a surface: a surface value, or a function whose zero set is the surface.
 splines::Surface surface_arg(const Arguments& args, std::size_t i, double scale) {
-  if (const auto* s = args.value(i).object<SurfaceValue>()) return s->surface;
+  if (const auto* s = args.value(i).object<ConstraintSurfaceValue>()) return s->surface;
+  if (const auto* b = args.value(i).object<SurfaceValue>()) return splines::bspline_surface_constraint(b->surface);
   return implicit_from_function(args, i, scale);
 }
 

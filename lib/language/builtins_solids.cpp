@@ -18,6 +18,7 @@
 #include "mesh/mesh_measures.hpp"
 #include "kernel/grid.hpp"
 #include "mesh/mesh_validation.hpp"
+#include "mesh/output_rounding.hpp"
 #include "mesh/self_intersection.hpp"
 #include "bsp/from_mesh.hpp"
 #include "bsp/extrude.hpp"
@@ -427,8 +428,27 @@ void register_solids(BuiltinTable& table) {
                                        ? ": the faces of a shell are oriented the wrong way: "
                                        : " is not a closed manifold: ") +
                            report.summary(3));
-               if (const std::string e = snapped_self_intersection(mesh, args.grid()); !e.empty()) args.fail(path + ": " + e);
-               return solid_value(from_mesh(mesh, {.grid = args.grid()}));
+               // Snapping to the grid can make faces meet or fold where the mesh has features
+               // below the grid step; such features are collapsed as transforms do (every vertex
+               // within 4 grid steps of its place, docs/kernel.md, "What transforms do"), and the
+               // import fails only if that does not suffice.
+               std::string snap_error = snapped_self_intersection(mesh, args.grid());
+               if (snap_error.empty()) {
+                 try {
+                   return solid_value(from_mesh(mesh, {.grid = args.grid()}));
+                 } catch (const GeometryError& e) {
+                   snap_error = e.what();
+                 }
+               }
+               OutputRoundingReport rounding;
+               const PolygonMesh snapped = round_for_output(
+                   mesh, {.precision = OutputPrecision::Grid, .max_feature = 4 * args.grid().step(), .triangles = true,
+                          .grid_step = args.grid().step(), .keep_copies = true}, &rounding);
+               if (!rounding.clean) args.fail(path + ": " + snap_error);
+               args.out() << "import: warning: " << path << ": features below 4 grid steps were collapsed to fit the grid (step "
+                          << args.grid().name() << "); vertices moved by up to "
+                          << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";
+               return solid_value(from_mesh(snapped, {.grid = args.grid()}));
              }});
 }
 

@@ -15,8 +15,8 @@
 
 namespace sculpt::language {
 
-struct SurfaceValue final : Object {
-  SurfaceValue(splines::Surface s, std::string d) : surface(std::move(s)), description(std::move(d)) {}
+struct ConstraintSurfaceValue final : Object {
+  ConstraintSurfaceValue(splines::Surface s, std::string d) : surface(std::move(s)), description(std::move(d)) {}
   splines::Surface surface;
   std::string description;  ///< "sphere centre (0, 0, 0), radius 1"
   [[nodiscard]] std::string type_name() const override { return "surface"; }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 
@@ -416,6 +417,20 @@ SurfaceSplineResult surface_spline(const Surface& surface, const std::vector<Eig
     result = surface_spline_run(surface, on, run);
   }
   return result;
+}
+
+Surface bspline_surface_constraint(BSplineSurface surface, std::string name) {
+  const auto shared = std::make_shared<const BSplineSurface>(std::move(surface));
+  Surface s;
+  s.name = std::move(name);
+  s.closest_point = [shared](const Eigen::Vector3d& p) { return closest_point(*shared, p).point; };
+  s.normal = [shared](const Eigen::Vector3d& p) {
+    const SurfaceFootPoint f = closest_point(*shared, p);
+    const Eigen::Vector3d n = shared->normal(f.u, f.v);
+    if (n.squaredNorm() == 0) throw GeometryError("the B-spline surface is singular at the foot point of a curve point");
+    return n;
+  };
+  return s;
 }
 
 }  // namespace sculpt::splines

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "splines/bspline.hpp"
+#include "splines/bspline_surface.hpp"
 
 namespace sculpt::splines {
 
@@ -47,6 +48,11 @@ struct ImplicitSurfaceOptions {
 [[nodiscard]] Surface implicit_surface(std::function<double(const Eigen::Vector3d&)> value,
                                        std::function<Eigen::Vector3d(const Eigen::Vector3d&)> gradient,
                                        const ImplicitSurfaceOptions& options = {});
+
+/// A tensor-product B-spline surface as a constraint: exact foot points (bspline_surface.hpp,
+/// closest_point; on an open surface a point beyond an edge goes to the edge) and the unit normal
+/// there. 	hrow GeometryError (from normal) where the surface is singular at the foot point.
+[[nodiscard]] Surface bspline_surface_constraint(BSplineSurface surface, std::string name = "B-spline surface");
 
 struct GeodesicOptions {
   int segments = 64;         ///< vertices of the discrete geodesic minus one (at least 2)

@@ -155,5 +155,26 @@ TEST(CleanOutput, RandomSetOperationsOverTransformedPrimitives) {
   for (const auto& [kind, n] : problems) std::cout << "[ info ]   " << n << " x " << kind << "\n";
   EXPECT_GE(clean, 0.97 * checked);
 }
+// models/regressions/stroke_export_reimport.bsp: the carved block is written clean (CGAL) and
+// read back as the same solid within what rounding and snapping move (area x 4 grid steps).
+TEST(CleanOutput, CarvedBlockExportsAndReimports) {
+  std::ifstream in(std::string(SCULPT_MODELS_DIR) + "/regressions/stroke_export_reimport.bsp");
+  std::stringstream script;
+  script << in.rdbuf();
+  const std::string path = ::testing::TempDir() + "sculpt_stroke_export.off";
+  script << "export(work, \"" << path << "\")\n[volume(work), volume(import(\"" << path << "\")), area(work)]\n";
+  Interpreter interpreter;
+  const std::optional<Value> value = interpreter.run(testing::text_source(script.str(), "stroke_export_reimport.bsp"));
+  ASSERT_TRUE(value.has_value());
+  const List* l = value->list();
+  ASSERT_NE(l, nullptr);
+  ASSERT_EQ(l->size(), 3u);
+  ASSERT_TRUE((*l)[0].is<double>() && (*l)[1].is<double>() && (*l)[2].is<double>());
+  const double before = *(*l)[0].get<double>(), after = *(*l)[1].get<double>(), area = *(*l)[2].get<double>();
+  EXPECT_GT(before, 10.0);
+  EXPECT_NEAR(after, before, area * 4 * kernel::kGridStep);
+  const PolygonMesh written = read_mesh(path);
+  EXPECT_TRUE(checks::CleanForOtherTools(written.vertices, written.faces));
+}
 }  // namespace
 }  // namespace sculpt::language

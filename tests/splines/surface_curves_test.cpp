@@ -210,3 +210,26 @@ TEST(SurfaceSpline, BadInputIsRefused) {
   EXPECT_THROW(surface_spline(s, {V(1, 0, 0), V(2, 0, 0)}), InvalidInput);
   EXPECT_THROW(surface_spline(s, {V(1, 0, 0), V(0, 1, 0)}, {.splits = 0}), InvalidInput);
 }
+
+// A B-spline surface as the constraint (bspline_surface_constraint): the parabolic cylinder
+// z = x^2, exactly a quadratic x linear B-spline patch, is developable, so its geodesics unroll to
+// straight lines: length^2 = (s(x1) - s(x0))^2 + (y1 - y0)^2 with s the parabola's arc length.
+TEST(Geodesic, BSplineParabolicCylinderUnrollsToAStraightLine) {
+  std::vector<V> controls;
+  for (const V& c : {V(-1, 0, 1), V(0, 0, -1), V(1, 0, 1)})
+    for (double y : {-1.0, 1.0}) controls.push_back(V(c.x(), y, c.z()));
+  const Surface s = bspline_surface_constraint(BSplineSurface::uniform({2, 1}, 3, 2, controls));
+  auto arc = [](double x) { return 0.5 * x * std::sqrt(1 + 4 * x * x) + 0.25 * std::asinh(2 * x); };
+  const V p(-0.8, -0.7, 0.64), q(0.6, 0.5, 0.36);
+  const GeodesicResult g = geodesic(s, p, q);
+  EXPECT_TRUE(g.converged);
+  const double exact = std::hypot(arc(0.6) - arc(-0.8), 1.2);
+  EXPECT_LT(std::abs(simpson_length(g.curve) - exact) / exact, 1e-4);
+  const auto [a, b] = g.curve.domain();
+  for (int k = 0; k <= 1000; ++k) {
+    const V c = g.curve.point(a + (b - a) * k / 1000.0);
+    EXPECT_LT(std::abs(c.z() - c.x() * c.x()), 1e-4) << k;
+  }
+  const auto [lo, hi] = speed_range(g.curve);
+  EXPECT_LT((hi - lo) / exact, 0.01);
+}
