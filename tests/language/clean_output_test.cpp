@@ -176,5 +176,25 @@ TEST(CleanOutput, CarvedBlockExportsAndReimports) {
   const PolygonMesh written = read_mesh(path);
   EXPECT_TRUE(checks::CleanForOtherTools(written.vertices, written.faces));
 }
+// Issue 14's third finding: the bunny (npm package, 3674 triangles) united with a rotated copy of
+// itself; CGAL crashed on or rejected such meshes. Every format, judged by CGAL after rounding.
+TEST(CleanOutput, BunnyUnitedWithItsRotatedCopyIsClean) {
+  const std::string bunny = std::string(SCULPT_MODELS_DIR) + "/bunny.off";
+  Interpreter interpreter;
+  const std::optional<Value> value = interpreter.run(testing::text_source(
+      "b = import(\"" + bunny + "\")\nb | rotate(b, [1, 2, 3], 37)\n", "bunny_union.bsp"));
+  ASSERT_TRUE(value.has_value());
+  const SolidValue* solid = value->object<SolidValue>();
+  ASSERT_NE(solid, nullptr);
+  const PolygonMesh& mesh = solid->boundary();
+  const double v = volume(solid->solid), single = 194.288;  // the bunny's volume (models/README.md)
+  EXPECT_GT(v, single);
+  EXPECT_LT(v, 2 * single);
+  EXPECT_NEAR(mesh_volume(mesh), v, mesh_surface_area(mesh) * kernel::kGridStep);
+  for (const Format& f : kFormats) {
+    const PolygonMesh back = decode_mesh(encode_mesh(mesh, f.format, f.binary), f.format, "bunny");
+    EXPECT_TRUE(checks::CleanForOtherTools(back.vertices, back.faces)) << f.name;
+  }
+}
 }  // namespace
 }  // namespace sculpt::language
