@@ -27,15 +27,7 @@ Vector3d to_float(const Vector3d& v) {
 /// Two unit cubes that share the edge x = 1, y = 1 (a solid touching itself along an edge): the
 /// edge's ends appear twice, once per cube, at the same coordinates.
 PolygonMesh cubes_sharing_an_edge() {
-  PolygonMesh a = test_shapes::unit_cube();
-  const PolygonMesh b = test_shapes::box({1, 1, 0}, {2, 2, 1});
-  const int offset = static_cast<int>(a.vertices.size());
-  a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
-  for (auto f : b.faces) {
-    for (int& v : f) v += offset;
-    a.faces.push_back(f);
-  }
-  return a;
+  return test_shapes::merged(test_shapes::unit_cube(), test_shapes::box({1, 1, 0}, {2, 2, 1}));
 }
 
 /// The unit cube with the edge y = 0, z = 1 split at x = 0.5 and at the next double above 0.5:
