@@ -9,17 +9,11 @@
 
 #include "base/errors.hpp"
 #include "splines/tessellate_surface.hpp"
+#include "surface_shapes.hpp"
 #include "test_names.hpp"
 
 namespace {
 
-BSplineSurface paraboloid() {
-  const double x[3] = {-1, 0, 1}, sq[3] = {1, -1, 1};
-  std::vector<V> P;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) P.emplace_back(x[i], x[j], sq[i] + sq[j]);
-  return BSplineSurface::uniform({2, 2}, 3, 3, P);
-}
 
 TEST(TessellateSurface, ChordErrorStaysWithinTheTolerance) {
   const BSplineSurface s = paraboloid();
