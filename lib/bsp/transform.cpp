@@ -1,6 +1,7 @@
 #include "bsp/transform.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -119,6 +120,12 @@ Solid map_planes_approximately(const Solid& solid, const Eigen::Matrix3d& m, con
 /// Largest feature (in grid steps) that the boundary route may collapse after snapping.
 constexpr double kSnapFeatureSteps = 4;
 
+/// Sub-step shifts of a general map's translation tried when snapping its image folds (in grid
+/// steps; each coordinate within half a step, so a shift is at most sqrt(3) / 2 steps).
+const std::array<Eigen::Vector3d, 6> kSnapShifts = {
+    Eigen::Vector3d(0.5, 0.5, 0.5),     Eigen::Vector3d(-0.25, 0.25, 0.5),  Eigen::Vector3d(0.25, -0.5, -0.25),
+    Eigen::Vector3d(-0.5, -0.25, 0.25), Eigen::Vector3d(0.375, 0.125, -0.5), Eigen::Vector3d(-0.125, -0.375, -0.375)};
+
 std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map) {
   const kernel::Grid& grid = solid.grid();
   PolygonMesh mesh = to_mesh(solid, {.clean = false});
@@ -196,6 +203,14 @@ Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
   // vertex still do: a rotated cone keeps one apex. Unbounded solids, and boundaries with
   // features below the grid step that would fold when snapped, take the plane route instead.
   if (auto through = map_boundary(solid, map)) return std::move(*through);
+  // Where snapping folds the boundary, snapping the same image shifted by part of a step often
+  // does not (the fold depends on how vertices fall between grid points): a few shifts are tried
+  // before the plane route, each moves the result by at most sqrt(3) / 2 grid steps.
+  for (const Eigen::Vector3d& shift : kSnapShifts) {
+    Eigen::Affine3d shifted = map;
+    shifted.translation() += shift * solid.grid().step();
+    if (auto through = map_boundary(solid, shifted)) return std::move(*through);
+  }
   return map_planes_approximately(solid, m, tv);
 }
 

@@ -176,6 +176,27 @@ TEST(CleanOutput, CarvedBlockExportsAndReimports) {
   const PolygonMesh written = read_mesh(path);
   EXPECT_TRUE(checks::CleanForOtherTools(written.vertices, written.faces));
 }
+// models/regressions/folded_snap_rotation.bsp (stored case 135): the outer rotations' snapped
+// images fold beyond repair at the exact image; the result must still be clean in every format
+// and keep manifold-3d's volume within what the snaps (and a shift of at most sqrt(3)/2 steps,
+// which keeps volume) move.
+TEST(CleanOutput, FoldingSnapIsAvoidedAndTheResultIsClean) {
+  std::ifstream in(std::string(SCULPT_MODELS_DIR) + "/regressions/folded_snap_rotation.bsp");
+  std::stringstream script;
+  script << in.rdbuf();
+  Interpreter interpreter;
+  const std::optional<Value> value = interpreter.run(testing::text_source(script.str(), "folded_snap_rotation.bsp"));
+  ASSERT_TRUE(value.has_value());
+  const SolidValue* solid = value->object<SolidValue>();
+  ASSERT_NE(solid, nullptr);
+  const double manifold_volume = 0.3783816452562434, primitives_area = 35.83548217853422;
+  EXPECT_NEAR(volume(solid->solid), manifold_volume,
+              (1 + transform_levels(script.str())) * primitives_area * kernel::kGridStep);
+  for (const Format& f : kFormats) {
+    const PolygonMesh back = decode_mesh(encode_mesh(solid->boundary(), f.format, f.binary), f.format, "case 135");
+    EXPECT_TRUE(checks::CleanForOtherTools(back.vertices, back.faces)) << f.name;
+  }
+}
 // Issue 14's third finding: the bunny (npm package, 3674 triangles) united with a rotated copy of
 // itself; CGAL crashed on or rejected such meshes. Every format, judged by CGAL after rounding.
 TEST(CleanOutput, BunnyUnitedWithItsRotatedCopyIsClean) {
