@@ -17,6 +17,7 @@
 #include "mesh/mesh_validation.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/self_intersection.hpp"
+#include "mesh/shell_orientation.hpp"
 #include "mesh/triangulate.hpp"
 
 namespace sculpt {
@@ -68,6 +69,9 @@ bool collinear(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
   }
   return true;
 }
+
+/// More crossing pairs than this are not worked on by moving corners (each try is a local search).
+constexpr size_t kMaxNudgedPairs = 1024;
 
 /// The triangle mesh being cleaned: positions always representable in the target precision,
 /// per vertex the input points it stands for (to bound how far anything moves).
@@ -164,6 +168,24 @@ class Cleaner {
         changed = true;
       }
     }
+    // Sheets closer than the resolution over a wide area (no short edge, no sliver) that rounding
+    // made cross: move a corner of a crossing pair off the other triangle's plane, either way.
+    const std::vector<std::pair<int, int>> pairs = crossings();
+    if (pairs.size() > kMaxNudgedPairs) return false;  // wide crossings: beyond local repair
+    for (const auto& [t, u] : pairs)
+      for (const auto& [mine, other] : {std::pair{t, u}, std::pair{u, t}}) {
+        if (!alive_[mine] || !alive_[other]) continue;
+        const Vector3d n = normal(tris_[other]);
+        if (!(n.squaredNorm() > 0)) continue;
+        bool moved = false;
+        for (int v : tris_[mine])
+          if (!moved && nudge(v, n.normalized(), delta)) moved = true;
+        if (moved) {
+          ++report.nudged_vertices;
+          changed = true;
+          break;
+        }
+      }
     return changed;
   }
 
@@ -495,6 +517,55 @@ class Cleaner {
     return true;
   }
 
+  /// Pairs of live, non-degenerate triangles that meet beyond what they share.
+  std::vector<std::pair<int, int>> crossings() const {
+    std::vector<std::pair<int, int>> out;
+    for (size_t t = 0; t < tris_.size(); ++t) {
+      if (!alive_[t]) continue;
+      const Tri& a = tris_[t];
+      const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
+      if (collinear(pa[0], pa[1], pa[2])) continue;
+      for (int u : near(boxes_[t])) {
+        if (u <= static_cast<int>(t) || !alive_[u] || !boxes_[t].intersects(boxes_[u])) continue;
+        const Tri& b = tris_[u];
+        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
+        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb)) out.push_back({static_cast<int>(t), u});
+      }
+    }
+    return out;
+  }
+
+  /// Moves v along +-`direction` by the smallest step (delta / 8, doubling up to `delta`)
+  /// after which its triangles meet fewer others, keep their orientation and do not degenerate.
+  bool nudge(int v, const Vector3d& direction, double delta) {
+    std::vector<Tri> around;
+    for (int t : incident_[v]) around.push_back(tris_[t]);
+    const int before = meetings(around, incident_[v]);
+    if (before == 0) return false;
+    std::vector<Vector3d> normals;
+    for (int t : incident_[v]) normals.push_back(normal(tris_[t]));
+    const Vector3d old = p_[v];
+    for (double step = std::max(resolution_, delta / 8); step <= delta; step *= 2)
+      for (const double sign : {1.0, -1.0}) {
+        const Vector3d target = round_(Vector3d(old + sign * step * direction));
+        if (target == old || spread(v, v, target) > max_feature_) continue;
+        p_[v] = target;
+        bool ok = true;
+        for (size_t i = 0; i < incident_[v].size() && ok; ++i) {
+          const Tri& q = tris_[incident_[v][i]];
+          ok = !collinear(p_[q[0]], p_[q[1]], p_[q[2]]) && (normals[i].squaredNorm() == 0 || normals[i].dot(normal(q)) > 0);
+        }
+        ok = ok && meetings(around, incident_[v]) < before;
+        p_[v] = old;
+        if (ok) {
+          p_[v] = target;
+          for (int t : incident_[v]) update_box(t);
+          return true;
+        }
+      }
+    return false;
+  }
+
   /// Moves v by about `delta` against the mean normal of its triangles (into its own sheet),
   /// rounded to the precision, if no triangle turns over or degenerates.
   bool separate(int v, double delta) {
@@ -561,6 +632,16 @@ size_t corner_count(const PolygonMesh& mesh) {
   size_t n = 0;
   for (const auto& f : mesh.faces) n += f.size();
   return n;
+}
+
+/// A shell that local operations turned inside out (it faces against its nesting), or "".
+std::string inverted_shell(const PolygonMesh& mesh) {
+  const std::vector<ShellOrientation> shells = shell_orientations(mesh);
+  for (size_t s = 0; s < shells.size(); ++s)
+    if (!shells[s].consistent())
+      return "shell " + std::to_string(s) + " faces against its nesting (signed volume " +
+             std::to_string(shells[s].signed_volume) + ")";
+  return {};
 }
 
 }  // namespace
@@ -653,6 +734,7 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
     r.feature = delta;
     result = cleaner.mesh();
     r.problem = output_problem(result, options);
+    if (r.problem.empty()) r.problem = inverted_shell(result);
     if (r.problem.empty() || delta >= max_feature) break;
   }
   r.clean = r.problem.empty();

@@ -7,8 +7,10 @@
 /// where two operands' planes nearly meet, a vertex duplicated where the solid touches itself);
 /// rounding each vertex alone can then fold or cross faces. Such features are collapsed
 /// (a snap-rounding step in the manner of Fortune's vertex rounding, local operations only):
-/// short edges are contracted, needle-free slivers are flipped away, and copies of one point
-/// (sheets touching at an edge or a vertex) are moved apart into their own sheet. Nothing moves
+/// short edges are contracted, needle-free slivers are flipped away, copies of one point (sheets
+/// touching at an edge or a vertex) are moved apart into their own sheet, and corners of
+/// triangles that cross (sheets closer than the rounding) are moved off the other's plane; a
+/// result with a shell turned inside out is not taken for clean. Nothing moves
 /// farther than `max_feature`: every input vertex ends within that distance of the output vertex
 /// that stands for it.
 
@@ -44,6 +46,7 @@ struct OutputRoundingReport {
   int collapsed_edges = 0;   ///< short edges contracted
   int flipped_edges = 0;     ///< edges flipped to remove slivers
   int separated_vertices = 0;  ///< copies of one point moved into their own sheet
+  int nudged_vertices = 0;   ///< corners moved off a crossing triangle's plane (close sheets)
   double feature = 0;        ///< the largest feature size that had to be collapsed
   double max_move = 0;       ///< farthest an input vertex ended from its output vertex
   std::string problem;       ///< the first remaining problem when !clean

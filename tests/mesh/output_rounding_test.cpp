@@ -113,14 +113,27 @@ TEST(OutputRounding, GridRoundingSnapsEveryVertex) {
   EXPECT_NEAR(mesh_volume(out), 1.0 * 0.5 * 0.25, 1e-15);
 }
 
-TEST(OutputRounding, FeaturesLargerThanAllowedAreReportedNotHidden) {
+TEST(OutputRounding, ASlabThinnerThanFloat32IsReportedNotHidden) {
   // A slab 1e-9 thick at z = 1: float32 cannot hold it (both sides round to 1), and collapsing it
-  // would move vertices by its width. The result says so.
+  // would move vertices by its width. The result says so; in particular, local operations must not
+  // pass off the slab turned inside out (collapsed, then a corner moved off the crossing) as clean.
   const PolygonMesh slab = test_shapes::box({0, 0, 1}, {1, 1, 1 + 1e-9});
   OutputRoundingReport r;
   round_for_output(slab, {.precision = OutputPrecision::Float32, .max_feature = 1e-12}, &r);
   EXPECT_FALSE(r.clean);
   EXPECT_FALSE(r.problem.empty());
+}
+
+TEST(OutputRounding, CrossingsLargerThanAllowedAreReportedNotHidden) {
+  // Two cubes overlapping by 0.1 (not a solid's boundary): undoing the crossing would move
+  // vertices by 0.1, far beyond the limit. The result says so.
+  const PolygonMesh overlapping = test_shapes::merged(test_shapes::box({0, 0, 0}, {1, 1, 1}),
+                                                      test_shapes::box({0.9, 0.25, 0.25}, {2, 0.75, 0.75}));
+  OutputRoundingReport r;
+  round_for_output(overlapping, {.max_feature = 1e-6}, &r);
+  EXPECT_FALSE(r.clean);
+  EXPECT_FALSE(r.problem.empty());
+  EXPECT_LE(r.max_move, 1e-6);
 }
 
 TEST(OutputRounding, OpenMeshesAreLeftAlone) {
