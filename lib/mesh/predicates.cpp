@@ -98,6 +98,114 @@ int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
   return orient3d_sign<Rational>([&](size_t i) { return Rational(x[i]); });
 }
 
+
+// Second stage (Shewchuk 1997, "Adaptive precision floating-point arithmetic and fast robust
+// geometric predicates", sec. 2): when the coordinate differences are exact, the determinant of
+// the differences is a sum of products of doubles, evaluated exactly as a floating-point
+// expansion (non-overlapping components, increasing magnitude); its sign is the sign of the
+// largest component. Exactness needs no overflow and no underflow: every non-zero difference is
+// kept within [2^-300, 2^300] (so every product of three is a multiple of 2^-1056 and below 2^903).
+constexpr double kExpansionMin = 0x1p-300;
+constexpr double kExpansionMax = 0x1p300;
+
+bool in_expansion_range(double x) {
+  const double m = std::abs(x);
+  return m == 0 || (m >= kExpansionMin && m <= kExpansionMax);
+}
+
+/// a - b as x + tail exactly (Knuth's two-difference); true when the tail is zero.
+bool exact_difference(double a, double b, double& x) {
+  x = a - b;
+  const double bv = a - x, av = x + bv;
+  return (a - av) + (bv - b) == 0;
+}
+
+/// x + y = hi + lo exactly (Knuth's two-sum).
+void two_sum(double x, double y, double& hi, double& lo) {
+  hi = x + y;
+  const double bv = hi - x, av = hi - bv;
+  lo = (x - av) + (y - bv);
+}
+
+/// a b - c d as an expansion of at most 4 components (zero components dropped), increasing.
+int two_two_diff_products(double a, double b, double c, double d, double* out) {
+  const double p = a * b, pe = std::fma(a, b, -p);
+  const double q = c * d, qe = std::fma(c, d, -q);
+  // (p + pe) - (q + qe): Shewchuk's Two_Two_Diff.
+  double x0, x1, x2, x3, i, j, k;
+  two_sum(pe, -qe, i, x0);
+  two_sum(p, i, j, k);
+  two_sum(k, -q, i, x1);
+  two_sum(j, i, x3, x2);
+  int n = 0;
+  for (double v : {x0, x1, x2, x3})
+    if (v != 0) out[n++] = v;
+  return n;
+}
+
+/// e * b (e an expansion of n components) as an expansion, zero components dropped
+/// (Shewchuk's Scale_Expansion_Zeroelim); returns the length.
+int scale_expansion(int n, const double* e, double b, double* h) {
+  int len = 0;
+  double q = e[0] * b, hh = std::fma(e[0], b, -q);
+  if (hh != 0) h[len++] = hh;
+  for (int i = 1; i < n; ++i) {
+    const double p1 = e[i] * b, p0 = std::fma(e[i], b, -p1);
+    double sum;
+    two_sum(q, p0, sum, hh);
+    if (hh != 0) h[len++] = hh;
+    two_sum(p1, sum, q, hh);  // p1 and sum do not overlap: Fast_Two_Sum would do
+    if (hh != 0) h[len++] = hh;
+  }
+  if (q != 0 || len == 0) h[len++] = q;
+  return len;
+}
+
+/// e + f as an expansion, zero components dropped (Shewchuk's Linear_Expansion_Sum_Zeroelim,
+/// through repeated Grow_Expansion, which needs no ordering assumptions beyond the inputs').
+int sum_expansions(int n, const double* e, int m, const double* f, double* h) {
+  // Grow e by each component of f in turn (exact; O(n m), the lengths here are at most 24).
+  double buffer[64];
+  int len = n;
+  for (int i = 0; i < n; ++i) buffer[i] = e[i];
+  for (int k = 0; k < m; ++k) {
+    double q = f[k];
+    int out = 0;
+    for (int i = 0; i < len; ++i) {
+      double hi, lo;
+      two_sum(q, buffer[i], hi, lo);
+      if (lo != 0) buffer[out++] = lo;
+      q = hi;
+    }
+    if (q != 0) buffer[out++] = q;
+    len = out;
+  }
+  for (int i = 0; i < len; ++i) h[i] = buffer[i];
+  return len;
+}
+
+int expansion_sign(int n, const double* e) {
+  for (int i = n - 1; i >= 0; --i)
+    if (e[i] != 0) return e[i] > 0 ? 1 : -1;
+  return 0;
+}
+
+/// Sign of det[[ax, ay, az], [bx, by, bz], [cx, cy, cz]] (rows a, b, c: the exact differences),
+/// evaluated exactly; the caller checked the range.
+int det3_sign(const double* a, const double* b, const double* c) {
+  double m1[4], m2[4], m3[4], t1[8], t2[8], t3[8], s12[16], all[24];
+  // det = az (bx cy - cx by) + bz (cx ay - ax cy) + cz (ax by - bx ay)
+  const int n1 = two_two_diff_products(b[0], c[1], c[0], b[1], m1);
+  const int n2 = two_two_diff_products(c[0], a[1], a[0], c[1], m2);
+  const int n3 = two_two_diff_products(a[0], b[1], b[0], a[1], m3);
+  const int k1 = n1 == 0 || a[2] == 0 ? 0 : scale_expansion(n1, m1, a[2], t1);
+  const int k2 = n2 == 0 || b[2] == 0 ? 0 : scale_expansion(n2, m2, b[2], t2);
+  const int k3 = n3 == 0 || c[2] == 0 ? 0 : scale_expansion(n3, m3, c[2], t3);
+  const int k12 = sum_expansions(k1, t1, k2, t2, s12);
+  const int k = sum_expansions(k12, s12, k3, t3, all);
+  return expansion_sign(k, all);
+}
+
 }  // namespace
 
 int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
@@ -109,6 +217,14 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   const double bound = kOrient2dBound * detsum;
   if (std::isfinite(det) && std::isfinite(bound) && detsum > kNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? 1 : -1;
+  // Second stage: exact differences give the determinant exactly as an expansion.
+  double acx = 0, acy = 0, bcx = 0, bcy = 0;
+  if (exact_difference(a.x(), c.x(), acx) && exact_difference(a.y(), c.y(), acy) && exact_difference(b.x(), c.x(), bcx) &&
+      exact_difference(b.y(), c.y(), bcy) && in_expansion_range(acx) && in_expansion_range(acy) &&
+      in_expansion_range(bcx) && in_expansion_range(bcy)) {
+    double m[4];
+    return expansion_sign(two_two_diff_products(acx, bcy, acy, bcx, m), m);
+  }
   return orient2d_exact(a, b, c);
 }
 
@@ -128,6 +244,15 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   const double bound = kOrient3dBound * permanent;
   if (std::isfinite(det) && std::isfinite(bound) && permanent > kNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? -1 : 1;
+  // Second stage: the differences are exact (always for coplanar points on a coordinate plane,
+  // often for nearby points), so det[a-d, b-d, c-d] is evaluated exactly as an expansion.
+  double r[3][3];
+  const Eigen::Vector3d* rows[3] = {&a, &b, &c};
+  bool exact = true;
+  for (int i = 0; i < 3 && exact; ++i)
+    for (int k = 0; k < 3 && exact; ++k)
+      exact = exact_difference((*rows[i])[k], d[k], r[i][k]) && in_expansion_range(r[i][k]);
+  if (exact) return -det3_sign(r[0], r[1], r[2]);
   return orient3d_exact(a, b, c, d);
 }
 
