@@ -217,6 +217,9 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   const double bound = kOrient2dBound * detsum;
   if (std::isfinite(det) && std::isfinite(bound) && detsum > kNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? 1 : -1;
+  if (detsum == 0 && in_expansion_range(a.x() - c.x()) && in_expansion_range(b.y() - c.y()) &&
+      in_expansion_range(a.y() - c.y()) && in_expansion_range(b.x() - c.x()))
+    return 0;  // both products zero, each because a factor is (as in orient3d)
   // Second stage: exact differences give the determinant exactly as an expansion.
   double acx = 0, acy = 0, bcx = 0, bcy = 0;
   if (exact_difference(a.x(), c.x(), acx) && exact_difference(a.y(), c.y(), acy) && exact_difference(b.x(), c.x(), bcx) &&
@@ -244,8 +247,16 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   const double bound = kOrient3dBound * permanent;
   if (std::isfinite(det) && std::isfinite(bound) && permanent > kNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? -1 : 1;
-  // Second stage: the differences are exact (always for coplanar points on a coordinate plane,
-  // often for nearby points), so det[a-d, b-d, c-d] is evaluated exactly as an expansion.
+  // All terms zero (points on a plane parallel to a coordinate plane, say): a product of computed
+  // differences is zero only when a factor is, which is exact (a - b rounds to 0 only when a == b),
+  // unless a product of non-zero factors underflowed; with every non-zero difference at least
+  // 2^-300 in magnitude no product of three does.
+  if (permanent == 0 && in_expansion_range(adx) && in_expansion_range(bdx) && in_expansion_range(cdx) &&
+      in_expansion_range(ady) && in_expansion_range(bdy) && in_expansion_range(cdy) && in_expansion_range(adz) &&
+      in_expansion_range(bdz) && in_expansion_range(cdz))
+    return 0;
+  // Second stage: the differences are exact (often for nearby points), so det[a-d, b-d, c-d] is
+  // evaluated exactly as an expansion.
   double r[3][3];
   const Eigen::Vector3d* rows[3] = {&a, &b, &c};
   bool exact = true;
