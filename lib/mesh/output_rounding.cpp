@@ -647,12 +647,17 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
     return result;
   }
   const double growth = options.precision == OutputPrecision::Grid ? 2 : 16;
+  // The mesh is judged again only after a sweep changed it (an unchanged mesh keeps its problem).
+  bool judged = false;
   for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
-    for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) {
-    }
+    bool changed = false;
+    for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) changed = true;
     r.feature = delta;
-    result = cleaner.mesh();
-    r.problem = output_problem(result, options);
+    if (changed || !judged) {
+      result = cleaner.mesh();
+      r.problem = output_problem(result, options);
+      judged = true;
+    }
     if (r.problem.empty() || delta >= max_feature) break;
   }
   r.clean = r.problem.empty();

@@ -161,26 +161,29 @@ int scale_expansion(int n, const double* e, double b, double* h) {
   return len;
 }
 
-/// e + f as an expansion, zero components dropped (Shewchuk's Linear_Expansion_Sum_Zeroelim,
-/// through repeated Grow_Expansion, which needs no ordering assumptions beyond the inputs').
+/// e + f as an expansion, zero components dropped (Shewchuk's Fast_Expansion_Sum_Zeroelim:
+/// the components of both, merged by magnitude, summed from the smallest up; exact for
+/// non-overlapping expansions under round-to-nearest-even); returns the length.
 int sum_expansions(int n, const double* e, int m, const double* f, double* h) {
-  // Grow e by each component of f in turn (exact; O(n m), the lengths here are at most 24).
-  double buffer[64];
-  int len = n;
-  for (int i = 0; i < n; ++i) buffer[i] = e[i];
-  for (int k = 0; k < m; ++k) {
-    double q = f[k];
-    int out = 0;
-    for (int i = 0; i < len; ++i) {
-      double hi, lo;
-      two_sum(q, buffer[i], hi, lo);
-      if (lo != 0) buffer[out++] = lo;
-      q = hi;
-    }
-    if (q != 0) buffer[out++] = q;
-    len = out;
+  if (n == 0 || m == 0) {
+    const double* src = n == 0 ? f : e;
+    const int len = n == 0 ? m : n;
+    for (int i = 0; i < len; ++i) h[i] = src[i];
+    return len;
   }
-  for (int i = 0; i < len; ++i) h[i] = buffer[i];
+  int i = 0, j = 0, len = 0;
+  auto next = [&] {  // the smaller in magnitude of e[i] and f[j] (either list may be used up)
+    if (j >= m || (i < n && std::abs(e[i]) < std::abs(f[j]))) return e[i++];
+    return f[j++];
+  };
+  double q = next();
+  while (i < n || j < m) {
+    double hi, lo;
+    two_sum(q, next(), hi, lo);
+    if (lo != 0) h[len++] = lo;
+    q = hi;
+  }
+  if (q != 0 || len == 0) h[len++] = q;
   return len;
 }
 
