@@ -4,6 +4,8 @@
 //         tree_nodes=<nodes> tree_height=<h> exact_predicates=<count> filtered_predicates=<count>
 //         boundary_fragments=<count carried by the result solid>
 //         to_mesh_ms=<min of to_mesh on the result> to_mesh_unclean_ms=<the same with {.clean = false}>
+// cpu_ms / min_cpu_ms: median / min of this thread's CPU time per run (less sensitive to a busy
+// machine than the wall clock); to_mesh_ms and to_mesh_unclean_ms are thread CPU times.
 // Without arguments it runs every case, each in its own process (so peak RSS is per case):
 //   bench_bsp                 all cases
 //   bench_bsp CASE N [RUNS]   one case (sphere_minus_cube 32|64|128|256, menger 3, boxes 1000,
@@ -11,6 +13,7 @@
 //                             sphere_minus_sphere 32|64|128, sphere_minus_tilted_cube 64,
 //                             drilled_plate 100, rotated_boxes 200)
 #include <sys/resource.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -40,6 +43,12 @@ long rss_kb() {
   while (std::getline(f, line))
     if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
   return 0;
+}
+
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
 long peak_rss_kb() {
@@ -165,17 +174,23 @@ int run_case(const std::string& name, int n, int runs) {
     return 2;
   }
   const long base = rss_kb();
-  std::vector<double> times;
+  std::vector<double> times, cpu_times;  // wall clock and this thread's CPU time (a loaded machine)
   Result r;
   const int warmup = 1;
   for (int i = 0; i < runs + warmup; ++i) {
     kernel::predicate_counters() = {};
+    const double c0 = thread_cpu_ms();
     const auto t0 = std::chrono::steady_clock::now();
     r = f();
     const auto t1 = std::chrono::steady_clock::now();
-    if (i >= warmup) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    const double c1 = thread_cpu_ms();
+    if (i >= warmup) {
+      times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      cpu_times.push_back(c1 - c0);
+    }
   }
   std::sort(times.begin(), times.end());
+  std::sort(cpu_times.begin(), cpu_times.end());
   const kernel::PredicateCounters pc = kernel::predicate_counters();
   double volume = mesh_volume(r.mesh);
   if (name == "menger") volume *= scale;
@@ -202,17 +217,19 @@ int run_case(const std::string& name, int n, int runs) {
   double mesh_ms = 1e300, unclean_ms = 1e300;
   for (int i = 0; i < std::max(3, runs); ++i) {
     for (const bool clean : {true, false}) {
-      const auto t0 = std::chrono::steady_clock::now();
+      const double t0 = thread_cpu_ms();
       const PolygonMesh m = to_mesh(r.solid, {.clean = clean});
-      const double t = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const double t = thread_cpu_ms() - t0;
       (clean ? mesh_ms : unclean_ms) = std::min(clean ? mesh_ms : unclean_ms, t);
     }
   }
   const TreeStats st = tree_stats(r.solid);
-  std::printf("bench impl=sculpt case=%s n=%d runs=%d warmup=%d time_ms=%.3f min_ms=%.3f volume=%.12g expected=%s "
+  std::printf("bench impl=sculpt case=%s n=%d runs=%d warmup=%d time_ms=%.3f min_ms=%.3f cpu_ms=%.3f min_cpu_ms=%.3f "
+              "volume=%.12g expected=%s "
               "faces=%zu vertices=%zu peak_rss_kb=%ld base_rss_kb=%ld tree_nodes=%d tree_height=%d "
               "exact_predicates=%llu filtered_predicates=%llu boundary_fragments=%zu to_mesh_ms=%.3f to_mesh_unclean_ms=%.3f\n",
-              name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), volume, expected.c_str(),
+              name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), cpu_times[cpu_times.size() / 2],
+              cpu_times.front(), volume, expected.c_str(),
               r.mesh.faces.size(), r.mesh.vertices.size(), peak_rss_kb(), base, st.nodes, st.height,
               (unsigned long long)pc.exact, (unsigned long long)pc.filtered, r.solid.boundary().size(), mesh_ms, unclean_ms);
   return 0;

@@ -137,28 +137,34 @@ const runner = {
 };
 
 const baseRss = process.resourceUsage().maxRSS;
-const times = [];
+const times = [], cpuTimes = [];  // wall clock and the process's CPU time (user + system) per run
 let last;
 const started = performance.now();
 // A first run that is short against the budget only warms up the JIT and is not counted.
 let warmup = 0;
 {
-  const t0 = performance.now();
+  const t0 = performance.now(), c0 = process.cpuUsage();
   last = runner.run();
-  const t = performance.now() - t0;
+  const t = performance.now() - t0, c = process.cpuUsage(c0);
   if (t < budgetMs / 20) warmup = 1;
-  else times.push(t);
+  else times.push(t), cpuTimes.push((c.user + c.system) / 1000);
 }
 for (let r = times.length; r < runs && performance.now() - started <= budgetMs; ++r) {
-  const t0 = performance.now();
+  const t0 = performance.now(), c0 = process.cpuUsage();
   last = runner.run();
   times.push(performance.now() - t0);
+  const c = process.cpuUsage(c0);
+  cpuTimes.push((c.user + c.system) / 1000);
 }
-times.sort((a, b) => a - b);
-const median = times.length % 2 ? times[(times.length - 1) / 2] : (times[times.length / 2 - 1] + times[times.length / 2]) / 2;
+const median = (xs) => {
+  xs.sort((a, b) => a - b);
+  return xs.length % 2 ? xs[(xs.length - 1) / 2] : (xs[xs.length / 2 - 1] + xs[xs.length / 2]) / 2;
+};
+const wall = [...times];
+const medianTime = median(times), medianCpu = median(cpuTimes);
 
 const expected = runner.expected();
 const name = impl === 'manifold' ? 'manifold-3d' : 'jscad';
-console.log(`bench impl=${name} case=${caseName} n=${n} runs=${times.length} warmup=${warmup} time_ms=${median.toFixed(2)} ` +
-  `min_ms=${times[0].toFixed(2)} volume=${last.volume.toPrecision(15)} expected=${expected === '' ? 'na' : expected.toPrecision(15)} ` +
-  `times_ms=${times.map((t) => t.toFixed(1)).join(',')} faces=${last.faces} vertices=${last.vertices} peak_rss_kb=${process.resourceUsage().maxRSS} base_rss_kb=${baseRss}`);
+console.log(`bench impl=${name} case=${caseName} n=${n} runs=${times.length} warmup=${warmup} time_ms=${medianTime.toFixed(2)} ` +
+  `min_ms=${times[0].toFixed(2)} cpu_ms=${medianCpu.toFixed(2)} min_cpu_ms=${cpuTimes[0].toFixed(2)} volume=${last.volume.toPrecision(15)} expected=${expected === '' ? 'na' : expected.toPrecision(15)} ` +
+  `times_ms=${wall.map((t) => t.toFixed(1)).join(',')} faces=${last.faces} vertices=${last.vertices} peak_rss_kb=${process.resourceUsage().maxRSS} base_rss_kb=${baseRss}`);
