@@ -6,6 +6,7 @@
 # --ours: our bench program (default: build/release/tests/bench/bsp/bench_bsp);
 #         it must print the "bench key=value ..." lines of CASES.md.
 # --ours-file / --peers-file: use lines saved from an earlier run instead of running.
+# --save PREFIX: also keep this run's lines in PREFIX.ours.txt and PREFIX.peers.txt.
 # --stat: compare median times (default), minimum times (less sensitive to a busy machine), or
 #         cpu / min_cpu: median / minimum CPU time (ours: the thread's; peers: node's process, user +
 #         system), the least sensitive to other processes on a loaded machine.
@@ -17,6 +18,7 @@ ours=""
 ours_file=""
 peers_file=""
 stat=median
+save=""
 peer_args=()
 while (($#)); do
   case "$1" in
@@ -24,6 +26,7 @@ while (($#)); do
     --ours-file) ours_file="$2"; shift 2 ;;
     --peers-file) peers_file="$2"; shift 2 ;;
     --stat) stat="$2"; shift 2 ;;
+    --save) save="$2"; shift 2 ;;
     *) peer_args+=("$1"); shift ;;
   esac
 done
@@ -54,6 +57,11 @@ if [ -n "$peers_file" ]; then
 else
   "$here/peers/run.sh" "${peer_args[@]}" | tee "$tmp/peers_raw.txt" >&2
   grep '^bench ' "$tmp/peers_raw.txt" > "$tmp/peers.txt" || true
+fi
+
+if [ -n "$save" ]; then
+  cp "$tmp/ours.txt" "$save.ours.txt"
+  cp "$tmp/peers.txt" "$save.peers.txt"
 fi
 
 # Table: one row per (case, n); columns per implementation.
