@@ -209,6 +209,45 @@ int det3_sign(const double* a, const double* b, const double* c) {
   return expansion_sign(k, all);
 }
 
+/// Sign of det[a-d; b-d; c-d] from the raw coordinates, exactly (Shewchuk's orient3dexact):
+/// expanding the 4x4 determinant [p, 1] along z, D = az (m_bc + m_cd + m_db) - bz (m_ac + m_cd +
+/// m_da) + cz (m_ab + m_bd + m_da) - dz (m_ab + m_bc + m_ca) with m_pq = xp yq - xq yp. Every
+/// non-zero coordinate must lie within [2^-300, 2^300] (products of three stay exact).
+int det4_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
+  struct Minor {
+    double e[4];
+    int n = 0;
+  };
+  auto minor = [](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+    Minor m;
+    m.n = two_two_diff_products(p.x(), q.y(), q.x(), p.y(), m.e);
+    return m;
+  };
+  auto negated = [](Minor m) {
+    for (int i = 0; i < m.n; ++i) m.e[i] = -m.e[i];
+    return m;
+  };
+  const Minor ab = minor(a, b), ac = minor(a, c), ad = minor(a, d), bc = minor(b, c), bd = minor(b, d), cd = minor(c, d);
+  const Minor da = negated(ad), db = negated(bd), ca = negated(ac);
+  // z times the sum of three minors, as an expansion (at most 24 components).
+  auto term = [](double z, const Minor& x, const Minor& y, const Minor& w, double* out) {
+    if (z == 0) return 0;
+    double s1[8], s2[12];
+    const int n1 = sum_expansions(x.n, x.e, y.n, y.e, s1);
+    const int n2 = sum_expansions(n1, s1, w.n, w.e, s2);
+    if (n2 == 0) return 0;
+    return scale_expansion(n2, s2, z, out);
+  };
+  double ta[24], tb[24], tc[24], td[24], s1[48], s2[48], all[96];
+  const int na = term(a.z(), bc, cd, db, ta);
+  const int nb = term(-b.z(), ac, cd, da, tb);
+  const int nc = term(c.z(), ab, bd, da, tc);
+  const int nd = term(-d.z(), ab, bc, ca, td);
+  const int n1 = sum_expansions(na, ta, nb, tb, s1);
+  const int n2 = sum_expansions(nc, tc, nd, td, s2);
+  return expansion_sign(sum_expansions(n1, s1, n2, s2, all), all);
+}
+
 }  // namespace
 
 int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
@@ -267,6 +306,11 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
     for (int k = 0; k < 3 && exact; ++k)
       exact = exact_difference((*rows[i])[k], d[k], r[i][k]) && in_expansion_range(r[i][k]);
   if (exact) return -det3_sign(r[0], r[1], r[2]);
+  // Third stage: the coordinates themselves in range, the whole determinant as an expansion.
+  bool in_range = true;
+  for (const Eigen::Vector3d* p : {&a, &b, &c, &d})
+    for (int k = 0; k < 3; ++k) in_range = in_range && in_expansion_range((*p)[k]);
+  if (in_range) return -det4_sign(a, b, c, d);
   return orient3d_exact(a, b, c, d);
 }
 
