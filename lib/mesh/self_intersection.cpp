@@ -50,9 +50,8 @@ bool point_in_triangle_2d(const Vector2d& q, const Vector2d& t0, const Vector2d&
 }
 
 /// Closed segment [s0, s1] meets the closed, non-degenerate triangle t.
-bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, const Tri& t) {
-  const int o0 = orient3d(t.p[0], t.p[1], t.p[2], s0);
-  const int o1 = orient3d(t.p[0], t.p[1], t.p[2], s1);
+/// o0, o1: the sides of s0 and s1 of t's plane (orient3d(t.p[0], t.p[1], t.p[2], s_i)).
+bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int o1, const Tri& t) {
   if (o0 * o1 > 0) return false;
   if (o0 == 0 && o1 == 0) {  // coplanar: decide in the projection
     const Vector2d a = drop(s0, t.axis), b = drop(s1, t.axis);
@@ -90,7 +89,16 @@ bool coplanar_triangles_meet(const Tri& x, const Tri& y, int axis) {
 /// Any edge of `x` (among those listed) meets triangle `y`.
 bool edges_meet(const Tri& x, std::initializer_list<std::pair<int, int>> edges, const Tri& y) {
   for (auto [i, j] : edges)
-    if (segment_meets_triangle(x.p[i], x.p[j], y)) return true;
+    if (segment_meets_triangle(x.p[i], x.p[j], orient3d(y.p[0], y.p[1], y.p[2], x.p[i]),
+                               orient3d(y.p[0], y.p[1], y.p[2], x.p[j]), y))
+      return true;
+  return false;
+}
+
+/// Any edge of `x` meets triangle `y`, given the sides o[k] of x's corners of y's plane.
+bool all_edges_meet(const Tri& x, const std::array<int, 3>& o, const Tri& y) {
+  for (int k = 0; k < 3; ++k)
+    if (segment_meets_triangle(x.p[k], x.p[(k + 1) % 3], o[k], o[(k + 1) % 3], y)) return true;
   return false;
 }
 
@@ -116,7 +124,7 @@ bool triangles_conflict(const Tri& s, const Tri& t) {
     const int t0 = orient3d(s.p[0], s.p[1], s.p[2], t.p[0]), t1 = orient3d(s.p[0], s.p[1], s.p[2], t.p[1]);
     const int t2 = orient3d(s.p[0], s.p[1], s.p[2], t.p[2]);
     if ((t0 > 0 && t1 > 0 && t2 > 0) || (t0 < 0 && t1 < 0 && t2 < 0)) return false;
-    return edges_meet(s, {{0, 1}, {1, 2}, {2, 0}}, t) || edges_meet(t, {{0, 1}, {1, 2}, {2, 0}}, s);
+    return all_edges_meet(s, {s0, s1, s2}, t) || all_edges_meet(t, {t0, t1, t2}, s);
   }
   if (shared == 1) {
     // Convexity: beyond the shared corner p, the triangles can only meet if the edge opposite
