@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <set>
 #include <utility>
 #include <vector>
@@ -646,26 +647,50 @@ std::string inverted_shell(const PolygonMesh& mesh) {
 
 }  // namespace
 
-std::string output_problem(const PolygonMesh& mesh, const OutputRoundingOptions& options) {
+namespace {
+
+/// output_problem; `topology_clean`: the caller found no defect at all in `mesh` with the same
+/// topology check, and the precision is doubles (rounding changes nothing), so it is not repeated.
+std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, bool topology_clean) {
   const Rounder round(options);
-  PolygonMesh rounded = mesh;
-  for (Vector3d& v : rounded.vertices) v = round(v);
+  PolygonMesh copy;
+  if (options.precision != OutputPrecision::Double) {  // doubles: rounding is the identity
+    copy = mesh;
+    for (Vector3d& v : copy.vertices) v = round(v);
+  }
+  const PolygonMesh& rounded = options.precision == OutputPrecision::Double ? mesh : copy;
   std::vector<bool> used(rounded.vertices.size(), false);
   for (const auto& f : rounded.faces)
     for (int v : f)
       if (v >= 0 && static_cast<size_t>(v) < used.size()) used[v] = true;
-  std::map<std::array<double, 3>, int> seen;
-  for (size_t v = 0; v < rounded.vertices.size(); ++v) {
-    if (!used[v]) continue;
-    const Vector3d& p = rounded.vertices[v];
-    const auto [it, inserted] = seen.insert({{p.x(), p.y(), p.z()}, static_cast<int>(v)});
-    if (!inserted && !options.keep_copies)
-      return "vertices " + std::to_string(it->second) + " and " + std::to_string(v) + " are at the same point";
+  if (!options.keep_copies) {
+    // Two used vertices at one point: of all such pairs, the one whose later vertex comes first
+    // (with the first vertex at that point), as a scan in index order finds it.
+    std::vector<int> order;
+    order.reserve(rounded.vertices.size());
+    for (size_t v = 0; v < rounded.vertices.size(); ++v)
+      if (used[v] && rounded.vertices[v].allFinite()) order.push_back(static_cast<int>(v));  // NaN: no order
+    auto key = [&](int v) {
+      const Vector3d& p = rounded.vertices[v];
+      return std::make_tuple(p.x(), p.y(), p.z(), v);
+    };
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+    int first = -1, second = -1;
+    for (size_t i = 1; i < order.size(); ++i) {
+      if (rounded.vertices[order[i]] != rounded.vertices[order[i - 1]]) continue;
+      size_t g = i - 1;  // the group's first member (smallest index)
+      while (g > 0 && rounded.vertices[order[g - 1]] == rounded.vertices[order[i]]) --g;
+      if (g + 1 == i && (second < 0 || order[i] < second)) first = order[g], second = order[i];
+    }
+    if (second >= 0)
+      return "vertices " + std::to_string(first) + " and " + std::to_string(second) + " are at the same point";
   }
-  const ValidationReport report =
-      check_closed_manifold(rounded, {.check_self_intersections = false, .check_face_shapes = false,
-                                      .check_shell_orientation = false, .max_defects_per_kind = 1});
-  if (!report.ok()) return report.defects.front().message;
+  if (!topology_clean) {
+    const ValidationReport report =
+        check_closed_manifold(rounded, {.check_self_intersections = false, .check_face_shapes = false,
+                                        .check_shell_orientation = false, .max_defects_per_kind = 1});
+    if (!report.ok()) return report.defects.front().message;
+  }
   for (const auto& f : rounded.faces)
     if (f.size() > kMaxJudgedCorners) return std::string(kUnchecked);
   const SelfIntersectionSearch search = search_self_intersections(
@@ -676,6 +701,12 @@ std::string output_problem(const PolygonMesh& mesh, const OutputRoundingOptions&
   }
   if (!search.complete) return std::string(kUnchecked);
   return {};
+}
+
+}  // namespace
+
+std::string output_problem(const PolygonMesh& mesh, const OutputRoundingOptions& options) {
+  return judge(mesh, options, false);
 }
 
 PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOptions& options,
@@ -697,7 +728,8 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
     return mesh;
   }
   const Rounder round(options);
-  const std::string first = options.triangles ? std::string("triangles asked for") : output_problem(mesh, options);
+  const bool topology_clean = topology.defects.empty() && options.precision == OutputPrecision::Double;
+  const std::string first = options.triangles ? std::string("triangles asked for") : judge(mesh, options, topology_clean);
   if (first == kUnchecked) {  // too costly to judge: written as it is, and said so
     r.clean = false;
     r.problem = first;
@@ -728,13 +760,18 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
     return result;
   }
   const double growth = options.precision == OutputPrecision::Grid ? 2 : 16;
+  // The mesh is judged again only after a sweep changed it (an unchanged mesh keeps its problem).
+  bool judged = false;
   for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
-    for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) {
-    }
+    bool changed = false;
+    for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) changed = true;
     r.feature = delta;
-    result = cleaner.mesh();
-    r.problem = output_problem(result, options);
-    if (r.problem.empty()) r.problem = inverted_shell(result);
+    if (changed || !judged) {
+      result = cleaner.mesh();
+      r.problem = output_problem(result, options);
+      if (r.problem.empty()) r.problem = inverted_shell(result);
+      judged = true;
+    }
     if (r.problem.empty() || delta >= max_feature) break;
   }
   r.clean = r.problem.empty();

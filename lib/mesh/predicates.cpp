@@ -98,6 +98,156 @@ int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
   return orient3d_sign<Rational>([&](size_t i) { return Rational(x[i]); });
 }
 
+
+// Second stage (Shewchuk 1997, "Adaptive precision floating-point arithmetic and fast robust
+// geometric predicates", sec. 2): when the coordinate differences are exact, the determinant of
+// the differences is a sum of products of doubles, evaluated exactly as a floating-point
+// expansion (non-overlapping components, increasing magnitude); its sign is the sign of the
+// largest component. Exactness needs no overflow and no underflow: every non-zero difference is
+// kept within [2^-300, 2^300] (so every product of three is a multiple of 2^-1056 and below 2^903).
+constexpr double kExpansionMin = 0x1p-300;
+constexpr double kExpansionMax = 0x1p300;
+
+bool in_expansion_range(double x) {
+  const double m = std::abs(x);
+  return m == 0 || (m >= kExpansionMin && m <= kExpansionMax);
+}
+
+/// a - b as x + tail exactly (Knuth's two-difference); true when the tail is zero.
+bool exact_difference(double a, double b, double& x) {
+  x = a - b;
+  const double bv = a - x, av = x + bv;
+  return (a - av) + (bv - b) == 0;
+}
+
+/// x + y = hi + lo exactly (Knuth's two-sum).
+void two_sum(double x, double y, double& hi, double& lo) {
+  hi = x + y;
+  const double bv = hi - x, av = hi - bv;
+  lo = (x - av) + (y - bv);
+}
+
+/// a b - c d as an expansion of at most 4 components (zero components dropped), increasing.
+int two_two_diff_products(double a, double b, double c, double d, double* out) {
+  const double p = a * b, pe = std::fma(a, b, -p);
+  const double q = c * d, qe = std::fma(c, d, -q);
+  // (p + pe) - (q + qe): Shewchuk's Two_Two_Diff.
+  double x0, x1, x2, x3, i, j, k;
+  two_sum(pe, -qe, i, x0);
+  two_sum(p, i, j, k);
+  two_sum(k, -q, i, x1);
+  two_sum(j, i, x3, x2);
+  int n = 0;
+  for (double v : {x0, x1, x2, x3})
+    if (v != 0) out[n++] = v;
+  return n;
+}
+
+/// e * b (e an expansion of n components) as an expansion, zero components dropped
+/// (Shewchuk's Scale_Expansion_Zeroelim); returns the length.
+int scale_expansion(int n, const double* e, double b, double* h) {
+  int len = 0;
+  double q = e[0] * b, hh = std::fma(e[0], b, -q);
+  if (hh != 0) h[len++] = hh;
+  for (int i = 1; i < n; ++i) {
+    const double p1 = e[i] * b, p0 = std::fma(e[i], b, -p1);
+    double sum;
+    two_sum(q, p0, sum, hh);
+    if (hh != 0) h[len++] = hh;
+    two_sum(p1, sum, q, hh);  // p1 and sum do not overlap: Fast_Two_Sum would do
+    if (hh != 0) h[len++] = hh;
+  }
+  if (q != 0 || len == 0) h[len++] = q;
+  return len;
+}
+
+/// e + f as an expansion, zero components dropped (Shewchuk's Fast_Expansion_Sum_Zeroelim:
+/// the components of both, merged by magnitude, summed from the smallest up; exact for
+/// non-overlapping expansions under round-to-nearest-even); returns the length.
+int sum_expansions(int n, const double* e, int m, const double* f, double* h) {
+  if (n == 0 || m == 0) {
+    const double* src = n == 0 ? f : e;
+    const int len = n == 0 ? m : n;
+    for (int i = 0; i < len; ++i) h[i] = src[i];
+    return len;
+  }
+  int i = 0, j = 0, len = 0;
+  auto next = [&] {  // the smaller in magnitude of e[i] and f[j] (either list may be used up)
+    if (j >= m || (i < n && std::abs(e[i]) < std::abs(f[j]))) return e[i++];
+    return f[j++];
+  };
+  double q = next();
+  while (i < n || j < m) {
+    double hi, lo;
+    two_sum(q, next(), hi, lo);
+    if (lo != 0) h[len++] = lo;
+    q = hi;
+  }
+  if (q != 0 || len == 0) h[len++] = q;
+  return len;
+}
+
+int expansion_sign(int n, const double* e) {
+  for (int i = n - 1; i >= 0; --i)
+    if (e[i] != 0) return e[i] > 0 ? 1 : -1;
+  return 0;
+}
+
+/// Sign of det[[ax, ay, az], [bx, by, bz], [cx, cy, cz]] (rows a, b, c: the exact differences),
+/// evaluated exactly; the caller checked the range.
+int det3_sign(const double* a, const double* b, const double* c) {
+  double m1[4], m2[4], m3[4], t1[8], t2[8], t3[8], s12[16], all[24];
+  // det = az (bx cy - cx by) + bz (cx ay - ax cy) + cz (ax by - bx ay)
+  const int n1 = two_two_diff_products(b[0], c[1], c[0], b[1], m1);
+  const int n2 = two_two_diff_products(c[0], a[1], a[0], c[1], m2);
+  const int n3 = two_two_diff_products(a[0], b[1], b[0], a[1], m3);
+  const int k1 = n1 == 0 || a[2] == 0 ? 0 : scale_expansion(n1, m1, a[2], t1);
+  const int k2 = n2 == 0 || b[2] == 0 ? 0 : scale_expansion(n2, m2, b[2], t2);
+  const int k3 = n3 == 0 || c[2] == 0 ? 0 : scale_expansion(n3, m3, c[2], t3);
+  const int k12 = sum_expansions(k1, t1, k2, t2, s12);
+  const int k = sum_expansions(k12, s12, k3, t3, all);
+  return expansion_sign(k, all);
+}
+
+/// Sign of det[a-d; b-d; c-d] from the raw coordinates, exactly (Shewchuk's orient3dexact):
+/// expanding the 4x4 determinant [p, 1] along z, D = az (m_bc + m_cd + m_db) - bz (m_ac + m_cd +
+/// m_da) + cz (m_ab + m_bd + m_da) - dz (m_ab + m_bc + m_ca) with m_pq = xp yq - xq yp. Every
+/// non-zero coordinate must lie within [2^-300, 2^300] (products of three stay exact).
+int det4_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
+  struct Minor {
+    double e[4];
+    int n = 0;
+  };
+  auto minor = [](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+    Minor m;
+    m.n = two_two_diff_products(p.x(), q.y(), q.x(), p.y(), m.e);
+    return m;
+  };
+  auto negated = [](Minor m) {
+    for (int i = 0; i < m.n; ++i) m.e[i] = -m.e[i];
+    return m;
+  };
+  const Minor ab = minor(a, b), ac = minor(a, c), ad = minor(a, d), bc = minor(b, c), bd = minor(b, d), cd = minor(c, d);
+  const Minor da = negated(ad), db = negated(bd), ca = negated(ac);
+  // z times the sum of three minors, as an expansion (at most 24 components).
+  auto term = [](double z, const Minor& x, const Minor& y, const Minor& w, double* out) {
+    if (z == 0) return 0;
+    double s1[8], s2[12];
+    const int n1 = sum_expansions(x.n, x.e, y.n, y.e, s1);
+    const int n2 = sum_expansions(n1, s1, w.n, w.e, s2);
+    if (n2 == 0) return 0;
+    return scale_expansion(n2, s2, z, out);
+  };
+  double ta[24], tb[24], tc[24], td[24], s1[48], s2[48], all[96];
+  const int na = term(a.z(), bc, cd, db, ta);
+  const int nb = term(-b.z(), ac, cd, da, tb);
+  const int nc = term(c.z(), ab, bd, da, tc);
+  const int nd = term(-d.z(), ab, bc, ca, td);
+  const int n1 = sum_expansions(na, ta, nb, tb, s1);
+  const int n2 = sum_expansions(nc, tc, nd, td, s2);
+  return expansion_sign(sum_expansions(n1, s1, n2, s2, all), all);
+}
+
 }  // namespace
 
 int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
@@ -109,6 +259,17 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   const double bound = kOrient2dBound * detsum;
   if (std::isfinite(det) && std::isfinite(bound) && detsum > kNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? 1 : -1;
+  if (detsum == 0 && in_expansion_range(a.x() - c.x()) && in_expansion_range(b.y() - c.y()) &&
+      in_expansion_range(a.y() - c.y()) && in_expansion_range(b.x() - c.x()))
+    return 0;  // both products zero, each because a factor is (as in orient3d)
+  // Second stage: exact differences give the determinant exactly as an expansion.
+  double acx = 0, acy = 0, bcx = 0, bcy = 0;
+  if (exact_difference(a.x(), c.x(), acx) && exact_difference(a.y(), c.y(), acy) && exact_difference(b.x(), c.x(), bcx) &&
+      exact_difference(b.y(), c.y(), bcy) && in_expansion_range(acx) && in_expansion_range(acy) &&
+      in_expansion_range(bcx) && in_expansion_range(bcy)) {
+    double m[4];
+    return expansion_sign(two_two_diff_products(acx, bcy, acy, bcx, m), m);
+  }
   return orient2d_exact(a, b, c);
 }
 
@@ -128,6 +289,28 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   const double bound = kOrient3dBound * permanent;
   if (std::isfinite(det) && std::isfinite(bound) && permanent > kNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? -1 : 1;
+  // All terms zero (points on a plane parallel to a coordinate plane, say): a product of computed
+  // differences is zero only when a factor is, which is exact (a - b rounds to 0 only when a == b),
+  // unless a product of non-zero factors underflowed; with every non-zero difference at least
+  // 2^-300 in magnitude no product of three does.
+  if (permanent == 0 && in_expansion_range(adx) && in_expansion_range(bdx) && in_expansion_range(cdx) &&
+      in_expansion_range(ady) && in_expansion_range(bdy) && in_expansion_range(cdy) && in_expansion_range(adz) &&
+      in_expansion_range(bdz) && in_expansion_range(cdz))
+    return 0;
+  // Second stage: the differences are exact (often for nearby points), so det[a-d, b-d, c-d] is
+  // evaluated exactly as an expansion.
+  double r[3][3];
+  const Eigen::Vector3d* rows[3] = {&a, &b, &c};
+  bool exact = true;
+  for (int i = 0; i < 3 && exact; ++i)
+    for (int k = 0; k < 3 && exact; ++k)
+      exact = exact_difference((*rows[i])[k], d[k], r[i][k]) && in_expansion_range(r[i][k]);
+  if (exact) return -det3_sign(r[0], r[1], r[2]);
+  // Third stage: the coordinates themselves in range, the whole determinant as an expansion.
+  bool in_range = true;
+  for (const Eigen::Vector3d* p : {&a, &b, &c, &d})
+    for (int k = 0; k < 3; ++k) in_range = in_range && in_expansion_range((*p)[k]);
+  if (in_range) return -det4_sign(a, b, c, d);
   return orient3d_exact(a, b, c, d);
 }
 

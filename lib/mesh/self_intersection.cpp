@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <set>
 #include <utility>
@@ -48,9 +50,8 @@ bool point_in_triangle_2d(const Vector2d& q, const Vector2d& t0, const Vector2d&
 }
 
 /// Closed segment [s0, s1] meets the closed, non-degenerate triangle t.
-bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, const Tri& t) {
-  const int o0 = orient3d(t.p[0], t.p[1], t.p[2], s0);
-  const int o1 = orient3d(t.p[0], t.p[1], t.p[2], s1);
+/// o0, o1: the sides of s0 and s1 of t's plane (orient3d(t.p[0], t.p[1], t.p[2], s_i)).
+bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int o1, const Tri& t) {
   if (o0 * o1 > 0) return false;
   if (o0 == 0 && o1 == 0) {  // coplanar: decide in the projection
     const Vector2d a = drop(s0, t.axis), b = drop(s1, t.axis);
@@ -66,10 +67,38 @@ bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, const Tri& t
   return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
 }
 
+/// Coplanar closed triangles meet unless an edge line of one has the other triangle strictly
+/// outside (separating axis theorem in the plane: disjoint compact convex polygons have a
+/// strictly separating line along an edge of one of them), decided in the projection along
+/// `axis`, along which both project without degeneracy.
+bool coplanar_triangles_meet(const Tri& x, const Tri& y, int axis) {
+  const std::array<Vector2d, 3> p = {drop(x.p[0], axis), drop(x.p[1], axis), drop(x.p[2], axis)};
+  const std::array<Vector2d, 3> q = {drop(y.p[0], axis), drop(y.p[1], axis), drop(y.p[2], axis)};
+  auto separates = [](const std::array<Vector2d, 3>& a, const std::array<Vector2d, 3>& b) {
+    const int inside = orient2d(a[0], a[1], a[2]);  // the side of the third corner
+    for (int k = 0; k < 3; ++k) {
+      const Vector2d &u = a[k], &v = a[(k + 1) % 3];
+      if (orient2d(u, v, b[0]) == -inside && orient2d(u, v, b[1]) == -inside && orient2d(u, v, b[2]) == -inside)
+        return true;
+    }
+    return false;
+  };
+  return !separates(p, q) && !separates(q, p);
+}
+
 /// Any edge of `x` (among those listed) meets triangle `y`.
 bool edges_meet(const Tri& x, std::initializer_list<std::pair<int, int>> edges, const Tri& y) {
   for (auto [i, j] : edges)
-    if (segment_meets_triangle(x.p[i], x.p[j], y)) return true;
+    if (segment_meets_triangle(x.p[i], x.p[j], orient3d(y.p[0], y.p[1], y.p[2], x.p[i]),
+                               orient3d(y.p[0], y.p[1], y.p[2], x.p[j]), y))
+      return true;
+  return false;
+}
+
+/// Any edge of `x` meets triangle `y`, given the sides o[k] of x's corners of y's plane.
+bool all_edges_meet(const Tri& x, const std::array<int, 3>& o, const Tri& y) {
+  for (int k = 0; k < 3; ++k)
+    if (segment_meets_triangle(x.p[k], x.p[(k + 1) % 3], o[k], o[(k + 1) % 3], y)) return true;
   return false;
 }
 
@@ -85,8 +114,18 @@ bool triangles_conflict(const Tri& s, const Tri& t) {
         t_of[i] = j;
         ++shared;
       }
-  if (shared == 0)
-    return edges_meet(s, {{0, 1}, {1, 2}, {2, 0}}, t) || edges_meet(t, {{0, 1}, {1, 2}, {2, 0}}, s);
+  if (shared == 0) {
+    // One triangle strictly on one side of the other's plane: they cannot meet (the same
+    // decisions as the edge tests below, with fewer predicates).
+    const int s0 = orient3d(t.p[0], t.p[1], t.p[2], s.p[0]), s1 = orient3d(t.p[0], t.p[1], t.p[2], s.p[1]);
+    const int s2 = orient3d(t.p[0], t.p[1], t.p[2], s.p[2]);
+    if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0)) return false;
+    if (s0 == 0 && s1 == 0 && s2 == 0) return coplanar_triangles_meet(s, t, t.axis);
+    const int t0 = orient3d(s.p[0], s.p[1], s.p[2], t.p[0]), t1 = orient3d(s.p[0], s.p[1], s.p[2], t.p[1]);
+    const int t2 = orient3d(s.p[0], s.p[1], s.p[2], t.p[2]);
+    if ((t0 > 0 && t1 > 0 && t2 > 0) || (t0 < 0 && t1 < 0 && t2 < 0)) return false;
+    return all_edges_meet(s, {s0, s1, s2}, t) || all_edges_meet(t, {t0, t1, t2}, s);
+  }
   if (shared == 1) {
     // Convexity: beyond the shared corner p, the triangles can only meet if the edge opposite
     // p in one of them meets the other.
@@ -209,34 +248,90 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
       if (t.axis >= 0) tris.push_back(t);  // collinear corners: degenerate, reported elsewhere
     }
   }
-  std::sort(tris.begin(), tris.end(),
-            [](const Tri& a, const Tri& b) { return a.box.min().x() < b.box.min().x(); });
-
+  // Broad phase: a uniform grid of cubic cells (about the median extent of the triangles'
+  // boxes, coarsened until the boxes' cell entries stay within a few per triangle); each triangle
+  // is listed in every cell its box overlaps, and a pair whose boxes overlap is examined in the
+  // one cell that holds the minimum corner of the boxes' intersection, so once.
   std::set<std::pair<int, int>> found;
+  if (tris.empty()) return result;
+  Eigen::AlignedBox3d all;
+  std::vector<double> extents;
+  extents.reserve(tris.size());
+  for (const Tri& t : tris) {
+    all.extend(t.box);
+    extents.push_back(t.box.sizes().maxCoeff());
+  }
+  std::nth_element(extents.begin(), extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2), extents.end());
+  double cell = std::max(extents[extents.size() / 2], all.sizes().maxCoeff() * 0x1p-20);
+  if (!(cell > 0) || !std::isfinite(cell)) cell = 1;
+  const Vector3d origin = all.min();
+  auto cell_of = [&](double x, int axis) {
+    return static_cast<std::int64_t>(std::floor((x - origin[axis]) / cell));
+  };
+  auto cell_range = [&](const Tri& t, int axis) {
+    return std::pair(cell_of(t.box.min()[axis], axis), cell_of(t.box.max()[axis], axis));
+  };
+  const size_t entry_budget = 8 * tris.size() + 1024;
+  for (;;) {
+    size_t entries = 0;
+    for (const Tri& t : tris) {
+      size_t n = 1;
+      for (int axis = 0; axis < 3; ++axis) {
+        const auto [lo, hi] = cell_range(t, axis);
+        n *= static_cast<size_t>(hi - lo + 1);
+      }
+      entries += n;
+      if (entries > entry_budget) break;
+    }
+    if (entries <= entry_budget) break;
+    cell *= 2;
+  }
+  // Cell keys: 21 bits per axis (the grid has at most 2^20 + 1 cells along the widest axis).
+  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) { return (x << 42) | (y << 21) | z; };
+  std::vector<std::pair<std::int64_t, int>> entries;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const auto [x0, x1] = cell_range(tris[i], 0);
+    const auto [y0, y1] = cell_range(tris[i], 1);
+    const auto [z0, z1] = cell_range(tris[i], 2);
+    for (std::int64_t x = x0; x <= x1; ++x)
+      for (std::int64_t y = y0; y <= y1; ++y)
+        for (std::int64_t z = z0; z <= z1; ++z) entries.emplace_back(key(x, y, z), static_cast<int>(i));
+  }
+  std::sort(entries.begin(), entries.end());
+
   size_t candidates = 0, scanned = 0;
-  for (size_t i = 0; i < tris.size() && found.size() < options.max_pairs && result.complete; ++i) {
-    const Tri& s = tris[i];
-    for (size_t j = i + 1; j < tris.size() && tris[j].box.min().x() <= s.box.max().x(); ++j) {
-      if (++scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
-        result.complete = false;
-        break;
-      }
-      const Tri& t = tris[j];
-      if (s.face == t.face) continue;
-      if (t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
-          t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())
-        continue;
-      if (++candidates > options.max_candidates) {
-        result.complete = false;
-        break;
-      }
-      const auto key = std::minmax(s.face, t.face);
-      if (found.count(key)) continue;
-      if (triangles_conflict(s, t)) {
-        found.insert(key);
-        if (found.size() >= options.max_pairs) break;
+  for (size_t begin = 0; begin < entries.size() && found.size() < options.max_pairs && result.complete;) {
+    size_t end = begin;
+    while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
+    const std::int64_t here = entries[begin].first;
+    for (size_t i = begin; i < end && found.size() < options.max_pairs && result.complete; ++i) {
+      const Tri& s = tris[static_cast<size_t>(entries[i].second)];
+      for (size_t j = i + 1; j < end; ++j) {
+        if (++scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
+          result.complete = false;
+          break;
+        }
+        const Tri& t = tris[static_cast<size_t>(entries[j].second)];
+        if (s.face == t.face) continue;
+        if (t.box.min().x() > s.box.max().x() || s.box.min().x() > t.box.max().x() ||
+            t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
+            t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())
+          continue;
+        const Vector3d corner = s.box.min().cwiseMax(t.box.min());
+        if (key(cell_of(corner.x(), 0), cell_of(corner.y(), 1), cell_of(corner.z(), 2)) != here) continue;
+        if (++candidates > options.max_candidates) {
+          result.complete = false;
+          break;
+        }
+        const auto face_pair = std::minmax(s.face, t.face);
+        if (found.count(face_pair)) continue;
+        if (triangles_conflict(s, t)) {
+          found.insert(face_pair);
+          if (found.size() >= options.max_pairs) break;
+        }
       }
     }
+    begin = end;
   }
   for (auto [a, b] : found) result.pairs.push_back({a, b});
   return result;

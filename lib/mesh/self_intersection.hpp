@@ -1,8 +1,10 @@
 #pragma once
 /// \file self_intersection.hpp
-/// Exact detection of self-intersections of a polygon mesh: faces are triangulated, a sweep
-/// over x with y/z box overlap finds candidate pairs, and each pair is decided exactly with
-/// orient3d (segment-triangle tests; Guigue & Devillers 2003 give the same decisions).
+/// Exact detection of self-intersections of a polygon mesh: faces are triangulated, a uniform
+/// grid of cells over the triangles' boxes finds the pairs whose boxes overlap, and each pair is
+/// decided exactly with orient3d (a triangle strictly on one side of the other's plane is
+/// rejected first; coplanar pairs by separating edge lines; otherwise segment-triangle tests;
+/// Guigue & Devillers 2003 give the same decisions).
 /// Vertices at the same position count as the same vertex, so faces that meet at a
 /// duplicated vertex (a solid touching itself at an edge or a corner) are not reported.
 

@@ -6,7 +6,10 @@
 # --ours: our bench program (default: build/release/tests/bench/bsp/bench_bsp);
 #         it must print the "bench key=value ..." lines of CASES.md.
 # --ours-file / --peers-file: use lines saved from an earlier run instead of running.
-# --stat: compare median times (default) or minimum times (less sensitive to a busy machine).
+# --save PREFIX: also keep this run's lines in PREFIX.ours.txt and PREFIX.peers.txt.
+# --stat: compare median times (default), minimum times (less sensitive to a busy machine), or
+#         cpu / min_cpu: median / minimum CPU time (ours: the thread's; peers: node's process, user +
+#         system), the least sensitive to other processes on a loaded machine.
 # Ratios > 1 mean ours is faster (peer time / our time) or smaller (peer rss / our rss).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -15,6 +18,7 @@ ours=""
 ours_file=""
 peers_file=""
 stat=median
+save=""
 peer_args=()
 while (($#)); do
   case "$1" in
@@ -22,6 +26,7 @@ while (($#)); do
     --ours-file) ours_file="$2"; shift 2 ;;
     --peers-file) peers_file="$2"; shift 2 ;;
     --stat) stat="$2"; shift 2 ;;
+    --save) save="$2"; shift 2 ;;
     *) peer_args+=("$1"); shift ;;
   esac
 done
@@ -54,6 +59,11 @@ else
   grep '^bench ' "$tmp/peers_raw.txt" > "$tmp/peers.txt" || true
 fi
 
+if [ -n "$save" ]; then
+  cp "$tmp/ours.txt" "$save.ours.txt"
+  cp "$tmp/peers.txt" "$save.peers.txt"
+fi
+
 # Table: one row per (case, n); columns per implementation.
 cat "$tmp/peers.txt" "$tmp/ours.txt" | awk -v stat="$stat" '
 function val(key,   i, kv) {
@@ -64,7 +74,11 @@ function val(key,   i, kv) {
   impl = val("impl"); if (impl != "manifold-3d" && impl != "jscad") impl = "ours"
   key = val("case") " " val("n")
   if (!(key in seen)) { seen[key] = 1; order[++rows] = key }
-  t[key, impl] = (stat == "min" && val("min_ms") != "") ? val("min_ms") : val("time_ms"); v[key, impl] = val("volume"); m[key, impl] = val("peak_rss_kb")
+  t[key, impl] = val("time_ms")
+  if (stat == "min" && val("min_ms") != "") t[key, impl] = val("min_ms")
+  if (stat == "cpu" && val("cpu_ms") != "") t[key, impl] = val("cpu_ms")
+  if (stat == "min_cpu" && val("min_cpu_ms") != "") t[key, impl] = val("min_cpu_ms")
+  v[key, impl] = val("volume"); m[key, impl] = val("peak_rss_kb")
   if (val("status") != "") t[key, impl] = val("status")
   if (impl == "ours" && val("tree_nodes") != "") nodes[key] = val("tree_nodes")
 }

@@ -3,7 +3,12 @@
 // and a mesh that is clean already is returned as it is.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <random>
+#include <string>
 
 #include "mesh/mesh_measures.hpp"
 #include "mesh/output_rounding.hpp"
@@ -143,6 +148,32 @@ TEST(OutputRounding, OpenMeshesAreLeftAlone) {
   const PolygonMesh out = round_for_output(open, {}, &r);
   EXPECT_FALSE(r.clean);
   EXPECT_EQ(out.faces, open.faces);
+}
+
+// The first pair of vertices at one point, as a scan in index order with a map finds it (the
+// reference), on merged boxes sharing corners, with the vertices renumbered at random.
+TEST(OutputRounding, FirstCoincidentVerticesAsAnIndexOrderScan) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 40; ++trial) {
+    PolygonMesh m = test_shapes::merged(test_shapes::merged(test_shapes::box({0, 0, 0}, {1, 1, 1}),
+                                                            test_shapes::box({1, 0, 0}, {2, 1, 1})),
+                                        test_shapes::box({trial % 3 == 0 ? 0.5 : 1.0, 1, 0}, {2, 2, 1}));
+    std::vector<int> perm(m.vertices.size());
+    for (size_t i = 0; i < perm.size(); ++i) perm[i] = static_cast<int>(i);
+    std::shuffle(perm.begin(), perm.end(), rng);
+    PolygonMesh p = m;
+    for (size_t i = 0; i < perm.size(); ++i) p.vertices[static_cast<size_t>(perm[i])] = m.vertices[i];
+    for (auto& f : p.faces)
+      for (int& v : f) v = perm[static_cast<size_t>(v)];
+    std::map<std::array<double, 3>, int> seen;
+    std::string expected;
+    for (size_t v = 0; v < p.vertices.size() && expected.empty(); ++v) {
+      const auto [it, inserted] = seen.insert({{p.vertices[v].x(), p.vertices[v].y(), p.vertices[v].z()}, int(v)});
+      if (!inserted) expected = "vertices " + std::to_string(it->second) + " and " + std::to_string(v) + " are at the same point";
+    }
+    ASSERT_FALSE(expected.empty());
+    EXPECT_EQ(output_problem(p), expected) << trial;
+  }
 }
 
 }  // namespace

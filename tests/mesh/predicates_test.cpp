@@ -91,5 +91,37 @@ TEST(Predicates, ExtremeMagnitudes) {
   }
 }
 
+// The second stage (exact differences evaluated as floating-point expansions): points on a small
+// dyadic lattice near a common offset, so that every difference is exact, on and off coordinate
+// planes, on and near a common plane or line, with offsets near the ends of the stage's range
+// (2^-300 .. 2^300) and beyond it.
+TEST(Predicates, ExactDifferencesAgreeWithRationals) {
+  std::mt19937_64 rng(23);
+  std::uniform_int_distribution<int> small(-64, 64), pick(0, 5);
+  int zeros = 0, nonzeros = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int e = std::array<int, 6>{-20, 0, 30, -290, 280, -330}[trial % 6];
+    const double unit = std::ldexp(1.0, e);
+    const Eigen::Vector3d base(std::ldexp(double(small(rng)), e + 6), std::ldexp(double(small(rng)), e + 6),
+                               std::ldexp(double(small(rng)), e + 6));
+    auto point = [&] { return Eigen::Vector3d(base + unit * Eigen::Vector3d(small(rng), small(rng), small(rng))); };
+    Eigen::Vector3d a = point(), b = point(), c = point(), d = point();
+    switch (pick(rng)) {
+      case 0: a.z() = b.z() = c.z() = d.z() = base.z(); break;  // on a coordinate plane
+      case 1: d = a + (b - a) * 2 - (c - a); break;                 // on the plane abc (exact lattice point)
+      case 2: d = a + (b - a) + (c - a); d.x() = std::nextafter(d.x(), 1e300); break;  // one ulp off it
+      case 3: c = a + (b - a) * 3; break;                           // a, b, c collinear
+      default: break;
+    }
+    const int got3 = orient3d(a, b, c, d);
+    ASSERT_EQ(got3, reference3d(a, b, c, d)) << trial;
+    (got3 == 0 ? zeros : nonzeros)++;
+    ASSERT_EQ(orient2d(a.head<2>(), b.head<2>(), c.head<2>()), reference2d(a.head<2>(), b.head<2>(), c.head<2>())) << trial;
+    ASSERT_EQ(orient2d(a.head<2>(), b.head<2>(), d.head<2>()), reference2d(a.head<2>(), b.head<2>(), d.head<2>())) << trial;
+  }
+  EXPECT_GT(zeros, 3000);
+  EXPECT_GT(nonzeros, 3000);
+}
+
 }  // namespace
 }  // namespace sculpt

@@ -3,11 +3,17 @@
 //         volume=<v> expected=<v|na> faces=<f> vertices=<v> peak_rss_kb=<k> base_rss_kb=<k>
 //         tree_nodes=<nodes> tree_height=<h> exact_predicates=<count> filtered_predicates=<count>
 //         boundary_fragments=<count carried by the result solid>
+//         to_mesh_ms=<min of to_mesh on the result> to_mesh_unclean_ms=<the same with {.clean = false}>
+// cpu_ms / min_cpu_ms: median / min of this thread's CPU time per run (less sensitive to a busy
+// machine than the wall clock); to_mesh_ms and to_mesh_unclean_ms are thread CPU times.
 // Without arguments it runs every case, each in its own process (so peak RSS is per case):
 //   bench_bsp                 all cases
 //   bench_bsp CASE N [RUNS]   one case (sphere_minus_cube 32|64|128|256, menger 3, boxes 1000,
-//                             boxes_pairwise 1000: the same union one box at a time)
+//                             boxes_pairwise 1000: the same union one box at a time,
+//                             sphere_minus_sphere 32|64|128, sphere_minus_tilted_cube 64,
+//                             drilled_plate 100, rotated_boxes 200)
 #include <sys/resource.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,6 +29,8 @@
 #include "bsp/boundary.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
+#include "bench/peers/cases.hpp"
 #include "support/bench_solids.hpp"
 
 using namespace sculpt;
@@ -35,6 +43,12 @@ long rss_kb() {
   while (std::getline(f, line))
     if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
   return 0;
+}
+
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
 long peak_rss_kb() {
@@ -78,6 +92,53 @@ Result boxes_pairwise(int count) {
   return {std::move(s), std::move(mesh)};
 }
 
+Eigen::Affine3d affine(const std::array<double, 16>& m) {  // column-major 4x4 (cases.hpp)
+  Eigen::Affine3d a = Eigen::Affine3d::Identity();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) a.matrix()(r, c) = m[std::size_t(4 * c + r)];
+  return a;
+}
+
+// The two operands of the cases that subtract one solid from another (sphere radius 1, n segments).
+std::pair<Solid, Solid> operands(const std::string& name, int n) {
+  Solid s = sphere(1.0, {.segments = n});
+  if (name == "sphere_minus_sphere") {
+    const auto& o = bench_cases::sphere_offset;
+    return {s, translate(s, {o[0], o[1], o[2]})};
+  }
+  if (name == "sphere_minus_tilted_cube") return {std::move(s), transform(box({0, 0, 0}, {1, 1, 1}), affine(bench_cases::tilted_cube()))};
+  return {std::move(s), box({0, 0, 0}, {1, 1, 1})};
+}
+
+// Sphere minus a second solid (operands above), built inside the timing as in sphere_minus_cube.
+Result sphere_minus(const std::string& name, int n) {
+  auto [a, b] = operands(name, n);
+  Solid s = std::move(a) - b;
+  PolygonMesh mesh = to_mesh(s);
+  return {std::move(s), std::move(mesh)};
+}
+
+Solid plate_hole(double x, double y) { return translate(cylinder(0.3, 2.0, {.segments = 32}), {x, y, -0.5}); }
+
+// The plate [0,10] x [0,10] x [0,1] minus `count` cylinders one at a time, in place.
+Result drilled_plate(int count) {
+  Solid s = box({0, 0, 0}, {10, 10, 1});
+  for (const auto& c : bench_cases::drill_centres(count)) s = std::move(s) - plate_hole(c[0], c[1]);
+  PolygonMesh mesh = to_mesh(s);
+  return {std::move(s), std::move(mesh)};
+}
+
+// Union of `count` rotated boxes by the batch union.
+Result rotated_boxes(int count) {
+  std::vector<Solid> parts;
+  for (const auto& b : bench_cases::rotated_boxes(count))
+    parts.push_back(transform(box({b.box.lo[0], b.box.lo[1], b.box.lo[2]}, {b.box.hi[0], b.box.hi[1], b.box.hi[2]}),
+                              affine(b.matrix)));
+  Solid s = unite_all(std::move(parts));
+  PolygonMesh mesh = to_mesh(s);
+  return {std::move(s), std::move(mesh)};
+}
+
 double mesh_volume(const PolygonMesh& m) {
   double v = 0;
   for (const auto& f : m.faces)
@@ -102,22 +163,34 @@ int run_case(const std::string& name, int n, int runs) {
     f = [n] { return boxes(n); };
   } else if (name == "boxes_pairwise") {
     f = [n] { return boxes_pairwise(n); };
+  } else if (name == "sphere_minus_sphere" || name == "sphere_minus_tilted_cube") {
+    f = [n, name] { return sphere_minus(name, n); };
+  } else if (name == "drilled_plate") {
+    f = [n] { return drilled_plate(n); };
+  } else if (name == "rotated_boxes") {
+    f = [n] { return rotated_boxes(n); };
   } else {
     std::fprintf(stderr, "unknown case %s\n", name.c_str());
     return 2;
   }
   const long base = rss_kb();
-  std::vector<double> times;
+  std::vector<double> times, cpu_times;  // wall clock and this thread's CPU time (a loaded machine)
   Result r;
   const int warmup = 1;
   for (int i = 0; i < runs + warmup; ++i) {
     kernel::predicate_counters() = {};
+    const double c0 = thread_cpu_ms();
     const auto t0 = std::chrono::steady_clock::now();
     r = f();
     const auto t1 = std::chrono::steady_clock::now();
-    if (i >= warmup) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    const double c1 = thread_cpu_ms();
+    if (i >= warmup) {
+      times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      cpu_times.push_back(c1 - c0);
+    }
   }
   std::sort(times.begin(), times.end());
+  std::sort(cpu_times.begin(), cpu_times.end());
   const kernel::PredicateCounters pc = kernel::predicate_counters();
   double volume = mesh_volume(r.mesh);
   if (name == "menger") volume *= scale;
@@ -128,13 +201,37 @@ int run_case(const std::string& name, int n, int runs) {
     std::snprintf(buf, sizeof buf, "%.12g", vs * 7.0 / 8.0);
     expected = buf;
   }
+  if (name == "sphere_minus_sphere" || name == "sphere_minus_tilted_cube") {
+    // Expected: vol(a) - vol(a ∩ b), the intersection computed by the other set operation.
+    const auto [a, b] = operands(name, n);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.12g", mesh_volume(to_mesh(a)) - mesh_volume(to_mesh(a & b)));
+    expected = buf;
+  }
+  if (name == "drilled_plate") {  // each hole removes half of its cylinder (height 2, plate 1 thick)
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.12g", 100.0 - n * mesh_volume(to_mesh(plate_hole(0.5, 0.5))) / 2);
+    expected = buf;
+  }
+  // The clean step's share: to_mesh alone on the result, with and without it (min over the runs).
+  double mesh_ms = 1e300, unclean_ms = 1e300;
+  for (int i = 0; i < std::max(3, runs); ++i) {
+    for (const bool clean : {true, false}) {
+      const double t0 = thread_cpu_ms();
+      const PolygonMesh m = to_mesh(r.solid, {.clean = clean});
+      const double t = thread_cpu_ms() - t0;
+      (clean ? mesh_ms : unclean_ms) = std::min(clean ? mesh_ms : unclean_ms, t);
+    }
+  }
   const TreeStats st = tree_stats(r.solid);
-  std::printf("bench impl=sculpt case=%s n=%d runs=%d warmup=%d time_ms=%.3f min_ms=%.3f volume=%.12g expected=%s "
+  std::printf("bench impl=sculpt case=%s n=%d runs=%d warmup=%d time_ms=%.3f min_ms=%.3f cpu_ms=%.3f min_cpu_ms=%.3f "
+              "volume=%.12g expected=%s "
               "faces=%zu vertices=%zu peak_rss_kb=%ld base_rss_kb=%ld tree_nodes=%d tree_height=%d "
-              "exact_predicates=%llu filtered_predicates=%llu boundary_fragments=%zu\n",
-              name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), volume, expected.c_str(),
+              "exact_predicates=%llu filtered_predicates=%llu boundary_fragments=%zu to_mesh_ms=%.3f to_mesh_unclean_ms=%.3f\n",
+              name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), cpu_times[cpu_times.size() / 2],
+              cpu_times.front(), volume, expected.c_str(),
               r.mesh.faces.size(), r.mesh.vertices.size(), peak_rss_kb(), base, st.nodes, st.height,
-              (unsigned long long)pc.exact, (unsigned long long)pc.filtered, r.solid.boundary().size());
+              (unsigned long long)pc.exact, (unsigned long long)pc.filtered, r.solid.boundary().size(), mesh_ms, unclean_ms);
   return 0;
 }
 
@@ -145,7 +242,10 @@ int main(int argc, char** argv) {
   if (argc >= 3) return run_case(argv[1], std::atoi(argv[2]), argc >= 4 ? std::atoi(argv[3]) : 7);
   const std::vector<std::pair<std::string, int>> cases = {{"sphere_minus_cube", 32}, {"sphere_minus_cube", 64},
                                                           {"sphere_minus_cube", 128}, {"sphere_minus_cube", 256},
-                                                          {"menger", 3}, {"boxes", 1000}};
+                                                          {"menger", 3}, {"boxes", 1000},
+                                                          {"sphere_minus_sphere", 32}, {"sphere_minus_sphere", 64},
+                                                          {"sphere_minus_sphere", 128}, {"sphere_minus_tilted_cube", 64},
+                                                          {"drilled_plate", 100}, {"rotated_boxes", 200}};
   int status = 0;
   for (const auto& [name, n] : cases) {
     const std::string cmd = std::string("'") + argv[0] + "' " + name + " " + std::to_string(n);

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <set>
 #include <utility>
 #include <vector>
@@ -109,6 +110,60 @@ inline double union_volume(const std::vector<Box>& boxes) {
     volume += (x[i + 1] - x[i]) * area;
   }
   return volume;
+}
+
+/// 4x4 column-major matrix (cases.mjs rotationAbout, same formula and operation order) of the
+/// rotation by `degrees` about the axis through `centre` with direction `axis`.
+inline std::array<double, 16> rotation_about(std::array<double, 3> axis, double degrees,
+                                             std::array<double, 3> centre = {0, 0, 0}) {
+  const double len = std::hypot(axis[0], axis[1], axis[2]);
+  const double x = axis[0] / len, y = axis[1] / len, z = axis[2] / len;
+  const double t = degrees * std::numbers::pi / 180, c = std::cos(t), s = std::sin(t), k = 1 - c;
+  const double r[3][3] = {{c + x * x * k, x * y * k - z * s, x * z * k + y * s},
+                          {y * x * k + z * s, c + y * y * k, y * z * k - x * s},
+                          {z * x * k - y * s, z * y * k + x * s, c + z * z * k}};
+  double tr[3];
+  for (int i = 0; i < 3; ++i) tr[i] = centre[i] - (r[i][0] * centre[0] + r[i][1] * centre[1] + r[i][2] * centre[2]);
+  return {r[0][0], r[1][0], r[2][0], 0, r[0][1], r[1][1], r[2][1], 0, r[0][2], r[1][2], r[2][2], 0, tr[0], tr[1], tr[2], 1};
+}
+
+/// sphere_minus_sphere: centre of the second sphere (cases.mjs SPHERE_OFFSET).
+inline constexpr std::array<double, 3> sphere_offset = {0.5, 0.375, 0.25};
+
+/// sphere_minus_tilted_cube: the unit cube turned by 30 degrees about (1, 2, 3) (cases.mjs TILTED_CUBE).
+inline std::array<double, 16> tilted_cube() { return rotation_about({1, 2, 3}, 30); }
+
+/// drilled_plate: hole axes (x, y) for `count` holes, row by row (cases.mjs drillCentres).
+inline std::vector<std::array<double, 2>> drill_centres(int count) {
+  const int side = int(std::ceil(std::sqrt(double(count))));
+  std::vector<std::array<double, 2>> centres;
+  for (int k = 0; k < count; ++k) centres.push_back({(k % side) + 0.5, (k / side) + 0.5});
+  return centres;
+}
+
+struct RotatedBox {
+  Box box;
+  std::array<double, 16> matrix;  ///< column-major, rotation about the box's centre
+};
+
+/// rotated_boxes: `count` boxes from Lcg(seed), each with its rotation (cases.mjs rotatedBoxes).
+inline std::vector<RotatedBox> rotated_boxes(int count, uint32_t seed = 1) {
+  Lcg rng(seed);
+  std::vector<RotatedBox> boxes;
+  for (int k = 0; k < count; ++k) {
+    RotatedBox b{};
+    for (int i = 0; i < 3; ++i) b.box.lo[i] = (rng.next() >> 16) / 8192.0;
+    for (int i = 0; i < 3; ++i) b.box.hi[i] = b.box.lo[i] + 0.5 + ((rng.next() >> 16) >> 5) / 1024.0;
+    std::array<double, 3> axis{};
+    for (int i = 0; i < 3; ++i) axis[i] = (rng.next() >> 16) / 32768.0 - 1;
+    if (axis[0] == 0 && axis[1] == 0 && axis[2] == 0) axis = {0, 0, 1};
+    const double degrees = (rng.next() >> 16) * 360.0 / 65536;
+    std::array<double, 3> centre{};
+    for (int i = 0; i < 3; ++i) centre[i] = (b.box.lo[i] + b.box.hi[i]) / 2;
+    b.matrix = rotation_about(axis, degrees, centre);
+    boxes.push_back(b);
+  }
+  return boxes;
 }
 
 }  // namespace sculpt::bench_cases

@@ -79,9 +79,64 @@ export function unionVolume(boxes) {
   return volume;
 }
 
+/** 4x4 column-major matrix (manifold-3d's Mat4 and JSCAD's mat4 layout) of the rotation by
+ * `degrees` about the axis through `centre` with direction `axis` (right-handed; Rodrigues'
+ * formula on the normalized axis): x -> R (x - centre) + centre. */
+export function rotationAbout(axis, degrees, centre = [0, 0, 0]) {
+  const len = Math.hypot(axis[0], axis[1], axis[2]);
+  const [x, y, z] = axis.map((a) => a / len);
+  const t = degrees * Math.PI / 180, c = Math.cos(t), s = Math.sin(t), k = 1 - c;
+  const r = [  // rows
+    [c + x * x * k, x * y * k - z * s, x * z * k + y * s],
+    [y * x * k + z * s, c + y * y * k, y * z * k - x * s],
+    [z * x * k - y * s, z * y * k + x * s, c + z * z * k],
+  ];
+  const tr = [0, 1, 2].map((i) => centre[i] - (r[i][0] * centre[0] + r[i][1] * centre[1] + r[i][2] * centre[2]));
+  return [r[0][0], r[1][0], r[2][0], 0, r[0][1], r[1][1], r[2][1], 0, r[0][2], r[1][2], r[2][2], 0, tr[0], tr[1], tr[2], 1];
+}
+
+/** sphere_minus_sphere: the second sphere (same radius 1 and segments) is centred here. */
+export const SPHERE_OFFSET = [0.5, 0.375, 0.25];
+
+/** sphere_minus_tilted_cube: the unit cube [0,1]^3 turned by 30 degrees about (1, 2, 3) through
+ * the origin (its corner at the sphere's centre). */
+export const TILTED_CUBE = rotationAbout([1, 2, 3], 30);
+
+/** drilled_plate n: the plate [0,10] x [0,10] x [0,1] minus n holes (n = 100: a 10 x 10 grid),
+ * cylinders of radius 0.3 with 32 segments, z over [-0.5, 1.5], axes at (i + 0.5, j + 0.5). */
+export function drillCentres(count) {
+  const side = Math.ceil(Math.sqrt(count));
+  const centres = [];
+  for (let k = 0; k < count; ++k) centres.push([(k % side) + 0.5, Math.floor(k / side) + 0.5]);
+  return centres;
+}
+
+/** rotated_boxes n: `count` boxes from lcg(seed), each turned about its own centre. Per box, three
+ * draws give the corner lo[k] = h / 8192 (h = draw >>> 16, in [0, 8)), three the size
+ * 0.5 + (h >>> 5) / 1024 (in [0.5, 2.5)), three the axis a[k] = h / 32768 - 1 (in [-1, 1)) and one
+ * the angle h * 360 / 65536 degrees. `matrix` is rotationAbout(axis, degrees, centre of the box). */
+export function rotatedBoxes(count, seed = 1) {
+  const next = lcg(seed);
+  const boxes = [];
+  for (let k = 0; k < count; ++k) {
+    const lo = [0, 1, 2].map(() => (next() >>> 16) / 8192);
+    const size = [0, 1, 2].map(() => 0.5 + ((next() >>> 16) >>> 5) / 1024);
+    let axis = [0, 1, 2].map(() => (next() >>> 16) / 32768 - 1);
+    if (axis.every((a) => a === 0)) axis = [0, 0, 1];
+    const degrees = (next() >>> 16) * 360 / 65536;
+    const hi = lo.map((x, i) => x + size[i]);
+    boxes.push({ lo, hi, axis, degrees, matrix: rotationAbout(axis, degrees, lo.map((x, i) => (x + hi[i]) / 2)) });
+  }
+  return boxes;
+}
+
 /** The cases: name, parameter, and the expected volume where one is known independently. */
 export const CASES = [
   ...[32, 64, 128, 256].map((n) => ({ name: 'sphere_minus_cube', n })),
   { name: 'menger', n: 3, expected: (20 / 27) ** 3 },
   { name: 'boxes', n: 1000 },
+  ...[32, 64, 128].map((n) => ({ name: 'sphere_minus_sphere', n })),
+  { name: 'sphere_minus_tilted_cube', n: 64 },
+  { name: 'drilled_plate', n: 100 },
+  { name: 'rotated_boxes', n: 200 },
 ];

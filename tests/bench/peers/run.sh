@@ -32,7 +32,8 @@ echo "# node $(node --version), manifold-3d $(node -p "require('$here/node_modul
 node "$here/selftest.mjs"
 
 cases=("sphere_minus_cube 32" "sphere_minus_cube 64" "sphere_minus_cube 128" "sphere_minus_cube 256"
-       "menger 3" "boxes 1000")
+       "menger 3" "boxes 1000" "sphere_minus_sphere 32" "sphere_minus_sphere 64" "sphere_minus_sphere 128"
+       "sphere_minus_tilted_cube 64" "drilled_plate 100" "rotated_boxes 200")
 for impl in "${impls[@]}"; do
   for c in "${cases[@]}"; do
     set -- $c

@@ -1,6 +1,8 @@
 // Checks of the case definitions (run by run.sh before the benchmarks; exits non-zero on failure).
 import assert from 'node:assert/strict';
-import { lcg, mengerBars, randomBoxes, unionVolume } from './cases.mjs';
+import {
+  TILTED_CUBE, drillCentres, lcg, mengerBars, randomBoxes, rotatedBoxes, rotationAbout, unionVolume,
+} from './cases.mjs';
 
 // LCG: the first outputs of Numerical Recipes' ranqd1 from seed 1 (1664525 + 1013904223, ...).
 const next = lcg(1);
@@ -35,4 +37,23 @@ for (const b of randomBoxes(1000)) {
     assert.ok(b.hi[i] - b.lo[i] >= 0.5 && b.hi[i] - b.lo[i] < 2.5);
   }
 }
+// Rotations: orthonormal with determinant 1, the axis fixed, the centre fixed, a quarter turn about z exact
+// up to rounding.
+const apply = (m, p) => [0, 1, 2].map((i) => m[i] * p[0] + m[4 + i] * p[1] + m[8 + i] * p[2] + m[12 + i]);
+const close = (a, b) => a.every((x, i) => Math.abs(x - b[i]) < 1e-12);
+for (const m of [TILTED_CUBE, ...rotatedBoxes(200).map((b) => b.matrix)]) {
+  const col = (j) => [m[4 * j], m[4 * j + 1], m[4 * j + 2]];
+  const dot = (u, v) => u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  for (let i = 0; i < 3; ++i) for (let j = 0; j < 3; ++j) assert.ok(Math.abs(dot(col(i), col(j)) - (i === j ? 1 : 0)) < 1e-12);
+  const [a, b, c] = [col(0), col(1), col(2)];
+  assert.ok(Math.abs(dot(a, [b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]]) - 1) < 1e-12);
+}
+assert.ok(close(apply(TILTED_CUBE, [1, 2, 3]), [1, 2, 3]));
+assert.ok(close(apply(rotationAbout([0, 0, 1], 90, [1, 1, 0]), [2, 1, 5]), [1, 2, 5]));
+for (const b of rotatedBoxes(200)) {
+  const centre = b.lo.map((x, i) => (x + b.hi[i]) / 2);
+  assert.ok(close(apply(b.matrix, centre), centre));
+}
+assert.equal(drillCentres(100).length, 100);
+assert.deepEqual(drillCentres(100)[11], [1.5, 1.5]);
 console.log('# selftest: case definitions ok');

@@ -1,0 +1,169 @@
+// The self-intersection search against independent references: the triangle-pair decision
+// against segment-triangle tests in rational arithmetic (on lattice triangles, many of them
+// coplanar or touching), and the grid broad phase against all pairs of faces.
+#include "mesh/self_intersection.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/multiprecision/cpp_int.hpp>
+#include <random>
+#include <set>
+
+#include "mesh/triangulate.hpp"
+#include "shapes.hpp"
+
+namespace sculpt {
+namespace {
+
+using boost::multiprecision::cpp_rational;
+using Eigen::Vector3d;
+using Triangle = std::array<Vector3d, 3>;
+
+int sign3(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& d) {
+  cpp_rational m[3][3];
+  for (int k = 0; k < 3; ++k) {
+    m[0][k] = cpp_rational(b[k]) - a[k];
+    m[1][k] = cpp_rational(c[k]) - a[k];
+    m[2][k] = cpp_rational(d[k]) - a[k];
+  }
+  const cpp_rational det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  return det.sign();
+}
+
+/// Rational point of a segment and a closed triangle (any position), by the parameter of the
+/// segment: the closed segment meets the triangle iff some point s0 + t (s1 - s0), t in [0, 1],
+/// lies in it. Coplanar case: the segment meets the triangle iff an endpoint is inside or it
+/// crosses an edge; decided by 2D orientations on the exact rational projection.
+struct Q3 {
+  cpp_rational x[3];
+};
+Q3 q(const Vector3d& v) { return {{v.x(), v.y(), v.z()}}; }
+int sign2(const Q3& a, const Q3& b, const Q3& c, int u, int v) {
+  const cpp_rational det = (b.x[u] - a.x[u]) * (c.x[v] - a.x[v]) - (b.x[v] - a.x[v]) * (c.x[u] - a.x[u]);
+  return det.sign();
+}
+bool on_segment_2d(const Q3& a, const Q3& b, const Q3& p, int u, int v) {
+  return sign2(a, b, p, u, v) == 0 && std::min(a.x[u], b.x[u]) <= p.x[u] && p.x[u] <= std::max(a.x[u], b.x[u]) &&
+         std::min(a.x[v], b.x[v]) <= p.x[v] && p.x[v] <= std::max(a.x[v], b.x[v]);
+}
+bool segments_meet_2d(const Q3& a, const Q3& b, const Q3& c, const Q3& d, int u, int v) {
+  const int o1 = sign2(a, b, c, u, v), o2 = sign2(a, b, d, u, v), o3 = sign2(c, d, a, u, v), o4 = sign2(c, d, b, u, v);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return on_segment_2d(a, b, c, u, v) || on_segment_2d(a, b, d, u, v) || on_segment_2d(c, d, a, u, v) ||
+         on_segment_2d(c, d, b, u, v);
+}
+bool in_triangle_2d(const Q3& p, const Triangle& t, int u, int v) {
+  const int a = sign2(q(t[0]), q(t[1]), p, u, v), b = sign2(q(t[1]), q(t[2]), p, u, v), c = sign2(q(t[2]), q(t[0]), p, u, v);
+  return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
+}
+int projection(const Triangle& t) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (sign2(q(t[0]), q(t[1]), q(t[2]), (axis + 1) % 3, (axis + 2) % 3) != 0) return axis;
+  return -1;
+}
+bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, const Triangle& t) {
+  const int o0 = sign3(t[0], t[1], t[2], s0), o1 = sign3(t[0], t[1], t[2], s1);
+  if (o0 * o1 > 0) return false;
+  const int axis = projection(t), u = (axis + 1) % 3, v = (axis + 2) % 3;
+  if (o0 == 0 && o1 == 0)
+    return in_triangle_2d(q(s0), t, u, v) || in_triangle_2d(q(s1), t, u, v) ||
+           segments_meet_2d(q(s0), q(s1), q(t[0]), q(t[1]), u, v) || segments_meet_2d(q(s0), q(s1), q(t[1]), q(t[2]), u, v) ||
+           segments_meet_2d(q(s0), q(s1), q(t[2]), q(t[0]), u, v);
+  // The point where the segment reaches the plane, exactly, then inside the triangle there.
+  const Q3 a = q(s0), b = q(s1);
+  // Signed volumes are linear along the segment: t* = o(s0) / (o(s0) - o(s1)) with exact volumes.
+  auto volume = [&](const Q3& p) -> cpp_rational {
+    cpp_rational m[3][3];
+    for (int k = 0; k < 3; ++k) {
+      m[0][k] = cpp_rational(t[1][k]) - t[0][k];
+      m[1][k] = cpp_rational(t[2][k]) - t[0][k];
+      m[2][k] = p.x[k] - t[0][k];
+    }
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  const cpp_rational va = volume(a), vb = volume(b);
+  const cpp_rational s = va / (va - vb);
+  Q3 p;
+  for (int k = 0; k < 3; ++k) p.x[k] = a.x[k] + s * (b.x[k] - a.x[k]);
+  return in_triangle_2d(p, t, u, v);
+}
+bool reference_meet(const Triangle& a, const Triangle& b) {
+  for (int k = 0; k < 3; ++k)
+    if (segment_meets_triangle(a[k], a[(k + 1) % 3], b) || segment_meets_triangle(b[k], b[(k + 1) % 3], a)) return true;
+  return false;
+}
+
+TEST(SelfIntersection, TrianglePairsWithoutSharedCornersAgreeWithRationals) {
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> coord(0, 4), pick(0, 3);
+  int met = 0, apart = 0, coplanar = 0;
+  for (int trial = 0; trial < 8000; ++trial) {
+    auto point = [&] { return Vector3d(coord(rng), coord(rng), coord(rng)); };
+    Triangle a = {point(), point(), point()}, b = {point(), point(), point()};
+    const int mode = pick(rng);
+    if (mode == 0) for (auto* t : {&a, &b}) for (auto& p : *t) p.z() = 1;  // both in the plane z = 1
+    if (mode == 1)  // b in a's (tilted) plane: lattice combinations of a's corners
+      for (auto& p : b) p = a[0] + (coord(rng) - 2) * (a[1] - a[0]) / 2 + (coord(rng) - 2) * (a[2] - a[0]) / 2;
+    if (projection(a) < 0 || projection(b) < 0) continue;  // degenerate triangles are not judged
+    bool shared = false;
+    for (const auto& p : a)
+      for (const auto& r : b) shared = shared || p == r;
+    if (shared) continue;  // corners at one point are the same corner: another branch
+    const bool expected = reference_meet(a, b);
+    const bool got = triangles_meet({0, 1, 2}, a, {3, 4, 5}, b);
+    ASSERT_EQ(got, expected) << trial << ": " << a[0].transpose() << " | " << a[1].transpose() << " | "
+                             << a[2].transpose() << " vs " << b[0].transpose() << " | " << b[1].transpose() << " | "
+                             << b[2].transpose();
+    (got ? met : apart)++;
+    coplanar += sign3(a[0], a[1], a[2], b[0]) == 0 && sign3(a[0], a[1], a[2], b[1]) == 0 &&
+                sign3(a[0], a[1], a[2], b[2]) == 0;
+  }
+  EXPECT_GT(met, 800);
+  EXPECT_GT(apart, 800);
+  EXPECT_GT(coplanar, 800);
+}
+
+/// All pairs of faces that meet, by every pair of their triangles (no broad phase).
+std::set<std::pair<int, int>> all_pairs(const PolygonMesh& m) {
+  std::vector<std::vector<IndexTriangle>> tris;
+  for (const auto& f : m.faces) tris.push_back(triangulate_polygon(m.vertices, f));
+  std::set<std::pair<int, int>> out;
+  for (size_t i = 0; i < m.faces.size(); ++i)
+    for (size_t j = i + 1; j < m.faces.size(); ++j)
+      for (const auto& s : tris[i])
+        for (const auto& t : tris[j]) {
+          const Triangle a = {m.vertices[s[0]], m.vertices[s[1]], m.vertices[s[2]]};
+          const Triangle b = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]};
+          if (projection(a) < 0 || projection(b) < 0) continue;
+          if (triangles_meet({s[0], s[1], s[2]}, a, {t[0], t[1], t[2]}, b)) out.insert({int(i), int(j)});
+        }
+  return out;
+}
+
+TEST(SelfIntersection, GridBroadPhaseFindsEveryPair) {
+  // Overlapping spheres and tori of very different triangle sizes, and a long thin box through them.
+  std::vector<PolygonMesh> cases;
+  PolygonMesh s = test_shapes::uv_sphere(12);
+  PolygonMesh t = test_shapes::torus(16, 6, 1.2, 0.3);
+  for (auto& p : t.vertices) p += Vector3d(0.5, 0.25, 0.125);
+  cases.push_back(test_shapes::merged(s, t));
+  cases.push_back(test_shapes::merged(test_shapes::merged(s, t), test_shapes::box({-3, -0.1, -0.1}, {3, 0.1, 0.1})));
+  PolygonMesh big = test_shapes::uv_sphere(6, 5);
+  PolygonMesh small = test_shapes::uv_sphere(16, 0.5);
+  for (auto& p : small.vertices) p += Vector3d(4.75, 0.125, 0);  // through the big sphere's surface
+  cases.push_back(test_shapes::merged(big, small));
+  for (const PolygonMesh& m : cases) {
+    const std::set<std::pair<int, int>> expected = all_pairs(m);
+    const SelfIntersectionSearch search = search_self_intersections(m, {.max_pairs = 1u << 30});
+    EXPECT_TRUE(search.complete);
+    std::set<std::pair<int, int>> got;
+    for (const FacePair& p : search.pairs) got.insert(std::minmax(p.face_a, p.face_b));
+    EXPECT_EQ(got, expected);
+    EXPECT_FALSE(expected.empty());
+  }
+}
+
+}  // namespace
+}  // namespace sculpt
