@@ -113,8 +113,9 @@ std::array<std::uint8_t, 3> curve_colour(std::size_t k);
 /// a pixel of a curve point at depth d is drawn if nothing is drawn there or the depth there is at
 /// most d + bias, the bias allowing for the curve lying on the surface (the surface's depth change
 /// from the curve point to the pixel centre plus one pixel, with faces at most 88.9 degrees from
-/// the viewer, plus the chord error); of several curves at a pixel the nearest wins.
-/// 	hrow InvalidInput as picture_camera, for non-finite points, or a bad surface tolerance.
+/// the viewer, plus the chord error and one pixel's length); of several curves at a pixel the
+/// nearest wins.
+/// \throw InvalidInput as picture_camera, for non-finite points, or a bad surface tolerance.
 Image render_items(const std::vector<PictureItem>& items, const PictureOptions& options = {});
 
 /// Picture of solids (their boundaries by to_mesh).

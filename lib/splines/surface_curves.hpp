@@ -51,7 +51,7 @@ struct ImplicitSurfaceOptions {
 
 /// A tensor-product B-spline surface as a constraint: exact foot points (bspline_surface.hpp,
 /// closest_point; on an open surface a point beyond an edge goes to the edge) and the unit normal
-/// there. 	hrow GeometryError (from normal) where the surface is singular at the foot point.
+/// there. \throw GeometryError (from normal) where the surface is singular at the foot point.
 [[nodiscard]] Surface bspline_surface_constraint(BSplineSurface surface, std::string name = "B-spline surface");
 
 struct GeodesicOptions {
