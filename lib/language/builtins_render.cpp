@@ -6,8 +6,10 @@
 #include "base/errors.hpp"
 #include "language/builtins.hpp"
 #include "language/curve_values.hpp"
+#include "language/motion_values.hpp"
 #include "language/solid_values.hpp"
 #include "language/spline_values.hpp"
+#include "language/surface_values.hpp"
 #include "mesh/mesh_io.hpp"
 #include "render/camera.hpp"
 #include "render/picture.hpp"
@@ -32,6 +34,46 @@ Eigen::Vector3d view_arg(const Arguments& args, std::size_t i) {
   return d;
 }
 
+/// A list of [x, y] or [x, y, z] points as a polyline; fails at argument i with `what`.
+curves::DigitizedCurve polyline_of(const Arguments& args, std::size_t i, const List& points, const std::string& what) {
+  curves::DigitizedCurve polyline;
+  polyline.dimension = 2;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const List* xyz = points[p].list();
+    const std::size_t n = xyz ? xyz->size() : 0;
+    bool ok = n == 2 || n == 3;
+    for (std::size_t a = 0; ok && a < n; ++a) ok = (*xyz)[a].get<double>() && std::isfinite(*(*xyz)[a].get<double>());
+    if (!ok) args.fail(i, what + "point " + std::to_string(p + 1) + " must be [x, y] or [x, y, z]");
+    polyline.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(), n == 3 ? *(*xyz)[2].get<double>() : 0.0);
+    if (n == 3) polyline.dimension = 3;
+  }
+  return polyline;
+}
+
+/// True for a list of points ([[x, y, z], ...]) as opposed to a list of items.
+bool points_alone(const List* list) {
+  return list && !list->empty() && (*list)[0].list() && !(*list)[0].list()->empty() && (*list)[0].list()->front().get<double>();
+}
+
+/// One item of render: solids, meshes, surfaces; curves of every kind.
+render::PictureItem picture_item(const Arguments& args, const Value& v, const std::string& what) {
+  if (const auto* s = v.object<SolidValue>()) return render::PictureMesh{.mesh = s->boundary(), .two_sided = false};
+  if (const auto* m = v.object<MeshValue>()) return render::PictureMesh{.mesh = m->mesh, .two_sided = true};
+  if (const auto* b = v.object<SurfaceValue>()) return b->surface;
+  if (const auto* s = v.object<SplineValue>()) return s->spline;
+  if (const auto* m = v.object<MotionValue>()) return m->result.motion.path();
+  if (const auto* c = v.object<CurveValue>()) return render::PictureCurve{.points = c->curve.points, .closed = c->curve.closed};
+  if (const auto* l = v.object<LinearizationValue>())
+    return render::PictureCurve{.points = curves::linearization_points(l->curve->curve, l->result), .closed = false};
+  if (const List* points = v.list(); points_alone(points))
+    return render::PictureCurve{.points = polyline_of(args, 0, *points, what).points, .closed = false};
+  if (const auto* c = v.object<ConstraintSurfaceValue>())
+    args.fail(0, what + "cannot draw " + c->description + " (only B-spline surfaces are tessellated; draw the solid, "
+                        "e.g. sphere(r) translated, or a surface_mesh)");
+  args.fail(0, what + "must be a solid, mesh, surface, spline, curve, linearization, motion or list of points, not " +
+                   type_name(v));
+}
+
 std::filesystem::path output_path(const Arguments& args, std::size_t i) {
   const std::filesystem::path path = args.file_path(i);
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
@@ -43,25 +85,27 @@ std::filesystem::path output_path(const Arguments& args, std::size_t i) {
 void register_render(BuiltinTable& table) {
   table.add({.name = "render",
              .signature = "render(x, \"file.png\", view=\"iso\", size=[800, 600], scale=0, center=[0, 0, 0], "
-                          "edge_angle=30, edges=true)",
-             .doc = "Writes a shaded picture (PNG) of solid x, or of a list of solids each in its own colour, "
-                    "seen orthographically from direction `view` (a name: iso, front, back, left, right, top, "
-                    "bottom; or a vector pointing towards the viewer). Hidden surfaces are removed per pixel; "
-                    "lines mark silhouettes and faces meeting at more than `edge_angle` degrees. `scale` in "
-                    "pixels per unit with `center` at the image centre; 0 frames the solids. The file is "
-                    "replaced atomically; folders are created.",
+                          "edge_angle=30, edges=true, tol=0, width=0)",
+             .doc = "Writes a shaded picture (PNG) of x, or of a list of items each in its own colour, seen "
+                    "orthographically from direction `view` (a name: iso, front, back, left, right, top, bottom; "
+                    "or a vector pointing towards the viewer). Items: solids; surfaces and meshes (shaded on both "
+                    "sides; a surface is tessellated to chord error `tol`, 0: half a pixel); curves, splines "
+                    "(geodesics, splines on surfaces), linearizations, motions (the origin's path) and lists of "
+                    "points, drawn as lines `width` pixels wide (0: 3 per 600 pixels) where not hidden behind "
+                    "the shaded items. Hidden surfaces are removed per pixel; lines mark silhouettes and faces "
+                    "meeting at more than `edge_angle` degrees. `scale` in pixels per unit with `center` at the "
+                    "image centre; 0 frames the items. The file is replaced atomically; folders are created.",
              .params = {{"x"}, {"file"}, {"view", false}, {"size", false}, {"scale", false}, {"center", false},
-                        {"edge_angle", false}, {"edges", false}},
+                        {"edge_angle", false}, {"edges", false}, {"tol", false}, {"width", false}},
              .run = [](const Arguments& args) -> Value {
-               std::vector<PolygonMesh> meshes;
-               if (const List* list = args.value(0).list()) {
-                 for (std::size_t k = 0; k < list->size(); ++k) {
-                   const auto* s = (*list)[k].object<SolidValue>();
-                   if (!s) args.fail(0, "render: item " + std::to_string(k) + " of the list is not a solid");
-                   meshes.push_back(s->boundary());
-                 }
+               std::vector<render::PictureItem> items;
+               const List* list = args.value(0).list();
+               if (list && !points_alone(list)) {
+                 if (list->empty()) args.fail(0, "the list is empty");
+                 for (std::size_t k = 0; k < list->size(); ++k)
+                   items.push_back(picture_item(args, (*list)[k], "item " + std::to_string(k) + " "));
                } else {
-                 meshes.push_back(args.object<SolidValue>(0, "a solid or a list of solids").boundary());
+                 items.push_back(picture_item(args, args.value(0), "x "));
                }
                render::PictureOptions options;
                if (args.has(2)) options.view = view_arg(args, 2);
@@ -89,17 +133,24 @@ void register_render(BuiltinTable& table) {
                  if (!(options.edge_angle >= 0 && options.edge_angle <= 180)) args.fail(6, "edge_angle must be 0 to 180");
                }
                if (args.has(7)) options.edges = args.boolean(7);
+               if (args.has(8)) {
+                 options.surface_tolerance = args.number(8);
+                 if (!(options.surface_tolerance >= 0) || !std::isfinite(options.surface_tolerance))
+                   args.fail(8, "tol must be a finite number >= 0 (0: half a pixel)");
+               }
+               if (args.has(9)) options.curve_width = static_cast<int>(args.integer(9, 0, 64));
                args.charge(static_cast<std::uint64_t>(options.width) * static_cast<std::uint64_t>(options.height) / 1024);
-               const render::Image image = render::render_meshes(meshes, options);
+               const render::Image image = render::render_items(items, options);
                render::write_png(image, output_path(args, 1));
                return {};
              }});
   table.add({.name = "plot",
              .signature = "plot(xs, \"file.svg\", view=\"iso\", size=480, title=\"\")",
-             .doc = "Writes an SVG figure of xs: a curve, linearization, spline or list of points, or a list of "
-                    "them, each in its own colour: a curve as its points, a linearization as its polygon with "
-                    "the break points marked (and its curve's points), a spline as the curve with its dashed "
-                    "control polygon, a list of points as a polyline. 2D data is drawn in its plane; when any "
+             .doc = "Writes an SVG figure of xs: a curve, linearization, spline, motion or list of points, or a "
+                    "list of them, each in its own colour: a curve as its points, a linearization as its polygon "
+                    "with the break points marked (and its curve's points), a spline (a geodesic, a spline on a "
+                    "surface) as the curve with its dashed control polygon, a motion as its origin's path, a list "
+                    "of points as a polyline. 2D data is drawn in its plane; when any "
                     "item is 3D (or `view` is given) everything is projected along `view` (as in render). "
                     "`size`: the figure's side. The file is replaced atomically; folders are created.",
              .params = {{"xs"}, {"file"}, {"view", false}, {"size", false}, {"title", false}},
@@ -107,9 +158,7 @@ void register_render(BuiltinTable& table) {
                // A single item, or a list of items (a list of points alone is one item).
                std::vector<const Value*> items;
                const List* list = args.value(0).list();
-               const bool points_alone = list && !list->empty() && (*list)[0].list() &&
-                                         !(*list)[0].list()->empty() && (*list)[0].list()->front().get<double>();
-               if (list && !points_alone) {
+               if (list && !points_alone(list)) {
                  for (const Value& v : *list) items.push_back(&v);
                  if (items.empty()) args.fail(0, "plot: the list is empty");
                } else {
@@ -121,7 +170,7 @@ void register_render(BuiltinTable& table) {
                for (std::size_t k = 0; k < items.size(); ++k) {
                  const Value& v = *items[k];
                  const std::string color = render::plot_color(k);
-                 const std::string what = items.size() > 1 ? "plot: item " + std::to_string(k) + " " : "plot: ";
+                 const std::string what = items.size() > 1 ? "item " + std::to_string(k) + " " : "";
                  if (const auto* c = v.object<CurveValue>()) {
                    panel.layers.push_back(render::curve_layer(c->curve, color));
                    three_d |= c->curve.dimension == 3;
@@ -133,22 +182,15 @@ void register_render(BuiltinTable& table) {
                  } else if (const auto* s = v.object<SplineValue>()) {
                    for (auto& layer : render::spline_layers(s->spline, color)) panel.layers.push_back(std::move(layer));
                    three_d |= s->spline.dimension() == 3;
+                 } else if (const auto* m = v.object<MotionValue>()) {
+                   for (auto& layer : render::spline_layers(m->result.motion.path(), color)) panel.layers.push_back(std::move(layer));
+                   three_d = true;
                  } else if (const List* points = v.list()) {
-                   curves::DigitizedCurve polyline;
-                   for (std::size_t p = 0; p < points->size(); ++p) {
-                     const List* xyz = (*points)[p].list();
-                     const std::size_t n = xyz ? xyz->size() : 0;
-                     bool ok = n == 2 || n == 3;
-                     for (std::size_t a = 0; ok && a < n; ++a)
-                       ok = (*xyz)[a].get<double>() && std::isfinite(*(*xyz)[a].get<double>());
-                     if (!ok) args.fail(0, what + "point " + std::to_string(p + 1) + " must be [x, y] or [x, y, z]");
-                     polyline.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(),
-                                                  n == 3 ? *(*xyz)[2].get<double>() : 0.0);
-                     three_d |= n == 3;
-                   }
+                   const curves::DigitizedCurve polyline = polyline_of(args, 0, *points, what);
+                   three_d |= polyline.dimension == 3;
                    panel.layers.push_back({.lines = {polyline.points}, .color = color, .width = 1.5});
                  } else {
-                   args.fail(0, what + "must be a curve, linearization, spline or list of points, not " + type_name(v));
+                   args.fail(0, what + "must be a curve, linearization, spline, motion or list of points, not " + type_name(v));
                  }
                }
                render::PlotOptions options;

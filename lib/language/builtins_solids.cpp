@@ -14,6 +14,7 @@
 #include "language/curve_values.hpp"
 #include "language/solid_values.hpp"
 #include "language/spline_values.hpp"
+#include "language/surface_values.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
 #include "kernel/grid.hpp"
@@ -398,16 +399,27 @@ void register_solids(BuiltinTable& table) {
              .params = {{"s"}},
              .run = [](const Arguments& args) -> Value { return surface_area(solid_arg(args, 0)); }});
   table.add({.name = "export",
-             .signature = "export(s, \"file.off\")",
-             .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is); the "
-                    "format comes from the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres). The file is replaced atomically.",
-             .params = {{"s"}, {"file"}},
+             .signature = "export(s, \"file.off\", tol=1e-3)",
+             .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is; or a "
+                    "surface's triangle mesh at chord tolerance `tol`, as surface_mesh); the format comes from "
+                    "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres). The file is replaced atomically.",
+             .params = {{"s"}, {"file"}, {"tol", false}},
              .run = [](const Arguments& args) -> Value {
+               if (const auto* surface = args.value(0).object<SurfaceValue>()) {
+                 double tol = kDefaultSurfaceTolerance;
+                 if (args.has(2)) {
+                   tol = args.number(2);
+                   if (!(tol > 0) || !std::isfinite(tol)) args.fail(2, "tol must be a finite number > 0");
+                 }
+                 write_mesh(surface_triangle_mesh(args, surface->surface, tol), args.file_path(1));
+                 return {};
+               }
+               if (args.has(2)) args.fail(2, "tol applies to surfaces only");
                if (const auto* m = args.value(0).object<MeshValue>()) {
                  write_mesh(m->mesh, args.file_path(1));
                  return {};
                }
-               const auto& s = args.object<SolidValue>(0, "a solid or a mesh");
+               const auto& s = args.object<SolidValue>(0, "a solid, a mesh or a surface");
                const std::string path = args.file_path(1);
                write_mesh(s.boundary(), path);
                return {};

@@ -24,8 +24,6 @@ namespace {
 
 using splines::BSplineSurface;
 
-/// Default chord tolerance of surface_mesh, thicken and surface_solid.
-constexpr double kDefaultTolerance = 1e-3;
 
 Value surface_value(BSplineSurface s) {
   return Value(std::shared_ptr<const Object>(std::make_shared<SurfaceValue>(std::move(s))));
@@ -71,7 +69,7 @@ std::array<int, 2> pair_arg(const Arguments& args, std::size_t i, long long low,
 }
 
 double tolerance_arg(const Arguments& args, std::size_t i) {
-  if (!args.has(i)) return kDefaultTolerance;
+  if (!args.has(i)) return kDefaultSurfaceTolerance;
   const double t = args.number(i);
   if (!(t > 0) || !std::isfinite(t)) args.fail(i, "tol must be a finite number > 0");
   return t;
@@ -172,6 +170,10 @@ Value fit_surface(const Arguments& args) {
 }
 
 }  // namespace
+
+PolygonMesh surface_triangle_mesh(const Arguments& args, const splines::BSplineSurface& s, double tol) {
+  return mesh_of(triangles_of(args, s, tol));
+}
 
 std::string SurfaceValue::repr() const {
   std::string s = "<surface: degree " + std::to_string(surface.degree(0)) + " x " + std::to_string(surface.degree(1)) + ", " +

@@ -14,10 +14,14 @@
 /// Coverage is watertight: an edge shared by two faces decides each pixel centre for exactly one
 /// of them (the edge function is evaluated in one canonical orientation, ties by the top-left
 /// rule), so there are no cracks nor double hits along shared edges.
+///
+/// Pictures of scenes (render_items): solids, open meshes and B-spline surfaces (shaded on both
+/// sides), and curves drawn as lines a few pixels wide, depth-tested against the shaded items.
 
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,6 +29,8 @@
 #include "bsp/solid.hpp"
 #include "mesh/polygon_mesh.hpp"
 #include "render/camera.hpp"
+#include "splines/bspline.hpp"
+#include "splines/bspline_surface.hpp"
 
 namespace sculpt::render {
 
@@ -53,6 +59,11 @@ struct PictureOptions {
   /// not change what is covered); 0: one pixel per 600 pixels of the smaller side, at least 1.
   int line_width = 0;
   std::array<std::uint8_t, 3> background{255, 255, 255};
+  /// render_items: the chord error of surfaces' triangle meshes (world units); 0: half a pixel,
+  /// 0.5 / scale, with the scale of the picture (framed from a coarse tessellation first).
+  double surface_tolerance = 0;
+  /// render_items: width of curves in pixels; 0: three times the line width.
+  int curve_width = 0;
 };
 
 /// The colour of solid k (a fixed palette, repeating after 8): blue, orange, green, ...
@@ -67,11 +78,45 @@ inline constexpr long long kMaxImagePixels = 1LL << 25;
 /// \throw InvalidInput for a bad view, size (1 to kMaxImageSide per side, at most kMaxImagePixels)
 ///        or scale.
 Camera picture_camera(const std::vector<PolygonMesh>& meshes, const PictureOptions& options);
+/// The same for points to frame (none: the picture's scale and centre must be given or are 1 and 0).
+Camera picture_camera_for_points(const std::vector<Eigen::Vector3d>& points, const PictureOptions& options);
 
 /// Picture of closed boundary meshes (faces convex, counter-clockwise from outside, as
 /// to_mesh gives them), mesh k in solid_colour(k).
 /// \throw InvalidInput as picture_camera, or for a face index out of range.
 Image render_meshes(const std::vector<PolygonMesh>& meshes, const PictureOptions& options = {});
+
+/// A mesh in a picture: closed and oriented (a solid's boundary: back faces culled), or two-sided
+/// (an open surface: faces seen from behind are drawn, shaded with the normal turned to the viewer).
+struct PictureMesh {
+  PolygonMesh mesh;
+  bool two_sided = false;
+};
+
+/// A polyline in a picture (2D data: z = 0).
+struct PictureCurve {
+  std::vector<Eigen::Vector3d> points;
+  bool closed = false;
+};
+
+/// One item of a picture: a mesh, a B-spline surface (tessellated at
+/// PictureOptions::surface_tolerance, two-sided), a B-spline curve (sampled so that segments are
+/// about 2 pixels long) or a polyline.
+using PictureItem = std::variant<PictureMesh, splines::BSplineSurface, splines::BSpline, PictureCurve>;
+
+/// The colour of curve k: solid_colour(k) darkened to 60 %.
+std::array<std::uint8_t, 3> curve_colour(std::size_t k);
+
+/// Picture of items, item k in solid_colour(k) (curves in curve_colour(k)). Meshes and surfaces
+/// are drawn as in render_meshes. A curve is drawn after them, `curve_width` pixels wide (pixel
+/// centres within half the width of its projection), where it is not behind the shaded items:
+/// a pixel of a curve point at depth d is drawn if nothing is drawn there or the depth there is at
+/// most d + bias, the bias allowing for the curve lying on the surface (the surface's depth change
+/// from the curve point to the pixel centre plus one pixel, with faces at most 88.9 degrees from
+/// the viewer, plus the chord error and one pixel's length); of several curves at a pixel the
+/// nearest wins.
+/// \throw InvalidInput as picture_camera, for non-finite points, or a bad surface tolerance.
+Image render_items(const std::vector<PictureItem>& items, const PictureOptions& options = {});
 
 /// Picture of solids (their boundaries by to_mesh).
 Image render_solids(const std::vector<Solid>& solids, const PictureOptions& options = {});

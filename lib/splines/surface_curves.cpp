@@ -377,7 +377,26 @@ SurfaceSplineResult surface_spline_run(const Surface& surface, const std::vector
       // samples' offsets are normal, so the model's tangential blindness does not bias the result.
       spline.add_term(t, w * n.transpose(), Eigen::VectorXd::Constant(1, w * n.dot(f)));
     }
-    const Eigen::MatrixXd next = spline.solve(&X);
+    Eigen::MatrixXd next = spline.solve(&X);
+    // The step solves the model (distances to tangent planes); the objective it stands for, with
+    // the true distances, must not grow: halve the step until it does not (at large penalties the
+    // bending term no longer damps tangential sliding and full steps oscillate).
+    auto objective = [&](const Eigen::MatrixXd& Y) {
+      const BSpline c = to_curve(knots, Y);
+      double e = bending_energy(c);
+      for (double t : ts) {
+        const V p = c.point(t);
+        e += w * w * (surface.closest_point(p) - p).squaredNorm();
+      }
+      return e;
+    };
+    const double before = objective(X);
+    const Eigen::MatrixXd full = next - X;
+    double step = 1.0;
+    for (int halving = 0; halving < 30 && objective(next) > before; ++halving) {
+      step *= 0.5;
+      next = X + step * full;
+    }
     const double move = (next - X).rowwise().norm().maxCoeff();
     X = next;
     result.iterations = it + 1;

@@ -51,7 +51,7 @@ struct ImplicitSurfaceOptions {
 
 /// A tensor-product B-spline surface as a constraint: exact foot points (bspline_surface.hpp,
 /// closest_point; on an open surface a point beyond an edge goes to the edge) and the unit normal
-/// there. 	hrow GeometryError (from normal) where the surface is singular at the foot point.
+/// there. \throw GeometryError (from normal) where the surface is singular at the foot point.
 [[nodiscard]] Surface bspline_surface_constraint(BSplineSurface surface, std::string name = "B-spline surface");
 
 struct GeodesicOptions {
@@ -87,11 +87,11 @@ struct SurfaceSplineOptions {
   int splits = 3;            ///< cubic segments per span between consecutive points (Fig. 14: 3)
   int samples = 8;           ///< foot-point samples per segment
   int iterations = 40;       ///< active-curve steps at most
-  double penalty = 1e10;     ///< final weight of the distance term (dimensionless, see surface_curves.cpp)
+  double penalty = 1e11;     ///< final weight of the distance term (dimensionless, see surface_curves.cpp)
   double tolerance = 1e-9;   ///< stop when no control point moves more than this times the length
   /// If positive: while the curve is farther than this from the surface, run again with more
   /// splits (the C2 cubic space stays O(h^4) off a curved surface; with 3 splits of spans of 1.1
-  /// on a sphere of radius 1.3 that is 1.1e-4). 0: `splits` only.
+  /// on a sphere of radius 1.3 that is 8e-5, of spans of 1.5 2e-4). 0: `splits` only.
   double distance = 0.0;
   int max_splits = 24;       ///< the most splits `distance` may ask for
 };

@@ -7,7 +7,11 @@
 #include <sstream>
 
 #include "language/session.hpp"
+#include "mesh/mesh_io.hpp"
+#include "render/camera.hpp"
+#include "render/picture.hpp"
 #include "render/png_image.hpp"
+#include "splines/tessellate_surface.hpp"
 #include "script_runner.hpp"
 
 namespace sculpt::language {
@@ -59,8 +63,11 @@ TEST(RenderBuiltin, ErrorsPointAtTheArgument) {
   EXPECT_NE(bad_view.find("error: render: unknown view 'sideways'"), std::string::npos) << bad_view;
   EXPECT_NE(run_script("render(box([0,0,0],[1,1,1]), " + f + ", size=[0, 10])").error.find("size must be"), std::string::npos);
   EXPECT_NE(run_script("render(1, " + f + ")").error.find("t.bsp:1:8: error"), std::string::npos);
-  EXPECT_NE(run_script("render([box([0,0,0],[1,1,1]), 2], " + f + ")").error.find("item 1 of the list is not a solid"),
+  EXPECT_NE(run_script("render([box([0,0,0],[1,1,1]), 2], " + f + ")").error.find("item 1 must be a solid, mesh, surface"),
             std::string::npos);
+  EXPECT_NE(run_script("render(sphere_surface([0,0,0], 1), " + f + ")").error.find("cannot draw sphere"), std::string::npos);
+  EXPECT_NE(run_script("render(box([0,0,0],[1,1,1]), " + f + ", tol=-1)").error.find("tol must be"), std::string::npos);
+  EXPECT_NE(run_script("render([], " + f + ")").error.find("the list is empty"), std::string::npos);
   EXPECT_NE(run_script("render(box([0,0,0],[1,1,1]), " + f + ", view=[0, 0, 0])").error.find("nonzero"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir.file("x.png")));
   InterpreterOptions no_files;
@@ -68,11 +75,94 @@ TEST(RenderBuiltin, ErrorsPointAtTheArgument) {
   EXPECT_NE(run_script("render(box([0,0,0],[1,1,1]), \"a.png\")", no_files).error.find("disabled"), std::string::npos);
 }
 
+long count_colour(const render::Image& image, const std::array<std::uint8_t, 3>& c) {
+  long n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) n += image.pixel(x, y) == c;
+  return n;
+}
+
+TEST(RenderBuiltin, SplineOnTheFarSideOfASphereIsHiddenOnTheNearSideDrawn) {
+  // Splines on the sphere through points mirrored in the plane y = 0: seen from the front (from
+  // -y) they project to the same place; the near one is drawn through its points, the far one
+  // not at all.
+  TempDir dir;
+  const std::string points = "[[0.6, Y, 0], [0, Y, 0.6], [-0.6, Y, 0], [0, Y, -0.6]]";
+  auto with = [&](const std::string& y) {
+    std::string p = points;
+    for (std::size_t k; (k = p.find('Y')) != std::string::npos;) p.replace(k, 1, y);
+    return p;
+  };
+  const std::string options = ", view=\"front\", size=[200, 200], scale=80)\n";
+  const auto r = run_script("s = sphere_surface([0, 0, 0], 1)\n"
+                            "render([sphere(1, 64), surface_spline(s, " + with("-0.8") + ")], \"" + dir.file("near.png") + "\"" + options +
+                            "render([sphere(1, 64), surface_spline(s, " + with("0.8") + ")], \"" + dir.file("far.png") + "\"" + options +
+                            "render(sphere(1, 64), \"" + dir.file("alone.png") + "\"" + options);
+  ASSERT_EQ(r.error, "");
+  const render::Image near = render::read_png(dir.file("near.png"));
+  const render::Image far = render::read_png(dir.file("far.png"));
+  EXPECT_EQ(far.rgb, render::read_png(dir.file("alone.png")).rgb);
+  const render::Camera camera = render::picture_camera_for_points(
+      {}, {.view = render::view_direction("front"), .width = 200, .height = 200, .scale = 80});
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0.6, -0.8, 0), Eigen::Vector3d(0, -0.8, 0.6), Eigen::Vector3d(-0.6, -0.8, 0)}) {
+    const Eigen::Vector3d q = camera.project(p);
+    EXPECT_EQ(near.pixel(static_cast<int>(q.x()), static_cast<int>(q.y())), render::curve_colour(1)) << p.transpose();
+  }
+  EXPECT_GT(count_colour(near, render::curve_colour(1)), 300);
+}
+
+TEST(RenderBuiltin, RendersSurfacesAndEveryKindOfCurve) {
+  TempDir dir;
+  const auto r = run_script(
+      "p = bspline_surface([[[-1,-1,1],[-1,0,-1],[-1,1,1]],[[0,-1,-1],[0,0,-3],[0,1,-1]],[[1,-1,1],[1,0,-1],[1,1,1]]], degree=2)\n"
+      "c = curve([[-1,-1,2],[0,-1,2.5],[1,-1,2]])\n"
+      "m = motion([[[-1, 1, 2], [0, 0, 1, 0]], [[1, 1, 2], [0, 0, 1, 90]]])\n"
+      "items = [p, geodesic(p, [-0.8, -0.8, 0], [0.7, 0.8, 0]), c, linearize(curve([[-1,-1,-2],[0,-1,-2.5],[0.5,-1,-2.2],[1,-1,-2]]), 2), m, [[-1,0,3],[1,0,3]], surface_mesh(p, 0.01)]\n"
+      "render(items, \"" + dir.file("all.png") + "\", size=[320, 240])\n"
+      "render(items, \"" + dir.file("again.png") + "\", size=[320, 240])\n"
+      "render(p, \"" + dir.file("coarse.png") + "\", size=[320, 240], tol=0.2, width=5)\n");
+  ASSERT_EQ(r.error, "");
+  const render::Image all = render::read_png(dir.file("all.png"));
+  for (std::size_t k = 1; k <= 5; ++k) EXPECT_GT(count_colour(all, render::curve_colour(k)), 20) << k;
+  EXPECT_EQ(all.rgb, render::read_png(dir.file("again.png")).rgb);
+  EXPECT_EQ(covered(render::read_png(dir.file("coarse.png"))) > 0, true);
+}
+
+TEST(RenderBuiltin, ExportedSurfaceReadsBackAsItsTessellationBitExact) {
+  TempDir dir;
+  fs::create_directories(dir.path);
+  const std::string rows = "[[[-1,-1,1],[-1,0,-1],[-1,1,1]],[[0,-1,-1],[0,0.3,-3],[0,1,-1]],[[1,-1,1],[1,0,-1],[1,1,1]]]";
+  const auto r = run_script("p = bspline_surface(" + rows + ", degree=2)\n"
+                            "export(p, \"" + dir.file("p.obj") + "\", tol=0.01)\n"
+                            "export(p, \"" + dir.file("p.off") + "\", tol=0.01)\n"
+                            "export(p, \"" + dir.file("p.ply") + "\", tol=0.01)\n"
+                            "export(p, \"" + dir.file("default.obj") + "\")\n");
+  ASSERT_EQ(r.error, "");
+  // The reference: the splines layer's tessellation of the same surface (rows are u).
+  const std::vector<Eigen::Vector3d> controls = {{-1, -1, 1}, {-1, 0, -1}, {-1, 1, 1}, {0, -1, -1}, {0, 0.3, -3},
+                                                 {0, 1, -1},  {1, -1, 1},  {1, 0, -1}, {1, 1, 1}};
+  const auto surface = splines::BSplineSurface::uniform({2, 2}, 3, 3, controls);
+  for (const char* name : {"p.obj", "p.off", "p.ply"}) {
+    const auto t = splines::tessellate(surface, {.tolerance = 0.01});
+    const PolygonMesh mesh = read_mesh(dir.file(name));
+    ASSERT_EQ(mesh.vertices.size(), t.points.size()) << name;
+    for (std::size_t i = 0; i < t.points.size(); ++i) ASSERT_EQ(mesh.vertices[i], t.points[i]) << name << " " << i;
+    ASSERT_EQ(mesh.faces.size(), t.triangles.size());
+    for (std::size_t f = 0; f < t.triangles.size(); ++f)
+      ASSERT_EQ(mesh.faces[f], (std::vector<int>{t.triangles[f][0], t.triangles[f][1], t.triangles[f][2]})) << name;
+  }
+  EXPECT_EQ(read_mesh(dir.file("default.obj")).vertices.size(), splines::tessellate(surface, {.tolerance = 1e-3}).points.size());
+  EXPECT_NE(run_script("export(box([0,0,0],[1,1,1]), \"" + dir.file("b.obj") + "\", tol=0.1)").error.find("tol applies to surfaces only"),
+            std::string::npos);
+  EXPECT_NE(run_script("export(bspline_surface(" + rows + ", degree=2), \"" + dir.file("b.obj") + "\", tol=0)").error.find("tol must be"),
+            std::string::npos);
+}
+
 TEST(RenderBuiltin, PlotsCurvesLinearizationsSplinesAndPoints) {
   TempDir dir;
   const auto r = run_script(
       "c = curve([[0,0],[1,1],[2,0],[3,1],[4,0]])\n"
-      "plot([c, linearize(c, 2), bspline([[0,0],[1,2],[2,0],[3,2]]), [[0,1],[4,1]]], \"" + dir.file("p.svg") +
+      "plot([c, linearize(curve([[-1,-1,-2],[0,-1,-2.5],[0.5,-1,-2.2],[1,-1,-2]]), 2), bspline([[0,0],[1,2],[2,0],[3,2]]), [[0,1],[4,1]]], \"" + dir.file("p.svg") +
       "\", title=\"a & b\")\n"
       "plot([[0,0,0],[1,1,1]], \"" + dir.file("q.svg") + "\")\n");
   ASSERT_EQ(r.error, "");

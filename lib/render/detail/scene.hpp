@@ -18,7 +18,9 @@ struct Scene {
 };
 
 /// Rasterizes every front face of every mesh (faces valid, convex, counter-clockwise from
-/// outside). Mesh k's faces get solid k.
-Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera);
+/// outside). Mesh k's faces get solid k, or solid `ids[k]` if `ids` is given. Meshes with
+/// `two_sided[k]` (if given) also have their back faces drawn, with the normal turned over.
+Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera, const std::vector<bool>& two_sided = {},
+                 const std::vector<int>& ids = {});
 
 }  // namespace sculpt::render::detail

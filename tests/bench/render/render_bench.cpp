@@ -85,6 +85,32 @@ int main(int argc, char** argv) {
   });
   std::printf("%-34s %10.2f %10.2f\n", "the same, fast PNG (as :show)", whole_fast.cpu, whole_fast.wall);
   std::printf("ratios: total / to_mesh %.2f, total / build %.2f\n", whole.cpu / extract.cpu, whole.cpu / build.cpu);
+
+  // Issue 18: pictures with surfaces and curves (render_items), beside the goblet's picture.
+  {
+    const double x[3] = {-1, 0, 1}, sq[3] = {1, -1, 1};
+    std::vector<Eigen::Vector3d> P;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) P.emplace_back(x[i], x[j], sq[i] + sq[j]);
+    const splines::BSplineSurface bowl = splines::BSplineSurface::uniform({2, 2}, 3, 3, P);
+    std::vector<Eigen::Vector3d> across, along;
+    for (int k = 0; k <= 40; ++k) {
+      const double t = -0.9 + 1.8 * k / 40;
+      across.emplace_back(t, 0.3, t * t + 0.09);
+      along.emplace_back(-0.2, t, 0.04 + t * t);
+    }
+    const splines::BSpline c1 = splines::BSpline::clamped(3, across), c2 = splines::BSpline::clamped(3, along);
+    const Timing goblet_items = median_ms(runs, [&] { image = render::render_items({render::PictureMesh{.mesh = mesh}}, options); });
+    const Timing goblet_meshes = median_ms(runs, [&] { image = render::render_meshes({mesh}, options); });
+    const Timing surface = median_ms(runs, [&] { image = render::render_items({bowl}, options); });
+    const Timing with_curves = median_ms(runs, [&] { image = render::render_items({bowl, c1, c2}, options); });
+    std::printf("%-34s %10.2f %10.2f\n", "render_items goblet", goblet_items.cpu, goblet_items.wall);
+    std::printf("%-34s %10.2f %10.2f\n", "render_meshes goblet (same run)", goblet_meshes.cpu, goblet_meshes.wall);
+    std::printf("%-34s %10.2f %10.2f\n", "paraboloid patch (half a pixel)", surface.cpu, surface.wall);
+    std::printf("%-34s %10.2f %10.2f\n", "the patch and two splines on it", with_curves.cpu, with_curves.wall);
+    std::printf("ratios: items / meshes (goblet) %.2f, curves' share %.2f\n", goblet_items.cpu / goblet_meshes.cpu,
+                (with_curves.cpu - surface.cpu) / with_curves.cpu);
+  }
   if (getloadavg(load_avg, 3) == 3) std::printf("load average %.2f %.2f %.2f, %d runs\n", load_avg[0], load_avg[1], load_avg[2], runs);
   return 0;
 }
