@@ -169,10 +169,17 @@ class Cleaner {
         changed = true;
       }
     }
-    // Sheets closer than the resolution over a wide area (no short edge, no sliver) that rounding
-    // made cross: move a corner of a crossing pair off the other triangle's plane, either way.
+    return changed;
+  }
+
+  /// Sheets closer than the resolution over a wide area (no short edge, no sliver) that rounding
+  /// made cross: a corner of each crossing pair is moved off the other triangle's plane, either
+  /// way (nudge). True if anything moved. A full scan: called once contractions and flips are
+  /// done or stuck, not after each of their passes.
+  bool nudge_crossings(double delta, OutputRoundingReport& report) {
     const std::vector<std::pair<int, int>> pairs = crossings();
     if (pairs.size() > kMaxNudgedPairs) return false;  // wide crossings: beyond local repair
+    bool changed = false;
     for (const auto& [t, u] : pairs)
       for (const auto& [mine, other] : {std::pair{t, u}, std::pair{u, t}}) {
         if (!alive_[mine] || !alive_[other]) continue;
@@ -764,7 +771,13 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
   bool judged = false;
   for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
     bool changed = false;
-    for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) changed = true;
+    for (int round = 0; round < 4; ++round) {
+      bool any = false;
+      for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) any = true;
+      if (cleaner.nudge_crossings(delta, r)) any = true;
+      changed = changed || any;
+      if (!any) break;
+    }
     r.feature = delta;
     if (changed || !judged) {
       result = cleaner.mesh();
