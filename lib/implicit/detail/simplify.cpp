@@ -217,11 +217,6 @@ class Simplifier {
           ++opposite_count;
         }
     if (opposite_count != 2 || opposite[0] == opposite[1]) return false;
-    neighbours(v, nv_);
-    neighbours(u, nu_);  // leaves u's neighbours stamped
-    int common = 0;
-    for (int w : nv_) common += stamp_[w] == stamp_counter_ ? 1 : 0;
-    if (common != 2) return false;
     // the opposite vertices lose an edge: none may be left with two
     if (degree(opposite[0]) <= 3 || degree(opposite[1]) <= 3) return false;
 
@@ -250,6 +245,12 @@ class Simplifier {
       changed_.push_back({(after[0] + after[1] + after[2]) / 3.0, n1});
     }
     if (!near_removed) return false;
+    // the link condition (after the geometry, which fails far more often)
+    neighbours(v, nv_);
+    neighbours(u, nu_);  // leaves u's neighbours stamped
+    int common = 0;
+    for (int w : nv_) common += stamp_[w] == stamp_counter_ ? 1 : 0;
+    if (common != 2) return false;
     for (const auto& [centroid, n1] : changed_) {
       try {
         const ValueGradient vg = f_.value_gradient(centroid);
