@@ -172,7 +172,8 @@ class Polygonizer {
       std::vector<bool> locked = locked_vertices();
       const detail::RefineResult rr = detail::refine(
           result_.mesh, locked, f_,
-          {.tolerance = kRefineFraction * o_.tolerance, .min_edge = finest_, .max_splits = o_.max_cells});
+          {.tolerance = kRefineFraction * o_.tolerance, .limit = o_.tolerance, .min_edge = finest_,
+           .max_splits = o_.max_cells});
       result_.refinements = rr.splits;
       refined_ = rr.ok;
       if (!rr.ok) return std::move(result_);

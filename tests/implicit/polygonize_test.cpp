@@ -182,7 +182,7 @@ TEST(Polygonize, RefineSplitsTowardsTheSurface) {
   PolygonMesh mesh = coarse.mesh;
   std::vector<bool> locked(mesh.vertices.size(), false);
   const double bound = 2e-3;
-  const detail::RefineResult r = detail::refine(mesh, locked, f, {.tolerance = bound, .min_edge = 1e-4, .max_splits = 1'000'000});
+  const detail::RefineResult r = detail::refine(mesh, locked, f, {.tolerance = bound, .limit = bound, .min_edge = 1e-4, .max_splits = 1'000'000});
   ASSERT_TRUE(r.ok);
   EXPECT_GT(r.splits, 0);
   EXPECT_EQ(locked.size(), mesh.vertices.size());
@@ -204,7 +204,7 @@ TEST(Polygonize, RefineSplitsTowardsTheSurface) {
   PolygonMesh open = coarse.mesh;
   open.faces.pop_back();
   std::vector<bool> open_locked(open.vertices.size(), false);
-  EXPECT_FALSE(detail::refine(open, open_locked, f, {.tolerance = bound, .min_edge = 1e-4, .max_splits = 1'000'000}).ok);
+  EXPECT_FALSE(detail::refine(open, open_locked, f, {.tolerance = bound, .limit = bound, .min_edge = 1e-4, .max_splits = 1'000'000}).ok);
 }
 
 // With simplify, the torus is marched on the coarse octree and refined by edge splits: far fewer

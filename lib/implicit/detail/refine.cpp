@@ -52,26 +52,33 @@ class Refiner {
     while (!stack.empty()) {
       const int t = stack.back();
       stack.pop_back();
-      if (within(t)) continue;
-      // the longest edge, unless a corner is on the box or the edge is at the size floor
-      const auto& ft = faces_[std::size_t(t)];
-      if (locked_[std::size_t(ft[0])] || locked_[std::size_t(ft[1])] || locked_[std::size_t(ft[2])]) continue;
-      int e = 0;
-      double longest = -1.0;
+      if (within(t, o_.tolerance)) continue;
+      // the longest edge, unless a corner is on the box or the edge is at the size floor; if
+      // that split cannot be made, the next longer edge
+      if (has_locked(t)) continue;
+      std::array<std::pair<double, int>, 3> edges{};
       for (int k = 0; k < 3; ++k) {
-        const double l = (m_.vertices[std::size_t(ft[(k + 1) % 3])] - m_.vertices[std::size_t(ft[k])]).norm();
-        if (l > longest) longest = l, e = k;
+        const auto& ft = faces_[std::size_t(t)];
+        edges[std::size_t(k)] = {(m_.vertices[std::size_t(ft[(k + 1) % 3])] - m_.vertices[std::size_t(ft[k])]).norm(), k};
       }
-      if (longest < o_.min_edge) continue;
-      if (++r.splits > o_.max_splits) return r;
-      const int n = twin_[std::size_t(3 * t + e)] / 3;
-      if (locked_[std::size_t(faces_[std::size_t(n)][0])] || locked_[std::size_t(faces_[std::size_t(n)][1])] ||
-          locked_[std::size_t(faces_[std::size_t(n)][2])]) {
-        continue;
+      std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+      for (const auto& [length, e] : edges) {
+        if (length < o_.min_edge) break;
+        const int n = twin_[std::size_t(3 * t + e)] / 3;
+        if (has_locked(n)) continue;
+        if (++r.splits > o_.max_splits) return r;
+        int added = -1;
+        if (!split(t, e, added)) {
+          --r.splits;
+          continue;
+        }
+        for (int s : {t, n, added, added + 1}) stack.push_back(s);
+        break;
       }
-      int added = -1;
-      if (!split(t, e, added)) return r;
-      for (int s : {t, n, added, added + 1}) stack.push_back(s);
+      // a triangle no split could be made for stays as it is, judged against the limit below
+    }
+    for (int t = 0; t < int(faces_.size()); ++t) {
+      if (!has_locked(t) && !within(t, o_.limit)) return r;
     }
     m_.faces.clear();
     m_.faces.reserve(faces_.size());
@@ -92,11 +99,16 @@ class Refiner {
     }
   }
 
-  bool within(int t) const {
+  [[nodiscard]] bool has_locked(int t) const {
+    const auto& f = faces_[std::size_t(t)];
+    return locked_[std::size_t(f[0])] || locked_[std::size_t(f[1])] || locked_[std::size_t(f[2])];
+  }
+
+  bool within(int t, double bound) const {
     const auto& f = faces_[std::size_t(t)];
     const Vec &a = m_.vertices[std::size_t(f[0])], &b = m_.vertices[std::size_t(f[1])], &c = m_.vertices[std::size_t(f[2])];
     for (const Vec& p : {Vec((a + b + c) / 3.0), Vec(0.5 * (a + b)), Vec(0.5 * (b + c)), Vec(0.5 * (c + a))}) {
-      if (distance(p) > o_.tolerance) return false;
+      if (distance(p) > bound) return false;
     }
     return true;
   }
