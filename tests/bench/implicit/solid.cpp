@@ -7,7 +7,8 @@
 //   implicit_solid               the table
 //   implicit_solid --peers DIR   the table plus the peers' meshes and times that
 //                                tests/bench/implicit/peers.sh left in DIR (run that script)
-//   implicit_solid --ours        only polygonize, 20 times, and a fingerprint of its mesh (profiling)
+//   implicit_solid --ours        only polygonize, 20 times (OURS_REPS=n: n times), and a fingerprint
+//                                of its mesh (profiling; old and new code compared run against run)
 // See docs/implicit.md, "Implicit solids", and docs/benchmarks.md.
 #include <Eigen/Geometry>
 #include <algorithm>
