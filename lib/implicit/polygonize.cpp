@@ -190,6 +190,7 @@ class Polygonizer {
     }
     return locked;
   }
+
   // ---- geometry of the lattice -------------------------------------------------------------
   [[nodiscard]] std::int64_t step(int level) const { return std::int64_t(1) << (lmax_ + 1 - level); }
   [[nodiscard]] Vec world(std::int64_t x, std::int64_t y, std::int64_t z) const {
@@ -748,7 +749,10 @@ PolygonizeResult polygonize(const Expression& f, const PolygonizeOptions& option
   bool ok = false;
   if (options.simplify) {
     PolygonizeResult r = Polygonizer(f, options).run(true, ok);
-    if (ok) return r;
+    if (ok) {
+      r.coarse = true;
+      return r;
+    }
   }
   return Polygonizer(f, options).run(false, ok);  // the fine octree, as without simplify
 }

@@ -60,6 +60,9 @@ struct PolygonizeResult {
   long tetrahedra = 0;          ///< tetrahedra marched
   long marched_triangles = 0;   ///< triangles marched (before the edge splits and collapses)
   long refinements = 0;         ///< edge splits towards f = 0 after marching the coarse octree
+  /// The mesh comes from the coarse octree and edge splits; false: from the fine octree (without
+  /// simplify, or as the fallback when the coarse way failed).
+  bool coarse = false;
   long collapses = 0;           ///< edge collapses kept
   bool simplify_rejected = false;  ///< the simplified mesh intersected itself; the marched one is returned
   long thin_triangles = 0;      ///< triangles still below min_height after simplification

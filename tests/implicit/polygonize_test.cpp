@@ -214,6 +214,8 @@ TEST(Polygonize, CoarseOctreeWithEdgeSplits) {
   const double tol = 2e-3;
   const PolygonizeResult fine = polygonize(torus(1.0, 0.4), {.box = box, .tolerance = tol, .simplify = false});
   const PolygonizeResult r = polygonize(torus(1.0, 0.4), {.box = box, .tolerance = tol});
+  EXPECT_TRUE(r.coarse);
+  EXPECT_FALSE(fine.coarse);
   EXPECT_GT(r.refinements, 0);
   EXPECT_FALSE(r.simplify_rejected);
   EXPECT_LT(2 * r.marched_triangles, fine.marched_triangles);
