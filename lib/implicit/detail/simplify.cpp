@@ -53,6 +53,7 @@ class Simplifier {
         }
         tried[u] = collapses;
         topology_failed[u] = 0;
+        if (beyond_ring(u, ring)) continue;
         std::sort(ring.begin(), ring.end(), [&](int a, int b) {
           return (m_.vertices[a] - m_.vertices[u]).squaredNorm() < (m_.vertices[b] - m_.vertices[u]).squaredNorm();
         });
@@ -115,6 +116,30 @@ class Simplifier {
           stamp_[w] = stamp;
           out.push_back(w);
         }
+  }
+
+  /// True when u cannot pass the check that it stays within tol of the changed triangles, for
+  /// any neighbour it could be merged into: its neighbours all lie on one side of the plane
+  /// through u across the mean normal of its triangles, farther from it than tol. The changed
+  /// triangles span only neighbours of u, so every point of them is then farther than tol from
+  /// u. That check depends only on u's triangles, so skipping u until they change is exact.
+  [[nodiscard]] bool beyond_ring(int u, const std::vector<int>& ring) const {
+    const Vec& pu = m_.vertices[u];
+    Vec n = Vec::Zero();
+    for (int t : incident_[u]) {
+      const auto& f = faces_[t];
+      n += (m_.vertices[f[1]] - m_.vertices[f[0]]).cross(m_.vertices[f[2]] - m_.vertices[f[0]]);
+    }
+    const double length = n.norm();
+    if (!(length > 0)) return false;
+    const double limit = o_.tolerance * (1 + 1e-9) * length;  // the first passes' tol (not relaxed)
+    int above = 0, below = 0;
+    for (int w : ring) {
+      const double h = (m_.vertices[w] - pu).dot(n);
+      above += h > limit ? 1 : 0;
+      below += h < -limit ? 1 : 0;
+    }
+    return above == int(ring.size()) || below == int(ring.size());
   }
 
   /// The number of neighbours of u: on a closed 2-manifold (the marched mesh, and every
