@@ -1,6 +1,7 @@
 // Implicit solids: adaptive octree, conforming tetrahedra, marching tetrahedra (polygonize.hpp).
 #include "implicit/polygonize.hpp"
 
+#include "implicit/detail/refine.hpp"
 #include "implicit/detail/simplify.hpp"
 #include "mesh/self_intersection.hpp"
 
@@ -26,6 +27,11 @@ constexpr int kMaxLevel = 16;
 constexpr int kStartLevel = 1;  // cells are split at least this deep before any is kept
 constexpr double kSimplifyFraction = 0.7;  // collapsed triangles stay within this times tol
 constexpr double kBendFactor = 1.25;  // measured: the torus at 2e-3 stays within tol (1.5 does not)
+/// With simplify, cells away from the box are split only while a flat piece of them would be off
+/// by more than this times tol; the edge splits of detail/refine.hpp then bring the marched mesh
+/// within kRefineFraction tol, and the collapses run on far fewer triangles.
+constexpr double kCoarseBend = 8.0;
+constexpr double kRefineFraction = 0.8;
 
 /// A leaf's content; Split: a former leaf that balancing split (its entry stays in the table).
 enum class Kind : std::uint8_t { Empty, Full, Mixed, Split };
@@ -138,6 +144,7 @@ class Polygonizer {
     // The finest cells: at most tol, and at most half the feature size (a part that thin is cut
     // by lattice points, not stepped over).
     const double finest = std::min(o.tolerance, 0.5 * feature_);
+    finest_ = finest;
     const double top_side = longest / kTop;
     for (int a = 0; a < 3; ++a) top_[a] = std::clamp<std::int64_t>(std::llround(extent[a] / top_side), 1, kTop);
     lmax_ = 0;
@@ -145,17 +152,45 @@ class Polygonizer {
     for (int a = 0; a < 3; ++a) resolution_[a] = top_[a] << (lmax_ + 1);
   }
 
-  PolygonizeResult run() {
+  /// Meshes once, on the coarse octree with edge splits (coarse) or on the fine one. ok: false when
+  /// the coarse way failed (an edge split, or the collapses' mesh intersected itself).
+  PolygonizeResult run(bool coarse, bool& ok) {
+    coarse_ = coarse;
+    PolygonizeResult r = mesh_once();
+    ok = !coarse || r.mesh.faces.empty() || (refined_ && !r.simplify_rejected);
+    return r;
+  }
+
+ private:
+  PolygonizeResult mesh_once() {
     build();
     balance();
     march();
     result_.leaves = leaf_count_;
     result_.marched_triangles = static_cast<long>(result_.mesh.faces.size());
+    if (coarse_ && !result_.mesh.faces.empty()) {
+      std::vector<bool> locked = locked_vertices();
+      const detail::RefineResult rr = detail::refine(
+          result_.mesh, locked, f_,
+          {.tolerance = kRefineFraction * o_.tolerance, .limit = o_.tolerance, .min_edge = finest_,
+           .max_splits = o_.max_cells});
+      result_.refinements = rr.splits;
+      refined_ = rr.ok;
+      if (!rr.ok) return std::move(result_);
+    }
     if (o_.simplify && !result_.mesh.faces.empty()) simplify();
     return std::move(result_);
   }
 
- private:
+  std::vector<bool> locked_vertices() const {
+    std::vector<bool> locked(result_.mesh.vertices.size(), false);
+    for (std::size_t v = 0; v < locked.size(); ++v) {
+      const Vec& p = result_.mesh.vertices[v];
+      for (int a = 0; a < 3; ++a) locked[v] = locked[v] || p[a] == o_.box.lo[a] || p[a] == o_.box.hi[a];
+    }
+    return locked;
+  }
+
   // ---- geometry of the lattice -------------------------------------------------------------
   [[nodiscard]] std::int64_t step(int level) const { return std::int64_t(1) << (lmax_ + 1 - level); }
   [[nodiscard]] Vec world(std::int64_t x, std::int64_t y, std::int64_t z) const {
@@ -228,41 +263,31 @@ class Polygonizer {
       for (int b = a + 1; b < 8; ++b) min_dot = std::min(min_dot, n[a].dot(n[b]));
     const double theta = std::acos(std::clamp(min_dot, -1.0, 1.0));
     const Box box = cell_box(c);
-    return (box.hi - box.lo).norm() * theta / 8.0 > kBendFactor * o_.tolerance;
+    const std::int64_t last = (std::int64_t(1) << c.level);
+    const bool at_box = c.i == 0 || c.j == 0 || c.k == 0 || c.i == top_[0] * last - 1 || c.j == top_[1] * last - 1 ||
+                        c.k == top_[2] * last - 1;
+    const double factor = coarse_ && !at_box ? kCoarseBend : kBendFactor;
+    return (box.hi - box.lo).norm() * theta / 8.0 > factor * o_.tolerance;
   }
 
   /// True when an edge of a Kuhn tetrahedron of the cell (the 12 cube edges, the 6 face
   /// diagonals from lowest to highest corner, the main diagonal) has ends of one sign and its
   /// midpoint of the other: the surface crosses it twice (a thin part, or two sheets), which
   /// marching tetrahedra on this cell would miss.
-  bool crossed_twice(const Cell& c) {
+  bool crossed_twice(const Cell& c, const std::array<bool, 8>& in) {
     const std::int64_t s = step(c.level);
-    const std::int64_t x0 = c.i * s, y0 = c.j * s, z0 = c.k * s;
-    auto test = [&](const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b) {
-      const bool ia = inside(point_key(a[0], a[1], a[2])), ib = inside(point_key(b[0], b[1], b[2]));
-      if (ia != ib) return false;
-      return inside(point_key((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2)) != ia;
-    };
-    for (int axis = 0; axis < 3; ++axis) {
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      for (int e = 0; e < 4; ++e) {  // the 4 cube edges along axis
-        std::array<std::int64_t, 3> a = {x0, y0, z0};
-        a[u] += (e & 1) * s;
-        a[v] += (e >> 1) * s;
-        std::array<std::int64_t, 3> b = a;
-        b[axis] += s;
-        if (test(a, b)) return true;
+    // corner b is (i + (b & 1), j + (b >> 1 & 1), k + (b >> 2)); an edge (a, a | mask) has its
+    // lower end a without the bits of mask: masks of one bit are the cube edges, of two bits
+    // the face diagonals, 7 the main diagonal
+    for (int mask = 1; mask < 8; ++mask)
+      for (int lo = 0; lo < 8; ++lo) {
+        if ((lo & mask) != 0 || in[lo] != in[lo | mask]) continue;
+        const std::int64_t x = 2 * c.i * s + (2 * (lo & 1) + (mask & 1)) * s;
+        const std::int64_t y = 2 * c.j * s + (2 * ((lo >> 1) & 1) + ((mask >> 1) & 1)) * s;
+        const std::int64_t z = 2 * c.k * s + (2 * (lo >> 2) + (mask >> 2)) * s;
+        if (inside(point_key(x / 2, y / 2, z / 2)) != in[lo]) return true;
       }
-      for (int side = 0; side < 2; ++side) {  // the face diagonals of the faces normal to axis
-        std::array<std::int64_t, 3> a = {x0, y0, z0};
-        a[axis] += side * s;
-        std::array<std::int64_t, 3> b = a;
-        b[u] += s;
-        b[v] += s;
-        if (test(a, b)) return true;
-      }
-    }
-    return test({x0, y0, z0}, {x0 + s, y0 + s, z0 + s});
+    return false;
   }
 
   /// Searches a cell whose corners are all inside (or all outside) for a point of the other
@@ -321,11 +346,13 @@ class Polygonizer {
           split = true;
         } else {
           const std::array<Key, 8> corner = corners(c);
-          const bool first = inside(corner[0]);
+          std::array<bool, 8> in{};
+          for (int b = 0; b < 8; ++b) in[b] = inside(corner[b]);
+          const bool first = in[0];
           bool mixed = false;
-          for (int b = 1; b < 8; ++b) mixed = mixed || inside(corner[b]) != first;
+          for (int b = 1; b < 8; ++b) mixed = mixed || in[b] != first;
           if (mixed) {
-            split = crossed_twice(c) || bent(c, corner);
+            split = crossed_twice(c, in) || bent(c, corner);
           } else {
             const int s = search(box, first);
             split = s > 0;
@@ -410,11 +437,7 @@ class Polygonizer {
   /// Edge collapses where the surface is flat (detail/simplify.hpp), checked afterwards for
   /// self-intersections by the exact test of the mesh layer; a mesh that fails it is not used.
   void simplify() {
-    std::vector<bool> locked(result_.mesh.vertices.size(), false);
-    for (std::size_t v = 0; v < locked.size(); ++v) {
-      const Vec& p = result_.mesh.vertices[v];
-      for (int a = 0; a < 3; ++a) locked[v] = locked[v] || p[a] == o_.box.lo[a] || p[a] == o_.box.hi[a];
-    }
+    const std::vector<bool> locked = locked_vertices();
     detail::SimplifyResult s = detail::simplify(
         result_.mesh, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
     if (find_self_intersections(s.mesh, {.max_pairs = 1}).empty()) {
@@ -526,13 +549,33 @@ class Polygonizer {
 
   void emit(int a, int b, int c) { result_.mesh.faces.push_back({a, b, c}); }
 
+  /// The 6 Kuhn tetrahedra of leaf c (paths from the lowest to the highest corner along the
+  /// axes), marched; corner b is (i + (b & 1), j + (b >> 1 & 1), k + (b >> 2)), in[b] its sign.
+  void kuhn(const Cell& c, const std::array<Key, 8>& corner, const std::array<bool, 8>& in) {
+    static constexpr std::array<std::array<int, 3>, 6> kOrders = {
+        {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+    for (const auto& order : kOrders) {
+      std::array<Key, 4> t{};
+      std::array<bool, 4> tin{};
+      int b = 0;
+      t[0] = corner[0];
+      tin[0] = in[0];
+      for (int m = 0; m < 3; ++m) {
+        b |= 1 << order[m];
+        t[m + 1] = corner[b];
+        tin[m + 1] = in[b];
+      }
+      march_tet(t, step(c.level), &tin);
+    }
+  }
+
   /// Marching tetrahedra on one tetrahedron. Triangles are oriented on the combinatorial
   /// structure (edge midpoints in lattice coordinates, exact integers), so every triangle has
   /// the inside on its back whatever the roots' positions.
-  void march_tet(const std::array<Key, 4>& t, std::int64_t scale) {
+  void march_tet(const std::array<Key, 4>& t, std::int64_t scale, const std::array<bool, 4>* known = nullptr) {
     std::array<bool, 4> in{};
     int count = 0;
-    for (int a = 0; a < 4; ++a) count += (in[a] = inside(t[a])) ? 1 : 0;
+    for (int a = 0; a < 4; ++a) count += (in[a] = known ? (*known)[a] : inside(t[a])) ? 1 : 0;
     if (count == 0 || count == 4) return;
     ++result_.tetrahedra;
     std::array<std::array<std::int64_t, 3>, 4> p{};
@@ -614,6 +657,31 @@ class Polygonizer {
         const std::int64_t index = axis == 0 ? c.i : axis == 1 ? c.j : c.k;
         return side == 0 ? index == 0 : index == (top_[axis] << c.level) - 1;
       };
+      bool box_cell = false;
+      for (int f = 0; f < 6; ++f) box_cell = box_cell || on_box(f);
+      if (kind == Kind::Mixed && !box_cell) {
+        // A leaf without finer neighbours (no edge midpoint is a leaf corner; a face centre that
+        // is one makes its edge midpoints leaf corners too) is cut into the 6 Kuhn tetrahedra,
+        // whose vertices are its corners: nothing to march when they all have one sign.
+        bool transition = false;
+        for (int axis = 0; axis < 3 && !transition; ++axis)
+          for (int e = 0; e < 4 && !transition; ++e) {
+            std::array<std::int64_t, 3> m = {c.i * s, c.j * s, c.k * s};
+            m[axis] += s / 2;
+            m[(axis + 1) % 3] += (e & 1) * s;
+            m[(axis + 2) % 3] += (e >> 1) * s;
+            transition = present_.contains(point_key(m[0], m[1], m[2]));
+          }
+        if (!transition) {
+          const std::array<Key, 8> corner = corners(c);
+          std::array<bool, 8> in{};
+          int count = 0;
+          for (int b = 0; b < 8; ++b) count += (in[b] = inside(corner[b])) ? 1 : 0;
+          if (count == 0 || count == 8) continue;
+          kuhn(c, corner, in);
+          continue;
+        }
+      }
       faces.clear();
       std::array<std::size_t, 7> first{};
       for (int f = 0; f < 6; ++f) {
@@ -623,20 +691,10 @@ class Polygonizer {
       first[6] = faces.size();
       if (kind == Kind::Mixed) {
         if (faces.size() == 12) {
-          // the 6 Kuhn tetrahedra: paths from the lowest to the highest corner along the axes
-          const std::array<std::int64_t, 3> lo = {c.i * s, c.j * s, c.k * s};
-          static constexpr std::array<std::array<int, 3>, 6> kOrders = {
-              {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
-          for (const auto& order : kOrders) {
-            std::array<Key, 4> t{};
-            std::array<std::int64_t, 3> q = lo;
-            t[0] = point_key(q[0], q[1], q[2]);
-            for (int m = 0; m < 3; ++m) {
-              q[order[m]] += s;
-              t[m + 1] = point_key(q[0], q[1], q[2]);
-            }
-            march_tet(t, s);
-          }
+          const std::array<Key, 8> corner = corners(c);
+          std::array<bool, 8> in{};
+          for (int b = 0; b < 8; ++b) in[b] = inside(corner[b]);
+          kuhn(c, corner, in);
         } else {
           const Key centre = point_key(c.i * s + s / 2, c.j * s + s / 2, c.k * s + s / 2);
           for (const Triangle& tri : faces) march_tet({centre, tri[0], tri[1], tri[2]}, s / 2);
@@ -655,6 +713,9 @@ class Polygonizer {
   std::array<std::int64_t, 3> top_ = {1, 1, 1};         // level-0 cells per axis
   std::array<std::int64_t, 3> resolution_ = {2, 2, 2};  // lattice steps per axis
   double feature_ = 0.0;
+  double finest_ = 0.0;
+  bool coarse_ = false;   // the coarse octree and edge splits (with simplify)
+  bool refined_ = false;  // the edge splits succeeded
   PolygonizeResult result_;
   FlatMap<Key, Kind, KeyHash> leaves_;                  // leaves (and split former leaves) by cell key
   long leaf_count_ = 0;
@@ -685,7 +746,15 @@ PolygonizeResult polygonize(const Expression& f, const PolygonizeOptions& option
     throw InvalidInput("polygonize: feature_size must be a finite number >= 0");
   }
   if (options.max_cells <= 0) throw InvalidInput("polygonize: max_cells must be > 0");
-  return Polygonizer(f, options).run();
+  bool ok = false;
+  if (options.simplify) {
+    PolygonizeResult r = Polygonizer(f, options).run(true, ok);
+    if (ok) {
+      r.coarse = true;
+      return r;
+    }
+  }
+  return Polygonizer(f, options).run(false, ok);  // the fine octree, as without simplify
 }
 
 }  // namespace sculpt::implicit

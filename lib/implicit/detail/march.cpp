@@ -10,7 +10,8 @@ namespace {
 using Vec = Eigen::Vector3d;
 
 constexpr double kMaxTurn = 0.6;     // radians of tangent turn allowed across one chord
-constexpr double kAim = 0.9;         // aim at a chord height of 0.9 tol (kappa h^2 / 8)
+constexpr double kAim = 0.95;        // aim at a chord height of 0.9 tol (kappa h^2 / 8)
+constexpr double kStretch = 0.7;     // a chord below 0.7 tol is tried once more, longer
 constexpr double kSingularDrop = 0.5;  // |grad f x grad g| below half its largest value on the walk
 constexpr double kSingularConfirm = 0.35;  // ... and at the extrapolated zero below 0.35 of its value here
 constexpr double kMidpointDip = 0.6;       // |grad f x grad g| at a chord's midpoint below 0.6 of its ends' mean
@@ -153,6 +154,7 @@ Walk Walker::run(const CurvePoint& start, const Vec& direction, bool allow_close
   double h = std::min(h_max_, std::sqrt(tol_ * c_.diagonal));
   double mu_ref = p_.mu(), mu_prev = -1.0, chord_prev = 0.0, last_good = h;
   bool skip_singular = false;
+  bool stretched = false;  // the step from p_ was lengthened once already
 
   while (true) {
     if (c_.steps >= c_.max_steps) {
@@ -265,6 +267,21 @@ Walk Walker::run(const CurvePoint& start, const Vec& direction, bool allow_close
         return w_;
       }
     }
+    // A chord well below the aimed height (the curvature falls ahead, or the last estimate was
+    // short): try once more from p with the step lengthened to the aimed height, so that fewer
+    // points are spent (q is found again if the longer chord is too high). Not near a singular
+    // point (|grad f x grad g| falling), which is approached with short steps and stepped over.
+    if (*s < kStretch * tol_ && !stretched && h < h_max_ && std::min(p_.mu(), q->mu()) >= kSingularDrop * mu_ref) {
+      const double longer = std::min(h_max_, h * std::clamp(std::sqrt(kAim * tol_ / std::max(*s, 1e-300)), 1.0, 2.0));
+      // nor where |grad f x grad g|, extrapolated along the chord, would vanish within the longer step
+      const double slope = (q->mu() - p_.mu()) / length;
+      if (!(slope < 0.0 && q->mu() / -slope < 2.0 * longer)) {
+        stretched = true;
+        h = longer;
+        continue;
+      }
+    }
+    stretched = false;
     kappa_ = (tq - t_) / length;
     skip_singular = false;
     mu_prev = p_.mu();

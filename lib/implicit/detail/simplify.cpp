@@ -26,26 +26,46 @@ class Simplifier {
 
   SimplifyResult run() {
     int collapses = 0;
-    // A vertex is tried again only when something in its 2-ring changed since its last try: a
-    // collapse's outcome depends only on the triangles around u and around its neighbours (and
-    // the fixed vertex positions), so skipping a clean vertex skips a try that would fail again.
-    std::vector<char> dirty(m_.vertices.size(), 1);
+    // A vertex is tried again only when something changed that could turn one of its failed
+    // tries around: a collapse's outcome depends only on the triangles around u and around its
+    // neighbours (and the fixed vertex positions), so skipping skips tries that would fail again.
+    // A collapse into v changes the triangles of v and of its neighbours (their "fans"). A try
+    // of u can turn out differently only if u's fan changed since its last try (every check),
+    // or a neighbour's fan did (only the topological checks: the link condition and the degrees
+    // of the opposite vertices). A vertex whose tries all failed on geometry or distance, which
+    // depend only on its own triangles, is therefore not tried again for a change among its
+    // neighbours. Collapse counts serve as time stamps: a collapse stamps only the fans it
+    // changed, and a vertex looks at its neighbours' stamps when its turn comes.
+    std::vector<int> fan_changed(m_.vertices.size(), 0);  // stamp of the last change of the fan
+    std::vector<int> tried(m_.vertices.size(), -1);       // stamp of the last try
+    std::vector<char> topology_failed(m_.vertices.size(), 0);
     std::vector<int> ring;
     for (int pass = 0; pass < o_.passes; ++pass) {
       int before = collapses;
       for (int u = 0; u < int(m_.vertices.size()); ++u) {
-        if (locked_[u] || incident_[u].empty() || (!dirty[u] && !o_.retry_all)) continue;
-        dirty[u] = 0;
+        if (locked_[u] || incident_[u].empty()) continue;
         neighbours(u, ring);
+        if (!o_.retry_all && fan_changed[u] <= tried[u]) {
+          bool again = false;
+          if (topology_failed[u])
+            for (int w : ring) again = again || fan_changed[w] > tried[u];
+          if (!again) continue;
+        }
+        tried[u] = collapses;
+        topology_failed[u] = 0;
+        if (beyond_ring(u, ring)) continue;
         std::sort(ring.begin(), ring.end(), [&](int a, int b) {
           return (m_.vertices[a] - m_.vertices[u]).squaredNorm() < (m_.vertices[b] - m_.vertices[u]).squaredNorm();
         });
         for (int v : ring) {
           if (try_collapse(u, v)) {
             ++collapses;
-            mark_two_ring(v, dirty);
+            // the fans of v and of its neighbours changed
+            for (int t : incident_[v])
+              for (int w : faces_[t]) fan_changed[w] = collapses;
             break;
           }
+          if (topology_failed_) topology_failed[u] = 1;
         }
       }
       if (collapses == before) break;
@@ -98,17 +118,33 @@ class Simplifier {
         }
   }
 
+  /// True when u cannot pass the check that it stays within tol of the changed triangles, for
+  /// any neighbour it could be merged into: its neighbours all lie on one side of the plane
+  /// through u across the mean normal of its triangles, farther from it than tol. The changed
+  /// triangles span only neighbours of u, so every point of them is then farther than tol from
+  /// u. That check depends only on u's triangles, so skipping u until they change is exact.
+  [[nodiscard]] bool beyond_ring(int u, const std::vector<int>& ring) const {
+    const Vec& pu = m_.vertices[u];
+    Vec n = Vec::Zero();
+    for (int t : incident_[u]) {
+      const auto& f = faces_[t];
+      n += (m_.vertices[f[1]] - m_.vertices[f[0]]).cross(m_.vertices[f[2]] - m_.vertices[f[0]]);
+    }
+    const double length = n.norm();
+    if (!(length > 0)) return false;
+    const double limit = o_.tolerance * (1 + 1e-9) * length;  // the first passes' tol (not relaxed)
+    int above = 0, below = 0;
+    for (int w : ring) {
+      const double h = (m_.vertices[w] - pu).dot(n);
+      above += h > limit ? 1 : 0;
+      below += h < -limit ? 1 : 0;
+    }
+    return above == int(ring.size()) || below == int(ring.size());
+  }
+
   /// The number of neighbours of u: on a closed 2-manifold (the marched mesh, and every
   /// collapse keeps it one) a vertex has as many neighbours as triangles around it.
   [[nodiscard]] int degree(int u) const { return int(incident_[u].size()); }
-
-  /// Marks v, its neighbours and theirs (every vertex of a triangle that touches a triangle at v).
-  void mark_two_ring(int v, std::vector<char>& dirty) const {
-    for (int t : incident_[v])
-      for (int w : faces_[t])
-        for (int t2 : incident_[w])
-          for (int x : faces_[t2]) dirty[x] = 1;
-  }
 
   [[nodiscard]] Vec normal(const std::array<Vec, 3>& p) const { return (p[1] - p[0]).cross(p[2] - p[0]); }
 
@@ -197,6 +233,7 @@ class Simplifier {
   }
 
   bool try_collapse(int u, int v) {
+    topology_failed_ = false;
     // the two triangles on edge uv, and the link condition: u and v share exactly their third vertices
     std::array<int, 2> shared{};
     int shared_count = 0;
@@ -217,43 +254,49 @@ class Simplifier {
           ++opposite_count;
         }
     if (opposite_count != 2 || opposite[0] == opposite[1]) return false;
-    neighbours(v, nv_);
-    neighbours(u, nu_);  // leaves u's neighbours stamped
-    int common = 0;
-    for (int w : nv_) common += stamp_[w] == stamp_counter_ ? 1 : 0;
-    if (common != 2) return false;
     // the opposite vertices lose an edge: none may be left with two
-    if (degree(opposite[0]) <= 3 || degree(opposite[1]) <= 3) return false;
+    if (degree(opposite[0]) <= 3 || degree(opposite[1]) <= 3) return topology_failed_ = true, false;
 
     // Geometry first (cheap), then f: every check must pass, so their order does not matter.
     const Vec& pu = m_.vertices[u];
     const Vec& pv = m_.vertices[v];
     const double tol = relaxed_ ? o_.tolerance * kRelaxed : o_.tolerance;
-    bool near_removed = false;
     changed_.clear();
     for (int t : incident_[u]) {
       if (t == shared[0] || t == shared[1]) continue;
-      std::array<Vec, 3> before, after;
-      for (int c = 0; c < 3; ++c) {
-        const int w = faces_[t][c];
-        before[c] = m_.vertices[w];
-        after[c] = w == u ? pv : m_.vertices[w];
-      }
-      const Vec n0 = normal(before), n1 = normal(after);
+      const auto& ft = faces_[t];
+      const int k = ft[0] == u ? 0 : ft[1] == u ? 1 : 2;  // u's corner; the others stay
+      const Vec& b = m_.vertices[ft[(k + 1) % 3]];
+      const Vec& c = m_.vertices[ft[(k + 2) % 3]];
+      const Vec n0 = (b - pu).cross(c - pu), n1 = (b - pv).cross(c - pv);
       const double l0 = n0.norm(), l1 = n1.norm();
-      const double scale = std::max({(after[1] - after[0]).squaredNorm(), (after[2] - after[1]).squaredNorm(),
-                                     (after[0] - after[2]).squaredNorm()});
+      const double scale = std::max({(b - pv).squaredNorm(), (c - b).squaredNorm(), (pv - c).squaredNorm()});
       if (!(l1 > 1e-6 * scale)) return false;  // would make a sliver
       // turns by more than 60 degrees (a sliver's own normal is not trusted)
       if (l0 > 1e-6 * scale && n0.dot(n1) < 0.5 * l0 * l1) return false;
-      near_removed = near_removed || point_triangle(pu, after) <= tol;
-      changed_.push_back({(after[0] + after[1] + after[2]) / 3.0, n1});
+      changed_.push_back({.centroid = (pv + b + c) / 3.0, .normal = n1, .b = &b, .c = &c,
+                          .plane = std::abs((pu - pv).dot(n1)) / l1});
     }
+    // u within tol of a changed triangle; the distance from its plane is a lower bound, so a
+    // triangle whose plane is farther (with a margin for rounding) need not be looked at
+    bool near_removed = false;
+    for (const Changed& x : changed_)
+      if (x.plane <= tol * (1 + 1e-9) && point_triangle(pu, {pv, *x.b, *x.c}) <= tol) {
+        near_removed = true;
+        break;
+      }
     if (!near_removed) return false;
-    for (const auto& [centroid, n1] : changed_) {
+    // the link condition (after the geometry, which fails far more often)
+    neighbours(v, nv_);
+    neighbours(u, nu_);  // leaves u's neighbours stamped
+    int common = 0;
+    for (int w : nv_) common += stamp_[w] == stamp_counter_ ? 1 : 0;
+    if (common != 2) return topology_failed_ = true, false;
+    for (const Changed& x : changed_) {
       try {
-        const ValueGradient vg = f_.value_gradient(centroid);
+        const ValueGradient vg = f_.value_gradient(x.centroid);
         const double g = vg.gradient.norm();
+        const Vec& n1 = x.normal;
         if (!(n1.dot(vg.gradient) > 0.5 * n1.norm() * g)) return false;  // faces away from the surface normal
         if (!(std::abs(vg.value) <= tol * g)) return false;               // centroid farther than tol
       } catch (const NonFiniteValue&) {
@@ -307,11 +350,17 @@ class Simplifier {
   std::vector<std::vector<int>> incident_;
   std::vector<bool> alive_;
   bool relaxed_ = false;
+  bool topology_failed_ = false;  // the last try_collapse failed on the degrees or the link condition
   std::vector<std::array<int, 3>> faces_;               // m_.faces while simplifying
   mutable std::vector<int> stamp_;                       // neighbours(): seen in the current call
   mutable int stamp_counter_ = 0;
   std::vector<int> nu_, nv_;           // scratch of try_collapse
-  std::vector<std::pair<Vec, Vec>> changed_;            // centroid and normal of each changed triangle
+  struct Changed {  // a triangle at u after the collapse: v, b, c
+    Vec centroid, normal;
+    const Vec *b, *c;
+    double plane;  // distance of u from its plane
+  };
+  std::vector<Changed> changed_;  // scratch of try_collapse
 
 };
 

@@ -23,8 +23,9 @@ struct SimplifyOptions {
   /// snapping the vertices to a grid could turn over.
   double min_height = 0.0;
   /// Try every vertex in every sweep. Off (the default), a vertex is tried again only when a
-  /// collapse changed its 2-ring since its last try, which skips only tries that would fail
-  /// again; the result is the same (tests compare both), the work less.
+  /// collapse changed its own triangles since its last try, or its neighbours' triangles and a
+  /// try had failed on the topological checks (link condition, degrees), which skips only tries
+  /// that would fail again; the result is the same (tests compare both), the work less.
   bool retry_all = false;
 };
 

@@ -7,13 +7,15 @@
 //   implicit_solid               the table
 //   implicit_solid --peers DIR   the table plus the peers' meshes and times that
 //                                tests/bench/implicit/peers.sh left in DIR (run that script)
-//   implicit_solid --ours        only polygonize, 20 times, and a fingerprint of its mesh (profiling)
+//   implicit_solid --ours        only polygonize, 20 times (OURS_REPS=n: n times), and a fingerprint
+//                                of its mesh (profiling; old and new code compared run against run)
 // See docs/implicit.md, "Implicit solids", and docs/benchmarks.md.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -278,7 +280,8 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--ours") {  // only polygonize, 20 times (for a profiler)
     const Expression f = torus();
     PolygonizeResult r;
-    for (int i = 0; i < 20; ++i) r = polygonize(f, {.box = kBox, .tolerance = kTol});
+    const int reps = std::getenv("OURS_REPS") ? std::atoi(std::getenv("OURS_REPS")) : 20;
+    for (int i = 0; i < reps; ++i) r = polygonize(f, {.box = kBox, .tolerance = kTol});
     double sum = 0;  // a fingerprint of the mesh, to see that a change of speed changed nothing else
     for (const Vec& v : r.mesh.vertices) sum += v.x() + 2 * v.y() + 3 * v.z();
     std::printf("%zu triangles, %zu vertices, %ld marched, fingerprint %.17g\n", r.mesh.faces.size(),
