@@ -72,7 +72,7 @@ bool collinear(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
 }
 
 /// More crossing pairs than this are not worked on by moving corners (each try is a local search).
-constexpr size_t kMaxNudgedPairs = 1024;
+constexpr size_t kMaxNudgedPairs = 64;
 
 /// The triangle mesh being cleaned: positions always representable in the target precision,
 /// per vertex the input points it stands for (to bound how far anything moves).
@@ -229,6 +229,7 @@ class Cleaner {
     const int id = static_cast<int>(tris_.size());
     tris_.push_back(t);
     alive_.push_back(true);
+    level_.push_back(-1);
     boxes_.emplace_back();
     update_box(id);
     for (int v : t) incident_[v].push_back(id);
@@ -299,33 +300,49 @@ class Cleaner {
     return after_moving > meetings(before, replaced);
   }
 
-  /// Cell range of a box in the spatial hash, or false if it spans too many cells (kept in big_).
-  bool cell_range(const Eigen::AlignedBox3d& box, Eigen::Array3i& lo, Eigen::Array3i& hi) const {
-    const Eigen::Array3d a = (box.min().array() / cell_).floor(), b = (box.max().array() / cell_).floor();
-    if (((b - a + 1).prod()) > 64 || !a.allFinite() || !b.allFinite() || a.abs().maxCoeff() > 1e9 || b.abs().maxCoeff() > 1e9)
-      return false;
+  // The spatial hash has levels of cells cell_ * 4^k; a triangle is kept at the finest level whose
+  // cells its box spans at most 4 of per axis (so long triangles do not fill every query).
+  static constexpr int kLevels = 16;
+
+  /// Cell range of a box at level k, or false if the coordinates are out of range.
+  bool cell_range(const Eigen::AlignedBox3d& box, int k, Eigen::Array3i& lo, Eigen::Array3i& hi) const {
+    const double size = std::ldexp(cell_, 2 * k);
+    const Eigen::Array3d a = (box.min().array() / size).floor(), b = (box.max().array() / size).floor();
+    if (!a.allFinite() || !b.allFinite() || a.abs().maxCoeff() > 1e9 || b.abs().maxCoeff() > 1e9) return false;
     lo = a.cast<int>();
     hi = b.cast<int>();
     return true;
   }
 
-  static std::int64_t cell_key(int x, int y, int z) {
+  /// The level a box is kept at, or -1 (kept in big_).
+  int level_of(const Eigen::AlignedBox3d& box) const {
+    Eigen::Array3i lo, hi;
+    for (int k = 0; k < kLevels; ++k)
+      if (cell_range(box, k, lo, hi) && (hi - lo).maxCoeff() <= 3) return k;
+    return -1;
+  }
+
+  static std::int64_t cell_key(int k, int x, int y, int z) {
     return (static_cast<std::int64_t>(x) * 73856093) ^ (static_cast<std::int64_t>(y) * 19349663) ^
-           (static_cast<std::int64_t>(z) * 83492791);
+           (static_cast<std::int64_t>(z) * 83492791) ^ (static_cast<std::int64_t>(k) * 2654435761);
   }
 
   /// Adds (sign > 0) or removes triangle t under its current box.
   void index(int t, int sign) {
-    Eigen::Array3i lo, hi;
-    if (!cell_range(boxes_[t], lo, hi)) {
+    const int k = sign > 0 ? level_of(boxes_[t]) : level_[t];
+    if (sign > 0) level_[t] = k;
+    if (k < 0) {
       if (sign > 0) big_.push_back(t);
       else std::erase(big_, t);
       return;
     }
+    per_level_[k] += sign;
+    Eigen::Array3i lo, hi;
+    cell_range(boxes_[t], k, lo, hi);
     for (int x = lo.x(); x <= hi.x(); ++x)
       for (int y = lo.y(); y <= hi.y(); ++y)
         for (int z = lo.z(); z <= hi.z(); ++z) {
-          auto& list = cells_[cell_key(x, y, z)];
+          auto& list = cells_[cell_key(k, x, y, z)];
           if (sign > 0) list.push_back(t);
           else std::erase(list, t);
         }
@@ -334,15 +351,18 @@ class Cleaner {
   /// Triangles whose boxes may meet `box` (each once).
   std::vector<int> near(const Eigen::AlignedBox3d& box) const {
     std::vector<int> out = big_;
-    Eigen::Array3i lo, hi;
-    if (!cell_range(box, lo, hi)) {
-      for (size_t t = 0; t < tris_.size(); ++t)
-        if (alive_[t]) out.push_back(static_cast<int>(t));
-    } else {
+    for (int k = 0; k < kLevels; ++k) {
+      if (per_level_[k] == 0) continue;
+      Eigen::Array3i lo, hi;
+      if (!cell_range(box, k, lo, hi) || (hi - lo + 1).cast<double>().prod() > 4096) {
+        for (size_t t = 0; t < tris_.size(); ++t)  // a query far larger than this level's cells
+          if (alive_[t] && level_[t] == k) out.push_back(static_cast<int>(t));
+        continue;
+      }
       for (int x = lo.x(); x <= hi.x(); ++x)
         for (int y = lo.y(); y <= hi.y(); ++y)
           for (int z = lo.z(); z <= hi.z(); ++z) {
-            const auto it = cells_.find(cell_key(x, y, z));
+            const auto it = cells_.find(cell_key(k, x, y, z));
             if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
           }
     }
@@ -624,6 +644,8 @@ class Cleaner {
   std::vector<Eigen::AlignedBox3d> boxes_;
   double cell_ = 1;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::array<int, kLevels> per_level_{};  ///< triangles kept at each level
+  std::vector<int> level_;                ///< level of each triangle (-1: big_)
   std::vector<int> big_;
   std::vector<std::vector<int>> incident_;
 };
@@ -771,12 +793,12 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
   bool judged = false;
   for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
     bool changed = false;
-    for (int round = 0; round < 4; ++round) {
-      bool any = false;
-      for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) any = true;
-      if (cleaner.nudge_crossings(delta, r)) any = true;
-      changed = changed || any;
-      if (!any) break;
+    // Contractions and flips until nothing changes (at most 20 passes), then corner moves; again
+    // while corner moves made a difference (at most 4 times).
+    for (int alternation = 0; alternation < 4; ++alternation) {
+      for (int pass = 0; pass < 20 && cleaner.sweep(delta, r); ++pass) changed = true;
+      if (!cleaner.nudge_crossings(delta, r)) break;
+      changed = true;
     }
     r.feature = delta;
     if (changed || !judged) {
