@@ -276,8 +276,10 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   return bsp::detail::compact(arena, r);
 }
 
-// In place: the larger operand's storage is reused; the result is compacted only when the
-// storage has doubled since the last compaction (amortized O(touched nodes) per operation).
+// In place: the larger operand's storage is reused. The slots of nodes the result no longer
+// reaches are reused at once (recycle_free_nodes: the live nodes past the live count move into
+// them), which costs what the operation freed and added; the planes are renumbered (compact())
+// only when the plane table has doubled since the last compaction (amortized O(planes added)).
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < y.nodes().size()) return apply(x, y, table);
   // The boundary of x must be known before its storage moves into the arena.
@@ -306,10 +308,11 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   }
   const TreeRef rb = arena.append(y);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
-  const TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
-  if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64))
+  TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
+  if (std::size_t(arena.planes.size()) >= 2 * std::max<std::size_t>(arena.compacted_size, 64))
     return bsp::detail::compact(arena, r, {.keep_capacity = true});
   const std::size_t compacted = arena.compacted_size;
+  r = bsp::detail::recycle_free_nodes(arena, r);
   if (is_leaf(r)) return Solid::leaf(r == kIn);
   return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted,
                std::move(arena.boundary), std::move(arena.boundary_boxes));

@@ -9,7 +9,7 @@ Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
              std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size,
              std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes)
     : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
-      compacted_size_(compacted_size ? compacted_size : nodes_.size()), boundary_(std::move(boundary)),
+      compacted_size_(compacted_size ? compacted_size : std::size_t(planes_.size())), boundary_(std::move(boundary)),
       boundary_boxes_(std::move(boundary_boxes)) {
   if (!boundary_ || boundary_boxes_.each.size() != boundary_->size()) boundary_boxes_.each.clear();
   if (boundary_boxes_.blocks.size() != FragmentBoxes::block_count(boundary_boxes_.each.size()))

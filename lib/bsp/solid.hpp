@@ -97,7 +97,7 @@ class Solid {
     std::vector<BspNode> nodes;
     std::vector<kernel::ConvexPolygon> polygons;
     TreeRef root;
-    std::size_t compacted_size;  ///< node count after the last compaction
+    std::size_t compacted_size;  ///< plane table size after the last compaction (0: the current)
     std::optional<std::vector<BoundaryFragment>> boundary;
     FragmentBoxes boundary_boxes;
   };
