@@ -57,6 +57,7 @@ TreeRef Arena::adopt(Solid&& solid) {
   polygons = std::move(s.polygons);
   opposite_of.clear();
   compacted_size = s.compacted_size;
+  recycled_size = s.recycled_size;
   boundary = std::move(s.boundary);
   boundary_boxes = std::move(s.boundary_boxes);
   last_shift_ = 0;

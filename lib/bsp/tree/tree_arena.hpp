@@ -26,6 +26,7 @@ struct Arena {
   /// carried ones, or extracted from its tree (boundary_fragments) when it carries none.
   std::vector<BoundaryFragment> boundary_of(const Solid& solid);
   std::size_t compacted_size = 0;  ///< of an adopted solid: its plane table size after its last compaction
+  std::size_t recycled_size = 0;   ///< of an adopted solid: its node storage after freed nodes were last recycled
   /// Boundary of the tree being built, when known; compact() keeps it (and its planes).
   std::optional<std::vector<BoundaryFragment>> boundary;
   FragmentBoxes boundary_boxes;  ///< of `boundary`, or empty
