@@ -276,8 +276,15 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   return bsp::detail::compact(arena, r);
 }
 
-// In place: the larger operand's storage is reused; the result is compacted only when the
-// storage has doubled since the last compaction (amortized O(touched nodes) per operation).
+// In place: the larger operand's storage is reused. When the node storage has grown by
+// kRecycleGrowth since the slots of unreachable nodes were last reused, they are reused
+// (recycle_free_nodes: a traversal of the live nodes, and the live nodes past the live count
+// move into the free slots; no renumbering of planes, no moves below the live count); the
+// planes are renumbered (compact()) only when the plane table has doubled since the last
+// compaction. Both amortize to O(nodes and planes added) per operation, and recycling, the
+// frequent one, is several times cheaper than a compaction (docs/sculpting.md, "Strokes").
+constexpr double kRecycleGrowth = 1.25;
+
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < y.nodes().size()) return apply(x, y, table);
   // The boundary of x must be known before its storage moves into the arena.
@@ -306,13 +313,18 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   }
   const TreeRef rb = arena.append(y);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
-  const TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
-  if (arena.nodes.size() >= 2 * std::max<std::size_t>(arena.compacted_size, 64))
+  TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, table);
+  if (std::size_t(arena.planes.size()) >= 2 * std::max<std::size_t>(arena.compacted_size, 64))
     return bsp::detail::compact(arena, r, {.keep_capacity = true});
   const std::size_t compacted = arena.compacted_size;
+  std::size_t recycled = arena.recycled_size;
+  if (arena.nodes.size() >= kRecycleGrowth * double(std::max<std::size_t>(recycled, 64))) {
+    r = bsp::detail::recycle_free_nodes(arena, r);
+    recycled = arena.nodes.size();
+  }
   if (is_leaf(r)) return Solid::leaf(r == kIn);
   return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted,
-               std::move(arena.boundary), std::move(arena.boundary_boxes));
+               std::move(arena.boundary), std::move(arena.boundary_boxes), recycled);
 }
 
 constexpr bool kUnion[2][2] = {{false, true}, {true, true}};

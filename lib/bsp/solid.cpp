@@ -7,9 +7,12 @@ namespace sculpt {
 
 Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
              std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size,
-             std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes)
+             std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes,
+             std::size_t recycled_size)
     : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
-      compacted_size_(compacted_size ? compacted_size : nodes_.size()), boundary_(std::move(boundary)),
+      compacted_size_(compacted_size ? compacted_size : std::size_t(planes_.size())),
+      recycled_size_(recycled_size ? recycled_size : nodes_.size()),
+      boundary_(std::move(boundary)),
       boundary_boxes_(std::move(boundary_boxes)) {
   if (!boundary_ || boundary_boxes_.each.size() != boundary_->size()) boundary_boxes_.each.clear();
   if (boundary_boxes_.blocks.size() != FragmentBoxes::block_count(boundary_boxes_.each.size()))
@@ -20,12 +23,13 @@ Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
 
 Solid::Storage Solid::release() && {
   Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, compacted_size_, std::move(boundary_),
-            std::move(boundary_boxes_)};
+            std::move(boundary_boxes_), recycled_size_};
   planes_ = kernel::PlaneTable();
   nodes_.clear();
   polygons_.clear();
   root_ = kOut;
   compacted_size_ = 0;
+  recycled_size_ = 0;
   boundary_ = std::vector<BoundaryFragment>{};
   boundary_boxes_ = {};
   return s;

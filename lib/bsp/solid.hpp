@@ -89,7 +89,7 @@ class Solid {
   Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
         std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size = 0,
         std::optional<std::vector<BoundaryFragment>> boundary = std::nullopt,
-        FragmentBoxes boundary_boxes = {});
+        FragmentBoxes boundary_boxes = {}, std::size_t recycled_size = 0);
 
   /// Storage moved out of a solid (which becomes empty), for in-place operations.
   struct Storage {
@@ -97,9 +97,10 @@ class Solid {
     std::vector<BspNode> nodes;
     std::vector<kernel::ConvexPolygon> polygons;
     TreeRef root;
-    std::size_t compacted_size;  ///< node count after the last compaction
+    std::size_t compacted_size;  ///< plane table size after the last compaction (0: the current)
     std::optional<std::vector<BoundaryFragment>> boundary;
     FragmentBoxes boundary_boxes;
+    std::size_t recycled_size;  ///< node storage size after freed nodes were last recycled (0: the current)
   };
   Storage release() &&;
 
@@ -109,6 +110,7 @@ class Solid {
   std::vector<kernel::ConvexPolygon> polygons_;
   TreeRef root_ = kOut;
   std::size_t compacted_size_ = 0;
+  std::size_t recycled_size_ = 0;
   std::optional<std::vector<BoundaryFragment>> boundary_ = std::vector<BoundaryFragment>{};
   FragmentBoxes boundary_boxes_;
   kernel::Grid grid_;

@@ -120,6 +120,14 @@ Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d>
   return work | sweep(tool, path);
 }
 
+Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
+  return std::move(work) - sweep(tool, poses);
+}
+
+Solid add(Solid&& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
+  return std::move(work) | sweep(tool, poses);
+}
+
 Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
   return std::move(work) - sweep(tool, path);
 }

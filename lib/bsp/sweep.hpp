@@ -52,4 +52,8 @@ Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Isometr
 /// `work` united with the tool carried by the poses.
 Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses);
 
+/// In place, as carve(Solid&&, ...) along a path.
+Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses);
+Solid add(Solid&& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses);
+
 }  // namespace sculpt

@@ -71,6 +71,15 @@ class Arguments {
     if (const T* o = value(i).object<T>()) return *o;
     fail_type(i, what);
   }
+  /// Copy on write: parameter i's library object, of type T, for the built-in to take its
+  /// contents, when the call's argument is its only holder (a temporary, or the variable the
+  /// statement assigns to, which the interpreter hands over to built-ins marked
+  /// Builtin::takes_arguments); else null, and the built-in must not change it. Check the
+  /// arguments first: an error after taking cannot give the contents back.
+  template <typename T>
+  [[nodiscard]] T* sole_object(std::size_t i) const {
+    return has(i) ? dynamic_cast<T*>(value(i).sole_object()) : nullptr;
+  }
   /// Values of a variadic built-in beyond its parameters (print).
   [[nodiscard]] const std::vector<Value>& rest() const { return rest_; }
 
@@ -112,6 +121,10 @@ struct Builtin {
   std::string doc{};       ///< one or a few sentences
   std::vector<Param> params{};
   bool variadic = false;   ///< takes any number of extra positional values (print)
+  /// The built-in may take the contents of arguments it alone holds (Arguments::sole_object):
+  /// in `x = f(x, ...)` the interpreter then hands x's value over instead of keeping a second
+  /// holder in x while the call runs. Such a built-in must not read the globals.
+  bool takes_arguments = false;
   std::string area{};      ///< "core", "curves", "solids", ... (set by the table)
   /// Empty for constants.
   std::function<Value(const Arguments&)> run{};

@@ -74,23 +74,32 @@ double motion_tolerance(const Arguments& args, std::size_t i) {
   return t;
 }
 
-/// sweep, carve and add: the tool moved along a path (bsp/sweep.hpp).
-void add_stroke(BuiltinTable& table, const char* name, const char* signature, const char* doc,
-                Solid (*stroke)(const Solid&, const Solid&, std::span<const Eigen::Vector3d>),
-                Solid (*moved)(const Solid&, const Solid&, std::span<const Eigen::Isometry3d>)) {
+/// carve and add: the tool moved along a path (bsp/sweep.hpp). The workpiece is taken in place
+/// (the in-place set operations reuse its tree) when the call alone holds it: a temporary, or
+/// the variable of `w = carve(w, ...)`, which the interpreter hands over (Builtin::takes_arguments).
+template <typename Stroke>
+void add_stroke(BuiltinTable& table, const char* name, const char* signature, const char* doc, Stroke stroke) {
   table.add({.name = name,
              .signature = signature,
              .doc = doc,
              .params = {{"work"}, {"tool"}, {"path"}, {"tol", false}},
-             .run = [stroke, moved](const Arguments& args) -> Value {
+             .takes_arguments = true,
+             .run = [stroke](const Arguments& args) -> Value {
+               const Solid& work = solid_arg(args, 0);
+               const Solid& tool = solid_arg(args, 1);
+               // Every argument is checked before the workpiece is taken (Arguments::sole_object).
+               auto run = [&](const auto& path) {
+                 SolidValue* sole = args.sole_object<SolidValue>(0);
+                 return solid_value(sole ? stroke(sole->handed_over(), tool, path) : stroke(work, tool, path));
+               };
                if (const auto* m = args.value(2).object<MotionValue>()) {
-                 const auto poses = motion_poses(*m, solid_arg(args, 1), motion_tolerance(args, 3));
+                 const auto poses = motion_poses(*m, tool, motion_tolerance(args, 3));
                  args.charge(poses.size());
-                 return solid_value(moved(solid_arg(args, 0), solid_arg(args, 1), poses));
+                 return run(poses);
                }
                const auto path = path_arg(args, 2, 3);
                args.charge(path.size());
-               return solid_value(stroke(solid_arg(args, 0), solid_arg(args, 1), path));
+               return run(path);
              }});
 }
 
@@ -154,6 +163,19 @@ std::optional<Value> SolidValue::binary(ast::Op op, const Value& other, bool sel
     case ast::Op::Union: return solid_value(unite(a, b));
     case ast::Op::Intersect: return solid_value(intersect(a, b));
     case ast::Op::Sub: return solid_value(subtract(a, b));
+    default: return std::nullopt;
+  }
+}
+
+std::optional<Value> SolidValue::binary_sole(ast::Op op, const Value& other) {
+  const SolidValue* that = other.object<SolidValue>();
+  if (!that) return std::nullopt;
+  // Nothing else holds this value (Value::sole_object): its tree is reused (the in-place set
+  // operations), which leaves this object empty; `that` is another object (it holds its own).
+  switch (op) {
+    case ast::Op::Union: return solid_value(unite(handed_over(), that->solid));
+    case ast::Op::Intersect: return solid_value(intersect(handed_over(), that->solid));
+    case ast::Op::Sub: return solid_value(subtract(handed_over(), that->solid));
     default: return std::nullopt;
   }
 }
@@ -300,13 +322,13 @@ void register_solids(BuiltinTable& table) {
                return solid_value(sweep(solid_arg(args, 0), path));
              }});
   add_stroke(table, "carve", "carve(work, tool, path, tol=e)",
-             "Solid `work` minus `tool` swept along `path` (see sweep): a carving stroke.",
-             [](const Solid& w, const Solid& t, std::span<const Eigen::Vector3d> p) { return carve(w, t, p); },
-             [](const Solid& w, const Solid& t, std::span<const Eigen::Isometry3d> p) { return carve(w, t, p); });
+             "Solid `work` minus `tool` swept along `path` (see sweep): a carving stroke. `w = carve(w, ...)` "
+             "carves w in place (no copy of its tree) unless another variable holds the same solid.",
+             [](auto&& w, const Solid& t, const auto& p) { return carve(std::forward<decltype(w)>(w), t, p); });
   add_stroke(table, "add", "add(work, tool, path, tol=e)",
-             "Solid `work` united with `tool` swept along `path` (see sweep): an adding stroke.",
-             [](const Solid& w, const Solid& t, std::span<const Eigen::Vector3d> p) { return add(w, t, p); },
-             [](const Solid& w, const Solid& t, std::span<const Eigen::Isometry3d> p) { return add(w, t, p); });
+             "Solid `work` united with `tool` swept along `path` (see sweep): an adding stroke. `w = add(w, ...)` "
+             "works in place like carve.",
+             [](auto&& w, const Solid& t, const auto& p) { return add(std::forward<decltype(w)>(w), t, p); });
   table.add({.name = "transform",
              .signature = "transform(s, matrix)",
              .doc = "Solid s mapped by the affine map given as 3 rows of 4 numbers [[a, b, c, tx], ...] "

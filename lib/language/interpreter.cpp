@@ -163,6 +163,78 @@ struct Interpreter::Impl {
     throw ScriptError(at(id.where), message);
   }
 
+  // ---- handing a variable's value over (copy on write) ----
+  /// The single operand that `o` only wraps (a bracketed expression, a postfix without calls).
+  static const ast::Operand& bare(const ast::Operand& o) {
+    const ast::Operand* x = &o;
+    while (true) {
+      if (const auto* e = boost::get<ast::Expression>(x); e && e->rest.empty()) {
+        x = &e->first;
+      } else if (const auto* p = boost::get<ast::Postfix>(x); p && p->ops.empty()) {
+        x = &p->primary;
+      } else {
+        return *x;
+      }
+    }
+  }
+  /// `e` without the single-operand levels around it (one per precedence level).
+  static const ast::Expression& core(const ast::Expression& e) {
+    const ast::Expression* x = &e;
+    while (x->rest.empty()) {
+      const auto* inner = boost::get<ast::Expression>(&bare(x->first));
+      if (!inner) break;
+      x = inner;
+    }
+    return *x;
+  }
+  static bool is_variable(const ast::Expression& e, const std::string& name) {
+    const ast::Expression& c = core(e);
+    const auto* id = c.rest.empty() ? boost::get<ast::Identifier>(&bare(c.first)) : nullptr;
+    return id && id->name == name;
+  }
+  /// The variable `name` as an assignment in the current scope would overwrite it, or null
+  /// (in a function, a global of that name is not overwritten: the assignment makes a local).
+  Value* binding(const std::string& name) {
+    if (!frames.empty()) {
+      auto it = frames.back()->locals.find(name);
+      return it == frames.back()->locals.end() ? nullptr : &it->second;
+    }
+    auto it = globals.find(name);
+    return it == globals.end() ? nullptr : &it->second;
+  }
+  /// Variable `name`, which the running statement overwrites, lets go of `value`'s library
+  /// object if it holds that object (it was read into `value` and not reassigned since), so
+  /// that `value` may be its only holder. Returns the variable (none until the assignment;
+  /// the caller puts `value` back if the statement fails), or null if nothing was released.
+  Value* release(const std::string& name, const Value& value) {
+    Value* slot = binding(name);
+    const auto* held = slot ? slot->get<std::shared_ptr<const Object>>() : nullptr;
+    const auto* mine = value.get<std::shared_ptr<const Object>>();
+    if (!held || !mine || held->get() != mine->get()) return nullptr;
+    *slot = Value();
+    return slot;
+  }
+  /// The value of `x = e`: eval(e), except that where e is `x op ...` or `f(..., x, ...)` with f a
+  /// built-in that takes its arguments (Builtin::takes_arguments), x's value is handed over to
+  /// the operator or built-in once every operand is evaluated: x is overwritten anyway, so it
+  /// need not keep the old value alive, and `w = carve(w, tool, path)` or `w = w - x` reuse w's
+  /// tree instead of copying it. Other holders of the old value (`v = w` before) keep it.
+  Value eval_assigned(const ast::Assignment& a) {
+    const ast::Expression& e = core(a.value);
+    const std::string& x = a.target.name;
+    if (!e.rest.empty()) {
+      const auto* id = boost::get<ast::Identifier>(&bare(e.first));
+      if (id && id->name == x) return eval(e, &x);
+    } else if (const auto* p = boost::get<ast::Postfix>(&bare(e.first)); p && p->ops.size() == 1) {
+      if (const auto* call_args = boost::get<ast::CallArguments>(&p->ops[0])) {
+        check_stack(a.value.where);
+        const Value callee = eval(p->primary);
+        return call(callee, *call_args, p->where, boost::get<ast::Identifier>(&p->primary), &x);
+      }
+    }
+    return eval(a.value);
+  }
+
   void assign(const ast::Identifier& id, Value value) {
     if (find_builtin(id.name)) {
       throw ScriptError(at(id.where), "cannot assign to '" + id.name + "': it is a built-in");
@@ -176,10 +248,14 @@ struct Interpreter::Impl {
   }
 
   // ---- expressions ----
-  Value eval(const ast::Expression& e) {
+  /// `handover`: the variable the statement assigns the result to, when `e` is `handover op ...`
+  /// (eval_assigned): the variable lets go of its value before the first operator, so that
+  /// the operator may reuse the operand's contents (copy on write, Value::sole_object).
+  Value eval(const ast::Expression& e, const std::string* handover = nullptr) {
     check_stack(e.where);
     Value value = eval(e.first);
-    for (const ast::Operation& operation : e.rest) {
+    for (std::size_t k = 0; k < e.rest.size(); ++k) {
+      const ast::Operation& operation = e.rest[k];
       if (operation.op == ast::Op::And || operation.op == ast::Op::Or) {
         const bool left = truth(value, operation.where, operation.op);
         if (left == (operation.op == ast::Op::Or)) continue;  // decided: skip the right side
@@ -187,7 +263,15 @@ struct Interpreter::Impl {
         continue;
       }
       Value right = eval(operation.operand);
-      value = positioned(at(operation.where), "", [&] { return apply_binary(operation.op, value, right); });
+      // The left operand is a temporary (or, handed over, the variable's value): an operator
+      // may reuse its contents when nothing else holds it.
+      Value* released = k == 0 && handover ? release(*handover, value) : nullptr;
+      try {
+        value = positioned(at(operation.where), "", [&] { return apply_binary(operation.op, std::move(value), right); });
+      } catch (...) {
+        if (released) *released = value;  // the statement failed: the variable keeps its value
+        throw;
+      }
       if (const std::string* text = value.get<std::string>()) charge(text->size(), operation.where);
       if (const List* list = value.list()) charge(list->size(), operation.where);
     }
@@ -307,8 +391,9 @@ struct Interpreter::Impl {
     return slot;
   }
 
+  /// `handover`: see eval_assigned.
   Value call(const Value& callee, const ast::CallArguments& call_args, std::size_t where,
-             const ast::Identifier* callee_name) {
+             const ast::Identifier* callee_name, const std::string* handover = nullptr) {
     check_stack(where);
     count_step(where);
     Evaluated args;
@@ -316,14 +401,15 @@ struct Interpreter::Impl {
       args.values.push_back(eval(a.value));
       args.syntax.push_back(&a);
     }
-    if (const auto* builtin = callee.get<const Builtin*>()) return call_builtin(**builtin, args, where);
+    if (const auto* builtin = callee.get<const Builtin*>())
+      return call_builtin(**builtin, args, where, (*builtin)->takes_arguments ? handover : nullptr);
     if (const auto* f = callee.get<std::shared_ptr<const UserFunction>>()) return call_user(**f, args, where);
     const std::string what = callee_name ? "'" + callee_name->name + "' is a " + type_name(callee)
                                          : "a " + type_name(callee) + " value";
     throw ScriptError(at(where), what + ", not a function");
   }
 
-  Value call_builtin(const Builtin& b, const Evaluated& args, std::size_t where) {
+  Value call_builtin(const Builtin& b, const Evaluated& args, std::size_t where, const std::string* handover = nullptr) {
     std::vector<std::string> names;
     std::vector<bool> required;
     for (const Param& p : b.params) {
@@ -346,7 +432,24 @@ struct Interpreter::Impl {
     }
     const Arguments arguments(b, at(where), std::move(bound), std::move(positions), std::move(rest),
                               std::move(rest_positions), settings);
-    return positioned(at(where), b.name + ": ", [&] { return b.run(arguments); });
+    // The variable the statement overwrites lets go of its value if it is an argument (once all
+    // are evaluated): the built-in may then take it (Arguments::sole_object).
+    Value* released = nullptr;
+    std::size_t released_arg = 0;
+    if (handover) {
+      for (long s : slot) {
+        if (s < 0 || !is_variable(args.syntax[std::size_t(s)]->value, *handover)) continue;
+        released_arg = std::size_t(s);
+        released = release(*handover, args.values[released_arg]);
+        break;
+      }
+    }
+    try {
+      return positioned(at(where), b.name + ": ", [&] { return b.run(arguments); });
+    } catch (...) {
+      if (released) *released = args.values[released_arg];  // the statement failed: keep the value
+      throw;
+    }
   }
 
   Value call_user(const UserFunction& f, const Evaluated& args, std::size_t where) {
@@ -391,7 +494,7 @@ struct Interpreter::Impl {
       Impl& self;
       Outcome operator()(const ast::Expression& e) const { return {self.eval(e)}; }
       Outcome operator()(const ast::Assignment& a) const {
-        self.assign(a.target, self.eval(a.value));
+        self.assign(a.target, self.eval_assigned(a));
         return {};
       }
       Outcome operator()(const ast::Return& r) const {

@@ -1,6 +1,7 @@
 #include "language/operators.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace sculpt::language {
 namespace {
@@ -135,6 +136,16 @@ Value apply_binary(Op op, const Value& a, const Value& b) {
                         "' to a list that holds something other than numbers");
   }
   unsupported(op, a, b);
+}
+
+Value apply_binary(Op op, Value&& a, const Value& b) {
+  if (op != Op::Eq && op != Op::Ne) {
+    if (Object* o = a.sole_object()) {
+      if (auto r = o->binary_sole(op, b)) return std::move(*r);
+      unsupported(op, a, b);
+    }
+  }
+  return apply_binary(op, std::as_const(a), b);
 }
 
 Value apply_prefix(Op op, const Value& a) {

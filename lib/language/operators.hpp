@@ -20,6 +20,10 @@ class OperatorError : public std::runtime_error {
 /// `a op b` for every binary operator except `and`/`or` (short-circuit, in the interpreter).
 /// \throw OperatorError, or a library error from an object's operator.
 Value apply_binary(ast::Op op, const Value& a, const Value& b);
+/// The same, consuming `a`: when `a` is the only holder of a library object, the object may
+/// move its contents into the result (Object::binary_sole; `w = w - x` on a solid reuses w's
+/// tree). What any other value sees is unchanged.
+Value apply_binary(ast::Op op, Value&& a, const Value& b);
 
 /// `-a`, `+a`, `not a`. \throw OperatorError
 Value apply_prefix(ast::Op op, const Value& a);

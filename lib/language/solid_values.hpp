@@ -23,9 +23,18 @@ struct SolidValue final : Object {
     if (!boundary_cache_) boundary_cache_ = to_mesh(solid);
     return *boundary_cache_;
   }
+  /// The solid as an rvalue for an in-place operation (bsp/set_operations.hpp), for whoever
+  /// alone holds this value (Value::sole_object). The operation empties it once it has checked
+  /// its operands and taken the storage; an error before that leaves it whole.
+  [[nodiscard]] Solid&& handed_over() {
+    boundary_cache_.reset();
+    return std::move(solid);
+  }
   [[nodiscard]] std::string type_name() const override { return "solid"; }
   [[nodiscard]] std::string repr() const override;
   [[nodiscard]] std::optional<Value> binary(ast::Op op, const Value& other, bool self_on_left) const override;
+  /// `w - x` etc. reusing this solid's tree (in-place set operations); this object is left empty.
+  [[nodiscard]] std::optional<Value> binary_sole(ast::Op op, const Value& other) override;
 
  private:
   mutable std::optional<PolygonMesh> boundary_cache_;

@@ -18,6 +18,8 @@ Value::Value(List items) {
   data_ = std::make_shared<const ListData>(ListData{std::move(items), depth});
 }
 
+std::optional<Value> Object::binary_sole(ast::Op op, const Value& other) { return binary(op, other, true); }
+
 std::optional<Value> Object::binary(ast::Op /*op*/, const Value& /*other*/, bool /*self_on_left*/) const {
   return std::nullopt;
 }

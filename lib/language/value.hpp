@@ -50,6 +50,11 @@ class Object {
   /// side this object is on. nullopt = not supported (the interpreter reports a type error).
   [[nodiscard]] virtual std::optional<Value> binary(ast::Op op, const Value& other,
                                                     bool self_on_left) const;
+  /// binary() when this object is the left operand and nothing but that operand holds it (a
+  /// temporary, or a variable the statement overwrites: Value::sole_object): the object may move
+  /// its contents into the result instead of copying them (a solid's tree). The default calls
+  /// binary().
+  [[nodiscard]] virtual std::optional<Value> binary_sole(ast::Op op, const Value& other);
 };
 
 struct None {};
@@ -89,6 +94,15 @@ class Value {
   [[nodiscard]] const T* object() const {
     auto p = get<std::shared_ptr<const Object>>();
     return p ? dynamic_cast<const T*>(p->get()) : nullptr;
+  }
+  /// Copy on write: the library object when this value is its only holder (no variable, list
+  /// or other value can see it), else null. Only the value's owner may use it, to take the
+  /// object's contents (a built-in its call's arguments, the interpreter an operand it is about
+  /// to drop); every other holder keeps seeing an unchanged object, so values stay values.
+  [[nodiscard]] Object* sole_object() const {
+    auto p = get<std::shared_ptr<const Object>>();
+    // Objects are made non-const (std::make_shared<T>) and shared as const: casting back is sound.
+    return p && p->use_count() == 1 ? const_cast<Object*>(p->get()) : nullptr;
   }
 
  private:

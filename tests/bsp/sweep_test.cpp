@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -143,6 +144,32 @@ TEST(Sweep, ManyStrokesCarveWhatEachSweepCovers) {
   EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(rebuilt)));
   EXPECT_TRUE(rebuild_from_boundary(Solid()).is_empty());
   EXPECT_EQ(rebuild_from_boundary(Solid::leaf(true)).root(), kIn);
+}
+
+TEST(Sweep, InPlaceStrokesReuseTheFreedStorage) {
+  // Fifteen strokes in place (carving and adding), each the same set as the copying operation
+  // and its storage bounded (recycle_free_nodes reuses the slots of unreachable nodes); the plane
+  // table is compacted now and then (when it has doubled) without changing the solid.
+  Solid work = box({-1, -1, -1}, {1, 1, 0});
+  const Solid ball = sphere(0.2, {.segments = 8});
+  std::size_t most_live = 0;
+  for (int k = 0; k < 15; ++k) {
+    std::vector<Eigen::Vector3d> path;
+    for (int i = 0; i <= 8; ++i) {
+      const double t = 0.9 * k + 0.15 * i;
+      path.emplace_back(0.6 * std::cos(t), 0.6 * std::sin(t), 0.1 * std::sin(2.0 * t) - (k % 3 == 2 ? 0.3 : 0.0));
+    }
+    const Solid copied = k % 3 == 2 ? add(work, ball, path) : carve(work, ball, path);
+    work = k % 3 == 2 ? add(std::move(work), ball, path) : carve(std::move(work), ball, path);
+    EXPECT_TRUE((work - copied).is_empty()) << "stroke " << k;
+    EXPECT_TRUE((copied - work).is_empty()) << "stroke " << k;
+    // Freed slots are reused once the storage has grown by a quarter since they last were, so
+    // it never holds a quarter more than the most nodes the tree has had.
+    most_live = std::max(most_live, std::size_t(tree_stats(work).nodes));
+    EXPECT_LT(double(work.nodes().size()), 1.25 * double(std::max<std::size_t>(most_live, 64))) << "stroke " << k;
+    EXPECT_EQ(work.polygons().size(), work.nodes().size()) << "stroke " << k;
+  }
+  EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(work)));
 }
 
 TEST(SweepMotion, TranslationsGiveThePathSweep) {

@@ -2,6 +2,7 @@
 #include "bsp/tree/solid_access.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "bsp/tree/boundary_fragments.hpp"
 
@@ -56,6 +57,7 @@ TreeRef Arena::adopt(Solid&& solid) {
   polygons = std::move(s.polygons);
   opposite_of.clear();
   compacted_size = s.compacted_size;
+  recycled_size = s.recycled_size;
   boundary = std::move(s.boundary);
   boundary_boxes = std::move(s.boundary_boxes);
   last_shift_ = 0;
@@ -104,6 +106,75 @@ void complement_in_place(Arena& arena, TreeRef& root) {
         stack.push_back(*c);
     }
   }
+}
+
+TreeRef recycle_free_nodes(Arena& arena, TreeRef root) {
+  if (is_leaf(root)) {
+    arena.nodes.clear();
+    arena.polygons.clear();
+    return root;
+  }
+  std::vector<BspNode>& nodes = arena.nodes;
+  const std::size_t n = nodes.size();
+  // Post-order (explicit stack): result[i] is node i itself when it stays, a leaf when it
+  // collapsed, kUnreached when the root does not reach it.
+  constexpr TreeRef kUnreached = std::numeric_limits<TreeRef>::min();
+  std::vector<TreeRef> result(n, kUnreached);
+  struct Frame {
+    TreeRef node;
+    bool expanded;
+  };
+  std::vector<Frame> stack{{root, false}};
+  std::size_t live = 0;
+  while (!stack.empty()) {
+    const Frame f = stack.back();
+    stack.pop_back();
+    BspNode& node = nodes[std::size_t(f.node)];
+    if (!f.expanded) {
+      stack.push_back({f.node, true});
+      if (!is_leaf(node.positive)) stack.push_back({node.positive, false});
+      if (!is_leaf(node.negative)) stack.push_back({node.negative, false});
+      continue;
+    }
+    if (!is_leaf(node.negative)) node.negative = result[std::size_t(node.negative)];
+    if (!is_leaf(node.positive)) node.positive = result[std::size_t(node.positive)];
+    if (is_leaf(node.negative) && node.negative == node.positive) {
+      result[std::size_t(f.node)] = node.negative;
+      continue;
+    }
+    result[std::size_t(f.node)] = f.node;
+    ++live;
+  }
+  if (is_leaf(result[std::size_t(root)])) {
+    nodes.clear();
+    arena.polygons.clear();
+    return result[std::size_t(root)];
+  }
+  // Two fingers: the first free slot below `live` takes the last live node above it.
+  auto is_live = [&](std::size_t i) { return result[i] == TreeRef(i); };
+  std::size_t lo = 0, hi = n;
+  while (true) {
+    while (lo < live && is_live(lo)) ++lo;
+    while (hi > live && !is_live(hi - 1)) --hi;
+    if (lo >= live || hi <= live) break;
+    --hi;
+    nodes[lo] = nodes[hi];
+    arena.polygons[lo] = std::move(arena.polygons[hi]);
+    result[hi] = TreeRef(lo);  // forwarding address (hi >= live: no longer read as "live")
+    result[lo] = TreeRef(lo);
+    ++lo;
+  }
+  auto forward = [&](TreeRef& r) {
+    if (!is_leaf(r) && std::size_t(r) >= live) r = result[std::size_t(r)];
+  };
+  for (std::size_t i = 0; i < live; ++i) {
+    forward(nodes[i].negative);
+    forward(nodes[i].positive);
+  }
+  forward(root);
+  nodes.resize(live);
+  arena.polygons.resize(live);
+  return root;
 }
 
 Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {

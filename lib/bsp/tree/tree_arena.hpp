@@ -25,7 +25,8 @@ struct Arena {
   /// The boundary fragments of a solid already appended (or adopted) last, on arena planes: the
   /// carried ones, or extracted from its tree (boundary_fragments) when it carries none.
   std::vector<BoundaryFragment> boundary_of(const Solid& solid);
-  std::size_t compacted_size = 0;  ///< of an adopted solid
+  std::size_t compacted_size = 0;  ///< of an adopted solid: its plane table size after its last compaction
+  std::size_t recycled_size = 0;   ///< of an adopted solid: its node storage after freed nodes were last recycled
   /// Boundary of the tree being built, when known; compact() keeps it (and its planes).
   std::optional<std::vector<BoundaryFragment>> boundary;
   FragmentBoxes boundary_boxes;  ///< of `boundary`, or empty
@@ -43,6 +44,16 @@ struct CompactOptions {
 /// collapsing nodes whose two children are the same leaf and dropping unused planes. The solid
 /// takes over the arena's node and polygon buffers (permuted in place).
 Solid compact(Arena& arena, TreeRef root, const CompactOptions& options = {});
+
+/// Frees the storage of nodes the tree at `root` no longer reaches without renumbering the
+/// planes or moving the live nodes below the new size (for in-place operations, after each one
+/// instead of compaction): nodes whose two children are the same leaf collapse (as in
+/// compact()), and the live nodes beyond the live count move into the freed slots below it
+/// (nodes and polygons together), children rewritten. Costs a traversal of the live tree's
+/// nodes (12 bytes each), a scan of the storage and one move per freed slot below the live
+/// count, so a stroke pays for what it freed and added, not for a copy of the whole tree.
+/// Returns the root (a leaf if the tree collapsed).
+TreeRef recycle_free_nodes(Arena& arena, TreeRef root);
 
 /// Flips in and out leaves of the subtree at `root` in place (explicit stack).
 void complement_in_place(Arena& arena, TreeRef& root);

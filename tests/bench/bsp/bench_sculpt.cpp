@@ -2,16 +2,21 @@
 // carved into the goblet in at most 50 ms, and still at most 50 ms per stroke after 100 strokes):
 // 100 carving strokes, each along a different 20-segment arc around the goblet's bowl, with the
 // time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
-//   bench_sculpt [--strokes N] [--rebuild-every K]   (K: rebuild the tree from the boundary every K strokes)
+//   bench_sculpt [--strokes N] [--rebuild-every K] [--compare-old] [--script]
+//   (K: rebuild the tree from the boundary every K strokes; --script: the same strokes also through
+//   the interpreter, `work = carve(work, ball, path)` (handed over, in place) and, with another
+//   variable holding the workpiece during the stroke, the copying path, side by side per stroke)
 // Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
 //          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m> ... strokes_over_50ms=<n>
-//          (--rebuild-every: case=rebuild_after_<k> per rebuild; --compare-old: impl=old lines and the median ratio)
+//          (--rebuild-every: case=rebuild_after_<k> per rebuild; --compare-old: impl=old lines and the median ratio;
+//           --script: impl=script / impl=script_copy distributions and ratios to the library's in-place carve)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,6 +31,8 @@
 #include "curves/profiles.hpp"
 #include "revolution/revolve.hpp"
 #include "bench/bench_timing.hpp"
+#include "language/interpreter.hpp"
+#include "language/solid_values.hpp"
 
 using namespace sculpt;
 using Clock = std::chrono::steady_clock;
@@ -69,19 +76,51 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+/// The q-quantile (nearest rank) of v.
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const auto i = std::size_t(std::ceil(q * double(v.size()))) - 1;
+  return v[std::min(i, v.size() - 1)];
+}
+
+void distribution(const char* impl, const std::vector<double>& cpu) {
+  std::printf("bench impl=%s case=distribution strokes=%zu median_cpu_ms=%.2f p90_cpu_ms=%.2f max_cpu_ms=%.2f "
+              "strokes_over_50ms=%d\n",
+              impl, cpu.size(), median(cpu), quantile(cpu, 0.9), *std::max_element(cpu.begin(), cpu.end()),
+              int(std::count_if(cpu.begin(), cpu.end(), [](double c) { return c > 50; })));
+}
+
+/// Runs one statement in `session`; its thread CPU time.
+double run_statement(language::Interpreter& session, const std::string& text) {
+  auto source = std::make_shared<language::SourceFile>();
+  source->name = "stroke.bsp";
+  source->text = text;
+  const double c0 = cpu_ms();
+  session.run(source);
+  return cpu_ms() - c0;
+}
+
+language::Value point_list(const std::vector<Eigen::Vector3d>& path) {
+  language::List points;
+  for (const Eigen::Vector3d& p : path) points.emplace_back(language::List{p.x(), p.y(), p.z()});
+  return {std::move(points)};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int strokes = 100;
   int rebuild_every = 0;  // 0: never
   bool compare_old = false;
+  bool script = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--strokes" && i + 1 < argc) strokes = std::stoi(argv[++i]);
     else if (a == "--rebuild-every" && i + 1 < argc) rebuild_every = std::stoi(argv[++i]);
     else if (a == "--compare-old") compare_old = true;
+    else if (a == "--script") script = true;
     else {
-      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--rebuild-every K] [--compare-old]\n");
+      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--rebuild-every K] [--compare-old] [--script]\n");
       return 2;
     }
   }
@@ -90,7 +129,16 @@ int main(int argc, char** argv) {
   Solid work_old = work;  // carved the old way with --compare-old
   const Eigen::AlignedBox3d box = bounding_box(work);
   const Solid ball = sphere(0.15, {.segments = 16});
-  std::vector<double> cpu, sweep_cpu, subtract_cpu, rebuild_cpu, old_cpu;
+  std::vector<double> cpu, sweep_cpu, subtract_cpu, rebuild_cpu, old_cpu, script_cpu, copy_cpu;
+  // --script: two sessions, each with the goblet in `work` and the ball in `ball`.
+  std::ostringstream script_out;
+  language::Interpreter session({.out = &script_out}), copying({.out = &script_out});
+  if (script) {
+    for (language::Interpreter* i : {&session, &copying}) {
+      i->define("work", language::solid_value(work));
+      i->define("ball", language::solid_value(ball));
+    }
+  }
   for (int k = 0; k < strokes; ++k) {
     // An arc of 20 segments at a height and radius that cut into the bowl's wall.
     const double z = box.min().z() + (0.55 + 0.4 * std::fmod(k * 0.618, 1.0)) * box.sizes().z();
@@ -113,8 +161,16 @@ int main(int argc, char** argv) {
     const double w = std::chrono::duration<double, std::milli>(Clock::now() - wall0).count();
     cpu.push_back(c);
     if (c > 50)
-      std::printf("bench impl=sculpt case=slow_stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f storage_nodes=%zu\n", k + 1, c,
-                  cpu1 - cpu0, c - (cpu1 - cpu0), work.nodes().size());
+      std::printf("bench impl=sculpt case=slow_stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f storage_nodes=%zu planes=%d\n", k + 1, c,
+                  cpu1 - cpu0, c - (cpu1 - cpu0), work.nodes().size(), work.planes().size());
+    if (script) {
+      session.define("path", point_list(path));
+      copying.define("path", point_list(path));
+      script_cpu.push_back(run_statement(session, "work = carve(work, ball, path)"));
+      // `before` holds the workpiece during the stroke: carve copies it (as every stroke did
+      // before the handover); the time includes dropping the old value at the next stroke's start.
+      copy_cpu.push_back(run_statement(copying, "before = work\nwork = carve(work, ball, path)\nbefore = 0"));
+    }
     if (compare_old) {
       const double o0 = cpu_ms();
       work_old = old_carve(work_old, ball, path);
@@ -133,8 +189,10 @@ int main(int argc, char** argv) {
     }
     if (k % 10 == 0 || k + 1 == strokes) {
       const TreeStats t = tree_stats(work);
-      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d volume=%.6f\n",
-                  k + 1, c, sweep_cpu.back(), subtract_cpu.back(), w, t.nodes, t.height, volume(work));
+      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d "
+                  "storage_nodes=%zu planes=%d volume=%.6f\n",
+                  k + 1, c, sweep_cpu.back(), subtract_cpu.back(), w, t.nodes, t.height, work.nodes().size(), work.planes().size(),
+                  volume(work));
       if (compare_old) {
         const TreeStats o = tree_stats(work_old);
         std::printf("bench impl=old case=stroke_%d cpu_ms=%.2f nodes=%d height=%d volume=%.6f\n", k + 1, old_cpu.back(), o.nodes,
@@ -153,6 +211,25 @@ int main(int argc, char** argv) {
   if (!rebuild_cpu.empty())
     std::printf("bench impl=sculpt case=rebuilds count=%zu median_cpu_ms=%.2f max_cpu_ms=%.2f\n", rebuild_cpu.size(), median(rebuild_cpu),
                 *std::max_element(rebuild_cpu.begin(), rebuild_cpu.end()));
+  distribution("sculpt", cpu);
+  if (script) {
+    distribution("script", script_cpu);
+    distribution("script_copy", copy_cpu);
+    std::vector<double> in_place_ratio, copy_ratio;
+    for (std::size_t i = 0; i < cpu.size(); ++i) {
+      in_place_ratio.push_back(script_cpu[i] / cpu[i]);
+      copy_ratio.push_back(copy_cpu[i] / cpu[i]);
+    }
+    const std::vector<double> s_last(script_cpu.end() - std::min<std::size_t>(10, script_cpu.size()), script_cpu.end());
+    const std::vector<double> c_last(copy_cpu.end() - std::min<std::size_t>(10, copy_cpu.size()), copy_cpu.end());
+    const Solid& by_script = session.global("work")->object<language::SolidValue>()->solid;
+    const Solid& by_copy = copying.global("work")->object<language::SolidValue>()->solid;
+    std::printf("bench impl=script case=strokes median_ratio_script_over_library=%.2f median_ratio_copy_over_library=%.2f "
+                "last10_script_cpu_ms=%.2f last10_copy_cpu_ms=%.2f same_set=%d\n",
+                median(in_place_ratio), median(copy_ratio), median(s_last), median(c_last),
+                int((work - by_script).is_empty() && (by_script - work).is_empty() && (by_copy - work).is_empty() &&
+                    (work - by_copy).is_empty()));
+  }
   if (compare_old) {
     std::vector<double> ratio;
     for (std::size_t i = 0; i < cpu.size(); ++i) ratio.push_back(old_cpu[i] / cpu[i]);
