@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <boost/multiprecision/cpp_int.hpp>
+#include "support/rational_orientation.hpp"
 #include <random>
 
 namespace sculpt {
@@ -12,26 +13,8 @@ namespace {
 
 using boost::multiprecision::cpp_rational;
 
-int reference2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  const cpp_rational det = (cpp_rational(b.x()) - a.x()) * (cpp_rational(c.y()) - a.y()) -
-                           (cpp_rational(b.y()) - a.y()) * (cpp_rational(c.x()) - a.x());
-  return det.sign();
-}
-
-int reference3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                const Eigen::Vector3d& d) {
-  cpp_rational m[3][3];
-  for (int k = 0; k < 3; ++k) {
-    m[0][k] = cpp_rational(b[k]) - a[k];
-    m[1][k] = cpp_rational(c[k]) - a[k];
-    m[2][k] = cpp_rational(d[k]) - a[k];
-  }
-  // Expansion along the last row (a different order than the code under test).
-  const cpp_rational det = m[2][0] * (m[0][1] * m[1][2] - m[0][2] * m[1][1]) -
-                           m[2][1] * (m[0][0] * m[1][2] - m[0][2] * m[1][0]) +
-                           m[2][2] * (m[0][0] * m[1][1] - m[0][1] * m[1][0]);
-  return det.sign();
-}
+using checks::rational_orient2d;
+using checks::rational_orient3d;
 
 TEST(Predicates, SignConventions) {
   EXPECT_EQ(orient2d({0, 0}, {1, 0}, {0, 1}), 1);
@@ -59,12 +42,12 @@ TEST(Predicates, NearlyDegenerateInputsAgreeWithRationals) {
     if (trial % 3 == 0) d = a + unit(rng) * (b - a) + unit(rng) * (c - a);
     if (trial % 5 == 0) d = b;  // repeated point: exactly zero
     const int got3 = orient3d(a, b, c, d);
-    ASSERT_EQ(got3, reference3d(a, b, c, d)) << a.transpose() << " | " << b.transpose() << " | " << c.transpose()
+    ASSERT_EQ(got3, rational_orient3d(a, b, c, d)) << a.transpose() << " | " << b.transpose() << " | " << c.transpose()
                                              << " | " << d.transpose();
     zeros += got3 == 0;
     const Eigen::Vector2d p = a.head<2>(), q = b.head<2>();
     const Eigen::Vector2d r = trial % 2 ? Eigen::Vector2d(p + s * (q - p)) : Eigen::Vector2d(p + unit(rng) * (q - p));
-    ASSERT_EQ(orient2d(p, q, r), reference2d(p, q, r));
+    ASSERT_EQ(orient2d(p, q, r), rational_orient2d(p, q, r));
   }
   EXPECT_GT(zeros, 200);  // the degenerate cases were really reached
 }
@@ -83,11 +66,11 @@ TEST(Predicates, ExtremeMagnitudes) {
     const double s = std::ldexp(1.0, -520 - trial % 40);
     const Eigen::Vector2d a(s * unit(rng), s * unit(rng)), b(s * unit(rng), s * unit(rng));
     const Eigen::Vector2d c = a + std::ldexp(unit(rng), -(trial % 30)) * (b - a);
-    ASSERT_EQ(orient2d(a, b, c), reference2d(a, b, c)) << trial;
+    ASSERT_EQ(orient2d(a, b, c), rational_orient2d(a, b, c)) << trial;
     const Eigen::Vector3d p(s * unit(rng), s * unit(rng), s * unit(rng)), q(s * unit(rng), s * unit(rng), s * unit(rng));
     const Eigen::Vector3d r(s * unit(rng), s * unit(rng), s * unit(rng));
     const Eigen::Vector3d d = p + unit(rng) * (q - p) + unit(rng) * (r - p);
-    ASSERT_EQ(orient3d(p, q, r, d), reference3d(p, q, r, d)) << trial;
+    ASSERT_EQ(orient3d(p, q, r, d), rational_orient3d(p, q, r, d)) << trial;
   }
 }
 
@@ -114,10 +97,10 @@ TEST(Predicates, ExactDifferencesAgreeWithRationals) {
       default: break;
     }
     const int got3 = orient3d(a, b, c, d);
-    ASSERT_EQ(got3, reference3d(a, b, c, d)) << trial;
+    ASSERT_EQ(got3, rational_orient3d(a, b, c, d)) << trial;
     (got3 == 0 ? zeros : nonzeros)++;
-    ASSERT_EQ(orient2d(a.head<2>(), b.head<2>(), c.head<2>()), reference2d(a.head<2>(), b.head<2>(), c.head<2>())) << trial;
-    ASSERT_EQ(orient2d(a.head<2>(), b.head<2>(), d.head<2>()), reference2d(a.head<2>(), b.head<2>(), d.head<2>())) << trial;
+    ASSERT_EQ(orient2d(a.head<2>(), b.head<2>(), c.head<2>()), rational_orient2d(a.head<2>(), b.head<2>(), c.head<2>())) << trial;
+    ASSERT_EQ(orient2d(a.head<2>(), b.head<2>(), d.head<2>()), rational_orient2d(a.head<2>(), b.head<2>(), d.head<2>())) << trial;
   }
   EXPECT_GT(zeros, 3000);
   EXPECT_GT(nonzeros, 3000);

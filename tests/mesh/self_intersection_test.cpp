@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/rational_orientation.hpp"
+
 #include <boost/multiprecision/cpp_int.hpp>
 #include <random>
 #include <set>
@@ -19,17 +21,7 @@ using boost::multiprecision::cpp_rational;
 using Eigen::Vector3d;
 using Triangle = std::array<Vector3d, 3>;
 
-int sign3(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& d) {
-  cpp_rational m[3][3];
-  for (int k = 0; k < 3; ++k) {
-    m[0][k] = cpp_rational(b[k]) - a[k];
-    m[1][k] = cpp_rational(c[k]) - a[k];
-    m[2][k] = cpp_rational(d[k]) - a[k];
-  }
-  const cpp_rational det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  return det.sign();
-}
+int sign3(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& d) { return checks::rational_orient3d(a, b, c, d); }
 
 /// Rational point of a segment and a closed triangle (any position), by the parameter of the
 /// segment: the closed segment meets the triangle iff some point s0 + t (s1 - s0), t in [0, 1],
