@@ -127,9 +127,10 @@ constexpr double kSnapFeatureSteps = 4;
 const std::array<Eigen::Vector3d, 3> kSnapShifts = {Eigen::Vector3d(0.5, 0.5, 0.5), Eigen::Vector3d(-0.25, 0.25, 0.5),
                                                     Eigen::Vector3d(0.25, -0.5, -0.25)};
 
-std::optional<Solid> map_boundary(const Solid& solid, const Eigen::Affine3d& map) {
+/// `exact`: the solid's boundary, `to_mesh(solid, {.clean = false})` (computed once for every try).
+std::optional<Solid> map_boundary(const Solid& solid, const PolygonMesh& exact, const Eigen::Affine3d& map) {
   const kernel::Grid& grid = solid.grid();
-  PolygonMesh mesh = to_mesh(solid, {.clean = false});
+  PolygonMesh mesh = exact;
   for (const Eigen::Vector3d& v : mesh.vertices)
     if (v.cwiseAbs().maxCoeff() > grid.max_world()) return std::nullopt;
   for (Eigen::Vector3d& v : mesh.vertices) v = grid.to_world(grid.snap(map * v));
@@ -203,14 +204,15 @@ Solid transform(const Solid& solid, const Eigen::Affine3d& map) {
   // mapped and snapped to the grid and the solid is rebuilt from them, so planes that met in one
   // vertex still do: a rotated cone keeps one apex. Unbounded solids, and boundaries with
   // features below the grid step that would fold when snapped, take the plane route instead.
-  if (auto through = map_boundary(solid, map)) return std::move(*through);
+  const PolygonMesh boundary = to_mesh(solid, {.clean = false});
+  if (auto through = map_boundary(solid, boundary, map)) return std::move(*through);
   // Where snapping folds the boundary, snapping the same image shifted by part of a step often
   // does not (the fold depends on how vertices fall between grid points): a few shifts are tried
   // before the plane route, each moves the result by at most sqrt(3) / 2 grid steps.
   for (const Eigen::Vector3d& shift : kSnapShifts) {
     Eigen::Affine3d shifted = map;
     shifted.translation() += shift * solid.grid().step();
-    if (auto through = map_boundary(solid, shifted)) return std::move(*through);
+    if (auto through = map_boundary(solid, boundary, shifted)) return std::move(*through);
   }
   return map_planes_approximately(solid, m, tv);
 }
