@@ -93,10 +93,14 @@ class Cleaner {
     for (const auto& f : mesh.faces)
       for (size_t k = 0; k < f.size(); ++k, ++edges) total += (mesh.vertices[f[k]] - mesh.vertices[f[(k + 1) % f.size()]]).norm();
     cell_ = edges > 0 && total > 0 ? 2 * total / static_cast<double>(edges) : 1.0;
-    // Every face as n - 2 triangles: ear clipping where it covers the face, else a fan (a face
-    // of zero area after rounding keeps its edges; its zero-area triangles are removed below).
+    // Every face as n - 2 triangles: ear clipping of the rounded corners where it covers the face;
+    // else of the given corners (rounding can make two corners one point, and a polygon with a
+    // hole bridged to its rim then no longer simple; the given face is, and what rounding folds of
+    // its triangles the sweeps below repair); else a fan (a face of zero area keeps its edges; its
+    // zero-area triangles are removed below).
     for (const auto& f : mesh.faces) {
       std::vector<IndexTriangle> tris = triangulate_polygon(p_, f);
+      if (tris.size() + 2 != f.size()) tris = triangulate_polygon(mesh.vertices, f);
       if (tris.size() + 2 != f.size()) {
         tris.clear();
         for (size_t k = 1; k + 1 < f.size(); ++k) tris.push_back({f[0], f[k], f[k + 1]});
