@@ -14,7 +14,8 @@ PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
                                              : bsp::detail::boundary_fragments(solid);
   PolygonMesh exact = bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate, .grid = solid.grid()});
   if (!options.clean) return exact;
-  return round_for_output(exact, {.precision = OutputPrecision::Double, .max_feature = solid.grid().step()});
+  return round_for_output(exact, {.precision = OutputPrecision::Double, .max_feature = solid.grid().step()},
+                          options.report);
 }
 
 // Measures of the assembled mesh: one implementation (compensated sums) for meshes and solids.

@@ -11,6 +11,7 @@
 
 #include "bsp/solid.hpp"
 #include "mesh/polygon_mesh.hpp"
+#include "mesh/output_rounding.hpp"
 
 namespace sculpt {
 
@@ -21,6 +22,9 @@ struct MeshOptions {
   /// (docs/kernel.md, "Clean output"). false: the exact boundary, each vertex correctly rounded,
   /// copies of a vertex where the solid touches itself included.
   bool clean = true;
+  /// With clean: what the rounding did, and the first problem left when it could not make the
+  /// mesh clean (the mesh is then written as it came out; callers should say so).
+  OutputRoundingReport* report = nullptr;
 };
 
 /// Closed, consistently oriented (counter-clockwise from outside) mesh of the solid's boundary,

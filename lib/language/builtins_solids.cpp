@@ -444,6 +444,10 @@ void register_solids(BuiltinTable& table) {
                const auto& s = args.object<SolidValue>(0, "a solid, a mesh or a surface");
                const std::string path = args.file_path(1);
                write_mesh(s.boundary(), path);
+               // Written all the same (the exact solid is fine; other tools may stumble on it).
+               if (!s.boundary_problem().empty())
+                 args.out() << "export: warning: " << path << ": the mesh is not known to be clean for other tools ("
+                            << s.boundary_problem() << "; docs/kernel.md, \"Clean output\")\n";
                return {};
              }});
   table.add({.name = "import",

@@ -20,8 +20,17 @@ struct SolidValue final : Object {
   /// The boundary mesh, extracted once per value (solids are immutable script values), so
   /// exporting one solid to several files extracts its boundary only once.
   [[nodiscard]] const PolygonMesh& boundary() const {
-    if (!boundary_cache_) boundary_cache_ = to_mesh(solid);
+    if (!boundary_cache_) {
+      OutputRoundingReport report;
+      boundary_cache_ = to_mesh(solid, {.report = &report});
+      boundary_problem_ = report.problem;
+    }
     return *boundary_cache_;
+  }
+  /// Why boundary() is not clean for other tools (output rounding could not make it so), or empty.
+  [[nodiscard]] const std::string& boundary_problem() const {
+    (void)boundary();
+    return boundary_problem_;
   }
   /// The solid as an rvalue for an in-place operation (bsp/set_operations.hpp), for whoever
   /// alone holds this value (Value::sole_object). The operation empties it once it has checked
@@ -38,6 +47,7 @@ struct SolidValue final : Object {
 
  private:
   mutable std::optional<PolygonMesh> boundary_cache_;
+  mutable std::string boundary_problem_;
 };
 
 /// A polygon mesh that is not a solid (type "mesh"): a surface patch (`patch`, sec. 5.2).

@@ -71,8 +71,12 @@ bool collinear(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
   return true;
 }
 
-/// More crossing pairs than this are not worked on by moving corners (each try is a local search).
+/// Crossings are worked on by moving corners (each try a local search) only while they are local:
+/// at most this many pairs, or one pair per this many triangles. Wider crossings (a snap that
+/// folded much of the mesh) are left to what comes after (a transform's shifted snaps and plane
+/// route), not searched at length.
 constexpr size_t kMaxNudgedPairs = 64;
+constexpr size_t kTrianglesPerNudgedPair = 16;
 
 /// The triangle mesh being cleaned: positions always representable in the target precision,
 /// per vertex the input points it stands for (to bound how far anything moves).
@@ -182,7 +186,7 @@ class Cleaner {
   /// done or stuck, not after each of their passes.
   bool nudge_crossings(double delta, OutputRoundingReport& report) {
     const std::vector<std::pair<int, int>> pairs = crossings();
-    if (pairs.size() > kMaxNudgedPairs) return false;  // wide crossings: beyond local repair
+    if (pairs.size() > std::max(kMaxNudgedPairs, live_triangles() / kTrianglesPerNudgedPair)) return false;
     bool changed = false;
     for (const auto& [t, u] : pairs)
       for (const auto& [mine, other] : {std::pair{t, u}, std::pair{u, t}}) {
@@ -200,6 +204,8 @@ class Cleaner {
       }
     return changed;
   }
+
+  size_t live_triangles() const { return static_cast<size_t>(std::count(alive_.begin(), alive_.end(), true)); }
 
   PolygonMesh mesh() const {
     PolygonMesh out;
@@ -259,7 +265,8 @@ class Cleaner {
 
   /// Pairs (triangle in `group`, live triangle outside `replaced`) that meet beyond what they
   /// share, plus pairs within `group`; `group` holds corner ids with the current positions.
-  int meetings(const std::vector<Tri>& group, const std::vector<int>& replaced) const {
+  int meetings(const std::vector<Tri>& group, const std::vector<int>& replaced,
+               int enough = std::numeric_limits<int>::max()) const {
     int count = 0;
     for (size_t i = 0; i < group.size(); ++i) {
       const Tri& a = group[i];
@@ -273,12 +280,12 @@ class Cleaner {
         const Tri& b = tris_[t];
         const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
         if (collinear(pb[0], pb[1], pb[2])) continue;  // degenerate: removed later or reported
-        if (triangles_meet(a, pa, b, pb)) ++count;
+        if (triangles_meet(a, pa, b, pb) && ++count >= enough) return count;
       }
       for (size_t j = 0; j < i; ++j) {
         const Tri& b = group[j];
         const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
-        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb)) ++count;
+        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb) && ++count >= enough) return count;
       }
     }
     return count;
@@ -354,6 +361,9 @@ class Cleaner {
 
   /// Triangles whose boxes may meet `box` (each once).
   std::vector<int> near(const Eigen::AlignedBox3d& box) const {
+    // Each triangle once (it may sit in several cells): marked with this query's stamp.
+    if (seen_.size() < tris_.size()) seen_.resize(tris_.size(), 0);
+    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0), stamp_ = 1;
     std::vector<int> out = big_;
     for (int k = 0; k < kLevels; ++k) {
       if (per_level_[k] == 0) continue;
@@ -367,11 +377,14 @@ class Cleaner {
         for (int y = lo.y(); y <= hi.y(); ++y)
           for (int z = lo.z(); z <= hi.z(); ++z) {
             const auto it = cells_.find(cell_key(k, x, y, z));
-            if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+            if (it == cells_.end()) continue;
+            for (int t : it->second)
+              if (seen_[t] != stamp_) {
+                seen_[t] = stamp_;
+                out.push_back(t);
+              }
           }
     }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
   }
 
@@ -564,6 +577,7 @@ class Cleaner {
         if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb)) out.push_back({static_cast<int>(t), u});
       }
     }
+    std::sort(out.begin(), out.end());  // worked on in this order
     return out;
   }
 
@@ -587,7 +601,7 @@ class Cleaner {
           const Tri& q = tris_[incident_[v][i]];
           ok = !collinear(p_[q[0]], p_[q[1]], p_[q[2]]) && (normals[i].squaredNorm() == 0 || normals[i].dot(normal(q)) > 0);
         }
-        ok = ok && meetings(around, incident_[v]) < before;
+        ok = ok && meetings(around, incident_[v], before) < before;
         p_[v] = old;
         if (ok) {
           p_[v] = target;
@@ -651,6 +665,8 @@ class Cleaner {
   std::array<int, kLevels> per_level_{};  ///< triangles kept at each level
   std::vector<int> level_;                ///< level of each triangle (-1: big_)
   std::vector<int> big_;
+  mutable std::vector<unsigned> seen_;  ///< near(): the stamp of the last query that returned a triangle
+  mutable unsigned stamp_ = 0;
   std::vector<std::vector<int>> incident_;
 };
 
