@@ -235,6 +235,12 @@ TEST(CleanOutput, FoldingSnapIsAvoidedAndTheResultIsClean) {
   expect_clean_regression("folded_snap_rotation.bsp", 0.3783816452562434, 35.83548217853422);
 }
 
+// models/regressions/snap_local_crossings.bsp: crossings wider than 64 pairs but local to a
+// large mesh are removed by corner moves.
+TEST(CleanOutput, LocalCrossingsOfALargeSnapAreMovedApart) {
+  expect_clean_regression("snap_local_crossings.bsp", 0.02672321124421452, 41.61339082088906);
+}
+
 // models/regressions/float32_bridged_hole.bsp: corners that float32 makes one point must not turn
 // a bridged ring's triangulation into a fan across its hole (binary STL).
 TEST(CleanOutput, CornersMergedByFloat32KeepARingTriangulated) {
