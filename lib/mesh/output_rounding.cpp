@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <limits>
 #include <map>
+#include <optional>
 #include <tuple>
 #include <set>
 #include <utility>
@@ -111,7 +112,11 @@ class Cleaner {
       }
       for (const IndexTriangle& t : tris) add_triangle(t);
     }
+    settled_ = true;
   }
+
+  /// Whether any triangles cross (crossings(): only what changed is searched again).
+  bool cross() { return !crossings().empty(); }
 
   /// One round of local operations at feature size `delta`; true if anything changed.
   bool sweep(double delta, OutputRoundingReport& report) {
@@ -389,6 +394,8 @@ class Cleaner {
   }
 
   void update_box(int t) {
+    if (dirty_.size() < tris_.size()) dirty_.resize(tris_.size(), 0);
+    dirty_[t] = settled_ ? 1 : 0;
     if (!boxes_[t].isEmpty()) index(t, -1);
     Eigen::AlignedBox3d box;
     for (int v : tris_[t]) box.extend(p_[v]);
@@ -562,8 +569,40 @@ class Cleaner {
     return true;
   }
 
-  /// Pairs of live, non-degenerate triangles that meet beyond what they share.
-  std::vector<std::pair<int, int>> crossings() const {
+  /// Pairs of live, non-degenerate triangles that meet beyond what they share: the pairs that met
+  /// at construction and are both unchanged since (they keep their verdict), and the pairs with a
+  /// triangle added or moved since, searched anew.
+  std::vector<std::pair<int, int>> crossings() {
+    if (!first_crossings_) {  // all pairs of the triangles as built (the changed ones left out)
+      first_crossings_.emplace();
+      for (const auto& [t, u] : full_crossings())
+        if (dirty_[t] == 0 && dirty_[u] == 0) first_crossings_->push_back({t, u});
+    }
+    std::vector<std::pair<int, int>> out;
+    for (const auto& [t, u] : *first_crossings_)
+      if (alive_[t] && alive_[u] && dirty_[t] == 0 && dirty_[u] == 0) out.push_back({t, u});
+    for (size_t t = 0; t < tris_.size(); ++t) {
+      if (!alive_[t] || dirty_[t] == 0) continue;
+      const Tri& a = tris_[t];
+      const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
+      if (collinear(pa[0], pa[1], pa[2])) continue;
+      for (int u : near(boxes_[t])) {
+        // each pair once: a dirty partner only from the lower index
+        if (u == static_cast<int>(t) || (dirty_[u] != 0 && u < static_cast<int>(t)) || !alive_[u] ||
+            !boxes_[t].intersects(boxes_[u]))
+          continue;
+        const Tri& b = tris_[u];
+        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
+        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb))
+          out.push_back(std::minmax(static_cast<int>(t), u));
+      }
+    }
+    std::sort(out.begin(), out.end());  // worked on in this order
+    return out;
+  }
+
+  /// Pairs of live, non-degenerate triangles that meet beyond what they share, all searched.
+  std::vector<std::pair<int, int>> full_crossings() const {
     std::vector<std::pair<int, int>> out;
     for (size_t t = 0; t < tris_.size(); ++t) {
       if (!alive_[t]) continue;
@@ -665,6 +704,9 @@ class Cleaner {
   std::array<int, kLevels> per_level_{};  ///< triangles kept at each level
   std::vector<int> level_;                ///< level of each triangle (-1: big_)
   std::vector<int> big_;
+  bool settled_ = false;                 ///< construction done: changes from here on make triangles dirty
+  std::vector<char> dirty_;              ///< triangle added or moved since construction
+  std::optional<std::vector<std::pair<int, int>>> first_crossings_;  ///< crossings() at construction
   mutable std::vector<unsigned> seen_;  ///< near(): the stamp of the last query that returned a triangle
   mutable unsigned stamp_ = 0;
   std::vector<std::vector<int>> incident_;
@@ -809,8 +851,10 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
     return result;
   }
   const double growth = options.precision == OutputPrecision::Grid ? 2 : 16;
-  // The mesh is judged again only after a sweep changed it (an unchanged mesh keeps its problem).
-  bool judged = false;
+  // The mesh is judged again only after a sweep changed it (an unchanged mesh keeps its problem):
+  // first by the cleaner's own crossings (only what changed is searched again), in full (the
+  // verdict) only when no triangles cross, and at the end.
+  bool judged = false, full = false;
   for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
     bool changed = false;
     // Contractions and flips until nothing changes (at most 20 passes), then corner moves; again
@@ -822,12 +866,20 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
     }
     r.feature = delta;
     if (changed || !judged) {
-      result = cleaner.mesh();
-      r.problem = output_problem(result, options);
-      if (r.problem.empty()) r.problem = inverted_shell(result);
       judged = true;
+      full = !cleaner.cross();
+      if (full) {
+        result = cleaner.mesh();
+        r.problem = output_problem(result, options);
+        if (r.problem.empty()) r.problem = inverted_shell(result);
+      }
     }
-    if (r.problem.empty() || delta >= max_feature) break;
+    if ((full && r.problem.empty()) || delta >= max_feature) break;
+  }
+  if (!full) {
+    result = cleaner.mesh();
+    r.problem = output_problem(result, options);
+    if (r.problem.empty()) r.problem = inverted_shell(result);
   }
   r.clean = r.problem.empty();
   r.max_move = cleaner.max_move();
