@@ -173,7 +173,7 @@ class Polygonizer {
       const detail::RefineResult rr = detail::refine(
           result_.mesh, locked, f_,
           {.tolerance = kRefineFraction * o_.tolerance, .limit = o_.tolerance, .min_edge = finest_,
-           .max_splits = o_.max_cells});
+           .max_splits = o_.max_cells, .box = o_.box});
       result_.refinements = rr.splits;
       refined_ = rr.ok;
       if (!rr.ok) return std::move(result_);

@@ -251,6 +251,29 @@ TEST(Polygonize, CoarseCellsAtTheBoxWhereTheSurfaceMeetsItStayWithinTol) {
   EXPECT_LE(worst, tol);
 }
 
+TEST(Polygonize, ACapPokingThroughABoxFaceStaysInTheBox) {
+  // A ball mostly outside the box pokes 0.01 through its top face between lattice points: the
+  // solid is the thin cap inside. Every vertex lies in the box (edge splits put no vertex
+  // outside it), the mesh is closed, within tol of the sphere or the face, and its volume is
+  // the cap's, pi h^2 (3 r - h) / 3, within the boundary's area times tol.
+  const double tol = 2e-3, r = 1.0, h = 0.01;
+  const Vec centre(0.137, 0.071, 1.0 + r - h);
+  const Box box{.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)};
+  const PolygonizeResult p = polygonize(sphere(centre, r), {.box = box, .tolerance = tol});
+  expect_solid_mesh(p.mesh, 1, 2);
+  for (const Vec& v : p.mesh.vertices) {
+    EXPECT_TRUE((v.array() >= box.lo.array()).all() && (v.array() <= box.hi.array()).all()) << v.transpose();
+  }
+  const auto distance = [&](const Vec& q) {
+    if (q.z() < 1.0) return std::abs((q - centre).norm() - r);
+    return std::max(0.0, std::hypot(q.x() - centre.x(), q.y() - centre.y()) - std::sqrt(r * r - (r - h) * (r - h)));
+  };
+  EXPECT_LE(mesh_to_surface(p.mesh, distance), tol);
+  // within tol of the surface: the volume within its area (cap 2 pi r h, disc pi a^2) times tol
+  const double area = 2 * kPi * r * h + kPi * (r * r - (r - h) * (r - h));
+  EXPECT_NEAR(mesh_volume(p.mesh), kPi * h * h * (3 * r - h) / 3, area * tol);
+}
+
 TEST(Polygonize, SurfaceThroughLatticePointsExactly) {
   // The box [-2, 2]^3 puts lattice points on the unit sphere (f == 0 there, counted as inside).
   const PolygonizeResult r = polygonize(sphere({0, 0, 0}, 1.0), {.box = {.lo = Vec(-2, -2, -2), .hi = Vec(2, 2, 2)}, .tolerance = 1e-2});

@@ -146,6 +146,9 @@ class Refiner {
         if (step.norm() <= 1e-13 * reach) break;
       }
       out = p;
+      if ((o_.box.lo.array() <= o_.box.hi.array()).all() &&
+          ((p.array() < o_.box.lo.array()).any() || (p.array() > o_.box.hi.array()).any()))
+        return false;  // outside the solid's box
       return distance(p) <= 1e-10 * reach;
     } catch (const NonFiniteValue&) {
       return false;
