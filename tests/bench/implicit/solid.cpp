@@ -298,8 +298,8 @@ int main(int argc, char** argv) {
     for (int i = 0; i < reps; ++i) r = polygonize(f, {.box = kBox, .tolerance = kTol});
     double sum = 0;  // a fingerprint of the mesh, to see that a change of speed changed nothing else
     for (const Vec& v : r.mesh.vertices) sum += v.x() + 2 * v.y() + 3 * v.z();
-    std::printf("%zu triangles, %zu vertices, %ld marched, fingerprint %.17g\n", r.mesh.faces.size(),
-                r.mesh.vertices.size(), r.marched_triangles, sum);
+    std::printf("%zu triangles, %zu vertices, %ld marched, %ld edge splits, fingerprint %.17g\n", r.mesh.faces.size(),
+                r.mesh.vertices.size(), r.marched_triangles, r.refinements, sum);
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "--blend") {  // the blend of two spheres, as the language meshes it
@@ -367,8 +367,8 @@ int main(int argc, char** argv) {
                   p.error.to_surface, p.error.to_mesh, p.ms);
   }
   std::printf("\npolygonize: %ld octree cells, %ld search cells, %ld leaves, depth %d, %ld tetrahedra marched, "
-              "%ld triangles before %ld collapses/flips\n",
+              "%ld triangles, %ld edge splits, then %ld collapses/flips (%s octree)\n",
               ours.cells, ours.search_cells, ours.leaves, ours.max_level, ours.tetrahedra, ours.marched_triangles,
-              ours.collapses);
+              ours.refinements, ours.collapses, ours.coarse ? "coarse" : "fine");
   return 0;
 }
