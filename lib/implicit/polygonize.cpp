@@ -27,9 +27,10 @@ constexpr int kMaxLevel = 16;
 constexpr int kStartLevel = 1;  // cells are split at least this deep before any is kept
 constexpr double kSimplifyFraction = 0.7;  // collapsed triangles stay within this times tol
 constexpr double kBendFactor = 1.25;  // measured: the torus at 2e-3 stays within tol (1.5 does not)
-/// With simplify, cells away from the box are split only while a flat piece of them would be off
-/// by more than this times tol; the edge splits of detail/refine.hpp then bring the marched mesh
-/// within kRefineFraction tol, and the collapses run on far fewer triangles.
+/// With simplify, cells where the surface does not meet the box are split only while a flat
+/// piece of them would be off by more than this times tol; the edge splits of detail/refine.hpp
+/// then bring the marched mesh within kRefineFraction tol, and the collapses run on far fewer
+/// triangles.
 constexpr double kCoarseBend = 8.0;
 constexpr double kRefineFraction = 0.8;
 
