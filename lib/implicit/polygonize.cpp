@@ -268,10 +268,6 @@ class Polygonizer {
     return (box.hi - box.lo).norm() * theta / 8.0 > factor * o_.tolerance;
   }
 
-  /// True when an edge of a Kuhn tetrahedron of the cell (the 12 cube edges, the 6 face
-  /// diagonals from lowest to highest corner, the main diagonal) has ends of one sign and its
-  /// midpoint of the other: the surface crosses it twice (a thin part, or two sheets), which
-  /// marching tetrahedra on this cell would miss.
   /// Whether the cell has a face on the box whose corners differ in sign: the surface meets the
   /// box there, and the triangles at the box, whose vertices on the box are kept, are not split
   /// by the edge splits (detail/refine.hpp), so such a cell gets the fine criterion. A cell whose
@@ -292,6 +288,10 @@ class Polygonizer {
     return false;
   }
 
+  /// True when an edge of a Kuhn tetrahedron of the cell (the 12 cube edges, the 6 face
+  /// diagonals from lowest to highest corner, the main diagonal) has ends of one sign and its
+  /// midpoint of the other: the surface crosses it twice (a thin part, or two sheets), which
+  /// marching tetrahedra on this cell would miss.
   bool crossed_twice(const Cell& c, const std::array<bool, 8>& in) {
     const std::int64_t s = step(c.level);
     // corner b is (i + (b & 1), j + (b >> 1 & 1), k + (b >> 2)); an edge (a, a | mask) has its
