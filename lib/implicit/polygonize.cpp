@@ -27,9 +27,10 @@ constexpr int kMaxLevel = 16;
 constexpr int kStartLevel = 1;  // cells are split at least this deep before any is kept
 constexpr double kSimplifyFraction = 0.7;  // collapsed triangles stay within this times tol
 constexpr double kBendFactor = 1.25;  // measured: the torus at 2e-3 stays within tol (1.5 does not)
-/// With simplify, cells away from the box are split only while a flat piece of them would be off
-/// by more than this times tol; the edge splits of detail/refine.hpp then bring the marched mesh
-/// within kRefineFraction tol, and the collapses run on far fewer triangles.
+/// With simplify, cells where the surface does not meet the box are split only while a flat
+/// piece of them would be off by more than this times tol; the edge splits of detail/refine.hpp
+/// then bring the marched mesh within kRefineFraction tol, and the collapses run on far fewer
+/// triangles.
 constexpr double kCoarseBend = 8.0;
 constexpr double kRefineFraction = 0.8;
 
@@ -173,7 +174,7 @@ class Polygonizer {
       const detail::RefineResult rr = detail::refine(
           result_.mesh, locked, f_,
           {.tolerance = kRefineFraction * o_.tolerance, .limit = o_.tolerance, .min_edge = finest_,
-           .max_splits = o_.max_cells});
+           .max_splits = o_.max_cells, .box = o_.box});
       result_.refinements = rr.splits;
       refined_ = rr.ok;
       if (!rr.ok) return std::move(result_);
@@ -253,7 +254,7 @@ class Polygonizer {
   // ---- octree ------------------------------------------------------------------------------
   /// True when the normals at the corners say a flat piece of this cell's size would be off the
   /// surface by more than tol / 2 (sagitta of a chord d turning by theta: d theta / 8).
-  bool bent(const Cell& c, const std::array<Key, 8>& corner) {
+  bool bent(const Cell& c, const std::array<Key, 8>& corner, const std::array<bool, 8>& in) {
     std::array<Vec, 8> n;
     for (int b = 0; b < 8; ++b) {
       if (!normal(corner[b], n[b])) return true;
@@ -263,11 +264,28 @@ class Polygonizer {
       for (int b = a + 1; b < 8; ++b) min_dot = std::min(min_dot, n[a].dot(n[b]));
     const double theta = std::acos(std::clamp(min_dot, -1.0, 1.0));
     const Box box = cell_box(c);
-    const std::int64_t last = (std::int64_t(1) << c.level);
-    const bool at_box = c.i == 0 || c.j == 0 || c.k == 0 || c.i == top_[0] * last - 1 || c.j == top_[1] * last - 1 ||
-                        c.k == top_[2] * last - 1;
-    const double factor = coarse_ && !at_box ? kCoarseBend : kBendFactor;
+    const double factor = coarse_ && !surface_at_box(c, in) ? kCoarseBend : kBendFactor;
     return (box.hi - box.lo).norm() * theta / 8.0 > factor * o_.tolerance;
+  }
+
+  /// Whether the cell has a face on the box whose corners differ in sign: the surface meets the
+  /// box there, and the triangles at the box, whose vertices on the box are kept, are not split
+  /// by the edge splits (detail/refine.hpp), so such a cell gets the fine criterion. A cell whose
+  /// faces on the box have corners of one sign has no mesh vertex on the box from its own edges
+  /// (a finer neighbour along the box could still put one on an edge midpoint: the edge splits
+  /// then fail where that leaves a triangle beyond tol, and the fine octree is meshed instead).
+  bool surface_at_box(const Cell& c, const std::array<bool, 8>& in) const {
+    const std::int64_t last = std::int64_t(1) << c.level;
+    const std::array<std::int64_t, 3> index = {c.i, c.j, c.k};
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side) {
+        if (index[a] != (side == 0 ? 0 : top_[a] * last - 1)) continue;
+        int count = 0;
+        for (int b = 0; b < 8; ++b)
+          if (((b >> a) & 1) == side) count += in[b] ? 1 : 0;
+        if (count != 0 && count != 4) return true;
+      }
+    return false;
   }
 
   /// True when an edge of a Kuhn tetrahedron of the cell (the 12 cube edges, the 6 face
@@ -352,7 +370,7 @@ class Polygonizer {
           bool mixed = false;
           for (int b = 1; b < 8; ++b) mixed = mixed || in[b] != first;
           if (mixed) {
-            split = crossed_twice(c, in) || bent(c, corner);
+            split = crossed_twice(c, in) || bent(c, corner, in);
           } else {
             const int s = search(box, first);
             split = s > 0;

@@ -16,12 +16,13 @@
 /// tetrahedra with safeguarded root finding on the edges gives the surface. f == 0 counts as
 /// inside. Where {f <= 0} meets the box, the box faces' triangles, clipped by the same edge
 /// roots, close the solid: the result bounds {f <= 0} inside the box.
-/// With simplify (the default) the octree is coarse first: away from the box, a crossed cell is
-/// split only while a flat piece of it would be off by more than 8 tol (the other criteria are
-/// unchanged), the marched mesh is brought within 0.8 tol by edge splits whose new vertices are
-/// put on f = 0 (detail/refine.hpp), and the collapses follow. Far fewer triangles are marched
-/// (the torus at 2e-3: 32,520 instead of 127,448). Should a split fail (a new triangle facing
-/// against grad f) or the collapses' mesh intersect itself, the fine octree is meshed instead.
+/// With simplify (the default) the octree is coarse first: unless the surface meets the box in
+/// it, a crossed cell is split only while a flat piece of it would be off by more than 8 tol (the
+/// other criteria are unchanged), the marched mesh is brought within 0.8 tol by edge splits whose
+/// new vertices are put on f = 0 (detail/refine.hpp), and the collapses follow. Far fewer
+/// triangles are marched (the torus at 2e-3: 14,528 instead of 127,448). Should a split fail (a
+/// new triangle facing against grad f) or the collapses' mesh intersect itself, the fine octree
+/// is meshed instead.
 ///
 ///   PolygonizeResult r = polygonize(f, {.box = {.lo = {-2, -2, -1}, .hi = {2, 2, 1}}, .tolerance = 2e-3});
 ///   // r.mesh: triangles, counter-clockwise from outside

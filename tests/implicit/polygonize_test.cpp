@@ -224,6 +224,56 @@ TEST(Polygonize, CoarseOctreeWithEdgeSplits) {
   EXPECT_LE(mesh_to_surface(r.mesh, [](const Vec& p) { return torus_distance(p, 1.0, 0.4); }), tol);
 }
 
+TEST(Polygonize, CoarseCellsAtTheBoxWhereTheSurfaceMeetsItStayWithinTol) {
+  // The unit sphere cut by the box at z = 0.3 (and its other faces far off): the cells at the
+  // rim, where the surface meets the box, keep the fine criterion (their triangles at the box
+  // are not split); the cells at the other faces, which the surface does not reach, are coarse.
+  // Both ways within tol, on the coarse octree, against the analytic cap and disc.
+  const double tol = 2e-3, cut = 0.3, rim = std::sqrt(1 - cut * cut);
+  const PolygonizeResult r =
+      polygonize(sphere({0, 0, 0}, 1.0), {.box = {.lo = Vec(-1.3, -1.3, cut), .hi = Vec(1.3, 1.3, 1.3)}, .tolerance = tol});
+  EXPECT_TRUE(r.coarse);
+  expect_solid_mesh(r.mesh, 1, 2);
+  const auto distance = [&](const Vec& p) {  // to the cap (z > cut) or the disc (on the face)
+    if (p.z() > cut) return std::abs(p.norm() - 1.0);
+    return std::max(0.0, std::hypot(p.x(), p.y()) - rim);
+  };
+  EXPECT_LE(mesh_to_surface(r.mesh, distance), tol);
+  const MeshDistance to_mesh(r.mesh, 4 * tol);
+  double worst = 0;
+  const double last = std::acos(cut);
+  for (int i = 0; i <= 150; ++i)
+    for (int j = 0; j < 400; ++j) {
+      const double th = last * i / 150, ph = 2 * kPi * j / 400;
+      worst = std::max(worst, to_mesh(Vec(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th))));
+      worst = std::max(worst, to_mesh(Vec(rim * i / 150 * std::cos(ph), rim * i / 150 * std::sin(ph), cut)));
+    }
+  EXPECT_LE(worst, tol);
+}
+
+TEST(Polygonize, ACapPokingThroughABoxFaceStaysInTheBox) {
+  // A ball mostly outside the box pokes 0.01 through its top face between lattice points: the
+  // solid is the thin cap inside. Every vertex lies in the box (edge splits put no vertex
+  // outside it), the mesh is closed, within tol of the sphere or the face, and its volume is
+  // the cap's, pi h^2 (3 r - h) / 3, within the boundary's area times tol.
+  const double tol = 2e-3, r = 1.0, h = 0.01;
+  const Vec centre(0.137, 0.071, 1.0 + r - h);
+  const Box box{.lo = Vec(-1, -1, -1), .hi = Vec(1, 1, 1)};
+  const PolygonizeResult p = polygonize(sphere(centre, r), {.box = box, .tolerance = tol});
+  expect_solid_mesh(p.mesh, 1, 2);
+  for (const Vec& v : p.mesh.vertices) {
+    EXPECT_TRUE((v.array() >= box.lo.array()).all() && (v.array() <= box.hi.array()).all()) << v.transpose();
+  }
+  const auto distance = [&](const Vec& q) {
+    if (q.z() < 1.0) return std::abs((q - centre).norm() - r);
+    return std::max(0.0, std::hypot(q.x() - centre.x(), q.y() - centre.y()) - std::sqrt(r * r - (r - h) * (r - h)));
+  };
+  EXPECT_LE(mesh_to_surface(p.mesh, distance), tol);
+  // within tol of the surface: the volume within its area (cap 2 pi r h, disc pi a^2) times tol
+  const double area = 2 * kPi * r * h + kPi * (r * r - (r - h) * (r - h));
+  EXPECT_NEAR(mesh_volume(p.mesh), kPi * h * h * (3 * r - h) / 3, area * tol);
+}
+
 TEST(Polygonize, SurfaceThroughLatticePointsExactly) {
   // The box [-2, 2]^3 puts lattice points on the unit sphere (f == 0 there, counted as inside).
   const PolygonizeResult r = polygonize(sphere({0, 0, 0}, 1.0), {.box = {.lo = Vec(-2, -2, -2), .hi = Vec(2, 2, 2)}, .tolerance = 1e-2});

@@ -42,6 +42,8 @@ class Refiner {
       ++i;
     }
     for (int h : twin_) closed_ = closed_ && h >= 0;
+    edge_distance_.assign(twin_.size(), -1.0);
+    verified_.assign(faces_.size(), 0);
   }
 
   RefineResult run() {
@@ -52,7 +54,10 @@ class Refiner {
     while (!stack.empty()) {
       const int t = stack.back();
       stack.pop_back();
-      if (within(t, o_.tolerance)) continue;
+      if (within(t, o_.tolerance)) {
+        verified_[std::size_t(t)] = 1;
+        continue;
+      }
       // the longest edge, unless a corner is on the box or the edge is at the size floor; if
       // that split cannot be made, the next longer edge
       if (has_locked(t)) continue;
@@ -77,8 +82,9 @@ class Refiner {
       }
       // a triangle no split could be made for stays as it is, judged against the limit below
     }
+    // a triangle found within tolerance (<= limit) since its last change needs no second look
     for (int t = 0; t < int(faces_.size()); ++t) {
-      if (!has_locked(t) && !within(t, o_.limit)) return r;
+      if (!verified_[std::size_t(t)] && !has_locked(t) && !within(t, o_.limit)) return r;
     }
     m_.faces.clear();
     m_.faces.reserve(faces_.size());
@@ -104,13 +110,23 @@ class Refiner {
     return locked_[std::size_t(f[0])] || locked_[std::size_t(f[1])] || locked_[std::size_t(f[2])];
   }
 
-  bool within(int t, double bound) const {
+  /// Whether the centroid of t and its edges' midpoints are within bound of f = 0. An edge's
+  /// midpoint distance is kept with both its half-edges (0.5 (a + b) is the same number from
+  /// either side), so each edge is evaluated once until a split replaces it.
+  bool within(int t, double bound) {
     const auto& f = faces_[std::size_t(t)];
     const Vec &a = m_.vertices[std::size_t(f[0])], &b = m_.vertices[std::size_t(f[1])], &c = m_.vertices[std::size_t(f[2])];
-    for (const Vec& p : {Vec((a + b + c) / 3.0), Vec(0.5 * (a + b)), Vec(0.5 * (b + c)), Vec(0.5 * (c + a))}) {
-      if (distance(p) > bound) return false;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t h = std::size_t(3 * t + k);
+      if (!(edge_distance_[h] >= 0)) {
+        const Vec& p = m_.vertices[std::size_t(f[k])];
+        const Vec& q = m_.vertices[std::size_t(f[(k + 1) % 3])];
+        edge_distance_[h] = distance(0.5 * (p + q));
+        edge_distance_[std::size_t(twin_[h])] = edge_distance_[h];
+      }
+      if (edge_distance_[h] > bound) return false;
     }
-    return true;
+    return distance((a + b + c) / 3.0) <= bound;
   }
 
   /// The midpoint of a b moved onto f = 0 along the gradient (Newton); false when it does not
@@ -130,6 +146,9 @@ class Refiner {
         if (step.norm() <= 1e-13 * reach) break;
       }
       out = p;
+      if ((o_.box.lo.array() <= o_.box.hi.array()).all() &&
+          ((p.array() < o_.box.lo.array()).any() || (p.array() > o_.box.hi.array()).any()))
+        return false;  // outside the solid's box
       return distance(p) <= 1e-10 * reach;
     } catch (const NonFiniteValue&) {
       return false;
@@ -178,6 +197,9 @@ class Refiner {
     faces_.push_back({m, b, c});         // m->b, b->c, c->m
     faces_.push_back({m, a, d});         // m->a, a->d, d->m
     twin_.resize(3 * faces_.size(), -1);
+    edge_distance_.resize(twin_.size());
+    verified_.resize(faces_.size());
+    for (int x : {t, n, p, q}) verified_[std::size_t(x)] = 0;
     auto pair = [&](int x, int y) {
       twin_[std::size_t(x)] = y;
       twin_[std::size_t(y)] = x;
@@ -190,6 +212,14 @@ class Refiner {
     pair(3 * n + 2, out_db);
     pair(3 * p + 1, out_bc);
     pair(3 * q + 1, out_ad);
+    // the cut edge's halves and the two new edges are unknown; an outer edge keeps its distance
+    for (int x : {t, n, p, q})
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t h = std::size_t(3 * x + k);
+        edge_distance_[h] = edge_distance_[std::size_t(twin_[h])];
+      }
+    for (int h : {3 * t + 0, 3 * q + 0, 3 * n + 0, 3 * p + 0, 3 * t + 1, 3 * p + 2, 3 * n + 1, 3 * q + 2})
+      edge_distance_[std::size_t(h)] = -1.0;
     return true;
   }
 
@@ -199,6 +229,8 @@ class Refiner {
   const RefineOptions& o_;
   std::vector<std::array<int, 3>> faces_;
   std::vector<int> twin_;  // half-edge 3 t + k -> the opposite half-edge
+  std::vector<double> edge_distance_;  // per half-edge: its midpoint's distance from f = 0; < 0: not known
+  std::vector<char> verified_;         // per triangle: found within tolerance since its last change
   bool closed_ = true;
 };
 

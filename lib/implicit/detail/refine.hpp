@@ -24,6 +24,9 @@ struct RefineOptions {
   double limit = 0.0;
   double min_edge = 0.0;     ///< edges shorter than this are not split (creases of f never meet the bound)
   long max_splits = 0;       ///< work budget; running out fails the refinement
+  /// New vertices must lie in this box (the solid's): a midpoint whose projection onto f = 0
+  /// leaves it is not split there. Empty (lo > hi, the default): no bound.
+  Box box{.lo = Eigen::Vector3d::Constant(1.0), .hi = Eigen::Vector3d::Constant(-1.0)};
 };
 
 struct RefineResult {

@@ -7,6 +7,7 @@
 //   implicit_solid               the table
 //   implicit_solid --peers DIR   the table plus the peers' meshes and times that
 //                                tests/bench/implicit/peers.sh left in DIR (run that script)
+//   implicit_solid --blend       the blend of two spheres of scripts/implicit.bsp: time, coarse or fallback
 //   implicit_solid --ours        only polygonize, 20 times (OURS_REPS=n: n times), and a fingerprint
 //                                of its mesh (profiling; old and new code compared run against run)
 // See docs/implicit.md, "Implicit solids", and docs/benchmarks.md.
@@ -48,6 +49,19 @@ Expression torus() {
   const Term rho = b.sqrt(b.add(b.pow(b.x(), 2), b.pow(b.y(), 2)));
   return b.finish(b.sub(b.add(b.pow(b.sub(rho, b.constant(kR)), 2), b.pow(b.z(), 2)), b.constant(kr * kr)));
 }
+
+/// The blend of two spheres in scripts/implicit.bsp: radius 0.6, centres (+-0.5, 0, 0), a smooth
+/// minimum (k = 0.3) of their distances.
+Expression blend() {
+  ExpressionBuilder b;
+  const Term y2 = b.add(b.pow(b.y(), 2), b.pow(b.z(), 2));
+  const Term a = b.sub(b.sqrt(b.add(b.pow(b.add(b.x(), b.constant(0.5)), 2), y2)), b.constant(0.6));
+  const Term c = b.sub(b.sqrt(b.add(b.pow(b.sub(b.x(), b.constant(0.5)), 2), y2)), b.constant(0.6));
+  const Term k = b.constant(0.3);
+  const Term h = b.div(b.max(b.sub(k, b.abs(b.sub(a, c))), b.constant(0.0)), k);
+  return b.finish(b.sub(b.min(a, c), b.div(b.mul(b.mul(h, h), k), b.constant(4.0))));
+}
+const Box kBlendBox{.lo = Vec(-1.2, -0.8, -0.8), .hi = Vec(1.2, 0.8, 0.8)};
 
 double torus_distance(const Vec& p) { return std::abs(std::hypot(std::hypot(p.x(), p.y()) - kR, p.z()) - kr); }
 
@@ -284,8 +298,19 @@ int main(int argc, char** argv) {
     for (int i = 0; i < reps; ++i) r = polygonize(f, {.box = kBox, .tolerance = kTol});
     double sum = 0;  // a fingerprint of the mesh, to see that a change of speed changed nothing else
     for (const Vec& v : r.mesh.vertices) sum += v.x() + 2 * v.y() + 3 * v.z();
-    std::printf("%zu triangles, %zu vertices, %ld marched, fingerprint %.17g\n", r.mesh.faces.size(),
-                r.mesh.vertices.size(), r.marched_triangles, sum);
+    std::printf("%zu triangles, %zu vertices, %ld marched, %ld edge splits, fingerprint %.17g\n", r.mesh.faces.size(),
+                r.mesh.vertices.size(), r.marched_triangles, r.refinements, sum);
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "--blend") {  // the blend of two spheres, as the language meshes it
+    const Expression f = blend();
+    // min_height as `implicit(...)` passes it: 8 steps of the kernel's grid (2^-15)
+    const PolygonizeOptions o{.box = kBlendBox, .tolerance = kTol, .min_height = 8.0 / 32768.0};
+    PolygonizeResult r;
+    const double ms = median_cpu_ms([&] { r = polygonize(f, o); });
+    std::printf("blend of two spheres at tol 2e-3: %zu triangles, %ld marched, %ld edge splits, %s octree, "
+                "%.1f ms thread CPU (median of 5)\n",
+                r.mesh.faces.size(), r.marched_triangles, r.refinements, r.coarse ? "coarse" : "fine (fallback)", ms);
     return 0;
   }
   // --peers DIR: also the peers' meshes and times that tests/bench/implicit/peers.sh left in DIR
@@ -342,8 +367,8 @@ int main(int argc, char** argv) {
                   p.error.to_surface, p.error.to_mesh, p.ms);
   }
   std::printf("\npolygonize: %ld octree cells, %ld search cells, %ld leaves, depth %d, %ld tetrahedra marched, "
-              "%ld triangles before %ld collapses/flips\n",
+              "%ld triangles, %ld edge splits, then %ld collapses/flips (%s octree)\n",
               ours.cells, ours.search_cells, ours.leaves, ours.max_level, ours.tetrahedra, ours.marched_triangles,
-              ours.collapses);
+              ours.refinements, ours.collapses, ours.coarse ? "coarse" : "fine");
   return 0;
 }
