@@ -129,9 +129,13 @@ bool triangles_conflict(const Tri& s, const Tri& t) {
   if (shared == 1) {
     // Convexity: beyond the shared corner p, the triangles can only meet if the edge opposite
     // p in one of them meets the other.
+    // When s's other corners lie strictly on one side of t's plane, s meets that plane (and t)
+    // only at p: no other test is needed.
     const int i = s_shared[0], j = t_of[i];
-    return edges_meet(s, {{(i + 1) % 3, (i + 2) % 3}}, t) ||
-           edges_meet(t, {{(j + 1) % 3, (j + 2) % 3}}, s);
+    const Vector3d &s1 = s.p[(i + 1) % 3], &s2 = s.p[(i + 2) % 3];
+    const int o1 = orient3d(t.p[0], t.p[1], t.p[2], s1), o2 = orient3d(t.p[0], t.p[1], t.p[2], s2);
+    if (o1 * o2 > 0) return false;
+    return segment_meets_triangle(s1, s2, o1, o2, t) || edges_meet(t, {{(j + 1) % 3, (j + 2) % 3}}, s);
   }
   if (shared == 2) {
     // Shared edge pq: conflict only if coplanar with the third corners on the same side.
