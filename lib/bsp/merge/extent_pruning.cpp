@@ -1,5 +1,7 @@
 #include "bsp/merge/extent_pruning.hpp"
 
+#include <boost/container/small_vector.hpp>
+
 #include "bsp/tree/boundary_clipper.hpp"
 #include "bsp/tree/node_polygons.hpp"
 
@@ -27,18 +29,65 @@ struct Seen {
   [[nodiscard]] bool both() const { return neg && pos; }
 };
 
+// The block boxes of A's boundary as a binary hierarchy: level 0 the blocks (widened to double),
+// each level above the unions of pairs of the one below, up to one box. A plane meets few boxes
+// of each level, so deciding its side costs about the fragments near it instead of a scan of every
+// block (which made extent_sides grow with the product of b's planes and A's fragments).
+struct BlockHierarchy {
+  std::vector<std::vector<kernel::CornerBox>> levels;
+};
+
+kernel::CornerBox unite(const kernel::CornerBox& a, const kernel::CornerBox& b) {
+  kernel::CornerBox u;
+  u.valid = a.valid && b.valid;
+  for (int k = 0; k < 3; ++k) u.lo[k] = std::min(a.lo[k], b.lo[k]), u.hi[k] = std::max(a.hi[k], b.hi[k]);
+  return u;
+}
+
+BlockHierarchy block_hierarchy(const FragmentBoxes& boxes) {
+  BlockHierarchy h;
+  std::vector<kernel::CornerBox> level;
+  level.reserve(boxes.blocks.size());
+  for (const FragmentBox& b : boxes.blocks) level.push_back(widen(b));
+  h.levels.push_back(std::move(level));
+  while (h.levels.back().size() > 1) {
+    const std::vector<kernel::CornerBox>& below = h.levels.back();
+    std::vector<kernel::CornerBox> above((below.size() + 1) / 2);
+    for (std::size_t j = 0; j < above.size(); ++j)
+      above[j] = 2 * j + 1 < below.size() ? unite(below[2 * j], below[2 * j + 1]) : below[2 * j];
+    h.levels.push_back(std::move(above));
+  }
+  return h;
+}
+
 // The closed side of plane `h` that holds every corner of A's boundary (Both if none does).
 // A bounded solid lies in the convex hull of its boundary's vertices, so that side holds A.
+// Boxes (exact-safe, box_side) decide whole groups of fragments; the corners of fragments whose
+// boxes the plane meets are decided by the exact predicates.
 Side side_of_corners(const kernel::PlaneTable& planes, const std::vector<BoundaryFragment>& faces,
-                     const FragmentBoxes& boxes, const kernel::Plane& h) {
+                     const FragmentBoxes& boxes, const BlockHierarchy& hierarchy, const kernel::Plane& h) {
   Seen seen;
   const std::size_t w = FragmentBoxes::kBlock;
-  for (std::size_t j = 0; j < boxes.blocks.size() && !seen.both(); ++j) {
-    const Side s = kernel::box_side(widen(boxes.blocks[j]), h);
+  struct Item {
+    std::size_t level, index;
+  };
+  boost::container::small_vector<Item, 64> stack;
+  if (!hierarchy.levels.empty() && !hierarchy.levels.back().empty()) stack.push_back({hierarchy.levels.size() - 1, 0});
+  while (!stack.empty() && !seen.both()) {
+    const Item it = stack.back();
+    stack.pop_back();
+    const Side s = kernel::box_side(hierarchy.levels[it.level][it.index], h);
     if (s != Side::Both) {
       seen.add(s);
       continue;
     }
+    if (it.level > 0) {
+      const std::size_t below = hierarchy.levels[it.level - 1].size();
+      if (2 * it.index + 1 < below) stack.push_back({it.level - 1, 2 * it.index + 1});
+      stack.push_back({it.level - 1, 2 * it.index});
+      continue;
+    }
+    const std::size_t j = it.index;
     for (std::size_t i = j * w; i < std::min(faces.size(), (j + 1) * w) && !seen.both(); ++i) {
       const Side t = kernel::box_side(widen(boxes.each[i]), h);
       if (t != Side::Both) {
@@ -142,9 +191,10 @@ ExtentSides extent_sides(Arena& arena, TreeRef a, const std::vector<BoundaryFrag
   planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
   sides.side_.reserve(planes.size());
   const std::vector<kernel::ApproxPoint> extreme = witnesses(a_faces, a_boxes);
+  const BlockHierarchy hierarchy = block_hierarchy(a_boxes);
   for (const std::int32_t p : planes) {
     const kernel::Plane& h = arena.planes[p];
-    sides.side_.push_back(crosses(extreme, h) ? Side::Both : side_of_corners(arena.planes, a_faces, a_boxes, h));
+    sides.side_.push_back(crosses(extreme, h) ? Side::Both : side_of_corners(arena.planes, a_faces, a_boxes, hierarchy, h));
     if (sides.side_.back() != Side::Both) ++sides.one_sided_;
   }
   return sides;
