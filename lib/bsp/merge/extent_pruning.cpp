@@ -29,14 +29,6 @@ struct Seen {
   [[nodiscard]] bool both() const { return neg && pos; }
 };
 
-// The block boxes of A's boundary as a binary hierarchy: level 0 the blocks (widened to double),
-// each level above the unions of pairs of the one below, up to one box. A plane meets few boxes
-// of each level, so deciding its side costs about the fragments near it instead of a scan of every
-// block (which made extent_sides grow with the product of b's planes and A's fragments).
-struct BlockHierarchy {
-  std::vector<std::vector<kernel::CornerBox>> levels;
-};
-
 kernel::CornerBox unite(const kernel::CornerBox& a, const kernel::CornerBox& b) {
   kernel::CornerBox u;
   u.valid = a.valid && b.valid;
@@ -44,18 +36,67 @@ kernel::CornerBox unite(const kernel::CornerBox& a, const kernel::CornerBox& b) 
   return u;
 }
 
-BlockHierarchy block_hierarchy(const FragmentBoxes& boxes) {
-  BlockHierarchy h;
-  std::vector<kernel::CornerBox> level;
-  level.reserve(boxes.blocks.size());
-  for (const FragmentBox& b : boxes.blocks) level.push_back(widen(b));
-  h.levels.push_back(std::move(level));
-  while (h.levels.back().size() > 1) {
-    const std::vector<kernel::CornerBox>& below = h.levels.back();
-    std::vector<kernel::CornerBox> above((below.size() + 1) / 2);
-    for (std::size_t j = 0; j < above.size(); ++j)
-      above[j] = 2 * j + 1 < below.size() ? unite(below[2 * j], below[2 * j + 1]) : below[2 * j];
-    h.levels.push_back(std::move(above));
+// A bounding-volume hierarchy over the boxes of A's boundary fragments: split at the median of
+// the box centres along the longest axis down to a few fragments per leaf. Deciding a plane's side
+// visits the boxes the plane meets, about the fragments near it. (The blocks of FragmentBoxes are
+// runs of consecutive fragments, often long thin bands across the solid that most planes near A
+// meet: scanning them made extent_sides grow with the product of b's planes and A's fragments.)
+struct FragmentHierarchy {
+  struct Node {
+    kernel::CornerBox box;
+    std::uint32_t begin, end;  // range of `order`
+    std::int32_t first_child;  // children first_child and first_child + 1, or -1 for a leaf
+  };
+  std::vector<Node> nodes;  // nodes[0] is the root (if any)
+  std::vector<std::uint32_t> order;
+};
+
+constexpr std::uint32_t kLeafFragments = 4;
+
+FragmentHierarchy fragment_hierarchy(const FragmentBoxes& boxes) {
+  FragmentHierarchy h;
+  const auto count = std::uint32_t(boxes.each.size());
+  if (count == 0) return h;
+  h.order.resize(count);
+  std::vector<float> centre(3 * std::size_t(count));
+  for (std::uint32_t i = 0; i < count; ++i) {
+    h.order[i] = i;
+    for (int k = 0; k < 3; ++k) centre[3 * std::size_t(i) + std::size_t(k)] = 0.5f * boxes.each[i].lo[k] + 0.5f * boxes.each[i].hi[k];
+  }
+  h.nodes.reserve(2 * std::size_t(count / kLeafFragments + 1));
+  h.nodes.push_back({{}, 0, count, -1});
+  std::vector<std::size_t> stack{0};
+  while (!stack.empty()) {
+    const std::size_t id = stack.back();
+    stack.pop_back();
+    const std::uint32_t begin = h.nodes[id].begin, end = h.nodes[id].end;
+    kernel::CornerBox box = widen(boxes.each[h.order[begin]]);
+    float clo[3], chi[3];
+    for (int k = 0; k < 3; ++k) clo[k] = chi[k] = centre[3 * std::size_t(h.order[begin]) + std::size_t(k)];
+    for (std::uint32_t i = begin + 1; i < end; ++i) {
+      const std::uint32_t f = h.order[i];
+      box = unite(box, widen(boxes.each[f]));
+      for (int k = 0; k < 3; ++k) {
+        clo[k] = std::min(clo[k], centre[3 * std::size_t(f) + std::size_t(k)]);
+        chi[k] = std::max(chi[k], centre[3 * std::size_t(f) + std::size_t(k)]);
+      }
+    }
+    h.nodes[id].box = box;
+    if (end - begin <= kLeafFragments) continue;
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(h.order.begin() + begin, h.order.begin() + mid, h.order.begin() + end,
+                     [&](std::uint32_t x, std::uint32_t y) {
+                       return centre[3 * std::size_t(x) + std::size_t(axis)] < centre[3 * std::size_t(y) + std::size_t(axis)];
+                     });
+    const auto first = std::int32_t(h.nodes.size());
+    h.nodes[id].first_child = first;
+    h.nodes.push_back({{}, begin, mid, -1});
+    h.nodes.push_back({{}, mid, end, -1});
+    stack.push_back(std::size_t(first));
+    stack.push_back(std::size_t(first) + 1);
   }
   return h;
 }
@@ -65,31 +106,26 @@ BlockHierarchy block_hierarchy(const FragmentBoxes& boxes) {
 // Boxes (exact-safe, box_side) decide whole groups of fragments; the corners of fragments whose
 // boxes the plane meets are decided by the exact predicates.
 Side side_of_corners(const kernel::PlaneTable& planes, const std::vector<BoundaryFragment>& faces,
-                     const FragmentBoxes& boxes, const BlockHierarchy& hierarchy, const kernel::Plane& h) {
+                     const FragmentBoxes& boxes, const FragmentHierarchy& hierarchy, const kernel::Plane& h) {
   Seen seen;
-  const std::size_t w = FragmentBoxes::kBlock;
-  struct Item {
-    std::size_t level, index;
-  };
-  boost::container::small_vector<Item, 64> stack;
-  if (!hierarchy.levels.empty() && !hierarchy.levels.back().empty()) stack.push_back({hierarchy.levels.size() - 1, 0});
+  boost::container::small_vector<std::int32_t, 64> stack;
+  if (!hierarchy.nodes.empty()) stack.push_back(0);
   while (!stack.empty() && !seen.both()) {
-    const Item it = stack.back();
+    const FragmentHierarchy::Node& node = hierarchy.nodes[std::size_t(stack.back())];
     stack.pop_back();
-    const Side s = kernel::box_side(hierarchy.levels[it.level][it.index], h);
+    const Side s = kernel::box_side(node.box, h);
     if (s != Side::Both) {
       seen.add(s);
       continue;
     }
-    if (it.level > 0) {
-      const std::size_t below = hierarchy.levels[it.level - 1].size();
-      if (2 * it.index + 1 < below) stack.push_back({it.level - 1, 2 * it.index + 1});
-      stack.push_back({it.level - 1, 2 * it.index});
+    if (node.first_child >= 0) {
+      stack.push_back(node.first_child + 1);
+      stack.push_back(node.first_child);
       continue;
     }
-    const std::size_t j = it.index;
-    for (std::size_t i = j * w; i < std::min(faces.size(), (j + 1) * w) && !seen.both(); ++i) {
-      const Side t = kernel::box_side(widen(boxes.each[i]), h);
+    for (std::uint32_t k = node.begin; k < node.end && !seen.both(); ++k) {
+      const std::size_t i = hierarchy.order[k];
+      const Side t = node.end - node.begin > 1 ? kernel::box_side(widen(boxes.each[i]), h) : Side::Both;
       if (t != Side::Both) {
         seen.add(t);
         continue;
@@ -191,7 +227,7 @@ ExtentSides extent_sides(Arena& arena, TreeRef a, const std::vector<BoundaryFrag
   planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
   sides.side_.reserve(planes.size());
   const std::vector<kernel::ApproxPoint> extreme = witnesses(a_faces, a_boxes);
-  const BlockHierarchy hierarchy = block_hierarchy(a_boxes);
+  const FragmentHierarchy hierarchy = fragment_hierarchy(a_boxes);
   for (const std::int32_t p : planes) {
     const kernel::Plane& h = arena.planes[p];
     sides.side_.push_back(crosses(extreme, h) ? Side::Both : side_of_corners(arena.planes, a_faces, a_boxes, hierarchy, h));
