@@ -1,6 +1,7 @@
 #include "bsp/merge/extent_pruning.hpp"
 
 #include <boost/container/small_vector.hpp>
+#include <optional>
 
 #include "bsp/tree/boundary_clipper.hpp"
 #include "bsp/tree/node_polygons.hpp"
@@ -101,13 +102,50 @@ FragmentHierarchy fragment_hierarchy(const FragmentBoxes& boxes) {
   return h;
 }
 
+// The signs of the corners of a fragment, added to `seen` (exact; stops once both are seen).
+void add_corner_signs(const kernel::PlaneTable& planes, const BoundaryFragment& fragment, const kernel::Plane& h, Seen& seen) {
+  const kernel::ConvexPolygon& poly = fragment.polygon;
+  const kernel::Plane& support = planes[poly.support];
+  for (const kernel::Corner& c : poly.corners) {
+    Sign g = kernel::filtered_orient(c.at, h);
+    if (g == Sign::Zero) g = kernel::orient(support, planes[c.p], planes[c.q], c.at, h);
+    seen.add(g == Sign::Negative ? Side::Negative : (g == Sign::Positive ? Side::Positive : Side::On));
+    if (seen.both()) return;
+  }
+}
+
+// side_of_corners through the block boxes alone (no hierarchy to build: for few planes).
+Side side_by_blocks(const kernel::PlaneTable& planes, const std::vector<BoundaryFragment>& faces, const FragmentBoxes& boxes,
+                    const kernel::Plane& h, Seen seen) {
+  const std::size_t w = FragmentBoxes::kBlock;
+  for (std::size_t j = 0; j < boxes.blocks.size() && !seen.both(); ++j) {
+    const Side s = kernel::box_side(widen(boxes.blocks[j]), h);
+    if (s != Side::Both) {
+      seen.add(s);
+      continue;
+    }
+    for (std::size_t i = j * w; i < std::min(faces.size(), (j + 1) * w) && !seen.both(); ++i) {
+      const Side t = kernel::box_side(widen(boxes.each[i]), h);
+      if (t != Side::Both)
+        seen.add(t);
+      else
+        add_corner_signs(planes, faces[i], h, seen);
+    }
+  }
+  if (seen.both()) return Side::Both;
+  return seen.neg ? Side::Negative : (seen.pos ? Side::Positive : Side::Both);
+}
+
 // The closed side of plane `h` that holds every corner of A's boundary (Both if none does).
 // A bounded solid lies in the convex hull of its boundary's vertices, so that side holds A.
 // Boxes (exact-safe, box_side) decide whole groups of fragments; the corners of fragments whose
 // boxes the plane meets are decided by the exact predicates.
+// Through `hierarchy_or_null` if given, else through the block boxes.
 Side side_of_corners(const kernel::PlaneTable& planes, const std::vector<BoundaryFragment>& faces,
-                     const FragmentBoxes& boxes, const FragmentHierarchy& hierarchy, const kernel::Plane& h) {
+                     const FragmentBoxes& boxes, const FragmentHierarchy* hierarchy_or_null, const kernel::Plane& h) {
   Seen seen;
+  if (hierarchy_or_null == nullptr) return side_by_blocks(planes, faces, boxes, h, seen);
+  const FragmentHierarchy& hierarchy = *hierarchy_or_null;
   boost::container::small_vector<std::int32_t, 64> stack;
   if (!hierarchy.nodes.empty()) stack.push_back(0);
   while (!stack.empty() && !seen.both()) {
@@ -130,14 +168,7 @@ Side side_of_corners(const kernel::PlaneTable& planes, const std::vector<Boundar
         seen.add(t);
         continue;
       }
-      const kernel::ConvexPolygon& poly = faces[i].polygon;
-      const kernel::Plane& support = planes[poly.support];
-      for (const kernel::Corner& c : poly.corners) {
-        Sign g = kernel::filtered_orient(c.at, h);
-        if (g == Sign::Zero) g = kernel::orient(support, planes[c.p], planes[c.q], c.at, h);
-        seen.add(g == Sign::Negative ? Side::Negative : (g == Sign::Positive ? Side::Positive : Side::On));
-        if (seen.both()) break;
-      }
+      add_corner_signs(planes, faces[i], h, seen);
     }
   }
   if (seen.both()) return Side::Both;
@@ -225,13 +256,20 @@ ExtentSides extent_sides(Arena& arena, TreeRef a, const std::vector<BoundaryFrag
   for (const BoundaryFragment& f : b_faces) planes.push_back(f.polygon.support);
   std::sort(planes.begin(), planes.end());
   planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
-  sides.side_.reserve(planes.size());
   const std::vector<kernel::ApproxPoint> extreme = witnesses(a_faces, a_boxes);
-  const FragmentHierarchy hierarchy = fragment_hierarchy(a_boxes);
-  for (const std::int32_t p : planes) {
-    const kernel::Plane& h = arena.planes[p];
-    sides.side_.push_back(crosses(extreme, h) ? Side::Both : side_of_corners(arena.planes, a_faces, a_boxes, hierarchy, h));
-    if (sides.side_.back() != Side::Both) ++sides.one_sided_;
+  // Planes the witnesses leave open are decided through the boxes. The hierarchy costs about a
+  // sort of A's fragments, so it is built only when scanning every block for each such plane
+  // would cost more (many planes: a curved B; an in-place sequence of small operands, like the
+  // bars of a Menger sponge, keeps the blocks, which it updates instead of rebuilding).
+  sides.side_.assign(planes.size(), Side::Both);
+  std::vector<std::size_t> open;
+  for (std::size_t i = 0; i < planes.size(); ++i)
+    if (!crosses(extreme, arena.planes[planes[i]])) open.push_back(i);
+  std::optional<FragmentHierarchy> hierarchy;
+  if (open.size() * a_boxes.blocks.size() > 8 * a_faces.size()) hierarchy = fragment_hierarchy(a_boxes);
+  for (const std::size_t i : open) {
+    sides.side_[i] = side_of_corners(arena.planes, a_faces, a_boxes, hierarchy ? &*hierarchy : nullptr, arena.planes[planes[i]]);
+    if (sides.side_[i] != Side::Both) ++sides.one_sided_;
   }
   return sides;
 }
