@@ -121,8 +121,9 @@ Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t 
 
 Side split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut, std::int32_t cut_opposite,
            ConvexPolygon& negative, ConvexPolygon& positive) {
-  const Side quick = box_side(poly, planes[cut]);
-  if (quick != Side::Both) return quick;
+  // No corner-box test first (classify() has one): the box costs a pass over the corners like the
+  // filtered signs it would spare, and when it is undecided the signs are needed as well (5 % fewer
+  // instructions for the merge of two spheres without it). The sides are the same either way.
   const std::size_t k = poly.corners.size();
   boost::container::small_vector<Sign, 8> s;
   bool neg = false, pos = false;

@@ -13,6 +13,7 @@
 #include "bsp/merge/extent_pruning.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
@@ -32,6 +33,7 @@ struct Sides {
   bsp::detail::Arena arena;
   bsp::detail::ExtentSides sides;
   TreeRef b = kOut;
+  std::vector<BoundaryFragment> a_faces;  // A's boundary on the arena's planes
   Side of(const kernel::Plane& p) const {  // the side for B's plane equal to p (Both if none)
     for (std::int32_t i = 0; i < arena.planes.size(); ++i)
       if (arena.planes[i] == p && sides.of(i) != Side::Both) return sides.of(i);
@@ -41,7 +43,8 @@ struct Sides {
 Sides sides_of(const Solid& a, const Solid& b) {
   Sides s;
   const TreeRef ra = s.arena.append(a);
-  const std::vector<BoundaryFragment> fa = s.arena.boundary_of(a);
+  s.a_faces = s.arena.boundary_of(a);
+  const std::vector<BoundaryFragment>& fa = s.a_faces;
   s.b = s.arena.append(b);
   const std::vector<BoundaryFragment> fb = s.arena.boundary_of(b);
   FragmentBoxes boxes;
@@ -175,6 +178,63 @@ TEST(ExtentPruning, SpherePartsBoundedByTouchingPlanes) {
     EXPECT_NEAR(vol(s - half), v / 2, 1e-9);
     EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(s - octant)));
     EXPECT_TRUE(checks::VerticesManifold(to_mesh(s - octant)));
+  }
+}
+
+// The side of every plane of B against a brute-force reference: every corner of A's boundary
+// by the exact predicate, no boxes. A has many fragments (a sphere of 48 and 72 segments: 1,100
+// and 2,600 fragments, so the block boxes form hierarchies of 7 and 8 levels), B a sphere or a box
+// placed to cross A, to touch it from outside or inside, or to miss it.
+TEST(ExtentPruning, SidesOfManyPlanesMatchEveryCornerExactly) {
+  for (const int n : {48, 72}) {
+    const Solid a = sphere(1.0, {.segments = n});
+    const std::vector<Solid> others = {
+        translate(sphere(1.0, {.segments = n}), {0.5, 0.375, 0.25}),     // crossing
+        translate(sphere(0.5, {.segments = n / 2}), {0, 0, 0.25}),        // inside
+        translate(sphere(1.0, {.segments = n}), {2.0, 0, 0}),             // touching at the equator vertex
+        translate(sphere(0.75, {.segments = n}), {3.0, 1.0, 0.5}),        // apart
+        box({-0.25, -0.25, 0.5}, {0.25, 0.25, 1.0}),                      // top face near the pole
+        box({-2, -2, -2}, {2, 2, -1}),                                     // touching the bottom
+    };
+    for (std::size_t k = 0; k < others.size(); ++k) {
+      SCOPED_TRACE(testing::Message() << "segments " << n << ", other solid " << k);
+      Sides s = sides_of(a, others[k]);
+      const std::vector<BoundaryFragment>& fa = s.a_faces;
+      ASSERT_GT(fa.size(), 1000u);
+      // Every plane of B's nodes.
+      std::vector<std::int32_t> planes;
+      std::vector<TreeRef> stack{s.b};
+      while (!stack.empty()) {
+        const TreeRef t = stack.back();
+        stack.pop_back();
+        if (is_leaf(t)) continue;
+        const BspNode& node = s.arena.nodes[std::size_t(t)];
+        planes.push_back(node.plane);
+        stack.push_back(node.negative);
+        stack.push_back(node.positive);
+      }
+      ASSERT_GE(planes.size(), 6u);
+      std::size_t one_sided = 0;
+      for (const std::int32_t p : planes) {
+        const kernel::Plane& h = s.arena.planes[p];
+        bool neg = false, pos = false;
+        for (const BoundaryFragment& f : fa)
+          for (const kernel::Corner& c : f.polygon.corners) {
+            const kernel::Sign g = kernel::orient(s.arena.planes[f.polygon.support], s.arena.planes[c.p],
+                                                  s.arena.planes[c.q], c.at, h);
+            neg |= g == kernel::Sign::Negative;
+            pos |= g == kernel::Sign::Positive;
+          }
+        const Side expected = neg == pos ? Side::Both : (neg ? Side::Negative : Side::Positive);
+        EXPECT_EQ(s.sides.of(p), expected) << "plane " << p;
+        one_sided += expected != Side::Both;
+      }
+      if (k == 0) {
+        EXPECT_GT(one_sided, 0u);  // faces of B far from A
+      } else if (k == 2 || k == 3) {
+        EXPECT_GT(one_sided, planes.size() / 4);
+      }
+    }
   }
 }
 

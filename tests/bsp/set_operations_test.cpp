@@ -161,6 +161,51 @@ TEST(SetOperations, RandomGridUnionsGiveManifoldMeshes) {
   }
 }
 
+// Curved operands with many planes (the merge's large case: thousands of B nodes cut, B pruned to
+// A's extent through the fragment hierarchy). Every result, copying and in place, against its
+// operands at random points: the point's classification in the result must be the operation of
+// its classifications in A and B (exact point location in the operands' own trees, independent of
+// the merge); points on an operand's boundary are skipped. Plus a ∖ b and a ∩ b summing to a.
+TEST(SetOperations, CurvedOperandsAgreeWithTheirOperandsAtRandomPoints) {
+  const Solid a = sphere(1.0, {.segments = 96});
+  const std::vector<Solid> others = {translate(a, {0.5, 0.375, 0.25}),
+                                     translate(sphere(0.875, {.segments = 80}), {0.25, -0.5, 0.125})};
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> coord(-1.25, 1.75);
+  std::vector<Eigen::Vector3d> points(2500);
+  for (auto& p : points) p = {coord(rng), coord(rng), coord(rng)};
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    const Solid& b = others[k];
+    const Solid results[] = {a - b, a & b, a | b, b - a, Solid(a) - b, Solid(a) & b};
+    const char* names[] = {"a - b", "a & b", "a | b", "b - a", "in place a - b", "in place a & b"};
+    auto expected = [](int op, bool in_a, bool in_b) {
+      switch (op) {
+        case 0: case 4: return in_a && !in_b;
+        case 1: case 5: return in_a && in_b;
+        case 2: return in_a || in_b;
+        default: return in_b && !in_a;
+      }
+    };
+    int checked = 0, inside[6] = {};
+    for (const Eigen::Vector3d& p : points) {
+      const Location la = classify(a, p).location, lb = classify(b, p).location;
+      if (la == Location::Boundary || lb == Location::Boundary) continue;
+      ++checked;
+      for (int op = 0; op < 6; ++op) {
+        const bool want = expected(op, la == Location::Inside, lb == Location::Inside);
+        const Location got = classify(results[op], p).location;
+        inside[op] += want;
+        EXPECT_EQ(got, want ? Location::Inside : Location::Outside)
+            << names[op] << ", other solid " << k << ", point " << p.transpose();
+      }
+    }
+    EXPECT_GT(checked, 2400);
+    for (int op = 0; op < 6; ++op) EXPECT_GT(inside[op], 20) << names[op];  // every result is probed inside
+    EXPECT_NEAR(vol(results[0]) + vol(results[1]), vol(a), 1e-9);
+    EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(results[0])));
+  }
+}
+
 }  // namespace
 }  // namespace sculpt
 

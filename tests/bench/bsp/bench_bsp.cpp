@@ -4,6 +4,7 @@
 //         tree_nodes=<nodes> tree_height=<h> exact_predicates=<count> filtered_predicates=<count>
 //         boundary_fragments=<count carried by the result solid>
 //         to_mesh_ms=<min of to_mesh on the result> to_mesh_unclean_ms=<the same with {.clean = false}>
+//         operands_ms=<min, building the two operands> operation_ms=<min, the set operation alone>
 // cpu_ms / min_cpu_ms: median / min of this thread's CPU time per run (less sensitive to a busy
 // machine than the wall clock); to_mesh_ms and to_mesh_unclean_ms are thread CPU times.
 // Without arguments it runs every case, each in its own process (so peak RSS is per case):
@@ -213,6 +214,20 @@ int run_case(const std::string& name, int n, int runs) {
     std::snprintf(buf, sizeof buf, "%.12g", 100.0 - n * mesh_volume(to_mesh(plate_hole(0.5, 0.5))) / 2);
     expected = buf;
   }
+  // For the differences of two solids: building the operands alone and the set operation alone
+  // (operands built untimed, copied untimed), min thread CPU time over the runs.
+  double operands_ms = -1, operation_ms = -1;
+  if (name == "sphere_minus_sphere" || name == "sphere_minus_tilted_cube" || name == "sphere_minus_cube") {
+    operands_ms = operation_ms = 1e300;
+    for (int i = 0; i < std::max(3, runs); ++i) {
+      double t0 = thread_cpu_ms();
+      auto [a, b] = operands(name, n);
+      operands_ms = std::min(operands_ms, thread_cpu_ms() - t0);
+      t0 = thread_cpu_ms();
+      const Solid d = std::move(a) - b;
+      operation_ms = std::min(operation_ms, thread_cpu_ms() - t0);
+    }
+  }
   // The clean step's share: to_mesh alone on the result, with and without it (min over the runs).
   double mesh_ms = 1e300, unclean_ms = 1e300;
   for (int i = 0; i < std::max(3, runs); ++i) {
@@ -227,11 +242,13 @@ int run_case(const std::string& name, int n, int runs) {
   std::printf("bench impl=sculpt case=%s n=%d runs=%d warmup=%d time_ms=%.3f min_ms=%.3f cpu_ms=%.3f min_cpu_ms=%.3f "
               "volume=%.12g expected=%s "
               "faces=%zu vertices=%zu peak_rss_kb=%ld base_rss_kb=%ld tree_nodes=%d tree_height=%d "
-              "exact_predicates=%llu filtered_predicates=%llu boundary_fragments=%zu to_mesh_ms=%.3f to_mesh_unclean_ms=%.3f\n",
+              "exact_predicates=%llu filtered_predicates=%llu boundary_fragments=%zu to_mesh_ms=%.3f to_mesh_unclean_ms=%.3f "
+              "operands_ms=%.3f operation_ms=%.3f\n",
               name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), cpu_times[cpu_times.size() / 2],
               cpu_times.front(), volume, expected.c_str(),
               r.mesh.faces.size(), r.mesh.vertices.size(), peak_rss_kb(), base, st.nodes, st.height,
-              (unsigned long long)pc.exact, (unsigned long long)pc.filtered, r.solid.boundary().size(), mesh_ms, unclean_ms);
+              (unsigned long long)pc.exact, (unsigned long long)pc.filtered, r.solid.boundary().size(), mesh_ms, unclean_ms,
+              operands_ms, operation_ms);
   return 0;
 }
 
