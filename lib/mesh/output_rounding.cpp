@@ -16,6 +16,7 @@
 #include <Eigen/Geometry>
 
 #include "base/errors.hpp"
+#include "mesh/formats/mesh_formats.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/self_intersection.hpp"
@@ -44,6 +45,17 @@ struct Rounder {
         return static_cast<double>(f);
       }
       case OutputPrecision::Grid: return std::nearbyint(x / step) * step;
+      case OutputPrecision::ThreeMf: {
+        // lib3mf truncates, so what it keeps of a kept value can be a micrometre less: follow it
+        // down to a value it keeps unchanged (a few steps at most in practice).
+        double v = mesh::detail::lib3mf_kept(x);
+        for (int i = 0; i < 32; ++i) {
+          const double w = mesh::detail::lib3mf_kept(v);
+          if (w == v) break;
+          v = w;
+        }
+        return v;
+      }
       case OutputPrecision::Double: break;
     }
     return x;
@@ -58,8 +70,9 @@ struct Rounder {
     if (precision == OutputPrecision::Grid) return step;
     double m = std::numeric_limits<double>::min();
     for (const Vector3d& p : points) m = std::max(m, p.cwiseAbs().maxCoeff());
-    const int digits = precision == OutputPrecision::Float32 ? 24 : 53;
-    return std::ldexp(1.0, std::ilogb(m) + 1 - digits);
+    const int digits = precision == OutputPrecision::Double ? 53 : 24;
+    const double ulp = std::ldexp(1.0, std::ilogb(m) + 1 - digits);
+    return precision == OutputPrecision::ThreeMf ? std::max(ulp, 1e-6) : ulp;
   }
 };
 
@@ -212,21 +225,20 @@ class Cleaner {
 
   size_t live_triangles() const { return static_cast<size_t>(std::count(alive_.begin(), alive_.end(), true)); }
 
+  /// The live triangles; the vertices they use in the order of the input (indexed formats keep it).
   PolygonMesh mesh() const {
     PolygonMesh out;
     std::vector<int> index(p_.size(), -1);
-    for (size_t t = 0; t < tris_.size(); ++t) {
-      if (!alive_[t]) continue;
-      std::vector<int> face;
-      for (int v : tris_[t]) {
-        if (index[v] < 0) {
-          index[v] = static_cast<int>(out.vertices.size());
-          out.vertices.push_back(p_[v]);
-        }
-        face.push_back(index[v]);
+    for (size_t t = 0; t < tris_.size(); ++t)
+      if (alive_[t])
+        for (int v : tris_[t]) index[v] = 0;
+    for (size_t v = 0; v < p_.size(); ++v)
+      if (index[v] == 0) {
+        index[v] = static_cast<int>(out.vertices.size());
+        out.vertices.push_back(p_[v]);
       }
-      out.faces.push_back(std::move(face));
-    }
+    for (size_t t = 0; t < tris_.size(); ++t)
+      if (alive_[t]) out.faces.push_back({index[tris_[t][0]], index[tris_[t][1]], index[tris_[t][2]]});
     return out;
   }
 

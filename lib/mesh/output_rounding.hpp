@@ -21,8 +21,10 @@
 namespace sculpt {
 
 /// The numbers the coordinates are judged in (and rounded to in the result): doubles, float32,
-/// or multiples of `OutputRoundingOptions::grid_step` (a power of two: a solid's grid).
-enum class OutputPrecision { Double, Float32, Grid };
+/// multiples of `OutputRoundingOptions::grid_step` (a power of two: a solid's grid), or what 3MF
+/// keeps through lib3mf 1.8 (float32 printed with six decimals, truncated, and read back as
+/// float32: the values it writes and reads back unchanged; about a micrometre apart near 1 mm).
+enum class OutputPrecision { Double, Float32, Grid, ThreeMf };
 
 struct OutputRoundingOptions {
   OutputPrecision precision = OutputPrecision::Double;

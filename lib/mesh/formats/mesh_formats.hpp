@@ -16,8 +16,13 @@ std::string encode_stl(const PolygonMesh& mesh, bool binary);
 std::string encode_ply(const PolygonMesh& mesh, bool binary);
 /// OpenMesh's .om through OpenMesh, points as doubles. \throw InvalidInput for a non-manifold face.
 std::string encode_om(const PolygonMesh& mesh);
-/// 3MF through lib3mf: triangulated, float32 positions, millimetres. \throw InvalidInput beyond float32.
+/// 3MF through lib3mf: triangulated, float32 positions, millimetres, rounded by round_for_output
+/// in lib3mf's numbers (OutputPrecision::ThreeMf). \throw InvalidInput beyond float32.
 std::string encode_3mf(const PolygonMesh& mesh);
+/// What lib3mf 1.8 keeps of a coordinate: its writer (putFloat) prints the float32 nearest to x
+/// times 10^6 in float32 arithmetic, truncated towards zero, with six decimals; its reader parses
+/// that text into a float32.
+double lib3mf_kept(double x);
 
 PolygonMesh decode_off(std::string_view data, const std::string& name);
 PolygonMesh decode_obj(std::string_view data, const std::string& name);

@@ -12,11 +12,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "base/errors.hpp"
 #include "mesh/formats/mesh_formats.hpp"
+#include "mesh/output_rounding.hpp"
 #include "mesh/triangulate.hpp"
 
 namespace sculpt::mesh::detail {
@@ -89,7 +91,20 @@ std::string content_uuid(const std::vector<NMR::MODELMESHVERTEX>& vertices,
 
 }  // namespace
 
-std::string encode_3mf(const PolygonMesh& mesh) {
+double lib3mf_kept(double x) {
+  const float f = static_cast<float>(x);
+  const auto n = static_cast<std::int64_t>(f * 1000000.0f);
+  const std::int64_t a = n < 0 ? -n : n;
+  char text[64];
+  std::snprintf(text, sizeof text, "%s%lld.%06lld", f < 0 && a != 0 ? "-" : "", static_cast<long long>(a / 1000000),
+                static_cast<long long>(a % 1000000));
+  return static_cast<double>(std::strtof(text, nullptr));
+}
+
+std::string encode_3mf(const PolygonMesh& given) {
+  // Rounded to what lib3mf keeps (positions that it writes and reads back unchanged), so that the
+  // file is clean as written: 3MF holds triangles (output_rounding.hpp).
+  const PolygonMesh mesh = round_for_output(given, {.precision = OutputPrecision::ThreeMf, .triangles = true});
   auto fail = [](void** instance, const std::string& what) {
     throw InvalidInput("write_mesh: lib3mf could not " + what + ": " + last_error(instance));
   };
