@@ -170,6 +170,16 @@ constexpr double kMinToleranceSteps = 4.0;
 /// Triangles less high than this many grid steps are collapsed away by the mesher where it can.
 constexpr double kMinHeightSteps = 8.0;
 
+/// from_mesh's settings for the polygonizer's meshes (thousands of small triangles spread over
+/// a curved surface): fewer candidates scored against a smaller sample, and axis-aligned planes
+/// charged less than the defaults (tuned on the goblet, the bunny and the Menger sponge). On the
+/// torus, the blend and a spherical shell (bench_from_mesh implicit_*; docs/benchmarks.md, issue
+/// 16) the tree is built in about 0.8 of the time with an expected depth 0.7 of the defaults',
+/// at 15-20 % more nodes. Zero-area triangles after snapping are left out (they bound nothing).
+FromMeshOptions from_mesh_options(const kernel::Grid& grid) {
+  return {.candidates = 3, .sample = 24, .auxiliary_cost = 0.2, .skip_degenerate_faces = true, .grid = grid};
+}
+
 /// implicit(f, box, tol): the solid {f <= 0} inside the box, meshed by implicit::polygonize and
 /// built into a BSP tree from its boundary.
 Value implicit_solid(const Arguments& args) {
@@ -238,7 +248,7 @@ Value implicit_solid(const Arguments& args) {
   }
   // from_mesh is given the mesh before snapping: it snaps it the same way and checks that no
   // triangle turns over against it.
-  auto value = std::make_shared<SolidValue>(from_mesh(r.mesh, {.skip_degenerate_faces = true, .grid = grid}));
+  auto value = std::make_shared<SolidValue>(from_mesh(r.mesh, from_mesh_options(grid)));
   // The snapped triangles bound the solid exactly (from_mesh cuts its tree from them; triangles
   // of zero area after snapping are left out there and add nothing here): volume and area read them.
   value->exact_boundary = std::move(snapped);
