@@ -453,7 +453,8 @@ class Polygonizer {
   }
 
   /// Edge collapses where the surface is flat (detail/simplify.hpp), checked afterwards for
-  /// self-intersections by the exact test of the mesh layer; a mesh that fails it is not used.
+  /// self-intersections by the exact test of the mesh layer (or by the caller's
+  /// accept_simplified); a mesh that fails it is not used.
   void simplify() {
     const std::vector<bool> locked = locked_vertices();
     detail::SimplifyResult s = detail::simplify(
