@@ -453,12 +453,16 @@ class Polygonizer {
   }
 
   /// Edge collapses where the surface is flat (detail/simplify.hpp), checked afterwards for
-  /// self-intersections by the exact test of the mesh layer; a mesh that fails it is not used.
+  /// self-intersections by the exact test of the mesh layer (or by the caller's
+  /// accept_simplified); a mesh that fails it is not used.
   void simplify() {
     const std::vector<bool> locked = locked_vertices();
     detail::SimplifyResult s = detail::simplify(
         result_.mesh, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
-    if (find_self_intersections(s.mesh, {.max_pairs = 1}).empty()) {
+    const bool accept = o_.accept_simplified ? o_.accept_simplified(s.mesh)
+                                             : find_self_intersections(s.mesh, {.max_pairs = 1}).empty();
+    if (accept) {
+      result_.accepted = bool(o_.accept_simplified);
       result_.mesh = std::move(s.mesh);
       result_.collapses = s.collapses;
       result_.thin_triangles = s.thin_triangles;

@@ -27,6 +27,8 @@
 ///   PolygonizeResult r = polygonize(f, {.box = {.lo = {-2, -2, -1}, .hi = {2, 2, 1}}, .tolerance = 2e-3});
 ///   // r.mesh: triangles, counter-clockwise from outside
 
+#include <functional>
+
 #include <Eigen/Core>
 
 #include "implicit/expression.hpp"
@@ -51,6 +53,12 @@ struct PolygonizeOptions {
   /// away where the checks allow (marching tetrahedra makes slivers where the surface passes
   /// near a lattice point; snapping the vertices to a grid could turn them over).
   double min_height = 0.0;
+  /// With simplify: the test a simplified mesh must pass to be kept, instead of the exact test for
+  /// self-intersections (a simplified mesh that fails it is dropped, as one that intersects itself
+  /// would be). For a caller that builds its solid from a changed copy of the mesh and must test
+  /// that copy anyway (the language snaps the vertices to the exact kernel's grid): the test is then
+  /// made once, on the mesh that matters. Empty: find_self_intersections (lib/mesh).
+  std::function<bool(const PolygonMesh&)> accept_simplified = {};
 };
 
 struct PolygonizeResult {
@@ -66,6 +74,9 @@ struct PolygonizeResult {
   bool coarse = false;
   long collapses = 0;           ///< edge collapses kept
   bool simplify_rejected = false;  ///< the simplified mesh intersected itself; the marched one is returned
+  /// The mesh returned is a simplified one that passed options.accept_simplified (false without
+  /// that option, without simplify, and when the marched mesh is returned).
+  bool accepted = false;
   long thin_triangles = 0;      ///< triangles still below min_height after simplification
   int max_level = 0;            ///< deepest leaf (the root, the box, is level 0)
   /// Cells whose search reached feature_size / 2 without proving the cell free of the surface or
@@ -81,7 +92,8 @@ struct PolygonizeResult {
 /// every vertex is on f = 0 (to root-finding accuracy, about 1e-12 of its edge; a vertex of an
 /// edge split to |f| / |grad f| <= 1e-10 of the edge) or on the box;
 /// a component of either sign that contains a ball of diameter feature_size is present. With
-/// simplify, closed, oriented, manifold and unintersecting still hold (the last checked exactly).
+/// simplify, closed, oriented, manifold and unintersecting still hold (the last checked exactly;
+/// with accept_simplified, the simplified mesh passed that test instead, or the marched one is returned).
 /// Not guaranteed, measured (tests/implicit/polygonize_test.cpp): the Hausdorff distance to
 /// the surface (about tol where the surface is smooth; sharp creases of f are cut off by up
 /// to a cell), and the topology inside cells whose corners differ in sign (a surface that

@@ -127,15 +127,18 @@ std::pair<std::string, std::size_t> solids_at_other_grids(const Arguments& args,
 // The exact kernel snaps vertices to its grid (docs/kernel.md). A valid mesh with features below
 // the grid step can become self-intersecting that way (faces 1e-6 apart now touch) without any
 // face turning over, which from_mesh would catch: check the snapped copy as well.
-std::string snapped_self_intersection(const PolygonMesh& mesh, const kernel::Grid& grid) {
+PolygonMesh snapped_to_grid(const PolygonMesh& mesh, const kernel::Grid& grid) {
   PolygonMesh snapped = mesh;
-  bool moved = false;
-  for (Eigen::Vector3d& v : snapped.vertices) {
-    const Eigen::Vector3d g = grid.to_world(grid.snap(v));
-    moved = moved || g != v;
-    v = g;
-  }
-  if (!moved) return {};
+  for (Eigen::Vector3d& v : snapped.vertices) v = grid.to_world(grid.snap(v));
+  return snapped;
+}
+
+std::string snapped_self_intersection(const PolygonMesh& mesh, const kernel::Grid& grid) {
+  return snapped_self_intersection(mesh, snapped_to_grid(mesh, grid), grid);
+}
+
+std::string snapped_self_intersection(const PolygonMesh& mesh, const PolygonMesh& snapped, const kernel::Grid& grid) {
+  if (snapped.vertices == mesh.vertices) return {};  // nothing moved: the caller's validation holds
   const std::vector<FacePair> pairs = find_self_intersections(snapped, {.max_pairs = 1});
   if (pairs.empty()) return {};
   const Eigen::Vector3d& near = mesh.vertices[std::size_t(mesh.faces[std::size_t(pairs[0].face_a)][0])];
@@ -152,6 +155,12 @@ std::string SolidValue::repr() const {
   if (solid.is_empty()) return "<solid: empty" + grid + ">";
   const TreeStats stats = tree_stats(solid);
   return "<solid: " + std::to_string(stats.nodes) + " nodes, height " + std::to_string(stats.height) + grid + ">";
+}
+
+double SolidValue::volume() const { return exact_boundary ? mesh_volume(*exact_boundary) : sculpt::volume(solid); }
+
+double SolidValue::area() const {
+  return exact_boundary ? mesh_surface_area(*exact_boundary) : surface_area(solid);
 }
 
 std::optional<Value> SolidValue::binary(ast::Op op, const Value& other, bool self_on_left) const {
@@ -414,12 +423,12 @@ void register_solids(BuiltinTable& table) {
              .signature = "volume(s)",
              .doc = "The volume of solid s (from its exact boundary).",
              .params = {{"s"}},
-             .run = [](const Arguments& args) -> Value { return volume(solid_arg(args, 0)); }});
+             .run = [](const Arguments& args) -> Value { return args.object<SolidValue>(0, "a solid").volume(); }});
   table.add({.name = "area",
              .signature = "area(s)",
              .doc = "The surface area of solid s.",
              .params = {{"s"}},
-             .run = [](const Arguments& args) -> Value { return surface_area(solid_arg(args, 0)); }});
+             .run = [](const Arguments& args) -> Value { return args.object<SolidValue>(0, "a solid").area(); }});
   table.add({.name = "export",
              .signature = "export(s, \"file.off\", tol=1e-3)",
              .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is; or a "

@@ -5,6 +5,7 @@
 /// Other areas (revolve, ...) return solids with `solid_value(...)` and read them with
 /// `args.object<SolidValue>(i, "a solid").solid`.
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -37,8 +38,18 @@ struct SolidValue final : Object {
   /// its operands and taken the storage; an error before that leaves it whole.
   [[nodiscard]] Solid&& handed_over() {
     boundary_cache_.reset();
+    exact_boundary.reset();
     return std::move(solid);
   }
+  /// A mesh that bounds `solid` exactly, when the solid was built from it (implicit: the mesh
+  /// with its vertices snapped to the grid, the very triangles from_mesh cut the tree from, checked
+  /// closed and unintersecting; zero-area triangles may remain). volume() and area() sum over it
+  /// instead of extracting the boundary from the tree. Null otherwise.
+  std::shared_ptr<const PolygonMesh> exact_boundary;
+  /// The solid's volume: from exact_boundary when known, else from the tree's boundary.
+  [[nodiscard]] double volume() const;
+  /// The solid's surface area, likewise.
+  [[nodiscard]] double area() const;
   [[nodiscard]] std::string type_name() const override { return "solid"; }
   [[nodiscard]] std::string repr() const override;
   [[nodiscard]] std::optional<Value> binary(ast::Op op, const Value& other, bool self_on_left) const override;
@@ -69,5 +80,10 @@ Value solid_value(Solid solid);
 /// snapped to `grid`; else what meets where, for an error message. A valid mesh with features
 /// below the grid step can intersect itself once snapped (import, implicit).
 std::string snapped_self_intersection(const PolygonMesh& mesh, const kernel::Grid& grid);
+/// The same with the snapped copy made by the caller (snapped_to_grid(mesh, grid)).
+std::string snapped_self_intersection(const PolygonMesh& mesh, const PolygonMesh& snapped, const kernel::Grid& grid);
+
+/// `mesh` with every vertex moved to its point of `grid`, the points from_mesh builds the solid on.
+PolygonMesh snapped_to_grid(const PolygonMesh& mesh, const kernel::Grid& grid);
 
 }  // namespace sculpt::language

@@ -16,6 +16,7 @@
 #include "implicit/polygonize.hpp"
 #include "mesh/mesh_measures.hpp"
 #include "mesh/mesh_validation.hpp"
+#include "mesh/self_intersection.hpp"
 #include "support/cgal_mesh_check.hpp"
 #include "support/point_triangle.hpp"
 
@@ -222,6 +223,41 @@ TEST(Polygonize, CoarseOctreeWithEdgeSplits) {
   EXPECT_LT(10 * r.mesh.faces.size(), std::size_t(fine.marched_triangles));
   expect_solid_mesh(r.mesh, 1, 0);
   EXPECT_LE(mesh_to_surface(r.mesh, [](const Vec& p) { return torus_distance(p, 1.0, 0.4); }), tol);
+}
+
+// accept_simplified replaces the exact self-intersection test of the simplified mesh: a test
+// that passes keeps the very mesh the default test keeps (the torus's is unintersecting); one that
+// fails drops the simplified meshes of both octrees, and the fine octree's marched mesh, closed and
+// unintersecting by construction, is returned unsimplified.
+TEST(Polygonize, AcceptSimplifiedDecidesInsteadOfTheSelfIntersectionTest) {
+  const Box box{.lo = Vec(-1.5, -1.5, -0.5), .hi = Vec(1.5, 1.5, 0.5)};
+  const double tol = 4e-3;
+  const PolygonizeResult plain = polygonize(torus(1.0, 0.4), {.box = box, .tolerance = tol});
+  EXPECT_FALSE(plain.accepted);
+  int calls = 0;
+  const PolygonizeResult yes = polygonize(torus(1.0, 0.4), {.box = box, .tolerance = tol, .accept_simplified = [&](const PolygonMesh& m) {
+    ++calls;
+    EXPECT_TRUE(find_self_intersections(m, {.max_pairs = 1}).empty());
+    return true;
+  }});
+  EXPECT_EQ(calls, 1);
+  EXPECT_TRUE(yes.accepted);
+  EXPECT_TRUE(yes.coarse);
+  EXPECT_EQ(yes.mesh.faces, plain.mesh.faces);
+  EXPECT_EQ(yes.mesh.vertices, plain.mesh.vertices);
+  calls = 0;
+  const PolygonizeResult no = polygonize(torus(1.0, 0.4), {.box = box, .tolerance = tol, .accept_simplified = [&](const PolygonMesh&) {
+    ++calls;
+    return false;
+  }});
+  EXPECT_EQ(calls, 2);  // the coarse octree's simplified mesh, then the fine one's
+  EXPECT_FALSE(no.accepted);
+  EXPECT_FALSE(no.coarse);
+  EXPECT_TRUE(no.simplify_rejected);
+  EXPECT_EQ(no.collapses, 0);
+  EXPECT_EQ(long(no.mesh.faces.size()), no.marched_triangles);
+  expect_solid_mesh(no.mesh, 1, 0);
+  EXPECT_TRUE(find_self_intersections(no.mesh, {.max_pairs = 1}).empty());
 }
 
 TEST(Polygonize, CoarseCellsAtTheBoxWhereTheSurfaceMeetsItStayWithinTol) {

@@ -49,6 +49,40 @@ print(volume(t & box([-2, -2, 0], [2, 2, 1])))
   EXPECT_NEAR(number(line), 0.5 * exact, 0.5 * area * 2e-3);  // the upper half
 }
 
+// volume() and area() of an implicit solid sum over the snapped mesh it was built from; a solid
+// made from it by a set operation has no such mesh and extracts its boundary from its tree. Both
+// ways must agree (the same boundary, summed in another order and cut otherwise): one shell, a
+// cavity (two shells, the inner facing inwards), and a solid closed by the box's faces.
+TEST(ImplicitBuiltin, VolumeAndAreaFromTheMeshAgreeWithTheTree) {
+  const auto r = run_script(std::string(kTorus) + R"(
+fn hollow(x, y, z) { abs(sqrt(x * x + y * y + z * z) - 0.6) - 0.15 }
+h = implicit(hollow, box=[[-1, -1, -1], [1, 1, 1]], tol=4e-3, quiet=true)
+c = implicit(torus, box=[[-1.5, -1.5, -0.2], [1.5, 1.5, 0.5]], tol=4e-3, quiet=true)
+for s in [t, h, c] {
+  u = s | s
+  print(volume(s), volume(u), area(s), area(u))
+}
+w = implicit(torus, box=[[-1.5, -1.5, -0.5], [1.5, 1.5, 0.5]], tol=2e-3, quiet=true)
+w = w - box([0, 0, -1], [2, 2, 1])
+print(volume(w), volume(w | w))
+)");
+  ASSERT_EQ(r.error, "");
+  std::istringstream lines(r.out);
+  for (int i = 0; i < 3; ++i) {
+    double v = 0, vt = 0, a = 0, at = 0;
+    lines >> v >> vt >> a >> at;
+    ASSERT_TRUE(lines) << r.out;
+    EXPECT_GT(v, 0.1);
+    EXPECT_NEAR(v, vt, 1e-12 * a) << "solid " << i;
+    EXPECT_NEAR(a, at, 1e-12 * a) << "solid " << i;
+  }
+  double cut = 0, cut_tree = 0;
+  lines >> cut >> cut_tree;
+  ASSERT_TRUE(lines) << r.out;
+  EXPECT_NEAR(cut, 0.75 * 2 * kPi * kPi * 0.16, 0.75 * 4 * kPi * kPi * 0.4 * 2e-3);  // not the whole torus's
+  EXPECT_NEAR(cut, cut_tree, 1e-12);
+}
+
 TEST(ImplicitBuiltin, ExportedMeshIsAClosedManifold) {
   const std::filesystem::path file = std::filesystem::temp_directory_path() / "sculpt_implicit_blend.off";
   const auto r = run_script(R"(

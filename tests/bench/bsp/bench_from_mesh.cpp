@@ -7,7 +7,8 @@
 //         volume=<V(solid)> mesh_volume=<V(mesh)>
 // For the bunny also the whole of the language's `import` (read, validate, the snapped
 // self-intersection check, from_mesh): case=bunny_import, time only.
-//   bench_from_mesh [RUNS [CASE]]   CASE: goblet, bunny, menger, sphere64 (default: all; RUNS 15)
+//   bench_from_mesh [RUNS [CASE]]   CASE: goblet, bunny, menger, implicit_torus, implicit_blend,
+//   implicit_shell, sphere64 (default: all; RUNS 15)
 //   models are read from SCULPT_MODELS_DIR (the source tree's models/)
 #include <algorithm>
 #include <chrono>
@@ -23,6 +24,7 @@
 #include "bsp/primitives.hpp"
 #include "curves/digitized_curve.hpp"
 #include "curves/profiles.hpp"
+#include "implicit/polygonize.hpp"
 #include "kernel/grid.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
@@ -58,9 +60,35 @@ Solid import_mesh(const std::string& path) {
   return from_mesh(mesh);
 }
 
+// Meshes of the language's implicit() (polygonize with min_height 8 grid steps, as there;
+// docs/implicit.md): the torus R = 1, r = 0.4 at tol 2e-3 (7,936 triangles), two spheres of
+// radius 0.6 blended (k = 0.3) at tol 5e-3, a spherical shell 0.3 thick at tol 4e-3 (two shells).
+PolygonMesh implicit_mesh(const std::string& name) {
+  implicit::ExpressionBuilder b;
+  const auto sq = [&](implicit::Term t) { return b.pow(t, 2); };
+  const auto ball = [&](double cx, double r) {
+    return b.sub(b.sqrt(b.add(b.add(sq(b.sub(b.x(), b.constant(cx))), sq(b.y())), sq(b.z()))), b.constant(r));
+  };
+  const double step = kernel::Grid{}.step();
+  if (name == "torus") {
+    const implicit::Term rho = b.sqrt(b.add(sq(b.x()), sq(b.y())));
+    const implicit::Expression f = b.finish(b.sub(b.add(sq(b.sub(rho, b.constant(1.0))), sq(b.z())), b.constant(0.16)));
+    return implicit::polygonize(f, {.box = {.lo = {-1.5, -1.5, -0.5}, .hi = {1.5, 1.5, 0.5}}, .tolerance = 2e-3, .min_height = 8 * step}).mesh;
+  }
+  if (name == "blend") {  // min(a, b) - h^2 k / 4, h = max(k - |a - b|, 0) / k
+    const implicit::Term a = ball(-0.5, 0.6), c = ball(0.5, 0.6), k = b.constant(0.3);
+    const implicit::Term h = b.div(b.max(b.sub(k, b.abs(b.sub(a, c))), b.constant(0.0)), k);
+    const implicit::Expression f = b.finish(b.sub(b.min(a, c), b.div(b.mul(sq(h), k), b.constant(4.0))));
+    return implicit::polygonize(f, {.box = {.lo = {-1.4, -0.9, -0.9}, .hi = {1.4, 0.9, 0.9}}, .tolerance = 5e-3, .min_height = 8 * step}).mesh;
+  }
+  const implicit::Expression f = b.finish(b.sub(b.abs(ball(0.0, 0.6)), b.constant(0.15)));  // "shell"
+  return implicit::polygonize(f, {.box = {.lo = {-1, -1, -1}, .hi = {1, 1, 1}}, .tolerance = 4e-3, .min_height = 8 * step}).mesh;
+}
+
 // Options from the environment (FROM_MESH_CANDIDATES etc.), for trying settings.
 FromMeshOptions options_from_env() {
   FromMeshOptions o;
+  o.skip_degenerate_faces = true;  // as implicit() and the transforms (the other meshes have none)
   auto get = [](const char* name, double fallback) {
     const char* v = std::getenv(name);
     return v ? std::atof(v) : fallback;
@@ -105,6 +133,8 @@ int main(int argc, char** argv) {
       std::printf("bench impl=sculpt case=bunny_import runs=%d time_ms=%.2f cpu_ms=%.2f\n", runs, t.wall, t.cpu);
     }
     if (only.empty() || only == "menger") run_case("menger", to_mesh(checks::menger_sponge(3)), runs);
+    for (const char* shape : {"torus", "blend", "shell"})
+      if (only.empty() || only == std::string("implicit_") + shape) run_case(std::string("implicit_") + shape, implicit_mesh(shape), runs);
     if (only.empty() || only == "sphere64") run_case("sphere64", to_mesh(sphere(1.0, {.segments = 64})), runs);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_from_mesh: %s\n", e.what());
