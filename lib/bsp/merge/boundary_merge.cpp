@@ -121,6 +121,8 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
   for (const std::size_t j : changed)
     if (j < blocks.size()) a_boxes_in.update_block(j);
   for (std::size_t j = shortest / FragmentBoxes::kBlock; j < blocks.size(); ++j) a_boxes_in.update_block(j);
+  arena.boundary_changed_from = shortest;  // what changed, for reclaim_added (in-place operations)
+  arena.boundary_changed_blocks = std::move(changed);
   arena.boundary = std::move(a_faces);
   arena.boundary_boxes = std::move(a_boxes_in);
 }

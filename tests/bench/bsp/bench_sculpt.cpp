@@ -190,9 +190,9 @@ int main(int argc, char** argv) {
     if (k % 10 == 0 || k + 1 == strokes) {
       const TreeStats t = tree_stats(work);
       std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d "
-                  "storage_nodes=%zu planes=%d volume=%.6f\n",
+                  "storage_nodes=%zu planes=%d fragments=%zu volume=%.6f\n",
                   k + 1, c, sweep_cpu.back(), subtract_cpu.back(), w, t.nodes, t.height, work.nodes().size(), work.planes().size(),
-                  volume(work));
+                  work.boundary().size(), volume(work));
       if (compare_old) {
         const TreeStats o = tree_stats(work_old);
         std::printf("bench impl=old case=stroke_%d cpu_ms=%.2f nodes=%d height=%d volume=%.6f\n", k + 1, old_cpu.back(), o.nodes,
