@@ -229,17 +229,15 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
   }
   // The fragments the operation may have written: changed blocks, and all from a point on.
   std::vector<BoundaryFragment>* fragments = arena.boundary ? &*arena.boundary : nullptr;
-  std::vector<std::pair<std::size_t, std::size_t>> ranges;
+  std::vector<std::size_t> written;  // fragment indices, each once
   if (fragments) {
     const std::size_t count = fragments->size();
     const std::size_t from = added.all_fragments ? 0 : std::min(arena.boundary_changed_from, count);
-    constexpr std::size_t w = FragmentBoxes::kBlock;
-    std::vector<std::size_t> blocks = arena.boundary_changed_blocks;
-    std::sort(blocks.begin(), blocks.end());
-    blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
-    for (const std::size_t j : blocks)
-      if (j * w < from) ranges.push_back({j * w, std::min({(j + 1) * w, from, count})});
-    ranges.push_back({from, count});
+    for (const std::size_t i : arena.boundary_changed)
+      if (i < from) written.push_back(i);
+    std::sort(written.begin(), written.end());
+    written.erase(std::unique(written.begin(), written.end()), written.end());
+    for (std::size_t i = from; i < count; ++i) written.push_back(i);
   }
   // 2. The added planes something references: the kept added nodes (plane, polygon), the
   // reused nodes' polygons (a pending one the merge computed refers to new opposites), the
@@ -260,8 +258,7 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
     }
     for (const TreeRef t : arena.merged)
       if (std::size_t(t) < n0) mark_polygon(polygons[std::size_t(t)]);
-    for (const auto& [lo, hi] : ranges)
-      for (std::size_t i = lo; i < hi; ++i) mark_polygon((*fragments)[i].polygon);
+    for (const std::size_t i : written) mark_polygon((*fragments)[i].polygon);
     // The kept ones go to free slots (below p0: nothing refers to them), then in order from p0.
     struct Kept {
       kernel::Plane plane;
@@ -302,8 +299,7 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
     }
     for (const TreeRef t : arena.merged)
       if (std::size_t(t) < n0) map_polygon(polygons[std::size_t(t)]);
-    for (const auto& [lo, hi] : ranges)
-      for (std::size_t i = lo; i < hi; ++i) map_polygon((*fragments)[i].polygon);
+    for (const std::size_t i : written) map_polygon((*fragments)[i].polygon);
   }
   arena.opposite_of.clear();  // indices changed
   // 3. The kept added nodes move down to n0 on, in pre-order; references to them rewritten.

@@ -34,10 +34,10 @@ struct Arena {
   FragmentBoxes boundary_boxes;  ///< of `boundary`, or empty
   /// What the last set operation wrote, for in-place operations (reclaim_added): the nodes of
   /// tree a the merge reused (their children and pending polygons may be written), in pre-order;
-  /// the blocks of `boundary` (FragmentBoxes::kBlock fragments each) whose fragments
-  /// merge_boundaries changed, and the first fragment from which all may have changed.
+  /// the fragments of `boundary` merge_boundaries rewrote in place (indices, maybe repeated), and
+  /// the first fragment from which all may have changed.
   std::vector<TreeRef> merged;
-  std::vector<std::size_t> boundary_changed_blocks;
+  std::vector<std::size_t> boundary_changed;
   std::size_t boundary_changed_from = 0;
 
  private:
@@ -66,8 +66,8 @@ TreeRef recycle_free_nodes(Arena& arena, TreeRef root);
 
 /// What an in-place operation added to an adopted solid's storage: planes at indices >=
 /// first_plane, nodes at indices >= first_node; the nodes below first_node whose children or
-/// polygons it may have written are arena.merged, the fragments arena.boundary_changed_blocks
-/// and those from arena.boundary_changed_from (all of them with all_fragments).
+/// polygons it may have written are arena.merged, the fragments arena.boundary_changed and
+/// those from arena.boundary_changed_from (all of them with all_fragments).
 struct AddedStorage {
   std::int32_t first_plane = 0;
   std::size_t first_node = 0;
