@@ -171,6 +171,7 @@ class Merger {
     std::vector<std::int32_t> path;  // a's half-spaces down to the current node
     std::vector<Frame> stack{{a, b, {-1, 0}, 0, -1}};
     std::vector<std::pair<TreeRef, Slot>> visited;  // result nodes taken from a, pre-order
+    a_.merged.clear();
     TreeRef result = kOut;
     auto put = [&](Slot s, TreeRef v) {
       if (s.node < 0)
@@ -196,6 +197,7 @@ class Merger {
       if (wanted[0] || wanted[1]) std::tie(bneg, bpos) = partition(f.b, a_.polygons[std::size_t(f.a)], n.plane, wanted);
       put(f.slot, f.a);  // a's node is reused: its region and sub-hyperplane are unchanged
       visited.push_back({f.a, f.slot});
+      a_.merged.push_back(f.a);  // for reclaim_added (in-place operations)
       stack.push_back({n.negative, bneg, {f.a, 0}, path.size(), n.plane});
       stack.push_back({n.positive, bpos, {f.a, 1}, path.size(), a_.opposite(n.plane)});
     }
@@ -290,13 +292,15 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   return bsp::detail::compact(arena, r);
 }
 
-// In place: the larger operand's storage is reused. When the node storage has grown by
+// In place: the larger operand's storage is reused and nothing older than the operation is
+// renumbered. The nodes and planes the operation added and left unused are dropped at once
+// (reclaim_added: proportional to what was added; the kept planes take the slots of planes
+// nothing refers to any more, found at the last recycling). When the node storage has grown by
 // kRecycleGrowth since the slots of unreachable nodes were last reused, they are reused
 // (recycle_free_nodes: a traversal of the live nodes, and the live nodes past the live count
-// move into the free slots; no renumbering of planes, no moves below the live count); the
-// planes are renumbered (compact()) only when the plane table has doubled since the last
-// compaction. Both amortize to O(nodes and planes added) per operation, and recycling, the
-// frequent one, is several times cheaper than a compaction (docs/sculpting.md, "Strokes").
+// move into the free slots) and the unreferenced planes are listed (find_free_planes: one scan).
+// Both amortize to O(what was added) per operation; no operation compacts the whole tree
+// (docs/sculpting.md, "Strokes").
 constexpr double kRecycleGrowth = 1.25;
 
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
@@ -306,6 +310,8 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (!x.has_boundary()) extracted = bsp::detail::boundary_fragments(x);
   Arena arena;
   const TreeRef ra = arena.adopt(std::move(x));
+  const bsp::detail::AddedStorage added{
+      .first_plane = arena.planes.size(), .first_node = arena.nodes.size(), .all_fragments = extracted.has_value()};
   std::vector<BoundaryFragment> fa;
   if (extracted) {
     const std::int32_t own = arena.planes.size();
@@ -328,17 +334,17 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   const TreeRef rb = arena.append(y);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
   TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, y.nodes().size(), table);
-  if (std::size_t(arena.planes.size()) >= 2 * std::max<std::size_t>(arena.compacted_size, 64))
-    return bsp::detail::compact(arena, r, {.keep_capacity = true});
-  const std::size_t compacted = arena.compacted_size;
+  r = bsp::detail::reclaim_added(arena, r, added);
   std::size_t recycled = arena.recycled_size;
   if (arena.nodes.size() >= kRecycleGrowth * double(std::max<std::size_t>(recycled, 64))) {
     r = bsp::detail::recycle_free_nodes(arena, r);
     recycled = arena.nodes.size();
+    if (!is_leaf(r)) bsp::detail::find_free_planes(arena);
   }
   if (is_leaf(r)) return Solid::leaf(r == kIn);
-  return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r, compacted,
-               std::move(arena.boundary), std::move(arena.boundary_boxes), recycled);
+  return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r,
+                                        std::move(arena.free_planes), std::move(arena.boundary),
+                                        std::move(arena.boundary_boxes), recycled);
 }
 
 constexpr bool kUnion[2][2] = {{false, true}, {true, true}};

@@ -6,11 +6,11 @@
 namespace sculpt {
 
 Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-             std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size,
+             std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::vector<std::int32_t> free_planes,
              std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes,
              std::size_t recycled_size)
     : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
-      compacted_size_(compacted_size ? compacted_size : std::size_t(planes_.size())),
+      free_planes_(std::move(free_planes)),
       recycled_size_(recycled_size ? recycled_size : nodes_.size()),
       boundary_(std::move(boundary)),
       boundary_boxes_(std::move(boundary_boxes)) {
@@ -22,13 +22,13 @@ Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
 }
 
 Solid::Storage Solid::release() && {
-  Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, compacted_size_, std::move(boundary_),
+  Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, std::move(free_planes_), std::move(boundary_),
             std::move(boundary_boxes_), recycled_size_};
   planes_ = kernel::PlaneTable();
   nodes_.clear();
   polygons_.clear();
   root_ = kOut;
-  compacted_size_ = 0;
+  free_planes_.clear();
   recycled_size_ = 0;
   boundary_ = std::vector<BoundaryFragment>{};
   boundary_boxes_ = {};

@@ -87,7 +87,7 @@ class Solid {
   /// algorithms only follow the tree from root(). `boundary`, when given, must tile the
   /// solid's boundary exactly.
   Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-        std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::size_t compacted_size = 0,
+        std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::vector<std::int32_t> free_planes = {},
         std::optional<std::vector<BoundaryFragment>> boundary = std::nullopt,
         FragmentBoxes boundary_boxes = {}, std::size_t recycled_size = 0);
 
@@ -97,7 +97,7 @@ class Solid {
     std::vector<BspNode> nodes;
     std::vector<kernel::ConvexPolygon> polygons;
     TreeRef root;
-    std::size_t compacted_size;  ///< plane table size after the last compaction (0: the current)
+    std::vector<std::int32_t> free_planes;  ///< indices of planes nothing refers to (slots to reuse)
     std::optional<std::vector<BoundaryFragment>> boundary;
     FragmentBoxes boundary_boxes;
     std::size_t recycled_size;  ///< node storage size after freed nodes were last recycled (0: the current)
@@ -109,7 +109,9 @@ class Solid {
   std::vector<BspNode> nodes_;
   std::vector<kernel::ConvexPolygon> polygons_;
   TreeRef root_ = kOut;
-  std::size_t compacted_size_ = 0;
+  /// Plane slots that neither the tree nor the boundary refers to (found when freed nodes are
+  /// recycled), taken by the planes later in-place operations add (bsp/tree/tree_arena.hpp).
+  std::vector<std::int32_t> free_planes_;
   std::size_t recycled_size_ = 0;
   std::optional<std::vector<BoundaryFragment>> boundary_ = std::vector<BoundaryFragment>{};
   FragmentBoxes boundary_boxes_;

@@ -33,6 +33,18 @@ class PlaneTable {
     planes_.reserve(n);
     auxiliary_.reserve(n);
   }
+  /// Drops the planes at indices >= n (n >= 6: the world box stays), and puts plane p at index
+  /// i < size() in place of the one there: for tree algorithms that renumber the planes they
+  /// added and reuse the slots of planes nothing refers to any more (bsp/tree/tree_arena.hpp,
+  /// reclaim_added). The caller rewrites the references.
+  void truncate(std::int32_t n) {
+    planes_.resize(std::size_t(std::max(n, std::int32_t(6))));
+    auxiliary_.resize(planes_.size());
+  }
+  void replace(std::int32_t i, const Plane& p, bool auxiliary) {
+    planes_[std::size_t(i)] = p;
+    auxiliary_[std::size_t(i)] = auxiliary;
+  }
 
   /// Half-size of the world box in grid units: 4 * kMaxCoord.
   static constexpr std::int64_t kWorld = 4 * kMaxCoord;

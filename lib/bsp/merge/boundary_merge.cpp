@@ -76,7 +76,7 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = todo.size() - 1 - i;
   }
   std::vector<BoundaryFragment> pieces;
-  std::vector<std::size_t> changed;  // blocks whose boxes change (below the shortened end)
+  std::vector<std::size_t> changed;  // fragments rewritten in place (below the shortened end)
   std::size_t shortest = a_faces.size();
   // Downwards, so that fragments moved into a freed slot (from the end) are already decided.
   for (const std::size_t i : todo) {
@@ -97,7 +97,7 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
         f = std::move(pieces.back());
         pieces.pop_back();
         a_boxes[i] = fragment_box(f.polygon);
-        changed.push_back(i / FragmentBoxes::kBlock);
+        changed.push_back(i);
         continue;
       }
     }
@@ -105,7 +105,7 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
     if (i + 1 != a_faces.size()) {
       f = std::move(a_faces.back());
       a_boxes[i] = a_boxes.back();
-      changed.push_back(i / FragmentBoxes::kBlock);
+      changed.push_back(i);
     }
     a_faces.pop_back();
     a_boxes.pop_back();
@@ -118,9 +118,11 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
     }
   // Block boxes: those with a changed fragment, and all from the block where the end moved.
   blocks.resize(FragmentBoxes::block_count(a_boxes.size()));
-  for (const std::size_t j : changed)
-    if (j < blocks.size()) a_boxes_in.update_block(j);
+  for (const std::size_t i : changed)
+    if (const std::size_t j = i / FragmentBoxes::kBlock; j < blocks.size()) a_boxes_in.update_block(j);
   for (std::size_t j = shortest / FragmentBoxes::kBlock; j < blocks.size(); ++j) a_boxes_in.update_block(j);
+  arena.boundary_changed_from = shortest;  // what changed, for reclaim_added (in-place operations)
+  arena.boundary_changed = std::move(changed);
   arena.boundary = std::move(a_faces);
   arena.boundary_boxes = std::move(a_boxes_in);
 }

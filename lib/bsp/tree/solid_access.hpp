@@ -11,7 +11,7 @@ namespace sculpt::bsp::detail {
 
 struct SolidAccess {
   using Storage = Solid::Storage;
-  /// Solid's low-level constructor (planes, nodes, polygons, root, compacted size, boundary,
+  /// Solid's low-level constructor (planes, nodes, polygons, root, free plane slots, boundary,
   /// boundary boxes); checks sizes only (see Solid).
   template <class... Args>
   static Solid make(Args&&... args) { return Solid(std::forward<Args>(args)...); }

@@ -2,6 +2,7 @@
 #include "bsp/tree/solid_access.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <limits>
 
 #include "bsp/tree/boundary_fragments.hpp"
@@ -56,7 +57,7 @@ TreeRef Arena::adopt(Solid&& solid) {
   nodes = std::move(s.nodes);
   polygons = std::move(s.polygons);
   opposite_of.clear();
-  compacted_size = s.compacted_size;
+  free_planes = std::move(s.free_planes);
   recycled_size = s.recycled_size;
   boundary = std::move(s.boundary);
   boundary_boxes = std::move(s.boundary_boxes);
@@ -177,6 +178,175 @@ TreeRef recycle_free_nodes(Arena& arena, TreeRef root) {
   return root;
 }
 
+TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
+  const std::size_t n0 = added.first_node;
+  const std::int32_t p0 = added.first_plane;
+  std::vector<BspNode>& nodes = arena.nodes;
+  std::vector<ConvexPolygon>& polygons = arena.polygons;
+  // 1. The added nodes the result reaches, in pre-order: they hang below the reused nodes of
+  // tree a (or are the root); an added node's children are added nodes (partitioned subtrees of
+  // the other operand, moved, never shared), so older nodes are not visited.
+  const bool nodes_added = nodes.size() > n0;
+  std::vector<std::int32_t> node_map(nodes_added ? nodes.size() - n0 : 0, -1);  // new offset from n0
+  std::vector<TreeRef> order;
+  std::vector<TreeRef> stack;
+  auto is_added = [n0](TreeRef r) { return !is_leaf(r) && std::size_t(r) >= n0; };
+  auto push = [&](TreeRef r) {  // -2: on the stack
+    if (is_added(r) && node_map[std::size_t(r) - n0] == -1) {
+      node_map[std::size_t(r) - n0] = -2;
+      stack.push_back(r);
+    }
+  };
+  auto reach = [&](TreeRef from) {
+    push(from);
+    while (!stack.empty()) {
+      const TreeRef t = stack.back();
+      stack.pop_back();
+      node_map[std::size_t(t) - n0] = std::int32_t(order.size());
+      order.push_back(t);
+      const BspNode& n = nodes[std::size_t(t)];
+      push(n.positive);
+      push(n.negative);
+    }
+  };
+  if (nodes_added) {
+    reach(root);
+    for (const TreeRef t : arena.merged) {
+      if (std::size_t(t) >= n0) continue;  // not a reused node (reached from the root, if at all)
+      reach(nodes[std::size_t(t)].negative);
+      reach(nodes[std::size_t(t)].positive);
+    }
+  }
+  // A reused node the merge collapsed (both children the same leaf) is no longer reached: its
+  // polygon (which may have been computed by the merge) is cleared rather than kept referring to
+  // planes that go.
+  for (const TreeRef t : arena.merged) {
+    const BspNode& n = nodes[std::size_t(t)];
+    if (std::size_t(t) < n0 && is_leaf(n.negative) && n.negative == n.positive) {
+      polygons[std::size_t(t)].corners.clear();
+      polygons[std::size_t(t)].support = n.plane;
+    }
+  }
+  // The fragments the operation may have written: changed blocks, and all from a point on.
+  std::vector<BoundaryFragment>* fragments = arena.boundary ? &*arena.boundary : nullptr;
+  std::vector<std::size_t> written;  // fragment indices, each once
+  if (fragments) {
+    const std::size_t count = fragments->size();
+    const std::size_t from = added.all_fragments ? 0 : std::min(arena.boundary_changed_from, count);
+    for (const std::size_t i : arena.boundary_changed)
+      if (i < from) written.push_back(i);
+    std::sort(written.begin(), written.end());
+    written.erase(std::unique(written.begin(), written.end()), written.end());
+    for (std::size_t i = from; i < count; ++i) written.push_back(i);
+  }
+  // 2. The added planes something references: the kept added nodes (plane, polygon), the
+  // reused nodes' polygons (a pending one the merge computed refers to new opposites), the
+  // written fragments.
+  const std::int32_t p1 = arena.planes.size();
+  if (p1 > p0) {
+    std::vector<std::int32_t> plane_map(std::size_t(p1 - p0), -1);
+    auto mark = [&](std::int32_t p) {
+      if (p >= p0) plane_map[std::size_t(p - p0)] = 0;
+    };
+    auto mark_polygon = [&](const ConvexPolygon& poly) {
+      mark(poly.support);
+      for (const auto& c : poly.corners) mark(c.edge), mark(c.p), mark(c.q);
+    };
+    for (const TreeRef t : order) {
+      mark(nodes[std::size_t(t)].plane);
+      mark_polygon(polygons[std::size_t(t)]);
+    }
+    for (const TreeRef t : arena.merged)
+      if (std::size_t(t) < n0) mark_polygon(polygons[std::size_t(t)]);
+    for (const std::size_t i : written) mark_polygon((*fragments)[i].polygon);
+    // The kept ones go to free slots (below p0: nothing refers to them), then in order from p0.
+    struct Kept {
+      kernel::Plane plane;
+      bool auxiliary;
+      std::int32_t to;
+    };
+    std::vector<Kept> kept;
+    std::vector<std::int32_t>& free = arena.free_planes;
+    std::int32_t next = p0;
+    for (std::int32_t i = p0; i < p1; ++i)
+      if (plane_map[std::size_t(i - p0)] >= 0) {
+        std::int32_t to = next;
+        if (!free.empty() && free.back() < p0) {
+          to = free.back();
+          free.pop_back();
+        } else {
+          ++next;
+        }
+        plane_map[std::size_t(i - p0)] = to;
+        kept.push_back({arena.planes[i], arena.planes.auxiliary(i), to});
+      }
+    arena.planes.truncate(p0);
+    for (const Kept& k : kept)
+      if (k.to < p0)
+        arena.planes.replace(k.to, k.plane, k.auxiliary);
+      else
+        arena.planes.add(k.plane, k.auxiliary);
+    auto map = [&](std::int32_t& p) {
+      if (p >= p0) p = plane_map[std::size_t(p - p0)];
+    };
+    auto map_polygon = [&](ConvexPolygon& poly) {
+      map(poly.support);
+      for (auto& c : poly.corners) map(c.edge), map(c.p), map(c.q);
+    };
+    for (const TreeRef t : order) {
+      map(nodes[std::size_t(t)].plane);
+      map_polygon(polygons[std::size_t(t)]);
+    }
+    for (const TreeRef t : arena.merged)
+      if (std::size_t(t) < n0) map_polygon(polygons[std::size_t(t)]);
+    for (const std::size_t i : written) map_polygon((*fragments)[i].polygon);
+  }
+  arena.opposite_of.clear();  // indices changed
+  // 3. The kept added nodes move down to n0 on, in pre-order; references to them rewritten.
+  if (nodes_added) {
+    auto forward = [&](TreeRef& r) {
+      if (is_added(r)) r = TreeRef(n0 + std::size_t(node_map[std::size_t(r) - n0]));
+    };
+    std::vector<BspNode> kept_nodes;
+    std::vector<ConvexPolygon> kept_polygons;
+    kept_nodes.reserve(order.size());
+    kept_polygons.reserve(order.size());
+    for (const TreeRef t : order) {
+      BspNode n = nodes[std::size_t(t)];
+      forward(n.negative);
+      forward(n.positive);
+      kept_nodes.push_back(n);
+      kept_polygons.push_back(std::move(polygons[std::size_t(t)]));
+    }
+    for (const TreeRef t : arena.merged)
+      if (std::size_t(t) < n0) forward(nodes[std::size_t(t)].negative), forward(nodes[std::size_t(t)].positive);
+    forward(root);
+    nodes.resize(n0);
+    polygons.resize(n0);
+    nodes.insert(nodes.end(), kept_nodes.begin(), kept_nodes.end());
+    std::move(kept_polygons.begin(), kept_polygons.end(), std::back_inserter(polygons));
+  }
+  arena.merged.clear();
+  return root;
+}
+
+void find_free_planes(Arena& arena) {
+  const std::int32_t count = arena.planes.size();
+  std::vector<bool> used(std::size_t(count), false);
+  auto use = [&](std::int32_t p) { used[std::size_t(p)] = true; };
+  auto use_polygon = [&](const ConvexPolygon& poly) {
+    use(poly.support);
+    for (const auto& c : poly.corners) use(c.edge), use(c.p), use(c.q);
+  };
+  for (const BspNode& n : arena.nodes) use(n.plane);
+  for (const ConvexPolygon& poly : arena.polygons) use_polygon(poly);
+  if (arena.boundary)
+    for (const BoundaryFragment& f : *arena.boundary) use_polygon(f.polygon);
+  arena.free_planes.clear();
+  for (std::int32_t i = kernel::kWorldPlanes; i < count; ++i)
+    if (!used[std::size_t(i)]) arena.free_planes.push_back(i);
+}
+
 Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
   if (is_leaf(root)) return Solid::leaf(root == kIn);
   // Post-order: a node is emitted after both children, so collapses propagate upwards.
@@ -270,7 +440,7 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
       for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
     }
   }
-  return SolidAccess::make(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), 0,
+  return SolidAccess::make(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), std::vector<std::int32_t>{},
                std::move(boundary), std::move(boxes));
 }
 

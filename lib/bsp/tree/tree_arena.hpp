@@ -25,11 +25,20 @@ struct Arena {
   /// The boundary fragments of a solid already appended (or adopted) last, on arena planes: the
   /// carried ones, or extracted from its tree (boundary_fragments) when it carries none.
   std::vector<BoundaryFragment> boundary_of(const Solid& solid);
-  std::size_t compacted_size = 0;  ///< of an adopted solid: its plane table size after its last compaction
+  /// Of an adopted solid: plane slots nothing refers to, which reclaim_added gives to the planes
+  /// an operation adds; find_free_planes() recomputes them.
+  std::vector<std::int32_t> free_planes;
   std::size_t recycled_size = 0;   ///< of an adopted solid: its node storage after freed nodes were last recycled
   /// Boundary of the tree being built, when known; compact() keeps it (and its planes).
   std::optional<std::vector<BoundaryFragment>> boundary;
   FragmentBoxes boundary_boxes;  ///< of `boundary`, or empty
+  /// What the last set operation wrote, for in-place operations (reclaim_added): the nodes of
+  /// tree a the merge reused (their children and pending polygons may be written), in pre-order;
+  /// the fragments of `boundary` merge_boundaries rewrote in place (indices, maybe repeated), and
+  /// the first fragment from which all may have changed.
+  std::vector<TreeRef> merged;
+  std::vector<std::size_t> boundary_changed;
+  std::size_t boundary_changed_from = 0;
 
  private:
   std::int32_t last_shift_ = 0;  ///< plane index shift of the last append (0 after adopt)
@@ -54,6 +63,32 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options = {});
 /// count, so a stroke pays for what it freed and added, not for a copy of the whole tree.
 /// Returns the root (a leaf if the tree collapsed).
 TreeRef recycle_free_nodes(Arena& arena, TreeRef root);
+
+/// What an in-place operation added to an adopted solid's storage: planes at indices >=
+/// first_plane, nodes at indices >= first_node; the nodes below first_node whose children or
+/// polygons it may have written are arena.merged, the fragments arena.boundary_changed and
+/// those from arena.boundary_changed_from (all of them with all_fragments).
+struct AddedStorage {
+  std::int32_t first_plane = 0;
+  std::size_t first_node = 0;
+  bool all_fragments = false;
+};
+/// Drops what an in-place operation added and left unused, in time proportional to what it
+/// added (the solid's older storage is not read): the added nodes the result does not reach (a
+/// partitioned tree's dropped side, pruned nodes) and the added planes nothing references (most
+/// of the other operand's planes, opposites made for one operation). The kept added nodes move
+/// down to first_node on (pre-order), the kept added planes down to first_plane on (in order);
+/// the references to them are rewritten. Nodes and planes below the marks are neither moved nor
+/// renumbered. Returns the root (moved if it was an added node).
+TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added);
+
+/// Recomputes arena.free_planes: the planes (beyond the world box) that no node, no node
+/// polygon and no boundary fragment refers to. Every node of the storage must be reachable (as
+/// right after recycle_free_nodes): dead nodes are not told apart. A plane nothing refers to
+/// stays so (an operation refers to its operands' live planes and to planes it adds), so its
+/// slot can take a plane a later operation adds. One scan of the nodes, polygons and fragments,
+/// no renumbering and no moves.
+void find_free_planes(Arena& arena);
 
 /// Flips in and out leaves of the subtree at `root` in place (explicit stack).
 void complement_in_place(Arena& arena, TreeRef& root);

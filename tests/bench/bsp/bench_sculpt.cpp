@@ -6,7 +6,8 @@
 //   (K: rebuild the tree from the boundary every K strokes; --script: the same strokes also through
 //   the interpreter, `work = carve(work, ball, path)` (handed over, in place) and, with another
 //   variable holding the workpiece during the stroke, the copying path, side by side per stroke)
-// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h> volume=<v>
+// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h>
+//            storage_nodes=<node slots> planes=<plane table size> fragments=<boundary fragments> volume=<v>
 //          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m> ... strokes_over_50ms=<n>
 //          (--rebuild-every: case=rebuild_after_<k> per rebuild; --compare-old: impl=old lines and the median ratio;
 //           --script: impl=script / impl=script_copy distributions and ratios to the library's in-place carve)
@@ -190,9 +191,9 @@ int main(int argc, char** argv) {
     if (k % 10 == 0 || k + 1 == strokes) {
       const TreeStats t = tree_stats(work);
       std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d "
-                  "storage_nodes=%zu planes=%d volume=%.6f\n",
+                  "storage_nodes=%zu planes=%d fragments=%zu volume=%.6f\n",
                   k + 1, c, sweep_cpu.back(), subtract_cpu.back(), w, t.nodes, t.height, work.nodes().size(), work.planes().size(),
-                  volume(work));
+                  work.boundary().size(), volume(work));
       if (compare_old) {
         const TreeStats o = tree_stats(work_old);
         std::printf("bench impl=old case=stroke_%d cpu_ms=%.2f nodes=%d height=%d volume=%.6f\n", k + 1, old_cpu.back(), o.nodes,

@@ -1,0 +1,179 @@
+// The storage of in-place set operations (bsp/tree/tree_arena.hpp: reclaim_added, recycle_free_nodes,
+// compact): many strokes and set operations done in place give the same sets as the copying
+// operations; every reference of the workpiece stays in range; an operation leaves the planes and
+// nodes that were there before it where they were (unless a recycling or a full compaction ran),
+// and keeps no plane or node it added and left unused.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "bsp/boundary.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/sweep.hpp"
+#include "bsp/transform.hpp"
+#include "bsp/tree/solid_access.hpp"
+#include "support/mesh_checks.hpp"
+
+namespace sculpt {
+namespace {
+
+// What the reachable tree and the boundary of a solid refer to, found independently of the
+// library's bookkeeping (a traversal from the root and a scan of the boundary).
+struct References {
+  std::vector<bool> plane_used;  // by a reachable node, its polygon or a boundary fragment
+  std::vector<bool> node_reached;
+  bool in_range = true;        // every plane and node index within the storage
+  bool supports_match = true;  // a reachable node's polygon lies on its plane (or is pending)
+};
+
+References references(const Solid& s) {
+  References r;
+  r.plane_used.assign(std::size_t(s.planes().size()), false);
+  r.node_reached.assign(s.nodes().size(), false);
+  for (int i = 0; i < 6; ++i) r.plane_used[std::size_t(i)] = true;  // the world box
+  auto use = [&](std::int32_t p) {
+    if (p < 0 || p >= s.planes().size())
+      r.in_range = false;
+    else
+      r.plane_used[std::size_t(p)] = true;
+  };
+  auto use_polygon = [&](const kernel::ConvexPolygon& poly) {
+    use(poly.support);
+    for (const auto& c : poly.corners) use(c.edge), use(c.p), use(c.q);
+  };
+  std::vector<TreeRef> stack{s.root()};
+  while (!stack.empty()) {
+    const TreeRef t = stack.back();
+    stack.pop_back();
+    if (is_leaf(t)) continue;
+    if (std::size_t(t) >= s.nodes().size()) {
+      r.in_range = false;
+      continue;
+    }
+    r.node_reached[std::size_t(t)] = true;
+    const BspNode& n = s.nodes()[std::size_t(t)];
+    use(n.plane);
+    const auto& poly = s.polygons()[std::size_t(t)];
+    use_polygon(poly);
+    if (!poly.corners.empty() && poly.support != n.plane) r.supports_match = false;
+    stack.push_back(n.negative);
+    stack.push_back(n.positive);
+  }
+  for (const BoundaryFragment& f : s.boundary()) use_polygon(f.polygon);
+  return r;
+}
+
+// `count` operations on `work` (large enough that each runs in place: the larger operand's
+// storage is reused): strokes carving and adding, a box subtracted, a ball united then a box
+// intersected; each checked against the copying operation and the storage checked as above.
+void run_operations(Solid work, int count) {
+  const Solid ball = sphere(0.2, {.segments = 8});
+  int checked_nodes = 0, recyclings = 0;
+  int reused_slots = 0;  // planes put in slots nothing referred to
+  for (int k = 0; k < count; ++k) {
+    std::vector<Eigen::Vector3d> path;
+    for (int i = 0; i <= 6; ++i) {
+      const double t = 0.7 * k + 0.2 * i;
+      path.emplace_back(0.6 * std::cos(t), 0.6 * std::sin(t), 0.1 * std::sin(3.0 * t) - 0.05 * (k % 4));
+    }
+    const Solid swept = sweep(ball, path);
+    const double c = 0.3 * std::sin(1.3 * k);
+    const Solid cutter = box({c - 0.15, -0.9, -0.3}, {c + 0.15, 0.9, 0.2});
+    const Solid lump = sphere(0.25, {.segments = 12});
+    const Solid lump_at = translate(lump, {0.5 * std::cos(0.9 * k), 0.5 * std::sin(0.9 * k), -0.1});
+    // The operation k does, copying and in place.
+    auto copying = [&](const Solid& w) {
+      switch (k % 5) {
+        case 0: case 1: return w - swept;  // carve(w, ball, path)
+        case 2: return w | swept;          // add(w, ball, path)
+        case 3: return w - cutter;
+        default: return (w | lump_at) & box({-0.95, -0.95, -0.95}, {0.95, 0.95, 0.2});
+      }
+    };
+    auto in_place = [&](Solid&& w) {
+      switch (k % 5) {
+        case 0: case 1: return carve(std::move(w), ball, path);
+        case 2: return add(std::move(w), ball, path);
+        case 3: return std::move(w) - cutter;
+        default: return intersect(std::move(w) | lump_at, box({-0.95, -0.95, -0.95}, {0.95, 0.95, 0.2}));
+      }
+    };
+    ASSERT_GT(work.nodes().size(), 3 * (swept.nodes().size() + lump.nodes().size()));
+    const Solid copied = copying(work);
+    const std::vector<kernel::Plane> planes_before = work.planes().planes();
+    const std::vector<BspNode> nodes_before = work.nodes();
+    const References before = references(work);
+    work = in_place(std::move(work));
+    ASSERT_TRUE((work - copied).is_empty()) << "operation " << k;
+    ASSERT_TRUE((copied - work).is_empty()) << "operation " << k;
+    const References after = references(work);
+    ASSERT_TRUE(after.in_range) << "operation " << k;
+    EXPECT_TRUE(after.supports_match) << "operation " << k;
+    ASSERT_EQ(work.polygons().size(), work.nodes().size());
+    // Planes are never renumbered in place: every plane referenced before is where it was
+    // (slots of planes nothing referred to may have been given to new planes), and every plane
+    // added since is referenced (the unused ones were reclaimed).
+    const std::size_t p0 = planes_before.size();
+    ASSERT_GE(after.plane_used.size(), std::size_t(6));
+    for (std::size_t i = 0; i < p0; ++i)
+      if (before.plane_used[i]) {
+        ASSERT_LT(i, after.plane_used.size());
+        ASSERT_EQ(work.planes()[std::int32_t(i)], planes_before[i]) << "operation " << k << " plane " << i;
+      }
+    for (std::size_t i = p0; i < after.plane_used.size(); ++i) EXPECT_TRUE(after.plane_used[i]) << "operation " << k << " plane " << i;
+    for (std::size_t i = 0; i < std::min(p0, after.plane_used.size()); ++i) reused_slots += after.plane_used[i] && !before.plane_used[i];
+    // Without a recycling (which leaves no unreachable node in the storage, so some node the
+    // operation cut away is still there), the old nodes that are still reached keep their
+    // planes, and every node added is reached.
+    const std::size_t n0 = nodes_before.size();
+    const bool all_reached = std::count(after.node_reached.begin(), after.node_reached.end(), true) == std::ptrdiff_t(work.nodes().size());
+    if (!all_reached && k % 5 != 4) {  // (case 4 is two operations: the first may recycle)
+      ASSERT_GE(work.nodes().size(), n0);
+      ++checked_nodes;
+      for (std::size_t i = 0; i < n0; ++i)
+        if (before.node_reached[i] && after.node_reached[i]) {
+          ASSERT_EQ(work.nodes()[i].plane, nodes_before[i].plane) << "operation " << k;
+        }
+      for (std::size_t i = n0; i < work.nodes().size(); ++i) EXPECT_TRUE(after.node_reached[i]) << "operation " << k << " node " << i;
+    } else {
+      ++recyclings;
+    }
+  }
+  // Both cases were seen in a long run: operations without a recycling, and recyclings whose free
+  // plane slots later operations took.
+  EXPECT_GE(checked_nodes, count / 4);
+  if (count >= 30) {
+    EXPECT_GT(checked_nodes, 12);
+    EXPECT_GT(recyclings, 0);
+    EXPECT_GT(reused_slots, 0);
+  }
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(work)));
+}
+
+Solid workpiece() { return sphere(1.0, {.segments = 48}) & box({-2, -2, -2}, {2, 2, 0.1}); }
+
+TEST(InPlaceStorage, ManyOperationsKeepTheOldStorageAndNoUnusedAdditions) { run_operations(workpiece(), 30); }
+
+TEST(InPlaceStorage, AWorkpieceWithPendingPolygons) {
+  // A translated solid keeps its tree as given, its nodes' polygons pending (computed when a
+  // merge reaches them: those refer to opposites the operation adds).
+  const Solid work = translate(workpiece(), {0.125, 0, 0});
+  EXPECT_GT(std::count_if(work.polygons().begin(), work.polygons().end(), [](const auto& p) { return p.corners.empty(); }), 100);
+  run_operations(work, 10);
+}
+
+TEST(InPlaceStorage, AWorkpieceWithoutItsBoundary) {
+  // Without a carried boundary the first operation extracts it (on planes it adds).
+  const Solid full = workpiece();
+  Solid work = bsp::detail::SolidAccess::make(full.planes(), full.nodes(), full.polygons(), full.root());
+  ASSERT_FALSE(work.has_boundary());
+  run_operations(std::move(work), 10);
+}
+
+}  // namespace
+}  // namespace sculpt
