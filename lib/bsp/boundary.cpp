@@ -12,9 +12,17 @@ PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
   // A carried boundary (set operation results) is used as is; otherwise it is extracted.
   bsp::detail::Fragments f = solid.has_boundary() ? bsp::detail::Fragments{solid.planes(), solid.boundary()}
                                              : bsp::detail::boundary_fragments(solid);
-  PolygonMesh exact = bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate, .grid = solid.grid()});
-  if (!options.clean) return exact;
-  return round_for_output(exact, {.precision = OutputPrecision::Double, .max_feature = solid.grid().step()},
+  if (!options.clean)
+    return bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate, .grid = solid.grid()});
+  // Vertices written exactly (a grid point, say) are marked for the clean check: the assembled
+  // faces are the exact boundary of the solid, which is clean (docs/kernel.md, "Clean output"),
+  // so only pairs of faces with a rounded corner need a test.
+  std::vector<char> exact_vertices;
+  const PolygonMesh exact = bsp::detail::assemble_mesh(
+      f, {.triangulate = options.triangulate, .grid = solid.grid(), .exact_vertices = &exact_vertices});
+  return round_for_output(exact,
+                          {.precision = OutputPrecision::Double, .max_feature = solid.grid().step(),
+                           .exact_vertices = exact_vertices},
                           options.report);
 }
 

@@ -754,6 +754,8 @@ namespace {
 
 /// output_problem; `topology_clean`: the caller found no defect at all in `mesh` with the same
 /// topology check, and the precision is doubles (rounding changes nothing), so it is not repeated.
+/// `options.exact_vertices` (if one per vertex) marks vertices whose pairs of all-marked faces
+/// need no self-intersection test; a vertex the rounding moves loses its mark.
 std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, bool topology_clean) {
   const Rounder round(options);
   PolygonMesh copy;
@@ -796,8 +798,16 @@ std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options,
   }
   for (const auto& f : rounded.faces)
     if (f.size() > kMaxJudgedCorners) return std::string(kUnchecked);
+  std::vector<char> exact;  // the marks of vertices that the rounding leaves where they are
+  if (options.exact_vertices.size() == mesh.vertices.size() && !mesh.vertices.empty()) {
+    exact.assign(options.exact_vertices.begin(), options.exact_vertices.end());
+    if (&rounded != &mesh)
+      for (size_t v = 0; v < exact.size(); ++v)
+        if (rounded.vertices[v] != mesh.vertices[v]) exact[v] = 0;
+  }
   const SelfIntersectionSearch search = search_self_intersections(
-      rounded, {.max_pairs = 1, .max_candidates = kCandidatesPerCorner * corner_count(rounded) + kMinCandidates});
+      rounded, {.max_pairs = 1, .max_candidates = kCandidatesPerCorner * corner_count(rounded) + kMinCandidates,
+                .exact_vertices = exact});
   if (!search.pairs.empty()) {
     const FacePair& p = search.pairs.front();
     return "faces " + std::to_string(p.face_a) + " and " + std::to_string(p.face_b) + " intersect";
@@ -812,8 +822,11 @@ std::string output_problem(const PolygonMesh& mesh, const OutputRoundingOptions&
   return judge(mesh, options, false);
 }
 
-PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOptions& options,
+PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOptions& given,
                              OutputRoundingReport* report) {
+  // The exact-vertex marks hold for `mesh` only: its first judgement; repaired meshes are judged in full.
+  OutputRoundingOptions options = given;
+  options.exact_vertices = {};
   OutputRoundingReport local;
   OutputRoundingReport& r = report != nullptr ? *report : local;
   r = {};
@@ -832,7 +845,7 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
   }
   const Rounder round(options);
   const bool topology_clean = topology.defects.empty() && options.precision == OutputPrecision::Double;
-  const std::string first = options.triangles ? std::string("triangles asked for") : judge(mesh, options, topology_clean);
+  const std::string first = options.triangles ? std::string("triangles asked for") : judge(mesh, given, topology_clean);
   if (first == kUnchecked) {  // too costly to judge: written as it is, and said so
     r.clean = false;
     r.problem = first;

@@ -14,6 +14,7 @@
 /// farther than `max_feature`: every input vertex ends within that distance of the output vertex
 /// that stands for it.
 
+#include <span>
 #include <string>
 
 #include "mesh/polygon_mesh.hpp"
@@ -39,6 +40,14 @@ struct OutputRoundingOptions {
   /// Copies of one point (a solid touching itself at an edge or a vertex, each sheet with its own
   /// copy) are allowed and kept, as `from_mesh` reads them; otherwise they are moved apart.
   bool keep_copies = false;
+  /// Optional, one flag per vertex of the mesh given (empty: none): nonzero marks a vertex whose
+  /// coordinates are exactly its position on a boundary that is clean with every vertex at its
+  /// exact position (the precondition of SelfIntersectionOptions::exact_vertices, which the
+  /// caller promises). The first check then examines for self-intersections only pairs of faces
+  /// of which one has a corner that is not marked or that the rounding to `precision` moves.
+  /// bsp's to_mesh fills it from the assembly (docs/kernel.md, "Clean output"). Used only for the
+  /// mesh given, never for a repaired one.
+  std::span<const char> exact_vertices = {};
 };
 
 /// What round_for_output did.

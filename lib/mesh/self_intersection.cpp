@@ -24,6 +24,7 @@ struct Tri {
   std::array<Vector3d, 3> p;
   int face = 0;
   int axis = 0;  // a coordinate axis along which the triangle projects without degeneracy
+  bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
   Eigen::AlignedBox3d box;
 };
 
@@ -235,11 +236,21 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
                           ? canon[order[k - 1]]
                           : order[k];
 
+  // Faces with every corner marked exact (the flags are used only when there is one per vertex):
+  // pairs of their triangles are not examined (see SelfIntersectionOptions::exact_vertices).
+  const bool marked = !options.exact_vertices.empty() && options.exact_vertices.size() == nv;
+  auto exact_face = [&](const std::vector<int>& f) {
+    return marked && std::all_of(f.begin(), f.end(), [&](int v) { return options.exact_vertices[size_t(v)] != 0; });
+  };
+  if (marked && std::all_of(mesh.faces.begin(), mesh.faces.end(), exact_face)) return result;
   std::vector<Tri> tris;
+  size_t moved = 0;  // triangles of faces with a corner not marked exact
   for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+    const bool exact = exact_face(mesh.faces[fi]);
     for (const IndexTriangle& it : triangulate_polygon(mesh.vertices, mesh.faces[fi])) {
       Tri t;
       t.face = static_cast<int>(fi);
+      t.exact = exact;
       for (int k = 0; k < 3; ++k) {
         t.canon[k] = canon[it[k]];
         t.p[k] = mesh.vertices[it[k]];
@@ -249,9 +260,13 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
       for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
         if (orient2d(drop(t.p[0], axis), drop(t.p[1], axis), drop(t.p[2], axis)) != 0)
           t.axis = axis;
-      if (t.axis >= 0) tris.push_back(t);  // collinear corners: degenerate, reported elsewhere
+      if (t.axis >= 0) {  // collinear corners: degenerate, reported elsewhere
+        tris.push_back(t);
+        moved += t.exact ? 0 : 1;
+      }
     }
   }
+  if (moved == 0) return result;
   // Broad phase: a uniform grid of cubic cells (about the median extent of the triangles'
   // boxes, coarsened until the boxes' cell entries stay within a few per triangle); each triangle
   // is listed in every cell its box overlaps, and a pair whose boxes overlap is examined in the
@@ -308,6 +323,12 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     size_t end = begin;
     while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
     const std::int64_t here = entries[begin].first;
+    if (moved < tris.size() &&
+        std::all_of(entries.begin() + std::ptrdiff_t(begin), entries.begin() + std::ptrdiff_t(end),
+                    [&](const auto& e) { return tris[size_t(e.second)].exact; })) {
+      begin = end;  // only exact triangles here: nothing to examine
+      continue;
+    }
     for (size_t i = begin; i < end && found.size() < options.max_pairs && result.complete; ++i) {
       const Tri& s = tris[static_cast<size_t>(entries[i].second)];
       for (size_t j = i + 1; j < end; ++j) {
@@ -316,7 +337,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
           break;
         }
         const Tri& t = tris[static_cast<size_t>(entries[j].second)];
-        if (s.face == t.face) continue;
+        if (s.face == t.face || (s.exact && t.exact)) continue;
         if (t.box.min().x() > s.box.max().x() || s.box.min().x() > t.box.max().x() ||
             t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
             t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())

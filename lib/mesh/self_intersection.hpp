@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "mesh/polygon_mesh.hpp"
@@ -29,6 +30,15 @@ struct SelfIntersectionOptions {
   /// pairs were scanned; the search is then incomplete. Long fan triangles of faces with thousands of corners can make the candidates
   /// quadratic in number.
   size_t max_candidates = SIZE_MAX;
+  /// Optional, one flag per vertex (empty: none): nonzero marks a vertex known to be at its exact
+  /// position on a boundary that is itself clean. Precondition (the caller's promise): with
+  /// every vertex at its exact position, the mesh has no self-intersection as this search
+  /// decides it (with the same faces, and vertices at one point counting as one). A face all of
+  /// whose corners are marked is then exactly a face of that clean mesh, triangulated the same way, so
+  /// two such faces cannot meet beyond what they share, and pairs of them are not examined: only
+  /// pairs with a face that has an unmarked corner are. bsp's to_mesh fills it from the assembly
+  /// (docs/kernel.md, "Clean output").
+  std::span<const char> exact_vertices = {};
 };
 
 /// The pairs found, and whether the search looked at every candidate.

@@ -16,6 +16,7 @@
 #include "bsp/boundary.hpp"
 #include "bsp/tree/boundary_fragments.hpp"
 #include "bsp/assembly/junction_removal.hpp"
+#include "bsp/assembly/sheets.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/assembly/vertex_equality.hpp"
@@ -444,6 +445,53 @@ TEST(MeshAssembly, HalfEdgeIndexesFindEveryEdgeAndNoOther) {
       ASSERT_EQ(by_hash, expected) << u << " -> " << w;
       ASSERT_EQ(out.find(u, w) >= 0, !expected.empty());
     }
+}
+
+
+// exactly_represented (the marks of to_mesh's cheaper clean check): against Cramer's rule in
+// unbounded integers. Vertices at grid points (three random planes through a random grid point)
+// are all found exact; a `true` is always right (the coordinates times w are the numerators); the
+// same planes with one offset moved by 1 (a vertex next to the grid point) are not exact.
+TEST(MeshAssembly, ExactlyRepresentedVerticesAreExact) {
+  std::mt19937_64 rng(14);
+  std::uniform_int_distribution<std::int64_t> coord(-(1 << 25), 1 << 25), normal(-(1 << 20), 1 << 20);
+  int found = 0, near = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const kernel::GridPoint g{.x = coord(rng), .y = coord(rng), .z = coord(rng)};
+    Plane planes[3];
+    for (Plane& p : planes) {
+      const std::int64_t a = normal(rng), b = normal(rng), c = trial % 3 == 0 && &p == &planes[0] ? 0 : normal(rng);
+      p = kernel::make_plane(a, b, c == 0 && a == 0 && b == 0 ? 1 : c, 0);
+      p = kernel::make_plane(p.a, p.b, p.c, -(kernel::Int128(p.a) * g.x + kernel::Int128(p.b) * g.y + kernel::Int128(p.c) * g.z));
+    }
+    if (!kernel::independent(planes[0], planes[1], planes[2])) continue;
+    auto check = [&](const Plane& p, const Plane& q, const Plane& r) {
+      const Eigen::Vector3d at = kernel::rounded_vertex(p, q, r, kernel::approximate_vertex(p, q, r));
+      const bool exact = bsp::detail::exactly_represented(p, q, r, at);
+      if (exact) {
+        const Homogeneous h = cramer(p, q, r);
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(std::floor(at[k]), at[k]);
+        EXPECT_EQ(h.x, Big(std::int64_t(at.x())) * h.w);
+        EXPECT_EQ(h.y, Big(std::int64_t(at.y())) * h.w);
+        EXPECT_EQ(h.z, Big(std::int64_t(at.z())) * h.w);
+      }
+      return exact;
+    };
+    EXPECT_TRUE(check(planes[0], planes[1], planes[2]));
+    ++found;
+    const Plane moved = kernel::make_plane(planes[0].a, planes[0].b, planes[0].c, planes[0].d + 1);
+    if (kernel::independent(moved, planes[1], planes[2])) {
+      const Homogeneous h = cramer(moved, planes[1], planes[2]);
+      const bool grid_point = h.x % h.w == 0 && h.y % h.w == 0 && h.z % h.w == 0;  // |w| = 1 can happen
+      EXPECT_EQ(check(moved, planes[1], planes[2]), grid_point);
+      near += grid_point ? 0 : 1;
+    }
+    // Random offsets: whatever the answer, a `true` must be right (checked inside).
+    const Plane loose = kernel::make_plane(planes[2].a, planes[2].b, planes[2].c, planes[2].d + coord(rng));
+    if (kernel::independent(planes[0], planes[1], loose)) (void)check(planes[0], planes[1], loose);
+  }
+  EXPECT_GT(found, 2900);
+  EXPECT_GT(near, 2000);
 }
 
 }  // namespace

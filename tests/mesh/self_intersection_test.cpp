@@ -157,5 +157,66 @@ TEST(SelfIntersection, GridBroadPhaseFindsEveryPair) {
   }
 }
 
+
+// Exact-vertex marks (SelfIntersectionOptions::exact_vertices) skip only pairs of faces whose
+// corners are all marked: on meshes with many crossings and random marks, the pairs found are
+// exactly all pairs (brute force) less those of two all-marked faces, so no crossing that involves
+// a face with an unmarked corner is hidden.
+TEST(SelfIntersection, ExactMarksSkipOnlyPairsOfMarkedFaces) {
+  PolygonMesh s = test_shapes::uv_sphere(12);
+  PolygonMesh t = test_shapes::torus(16, 6, 1.2, 0.3);
+  for (auto& p : t.vertices) p += Vector3d(0.5, 0.25, 0.125);
+  const PolygonMesh m = test_shapes::merged(test_shapes::merged(s, t), test_shapes::box({-3, -0.1, -0.1}, {3, 0.1, 0.1}));
+  const std::set<std::pair<int, int>> all = all_pairs(m);
+  std::mt19937 rng(14);
+  for (double fraction : {0.0, 0.5, 0.9, 0.97, 1.0}) {
+    SCOPED_TRACE(fraction);
+    std::bernoulli_distribution marked(fraction);
+    std::vector<char> exact(m.vertices.size());
+    for (char& e : exact) e = marked(rng) ? 1 : 0;
+    auto all_marked = [&](int f) {
+      for (int v : m.faces[size_t(f)])
+        if (exact[size_t(v)] == 0) return false;
+      return true;
+    };
+    std::set<std::pair<int, int>> expected;
+    for (const auto& [a, b] : all)
+      if (!all_marked(a) || !all_marked(b)) expected.insert({a, b});
+    const SelfIntersectionSearch search = search_self_intersections(m, {.max_pairs = 1u << 30, .exact_vertices = exact});
+    EXPECT_TRUE(search.complete);
+    std::set<std::pair<int, int>> got;
+    for (const FacePair& p : search.pairs) got.insert(std::minmax(p.face_a, p.face_b));
+    EXPECT_EQ(got, expected);
+    if (fraction < 1) EXPECT_FALSE(expected.empty());
+    else EXPECT_TRUE(expected.empty());
+  }
+  // Marks of the wrong count are ignored (every pair found).
+  const std::vector<char> short_marks(m.vertices.size() - 1, 1);
+  const SelfIntersectionSearch search = search_self_intersections(m, {.max_pairs = 1u << 30, .exact_vertices = short_marks});
+  EXPECT_EQ(search.pairs.size(), all.size());
+}
+
+// A clean pair of boxes, all marked but one corner of the second, which is moved into the first:
+// the crossings of that corner's faces with the first box's (all-marked) faces are still reported.
+TEST(SelfIntersection, MovedCornerCrossingAnExactFaceIsFound) {
+  PolygonMesh a = test_shapes::box({0, 0, 0}, {1, 1, 1});
+  const PolygonMesh b = test_shapes::box({2, 0, 0}, {3, 1, 1});
+  PolygonMesh m = test_shapes::merged(a, b);
+  std::vector<char> exact(m.vertices.size(), 1);
+  EXPECT_TRUE(search_self_intersections(m, {.exact_vertices = exact}).pairs.empty());
+  EXPECT_TRUE(search_self_intersections(m).pairs.empty());
+  const int moved = 8;  // b's corner (2, 0, 0)
+  ASSERT_EQ(m.vertices[moved], Vector3d(2, 0, 0));
+  m.vertices[moved] = Vector3d(0.5, 0.25, 0.25);  // inside a: b's faces at it cross a's faces
+  exact[moved] = 0;
+  const SelfIntersectionSearch search = search_self_intersections(m, {.max_pairs = 100, .exact_vertices = exact});
+  ASSERT_FALSE(search.pairs.empty());
+  const std::set<std::pair<int, int>> all = all_pairs(m);
+  std::set<std::pair<int, int>> got;
+  for (const FacePair& p : search.pairs) got.insert(std::minmax(p.face_a, p.face_b));
+  EXPECT_EQ(got, all);  // every pair involves one of b's faces at the moved corner
+  for (const auto& [f, g] : got) EXPECT_TRUE(f < 6 && g >= 6);
+}
+
 }  // namespace
 }  // namespace sculpt

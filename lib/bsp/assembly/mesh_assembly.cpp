@@ -22,7 +22,8 @@ PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& opt
   faces = merge_coplanar_faces(std::move(faces), merged.vertices.size(), ids);
   faces = remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
   const Sheets sheets = split_non_manifold(std::move(faces), merged.vertices, fragments.planes);
-  return output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate, options.grid);
+  return output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate, options.grid,
+                     options.exact_vertices);
 }
 
 }  // namespace sculpt::bsp::detail

@@ -182,10 +182,24 @@ Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, cons
   return {std::move(faces), std::move(original)};
 }
 
+bool exactly_represented(const kernel::Plane& p, const kernel::Plane& q, const kernel::Plane& r,
+                         const Eigen::Vector3d& at) {
+  const kernel::ApproxPoint point{.x = at.x(), .y = at.y(), .z = at.z(), .err = 0};
+  for (const kernel::Plane* s : {&p, &q, &r})  // off a plane for sure: not the vertex
+    if (kernel::filtered_orient(point, *s) != kernel::Sign::Zero) return false;
+  constexpr double kLimit = 0x1p53;
+  for (int axis = 0; axis < 3; ++axis)
+    if (!(std::fabs(at[axis]) < kLimit) || std::floor(at[axis]) != at[axis]) return false;
+  const kernel::GridPoint g{.x = std::int64_t(at.x()), .y = std::int64_t(at.y()), .z = std::int64_t(at.z())};
+  return kernel::orient(g, p) == kernel::Sign::Zero && kernel::orient(g, q) == kernel::Sign::Zero &&
+         kernel::orient(g, r) == kernel::Sign::Zero;
+}
+
 PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate, const kernel::Grid& grid) {
+                        bool triangulate, const kernel::Grid& grid, std::vector<char>* exact) {
   const FaceList& faces = sheets.faces;
   PolygonMesh mesh;
+  if (exact != nullptr) exact->clear();
   std::vector<int> index(sheets.original.size(), -1);  // only referenced vertices are written
   mesh.vertices.reserve(sheets.original.size());
   for (const int v : faces.vertex)
@@ -193,7 +207,11 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
       index[std::size_t(v)] = int(mesh.vertices.size());
       const std::size_t o = std::size_t(sheets.original[std::size_t(v)]);
       const PlaneTriple& t = vertices.triple[o];
-      mesh.vertices.push_back(grid.to_world(kernel::rounded_vertex(planes[t.s], planes[t.p], planes[t.q], vertices.at[o])));
+      const Eigen::Vector3d at = kernel::rounded_vertex(planes[t.s], planes[t.p], planes[t.q], vertices.at[o]);
+      // World units = grid units times a power of two: exact (the grid's range is far from
+      // overflow and underflow), so a vertex exact in grid units is exact in world units.
+      mesh.vertices.push_back(grid.to_world(at));
+      if (exact != nullptr) exact->push_back(exactly_represented(planes[t.s], planes[t.p], planes[t.q], at) ? 1 : 0);
     }
   mesh.faces.reserve(std::size_t(faces.size()));
   std::vector<int> face;
@@ -205,6 +223,11 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
     }
     face.clear();
     for (int c = faces.begin(f); c < faces.end(f); ++c) face.push_back(index[std::size_t(faces.vertex[std::size_t(c)])]);
+    // An ear of the rounded polygon can reach outside the exact face even when its own corners
+    // are exact: a triangle is taken for a piece of the exact face only when the whole polygon is
+    // exact (its triangulation is then that of the exact face), so a rounded corner unmarks all.
+    if (exact != nullptr && std::any_of(face.begin(), face.end(), [&](int v) { return (*exact)[std::size_t(v)] == 0; }))
+      for (const int v : face) (*exact)[std::size_t(v)] = 0;
     for (const IndexTriangle& t : triangulate_polygon(mesh.vertices, face))
       mesh.faces.push_back({t[0], t[1], t[2]});
   }

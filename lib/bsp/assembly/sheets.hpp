@@ -21,8 +21,18 @@ Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, cons
 
 /// The mesh in world units of `grid` (only vertices used by faces are written; coordinates by
 /// kernel::rounded_vertex), optionally with each face triangulated by mesh/triangulate.hpp's
-/// exact ear clipping.
+/// exact ear clipping. `exact`, if given, receives one flag per output vertex: 1 when its
+/// coordinates are exactly the vertex (nothing was rounded; see exactly_represented), else 0.
 PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate, const kernel::Grid& grid = {});
+                        bool triangulate, const kernel::Grid& grid = {}, std::vector<char>* exact = nullptr);
+
+/// The double coordinates `at` (grid units) are exactly the vertex p ∩ q ∩ r: decided exactly
+/// but only for grid points (integer coordinates below 2^53, which lie on all three planes:
+/// independent planes meet in that one point); any other point is answered false, so a `true`
+/// is always right and a `false` may be wrong (a vertex at a non-integer dyadic point). The
+/// floating-point filter of kernel::filtered_orient rejects most inexact vertices first.
+/// \pre independent(p, q, r).
+bool exactly_represented(const kernel::Plane& p, const kernel::Plane& q, const kernel::Plane& r,
+                         const Eigen::Vector3d& at);
 
 }  // namespace sculpt::bsp::detail
