@@ -245,20 +245,24 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
   const std::int32_t p1 = arena.planes.size();
   if (p1 > p0) {
     std::vector<std::int32_t> plane_map(std::size_t(p1 - p0), -1);
-    auto mark = [&](std::int32_t p) {
+    // Every reference to a plane the step may touch: kept added nodes, reused nodes' polygons,
+    // written fragments (visited once to mark, once to rewrite).
+    auto each_reference = [&](auto&& at) {
+      auto in_polygon = [&](ConvexPolygon& poly) {
+        at(poly.support);
+        for (auto& c : poly.corners) at(c.edge), at(c.p), at(c.q);
+      };
+      for (const TreeRef t : order) {
+        at(nodes[std::size_t(t)].plane);
+        in_polygon(polygons[std::size_t(t)]);
+      }
+      for (const TreeRef t : arena.merged)
+        if (std::size_t(t) < n0) in_polygon(polygons[std::size_t(t)]);
+      for (const std::size_t i : written) in_polygon((*fragments)[i].polygon);
+    };
+    each_reference([&](std::int32_t& p) {
       if (p >= p0) plane_map[std::size_t(p - p0)] = 0;
-    };
-    auto mark_polygon = [&](const ConvexPolygon& poly) {
-      mark(poly.support);
-      for (const auto& c : poly.corners) mark(c.edge), mark(c.p), mark(c.q);
-    };
-    for (const TreeRef t : order) {
-      mark(nodes[std::size_t(t)].plane);
-      mark_polygon(polygons[std::size_t(t)]);
-    }
-    for (const TreeRef t : arena.merged)
-      if (std::size_t(t) < n0) mark_polygon(polygons[std::size_t(t)]);
-    for (const std::size_t i : written) mark_polygon((*fragments)[i].polygon);
+    });
     // The kept ones go to free slots (below p0: nothing refers to them), then in order from p0.
     struct Kept {
       kernel::Plane plane;
@@ -286,20 +290,9 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
         arena.planes.replace(k.to, k.plane, k.auxiliary);
       else
         arena.planes.add(k.plane, k.auxiliary);
-    auto map = [&](std::int32_t& p) {
+    each_reference([&](std::int32_t& p) {
       if (p >= p0) p = plane_map[std::size_t(p - p0)];
-    };
-    auto map_polygon = [&](ConvexPolygon& poly) {
-      map(poly.support);
-      for (auto& c : poly.corners) map(c.edge), map(c.p), map(c.q);
-    };
-    for (const TreeRef t : order) {
-      map(nodes[std::size_t(t)].plane);
-      map_polygon(polygons[std::size_t(t)]);
-    }
-    for (const TreeRef t : arena.merged)
-      if (std::size_t(t) < n0) map_polygon(polygons[std::size_t(t)]);
-    for (const std::size_t i : written) map_polygon((*fragments)[i].polygon);
+    });
   }
   arena.opposite_of.clear();  // indices changed
   // 3. The kept added nodes move down to n0 on, in pre-order; references to them rewritten.
