@@ -92,6 +92,7 @@ std::string content_uuid(const std::vector<NMR::MODELMESHVERTEX>& vertices,
 }  // namespace
 
 double lib3mf_kept(double x) {
+  if (!(std::fabs(x) <= kLargest)) return x;  // beyond what lib3mf writes (refused by encode_3mf)
   const float f = static_cast<float>(x);
   const auto n = static_cast<std::int64_t>(f * 1000000.0f);
   const std::int64_t a = n < 0 ? -n : n;
@@ -104,6 +105,11 @@ double lib3mf_kept(double x) {
 std::string encode_3mf(const PolygonMesh& given) {
   // Rounded to what lib3mf keeps (positions that it writes and reads back unchanged), so that the
   // file is clean as written: 3MF holds triangles (output_rounding.hpp).
+  for (std::size_t v = 0; v < given.vertices.size(); ++v)
+    for (int k = 0; k < 3; ++k)
+      // lib3mf writes x * 10^6 through a 64-bit integer (six decimals): keep well inside that.
+      if (!(std::fabs(given.vertices[v][k]) <= kLargest))
+        throw InvalidInput("write_mesh: vertex " + std::to_string(v) + " is beyond the range lib3mf writes in 3MF (|x| <= 1e12)");
   const PolygonMesh mesh = round_for_output(given, {.precision = OutputPrecision::ThreeMf, .triangles = true});
   auto fail = [](void** instance, const std::string& what) {
     throw InvalidInput("write_mesh: lib3mf could not " + what + ": " + last_error(instance));
@@ -111,11 +117,7 @@ std::string encode_3mf(const PolygonMesh& given) {
   std::vector<NMR::MODELMESHVERTEX> vertices(mesh.vertices.size());
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
     for (int k = 0; k < 3; ++k) {
-      const double x = mesh.vertices[v][k];
-      // lib3mf writes x * 10^6 through a 64-bit integer (six decimals): keep well inside that.
-      if (!(std::fabs(x) <= kLargest))
-        throw InvalidInput("write_mesh: vertex " + std::to_string(v) + " is beyond the range lib3mf writes in 3MF (|x| <= 1e12)");
-      vertices[v].m_fPosition[k] = static_cast<float>(x);
+      vertices[v].m_fPosition[k] = static_cast<float>(mesh.vertices[v][k]);
     }
   std::vector<NMR::MODELMESHTRIANGLE> triangles;
   for (const auto& face : mesh.faces)
