@@ -593,41 +593,33 @@ class Cleaner {
     std::vector<std::pair<int, int>> out;
     for (const auto& [t, u] : *first_crossings_)
       if (alive_[t] && alive_[u] && dirty_[t] == 0 && dirty_[u] == 0) out.push_back({t, u});
-    for (size_t t = 0; t < tris_.size(); ++t) {
-      if (!alive_[t] || dirty_[t] == 0) continue;
-      const Tri& a = tris_[t];
-      const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
-      if (collinear(pa[0], pa[1], pa[2])) continue;
-      for (int u : near(boxes_[t])) {
-        // each pair once: a dirty partner only from the lower index
-        if (u == static_cast<int>(t) || (dirty_[u] != 0 && u < static_cast<int>(t)) || !alive_[u] ||
-            !boxes_[t].intersects(boxes_[u]))
-          continue;
-        const Tri& b = tris_[u];
-        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
-        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb))
-          out.push_back(std::minmax(static_cast<int>(t), u));
-      }
-    }
+    for (size_t t = 0; t < tris_.size(); ++t)  // each pair once: a dirty partner only from the lower index
+      if (alive_[t] && dirty_[t] != 0)
+        meeting_partners(static_cast<int>(t), [&](int u) { return dirty_[u] != 0 && u < static_cast<int>(t); }, out);
     std::sort(out.begin(), out.end());  // worked on in this order
     return out;
+  }
+
+  /// Appends to `out` the pairs (t, u), smaller index first, of live, non-degenerate triangles u
+  /// near t, not `skip`ped, that meet t beyond what they share (t itself non-degenerate).
+  template <class Skip>
+  void meeting_partners(int t, Skip skip, std::vector<std::pair<int, int>>& out) const {
+    const Tri& a = tris_[t];
+    const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
+    if (collinear(pa[0], pa[1], pa[2])) return;
+    for (int u : near(boxes_[t])) {
+      if (u == t || skip(u) || !alive_[u] || !boxes_[t].intersects(boxes_[u])) continue;
+      const Tri& b = tris_[u];
+      const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
+      if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb)) out.push_back(std::minmax(t, u));
+    }
   }
 
   /// Pairs of live, non-degenerate triangles that meet beyond what they share, all searched.
   std::vector<std::pair<int, int>> full_crossings() const {
     std::vector<std::pair<int, int>> out;
-    for (size_t t = 0; t < tris_.size(); ++t) {
-      if (!alive_[t]) continue;
-      const Tri& a = tris_[t];
-      const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
-      if (collinear(pa[0], pa[1], pa[2])) continue;
-      for (int u : near(boxes_[t])) {
-        if (u <= static_cast<int>(t) || !alive_[u] || !boxes_[t].intersects(boxes_[u])) continue;
-        const Tri& b = tris_[u];
-        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
-        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb)) out.push_back({static_cast<int>(t), u});
-      }
-    }
+    for (size_t t = 0; t < tris_.size(); ++t)
+      if (alive_[t]) meeting_partners(static_cast<int>(t), [&](int u) { return u <= static_cast<int>(t); }, out);
     std::sort(out.begin(), out.end());  // worked on in this order
     return out;
   }
