@@ -285,25 +285,23 @@ class Cleaner {
   int meetings(const std::vector<Tri>& group, const std::vector<int>& replaced,
                int enough = std::numeric_limits<int>::max()) const {
     int count = 0;
+    std::vector<PreparedTriangle> ready;  // the group's triangles (axis < 0: degenerate)
+    ready.reserve(group.size());
+    for (const Tri& a : group) ready.push_back(prepared(a));
     for (size_t i = 0; i < group.size(); ++i) {
-      const Tri& a = group[i];
-      const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
-      if (collinear(pa[0], pa[1], pa[2])) continue;
+      const PreparedTriangle& a = ready[i];
+      if (a.axis < 0) continue;
       Eigen::AlignedBox3d box;
-      for (const Vector3d& q : pa) box.extend(q);
+      for (const Vector3d& q : a.p) box.extend(q);
       for (int t : near(box)) {
         if (!alive_[t] || !box.intersects(boxes_[t])) continue;
         if (std::find(replaced.begin(), replaced.end(), t) != replaced.end()) continue;
-        const Tri& b = tris_[t];
-        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
-        if (collinear(pb[0], pb[1], pb[2])) continue;  // degenerate: removed later or reported
-        if (triangles_meet(a, pa, b, pb) && ++count >= enough) return count;
+        const PreparedTriangle b = prepared(tris_[t]);
+        if (b.axis < 0) continue;  // degenerate: removed later or reported
+        if (triangles_meet(a, b) && ++count >= enough) return count;
       }
-      for (size_t j = 0; j < i; ++j) {
-        const Tri& b = group[j];
-        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
-        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb) && ++count >= enough) return count;
-      }
+      for (size_t j = 0; j < i; ++j)
+        if (ready[j].axis >= 0 && triangles_meet(a, ready[j]) && ++count >= enough) return count;
     }
     return count;
   }
@@ -602,27 +600,34 @@ class Cleaner {
 
   /// Appends to `out` the pairs (t, u), smaller index first, of live, non-degenerate triangles u
   /// near t, not `skip`ped, that meet t beyond what they share (t itself non-degenerate).
+  /// `ready`: every triangle prepared (a whole search), or null (each prepared when needed).
   template <class Skip>
-  void meeting_partners(int t, Skip skip, std::vector<std::pair<int, int>>& out) const {
-    const Tri& a = tris_[t];
-    const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
-    if (collinear(pa[0], pa[1], pa[2])) return;
+  void meeting_partners(int t, Skip skip, std::vector<std::pair<int, int>>& out,
+                        const std::vector<PreparedTriangle>* ready = nullptr) const {
+    auto get = [&](int u) { return ready != nullptr ? (*ready)[size_t(u)] : prepared(tris_[u]); };
+    const PreparedTriangle a = get(t);
+    if (a.axis < 0) return;
     for (int u : near(boxes_[t])) {
       if (u == t || skip(u) || !alive_[u] || !boxes_[t].intersects(boxes_[u])) continue;
-      const Tri& b = tris_[u];
-      const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
-      if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb)) out.push_back(std::minmax(t, u));
+      const PreparedTriangle b = get(u);
+      if (b.axis >= 0 && triangles_meet(a, b)) out.push_back(std::minmax(t, u));
     }
   }
 
   /// Pairs of live, non-degenerate triangles that meet beyond what they share, all searched.
   std::vector<std::pair<int, int>> full_crossings() const {
+    std::vector<PreparedTriangle> ready(tris_.size());
+    for (size_t t = 0; t < tris_.size(); ++t)
+      if (alive_[t]) ready[t] = prepared(tris_[t]);
     std::vector<std::pair<int, int>> out;
     for (size_t t = 0; t < tris_.size(); ++t)
-      if (alive_[t]) meeting_partners(static_cast<int>(t), [&](int u) { return u <= static_cast<int>(t); }, out);
+      if (alive_[t]) meeting_partners(static_cast<int>(t), [&](int u) { return u <= static_cast<int>(t); }, out, &ready);
     std::sort(out.begin(), out.end());  // worked on in this order
     return out;
   }
+
+  /// Triangle t at the current positions, ready for triangles_meet (axis < 0: collinear corners).
+  PreparedTriangle prepared(const Tri& t) const { return prepare_triangle(t, {p_[t[0]], p_[t[1]], p_[t[2]]}); }
 
   /// Moves v along +-`direction` by the smallest step (delta / 8, doubling up to `delta`)
   /// after which its triangles meet fewer others, keep their orientation and do not degenerate.
@@ -748,7 +753,12 @@ namespace {
 /// topology check, and the precision is doubles (rounding changes nothing), so it is not repeated.
 /// `options.exact_vertices` (if one per vertex) marks vertices whose pairs of all-marked faces
 /// need no self-intersection test; a vertex the rounding moves loses its mark.
-std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, bool topology_clean) {
+/// `crossings_searched`: `mesh` is the cleaner's triangles, which its own complete search found
+/// free of crossings (triangles_meet on every pair of overlapping boxes, with corners the same
+/// only when they are the same vertex: stricter than the search here, which also counts copies
+/// of one point as one), and the precision is the cleaner's; only the rest is checked.
+std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, bool topology_clean,
+                  bool crossings_searched = false) {
   const Rounder round(options);
   PolygonMesh copy;
   if (options.precision != OutputPrecision::Double) {  // doubles: rounding is the identity
@@ -788,6 +798,7 @@ std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options,
                                         .check_shell_orientation = false, .max_defects_per_kind = 1});
     if (!report.ok()) return report.defects.front().message;
   }
+  if (crossings_searched) return {};
   for (const auto& f : rounded.faces)
     if (f.size() > kMaxJudgedCorners) return std::string(kUnchecked);
   std::vector<char> exact;  // the marks of vertices that the rounding leaves where they are
@@ -887,7 +898,7 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
       full = !cleaner.cross();
       if (full) {
         result = cleaner.mesh();
-        r.problem = output_problem(result, options);
+        r.problem = judge(result, options, false, /*crossings_searched=*/true);
         if (r.problem.empty()) r.problem = inverted_shell(result);
       }
     }

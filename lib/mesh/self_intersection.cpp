@@ -19,11 +19,9 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-struct Tri {
-  std::array<int, 3> canon;  // vertex ids after merging equal positions
-  std::array<Vector3d, 3> p;
+/// In the search, ids are vertex ids after merging equal positions.
+struct Tri : PreparedTriangle {
   int face = 0;
-  int axis = 0;  // a coordinate axis along which the triangle projects without degeneracy
   bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
   Eigen::AlignedBox3d box;
 };
@@ -52,7 +50,7 @@ bool point_in_triangle_2d(const Vector2d& q, const Vector2d& t0, const Vector2d&
 
 /// Closed segment [s0, s1] meets the closed, non-degenerate triangle t.
 /// o0, o1: the sides of s0 and s1 of t's plane (orient3d(t.p[0], t.p[1], t.p[2], s_i)).
-bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int o1, const Tri& t) {
+bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int o1, const PreparedTriangle& t) {
   if (o0 * o1 > 0) return false;
   if (o0 == 0 && o1 == 0) {  // coplanar: decide in the projection
     const Vector2d a = drop(s0, t.axis), b = drop(s1, t.axis);
@@ -72,7 +70,7 @@ bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int 
 /// outside (separating axis theorem in the plane: disjoint compact convex polygons have a
 /// strictly separating line along an edge of one of them), decided in the projection along
 /// `axis`, along which both project without degeneracy.
-bool coplanar_triangles_meet(const Tri& x, const Tri& y, int axis) {
+bool coplanar_triangles_meet(const PreparedTriangle& x, const PreparedTriangle& y, int axis) {
   const std::array<Vector2d, 3> p = {drop(x.p[0], axis), drop(x.p[1], axis), drop(x.p[2], axis)};
   const std::array<Vector2d, 3> q = {drop(y.p[0], axis), drop(y.p[1], axis), drop(y.p[2], axis)};
   auto separates = [](const std::array<Vector2d, 3>& a, const std::array<Vector2d, 3>& b) {
@@ -88,7 +86,7 @@ bool coplanar_triangles_meet(const Tri& x, const Tri& y, int axis) {
 }
 
 /// Any edge of `x` (among those listed) meets triangle `y`.
-bool edges_meet(const Tri& x, std::initializer_list<std::pair<int, int>> edges, const Tri& y) {
+bool edges_meet(const PreparedTriangle& x, std::initializer_list<std::pair<int, int>> edges, const PreparedTriangle& y) {
   for (auto [i, j] : edges)
     if (segment_meets_triangle(x.p[i], x.p[j], orient3d(y.p[0], y.p[1], y.p[2], x.p[i]),
                                orient3d(y.p[0], y.p[1], y.p[2], x.p[j]), y))
@@ -97,25 +95,63 @@ bool edges_meet(const Tri& x, std::initializer_list<std::pair<int, int>> edges, 
 }
 
 /// Any edge of `x` meets triangle `y`, given the sides o[k] of x's corners of y's plane.
-bool all_edges_meet(const Tri& x, const std::array<int, 3>& o, const Tri& y) {
+bool all_edges_meet(const PreparedTriangle& x, const std::array<int, 3>& o, const PreparedTriangle& y) {
   for (int k = 0; k < 3; ++k)
     if (segment_meets_triangle(x.p[k], x.p[(k + 1) % 3], o[k], o[(k + 1) % 3], y)) return true;
   return false;
 }
 
+/// Nearly parallel planes (rounded normals within about 25 degrees): pairs of triangles of one
+/// flat region, for which the 3D tests below are nearly degenerate (exact arithmetic) while the
+/// projection on the plane decides most pairs with filtered orient2d. Choosing the order of
+/// exact tests only: the decisions are the same either way.
+bool nearly_parallel(const PreparedTriangle& s, const PreparedTriangle& t) {
+  const double d = s.normal.dot(t.normal);
+  return d * d >= 0.8 * s.normal.squaredNorm() * t.normal.squaredNorm();
+}
+
+/// s's projection axis if t also projects without degeneracy along it (exactly), else -1.
+int common_axis(const PreparedTriangle& s, const PreparedTriangle& t) {
+  if (t.axis == s.axis) return s.axis;
+  return orient2d(drop(t.p[0], s.axis), drop(t.p[1], s.axis), drop(t.p[2], s.axis)) != 0 ? s.axis : -1;
+}
+
+/// Sufficient for the triangles not to meet (exact): along `axis`, an edge line of one has the
+/// other's corners strictly outside, so their projections, hence they, are disjoint.
+bool separated_in_projection(const PreparedTriangle& s, const PreparedTriangle& t, int axis) {
+  return !coplanar_triangles_meet(s, t, axis);
+}
+
+/// Sufficient for triangles sharing exactly corner s.p[i] = t.p[j] to meet only there (exact):
+/// along `axis` (both project without degeneracy, so the projection is one to one on each), a
+/// line through the shared corner along an edge of one has the other's other corners strictly
+/// on its far side; the projections then meet only at the shared corner's image.
+bool wedges_separated(const PreparedTriangle& s, int i, const PreparedTriangle& t, int j, int axis) {
+  const Vector2d p = drop(s.p[i], axis);
+  const Vector2d s1 = drop(s.p[(i + 1) % 3], axis), s2 = drop(s.p[(i + 2) % 3], axis);
+  const Vector2d t1 = drop(t.p[(j + 1) % 3], axis), t2 = drop(t.p[(j + 2) % 3], axis);
+  auto outside = [&](const Vector2d& e, const Vector2d& own, const Vector2d& a, const Vector2d& b) {
+    const int side = orient2d(p, e, own);  // nonzero: non-degenerate projection
+    return orient2d(p, e, a) == -side && orient2d(p, e, b) == -side;
+  };
+  return outside(s1, s2, t1, t2) || outside(s2, s1, t1, t2) || outside(t1, t2, s1, s2) || outside(t2, t1, s1, s2);
+}
+
 /// The two triangles meet beyond the vertices they share (and the edge they share).
-bool triangles_conflict(const Tri& s, const Tri& t) {
+bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
   int shared = 0;
   int s_shared[3] = {-1, -1, -1};  // index in s of each shared corner, in s order
   int t_of[3] = {-1, -1, -1};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      if (s.canon[i] == t.canon[j]) {
+      if (s.ids[i] == t.ids[j]) {
         s_shared[shared] = i;
         t_of[i] = j;
         ++shared;
       }
   if (shared == 0) {
+    if (nearly_parallel(s, t))
+      if (const int axis = common_axis(s, t); axis >= 0 && separated_in_projection(s, t, axis)) return false;
     // One triangle strictly on one side of the other's plane: they cannot meet (the same
     // decisions as the edge tests below, with fewer predicates).
     const int s0 = orient3d(t.p[0], t.p[1], t.p[2], s.p[0]), s1 = orient3d(t.p[0], t.p[1], t.p[2], s.p[1]);
@@ -133,6 +169,8 @@ bool triangles_conflict(const Tri& s, const Tri& t) {
     // When s's other corners lie strictly on one side of t's plane, s meets that plane (and t)
     // only at p: no other test is needed.
     const int i = s_shared[0], j = t_of[i];
+    if (nearly_parallel(s, t))
+      if (const int axis = common_axis(s, t); axis >= 0 && wedges_separated(s, i, t, j, axis)) return false;
     const Vector3d &s1 = s.p[(i + 1) % 3], &s2 = s.p[(i + 2) % 3];
     const int o1 = orient3d(t.p[0], t.p[1], t.p[2], s1), o2 = orient3d(t.p[0], t.p[1], t.p[2], s2);
     if (o1 * o2 > 0) return false;
@@ -145,11 +183,13 @@ bool triangles_conflict(const Tri& s, const Tri& t) {
     int jb = 0;
     for (int j = 0; j < 3; ++j)
       if (j != t_of[i0] && j != t_of[i1]) jb = j;
+    // The sides in the projection first: third corners on opposite sides there cannot be on one
+    // side in a common plane (the projection is one to one on s's plane), so the nearly always
+    // degenerate orient3d of neighbours in one flat region is needed only otherwise.
     const Vector3d &p = s.p[i0], &q = s.p[i1], &a = s.p[ia], &b = t.p[jb];
-    if (orient3d(p, q, a, b) != 0) return false;
     const int sa = orient2d(drop(p, s.axis), drop(q, s.axis), drop(a, s.axis));
     const int sb = orient2d(drop(p, s.axis), drop(q, s.axis), drop(b, s.axis));
-    return sa == sb;
+    return sa == sb && orient3d(p, q, a, b) == 0;
   }
   return true;  // the same triangle twice
 }
@@ -174,24 +214,40 @@ int projection_axis(const PolygonMesh& mesh, const std::vector<int>& face) {
   return normal[axis] == 0 ? -1 : axis;
 }
 
-Tri make_tri(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
-  Tri t;
-  t.canon = ids;
-  t.p = p;
-  t.axis = 0;
-  for (int axis = 0; axis < 3; ++axis)
-    if (orient2d(drop(p[0], axis), drop(p[1], axis), drop(p[2], axis)) != 0) {
+/// Sets t's rounded normal and its projection axis: the normal's largest coordinate when the
+/// projection along it is (exactly) non-degenerate, as it nearly always is (filtered predicates
+/// then decide), else the first such axis; -1 when the corners are collinear.
+void set_normal_and_axis(PreparedTriangle& t) {
+  t.normal = (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]);
+  auto projects = [&](int axis) { return orient2d(drop(t.p[0], axis), drop(t.p[1], axis), drop(t.p[2], axis)) != 0; };
+  int best = 0;
+  t.normal.cwiseAbs().maxCoeff(&best);
+  t.axis = -1;
+  for (const int axis : {best, 0, 1, 2})
+    if (projects(axis)) {
       t.axis = axis;
-      break;
+      return;
     }
-  return t;
 }
 
 }  // namespace
 
+PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
+  PreparedTriangle t;
+  t.ids = ids;
+  t.p = p;
+  set_normal_and_axis(t);
+  return t;
+}
+
+bool triangles_meet(const PreparedTriangle& a, const PreparedTriangle& b) { return triangles_conflict(a, b); }
+
 bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Vector3d, 3>& a,
                     const std::array<int, 3>& ids_b, const std::array<Vector3d, 3>& b) {
-  return triangles_conflict(make_tri(ids_a, a), make_tri(ids_b, b));
+  PreparedTriangle x = prepare_triangle(ids_a, a), y = prepare_triangle(ids_b, b);
+  x.axis = std::max(x.axis, 0);  // callers pass non-degenerate triangles
+  y.axis = std::max(y.axis, 0);
+  return triangles_conflict(x, y);
 }
 
 std::vector<int> find_self_crossing_faces(const PolygonMesh& mesh, size_t max_faces) {
@@ -252,14 +308,11 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
       t.face = static_cast<int>(fi);
       t.exact = exact;
       for (int k = 0; k < 3; ++k) {
-        t.canon[k] = canon[it[k]];
+        t.ids[k] = canon[it[k]];
         t.p[k] = mesh.vertices[it[k]];
         t.box.extend(t.p[k]);
       }
-      t.axis = -1;
-      for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
-        if (orient2d(drop(t.p[0], axis), drop(t.p[1], axis), drop(t.p[2], axis)) != 0)
-          t.axis = axis;
+      set_normal_and_axis(t);
       if (t.axis >= 0) {  // collinear corners: degenerate, reported elsewhere
         tris.push_back(t);
         moved += t.exact ? 0 : 1;

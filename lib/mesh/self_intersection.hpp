@@ -63,6 +63,21 @@ std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
 bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Eigen::Vector3d, 3>& a,
                     const std::array<int, 3>& ids_b, const std::array<Eigen::Vector3d, 3>& b);
 
+/// A triangle made ready for many triangles_meet tests: its corners' ids and positions, its
+/// rounded normal (only to choose which exact test runs first) and an axis along which it
+/// projects without degeneracy (-1: collinear corners, a degenerate triangle not to be tested).
+struct PreparedTriangle {
+  std::array<int, 3> ids{};
+  std::array<Eigen::Vector3d, 3> p;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  int axis = -1;
+};
+
+PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Eigen::Vector3d, 3>& p);
+
+/// triangles_meet of prepared triangles; \pre both have axis >= 0.
+bool triangles_meet(const PreparedTriangle& a, const PreparedTriangle& b);
+
 /// Faces with more than three corners whose boundary crosses or touches itself (two edges that
 /// are not neighbours meet), decided exactly in the projection on the coordinate plane where the
 /// face's Newell normal is largest (for a zero net area, of its widest corner triangle). Faces with

@@ -191,7 +191,15 @@ TEST(CleanOutput, RandomSetOperationsOverTransformedPrimitives) {
         first = std::string(f.name) + ": " + r.problem;
         // SCULPT_CSG_DUMP=<dir>: the unclean mesh as the file holds it, to study (OFF keeps its numbers)
         if (const char* dump = std::getenv("SCULPT_CSG_DUMP"); dump != nullptr && env != nullptr)
+        {
           write_mesh(back, std::string(dump) + "/case" + std::to_string(c.id) + ".off");
+          // and the assembled boundary before output rounding (vertices as assembled)
+          const Solid& s = solid->solid;
+          const bsp::detail::Fragments fr =
+              s.has_boundary() ? bsp::detail::Fragments{s.planes(), s.boundary()} : bsp::detail::boundary_fragments(s);
+          write_mesh(bsp::detail::assemble_mesh(fr, {.grid = s.grid()}),
+                     std::string(dump) + "/case" + std::to_string(c.id) + ".assembled.off");
+        }
       }
     }
     if (first.empty()) {
