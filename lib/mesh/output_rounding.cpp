@@ -660,21 +660,50 @@ class Cleaner {
     return false;
   }
 
-  /// Moves v by about `delta` against the mean normal of its triangles (into its own sheet),
-  /// rounded to the precision, if no triangle turns over or degenerates.
+  /// Moves v by at most `delta` against the mean normal of its triangles (into its own sheet), else
+  /// toward the middle of its neighbours, rounded to the precision, if no triangle turns over or
+  /// degenerates: by the smallest step after which its triangles meet nothing, else by the step
+  /// after which they meet fewest, if that is no more than before.
   bool separate(int v, double delta) {
+    std::vector<Tri> moved;
+    for (int t : incident_[v]) moved.push_back(tris_[t]);
+    Step best{meetings(moved, incident_[v]), std::nullopt};  // to beat
     Vector3d n = Vector3d::Zero();
     for (int t : incident_[v]) {
       const Vector3d m = normal(tris_[t]);
       if (m.squaredNorm() > 0) n += m.normalized();
     }
-    if (n.squaredNorm() == 0) return false;
-    n.normalize();
+    if (n.squaredNorm() > 0) separate_along(v, -n.normalized(), delta, moved, best);
+    // The tip of a thin spike (slivers of solids that touch at a point, meeting at an apex) has a
+    // mean normal out of its sides; toward the middle of its neighbours it goes into the spike.
+    if (const std::set<int> around = neighbours(v); (!best.target || best.meetings > 0) && !around.empty()) {
+      Vector3d middle = Vector3d::Zero();
+      for (int w : around) middle += p_[w];
+      const Vector3d inward = middle / double(around.size()) - p_[v];
+      if (inward.squaredNorm() > 0) separate_along(v, inward.normalized(), delta, moved, best);
+    }
+    if (!best.target) return false;
+    p_[v] = *best.target;
+    for (int t : incident_[v]) update_box(t);
+    return true;
+  }
+
+  /// A move of a vertex and how many pairs its triangles then meet in.
+  struct Step {
+    int meetings = 0;
+    std::optional<Vector3d> target;
+  };
+
+  /// Tries moves of v along the unit vector `direction` (`moved`: v's triangles), from the
+  /// resolution doubling up to `delta`, stopping at the first whose triangles meet nothing; keeps
+  /// in `best` the one whose triangles meet fewest pairs: fewer than best's, or as many when best
+  /// has no move yet (a copy of a point is moved off it even when that meets as much).
+  void separate_along(int v, const Vector3d& direction, double delta, const std::vector<Tri>& moved, Step& best) {
     const Vector3d old = p_[v];
     for (double step = resolution_; step <= delta; step *= 2) {
-      const Vector3d target = round_(Vector3d(old - step * n));
+      const Vector3d target = round_(Vector3d(old + step * direction));
       if (target == old) continue;
-      if (spread(v, v, target) > max_feature_) return false;
+      if (spread(v, v, target) > max_feature_) break;
       std::vector<Vector3d> before;
       for (int t : incident_[v]) before.push_back(normal(tris_[t]));
       p_[v] = target;
@@ -683,20 +712,11 @@ class Cleaner {
         const Tri& q = tris_[incident_[v][i]];
         ok = !collinear(p_[q[0]], p_[q[1]], p_[q[2]]) && (before[i].squaredNorm() == 0 || before[i].dot(normal(q)) > 0);
       }
+      const int count = ok ? meetings(moved, incident_[v], best.meetings + 1) : -1;
       p_[v] = old;
-      if (ok) {
-        std::vector<Tri> moved;
-        for (int t : incident_[v]) moved.push_back(tris_[t]);
-        ok = !conflicts(moved, incident_[v], v, target);
-      }
-      if (ok) {
-        p_[v] = target;
-        for (int t : incident_[v]) update_box(t);
-        return true;
-      }
-      p_[v] = old;
+      if (count >= 0 && (count < best.meetings || (count == best.meetings && !best.target))) best = {count, target};
+      if (best.target && best.meetings == 0) return;
     }
-    return false;
   }
 
   Rounder round_;

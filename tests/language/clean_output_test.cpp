@@ -292,6 +292,12 @@ TEST(CleanOutput, LocalCrossingsOfALargeSnapAreMovedApart) {
 TEST(CleanOutput, CornersMergedByFloat32KeepARingTriangulated) {
   expect_clean_regression("float32_bridged_hole.bsp", 0.4092410746025115, 14.242582869119895);
 }
+// models/regressions/apex_of_touching_slivers.bsp: slivers touching at an apex are moved apart
+// (each copy of the apex into its own sliver).
+TEST(CleanOutput, SliversTouchingAtAnApexAreMovedApart) {
+  expect_clean_regression("apex_of_touching_slivers.bsp", 2.9893981125523488, 36.955958207850756);
+}
+
 // Issue 14's third finding: the bunny (npm package, 3674 triangles) united with a rotated copy of
 // itself; CGAL crashed on or rejected such meshes. Every format, judged by CGAL after rounding.
 TEST(CleanOutput, BunnyUnitedWithItsRotatedCopyIsClean) {
