@@ -131,7 +131,7 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
       if (b.valid)
         for (int a = 0; a < 3; ++a) lo[std::size_t(a)] = std::min(lo[std::size_t(a)], b.lo[a]), hi[std::size_t(a)] = std::max(hi[std::size_t(a)], b.hi[a]);
     if (lo[0] <= hi[0]) {
-      points.resize(std::size_t(std::max(0, options.volume_samples)));
+      points.resize(std::min(std::size_t(std::max(0, options.volume_samples)), std::size_t(kVolumeSamplesPerFragment) * pool.size()));
       for (Point& x : points)
         for (std::size_t a = 0; a < 3; ++a) x[a] = lo[a] + rng.uniform() * (hi[a] - lo[a]);
     }

@@ -40,6 +40,9 @@ namespace sculpt::bsp::detail {
 /// How a node's plane is chosen (autopartition.hpp).
 enum class PartitionScore { SplitsAndBalance, ExpectedDepth };
 
+/// See AutopartitionOptions::volume_samples.
+inline constexpr int kVolumeSamplesPerFragment = 32;
+
 struct AutopartitionOptions {
   int candidates = 5;         ///< fragments whose planes are scored per node (evenly spaced; random for ExpectedDepth)
   int sample = 48;            ///< fragments each candidate is scored against (evenly spaced)
@@ -49,7 +52,8 @@ struct AutopartitionOptions {
   PartitionScore score = PartitionScore::SplitsAndBalance;
   /// ExpectedDepth: points sampled uniformly in the fragments' bounding box (fixed seed) whose
   /// shares estimate the cells' volumes; each candidate is scored against at most
-  /// `point_sample` of a cell's points (evenly spaced).
+  /// `point_sample` of a cell's points (evenly spaced). At most kVolumeSamplesPerFragment
+  /// per fragment are drawn: a small mesh (a turned box) has few cells to tell apart.
   int volume_samples = 4096;
   int point_sample = 256;
   /// ExpectedDepth: the charge (in expected nodes) of an auxiliary plane, which carries no
