@@ -68,24 +68,33 @@ bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int 
   return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
 }
 
+/// Some edge line of `a` has all of `b` strictly on the side away from `a`'s third corner, in
+/// the projection along `axis` (none when `a` projects to a segment there). Then the projections
+/// are disjoint, and so are the triangles.
+bool edge_line_separates(const std::array<Vector2d, 3>& a, const std::array<Vector2d, 3>& b) {
+  const int inside = orient2d(a[0], a[1], a[2]);  // the side of the third corner
+  if (inside == 0) return false;
+  for (int k = 0; k < 3; ++k) {
+    const Vector2d &u = a[k], &v = a[(k + 1) % 3];
+    if (orient2d(u, v, b[0]) == -inside && orient2d(u, v, b[1]) == -inside && orient2d(u, v, b[2]) == -inside)
+      return true;
+  }
+  return false;
+}
+
+/// Triangles whose projections along `axis` are strictly separated by
+/// an edge line of one of them (sufficient, not necessary, for disjoint triangles).
+bool projections_separated(const Tri& x, const Tri& y, int axis) {
+  const std::array<Vector2d, 3> p = {drop(x.p[0], axis), drop(x.p[1], axis), drop(x.p[2], axis)};
+  const std::array<Vector2d, 3> q = {drop(y.p[0], axis), drop(y.p[1], axis), drop(y.p[2], axis)};
+  return edge_line_separates(p, q) || edge_line_separates(q, p);
+}
+
 /// Coplanar closed triangles meet unless an edge line of one has the other triangle strictly
 /// outside (separating axis theorem in the plane: disjoint compact convex polygons have a
 /// strictly separating line along an edge of one of them), decided in the projection along
 /// `axis`, along which both project without degeneracy.
-bool coplanar_triangles_meet(const Tri& x, const Tri& y, int axis) {
-  const std::array<Vector2d, 3> p = {drop(x.p[0], axis), drop(x.p[1], axis), drop(x.p[2], axis)};
-  const std::array<Vector2d, 3> q = {drop(y.p[0], axis), drop(y.p[1], axis), drop(y.p[2], axis)};
-  auto separates = [](const std::array<Vector2d, 3>& a, const std::array<Vector2d, 3>& b) {
-    const int inside = orient2d(a[0], a[1], a[2]);  // the side of the third corner
-    for (int k = 0; k < 3; ++k) {
-      const Vector2d &u = a[k], &v = a[(k + 1) % 3];
-      if (orient2d(u, v, b[0]) == -inside && orient2d(u, v, b[1]) == -inside && orient2d(u, v, b[2]) == -inside)
-        return true;
-    }
-    return false;
-  };
-  return !separates(p, q) && !separates(q, p);
-}
+bool coplanar_triangles_meet(const Tri& x, const Tri& y, int axis) { return !projections_separated(x, y, axis); }
 
 /// Any edge of `x` (among those listed) meets triangle `y`.
 bool edges_meet(const Tri& x, std::initializer_list<std::pair<int, int>> edges, const Tri& y) {
@@ -103,7 +112,34 @@ bool all_edges_meet(const Tri& x, const std::array<int, 3>& o, const Tri& y) {
   return false;
 }
 
+/// Triangles s and t with one common corner, s[i] = t[j] = p: in the projection along s.axis
+/// (where s does not degenerate) a line through p along an edge of one of them has the other's
+/// two other corners strictly on the side away from its own third corner. Then the projections
+/// meet only in p's image, and since the projection is one to one on s's plane, the triangles
+/// meet only in p (sufficient, not necessary).
+bool wedges_separated(const Tri& s, int i, const Tri& t, int j) {
+  const int axis = s.axis;
+  const Vector2d p = drop(s.p[i], axis);
+  const Vector2d a = drop(s.p[(i + 1) % 3], axis), b = drop(s.p[(i + 2) % 3], axis);
+  const Vector2d c = drop(t.p[(j + 1) % 3], axis), d = drop(t.p[(j + 2) % 3], axis);
+  // Line p u, the own third corner w: the other two corners x, y strictly on the other side.
+  auto separates = [&](const Vector2d& u, const Vector2d& w, const Vector2d& x, const Vector2d& y) {
+    const int own = orient2d(p, u, w);
+    return own != 0 && orient2d(p, u, x) == -own && orient2d(p, u, y) == -own;
+  };
+  return separates(a, b, c, d) || separates(b, a, c, d) || separates(c, d, a, b) || separates(d, c, a, b);
+}
+
+/// orient3d(a, b, c, d), given its filtered value (orient3d_filtered) when that was computed.
+int decided(int filtered, const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& d) {
+  return filtered != kUndecided ? filtered : orient3d(a, b, c, d);
+}
+
 /// The two triangles meet beyond the vertices they share (and the edge they share).
+/// Decided exactly; where the floating-point filter leaves a side of a plane undecided (nearly
+/// coplanar triangles, whose exact signs are costly), a projection that separates them is tried
+/// first: it only ever proves that they do not meet, so the decisions are those of the exact
+/// tests alone.
 bool triangles_conflict(const Tri& s, const Tri& t) {
   int shared = 0;
   int s_shared[3] = {-1, -1, -1};  // index in s of each shared corner, in s order
@@ -118,8 +154,14 @@ bool triangles_conflict(const Tri& s, const Tri& t) {
   if (shared == 0) {
     // One triangle strictly on one side of the other's plane: they cannot meet (the same
     // decisions as the edge tests below, with fewer predicates).
-    const int s0 = orient3d(t.p[0], t.p[1], t.p[2], s.p[0]), s1 = orient3d(t.p[0], t.p[1], t.p[2], s.p[1]);
-    const int s2 = orient3d(t.p[0], t.p[1], t.p[2], s.p[2]);
+    const int f0 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[0]);
+    const int f1 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[1]);
+    const int f2 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[2]);
+    const bool undecided = f0 == kUndecided || f1 == kUndecided || f2 == kUndecided;
+    if (!undecided && ((f0 > 0 && f1 > 0 && f2 > 0) || (f0 < 0 && f1 < 0 && f2 < 0))) return false;
+    if (undecided && projections_separated(s, t, t.axis)) return false;
+    const int s0 = decided(f0, t.p[0], t.p[1], t.p[2], s.p[0]), s1 = decided(f1, t.p[0], t.p[1], t.p[2], s.p[1]);
+    const int s2 = decided(f2, t.p[0], t.p[1], t.p[2], s.p[2]);
     if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0)) return false;
     if (s0 == 0 && s1 == 0 && s2 == 0) return coplanar_triangles_meet(s, t, t.axis);
     const int t0 = orient3d(s.p[0], s.p[1], s.p[2], t.p[0]), t1 = orient3d(s.p[0], s.p[1], s.p[2], t.p[1]);
@@ -134,22 +176,27 @@ bool triangles_conflict(const Tri& s, const Tri& t) {
     // only at p: no other test is needed.
     const int i = s_shared[0], j = t_of[i];
     const Vector3d &s1 = s.p[(i + 1) % 3], &s2 = s.p[(i + 2) % 3];
-    const int o1 = orient3d(t.p[0], t.p[1], t.p[2], s1), o2 = orient3d(t.p[0], t.p[1], t.p[2], s2);
+    const int f1 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s1), f2 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s2);
+    const bool undecided = f1 == kUndecided || f2 == kUndecided;
+    if (!undecided && f1 * f2 > 0) return false;
+    if (undecided && wedges_separated(s, i, t, j)) return false;
+    const int o1 = decided(f1, t.p[0], t.p[1], t.p[2], s1), o2 = decided(f2, t.p[0], t.p[1], t.p[2], s2);
     if (o1 * o2 > 0) return false;
     return segment_meets_triangle(s1, s2, o1, o2, t) || edges_meet(t, {{(j + 1) % 3, (j + 2) % 3}}, s);
   }
   if (shared == 2) {
-    // Shared edge pq: conflict only if coplanar with the third corners on the same side.
+    // Shared edge pq: conflict only if coplanar with the third corners on the same side (the
+    // sides in the projection first: for neighbours they differ, and the costly exact zero of
+    // nearly coplanar corners is then not needed).
     const int i0 = s_shared[0], i1 = s_shared[1];
     const int ia = 3 - i0 - i1;
     int jb = 0;
     for (int j = 0; j < 3; ++j)
       if (j != t_of[i0] && j != t_of[i1]) jb = j;
     const Vector3d &p = s.p[i0], &q = s.p[i1], &a = s.p[ia], &b = t.p[jb];
-    if (orient3d(p, q, a, b) != 0) return false;
     const int sa = orient2d(drop(p, s.axis), drop(q, s.axis), drop(a, s.axis));
     const int sb = orient2d(drop(p, s.axis), drop(q, s.axis), drop(b, s.axis));
-    return sa == sb;
+    return sa == sb && orient3d(p, q, a, b) == 0;
   }
   return true;  // the same triangle twice
 }
