@@ -748,7 +748,13 @@ namespace {
 /// topology check, and the precision is doubles (rounding changes nothing), so it is not repeated.
 /// `options.exact_vertices` (if one per vertex) marks vertices whose pairs of all-marked faces
 /// need no self-intersection test; a vertex the rounding moves loses its mark.
-std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, bool topology_clean) {
+/// `crossings_searched`: `mesh` is the cleaner's mesh, all triangles, with coordinates already in
+/// the precision, and the cleaner's own exact search (Cleaner::crossings, every pair of live,
+/// non-degenerate triangles, corners told apart by index) found no two that meet beyond what they
+/// share; the search here (corners at one point counted as one, so it allows more) would find
+/// none either, and is not repeated.
+std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, bool topology_clean,
+                  bool crossings_searched = false) {
   const Rounder round(options);
   PolygonMesh copy;
   if (options.precision != OutputPrecision::Double) {  // doubles: rounding is the identity
@@ -788,6 +794,7 @@ std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options,
                                         .check_shell_orientation = false, .max_defects_per_kind = 1});
     if (!report.ok()) return report.defects.front().message;
   }
+  if (crossings_searched) return {};
   for (const auto& f : rounded.faces)
     if (f.size() > kMaxJudgedCorners) return std::string(kUnchecked);
   std::vector<char> exact;  // the marks of vertices that the rounding leaves where they are
@@ -869,8 +876,8 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
   }
   const double growth = options.precision == OutputPrecision::Grid ? 2 : 16;
   // The mesh is judged again only after a sweep changed it (an unchanged mesh keeps its problem):
-  // first by the cleaner's own crossings (only what changed is searched again), in full (the
-  // verdict) only when no triangles cross, and at the end.
+  // first by the cleaner's own crossings (only what changed is searched again), and only when no
+  // triangles cross by the rest of the verdict (that search is not repeated), and at the end.
   bool judged = false, full = false;
   for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
     bool changed = false;
@@ -887,7 +894,7 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
       full = !cleaner.cross();
       if (full) {
         result = cleaner.mesh();
-        r.problem = output_problem(result, options);
+        r.problem = judge(result, options, false, /*crossings_searched=*/true);
         if (r.problem.empty()) r.problem = inverted_shell(result);
       }
     }
