@@ -334,36 +334,69 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   auto cell_of = [&](double x, int axis) {
     return static_cast<std::int64_t>(std::floor((x - origin[axis]) / cell));
   };
-  auto cell_range = [&](const Tri& t, int axis) {
-    return std::pair(cell_of(t.box.min()[axis], axis), cell_of(t.box.max()[axis], axis));
+  // Per triangle, what the scan below reads: its box and the cells its box spans (cell_of is
+  // monotone, so the cell of the minimum corner of two boxes' intersection is the larger of
+  // their first cells along each axis).
+  struct Slot {
+    Eigen::AlignedBox3d box;
+    std::array<std::int64_t, 3> lo{}, hi{};
+    int face = 0;
+    bool exact = false;
   };
-  const size_t entry_budget = 8 * tris.size() + 1024;
-  for (;;) {
+  std::vector<Slot> slots(tris.size());
+  auto place = [&] {
     size_t entries = 0;
-    for (const Tri& t : tris) {
+    for (size_t i = 0; i < tris.size(); ++i) {
+      Slot& c = slots[i];
+      c.box = tris[i].box;
+      c.face = tris[i].face;
+      c.exact = tris[i].exact;
       size_t n = 1;
       for (int axis = 0; axis < 3; ++axis) {
-        const auto [lo, hi] = cell_range(t, axis);
-        n *= static_cast<size_t>(hi - lo + 1);
+        c.lo[size_t(axis)] = cell_of(c.box.min()[axis], axis);
+        c.hi[size_t(axis)] = cell_of(c.box.max()[axis], axis);
+        n *= static_cast<size_t>(c.hi[size_t(axis)] - c.lo[size_t(axis)] + 1);
       }
       entries += n;
-      if (entries > entry_budget) break;
     }
-    if (entries <= entry_budget) break;
+    return entries;
+  };
+  const size_t entry_budget = 8 * tris.size() + 1024;
+  size_t entry_count = place();
+  while (entry_count > entry_budget) {
     cell *= 2;
+    entry_count = place();
   }
-  // Cell keys: 21 bits per axis (the grid has at most 2^20 + 1 cells along the widest axis).
-  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) { return (x << 42) | (y << 21) | z; };
+  // Cells in the order of (x, y, z), numbered densely over the grid's extent when that is small
+  // (a counting sort), else by 21 bits per axis (the grid has at most 2^20 + 1 cells along the
+  // widest axis) and sorted; either way the entries come in the order (cell, triangle).
+  std::array<std::int64_t, 3> dims{};
+  for (int axis = 0; axis < 3; ++axis) dims[size_t(axis)] = cell_of(all.max()[axis], axis) + 1;
+  const double dense_cells = double(dims[0]) * double(dims[1]) * double(dims[2]);
+  const bool dense = dense_cells <= double(4 * entry_count + 4096);
+  auto key = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return dense ? (x * dims[1] + y) * dims[2] + z : (x << 42) | (y << 21) | z;
+  };
   std::vector<std::pair<std::int64_t, int>> entries;
-  for (size_t i = 0; i < tris.size(); ++i) {
-    const auto [x0, x1] = cell_range(tris[i], 0);
-    const auto [y0, y1] = cell_range(tris[i], 1);
-    const auto [z0, z1] = cell_range(tris[i], 2);
-    for (std::int64_t x = x0; x <= x1; ++x)
-      for (std::int64_t y = y0; y <= y1; ++y)
-        for (std::int64_t z = z0; z <= z1; ++z) entries.emplace_back(key(x, y, z), static_cast<int>(i));
+  entries.reserve(entry_count);
+  auto list = [&](auto&& emit) {
+    for (size_t i = 0; i < slots.size(); ++i) {
+      const Slot& c = slots[i];
+      for (std::int64_t x = c.lo[0]; x <= c.hi[0]; ++x)
+        for (std::int64_t y = c.lo[1]; y <= c.hi[1]; ++y)
+          for (std::int64_t z = c.lo[2]; z <= c.hi[2]; ++z) emit(key(x, y, z), static_cast<int>(i));
+    }
+  };
+  if (dense) {
+    std::vector<int> start(static_cast<size_t>(dense_cells) + 1, 0);
+    list([&](std::int64_t k, int) { ++start[size_t(k) + 1]; });
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    entries.resize(entry_count);
+    list([&](std::int64_t k, int i) { entries[size_t(start[size_t(k)]++)] = {k, i}; });
+  } else {
+    list([&](std::int64_t k, int i) { entries.emplace_back(k, i); });
+    std::sort(entries.begin(), entries.end());
   }
-  std::sort(entries.begin(), entries.end());
 
   size_t candidates = 0, scanned = 0;
   for (size_t begin = 0; begin < entries.size() && found.size() < options.max_pairs && result.complete;) {
@@ -372,32 +405,31 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     const std::int64_t here = entries[begin].first;
     if (moved < tris.size() &&
         std::all_of(entries.begin() + std::ptrdiff_t(begin), entries.begin() + std::ptrdiff_t(end),
-                    [&](const auto& e) { return tris[size_t(e.second)].exact; })) {
+                    [&](const auto& e) { return slots[size_t(e.second)].exact; })) {
       begin = end;  // only exact triangles here: nothing to examine
       continue;
     }
     for (size_t i = begin; i < end && found.size() < options.max_pairs && result.complete; ++i) {
-      const Tri& s = tris[static_cast<size_t>(entries[i].second)];
+      const Slot& s = slots[static_cast<size_t>(entries[i].second)];
       for (size_t j = i + 1; j < end; ++j) {
         if (++scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
           result.complete = false;
           break;
         }
-        const Tri& t = tris[static_cast<size_t>(entries[j].second)];
+        const Slot& t = slots[static_cast<size_t>(entries[j].second)];
         if (s.face == t.face || (s.exact && t.exact)) continue;
         if (t.box.min().x() > s.box.max().x() || s.box.min().x() > t.box.max().x() ||
             t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
             t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())
           continue;
-        const Vector3d corner = s.box.min().cwiseMax(t.box.min());
-        if (key(cell_of(corner.x(), 0), cell_of(corner.y(), 1), cell_of(corner.z(), 2)) != here) continue;
+        if (key(std::max(s.lo[0], t.lo[0]), std::max(s.lo[1], t.lo[1]), std::max(s.lo[2], t.lo[2])) != here) continue;
         if (++candidates > options.max_candidates) {
           result.complete = false;
           break;
         }
         const auto face_pair = std::minmax(s.face, t.face);
         if (found.count(face_pair)) continue;
-        if (triangles_conflict(s, t)) {
+        if (triangles_conflict(tris[size_t(entries[i].second)], tris[size_t(entries[j].second)])) {
           found.insert(face_pair);
           if (found.size() >= options.max_pairs) break;
         }
