@@ -258,6 +258,7 @@ class Cleaner {
     alive_.push_back(true);
     level_.push_back(-1);
     boxes_.emplace_back();
+    prepared_.emplace_back();
     update_box(id);
     for (int v : t) incident_[v].push_back(id);
   }
@@ -413,6 +414,7 @@ class Cleaner {
     for (int v : tris_[t]) box.extend(p_[v]);
     boxes_[t] = box;
     index(t, +1);
+    prepared_[t] = prepare_triangle(tris_[t], {p_[tris_[t][0]], p_[tris_[t][1]], p_[tris_[t][2]]});
   }
 
   /// Farthest input point of u's and v's members from `target`.
@@ -602,16 +604,16 @@ class Cleaner {
 
   /// Appends to `out` the pairs (t, u), smaller index first, of live, non-degenerate triangles u
   /// near t, not `skip`ped, that meet t beyond what they share (t itself non-degenerate).
+  /// The triangles as prepared (prepared_, kept with the boxes: positions settle only through
+  /// update_box; axis < 0 marks collinear corners).
   template <class Skip>
   void meeting_partners(int t, Skip skip, std::vector<std::pair<int, int>>& out) const {
-    const Tri& a = tris_[t];
-    const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
-    if (collinear(pa[0], pa[1], pa[2])) return;
+    const PreparedTriangle& a = prepared_[t];
+    if (a.axis < 0) return;
     for (int u : near(boxes_[t])) {
       if (u == t || skip(u) || !alive_[u] || !boxes_[t].intersects(boxes_[u])) continue;
-      const Tri& b = tris_[u];
-      const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
-      if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb)) out.push_back(std::minmax(t, u));
+      const PreparedTriangle& b = prepared_[u];
+      if (b.axis >= 0 && triangles_meet(a, b)) out.push_back(std::minmax(t, u));
     }
   }
 
@@ -703,6 +705,7 @@ class Cleaner {
   std::vector<Tri> tris_;
   std::vector<bool> alive_;
   std::vector<Eigen::AlignedBox3d> boxes_;
+  std::vector<PreparedTriangle> prepared_;  ///< per triangle, at the positions of its box
   double cell_ = 1;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
   std::array<int, kLevels> per_level_{};  ///< triangles kept at each level

@@ -19,11 +19,9 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-struct Tri {
-  std::array<int, 3> canon;  // vertex ids after merging equal positions
-  std::array<Vector3d, 3> p;
+/// A triangle of the search: ids are the vertex ids after merging equal positions.
+struct Tri : PreparedTriangle {
   int face = 0;
-  int axis = 0;  // a coordinate axis along which the triangle projects without degeneracy
   bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
   Eigen::AlignedBox3d box;
 };
@@ -52,7 +50,7 @@ bool point_in_triangle_2d(const Vector2d& q, const Vector2d& t0, const Vector2d&
 
 /// Closed segment [s0, s1] meets the closed, non-degenerate triangle t.
 /// o0, o1: the sides of s0 and s1 of t's plane (orient3d(t.p[0], t.p[1], t.p[2], s_i)).
-bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int o1, const Tri& t) {
+bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int o1, const PreparedTriangle& t) {
   if (o0 * o1 > 0) return false;
   if (o0 == 0 && o1 == 0) {  // coplanar: decide in the projection
     const Vector2d a = drop(s0, t.axis), b = drop(s1, t.axis);
@@ -84,7 +82,7 @@ bool edge_line_separates(const std::array<Vector2d, 3>& a, const std::array<Vect
 
 /// Triangles whose projections along `axis` are strictly separated by
 /// an edge line of one of them (sufficient, not necessary, for disjoint triangles).
-bool projections_separated(const Tri& x, const Tri& y, int axis) {
+bool projections_separated(const PreparedTriangle& x, const PreparedTriangle& y, int axis) {
   const std::array<Vector2d, 3> p = {drop(x.p[0], axis), drop(x.p[1], axis), drop(x.p[2], axis)};
   const std::array<Vector2d, 3> q = {drop(y.p[0], axis), drop(y.p[1], axis), drop(y.p[2], axis)};
   return edge_line_separates(p, q) || edge_line_separates(q, p);
@@ -94,10 +92,10 @@ bool projections_separated(const Tri& x, const Tri& y, int axis) {
 /// outside (separating axis theorem in the plane: disjoint compact convex polygons have a
 /// strictly separating line along an edge of one of them), decided in the projection along
 /// `axis`, along which both project without degeneracy.
-bool coplanar_triangles_meet(const Tri& x, const Tri& y, int axis) { return !projections_separated(x, y, axis); }
+bool coplanar_triangles_meet(const PreparedTriangle& x, const PreparedTriangle& y, int axis) { return !projections_separated(x, y, axis); }
 
 /// Any edge of `x` (among those listed) meets triangle `y`.
-bool edges_meet(const Tri& x, std::initializer_list<std::pair<int, int>> edges, const Tri& y) {
+bool edges_meet(const PreparedTriangle& x, std::initializer_list<std::pair<int, int>> edges, const PreparedTriangle& y) {
   for (auto [i, j] : edges)
     if (segment_meets_triangle(x.p[i], x.p[j], orient3d(y.p[0], y.p[1], y.p[2], x.p[i]),
                                orient3d(y.p[0], y.p[1], y.p[2], x.p[j]), y))
@@ -106,7 +104,7 @@ bool edges_meet(const Tri& x, std::initializer_list<std::pair<int, int>> edges, 
 }
 
 /// Any edge of `x` meets triangle `y`, given the sides o[k] of x's corners of y's plane.
-bool all_edges_meet(const Tri& x, const std::array<int, 3>& o, const Tri& y) {
+bool all_edges_meet(const PreparedTriangle& x, const std::array<int, 3>& o, const PreparedTriangle& y) {
   for (int k = 0; k < 3; ++k)
     if (segment_meets_triangle(x.p[k], x.p[(k + 1) % 3], o[k], o[(k + 1) % 3], y)) return true;
   return false;
@@ -117,7 +115,7 @@ bool all_edges_meet(const Tri& x, const std::array<int, 3>& o, const Tri& y) {
 /// two other corners strictly on the side away from its own third corner. Then the projections
 /// meet only in p's image, and since the projection is one to one on s's plane, the triangles
 /// meet only in p (sufficient, not necessary).
-bool wedges_separated(const Tri& s, int i, const Tri& t, int j) {
+bool wedges_separated(const PreparedTriangle& s, int i, const PreparedTriangle& t, int j) {
   const int axis = s.axis;
   const Vector2d p = drop(s.p[i], axis);
   const Vector2d a = drop(s.p[(i + 1) % 3], axis), b = drop(s.p[(i + 2) % 3], axis);
@@ -140,13 +138,13 @@ int decided(int filtered, const Vector3d& a, const Vector3d& b, const Vector3d& 
 /// coplanar triangles, whose exact signs are costly), a projection that separates them is tried
 /// first: it only ever proves that they do not meet, so the decisions are those of the exact
 /// tests alone.
-bool triangles_conflict(const Tri& s, const Tri& t) {
+bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
   int shared = 0;
   int s_shared[3] = {-1, -1, -1};  // index in s of each shared corner, in s order
   int t_of[3] = {-1, -1, -1};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      if (s.canon[i] == t.canon[j]) {
+      if (s.ids[i] == t.ids[j]) {
         s_shared[shared] = i;
         t_of[i] = j;
         ++shared;
@@ -221,24 +219,26 @@ int projection_axis(const PolygonMesh& mesh, const std::vector<int>& face) {
   return normal[axis] == 0 ? -1 : axis;
 }
 
-Tri make_tri(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
-  Tri t;
-  t.canon = ids;
+}  // namespace
+
+PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
+  PreparedTriangle t;
+  t.ids = ids;
   t.p = p;
-  t.axis = 0;
-  for (int axis = 0; axis < 3; ++axis)
-    if (orient2d(drop(p[0], axis), drop(p[1], axis), drop(p[2], axis)) != 0) {
-      t.axis = axis;
-      break;
-    }
+  t.axis = -1;
+  for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
+    if (orient2d(drop(p[0], axis), drop(p[1], axis), drop(p[2], axis)) != 0) t.axis = axis;
   return t;
 }
 
-}  // namespace
+bool triangles_meet(const PreparedTriangle& a, const PreparedTriangle& b) { return triangles_conflict(a, b); }
 
 bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Vector3d, 3>& a,
                     const std::array<int, 3>& ids_b, const std::array<Vector3d, 3>& b) {
-  return triangles_conflict(make_tri(ids_a, a), make_tri(ids_b, b));
+  PreparedTriangle s = prepare_triangle(ids_a, a), t = prepare_triangle(ids_b, b);
+  s.axis = std::max(s.axis, 0);  // degenerate (excluded by the precondition): axis 0, as before
+  t.axis = std::max(t.axis, 0);
+  return triangles_conflict(s, t);
 }
 
 std::vector<int> find_self_crossing_faces(const PolygonMesh& mesh, size_t max_faces) {
@@ -299,7 +299,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
       t.face = static_cast<int>(fi);
       t.exact = exact;
       for (int k = 0; k < 3; ++k) {
-        t.canon[k] = canon[it[k]];
+        t.ids[k] = canon[it[k]];
         t.p[k] = mesh.vertices[it[k]];
         t.box.extend(t.p[k]);
       }
