@@ -4,8 +4,8 @@
 #include "kernel/wide_int.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <tuple>
 #include <utility>
@@ -144,7 +144,7 @@ bool split(const ProductSum256& n, Split& out) {
 /// approximation. Returns false otherwise (a quotient at or very near a midpoint, a tie
 /// included, or outside [2^-900, 2^900] in magnitude).
 bool filtered_quotient(const Split& n, const Split& d, double& out) {
-  const double scale = std::ldexp(1.0, n.exponent - d.exponent);  // exact: |exponent| < 600
+  const double scale = std::ldexp(1.0, n.exponent - d.exponent);  // a power of two, 2^-255 to 2^255
   const double q1 = n.hi / d.hi;  // about 1 in magnitude
   const double r = std::fma(-q1, d.hi, n.hi);  // n.hi - q1 d.hi, exact (remainder of a rounded division)
   const double q2 = ((r + n.lo) - q1 * d.lo) / d.hi;
