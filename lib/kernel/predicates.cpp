@@ -4,7 +4,11 @@
 #include "kernel/wide_int.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 namespace sculpt::kernel {
 namespace {
@@ -81,9 +85,82 @@ HomogeneousPoint exact_vertex(const Plane& p, const Plane& q, const Plane& r) {
   return h;
 }
 
-double rounded_quotient(const Int256& n, const Int256& d) {
+namespace {
+
+__extension__ typedef unsigned __int128 U128;
+
+/// A non-zero integer n as (hi + lo) 2^exponent with |n - (hi + lo) 2^exponent| < 2^-104 |n|:
+/// the 128 bits from n's leading bit down ("top", 2^127 <= top < 2^128) as the nearest double hi
+/// and the nearest double lo to their exact rest; the bits below top are less than 2^-127 of n.
+struct Split {
+  double hi = 0, lo = 0;
+  int exponent = 0;
+};
+
+/// Split of sign * (upper 2^128 + lower), a magnitude below 2^256; false for zero.
+bool split_magnitude(bool negative, U128 upper, U128 lower, Split& out) {
+  U128 top = 0;
+  if (upper != 0) {
+    const int lead = std::countl_zero(std::uint64_t(upper >> 64)) + ((upper >> 64) == 0 ? std::countl_zero(std::uint64_t(upper)) : 0);
+    top = lead == 0 ? upper : (upper << lead) | (lower >> (128 - lead));
+    out.exponent = 128 - lead;
+  } else {
+    if (lower == 0) return false;
+    const int lead = std::countl_zero(std::uint64_t(lower >> 64)) + ((lower >> 64) == 0 ? std::countl_zero(std::uint64_t(lower)) : 0);
+    top = lower << lead;
+    out.exponent = -lead;
+  }
+  const double h = double(top);  // rounded to nearest
+  // top - h exactly (at most 2^75 in magnitude); h may be 2^128, beyond U128.
+  const double l = h >= 0x1p128 ? -double(U128(0) - top) : (U128(h) >= top ? -double(U128(h) - top) : double(top - U128(h)));
+  out.hi = negative ? -h : h;
+  out.lo = negative ? -l : l;
+  return true;
+}
+
+/// Split of a Boost Int256 (sign and magnitude limbs).
+bool split(const Int256& n, Split& out) {
+  const auto& backend = n.backend();
+  const auto* limb = backend.limbs();  // the magnitude, least significant first
+  const unsigned size = backend.size();
+  auto at = [&](unsigned i) { return i < size ? U128(limb[i]) : U128(0); };
+  return split_magnitude(backend.sign(), (at(3) << 64) | at(2), (at(1) << 64) | at(0), out);
+}
+
+/// Split of a ProductSum256 (two's complement).
+bool split(const ProductSum256& n, Split& out) {
+  const bool negative = (n.hi >> 127) != 0;
+  U128 hi = n.hi, lo = n.lo;
+  if (negative) {  // magnitude: -(hi, lo)
+    lo = U128(0) - n.lo;
+    hi = ~n.hi + (n.lo == 0 ? 1 : 0);
+  }
+  return split_magnitude(negative, hi, lo, out);
+}
+
+/// n / d correctly rounded, when a double-double quotient (error below 2^-101 of it, with the
+/// splits' errors) stays clear of the two midpoints to the neighbouring doubles by more than
+/// that error: then the nearest double to the exact quotient is the one nearest the
+/// approximation. Returns false otherwise (a quotient at or very near a midpoint, a tie
+/// included, or outside [2^-900, 2^900] in magnitude).
+bool filtered_quotient(const Split& n, const Split& d, double& out) {
+  const double scale = std::ldexp(1.0, n.exponent - d.exponent);  // a power of two, 2^-255 to 2^255
+  const double q1 = n.hi / d.hi;  // about 1 in magnitude
+  const double r = std::fma(-q1, d.hi, n.hi);  // n.hi - q1 d.hi, exact (remainder of a rounded division)
+  const double q2 = ((r + n.lo) - q1 * d.lo) / d.hi;
+  const double y = (q1 + q2) * scale;
+  const double t = ((q1 * scale - y) + q2 * scale);  // the approximation minus y (Sterbenz: exact difference)
+  const double m = std::fabs(y);
+  if (!(m >= 0x1p-900 && m <= 0x1p900)) return false;
+  const double half_gap = 0.5 * std::fabs(y - std::nextafter(y, 0.0));  // the smaller gap: toward zero
+  if (!(std::fabs(t) * (1 + 0x1p-50) + 0x1p-95 * m < half_gap)) return false;
+  out = y;
+  return true;
+}
+
+/// n / d correctly rounded by exact integer division.
+double exact_rounded_quotient(const Int256& n, const Int256& d) {
   using boost::multiprecision::cpp_int;
-  if (n == 0) return 0.0;
   const bool negative = (n < 0) != (d < 0);
   cpp_int a = boost::multiprecision::abs(cpp_int(n)), b = boost::multiprecision::abs(cpp_int(d));
   // Scale so that the integer quotient q has 62 or 63 bits: q and a sticky bit for the remainder
@@ -98,9 +175,49 @@ double rounded_quotient(const Int256& n, const Int256& d) {
   return negative ? -v : v;
 }
 
+}  // namespace
+
+double rounded_quotient(const Int256& n, const Int256& d) {
+  if (n == 0) return 0.0;
+  // Almost every quotient is decided by a double-double approximation; the rest (ties, near
+  // ties) by the exact division.
+  Split sn, sd;
+  double v = 0;
+  if (split(n, sn) && split(d, sd) && filtered_quotient(sn, sd, v)) return v;
+  return exact_rounded_quotient(n, d);
+}
+
 Eigen::Vector3d rounded_vertex(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& approx) {
   const double largest = std::max(std::max(std::fabs(approx.x), std::fabs(approx.y)), std::fabs(approx.z));
   if (approx.err >= 0 && approx.err <= 0x1p-50 * largest) return {approx.x, approx.y, approx.z};
+  // The homogeneous coordinates of exact_vertex as 256-bit sums of products (offsets below
+  // 2^100, so every sum stays below 2^230), each quotient by filtered_quotient; what that
+  // cannot decide, from exact_vertex and the exact division.
+  constexpr Int128 kOffsetLimit = Int128(1) << 100;
+  auto small = [&](const Plane& e) { return e.d < kOffsetLimit && e.d > -kOffsetLimit; };
+  if (small(p) && small(q) && small(r)) {
+    const ExactCross u = exact_cross(q, r), v = exact_cross(r, p), w = exact_cross(p, q);
+    ProductSum256 hw, hx, hy, hz;
+    hw.add_product(u.x, p.a, false);
+    hw.add_product(u.y, p.b, false);
+    hw.add_product(u.z, p.c, false);
+    for (const auto& [sum, uk, vk, wk] : {std::tuple{&hx, u.x, v.x, w.x}, std::tuple{&hy, u.y, v.y, w.y}, std::tuple{&hz, u.z, v.z, w.z}}) {
+      sum->add_product(p.d, uk, true);
+      sum->add_product(q.d, vk, true);
+      sum->add_product(r.d, wk, true);
+    }
+    Split sw, sx, sy, sz;
+    Eigen::Vector3d out;
+    if (split(hw, sw)) {
+      bool decided = true;
+      const std::array<std::pair<const ProductSum256*, Split*>, 3> coords = {{{&hx, &sx}, {&hy, &sy}, {&hz, &sz}}};
+      for (int k = 0; k < 3 && decided; ++k) {
+        if (!split(*coords[size_t(k)].first, *coords[size_t(k)].second)) out[k] = 0.0;  // zero numerator
+        else decided = filtered_quotient(*coords[size_t(k)].second, sw, out[k]);
+      }
+      if (decided) return out;
+    }
+  }
   const HomogeneousPoint h = exact_vertex(p, q, r);
   return {rounded_quotient(h.x, h.w), rounded_quotient(h.y, h.w), rounded_quotient(h.z, h.w)};
 }

@@ -258,6 +258,7 @@ class Cleaner {
     alive_.push_back(true);
     level_.push_back(-1);
     boxes_.emplace_back();
+    prepared_.emplace_back();
     update_box(id);
     for (int v : t) incident_[v].push_back(id);
   }
@@ -285,23 +286,25 @@ class Cleaner {
   int meetings(const std::vector<Tri>& group, const std::vector<int>& replaced,
                int enough = std::numeric_limits<int>::max()) const {
     int count = 0;
-    std::vector<PreparedTriangle> ready;  // the group's triangles (axis < 0: degenerate)
-    ready.reserve(group.size());
-    for (const Tri& a : group) ready.push_back(prepared(a));
     for (size_t i = 0; i < group.size(); ++i) {
-      const PreparedTriangle& a = ready[i];
-      if (a.axis < 0) continue;
+      const Tri& a = group[i];
+      const std::array<Vector3d, 3> pa = {p_[a[0]], p_[a[1]], p_[a[2]]};
+      if (collinear(pa[0], pa[1], pa[2])) continue;
       Eigen::AlignedBox3d box;
-      for (const Vector3d& q : a.p) box.extend(q);
+      for (const Vector3d& q : pa) box.extend(q);
       for (int t : near(box)) {
         if (!alive_[t] || !box.intersects(boxes_[t])) continue;
         if (std::find(replaced.begin(), replaced.end(), t) != replaced.end()) continue;
-        const PreparedTriangle b = prepared(tris_[t]);
-        if (b.axis < 0) continue;  // degenerate: removed later or reported
-        if (triangles_meet(a, b) && ++count >= enough) return count;
+        const Tri& b = tris_[t];
+        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
+        if (collinear(pb[0], pb[1], pb[2])) continue;  // degenerate: removed later or reported
+        if (triangles_meet(a, pa, b, pb) && ++count >= enough) return count;
       }
-      for (size_t j = 0; j < i; ++j)
-        if (ready[j].axis >= 0 && triangles_meet(a, ready[j]) && ++count >= enough) return count;
+      for (size_t j = 0; j < i; ++j) {
+        const Tri& b = group[j];
+        const std::array<Vector3d, 3> pb = {p_[b[0]], p_[b[1]], p_[b[2]]};
+        if (!collinear(pb[0], pb[1], pb[2]) && triangles_meet(a, pa, b, pb) && ++count >= enough) return count;
+      }
     }
     return count;
   }
@@ -411,6 +414,7 @@ class Cleaner {
     for (int v : tris_[t]) box.extend(p_[v]);
     boxes_[t] = box;
     index(t, +1);
+    prepared_[t] = prepare_triangle(tris_[t], {p_[tris_[t][0]], p_[tris_[t][1]], p_[tris_[t][2]]});
   }
 
   /// Farthest input point of u's and v's members from `target`.
@@ -600,34 +604,89 @@ class Cleaner {
 
   /// Appends to `out` the pairs (t, u), smaller index first, of live, non-degenerate triangles u
   /// near t, not `skip`ped, that meet t beyond what they share (t itself non-degenerate).
-  /// `ready`: every triangle prepared (a whole search), or null (each prepared when needed).
+  /// The triangles as prepared (prepared_, kept with the boxes: positions settle only through
+  /// update_box; axis < 0 marks collinear corners).
   template <class Skip>
-  void meeting_partners(int t, Skip skip, std::vector<std::pair<int, int>>& out,
-                        const std::vector<PreparedTriangle>* ready = nullptr) const {
-    auto get = [&](int u) { return ready != nullptr ? (*ready)[size_t(u)] : prepared(tris_[u]); };
-    const PreparedTriangle a = get(t);
+  void meeting_partners(int t, Skip skip, std::vector<std::pair<int, int>>& out) const {
+    const PreparedTriangle& a = prepared_[t];
     if (a.axis < 0) return;
     for (int u : near(boxes_[t])) {
       if (u == t || skip(u) || !alive_[u] || !boxes_[t].intersects(boxes_[u])) continue;
-      const PreparedTriangle b = get(u);
+      const PreparedTriangle& b = prepared_[u];
       if (b.axis >= 0 && triangles_meet(a, b)) out.push_back(std::minmax(t, u));
     }
   }
 
   /// Pairs of live, non-degenerate triangles that meet beyond what they share, all searched.
+  /// Candidates come from one pass over a uniform grid (as in search_self_intersections: cells
+  /// about the median box extent, coarsened until there are at most 8 entries per triangle, and a
+  /// pair whose closed boxes overlap examined in the one cell holding the minimum corner of their
+  /// intersection), not from a query per triangle: every such pair once, so the same pairs as
+  /// meeting_partners over all triangles.
   std::vector<std::pair<int, int>> full_crossings() const {
-    std::vector<PreparedTriangle> ready(tris_.size());
-    for (size_t t = 0; t < tris_.size(); ++t)
-      if (alive_[t]) ready[t] = prepared(tris_[t]);
     std::vector<std::pair<int, int>> out;
+    std::vector<int> live;
     for (size_t t = 0; t < tris_.size(); ++t)
-      if (alive_[t]) meeting_partners(static_cast<int>(t), [&](int u) { return u <= static_cast<int>(t); }, out, &ready);
+      if (alive_[t] && prepared_[t].axis >= 0) live.push_back(static_cast<int>(t));
+    if (live.size() < 2) return out;
+    Eigen::AlignedBox3d all;
+    std::vector<double> extents;
+    extents.reserve(live.size());
+    for (int t : live) {
+      all.extend(boxes_[t]);
+      extents.push_back(boxes_[t].sizes().maxCoeff());
+    }
+    if (!all.min().allFinite() || !all.max().allFinite() || !all.sizes().allFinite()) {  // no grid: a query per triangle
+      for (int t : live) meeting_partners(t, [&](int u) { return u <= t; }, out);
+      std::sort(out.begin(), out.end());
+      return out;
+    }
+    std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2), extents.end());
+    double cell = std::max(extents[extents.size() / 2], all.sizes().maxCoeff() * 0x1p-20);
+    if (!(cell > 0) || !std::isfinite(cell)) cell = 1;
+    const Vector3d origin = all.min();
+    std::vector<std::array<std::int64_t, 6>> range(live.size());  // first and last cell per axis
+    const size_t budget = 8 * live.size() + 1024;
+    for (;;) {
+      size_t entries = 0;
+      for (size_t i = 0; i < live.size(); ++i) {
+        size_t n = 1;
+        for (int axis = 0; axis < 3; ++axis) {
+          const auto lo = static_cast<std::int64_t>(std::floor((boxes_[live[i]].min()[axis] - origin[axis]) / cell));
+          const auto hi = static_cast<std::int64_t>(std::floor((boxes_[live[i]].max()[axis] - origin[axis]) / cell));
+          range[i][size_t(axis)] = lo;
+          range[i][size_t(axis) + 3] = hi;
+          n *= static_cast<size_t>(hi - lo + 1);
+        }
+        entries += n;
+      }
+      if (entries <= budget) break;
+      cell *= 2;
+    }
+    // Cell keys: 21 bits per axis (at most 2^20 + 1 cells along the widest axis).
+    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) { return (x << 42) | (y << 21) | z; };
+    std::vector<std::pair<std::int64_t, int>> entries;
+    for (size_t i = 0; i < live.size(); ++i)
+      for (std::int64_t x = range[i][0]; x <= range[i][3]; ++x)
+        for (std::int64_t y = range[i][1]; y <= range[i][4]; ++y)
+          for (std::int64_t z = range[i][2]; z <= range[i][5]; ++z) entries.emplace_back(key(x, y, z), static_cast<int>(i));
+    std::sort(entries.begin(), entries.end());
+    for (size_t begin = 0; begin < entries.size();) {
+      size_t end = begin;
+      while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
+      for (size_t i = begin; i < end; ++i)
+        for (size_t j = i + 1; j < end; ++j) {
+          const auto &ri = range[size_t(entries[i].second)], &rj = range[size_t(entries[j].second)];
+          const int t = live[size_t(entries[i].second)], u = live[size_t(entries[j].second)];
+          if (!boxes_[t].intersects(boxes_[u])) continue;
+          if (key(std::max(ri[0], rj[0]), std::max(ri[1], rj[1]), std::max(ri[2], rj[2])) != entries[begin].first) continue;
+          if (triangles_meet(prepared_[t], prepared_[u])) out.push_back(std::minmax(t, u));
+        }
+      begin = end;
+    }
     std::sort(out.begin(), out.end());  // worked on in this order
     return out;
   }
-
-  /// Triangle t at the current positions, ready for triangles_meet (axis < 0: collinear corners).
-  PreparedTriangle prepared(const Tri& t) const { return prepare_triangle(t, {p_[t[0]], p_[t[1]], p_[t[2]]}); }
 
   /// Moves v along +-`direction` by the smallest step (delta / 8, doubling up to `delta`)
   /// after which its triangles meet fewer others, keep their orientation and do not degenerate.
@@ -728,6 +787,7 @@ class Cleaner {
   std::vector<Tri> tris_;
   std::vector<bool> alive_;
   std::vector<Eigen::AlignedBox3d> boxes_;
+  std::vector<PreparedTriangle> prepared_;  ///< per triangle, at the positions of its box
   double cell_ = 1;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
   std::array<int, kLevels> per_level_{};  ///< triangles kept at each level
@@ -773,10 +833,11 @@ namespace {
 /// topology check, and the precision is doubles (rounding changes nothing), so it is not repeated.
 /// `options.exact_vertices` (if one per vertex) marks vertices whose pairs of all-marked faces
 /// need no self-intersection test; a vertex the rounding moves loses its mark.
-/// `crossings_searched`: `mesh` is the cleaner's triangles, which its own complete search found
-/// free of crossings (triangles_meet on every pair of overlapping boxes, with corners the same
-/// only when they are the same vertex: stricter than the search here, which also counts copies
-/// of one point as one), and the precision is the cleaner's; only the rest is checked.
+/// `crossings_searched`: `mesh` is the cleaner's mesh, all triangles, with coordinates already in
+/// the precision, and the cleaner's own exact search (Cleaner::crossings, every pair of live,
+/// non-degenerate triangles, corners told apart by index) found no two that meet beyond what they
+/// share; the search here (corners at one point counted as one, so it allows more) would find
+/// none either, and is not repeated.
 std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, bool topology_clean,
                   bool crossings_searched = false) {
   const Rounder round(options);
@@ -900,8 +961,8 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
   }
   const double growth = options.precision == OutputPrecision::Grid ? 2 : 16;
   // The mesh is judged again only after a sweep changed it (an unchanged mesh keeps its problem):
-  // first by the cleaner's own crossings (only what changed is searched again), in full (the
-  // verdict) only when no triangles cross, and at the end.
+  // first by the cleaner's own crossings (only what changed is searched again), and only when no
+  // triangles cross by the rest of the verdict (that search is not repeated), and at the end.
   bool judged = false, full = false;
   for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
     bool changed = false;

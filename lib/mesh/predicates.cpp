@@ -273,6 +273,25 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   return orient2d_exact(a, b, c);
 }
 
+int orient3d_filtered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& d) {
+  // The first stage of orient3d below, the same expressions and bound.
+  const double adx = a.x() - d.x(), bdx = b.x() - d.x(), cdx = c.x() - d.x();
+  const double ady = a.y() - d.y(), bdy = b.y() - d.y(), cdy = c.y() - d.y();
+  const double adz = a.z() - d.z(), bdz = b.z() - d.z(), cdz = c.z() - d.z();
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+  const double cdxady = cdx * ady, adxcdy = adx * cdy;
+  const double adxbdy = adx * bdy, bdxady = bdx * ady;
+  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double permanent = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(adz) +
+                           (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bdz) +
+                           (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
+  const double bound = kOrient3dBound * permanent;
+  if (std::isfinite(det) && std::isfinite(bound) && permanent > kNoUnderflow && (det > bound || -det > bound))
+    return det > 0 ? -1 : 1;
+  return kUndecided;
+}
+
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d) {
   // Shewchuk's orient3d evaluates det[a-d, b-d, c-d], which is -det[b-a, c-a, d-a].

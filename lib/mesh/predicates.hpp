@@ -19,4 +19,13 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d);
 
+/// What orient3d_filtered returns when its floating-point filter cannot decide.
+inline constexpr int kUndecided = 2;
+
+/// orient3d's first stage alone: the sign when the floating-point filter (Shewchuk's error bound)
+/// certifies it, else kUndecided (in particular for every zero determinant). Where a cheaper
+/// argument can settle what an undecided sign was needed for, callers try it before orient3d.
+int orient3d_filtered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& d);
+
 }  // namespace sculpt

@@ -19,7 +19,7 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-/// In the search, ids are vertex ids after merging equal positions.
+/// A triangle of the search: ids are the vertex ids after merging equal positions.
 struct Tri : PreparedTriangle {
   int face = 0;
   bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
@@ -66,24 +66,33 @@ bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int 
   return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
 }
 
+/// Some edge line of `a` has all of `b` strictly on the side away from `a`'s third corner, in
+/// the projection along `axis` (none when `a` projects to a segment there). Then the projections
+/// are disjoint, and so are the triangles.
+bool edge_line_separates(const std::array<Vector2d, 3>& a, const std::array<Vector2d, 3>& b) {
+  const int inside = orient2d(a[0], a[1], a[2]);  // the side of the third corner
+  if (inside == 0) return false;
+  for (int k = 0; k < 3; ++k) {
+    const Vector2d &u = a[k], &v = a[(k + 1) % 3];
+    if (orient2d(u, v, b[0]) == -inside && orient2d(u, v, b[1]) == -inside && orient2d(u, v, b[2]) == -inside)
+      return true;
+  }
+  return false;
+}
+
+/// Triangles whose projections along `axis` are strictly separated by
+/// an edge line of one of them (sufficient, not necessary, for disjoint triangles).
+bool projections_separated(const PreparedTriangle& x, const PreparedTriangle& y, int axis) {
+  const std::array<Vector2d, 3> p = {drop(x.p[0], axis), drop(x.p[1], axis), drop(x.p[2], axis)};
+  const std::array<Vector2d, 3> q = {drop(y.p[0], axis), drop(y.p[1], axis), drop(y.p[2], axis)};
+  return edge_line_separates(p, q) || edge_line_separates(q, p);
+}
+
 /// Coplanar closed triangles meet unless an edge line of one has the other triangle strictly
 /// outside (separating axis theorem in the plane: disjoint compact convex polygons have a
 /// strictly separating line along an edge of one of them), decided in the projection along
 /// `axis`, along which both project without degeneracy.
-bool coplanar_triangles_meet(const PreparedTriangle& x, const PreparedTriangle& y, int axis) {
-  const std::array<Vector2d, 3> p = {drop(x.p[0], axis), drop(x.p[1], axis), drop(x.p[2], axis)};
-  const std::array<Vector2d, 3> q = {drop(y.p[0], axis), drop(y.p[1], axis), drop(y.p[2], axis)};
-  auto separates = [](const std::array<Vector2d, 3>& a, const std::array<Vector2d, 3>& b) {
-    const int inside = orient2d(a[0], a[1], a[2]);  // the side of the third corner
-    for (int k = 0; k < 3; ++k) {
-      const Vector2d &u = a[k], &v = a[(k + 1) % 3];
-      if (orient2d(u, v, b[0]) == -inside && orient2d(u, v, b[1]) == -inside && orient2d(u, v, b[2]) == -inside)
-        return true;
-    }
-    return false;
-  };
-  return !separates(p, q) && !separates(q, p);
-}
+bool coplanar_triangles_meet(const PreparedTriangle& x, const PreparedTriangle& y, int axis) { return !projections_separated(x, y, axis); }
 
 /// Any edge of `x` (among those listed) meets triangle `y`.
 bool edges_meet(const PreparedTriangle& x, std::initializer_list<std::pair<int, int>> edges, const PreparedTriangle& y) {
@@ -101,43 +110,34 @@ bool all_edges_meet(const PreparedTriangle& x, const std::array<int, 3>& o, cons
   return false;
 }
 
-/// Nearly parallel planes (rounded normals within about 25 degrees): pairs of triangles of one
-/// flat region, for which the 3D tests below are nearly degenerate (exact arithmetic) while the
-/// projection on the plane decides most pairs with filtered orient2d. Choosing the order of
-/// exact tests only: the decisions are the same either way.
-bool nearly_parallel(const PreparedTriangle& s, const PreparedTriangle& t) {
-  const double d = s.normal.dot(t.normal);
-  return d * d >= 0.8 * s.normal.squaredNorm() * t.normal.squaredNorm();
-}
-
-/// s's projection axis if t also projects without degeneracy along it (exactly), else -1.
-int common_axis(const PreparedTriangle& s, const PreparedTriangle& t) {
-  if (t.axis == s.axis) return s.axis;
-  return orient2d(drop(t.p[0], s.axis), drop(t.p[1], s.axis), drop(t.p[2], s.axis)) != 0 ? s.axis : -1;
-}
-
-/// Sufficient for the triangles not to meet (exact): along `axis`, an edge line of one has the
-/// other's corners strictly outside, so their projections, hence they, are disjoint.
-bool separated_in_projection(const PreparedTriangle& s, const PreparedTriangle& t, int axis) {
-  return !coplanar_triangles_meet(s, t, axis);
-}
-
-/// Sufficient for triangles sharing exactly corner s.p[i] = t.p[j] to meet only there (exact):
-/// along `axis` (both project without degeneracy, so the projection is one to one on each), a
-/// line through the shared corner along an edge of one has the other's other corners strictly
-/// on its far side; the projections then meet only at the shared corner's image.
-bool wedges_separated(const PreparedTriangle& s, int i, const PreparedTriangle& t, int j, int axis) {
+/// Triangles s and t with one common corner, s[i] = t[j] = p: in the projection along s.axis
+/// (where s does not degenerate) a line through p along an edge of one of them has the other's
+/// two other corners strictly on the side away from its own third corner. Then the projections
+/// meet only in p's image, and since the projection is one to one on s's plane, the triangles
+/// meet only in p (sufficient, not necessary).
+bool wedges_separated(const PreparedTriangle& s, int i, const PreparedTriangle& t, int j) {
+  const int axis = s.axis;
   const Vector2d p = drop(s.p[i], axis);
-  const Vector2d s1 = drop(s.p[(i + 1) % 3], axis), s2 = drop(s.p[(i + 2) % 3], axis);
-  const Vector2d t1 = drop(t.p[(j + 1) % 3], axis), t2 = drop(t.p[(j + 2) % 3], axis);
-  auto outside = [&](const Vector2d& e, const Vector2d& own, const Vector2d& a, const Vector2d& b) {
-    const int side = orient2d(p, e, own);  // nonzero: non-degenerate projection
-    return orient2d(p, e, a) == -side && orient2d(p, e, b) == -side;
+  const Vector2d a = drop(s.p[(i + 1) % 3], axis), b = drop(s.p[(i + 2) % 3], axis);
+  const Vector2d c = drop(t.p[(j + 1) % 3], axis), d = drop(t.p[(j + 2) % 3], axis);
+  // Line p u, the own third corner w: the other two corners x, y strictly on the other side.
+  auto separates = [&](const Vector2d& u, const Vector2d& w, const Vector2d& x, const Vector2d& y) {
+    const int own = orient2d(p, u, w);
+    return own != 0 && orient2d(p, u, x) == -own && orient2d(p, u, y) == -own;
   };
-  return outside(s1, s2, t1, t2) || outside(s2, s1, t1, t2) || outside(t1, t2, s1, s2) || outside(t2, t1, s1, s2);
+  return separates(a, b, c, d) || separates(b, a, c, d) || separates(c, d, a, b) || separates(d, c, a, b);
+}
+
+/// orient3d(a, b, c, d), given its filtered value (orient3d_filtered) when that was computed.
+int decided(int filtered, const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& d) {
+  return filtered != kUndecided ? filtered : orient3d(a, b, c, d);
 }
 
 /// The two triangles meet beyond the vertices they share (and the edge they share).
+/// Decided exactly; where the floating-point filter leaves a side of a plane undecided (nearly
+/// coplanar triangles, whose exact signs are costly), a projection that separates them is tried
+/// first: it only ever proves that they do not meet, so the decisions are those of the exact
+/// tests alone.
 bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
   int shared = 0;
   int s_shared[3] = {-1, -1, -1};  // index in s of each shared corner, in s order
@@ -150,12 +150,16 @@ bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
         ++shared;
       }
   if (shared == 0) {
-    if (nearly_parallel(s, t))
-      if (const int axis = common_axis(s, t); axis >= 0 && separated_in_projection(s, t, axis)) return false;
     // One triangle strictly on one side of the other's plane: they cannot meet (the same
     // decisions as the edge tests below, with fewer predicates).
-    const int s0 = orient3d(t.p[0], t.p[1], t.p[2], s.p[0]), s1 = orient3d(t.p[0], t.p[1], t.p[2], s.p[1]);
-    const int s2 = orient3d(t.p[0], t.p[1], t.p[2], s.p[2]);
+    const int f0 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[0]);
+    const int f1 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[1]);
+    const int f2 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[2]);
+    const bool undecided = f0 == kUndecided || f1 == kUndecided || f2 == kUndecided;
+    if (!undecided && ((f0 > 0 && f1 > 0 && f2 > 0) || (f0 < 0 && f1 < 0 && f2 < 0))) return false;
+    if (undecided && projections_separated(s, t, t.axis)) return false;
+    const int s0 = decided(f0, t.p[0], t.p[1], t.p[2], s.p[0]), s1 = decided(f1, t.p[0], t.p[1], t.p[2], s.p[1]);
+    const int s2 = decided(f2, t.p[0], t.p[1], t.p[2], s.p[2]);
     if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0)) return false;
     if (s0 == 0 && s1 == 0 && s2 == 0) return coplanar_triangles_meet(s, t, t.axis);
     const int t0 = orient3d(s.p[0], s.p[1], s.p[2], t.p[0]), t1 = orient3d(s.p[0], s.p[1], s.p[2], t.p[1]);
@@ -169,23 +173,24 @@ bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
     // When s's other corners lie strictly on one side of t's plane, s meets that plane (and t)
     // only at p: no other test is needed.
     const int i = s_shared[0], j = t_of[i];
-    if (nearly_parallel(s, t))
-      if (const int axis = common_axis(s, t); axis >= 0 && wedges_separated(s, i, t, j, axis)) return false;
     const Vector3d &s1 = s.p[(i + 1) % 3], &s2 = s.p[(i + 2) % 3];
-    const int o1 = orient3d(t.p[0], t.p[1], t.p[2], s1), o2 = orient3d(t.p[0], t.p[1], t.p[2], s2);
+    const int f1 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s1), f2 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s2);
+    const bool undecided = f1 == kUndecided || f2 == kUndecided;
+    if (!undecided && f1 * f2 > 0) return false;
+    if (undecided && wedges_separated(s, i, t, j)) return false;
+    const int o1 = decided(f1, t.p[0], t.p[1], t.p[2], s1), o2 = decided(f2, t.p[0], t.p[1], t.p[2], s2);
     if (o1 * o2 > 0) return false;
     return segment_meets_triangle(s1, s2, o1, o2, t) || edges_meet(t, {{(j + 1) % 3, (j + 2) % 3}}, s);
   }
   if (shared == 2) {
-    // Shared edge pq: conflict only if coplanar with the third corners on the same side.
+    // Shared edge pq: conflict only if coplanar with the third corners on the same side (the
+    // sides in the projection first: for neighbours they differ, and the costly exact zero of
+    // nearly coplanar corners is then not needed).
     const int i0 = s_shared[0], i1 = s_shared[1];
     const int ia = 3 - i0 - i1;
     int jb = 0;
     for (int j = 0; j < 3; ++j)
       if (j != t_of[i0] && j != t_of[i1]) jb = j;
-    // The sides in the projection first: third corners on opposite sides there cannot be on one
-    // side in a common plane (the projection is one to one on s's plane), so the nearly always
-    // degenerate orient3d of neighbours in one flat region is needed only otherwise.
     const Vector3d &p = s.p[i0], &q = s.p[i1], &a = s.p[ia], &b = t.p[jb];
     const int sa = orient2d(drop(p, s.axis), drop(q, s.axis), drop(a, s.axis));
     const int sb = orient2d(drop(p, s.axis), drop(q, s.axis), drop(b, s.axis));
@@ -214,29 +219,15 @@ int projection_axis(const PolygonMesh& mesh, const std::vector<int>& face) {
   return normal[axis] == 0 ? -1 : axis;
 }
 
-/// Sets t's rounded normal and its projection axis: the normal's largest coordinate when the
-/// projection along it is (exactly) non-degenerate, as it nearly always is (filtered predicates
-/// then decide), else the first such axis; -1 when the corners are collinear.
-void set_normal_and_axis(PreparedTriangle& t) {
-  t.normal = (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]);
-  auto projects = [&](int axis) { return orient2d(drop(t.p[0], axis), drop(t.p[1], axis), drop(t.p[2], axis)) != 0; };
-  int best = 0;
-  t.normal.cwiseAbs().maxCoeff(&best);
-  t.axis = -1;
-  for (const int axis : {best, 0, 1, 2})
-    if (projects(axis)) {
-      t.axis = axis;
-      return;
-    }
-}
-
 }  // namespace
 
 PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
   PreparedTriangle t;
   t.ids = ids;
   t.p = p;
-  set_normal_and_axis(t);
+  t.axis = -1;
+  for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
+    if (orient2d(drop(p[0], axis), drop(p[1], axis), drop(p[2], axis)) != 0) t.axis = axis;
   return t;
 }
 
@@ -244,10 +235,10 @@ bool triangles_meet(const PreparedTriangle& a, const PreparedTriangle& b) { retu
 
 bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Vector3d, 3>& a,
                     const std::array<int, 3>& ids_b, const std::array<Vector3d, 3>& b) {
-  PreparedTriangle x = prepare_triangle(ids_a, a), y = prepare_triangle(ids_b, b);
-  x.axis = std::max(x.axis, 0);  // callers pass non-degenerate triangles
-  y.axis = std::max(y.axis, 0);
-  return triangles_conflict(x, y);
+  PreparedTriangle s = prepare_triangle(ids_a, a), t = prepare_triangle(ids_b, b);
+  s.axis = std::max(s.axis, 0);  // degenerate (excluded by the precondition): axis 0, as before
+  t.axis = std::max(t.axis, 0);
+  return triangles_conflict(s, t);
 }
 
 std::vector<int> find_self_crossing_faces(const PolygonMesh& mesh, size_t max_faces) {
@@ -312,7 +303,10 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
         t.p[k] = mesh.vertices[it[k]];
         t.box.extend(t.p[k]);
       }
-      set_normal_and_axis(t);
+      t.axis = -1;
+      for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
+        if (orient2d(drop(t.p[0], axis), drop(t.p[1], axis), drop(t.p[2], axis)) != 0)
+          t.axis = axis;
       if (t.axis >= 0) {  // collinear corners: degenerate, reported elsewhere
         tris.push_back(t);
         moved += t.exact ? 0 : 1;
@@ -340,36 +334,69 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   auto cell_of = [&](double x, int axis) {
     return static_cast<std::int64_t>(std::floor((x - origin[axis]) / cell));
   };
-  auto cell_range = [&](const Tri& t, int axis) {
-    return std::pair(cell_of(t.box.min()[axis], axis), cell_of(t.box.max()[axis], axis));
+  // Per triangle, what the scan below reads: its box and the cells its box spans (cell_of is
+  // monotone, so the cell of the minimum corner of two boxes' intersection is the larger of
+  // their first cells along each axis).
+  struct Slot {
+    Eigen::AlignedBox3d box;
+    std::array<std::int64_t, 3> lo{}, hi{};
+    int face = 0;
+    bool exact = false;
   };
-  const size_t entry_budget = 8 * tris.size() + 1024;
-  for (;;) {
+  std::vector<Slot> slots(tris.size());
+  auto place = [&] {
     size_t entries = 0;
-    for (const Tri& t : tris) {
+    for (size_t i = 0; i < tris.size(); ++i) {
+      Slot& c = slots[i];
+      c.box = tris[i].box;
+      c.face = tris[i].face;
+      c.exact = tris[i].exact;
       size_t n = 1;
       for (int axis = 0; axis < 3; ++axis) {
-        const auto [lo, hi] = cell_range(t, axis);
-        n *= static_cast<size_t>(hi - lo + 1);
+        c.lo[size_t(axis)] = cell_of(c.box.min()[axis], axis);
+        c.hi[size_t(axis)] = cell_of(c.box.max()[axis], axis);
+        n *= static_cast<size_t>(c.hi[size_t(axis)] - c.lo[size_t(axis)] + 1);
       }
       entries += n;
-      if (entries > entry_budget) break;
     }
-    if (entries <= entry_budget) break;
+    return entries;
+  };
+  const size_t entry_budget = 8 * tris.size() + 1024;
+  size_t entry_count = place();
+  while (entry_count > entry_budget) {
     cell *= 2;
+    entry_count = place();
   }
-  // Cell keys: 21 bits per axis (the grid has at most 2^20 + 1 cells along the widest axis).
-  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) { return (x << 42) | (y << 21) | z; };
+  // Cells in the order of (x, y, z), numbered densely over the grid's extent when that is small
+  // (a counting sort), else by 21 bits per axis (the grid has at most 2^20 + 1 cells along the
+  // widest axis) and sorted; either way the entries come in the order (cell, triangle).
+  std::array<std::int64_t, 3> dims{};
+  for (int axis = 0; axis < 3; ++axis) dims[size_t(axis)] = cell_of(all.max()[axis], axis) + 1;
+  const double dense_cells = double(dims[0]) * double(dims[1]) * double(dims[2]);
+  const bool dense = dense_cells <= double(4 * entry_count + 4096);
+  auto key = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return dense ? (x * dims[1] + y) * dims[2] + z : (x << 42) | (y << 21) | z;
+  };
   std::vector<std::pair<std::int64_t, int>> entries;
-  for (size_t i = 0; i < tris.size(); ++i) {
-    const auto [x0, x1] = cell_range(tris[i], 0);
-    const auto [y0, y1] = cell_range(tris[i], 1);
-    const auto [z0, z1] = cell_range(tris[i], 2);
-    for (std::int64_t x = x0; x <= x1; ++x)
-      for (std::int64_t y = y0; y <= y1; ++y)
-        for (std::int64_t z = z0; z <= z1; ++z) entries.emplace_back(key(x, y, z), static_cast<int>(i));
+  entries.reserve(entry_count);
+  auto list = [&](auto&& emit) {
+    for (size_t i = 0; i < slots.size(); ++i) {
+      const Slot& c = slots[i];
+      for (std::int64_t x = c.lo[0]; x <= c.hi[0]; ++x)
+        for (std::int64_t y = c.lo[1]; y <= c.hi[1]; ++y)
+          for (std::int64_t z = c.lo[2]; z <= c.hi[2]; ++z) emit(key(x, y, z), static_cast<int>(i));
+    }
+  };
+  if (dense) {
+    std::vector<int> start(static_cast<size_t>(dense_cells) + 1, 0);
+    list([&](std::int64_t k, int) { ++start[size_t(k) + 1]; });
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    entries.resize(entry_count);
+    list([&](std::int64_t k, int i) { entries[size_t(start[size_t(k)]++)] = {k, i}; });
+  } else {
+    list([&](std::int64_t k, int i) { entries.emplace_back(k, i); });
+    std::sort(entries.begin(), entries.end());
   }
-  std::sort(entries.begin(), entries.end());
 
   size_t candidates = 0, scanned = 0;
   for (size_t begin = 0; begin < entries.size() && found.size() < options.max_pairs && result.complete;) {
@@ -378,32 +405,31 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     const std::int64_t here = entries[begin].first;
     if (moved < tris.size() &&
         std::all_of(entries.begin() + std::ptrdiff_t(begin), entries.begin() + std::ptrdiff_t(end),
-                    [&](const auto& e) { return tris[size_t(e.second)].exact; })) {
+                    [&](const auto& e) { return slots[size_t(e.second)].exact; })) {
       begin = end;  // only exact triangles here: nothing to examine
       continue;
     }
     for (size_t i = begin; i < end && found.size() < options.max_pairs && result.complete; ++i) {
-      const Tri& s = tris[static_cast<size_t>(entries[i].second)];
+      const Slot& s = slots[static_cast<size_t>(entries[i].second)];
       for (size_t j = i + 1; j < end; ++j) {
         if (++scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
           result.complete = false;
           break;
         }
-        const Tri& t = tris[static_cast<size_t>(entries[j].second)];
+        const Slot& t = slots[static_cast<size_t>(entries[j].second)];
         if (s.face == t.face || (s.exact && t.exact)) continue;
         if (t.box.min().x() > s.box.max().x() || s.box.min().x() > t.box.max().x() ||
             t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
             t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())
           continue;
-        const Vector3d corner = s.box.min().cwiseMax(t.box.min());
-        if (key(cell_of(corner.x(), 0), cell_of(corner.y(), 1), cell_of(corner.z(), 2)) != here) continue;
+        if (key(std::max(s.lo[0], t.lo[0]), std::max(s.lo[1], t.lo[1]), std::max(s.lo[2], t.lo[2])) != here) continue;
         if (++candidates > options.max_candidates) {
           result.complete = false;
           break;
         }
         const auto face_pair = std::minmax(s.face, t.face);
         if (found.count(face_pair)) continue;
-        if (triangles_conflict(s, t)) {
+        if (triangles_conflict(tris[size_t(entries[i].second)], tris[size_t(entries[j].second)])) {
           found.insert(face_pair);
           if (found.size() >= options.max_pairs) break;
         }

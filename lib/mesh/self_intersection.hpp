@@ -57,26 +57,26 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
 std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
                                               SelfIntersectionOptions options = {});
 
+/// A triangle as triangles_meet reads it: corner ids, corners, and the first coordinate axis
+/// along which it projects without degeneracy (-1: its corners are collinear).
+struct PreparedTriangle {
+  std::array<int, 3> ids{};
+  std::array<Eigen::Vector3d, 3> p;
+  int axis = 0;
+};
+
+/// The triangle with these ids and corners, its axis found (at most three exact orient2d).
+PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Eigen::Vector3d, 3>& p);
+
+/// triangles_meet on prepared triangles, for callers that keep them between queries.
+/// \pre neither is degenerate (axis >= 0).
+bool triangles_meet(const PreparedTriangle& a, const PreparedTriangle& b);
+
 /// Two triangles meet beyond the corners they share and the edge they share: corners are the
 /// same when their ids are equal (ids_a, ids_b). Decided exactly; neither may be degenerate
 /// (collinear corners).
 bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Eigen::Vector3d, 3>& a,
                     const std::array<int, 3>& ids_b, const std::array<Eigen::Vector3d, 3>& b);
-
-/// A triangle made ready for many triangles_meet tests: its corners' ids and positions, its
-/// rounded normal (only to choose which exact test runs first) and an axis along which it
-/// projects without degeneracy (-1: collinear corners, a degenerate triangle not to be tested).
-struct PreparedTriangle {
-  std::array<int, 3> ids{};
-  std::array<Eigen::Vector3d, 3> p;
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  int axis = -1;
-};
-
-PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Eigen::Vector3d, 3>& p);
-
-/// triangles_meet of prepared triangles; \pre both have axis >= 0.
-bool triangles_meet(const PreparedTriangle& a, const PreparedTriangle& b);
 
 /// Faces with more than three corners whose boundary crosses or touches itself (two edges that
 /// are not neighbours meet), decided exactly in the projection on the coordinate plane where the

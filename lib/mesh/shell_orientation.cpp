@@ -29,10 +29,32 @@ int crossing(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Triangle&
   return (e0 == e1 && e1 == e2) ? 1 : 0;
 }
 
-/// Is p inside the closed surface made of `triangles` (bounded by `box`)? Ray parity along
-/// directions from a fixed sequence until one meets no edge, corner or plane degenerately.
-bool inside(const Eigen::Vector3d& p, const std::vector<Triangle>& triangles, const Eigen::AlignedBox3d& box) {
+/// Is p inside the closed surface made of `triangles` (bounded by `box`; `boxes` the triangles'
+/// boxes)? Ray parity (the same for every ray that meets no edge, corner or plane degenerately):
+/// first along +x, where only triangles whose boxes hold p's y and z and reach p's x can be met
+/// (exact comparisons skip the others), then along directions from a fixed sequence until one
+/// meets nothing degenerately.
+bool inside(const Eigen::Vector3d& p, const std::vector<Triangle>& triangles,
+            const std::vector<Eigen::AlignedBox3d>& boxes, const Eigen::AlignedBox3d& box) {
   const double reach = 2 * (box.diagonal().norm() + (p - box.center()).norm()) + 1;
+  {
+    Eigen::Vector3d q = p;
+    q.x() += reach;
+    if (std::isfinite(q.x()) && q.x() > box.max().x()) {  // the segment leaves the surface's box
+      int parity = 0;
+      bool degenerate = false;
+      for (size_t i = 0; i < triangles.size() && !degenerate; ++i) {
+        const Eigen::AlignedBox3d& b = boxes[i];
+        if (b.max().x() < p.x() || b.min().y() > p.y() || b.max().y() < p.y() || b.min().z() > p.z() ||
+            b.max().z() < p.z())
+          continue;  // no point of the triangle on the segment (constant y and z, x from p.x)
+        const int c = crossing(p, q, triangles[i]);
+        if (c < 0) degenerate = true;
+        else parity ^= c;
+      }
+      if (!degenerate) return parity == 1;
+    }
+  }
   for (int attempt = 1; attempt <= 64; ++attempt) {
     // Golden-ratio sequence of directions: no two alike, none along an axis.
     const double a = std::fmod(0.6180339887498949 * attempt, 1.0) * 2 * M_PI;
@@ -86,14 +108,19 @@ std::vector<ShellOrientation> shell_orientations(const PolygonMesh& mesh) {
 
   for (int outer = 0; outer < count; ++outer) {
     std::vector<Triangle> triangles;  // built only if some shell may lie inside this one
+    std::vector<Eigen::AlignedBox3d> triangle_boxes;
     for (int inner = 0; inner < count; ++inner) {
       if (inner == outer || !boxes[outer].contains(boxes[inner])) continue;
       if (triangles.empty())
         for (const auto& face : parts[outer].faces)
-          for (const IndexTriangle& t : triangulate_polygon(parts[outer].vertices, face))
+          for (const IndexTriangle& t : triangulate_polygon(parts[outer].vertices, face)) {
             triangles.push_back({parts[outer].vertices[t[0]], parts[outer].vertices[t[1]], parts[outer].vertices[t[2]]});
+            Eigen::AlignedBox3d b;
+            for (const Eigen::Vector3d& corner : triangles.back()) b.extend(corner);
+            triangle_boxes.push_back(b);
+          }
       const Eigen::Vector3d& p = parts[inner].vertices.front();
-      if (inside(p, triangles, boxes[outer])) ++shells[inner].enclosing_shells;
+      if (inside(p, triangles, triangle_boxes, boxes[outer])) ++shells[inner].enclosing_shells;
     }
   }
   return shells;

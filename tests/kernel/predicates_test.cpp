@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include <boost/multiprecision/cpp_int.hpp>
 #include <random>
 
 #include "kernel/wide_int.hpp"
@@ -215,6 +217,97 @@ TEST(RoundedQuotient, MatchesIeeeDivisionOfExactDoubles) {
   // Just above a tie (a remainder far below the last bit) rounds up.
   const Int256 above = (Int256((std::int64_t(1) << 53) + 1) << 100) + 1;
   EXPECT_EQ(rounded_quotient(above, Int256(1) << 100), 0x1p53 + 2);
+}
+
+/// The exact value of a double.
+boost::multiprecision::cpp_rational rational(double x) {
+  using boost::multiprecision::cpp_int;
+  using boost::multiprecision::cpp_rational;
+  int e = 0;
+  const double m = std::frexp(x, &e);
+  const cpp_int mant = cpp_int(std::int64_t(std::ldexp(m, 53)));
+  return e - 53 >= 0 ? cpp_rational(mant << (e - 53)) : cpp_rational(mant, cpp_int(1) << (53 - e));
+}
+
+/// y is the double nearest n / d, the even one of two equally near (the definition, in rationals).
+bool nearest_in_rationals(double y, const Int256& n, const Int256& d) {
+  using boost::multiprecision::cpp_int;
+  using boost::multiprecision::cpp_rational;
+  // (Boost 1.74's two-argument rational constructor rejects some negative denominators.)
+  const cpp_rational exact = cpp_rational(cpp_int(n)) / cpp_rational(cpp_int(d));
+  const cpp_rational dy = abs(exact - rational(y));
+  for (const double other : {std::nextafter(y, -1e300), std::nextafter(y, 1e300)}) {
+    const cpp_rational dother = abs(exact - rational(other));
+    int e = 0;
+    const bool odd = (std::int64_t(std::ldexp(std::frexp(y, &e), 53)) & 1) != 0;
+    if (dother < dy || (dother == dy && odd)) return false;
+  }
+  return true;
+}
+
+// Quotients of wide integers (numerators to 2^240, denominators to 2^160, as exact vertices have)
+// against the definition in rationals: no double is nearer the exact quotient, and of two equally
+// near the result is the even one. Near ties and exact ties are built on purpose (the quotient
+// within a few parts in 2^200 of a midpoint between two doubles), where the double-double
+// approximation cannot decide and the exact division must.
+TEST(RoundedQuotient, WideQuotientsAreNearestInRationals) {
+  using boost::multiprecision::cpp_int;
+  using boost::multiprecision::cpp_rational;
+  std::mt19937_64 rng(29);
+  auto wide = [&](int bits) {
+    Int256 v = 0;
+    for (int b = 0; b < bits; b += 60) v = (v << 60) + Int256(rng() >> 4);
+    v >>= (bits + 59) / 60 * 60 - bits;
+    return v == 0 ? Int256(1) : v;
+  };
+  auto check = [](const Int256& n, const Int256& d) { return nearest_in_rationals(rounded_quotient(n, d), n, d); };
+  int ties = 0;
+  for (int i = 0; i < 4000; ++i) {
+    Int256 n = wide(1 + int(rng() % 240)), d = wide(1 + int(rng() % 160));
+    if (rng() % 2) n = -n;
+    if (rng() % 2) d = -d;
+    ASSERT_TRUE(check(n, d)) << n << " / " << d;
+    // A midpoint m = (2k + 1) 2^(e-1) between two doubles, as a quotient with denominator d2 =
+    // 2^s, then moved by -1, 0 or +1 in the numerator (a tie or within 2^-s of one).
+    const std::int64_t k = std::int64_t(rng() >> 11) | (std::int64_t(1) << 52);  // 53 bits
+    const int s = 60 + int(rng() % 120);
+    const Int256 d2 = Int256(1) << s;
+    const Int256 n2 = ((Int256(2 * k + 1)) << (s - 40)) + Int256(int(rng() % 3) - 1);
+    ties += (n2 & 1) == 0 ? 1 : 0;
+    ASSERT_TRUE(check(n2, d2)) << n2 << " / " << d2;
+    ASSERT_TRUE(check(-n2, d2)) << -n2 << " / " << d2;
+  }
+  EXPECT_GT(ties, 1000);
+}
+
+// rounded_vertex's own path (256-bit sums of products and the double-double quotient, taken when
+// the approximation's error bound is not small enough) against the exact vertex in rationals, on
+// planes through random grid points (many nearly parallel), with the approximation's bound
+// withheld (err < 0) so that every vertex takes that path.
+TEST(RoundedVertex, EveryCoordinateIsNearestInRationals) {
+  std::mt19937_64 rng(31);
+  int checked = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const std::int64_t span = std::int64_t(1) << (4 + rng() % 21);
+    auto coord = [&] { return std::int64_t(rng() % std::uint64_t(2 * span)) - span; };
+    auto point = [&] { return GridPoint{coord(), coord(), coord()}; };
+    const GridPoint v = point();
+    auto near = [&](const GridPoint& g) {  // sometimes a plane tilted by one step from another
+      return GridPoint{g.x + std::int64_t(rng() % 3) - 1, g.y + std::int64_t(rng() % 3) - 1, g.z + std::int64_t(rng() % 3) - 1};
+    };
+    const GridPoint a = point(), b = point();
+    const Plane p = plane_through(v, a, b);
+    const Plane q = rng() % 2 ? plane_through(point(), near(a), near(b)) : plane_through(point(), point(), point());
+    const Plane r = plane_through(point(), point(), point());
+    if (!independent(p, q, r)) continue;
+    const Eigen::Vector3d got = rounded_vertex(p, q, r, ApproxPoint{});
+    const HomogeneousPoint h = exact_vertex(p, q, r);
+    ASSERT_TRUE(nearest_in_rationals(got.x(), h.x, h.w)) << i;
+    ASSERT_TRUE(nearest_in_rationals(got.y(), h.y, h.w)) << i;
+    ASSERT_TRUE(nearest_in_rationals(got.z(), h.z, h.w)) << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 2500);
 }
 
 // A grid point defined by ill-conditioned planes (two nearly coplanar planes through it) is written

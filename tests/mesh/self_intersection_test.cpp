@@ -89,12 +89,16 @@ bool reference_meet(const Triangle& a, const Triangle& b) {
 
 TEST(SelfIntersection, TrianglePairsWithoutSharedCornersAgreeWithRationals) {
   std::mt19937_64 rng(3);
-  std::uniform_int_distribution<int> coord(0, 4), pick(0, 3);
-  int met = 0, apart = 0, coplanar = 0;
-  for (int trial = 0; trial < 8000; ++trial) {
-    auto point = [&] { return Vector3d(coord(rng), coord(rng), coord(rng)); };
-    Triangle a = {point(), point(), point()}, b = {point(), point(), point()};
+  std::uniform_int_distribution<int> coord(0, 4), pick(0, 4);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const Vector3d origin(0.3, -0.7, 0.1), e1 = Vector3d(1, 0.37, -0.21) / 3, e2 = Vector3d(-0.13, 1, 0.29) / 3;
+  int met = 0, apart = 0, coplanar = 0, near_plane = 0;
+  for (int trial = 0; trial < 10000; ++trial) {
     const int mode = pick(rng);
+    auto point = [&] {  // mode 4: rounded points of a tilted plane (nearly coplanar)
+      return mode == 4 ? Vector3d(origin + unit(rng) * e1 + unit(rng) * e2) : Vector3d(coord(rng), coord(rng), coord(rng));
+    };
+    Triangle a = {point(), point(), point()}, b = {point(), point(), point()};
     if (mode == 0) for (auto* t : {&a, &b}) for (auto& p : *t) p.z() = 1;  // both in the plane z = 1
     if (mode == 1)  // b in a's (tilted) plane: lattice combinations of a's corners
       for (auto& p : b) p = a[0] + (coord(rng) - 2) * (a[1] - a[0]) / 2 + (coord(rng) - 2) * (a[2] - a[0]) / 2;
@@ -109,12 +113,69 @@ TEST(SelfIntersection, TrianglePairsWithoutSharedCornersAgreeWithRationals) {
                              << a[2].transpose() << " vs " << b[0].transpose() << " | " << b[1].transpose() << " | "
                              << b[2].transpose();
     (got ? met : apart)++;
+    near_plane += mode == 4 ? 1 : 0;
     coplanar += sign3(a[0], a[1], a[2], b[0]) == 0 && sign3(a[0], a[1], a[2], b[1]) == 0 &&
                 sign3(a[0], a[1], a[2], b[2]) == 0;
   }
   EXPECT_GT(met, 800);
   EXPECT_GT(apart, 800);
   EXPECT_GT(coplanar, 800);
+  EXPECT_GT(near_plane, 1500);
+}
+
+// Triangle pairs with one common corner p, or a common edge, against the rational reference:
+// beyond p, two triangles meet iff the edge opposite p in one meets the other (the ray from p
+// through a common point leaves the shorter of the two through its opposite edge, inside the
+// other); beyond a common edge pq, iff they are coplanar with the third corners on one side. The
+// corners are lattice points (many coplanar) or points of a tilted plane rounded to doubles
+// (nearly coplanar: where the floating-point filter cannot decide and triangles_meet first tries
+// projections that separate the triangles).
+TEST(SelfIntersection, TrianglePairsWithSharedCornersAgreeWithRationals) {
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> coord(0, 4), pick(0, 2);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const Vector3d origin(0.3, -0.7, 0.1), e1 = Vector3d(1, 0.37, -0.21) / 3, e2 = Vector3d(-0.13, 1, 0.29) / 3;
+  int met[2] = {0, 0}, apart[2] = {0, 0}, near_plane = 0;
+  for (int trial = 0; trial < 16000; ++trial) {
+    const int mode = pick(rng);
+    auto point = [&]() -> Vector3d {
+      if (mode == 0) return Vector3d(coord(rng), coord(rng), coord(rng));
+      if (mode == 1) return Vector3d(coord(rng), coord(rng), 1);  // all in the plane z = 1
+      return origin + unit(rng) * e1 + unit(rng) * e2;   // rounded points of a tilted plane
+    };
+    const bool edge = trial % 2 == 1;
+    const Vector3d p = point(), r = point(), a1 = point(), a2 = point(), b2 = point();
+    Triangle a, b;
+    std::array<int, 3> ia, ib;
+    if (edge) {  // s = (p, r, a1), t = (r, p, b2): common edge pr
+      a = {p, r, a1}, b = {r, p, b2}, ia = {0, 1, 2}, ib = {1, 0, 3};
+    } else {  // s = (p, a1, a2), t = (p, r, b2): common corner p
+      a = {p, a1, a2}, b = {p, r, b2}, ia = {0, 1, 2}, ib = {0, 3, 4};
+    }
+    if (projection(a) < 0 || projection(b) < 0) continue;  // degenerate triangles are not judged
+    int coincident = 0;  // corners at one point are one corner: only the ones given as shared
+    for (const auto& x : a)
+      for (const auto& y : b) coincident += x == y ? 1 : 0;
+    if (coincident != (edge ? 2 : 1)) continue;
+    bool expected = false;
+    if (edge) {
+      const int ua = projection(a), u = (ua + 1) % 3, v = (ua + 2) % 3;
+      expected = sign3(p, r, a1, b2) == 0 && sign2(q(p), q(r), q(a1), u, v) == sign2(q(p), q(r), q(b2), u, v);
+    } else {
+      expected = segment_meets_triangle(a[1], a[2], b) || segment_meets_triangle(b[1], b[2], a);
+    }
+    const bool got = triangles_meet(ia, a, ib, b);
+    ASSERT_EQ(got, expected) << trial << (edge ? " edge: " : " corner: ") << a[0].transpose() << " | "
+                             << a[1].transpose() << " | " << a[2].transpose() << " vs " << b[0].transpose() << " | "
+                             << b[1].transpose() << " | " << b[2].transpose();
+    (got ? met : apart)[edge ? 1 : 0]++;
+    near_plane += mode == 2 ? 1 : 0;
+  }
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_GT(met[k], 300) << k;
+    EXPECT_GT(apart[k], 1000) << k;
+  }
+  EXPECT_GT(near_plane, 3000);
 }
 
 /// All pairs of faces that meet, by every pair of their triangles (no broad phase).
