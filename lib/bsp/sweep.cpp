@@ -62,11 +62,18 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
   if (at.size() == 1) return translate(tool, at[0]);
   const kernel::Grid& grid = tool.grid();
   // Each convex piece's vertices on the grid; translated by grid points, they stay there (exact).
+  // Each hull's core (convex_union.hpp): the piece's vertex centroid moved from a to b.
   std::vector<std::vector<kernel::GridPoint>> sets;
+  std::vector<bsp::detail::HullCore> cores;
   for (const auto& piece : convex_pieces(tool)) {
     std::vector<kernel::GridPoint> snapped;
     snapped.reserve(piece.size());
-    for (const Eigen::Vector3d& v : piece) snapped.push_back(grid.snap(v));
+    double centroid[3] = {0, 0, 0};
+    for (const Eigen::Vector3d& v : piece) {
+      snapped.push_back(grid.snap(v));
+      centroid[0] += double(snapped.back().x), centroid[1] += double(snapped.back().y), centroid[2] += double(snapped.back().z);
+    }
+    for (double& c : centroid) c /= double(snapped.size());
     for (std::size_t i = 0; i + 1 < at.size(); ++i) {
       const kernel::GridPoint a = grid.snap(at[i]), b = grid.snap(at[i + 1]);
       std::vector<kernel::GridPoint> ends;
@@ -75,9 +82,15 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
         for (const kernel::GridPoint& t : {a, b})  // snap() checks the range of the sum
           ends.push_back(grid.snap(grid.to_world(kernel::GridPoint{v.x + t.x, v.y + t.y, v.z + t.z})));
       sets.push_back(std::move(ends));
+      bsp::detail::HullCore core;
+      for (int k = 0; k < 3; ++k) {
+        core.ends[0][std::size_t(k)] = centroid[k] + double(k == 0 ? a.x : (k == 1 ? a.y : a.z));
+        core.ends[1][std::size_t(k)] = centroid[k] + double(k == 0 ? b.x : (k == 1 ? b.y : b.z));
+      }
+      cores.push_back(core);
     }
   }
-  return bsp::detail::unite_convex_hulls(sets, grid);
+  return bsp::detail::unite_convex_hulls(sets, grid, {.cores = cores});
 }
 
 Solid sweep(const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
