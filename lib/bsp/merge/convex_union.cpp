@@ -38,7 +38,10 @@ struct Polytope {
   std::vector<std::int32_t> planes;
   std::vector<BoundaryFragment> faces;
   std::vector<GridPoint> vertices;                  ///< the hull's vertices
-  std::vector<GridPoint> sorted_vertices;           ///< the same, sorted (grid_less)
+  std::vector<std::int32_t> sorted_vertices;        ///< their indices, sorted by grid_less
+  /// The faces around each vertex (those of the triangles at it): vertex_faces[vertex_start[v] ..
+  /// vertex_start[v + 1]).
+  std::vector<std::int32_t> vertex_start, vertex_faces;
   std::vector<std::vector<std::int32_t>> corners;   ///< per face: the vertex of each corner
   std::vector<std::int32_t> sorted_planes;          ///< `planes` sorted by value (plane_less)
   CornerBox box;
@@ -204,8 +207,23 @@ Polytope make_polytope(Arena& arena, const kernel::ConvexHull& h, const HullCore
     for (int k = 0; k < 3; ++k) poly.box.lo[k] = std::min(poly.box.lo[k], c[k]), poly.box.hi[k] = std::max(poly.box.hi[k], c[k]);
   }
   poly.vertices = h.vertices;
-  poly.sorted_vertices = h.vertices;
-  std::sort(poly.sorted_vertices.begin(), poly.sorted_vertices.end(), grid_less);
+  poly.sorted_vertices.resize(h.vertices.size());
+  for (std::size_t v = 0; v < h.vertices.size(); ++v) poly.sorted_vertices[v] = std::int32_t(v);
+  std::sort(poly.sorted_vertices.begin(), poly.sorted_vertices.end(),
+            [&](std::int32_t x, std::int32_t y) { return grid_less(h.vertices[std::size_t(x)], h.vertices[std::size_t(y)]); });
+  {
+    std::vector<std::pair<std::int32_t, std::int32_t>> incidence;  // (vertex, face)
+    incidence.reserve(3 * n);
+    for (std::size_t t = 0; t < n; ++t)
+      for (const int v : h.triangles[t]) incidence.push_back({v, face_of[t]});
+    std::sort(incidence.begin(), incidence.end());
+    incidence.erase(std::unique(incidence.begin(), incidence.end()), incidence.end());
+    poly.vertex_start.assign(h.vertices.size() + 1, 0);
+    for (const auto& [v, f] : incidence) ++poly.vertex_start[std::size_t(v) + 1];
+    for (std::size_t v = 0; v < h.vertices.size(); ++v) poly.vertex_start[v + 1] += poly.vertex_start[v];
+    poly.vertex_faces.reserve(incidence.size());
+    for (const auto& [v, f] : incidence) poly.vertex_faces.push_back(f);
+  }
   poly.sorted_planes = poly.planes;
   std::sort(poly.sorted_planes.begin(), poly.sorted_planes.end(),
             [&](std::int32_t x, std::int32_t y) { return plane_less(arena.planes[x], arena.planes[y]); });
@@ -231,21 +249,25 @@ struct Piece {
 /// q clipping them (exact), found when first needed and kept while q is the same.
 class VertexSides {
  public:
-  static constexpr std::int32_t kUnknown = -3, kInside = -2, kOnBoundary = -1;  ///< else: a plane of q (its position) in front of the vertex
+  /// Statuses: >= 0 the position in q.planes of a plane the vertex lies strictly in front of;
+  /// kOnBoundary in q, on one of its planes; kInside strictly inside q; <= kShared: the vertex is
+  /// q's vertex kShared - status (so on q's boundary).
+  static constexpr std::int32_t kOnBoundary = -1, kInside = -2, kShared = -3;
 
   void reset(std::size_t vertices) {
-    if (stamp_.size() < vertices) stamp_.resize(vertices, 0), status_.resize(vertices, kUnknown);
+    if (stamp_.size() < vertices) stamp_.resize(vertices, 0), status_.resize(vertices, kInside);
     ++current_;
   }
-  /// kInside (strictly inside q), kOnBoundary (in q, on one of its planes) or the position in
-  /// q.planes of a plane the vertex lies strictly in front of.
+  /// The status of own vertex `vertex` at `v`.
   std::int32_t side(const Arena& arena, const Polytope& q, const GridPoint& v, std::int32_t vertex) {
     if (stamp_[std::size_t(vertex)] == current_) return status_[std::size_t(vertex)];
     stamp_[std::size_t(vertex)] = current_;
     std::int32_t& result = status_[std::size_t(vertex)];
     // A vertex of q is on its boundary (hulls of neighbouring segments share the tool's vertices
     // at their joint); one in q's capsule is strictly inside. Else every plane is tested.
-    if (std::binary_search(q.sorted_vertices.begin(), q.sorted_vertices.end(), v, grid_less)) return result = kOnBoundary;
+    const auto shared = std::lower_bound(q.sorted_vertices.begin(), q.sorted_vertices.end(), v,
+                                         [&](std::int32_t x, const GridPoint& y) { return grid_less(q.vertices[std::size_t(x)], y); });
+    if (shared != q.sorted_vertices.end() && q.vertices[std::size_t(*shared)] == v) return result = kShared - *shared;
     const kernel::ApproxPoint at{double(v.x), double(v.y), double(v.z), 0.0};  // exact: |coordinates| <= 2^25
     if (inside_capsule(at, q)) return result = kInside;
     const std::size_t m = q.planes.size();
@@ -300,10 +322,12 @@ Side whole_face_side(const Arena& arena, const Polytope& own, const Piece& piece
                      std::int32_t& on) {
   const std::vector<std::int32_t>& corners = own.corners[std::size_t(piece.face)];
   bool strictly_inside = false;
+  std::int32_t shared = -1;  // a vertex of q at one of the corners
   boost::container::small_vector<std::int32_t, 8> outside;  // planes some corner lies in front of
   for (const std::int32_t v : corners) {
     const std::int32_t s = sides.side(arena, q, own.vertices[std::size_t(v)], v);
     if (s >= 0 && std::find(outside.begin(), outside.end(), s) == outside.end()) outside.push_back(s);
+    if (s <= VertexSides::kShared) shared = VertexSides::kShared - s;
     strictly_inside |= s == VertexSides::kInside;
   }
   if (outside.empty()) {
@@ -321,24 +345,31 @@ Side whole_face_side(const Arena& arena, const Polytope& own, const Piece& piece
     }
     return Side::Negative;
   }
-  // A corner in front of one of these planes: the face is outside q if no corner is behind it.
-  for (const std::int32_t candidate : outside) {
+  // A corner in front of q and one strictly inside: the face crosses q's boundary.
+  if (strictly_inside) return Side::Both;
+  // A plane of q with no corner behind it and one in front separates the face from q. Where a corner is a vertex
+  // of q, such a plane passes through it (q lies behind each of its planes): one of the faces at
+  // that vertex. Else try the planes the corners were found in front of.
+  auto separates = [&](std::int32_t candidate) {
     const Plane& e = arena.planes[q.planes[std::size_t(candidate)]];
-    bool separates = true;
+    bool front = false;  // a face on the plane is not in front of it
     for (const std::int32_t v : corners) {
       const GridPoint& p = own.vertices[std::size_t(v)];
       kernel::Sign g = kernel::filtered_orient(kernel::ApproxPoint{double(p.x), double(p.y), double(p.z), 0.0}, e);
       if (g == kernel::Sign::Zero) g = kernel::orient(p, e);
-      if (g == kernel::Sign::Negative) {
-        separates = false;
-        break;
-      }
+      if (g == kernel::Sign::Negative) return false;
+      front |= g == kernel::Sign::Positive;
     }
-    if (separates) {
-      q.hint = std::size_t(candidate);
-      return Side::Positive;
-    }
+    if (front) q.hint = std::size_t(candidate);
+    return front;
+  };
+  if (shared >= 0) {
+    for (std::int32_t k = q.vertex_start[std::size_t(shared)]; k < q.vertex_start[std::size_t(shared) + 1]; ++k)
+      if (separates(q.vertex_faces[std::size_t(k)])) return Side::Positive;
+    return Side::Both;
   }
+  for (const std::int32_t candidate : outside)
+    if (separates(candidate)) return Side::Positive;
   return Side::Both;
 }
 
