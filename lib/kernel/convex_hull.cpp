@@ -55,8 +55,16 @@ class Quickhull {
       if (faces_[f].alive && !faces_[f].outside.empty()) add_furthest_point(f);
     }
     std::vector<int> index(p_.size(), -1);
+    std::vector<int> face_index(faces_.size(), -1);
+    for (std::size_t g = 0; g < faces_.size(); ++g)
+      if (faces_[g].alive) face_index[g] = static_cast<int>(out.neighbours.size()), out.neighbours.push_back({});
     for (const Face& f : faces_) {
       if (!f.alive) continue;
+      std::array<int, 3>& across = out.neighbours[out.triangles.size()];
+      for (int k = 0; k < 3; ++k) {
+        across[k] = f.next[k] < 0 ? -1 : face_index[std::size_t(f.next[k])];
+        if (across[k] < 0) throw std::logic_error("convex_hull: a triangle's neighbour is not on the hull");
+      }
       std::array<int, 3> t{};
       for (int k = 0; k < 3; ++k) {
         int& i = index[f.v[k]];

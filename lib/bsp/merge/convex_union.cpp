@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -42,7 +43,8 @@ struct Polytope {
   /// The faces around each vertex (those of the triangles at it): vertex_faces[vertex_start[v] ..
   /// vertex_start[v + 1]).
   std::vector<std::int32_t> vertex_start, vertex_faces;
-  std::vector<std::vector<std::int32_t>> corners;   ///< per face: the vertex of each corner
+  /// Per face: the vertex of each corner, corner_vertices[corner_start[f] .. + corner_count[f]).
+  std::vector<std::int32_t> corner_start, corner_count, corner_vertices;
   std::vector<std::int32_t> sorted_planes;          ///< `planes` sorted by value (plane_less)
   CornerBox box;
   std::size_t hint = 0;  ///< the plane that last decided a piece: tried first for the next one
@@ -102,104 +104,108 @@ bool inside_capsule(const ConvexPolygon& piece, const Polytope& q) {
   return true;
 }
 
-/// The polytope of a 3-dimensional hull: coplanar triangles (equal normalized planes) form one
-/// face, and each face's polygon is read off the triangulation: its boundary edges (those whose
-/// triangle across belongs to another face) form one counter-clockwise cycle, each edge on the
-/// plane of the face across it; a run of collinear edges with the same face across is one edge of
-/// the polygon, and a corner is the hull vertex where two runs meet: the point face ∩ previous
-/// neighbour ∩ next neighbour (two different neighbours along a face's boundary are never
-/// collinear on a convex polytope), a grid point, so its coordinates are exact (error 0).
-/// `core` is a segment inside the hull (grid units) for the inscribed capsule.
+/// The polytope of a 3-dimensional hull: coplanar triangles form one face (found by walking
+/// across edges to neighbours whose third vertex is on the triangle's plane; on a convex polytope
+/// the triangles of one plane are connected), and each face's polygon is read off the
+/// triangulation: its boundary edges (those whose triangle across belongs to another face) form
+/// one counter-clockwise cycle, each edge on the plane of the face across it; a run of collinear
+/// edges with the same face across is one edge of the polygon, and a corner is the hull vertex
+/// where two runs meet: the point face ∩ previous neighbour ∩ next neighbour (two different
+/// neighbours along a face's boundary are never collinear on a convex polytope), a grid point, so
+/// its coordinates are exact (error 0). `core` is a segment inside the hull (grid units) for the
+/// inscribed capsule.
 Polytope make_polytope(Arena& arena, const kernel::ConvexHull& h, const HullCore& core) {
   const std::size_t n = h.triangles.size();
-  std::vector<Plane> plane(n);
-  for (std::size_t t = 0; t < n; ++t)
-    plane[t] = kernel::plane_through(h.vertices[std::size_t(h.triangles[t][0])], h.vertices[std::size_t(h.triangles[t][1])],
-                                     h.vertices[std::size_t(h.triangles[t][2])]);
-  // Faces: triangles grouped by plane.
-  auto key = [](const Plane& p) { return std::tuple(p.a, p.b, p.c, p.d); };
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t t = 0; t < n; ++t) order[t] = std::uint32_t(t);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return key(plane[x]) < key(plane[y]); });
-  std::vector<std::int32_t> face_of(n);
+  if (h.neighbours.size() != n) throw std::logic_error("unite_convex_hulls: the hull has no triangle adjacency");
+  auto corner = [&](std::size_t t, int k) { return h.triangles[t][std::size_t(k % 3)]; };
+  auto across = [&](std::size_t t, int k) { return std::size_t(h.neighbours[t][std::size_t(k % 3)]); };
   Polytope poly;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i == 0 || !(plane[order[i]] == plane[order[i - 1]])) poly.planes.push_back(arena.planes.add(plane[order[i]]));
-    face_of[order[i]] = std::int32_t(poly.planes.size() - 1);
+  // Faces: one plane each (normalized), its triangles by a walk across coplanar neighbours.
+  std::vector<std::int32_t> face_of(n, -1);
+  std::vector<std::size_t> stack;
+  for (std::size_t t0 = 0; t0 < n; ++t0) {
+    if (face_of[t0] >= 0) continue;
+    const Plane plane = kernel::plane_through(h.vertices[std::size_t(corner(t0, 0))], h.vertices[std::size_t(corner(t0, 1))],
+                                              h.vertices[std::size_t(corner(t0, 2))]);
+    const auto f = std::int32_t(poly.planes.size());
+    poly.planes.push_back(arena.planes.add(plane));
+    face_of[t0] = f;
+    stack.assign(1, t0);
+    while (!stack.empty()) {
+      const std::size_t t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t g = across(t, k);
+        if (face_of[g] >= 0) continue;
+        // The vertex of g off the shared edge (g has it as corner(t, k + 1) -> corner(t, k)).
+        int third = -1;
+        for (int j = 0; j < 3; ++j)
+          if (corner(g, j) != corner(t, k) && corner(g, j) != corner(t, k + 1)) third = corner(g, j);
+        if (third < 0) throw std::logic_error("unite_convex_hulls: a degenerate hull triangle");
+        if (plane.eval(h.vertices[std::size_t(third)]) == 0) face_of[g] = f, stack.push_back(g);
+      }
+    }
   }
-  // Neighbouring faces across every triangle edge: the directed edge (u, v) of one triangle is
-  // (v, u) in the triangle across it.
-  const auto nv = std::uint64_t(h.vertices.size());
-  std::vector<std::pair<std::uint64_t, std::int32_t>> edges;
-  edges.reserve(3 * n);
-  for (std::size_t t = 0; t < n; ++t)
-    for (int k = 0; k < 3; ++k)
-      edges.push_back({std::uint64_t(h.triangles[t][std::size_t(k)]) * nv + std::uint64_t(h.triangles[t][std::size_t((k + 1) % 3)]),
-                       face_of[t]});
-  std::sort(edges.begin(), edges.end());
-  // The boundary edges of every face: (face, from, to, face across), sorted by face and start.
-  struct Edge {
-    std::int32_t face, from, to, across;
-  };
-  std::vector<Edge> boundary;
-  boundary.reserve(3 * n);
-  for (std::size_t t = 0; t < n; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const auto u = std::uint64_t(h.triangles[t][std::size_t(k)]), v = std::uint64_t(h.triangles[t][std::size_t((k + 1) % 3)]);
-      const std::uint64_t back = v * nv + u;
-      const auto it = std::lower_bound(edges.begin(), edges.end(), std::pair{back, std::int32_t(-1)});
-      if (it == edges.end() || it->first != back) throw std::logic_error("unite_convex_hulls: the hull is not closed");
-      if (it->second != face_of[t]) boundary.push_back({face_of[t], std::int32_t(u), std::int32_t(v), it->second});
+  const std::size_t faces = poly.planes.size();
+  // The boundary cycle of each face: from a boundary edge (t, k) to the next one leaving its end
+  // v, turning about v across the face's inner edges.
+  poly.faces.resize(faces);
+  poly.corner_start.assign(faces, -1);
+  poly.corner_count.assign(faces, 0);
+  std::vector<bool> done(3 * n, false);
+  std::vector<std::int32_t> cycle_across, cycle_from;
+  for (std::size_t t0 = 0; t0 < n; ++t0)
+    for (int k0 = 0; k0 < 3; ++k0) {
+      const std::int32_t f = face_of[t0];
+      if (done[3 * t0 + std::size_t(k0)] || face_of[across(t0, k0)] == f) continue;
+      if (poly.corner_start[std::size_t(f)] >= 0) throw std::logic_error("unite_convex_hulls: a face's boundary is not one cycle");
+      cycle_across.clear();
+      cycle_from.clear();
+      std::size_t t = t0;
+      int k = k0;
+      do {
+        done[3 * t + std::size_t(k)] = true;
+        cycle_across.push_back(face_of[across(t, k)]);
+        cycle_from.push_back(corner(t, k));
+        const int v = corner(t, k + 1);
+        k = (k + 1) % 3;  // the edge of t leaving v
+        for (std::size_t turns = 0; face_of[across(t, k)] == f; ++turns) {
+          // An inner edge v -> w: the triangle across has w -> v, and its edge after that leaves v.
+          const std::size_t g = across(t, k);
+          int j = 0;
+          while (j < 3 && corner(g, j) != v) ++j;
+          if (j == 3 || turns > n) throw std::logic_error("unite_convex_hulls: the hull's triangles are not consistent");
+          t = g;
+          k = j;
+        }
+        if (cycle_from.size() > 3 * n) throw std::logic_error("unite_convex_hulls: a face's boundary is not one cycle");
+      } while (t != t0 || k != k0);
+      const std::size_t m = cycle_across.size();
+      ConvexPolygon polygon;
+      polygon.support = poly.planes[std::size_t(f)];
+      poly.corner_start[std::size_t(f)] = std::int32_t(poly.corner_vertices.size());
+      for (std::size_t i = 0; i < m; ++i) {
+        const std::int32_t prev = cycle_across[(i + m - 1) % m];
+        if (prev == cycle_across[i]) continue;  // a collinear edge continues the run before it
+        const GridPoint& v = h.vertices[std::size_t(cycle_from[i])];
+        // The edges into and out of the corner must not be collinear (their planes and the face's
+        // then meet in one point), as on any convex polytope.
+        const GridPoint& u = h.vertices[std::size_t(cycle_from[(i + m - 1) % m])];
+        const GridPoint& w = h.vertices[std::size_t(cycle_from[(i + 1) % m])];
+        const std::int64_t in[3] = {v.x - u.x, v.y - u.y, v.z - u.z}, out[3] = {w.x - v.x, w.y - v.y, w.z - v.z};
+        if (in[1] * out[2] == in[2] * out[1] && in[2] * out[0] == in[0] * out[2] && in[0] * out[1] == in[1] * out[0])
+          throw std::logic_error("unite_convex_hulls: two edges of a face on different neighbours are collinear");
+        poly.corner_vertices.push_back(cycle_from[i]);
+        polygon.corners.push_back({poly.planes[std::size_t(cycle_across[i])], poly.planes[std::size_t(prev)],
+                                   poly.planes[std::size_t(cycle_across[i])],
+                                   kernel::ApproxPoint{double(v.x), double(v.y), double(v.z), 0.0}});  // exact: |coordinates| <= 2^25
+      }
+      if (polygon.corners.size() < 3) throw std::logic_error("unite_convex_hulls: a face has fewer than 3 corners");
+      poly.corner_count[std::size_t(f)] = std::int32_t(polygon.corners.size());
+      poly.faces[std::size_t(f)] = {std::move(polygon), false};
     }
-  std::sort(boundary.begin(), boundary.end(),
-            [](const Edge& x, const Edge& y) { return std::pair(x.face, x.from) < std::pair(y.face, y.from); });
-  poly.faces.reserve(poly.planes.size());
-  std::vector<std::int32_t> across;  // per boundary edge of a face in cycle order: the face across
-  std::vector<std::int32_t> from;    // ... and its start vertex
-  for (std::size_t b = 0; b < boundary.size();) {
-    const std::int32_t f = boundary[b].face;
-    std::size_t e = b;
-    while (e < boundary.size() && boundary[e].face == f) ++e;
-    const auto first = boundary.begin() + std::ptrdiff_t(b), last = boundary.begin() + std::ptrdiff_t(e);
-    // The cycle from the face's first edge: each edge is followed by the one leaving its end.
-    across.clear();
-    from.clear();
-    std::size_t at = b;
-    for (std::size_t count = 0; count < e - b; ++count) {
-      across.push_back(boundary[at].across);
-      from.push_back(boundary[at].from);
-      const std::int32_t to = boundary[at].to;
-      const auto it = std::lower_bound(first, last, to, [](const Edge& x, std::int32_t v) { return x.from < v; });
-      if (it == last || it->from != to || (it + 1 != last && (it + 1)->from == to))
-        throw std::logic_error("unite_convex_hulls: a face's boundary is not one cycle");
-      at = std::size_t(it - boundary.begin());
-    }
-    if (at != b) throw std::logic_error("unite_convex_hulls: a face's boundary is not one cycle");
-    const std::size_t k = across.size();
-    ConvexPolygon polygon;
-    polygon.support = poly.planes[std::size_t(f)];
-    std::vector<std::int32_t> corner_vertices;
-    for (std::size_t i = 0; i < k; ++i) {
-      const std::int32_t prev = across[(i + k - 1) % k];
-      if (prev == across[i]) continue;  // a collinear edge continues the run before it
-      const GridPoint& v = h.vertices[std::size_t(from[i])];
-      // The edges into and out of the corner must not be collinear (their planes and the face's
-      // then meet in one point), as on any convex polytope.
-      const GridPoint& u = h.vertices[std::size_t(from[(i + k - 1) % k])];
-      const GridPoint& w = h.vertices[std::size_t(from[(i + 1) % k])];
-      const std::int64_t in[3] = {v.x - u.x, v.y - u.y, v.z - u.z}, out[3] = {w.x - v.x, w.y - v.y, w.z - v.z};
-      if (in[1] * out[2] == in[2] * out[1] && in[2] * out[0] == in[0] * out[2] && in[0] * out[1] == in[1] * out[0])
-        throw std::logic_error("unite_convex_hulls: two edges of a face on different neighbours are collinear");
-      corner_vertices.push_back(from[i]);
-      polygon.corners.push_back({poly.planes[std::size_t(across[i])], poly.planes[std::size_t(prev)], poly.planes[std::size_t(across[i])],
-                                 kernel::ApproxPoint{double(v.x), double(v.y), double(v.z), 0.0}});  // exact: |coordinates| <= 2^25
-    }
-    if (polygon.corners.size() < 3) throw std::logic_error("unite_convex_hulls: a face has fewer than 3 corners");
-    poly.faces.push_back({std::move(polygon), false});
-    poly.corners.push_back(std::move(corner_vertices));
-    b = e;
-  }
-  if (poly.faces.size() != poly.planes.size()) throw std::logic_error("unite_convex_hulls: a face without boundary edges");
+  for (std::size_t f = 0; f < faces; ++f)
+    if (poly.corner_start[f] < 0) throw std::logic_error("unite_convex_hulls: a face without boundary edges");
   poly.box.valid = true;
   for (int k = 0; k < 3; ++k) poly.box.lo[k] = 1e300, poly.box.hi[k] = -1e300;
   for (const GridPoint& v : h.vertices) {
@@ -211,19 +217,31 @@ Polytope make_polytope(Arena& arena, const kernel::ConvexHull& h, const HullCore
   for (std::size_t v = 0; v < h.vertices.size(); ++v) poly.sorted_vertices[v] = std::int32_t(v);
   std::sort(poly.sorted_vertices.begin(), poly.sorted_vertices.end(),
             [&](std::int32_t x, std::int32_t y) { return grid_less(h.vertices[std::size_t(x)], h.vertices[std::size_t(y)]); });
+  // The faces around each vertex: the triangles' faces by vertex (a counting sort), each once.
+  const std::size_t nv = h.vertices.size();
+  poly.vertex_start.assign(nv + 1, 0);
+  for (const auto& t : h.triangles)
+    for (const int v : t) ++poly.vertex_start[std::size_t(v) + 1];
+  for (std::size_t v = 0; v < nv; ++v) poly.vertex_start[v + 1] += poly.vertex_start[v];
+  poly.vertex_faces.resize(3 * n);
   {
-    std::vector<std::pair<std::int32_t, std::int32_t>> incidence;  // (vertex, face)
-    incidence.reserve(3 * n);
+    std::vector<std::int32_t> at(poly.vertex_start.begin(), poly.vertex_start.end() - 1);
     for (std::size_t t = 0; t < n; ++t)
-      for (const int v : h.triangles[t]) incidence.push_back({v, face_of[t]});
-    std::sort(incidence.begin(), incidence.end());
-    incidence.erase(std::unique(incidence.begin(), incidence.end()), incidence.end());
-    poly.vertex_start.assign(h.vertices.size() + 1, 0);
-    for (const auto& [v, f] : incidence) ++poly.vertex_start[std::size_t(v) + 1];
-    for (std::size_t v = 0; v < h.vertices.size(); ++v) poly.vertex_start[v + 1] += poly.vertex_start[v];
-    poly.vertex_faces.reserve(incidence.size());
-    for (const auto& [v, f] : incidence) poly.vertex_faces.push_back(f);
+      for (const int v : h.triangles[t]) poly.vertex_faces[std::size_t(at[std::size_t(v)]++)] = face_of[t];
   }
+  std::int32_t kept = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::int32_t begin = poly.vertex_start[v], end = poly.vertex_start[v + 1];
+    poly.vertex_start[v] = kept;
+    for (std::int32_t i = begin; i < end; ++i) {
+      const std::int32_t f = poly.vertex_faces[std::size_t(i)];
+      if (std::find(poly.vertex_faces.begin() + poly.vertex_start[v], poly.vertex_faces.begin() + kept, f) ==
+          poly.vertex_faces.begin() + kept)
+        poly.vertex_faces[std::size_t(kept++)] = f;
+    }
+  }
+  poly.vertex_start[nv] = kept;
+  poly.vertex_faces.resize(std::size_t(kept));
   poly.sorted_planes = poly.planes;
   std::sort(poly.sorted_planes.begin(), poly.sorted_planes.end(),
             [&](std::int32_t x, std::int32_t y) { return plane_less(arena.planes[x], arena.planes[y]); });
@@ -320,7 +338,8 @@ Side exact_side(const kernel::PlaneTable& planes, const ConvexPolygon& poly, std
 /// lie in front of different planes: the piece may cross q).
 Side whole_face_side(const Arena& arena, const Polytope& own, const Piece& piece, Polytope& q, VertexSides& sides,
                      std::int32_t& on) {
-  const std::vector<std::int32_t>& corners = own.corners[std::size_t(piece.face)];
+  const std::span<const std::int32_t> corners(own.corner_vertices.data() + own.corner_start[std::size_t(piece.face)],
+                                              std::size_t(own.corner_count[std::size_t(piece.face)]));
   bool strictly_inside = false;
   std::int32_t shared = -1;  // a vertex of q at one of the corners
   boost::container::small_vector<std::int32_t, 8> outside;  // planes some corner lies in front of
