@@ -118,6 +118,45 @@ TEST(Sweep, EqualsTheUnionOfTheSegmentHullsAsSolids) {
     }
 }
 
+TEST(Sweep, DegeneratePathsAndOtherToolsEqualTheReference) {
+  // Paths with repeated points, collinear runs, reversals and segments along the axes and
+  // diagonals; tools: a coarse ball, a tetrahedron (its faces' normals meet segments at n.d = 0),
+  // and a box (faces parallel to axis segments: stretched faces and coplanar parallelograms).
+  const Solid coarse = sphere(0.2, {.segments = 8});
+  const std::vector<Eigen::Vector3d> corners{{0, 0, 0}, {0.25, 0, 0}, {0, 0.25, 0}, {0, 0, 0.25}};
+  const Solid tetra = hull(corners);
+  const Solid cube = box({-0.1, -0.1, -0.1}, {0.1, 0.1, 0.1});
+  const std::vector<std::vector<Eigen::Vector3d>> paths{
+      {{0, 0, 0}, {0, 0, 0}, {0.3, 0, 0}, {0.3, 0, 0}, {0.6, 0, 0}},  // repeated and collinear along x
+      {{0, 0, 0}, {0.5, 0, 0}, {0.1, 0, 0}, {0.4, 0, 0}},             // back and forth on one line
+      {{0, 0, 0}, {0, 0.3, 0}, {0, 0.3, 0.3}, {0.3, 0.3, 0.3}},       // along y, z, x
+      {{0, 0, 0}, {0.2, 0.2, 0.2}, {0.4, 0.4, 0}, {0.2, 0.2, 0.2}},   // diagonals, then back
+      {{0, 0, 0}, {0.05, 0.01, 0}, {0.1, 0.03, 0.01}, {0.15, 0.06, 0.01}, {0.2, 0.1, 0.03}},  // short, turning
+  };
+  for (const Solid* tool : {&coarse, &tetra, &cube})
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      std::vector<Eigen::Vector3d> on_grid;  // the reference gets the snapped path, repeated points dropped
+      for (const Eigen::Vector3d& p : paths[k]) {
+        const Eigen::Vector3d g = tool->grid().to_world(tool->grid().snap(p));
+        if (on_grid.empty() || g != on_grid.back()) on_grid.push_back(g);
+      }
+      const Solid s = sweep(*tool, paths[k]);
+      const Solid reference = sweep_by_hull_solids(*tool, on_grid);
+      EXPECT_TRUE((s - reference).is_empty()) << "path " << k;
+      EXPECT_TRUE((reference - s).is_empty()) << "path " << k;
+      EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(s))) << "path " << k;
+    }
+  // A non-convex tool (an L of two boxes), swept cell by cell: the union of its boxes' sweeps.
+  const Solid arm = box({0, 0, 0}, {0.4, 0.1, 0.1}), leg = box({0, 0.1, 0}, {0.1, 0.3, 0.1});
+  const Solid l = arm | leg;
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const Solid s = sweep(l, paths[k]);
+    const Solid reference = sweep(arm, paths[k]) | sweep(leg, paths[k]);
+    EXPECT_TRUE((s - reference).is_empty()) << "L, path " << k;
+    EXPECT_TRUE((reference - s).is_empty()) << "L, path " << k;
+  }
+}
+
 TEST(Sweep, ManyStrokesCarveWhatEachSweepCovers) {
   // Ten strokes into a block, each checked against volume(work) - volume(work & sweep) computed
   // from the sweep separately; the result stays a closed, consistently oriented surface.
