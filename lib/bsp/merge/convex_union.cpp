@@ -31,7 +31,7 @@ bool grid_less(const GridPoint& x, const GridPoint& y) { return std::tie(x.x, x.
 /// An order of planes by value (for lookups of equal planes).
 bool plane_less(const Plane& x, const Plane& y) { return std::tuple(x.a, x.b, x.c, x.d) < std::tuple(y.a, y.b, y.c, y.d); }
 
-/// A convex polytope: its face planes (arena indices, outward normals), its faces as boundary
+/// A convex polytope: its face planes (arena indices, outward normals, in plane_less order), its faces as boundary
 /// fragments on them, and the box of its vertices (grid units). The capsule (the points within
 /// `radius` of the segment from `core[0]` to `core[1]`, grid units) lies strictly inside it when
 /// `radius` > 0: a quick test that drops a piece without a test against each plane.
@@ -45,7 +45,6 @@ struct Polytope {
   std::vector<std::int32_t> vertex_start, vertex_faces;
   /// Per face: the vertex of each corner, corner_vertices[corner_start[f] .. + corner_count[f]).
   std::vector<std::int32_t> corner_start, corner_count, corner_vertices;
-  std::vector<std::int32_t> sorted_planes;          ///< `planes` sorted by value (plane_less)
   CornerBox box;
   std::size_t hint = 0;  ///< the plane that last decided a piece: tried first for the next one
   std::array<double, 3> core[2] = {};
@@ -122,13 +121,14 @@ Polytope make_polytope(Arena& arena, const kernel::ConvexHull& h, const HullCore
   Polytope poly;
   // Faces: one plane each (normalized), its triangles by a walk across coplanar neighbours.
   std::vector<std::int32_t> face_of(n, -1);
+  std::vector<Plane> face_planes;
   std::vector<std::size_t> stack;
   for (std::size_t t0 = 0; t0 < n; ++t0) {
     if (face_of[t0] >= 0) continue;
     const Plane plane = kernel::plane_through(h.vertices[std::size_t(corner(t0, 0))], h.vertices[std::size_t(corner(t0, 1))],
                                               h.vertices[std::size_t(corner(t0, 2))]);
-    const auto f = std::int32_t(poly.planes.size());
-    poly.planes.push_back(arena.planes.add(plane));
+    const auto f = std::int32_t(face_planes.size());
+    face_planes.push_back(plane);
     face_of[t0] = f;
     stack.assign(1, t0);
     while (!stack.empty()) {
@@ -146,7 +146,21 @@ Polytope make_polytope(Arena& arena, const kernel::ConvexHull& h, const HullCore
       }
     }
   }
-  const std::size_t faces = poly.planes.size();
+  // Faces in the order of their planes (plane_less): the union's fragments come in a
+  // deterministic order that does not depend on Quickhull's triangle order (the tree built from
+  // them takes its candidate planes at evenly spaced positions).
+  const std::size_t faces = face_planes.size();
+  {
+    std::vector<std::int32_t> order(faces), rank(faces);
+    for (std::size_t f = 0; f < faces; ++f) order[f] = std::int32_t(f);
+    std::sort(order.begin(), order.end(),
+              [&](std::int32_t x, std::int32_t y) { return plane_less(face_planes[std::size_t(x)], face_planes[std::size_t(y)]); });
+    for (std::size_t r = 0; r < faces; ++r) {
+      rank[std::size_t(order[r])] = std::int32_t(r);
+      poly.planes.push_back(arena.planes.add(face_planes[std::size_t(order[r])]));
+    }
+    for (std::int32_t& f : face_of) f = rank[std::size_t(f)];
+  }
   // The boundary cycle of each face: from a boundary edge (t, k) to the next one leaving its end
   // v, turning about v across the face's inner edges.
   poly.faces.resize(faces);
@@ -242,9 +256,6 @@ Polytope make_polytope(Arena& arena, const kernel::ConvexHull& h, const HullCore
   }
   poly.vertex_start[nv] = kept;
   poly.vertex_faces.resize(std::size_t(kept));
-  poly.sorted_planes = poly.planes;
-  std::sort(poly.sorted_planes.begin(), poly.sorted_planes.end(),
-            [&](std::int32_t x, std::int32_t y) { return plane_less(arena.planes[x], arena.planes[y]); });
   set_capsule(arena, core, poly);
   return poly;
 }
@@ -355,9 +366,9 @@ Side whole_face_side(const Arena& arena, const Polytope& own, const Piece& piece
     if (strictly_inside) return Side::Negative;
     const Plane& support = arena.planes[piece.polygon.support];
     for (const Plane& e : {support, support.opposite()}) {
-      const auto it = std::lower_bound(q.sorted_planes.begin(), q.sorted_planes.end(), e,
+      const auto it = std::lower_bound(q.planes.begin(), q.planes.end(), e,
                                        [&](std::int32_t x, const Plane& y) { return plane_less(arena.planes[x], y); });
-      if (it != q.sorted_planes.end() && arena.planes[*it] == e) {
+      if (it != q.planes.end() && arena.planes[*it] == e) {
         on = *it;
         return Side::On;
       }
