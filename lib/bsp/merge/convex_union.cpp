@@ -415,13 +415,15 @@ void clip_outside(Arena& arena, const Polytope& own, Piece piece, Polytope& q, b
   // split only a piece that no plane separates from q (one that crosses q's boundary).
   thread_local std::vector<std::uint32_t> crossing;
   crossing.clear();
-  // The plane that decided the last piece first; then, before the other planes, the capsule:
-  // pieces deep inside q (most near a joint of a sweep) would pass the box test of every plane.
+  // The plane that decided the last piece first; then, before the other planes, a whole face by
+  // its corners' sides (those in q's capsule are inside without a plane test), another piece by
+  // the capsule: pieces deep inside q (most near a joint of a sweep) would pass the box test of
+  // every plane.
   if (kernel::box_side(piece.box, arena.planes[q.planes[q.hint % m]]) == Side::Positive) {
     kept.push_back(std::move(piece));
     return;
   }
-  if (inside_capsule(piece.polygon, q)) return;
+  if (piece.face < 0 && inside_capsule(piece.polygon, q)) return;
   if (piece.face >= 0) {
     std::int32_t on = -1;
     const Side s = whole_face_side(arena, own, piece, q, sides, on);
