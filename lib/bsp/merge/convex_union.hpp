@@ -7,9 +7,12 @@
 /// plane kept (outside), the rest dropped (inside), with the batch union's rule for shared plane
 /// regions (Naylor et al. 1990 sec. 5: where two operands bound the same plane region with the
 /// same orientation, the one listed first keeps it; with opposite orientations neither). The face
-/// polygons are built from the hull's triangles (each face clipped by its neighbours' planes
-/// only), so no polytope's tree is built; one tree is built from the union's boundary
-/// (autopartition.hpp). Every decision is an exact predicate.
+/// polygons are read off the hull's triangles and their adjacency (corners at hull vertices, exact
+/// grid points), so no polytope's tree is built; one tree is built from the union's boundary
+/// (autopartition.hpp). Quick tests come first: a piece inside another hull's inscribed capsule
+/// is inside it, and a piece that is still a whole face is decided from its corners' sides of the
+/// other hull where they decide it. Every decision is an exact predicate (the capsule's with a
+/// margin for rounding).
 
 #include <array>
 #include <span>
