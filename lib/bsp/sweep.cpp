@@ -1,5 +1,7 @@
 #include "bsp/sweep.hpp"
 
+#include <array>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -50,6 +52,37 @@ std::vector<std::vector<Eigen::Vector3d>> convex_pieces(const Solid& tool) {
   return pieces;
 }
 
+/// The hull of a convex piece's grid vertices with, for each hull vertex, the outward normals of
+/// the hull triangles at it (their positive combinations are the directions in which the vertex
+/// is extreme). Empty for a flat piece.
+struct ToolHull {
+  std::vector<kernel::GridPoint> vertices;
+  std::vector<std::array<std::int64_t, 3>> normals;   ///< per triangle
+  std::vector<std::int32_t> start, triangles;          ///< triangles at vertex v: triangles[start[v] .. start[v + 1])
+};
+
+ToolHull tool_hull_of(const std::vector<kernel::GridPoint>& points) {
+  ToolHull out;
+  const kernel::ConvexHull h = kernel::convex_hull(points);
+  if (h.dimension != 3) return out;
+  out.vertices = h.vertices;
+  for (const auto& t : h.triangles) {
+    const kernel::GridPoint &p = h.vertices[std::size_t(t[0])], &q = h.vertices[std::size_t(t[1])], &r = h.vertices[std::size_t(t[2])];
+    const std::int64_t u[3] = {q.x - p.x, q.y - p.y, q.z - p.z}, w[3] = {r.x - p.x, r.y - p.y, r.z - p.z};
+    // |components| <= 2^(kCoordBits + 1): the cross product fits 64 bits (convex_hull.cpp).
+    out.normals.push_back({u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]});
+  }
+  out.start.assign(h.vertices.size() + 1, 0);
+  for (const auto& t : h.triangles)
+    for (const int v : t) ++out.start[std::size_t(v) + 1];
+  for (std::size_t v = 0; v < h.vertices.size(); ++v) out.start[v + 1] += out.start[v];
+  out.triangles.resize(3 * h.triangles.size());
+  std::vector<std::int32_t> at(out.start.begin(), out.start.end() - 1);
+  for (std::size_t t = 0; t < h.triangles.size(); ++t)
+    for (const int v : h.triangles[t]) out.triangles[std::size_t(at[std::size_t(v)]++)] = std::int32_t(t);
+  return out;
+}
+
 }  // namespace
 
 Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
@@ -62,22 +95,56 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path) {
   if (at.size() == 1) return translate(tool, at[0]);
   const kernel::Grid& grid = tool.grid();
   // Each convex piece's vertices on the grid; translated by grid points, they stay there (exact).
+  // Each hull's core (convex_union.hpp): the piece's vertex centroid moved from a to b.
   std::vector<std::vector<kernel::GridPoint>> sets;
+  std::vector<bsp::detail::HullCore> cores;
   for (const auto& piece : convex_pieces(tool)) {
     std::vector<kernel::GridPoint> snapped;
     snapped.reserve(piece.size());
-    for (const Eigen::Vector3d& v : piece) snapped.push_back(grid.snap(v));
+    double centroid[3] = {0, 0, 0};
+    for (const Eigen::Vector3d& v : piece) {
+      snapped.push_back(grid.snap(v));
+      centroid[0] += double(snapped.back().x), centroid[1] += double(snapped.back().y), centroid[2] += double(snapped.back().z);
+    }
+    for (double& c : centroid) c /= double(snapped.size());
+    const ToolHull tool_hull = tool_hull_of(snapped);
     for (std::size_t i = 0; i + 1 < at.size(); ++i) {
       const kernel::GridPoint a = grid.snap(at[i]), b = grid.snap(at[i + 1]);
+      const kernel::GridPoint d{b.x - a.x, b.y - a.y, b.z - a.z};
       std::vector<kernel::GridPoint> ends;
       ends.reserve(2 * snapped.size());
-      for (const kernel::GridPoint& v : snapped)
-        for (const kernel::GridPoint& t : {a, b})  // snap() checks the range of the sum
-          ends.push_back(grid.snap(grid.to_world(kernel::GridPoint{v.x + t.x, v.y + t.y, v.z + t.z})));
+      auto add = [&](const kernel::GridPoint& v, const kernel::GridPoint& t) {  // snap() checks the range of the sum
+        ends.push_back(grid.snap(grid.to_world(kernel::GridPoint{v.x + t.x, v.y + t.y, v.z + t.z})));
+      };
+      if (tool_hull.vertices.empty()) {  // a flat piece: every point at both ends
+        for (const kernel::GridPoint& v : snapped) add(v, a), add(v, b);
+      } else {
+        // v + a is a corner of the segment's hull only if a direction in v's normal cone (the
+        // normals of the tool hull's triangles at v) prefers a to b (n.d < 0 for one of them):
+        // a corner is strictly extreme in a direction of its cone. Likewise for v + b. The
+        // others lie in the hull of the rest, which is the same hull.
+        for (std::size_t v = 0; v < tool_hull.vertices.size(); ++v) {
+          bool toward_a = false, toward_b = false;
+          for (std::int32_t k = tool_hull.start[v]; k < tool_hull.start[v + 1]; ++k) {
+            const auto& n = tool_hull.normals[std::size_t(tool_hull.triangles[std::size_t(k)])];
+            const kernel::Int128 nd = kernel::Int128(n[0]) * d.x + kernel::Int128(n[1]) * d.y + kernel::Int128(n[2]) * d.z;
+            toward_a |= nd <= 0;
+            toward_b |= nd >= 0;
+          }
+          if (toward_a) add(tool_hull.vertices[v], a);
+          if (toward_b) add(tool_hull.vertices[v], b);
+        }
+      }
       sets.push_back(std::move(ends));
+      bsp::detail::HullCore core;
+      for (int k = 0; k < 3; ++k) {
+        core.ends[0][std::size_t(k)] = centroid[k] + double(k == 0 ? a.x : (k == 1 ? a.y : a.z));
+        core.ends[1][std::size_t(k)] = centroid[k] + double(k == 0 ? b.x : (k == 1 ? b.y : b.z));
+      }
+      cores.push_back(core);
     }
   }
-  return bsp::detail::unite_convex_hulls(sets, grid);
+  return bsp::detail::unite_convex_hulls(sets, grid, {.cores = cores});
 }
 
 Solid sweep(const Solid& tool, std::span<const Eigen::Isometry3d> poses) {

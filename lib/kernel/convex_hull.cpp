@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <stdexcept>
 #include <tuple>
-#include <unordered_map>
 
 #include "kernel/exact_int.hpp"
 
@@ -56,8 +55,16 @@ class Quickhull {
       if (faces_[f].alive && !faces_[f].outside.empty()) add_furthest_point(f);
     }
     std::vector<int> index(p_.size(), -1);
+    std::vector<int> face_index(faces_.size(), -1);
+    for (std::size_t g = 0; g < faces_.size(); ++g)
+      if (faces_[g].alive) face_index[g] = static_cast<int>(out.neighbours.size()), out.neighbours.push_back({});
     for (const Face& f : faces_) {
       if (!f.alive) continue;
+      std::array<int, 3>& across = out.neighbours[out.triangles.size()];
+      for (int k = 0; k < 3; ++k) {
+        across[k] = f.next[k] < 0 ? -1 : face_index[std::size_t(f.next[k])];
+        if (across[k] < 0) throw std::logic_error("convex_hull: a triangle's neighbour is not on the hull");
+      }
       std::array<int, 3> t{};
       for (int k = 0; k < 3; ++k) {
         int& i = index[f.v[k]];
@@ -167,8 +174,7 @@ class Quickhull {
 
     // The horizon: edges between a visible face and one that is not; a cone face on each.
     const int first_new = static_cast<int>(faces_.size());
-    from_.clear();
-    to_.clear();
+    if (from_.size() != p_.size()) from_.assign(p_.size(), {-1, -1}), to_.assign(p_.size(), {-1, -1});
     for (int vf : visible_)
       for (int i = 0; i < 3; ++i) {
         const int outer = faces_[vf].next[i];
@@ -179,14 +185,16 @@ class Quickhull {
         Face& o = faces_[outer];
         for (int j = 0; j < 3; ++j)
           if (o.v[j] == b && o.v[(j + 1) % 3] == a) o.next[j] = nf;
-        if (!from_.emplace(a, nf).second || !to_.emplace(b, nf).second)
+        if (from_[std::size_t(a)].step == step_ || to_[std::size_t(b)].step == step_)
           throw std::logic_error("convex_hull: the horizon is not a simple cycle");
+        from_[std::size_t(a)] = {step_, nf};
+        to_[std::size_t(b)] = {step_, nf};
       }
     const int last_new = static_cast<int>(faces_.size());
     for (int nf = first_new; nf < last_new; ++nf) {
       Face& f = faces_[nf];
-      f.next[1] = from_.at(f.v[1]);  // the cone face on the horizon edge that starts at b
-      f.next[2] = to_.at(f.v[0]);    // ... and the one that ends at a
+      f.next[1] = cone_face(from_, f.v[1]);  // the cone face on the horizon edge that starts at b
+      f.next[2] = cone_face(to_, f.v[0]);    // ... and the one that ends at a
     }
     for (int vf : visible_) {
       Face& f = faces_[vf];
@@ -199,11 +207,22 @@ class Quickhull {
       if (!faces_[nf].outside.empty()) work_.push_back(nf);
   }
 
+  /// The cone face made in step `step` on the horizon edge that starts (from_) or ends (to_) at
+  /// a point, indexed by point.
+  struct Mark {
+    int step, face;
+  };
+  int cone_face(const std::vector<Mark>& marks, int point) const {
+    const Mark& m = marks[std::size_t(point)];
+    if (m.step != step_) throw std::logic_error("convex_hull: the horizon is not a closed cycle");
+    return m.face;
+  }
+
   std::vector<GridPoint> p_;
   std::vector<Face> faces_;
   std::vector<int> work_;
   std::vector<int> visible_;
-  std::unordered_map<int, int> from_, to_;
+  std::vector<Mark> from_, to_;
   int step_ = 0;
 };
 

@@ -21,6 +21,9 @@ struct ConvexHull {
   int dimension = 0;
   std::vector<GridPoint> vertices;                ///< the hull's corners (a subset of the input)
   std::vector<std::array<int, 3>> triangles;      ///< counter-clockwise seen from outside
+  /// neighbours[t][k]: the triangle across the edge from triangles[t][k] to triangles[t][(k + 1) % 3]
+  /// (the hull is closed: every edge has one).
+  std::vector<std::array<int, 3>> neighbours;
 };
 
 /// The convex hull of `points` (grid units). Runs in O(n log n) expected time; no recursion.

@@ -233,6 +233,16 @@ Sign orient(const Plane& p, const Plane& q, const Plane& r, const ApproxPoint& a
     return Sign::Zero;
   }
   ++counters.exact;
+  // A vertex whose approximation is exact and a grid point (error bound 0, integer coordinates
+  // within the world box: the corners of convex hull faces, bsp/merge/convex_union.cpp): the
+  // plane's value there in integers (Plane::eval's bit budget), without the determinant.
+  constexpr double kWorldBox = double(4 * kMaxCoord);
+  if (at.err == 0 && std::fabs(at.x) <= kWorldBox && std::fabs(at.y) <= kWorldBox && std::fabs(at.z) <= kWorldBox &&
+      at.x == std::trunc(at.x) && at.y == std::trunc(at.y) && at.z == std::trunc(at.z)) {
+    const Sign sign = orient(GridPoint{std::int64_t(at.x), std::int64_t(at.y), std::int64_t(at.z)}, s);
+    if (sign == Sign::Zero) ++counters.exact_zero;
+    return sign;
+  }
   // Fast exact path (Bernstein & Fussell 2009, sec. 4: the orientation is a 4x4 determinant):
   // W f_s(vertex) = det[p; q; r; s] with rows (a, b, c, d), expanded by the 2x2 minors of the
   // (a, b) and (c, d) column pairs. m_ij < 2^107; n_ij = c_i d_j - c_j d_i < 2^126 fits Int128

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <utility>
 
 #include "base/errors.hpp"
@@ -116,6 +117,87 @@ TEST(Sweep, EqualsTheUnionOfTheSegmentHullsAsSolids) {
       EXPECT_NEAR(volume(s), volume(reference), 1e-12 * volume(reference));
       EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(s)));
     }
+}
+
+TEST(Sweep, DegeneratePathsAndOtherToolsEqualTheReference) {
+  // Paths with repeated points, collinear runs, reversals and segments along the axes and
+  // diagonals; tools: a coarse ball, a tetrahedron (its faces' normals meet segments at n.d = 0),
+  // and a box (faces parallel to axis segments: stretched faces and coplanar parallelograms).
+  const Solid coarse = sphere(0.2, {.segments = 8});
+  const std::vector<Eigen::Vector3d> corners{{0, 0, 0}, {0.25, 0, 0}, {0, 0.25, 0}, {0, 0, 0.25}};
+  const Solid tetra = hull(corners);
+  const Solid cube = box({-0.1, -0.1, -0.1}, {0.1, 0.1, 0.1});
+  const std::vector<std::vector<Eigen::Vector3d>> paths{
+      {{0, 0, 0}, {0, 0, 0}, {0.3, 0, 0}, {0.3, 0, 0}, {0.6, 0, 0}},  // repeated and collinear along x
+      {{0, 0, 0}, {0.5, 0, 0}, {0.1, 0, 0}, {0.4, 0, 0}},             // back and forth on one line
+      {{0, 0, 0}, {0, 0.3, 0}, {0, 0.3, 0.3}, {0.3, 0.3, 0.3}},       // along y, z, x
+      {{0, 0, 0}, {0.2, 0.2, 0.2}, {0.4, 0.4, 0}, {0.2, 0.2, 0.2}},   // diagonals, then back
+      {{0, 0, 0}, {0.05, 0.01, 0}, {0.1, 0.03, 0.01}, {0.15, 0.06, 0.01}, {0.2, 0.1, 0.03}},  // short, turning
+  };
+  for (const Solid* tool : {&coarse, &tetra, &cube})
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      std::vector<Eigen::Vector3d> on_grid;  // the reference gets the snapped path, repeated points dropped
+      for (const Eigen::Vector3d& p : paths[k]) {
+        const Eigen::Vector3d g = tool->grid().to_world(tool->grid().snap(p));
+        if (on_grid.empty() || g != on_grid.back()) on_grid.push_back(g);
+      }
+      const Solid s = sweep(*tool, paths[k]);
+      const Solid reference = sweep_by_hull_solids(*tool, on_grid);
+      EXPECT_TRUE((s - reference).is_empty()) << "path " << k;
+      EXPECT_TRUE((reference - s).is_empty()) << "path " << k;
+      EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(s))) << "path " << k;
+    }
+  // A non-convex tool (an L of two boxes), swept cell by cell: the union of its boxes' sweeps.
+  const Solid arm = box({0, 0, 0}, {0.4, 0.1, 0.1}), leg = box({0, 0.1, 0}, {0.1, 0.3, 0.1});
+  const Solid l = arm | leg;
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const Solid s = sweep(l, paths[k]);
+    const Solid reference = sweep(arm, paths[k]) | sweep(leg, paths[k]);
+    EXPECT_TRUE((s - reference).is_empty()) << "L, path " << k;
+    EXPECT_TRUE((reference - s).is_empty()) << "L, path " << k;
+  }
+}
+
+TEST(Sweep, RandomToolsAlongRandomPathsEqualTheReference) {
+  // Random hulls of 7 points, balls of 4-12 segments and a box, along random paths with repeated
+  // points, steps along x and steps back to the point before: the sweep equals the union of the
+  // segment hulls built as solids.
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  std::uniform_int_distribution<int> pick(0, 3), length(2, 7), segments(4, 12);
+  for (int trial = 0; trial < 30; ++trial) {
+    Solid tool;
+    const int kind = pick(rng);
+    if (kind == 0) {
+      tool = sphere(0.05 + 0.1 * std::abs(u(rng)), {.segments = segments(rng)});
+    } else if (kind == 1) {
+      tool = box({0, 0, 0}, {0.1, 0.05, 0.2});
+    } else {
+      std::vector<Eigen::Vector3d> points;
+      for (int i = 0; i < 7; ++i) points.emplace_back(u(rng), u(rng), u(rng));
+      tool = hull(points);
+    }
+    std::vector<Eigen::Vector3d> path;
+    Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    for (int i = 0, n = length(rng); i < n; ++i) {
+      const int step = pick(rng);
+      if (step == 0) path.push_back(p);  // the point repeated
+      else if (step == 1) p += Eigen::Vector3d(0.05, 0, 0);
+      else if (step == 2 && path.size() >= 2) p = path[path.size() - 2];
+      else p += Eigen::Vector3d(0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng));
+      path.push_back(p);
+    }
+    std::vector<Eigen::Vector3d> on_grid;
+    for (const Eigen::Vector3d& q : path) {
+      const Eigen::Vector3d g = tool.grid().to_world(tool.grid().snap(q));
+      if (on_grid.empty() || g != on_grid.back()) on_grid.push_back(g);
+    }
+    if (on_grid.size() < 2) continue;
+    const Solid s = sweep(tool, path);
+    const Solid reference = sweep_by_hull_solids(tool, on_grid);
+    EXPECT_TRUE((s - reference).is_empty()) << "trial " << trial;
+    EXPECT_TRUE((reference - s).is_empty()) << "trial " << trial;
+  }
 }
 
 TEST(Sweep, ManyStrokesCarveWhatEachSweepCovers) {

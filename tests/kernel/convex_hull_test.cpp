@@ -62,6 +62,19 @@ void expect_hull_matches_brute_force(const std::vector<GridPoint>& pts, const st
     EXPECT_EQ(edges.count({e.second, e.first}), 1u) << what;
   }
   EXPECT_EQ(int(h.vertices.size()) - int(edges.size() / 2) + int(h.triangles.size()), 2) << what;
+  // The adjacency: the triangle across edge k of t holds that edge reversed.
+  ASSERT_EQ(h.neighbours.size(), h.triangles.size()) << what;
+  for (std::size_t t = 0; t < h.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int g = h.neighbours[t][std::size_t(k)];
+      ASSERT_GE(g, 0) << what;
+      ASSERT_LT(std::size_t(g), h.triangles.size()) << what;
+      bool reversed = false;
+      for (int j = 0; j < 3; ++j)
+        reversed |= h.triangles[std::size_t(g)][std::size_t(j)] == h.triangles[t][std::size_t((k + 1) % 3)] &&
+                    h.triangles[std::size_t(g)][std::size_t((j + 1) % 3)] == h.triangles[t][std::size_t(k)];
+      EXPECT_TRUE(reversed) << what << " triangle " << t << " edge " << k;
+    }
   // Every hull vertex is an input point.
   for (const GridPoint& v : h.vertices) EXPECT_NE(std::find(pts.begin(), pts.end(), v), pts.end()) << what;
 }

@@ -111,6 +111,40 @@ TEST(Orient, FilterAndExactPathAgreeWithBoostReference) {
   EXPECT_GT(predicate_counters().filtered, 1000u);
 }
 
+// A vertex given exactly (error bound 0 at a grid point: the corners of hull faces) is decided by
+// the plane's value there; the result equals the determinant's with approximate_vertex, on the
+// plane (zero) or off it, near the origin and at the ends of the grid range.
+TEST(Orient, AnExactGridCornerGivesTheSameSignsAsItsApproximation) {
+  std::mt19937_64 rng(23);
+  auto point = [&](std::int64_t range) {
+    std::uniform_int_distribution<std::int64_t> d(-range, range);
+    return GridPoint{d(rng), d(rng), d(rng)};
+  };
+  int checked = 0, zeros = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const std::int64_t range = i % 2 ? kMaxCoord : 50;
+    const GridPoint v = point(range);
+    Plane pl[3];
+    for (auto& p : pl) {
+      try {
+        p = plane_through(v, point(range), point(range));
+      } catch (...) {
+        p = plane_through(v, {v.x + 1, v.y, v.z}, {v.x, v.y + 1, v.z});
+      }
+    }
+    if (!independent(pl[0], pl[1], pl[2])) continue;
+    const Plane s = i % 3 == 0 ? plane_through(v, point(range), point(range)) : plane_through(point(range), point(range), point(range));
+    const ApproxPoint exact{double(v.x), double(v.y), double(v.z), 0.0};
+    const Sign with_exact = orient(pl[0], pl[1], pl[2], exact, s);
+    EXPECT_EQ(with_exact, orient(pl[0], pl[1], pl[2], approximate_vertex(pl[0], pl[1], pl[2]), s));
+    EXPECT_EQ(int(with_exact), reference_orient(pl[0], pl[1], pl[2], s));
+    zeros += with_exact == Sign::Zero;
+    ++checked;
+  }
+  EXPECT_GT(checked, 1500);
+  EXPECT_GT(zeros, 400);
+}
+
 // Planes with offsets below 2^72 (the fast 4x4-determinant path of the exact stage) and above
 // it (the general path): both agree with the Boost reference, degenerate cases included.
 TEST(Orient, FastAndGeneralExactPathsAgreeWithBoostReference) {
