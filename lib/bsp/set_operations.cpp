@@ -299,11 +299,14 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 // moved or renumbered. reclaim_added drops the nodes and planes the operation added and left
 // unused, and frees the older nodes it cut away, in time proportional to what it added and
 // freed; the nodes and planes it keeps take free slots. Free plane slots are found by a scan
-// that advances by a slice of the storage per operation (scan_for_free_planes: kScanSlices
-// operations per scan of the whole tree), so no operation reads the whole tree
-// (docs/sculpting.md, "Strokes"). When more than half of the node slots are free (an operation
-// cut away most of the tree), the solid is compacted: that costs about what freeing them did.
-constexpr std::size_t kScanSlices = 8;
+// that advances by a slice per operation (scan_for_free_planes), kScanPerNode node slots and
+// fragments per node the operation kept or freed (at least kMinScanSlice), so no operation reads
+// the whole tree and a stroke's cost still follows what it touches; the planes an operation
+// leaves unreferenced are found after about tree size / (kScanPerNode * nodes touched)
+// operations (docs/sculpting.md, "Strokes"). When more than half of the node slots are free (an
+// operation cut away most of the tree), the solid is compacted: that costs about what freeing
+// them did.
+constexpr std::size_t kScanPerNode = 8;
 constexpr std::size_t kMinScanSlice = 512;
 constexpr std::size_t kMinCompactNodes = 4096;
 
@@ -342,8 +345,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (is_leaf(r)) return Solid::leaf(r == kIn);
   if (arena.free.nodes.size() > arena.nodes.size() / 2 && arena.nodes.size() > kMinCompactNodes)
     return bsp::detail::compact(arena, r, {.keep_capacity = true});
-  const std::size_t items = arena.nodes.size() + (arena.boundary ? arena.boundary->size() : 0);
-  bsp::detail::scan_for_free_planes(arena, std::max(kMinScanSlice, items / kScanSlices));
+  bsp::detail::scan_for_free_planes(arena, std::max(kMinScanSlice, kScanPerNode * arena.nodes_kept_and_freed));
   return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r,
                                         std::move(arena.free), std::move(arena.boundary),
                                         std::move(arena.boundary_boxes));

@@ -308,6 +308,7 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
     }
   }
   free.nodes.insert(free.nodes.end(), freed.begin(), freed.end());
+  arena.nodes_kept_and_freed = order.size() + freed.size();
   arena.merged.clear();
   arena.dropped.clear();
   return root;

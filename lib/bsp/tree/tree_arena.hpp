@@ -39,6 +39,9 @@ struct Arena {
   /// merge replaced by a leaf (their nodes are no longer reached).
   std::vector<TreeRef> merged;
   std::vector<TreeRef> dropped;
+  /// Set by reclaim_added: the nodes the operation kept (added) and freed (older), a measure of
+  /// what it touched (the slice of the scan for free planes follows it).
+  std::size_t nodes_kept_and_freed = 0;
   std::vector<std::size_t> boundary_changed;
   std::size_t boundary_changed_from = 0;
 
