@@ -306,7 +306,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 // operations (docs/sculpting.md, "Strokes"). When more than half of the node slots are free (an
 // operation cut away most of the tree), the solid is compacted: that costs about what freeing
 // them did.
-constexpr std::size_t kScanPerNode = 8;
+constexpr std::size_t kScanPerNode = 2;
 constexpr std::size_t kMinScanSlice = 512;
 constexpr std::size_t kMinCompactNodes = 4096;
 
