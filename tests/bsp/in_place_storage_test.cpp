@@ -199,5 +199,33 @@ TEST(InPlaceStorage, AWorkpieceWithoutItsBoundary) {
   run_operations(std::move(work), 10);
 }
 
+
+TEST(InPlaceStorage, AnOperationThatCutsAwayMostOfTheTreeCompactsIt) {
+  // More than half of the node slots free after an operation: the solid is compacted (every slot
+  // reached, no free slots kept), and it is the set the copying operation gives; later in-place
+  // operations go on from there.
+  Solid work = sphere(1.0, {.segments = 96});
+  ASSERT_GT(work.nodes().size(), std::size_t(4096));
+  const Solid cutter = box({-2, -2, -0.9}, {2, 2, 2});  // leaves a thin cap of the sphere
+  const Solid copied = work - cutter;
+  const std::size_t slots_before = work.nodes().size();
+  work = std::move(work) - cutter;
+  EXPECT_TRUE((work - copied).is_empty());
+  EXPECT_TRUE((copied - work).is_empty());
+  const References r = references(work);
+  ASSERT_TRUE(r.in_range);
+  EXPECT_LT(2 * work.nodes().size(), slots_before);
+  EXPECT_EQ(std::count(r.node_reached.begin(), r.node_reached.end(), true), std::ptrdiff_t(work.nodes().size()));
+  EXPECT_TRUE(bsp::detail::SolidAccess::free_slots(work).nodes.empty());
+  EXPECT_EQ(work.boundary().size(), copied.boundary().size());
+  const Solid ball = sphere(0.2, {.segments = 8});
+  const Solid lump = translate(ball, {0, 0, -0.9});
+  const Solid united = work | lump;
+  work = std::move(work) | lump;
+  EXPECT_TRUE((work - united).is_empty());
+  EXPECT_TRUE((united - work).is_empty());
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(work)));
+}
+
 }  // namespace
 }  // namespace sculpt
