@@ -38,12 +38,12 @@ struct Arena {
   /// the first fragment from which all may have changed; the roots of tree a's subtrees the
   /// merge replaced by a leaf (their nodes are no longer reached).
   std::vector<TreeRef> merged;
+  std::vector<std::size_t> boundary_changed;
+  std::size_t boundary_changed_from = 0;
   std::vector<TreeRef> dropped;
   /// Set by reclaim_added: the nodes the operation kept (added) and freed (older), a measure of
   /// what it touched (the slice of the scan for free planes follows it).
   std::size_t nodes_kept_and_freed = 0;
-  std::vector<std::size_t> boundary_changed;
-  std::size_t boundary_changed_from = 0;
 
  private:
   std::int32_t last_shift_ = 0;  ///< plane index shift of the last append (0 after adopt)
