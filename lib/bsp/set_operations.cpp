@@ -172,6 +172,7 @@ class Merger {
     std::vector<Frame> stack{{a, b, {-1, 0}, 0, -1}};
     std::vector<std::pair<TreeRef, Slot>> visited;  // result nodes taken from a, pre-order
     a_.merged.clear();
+    a_.dropped.clear();
     TreeRef result = kOut;
     auto put = [&](Slot s, TreeRef v) {
       if (s.node < 0)
@@ -183,7 +184,9 @@ class Merger {
       Frame f = stack.back();
       stack.pop_back();
       if (is_leaf(f.a) || is_leaf(f.b)) {
-        put(f.slot, combine(f.a, f.b, op));
+        const TreeRef v = combine(f.a, f.b, op);
+        if (!is_leaf(f.a) && is_leaf(v)) a_.dropped.push_back(f.a);  // for reclaim_added: a's nodes freed
+        put(f.slot, v);
         continue;
       }
       path.resize(f.depth);
@@ -293,15 +296,19 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 }
 
 // In place: the larger operand's storage is reused and nothing older than the operation is
-// renumbered. The nodes and planes the operation added and left unused are dropped at once
-// (reclaim_added: proportional to what was added; the kept planes take the slots of planes
-// nothing refers to any more, found at the last recycling). When the node storage has grown by
-// kRecycleGrowth since the slots of unreachable nodes were last reused, they are reused
-// (recycle_free_nodes: a traversal of the live nodes, and the live nodes past the live count
-// move into the free slots) and the unreferenced planes are listed (find_free_planes: one scan).
-// Both amortize to O(what was added) per operation; no operation compacts the whole tree
-// (docs/sculpting.md, "Strokes").
-constexpr double kRecycleGrowth = 1.25;
+// moved or renumbered. reclaim_added drops the nodes and planes the operation added and left
+// unused, and frees the older nodes it cut away, in time proportional to what it added and
+// freed; the nodes and planes it keeps take free slots. Free plane slots are found by a scan
+// that advances by a slice per operation (scan_for_free_planes), kScanPerNode node slots and
+// fragments per node the operation kept or freed (at least kMinScanSlice), so no operation reads
+// the whole tree and a stroke's cost still follows what it touches; the planes an operation
+// leaves unreferenced are found after about tree size / (kScanPerNode * nodes touched)
+// operations (docs/sculpting.md, "Strokes"). When more than half of the node slots are free (an
+// operation cut away most of the tree), the solid is compacted: that costs about what freeing
+// them did.
+constexpr std::size_t kScanPerNode = 2;
+constexpr std::size_t kMinScanSlice = 512;
+constexpr std::size_t kMinCompactNodes = 4096;
 
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < y.nodes().size()) return apply(x, y, table);
@@ -335,16 +342,13 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
   TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, y.nodes().size(), table);
   r = bsp::detail::reclaim_added(arena, r, added);
-  std::size_t recycled = arena.recycled_size;
-  if (arena.nodes.size() >= kRecycleGrowth * double(std::max<std::size_t>(recycled, 64))) {
-    r = bsp::detail::recycle_free_nodes(arena, r);
-    recycled = arena.nodes.size();
-    if (!is_leaf(r)) bsp::detail::find_free_planes(arena);
-  }
   if (is_leaf(r)) return Solid::leaf(r == kIn);
+  if (arena.free.nodes.size() > arena.nodes.size() / 2 && arena.nodes.size() > kMinCompactNodes)
+    return bsp::detail::compact(arena, r, {.keep_capacity = true});
+  bsp::detail::scan_for_free_planes(arena, std::max(kMinScanSlice, kScanPerNode * arena.nodes_kept_and_freed));
   return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r,
-                                        std::move(arena.free_planes), std::move(arena.boundary),
-                                        std::move(arena.boundary_boxes), recycled);
+                                        std::move(arena.free), std::move(arena.boundary),
+                                        std::move(arena.boundary_boxes));
 }
 
 constexpr bool kUnion[2][2] = {{false, true}, {true, true}};

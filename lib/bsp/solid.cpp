@@ -6,12 +6,10 @@
 namespace sculpt {
 
 Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-             std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::vector<std::int32_t> free_planes,
-             std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes,
-             std::size_t recycled_size)
+             std::vector<kernel::ConvexPolygon> polygons, TreeRef root, FreeSlots free,
+             std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes)
     : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
-      free_planes_(std::move(free_planes)),
-      recycled_size_(recycled_size ? recycled_size : nodes_.size()),
+      free_(std::move(free)),
       boundary_(std::move(boundary)),
       boundary_boxes_(std::move(boundary_boxes)) {
   if (!boundary_ || boundary_boxes_.each.size() != boundary_->size()) boundary_boxes_.each.clear();
@@ -22,14 +20,13 @@ Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
 }
 
 Solid::Storage Solid::release() && {
-  Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, std::move(free_planes_), std::move(boundary_),
-            std::move(boundary_boxes_), recycled_size_};
+  Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, std::move(free_), std::move(boundary_),
+            std::move(boundary_boxes_)};
   planes_ = kernel::PlaneTable();
   nodes_.clear();
   polygons_.clear();
   root_ = kOut;
-  free_planes_.clear();
-  recycled_size_ = 0;
+  free_ = {};
   boundary_ = std::vector<BoundaryFragment>{};
   boundary_boxes_ = {};
   return s;

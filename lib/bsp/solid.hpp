@@ -28,6 +28,7 @@
 
 #include "base/errors.hpp"
 #include "bsp/tree/fragment_boxes.hpp"
+#include "bsp/tree/free_slots.hpp"
 #include "kernel/convex_polygon.hpp"
 #include "kernel/grid.hpp"
 
@@ -81,15 +82,16 @@ class Solid {
  private:
   friend struct bsp::detail::SolidAccess;
   using FragmentBoxes = bsp::detail::FragmentBoxes;
+  using FreeSlots = bsp::detail::FreeSlots;
 
   /// Low-level constructor used by the tree algorithms; checks sizes only. The storage may
-  /// hold nodes that are not reachable from the root (left over by in-place operations);
+  /// hold nodes that are not reachable from the root (the free slots of in-place operations);
   /// algorithms only follow the tree from root(). `boundary`, when given, must tile the
   /// solid's boundary exactly.
   Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-        std::vector<kernel::ConvexPolygon> polygons, TreeRef root, std::vector<std::int32_t> free_planes = {},
+        std::vector<kernel::ConvexPolygon> polygons, TreeRef root, FreeSlots free = {},
         std::optional<std::vector<BoundaryFragment>> boundary = std::nullopt,
-        FragmentBoxes boundary_boxes = {}, std::size_t recycled_size = 0);
+        FragmentBoxes boundary_boxes = {});
 
   /// Storage moved out of a solid (which becomes empty), for in-place operations.
   struct Storage {
@@ -97,10 +99,9 @@ class Solid {
     std::vector<BspNode> nodes;
     std::vector<kernel::ConvexPolygon> polygons;
     TreeRef root;
-    std::vector<std::int32_t> free_planes;  ///< indices of planes nothing refers to (slots to reuse)
+    FreeSlots free;  ///< free node and plane slots (to reuse) and the scan for free planes
     std::optional<std::vector<BoundaryFragment>> boundary;
     FragmentBoxes boundary_boxes;
-    std::size_t recycled_size;  ///< node storage size after freed nodes were last recycled (0: the current)
   };
   Storage release() &&;
 
@@ -109,10 +110,9 @@ class Solid {
   std::vector<BspNode> nodes_;
   std::vector<kernel::ConvexPolygon> polygons_;
   TreeRef root_ = kOut;
-  /// Plane slots that neither the tree nor the boundary refers to (found when freed nodes are
-  /// recycled), taken by the planes later in-place operations add (bsp/tree/tree_arena.hpp).
-  std::vector<std::int32_t> free_planes_;
-  std::size_t recycled_size_ = 0;
+  /// Node slots nothing reaches and plane slots nothing refers to, taken by the nodes and planes
+  /// later in-place operations add (bsp/tree/tree_arena.hpp).
+  FreeSlots free_;
   std::optional<std::vector<BoundaryFragment>> boundary_ = std::vector<BoundaryFragment>{};
   FragmentBoxes boundary_boxes_;
   kernel::Grid grid_;

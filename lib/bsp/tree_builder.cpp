@@ -149,7 +149,7 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<Bounda
   std::vector<ConvexPolygon> polygons;
   polygons.reserve(room);
   for (const BspNode& n : nodes) polygons.push_back(ConvexPolygon{.support = n.plane, .corners = {}});
-  return bsp::detail::SolidAccess::make(std::move(planes_), std::move(nodes), std::move(polygons), 0, std::vector<std::int32_t>{}, std::move(boundary));
+  return bsp::detail::SolidAccess::make(std::move(planes_), std::move(nodes), std::move(polygons), 0, bsp::detail::FreeSlots{}, std::move(boundary));
 }
 
 Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
@@ -233,7 +233,7 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFr
     arena.boundary = std::move(boundary);
     return bsp::detail::compact(arena, result_root);
   }
-  return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), result_root, std::vector<std::int32_t>{},
+  return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), result_root, bsp::detail::FreeSlots{},
                std::move(boundary));
 }
 

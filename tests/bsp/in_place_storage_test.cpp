@@ -1,8 +1,9 @@
-// The storage of in-place set operations (bsp/tree/tree_arena.hpp: reclaim_added, recycle_free_nodes,
-// compact): many strokes and set operations done in place give the same sets as the copying
-// operations; every reference of the workpiece stays in range; an operation leaves the planes and
-// nodes that were there before it where they were (unless a recycling or a full compaction ran),
-// and keeps no plane or node it added and left unused.
+// The storage of in-place set operations (bsp/tree/tree_arena.hpp: reclaim_added,
+// scan_for_free_planes, compact): many strokes and set operations done in place give the same sets
+// as the copying operations; every reference of the workpiece stays in range; an operation leaves
+// the planes and nodes that were there before it where they were, keeps no plane or node it added
+// and left unused, and lists as free exactly node slots the tree does not reach (cleared) and
+// plane slots nothing refers to; free slots are taken by later operations.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -73,8 +74,10 @@ References references(const Solid& s) {
 // intersected; each checked against the copying operation and the storage checked as above.
 void run_operations(Solid work, int count) {
   const Solid ball = sphere(0.2, {.segments = 8});
-  int checked_nodes = 0, recyclings = 0;
-  int reused_slots = 0;  // planes put in slots nothing referred to
+  int reused_slots = 0;       // planes put in slots nothing referred to
+  int reused_node_slots = 0;  // nodes put in slots the tree did not reach
+  int scans_in_progress = 0;  // operations after which a scan for free planes was under way
+  int free_plane_lists = 0;   // operations after which free plane slots were listed
   for (int k = 0; k < count; ++k) {
     std::vector<Eigen::Vector3d> path;
     for (int i = 0; i <= 6; ++i) {
@@ -127,30 +130,49 @@ void run_operations(Solid work, int count) {
       }
     for (std::size_t i = p0; i < after.plane_used.size(); ++i) EXPECT_TRUE(after.plane_used[i]) << "operation " << k << " plane " << i;
     for (std::size_t i = 0; i < std::min(p0, after.plane_used.size()); ++i) reused_slots += after.plane_used[i] && !before.plane_used[i];
-    // Without a recycling (which leaves no unreachable node in the storage, so some node the
-    // operation cut away is still there), the old nodes that are still reached keep their
-    // planes, and every node added is reached.
+    // Nodes are never moved in place: an old node still reached keeps its plane (unless two
+    // operations ran: the first may free a slot the second takes), and every node slot is
+    // reached or listed free (cleared, each once): no slot leaks, none is listed twice.
     const std::size_t n0 = nodes_before.size();
-    const bool all_reached = std::count(after.node_reached.begin(), after.node_reached.end(), true) == std::ptrdiff_t(work.nodes().size());
-    if (!all_reached && k % 5 != 4) {  // (case 4 is two operations: the first may recycle)
-      ASSERT_GE(work.nodes().size(), n0);
-      ++checked_nodes;
-      for (std::size_t i = 0; i < n0; ++i)
-        if (before.node_reached[i] && after.node_reached[i]) {
-          ASSERT_EQ(work.nodes()[i].plane, nodes_before[i].plane) << "operation " << k;
-        }
-      for (std::size_t i = n0; i < work.nodes().size(); ++i) EXPECT_TRUE(after.node_reached[i]) << "operation " << k << " node " << i;
-    } else {
-      ++recyclings;
+    ASSERT_GE(work.nodes().size(), n0);
+    for (std::size_t i = 0; i < n0; ++i) {
+      if (before.node_reached[i] && after.node_reached[i] && k % 5 != 4)
+        ASSERT_EQ(work.nodes()[i].plane, nodes_before[i].plane) << "operation " << k;
+      reused_node_slots += !before.node_reached[i] && after.node_reached[i];
     }
+    const bsp::detail::FreeSlots& free = bsp::detail::SolidAccess::free_slots(work);
+    std::vector<bool> listed(work.nodes().size(), false);
+    for (const std::int32_t t : free.nodes) {
+      ASSERT_TRUE(t >= 0 && std::size_t(t) < work.nodes().size()) << "operation " << k;
+      EXPECT_FALSE(after.node_reached[std::size_t(t)]) << "operation " << k << " free node " << t;
+      EXPECT_FALSE(listed[std::size_t(t)]) << "operation " << k << " free node " << t << " listed twice";
+      listed[std::size_t(t)] = true;
+      const BspNode& n = work.nodes()[std::size_t(t)];
+      EXPECT_TRUE(n.plane == 0 && n.negative == kOut && n.positive == kOut) << "operation " << k << " free node " << t;
+      EXPECT_TRUE(work.polygons()[std::size_t(t)].corners.empty()) << "operation " << k << " free node " << t;
+    }
+    for (std::size_t i = 0; i < work.nodes().size(); ++i)
+      EXPECT_TRUE(after.node_reached[i] || listed[i]) << "operation " << k << " node slot " << i << " neither reached nor free";
+    // Free plane slots: beyond the world box, each once, referred to by nothing.
+    std::vector<bool> plane_listed(after.plane_used.size(), false);
+    for (const std::int32_t p : free.planes) {
+      ASSERT_TRUE(p >= kernel::kWorldPlanes && std::size_t(p) < after.plane_used.size()) << "operation " << k;
+      EXPECT_FALSE(after.plane_used[std::size_t(p)]) << "operation " << k << " free plane " << p << " is referred to";
+      EXPECT_FALSE(plane_listed[std::size_t(p)]) << "operation " << k << " free plane " << p << " listed twice";
+      plane_listed[std::size_t(p)] = true;
+    }
+    scans_in_progress += !free.plane_marked.empty();
+    free_plane_lists += !free.planes.empty();
   }
-  // Both cases were seen in a long run: operations without a recycling, and recyclings whose free
-  // plane slots later operations took.
-  EXPECT_GE(checked_nodes, count / 4);
+  // Over a long run: free node and plane slots were taken by later operations, and the scan for
+  // free planes spanned several operations (what they wrote during it was marked).
+  if (count >= 10) {
+    EXPECT_GT(reused_node_slots, 0);
+    EXPECT_GT(scans_in_progress, 0);
+  }
   if (count >= 30) {
-    EXPECT_GT(checked_nodes, 12);
-    EXPECT_GT(recyclings, 0);
     EXPECT_GT(reused_slots, 0);
+    EXPECT_GT(free_plane_lists, 0);
   }
   EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(work)));
 }
@@ -169,10 +191,40 @@ TEST(InPlaceStorage, AWorkpieceWithPendingPolygons) {
 
 TEST(InPlaceStorage, AWorkpieceWithoutItsBoundary) {
   // Without a carried boundary the first operation extracts it (on planes it adds).
-  const Solid full = workpiece();
+  const Solid in_place = workpiece();  // (holds free node slots: copied below, they would not be listed)
+  const Solid full = in_place & box({-3, -3, -3}, {3, 3, 3});  // the copying operation: compacted
+  ASSERT_EQ(std::size_t(tree_stats(full).nodes), full.nodes().size());
   Solid work = bsp::detail::SolidAccess::make(full.planes(), full.nodes(), full.polygons(), full.root());
   ASSERT_FALSE(work.has_boundary());
   run_operations(std::move(work), 10);
+}
+
+
+TEST(InPlaceStorage, AnOperationThatCutsAwayMostOfTheTreeCompactsIt) {
+  // More than half of the node slots free after an operation: the solid is compacted (every slot
+  // reached, no free slots kept), and it is the set the copying operation gives; later in-place
+  // operations go on from there.
+  Solid work = sphere(1.0, {.segments = 96});
+  ASSERT_GT(work.nodes().size(), std::size_t(4096));
+  const Solid cutter = box({-2, -2, -0.9}, {2, 2, 2});  // leaves a thin cap of the sphere
+  const Solid copied = work - cutter;
+  const std::size_t slots_before = work.nodes().size();
+  work = std::move(work) - cutter;
+  EXPECT_TRUE((work - copied).is_empty());
+  EXPECT_TRUE((copied - work).is_empty());
+  const References r = references(work);
+  ASSERT_TRUE(r.in_range);
+  EXPECT_LT(2 * work.nodes().size(), slots_before);
+  EXPECT_EQ(std::count(r.node_reached.begin(), r.node_reached.end(), true), std::ptrdiff_t(work.nodes().size()));
+  EXPECT_TRUE(bsp::detail::SolidAccess::free_slots(work).nodes.empty());
+  EXPECT_EQ(work.boundary().size(), copied.boundary().size());
+  const Solid ball = sphere(0.2, {.segments = 8});
+  const Solid lump = translate(ball, {0, 0, -0.9});
+  const Solid united = work | lump;
+  work = std::move(work) | lump;
+  EXPECT_TRUE((work - united).is_empty());
+  EXPECT_TRUE((united - work).is_empty());
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(work)));
 }
 
 }  // namespace

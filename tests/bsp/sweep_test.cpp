@@ -230,8 +230,8 @@ TEST(Sweep, ManyStrokesCarveWhatEachSweepCovers) {
 
 TEST(Sweep, InPlaceStrokesReuseTheFreedStorage) {
   // Fifteen strokes in place (carving and adding), each the same set as the copying operation
-  // and its storage bounded (recycle_free_nodes reuses the slots of unreachable nodes); the plane
-  // table is compacted now and then (when it has doubled) without changing the solid.
+  // and its storage bounded (reclaim_added frees the slots of the nodes a stroke cuts away and
+  // gives them to the nodes later strokes keep).
   Solid work = box({-1, -1, -1}, {1, 1, 0});
   const Solid ball = sphere(0.2, {.segments = 8});
   std::size_t most_live = 0;
@@ -245,8 +245,8 @@ TEST(Sweep, InPlaceStrokesReuseTheFreedStorage) {
     work = k % 3 == 2 ? add(std::move(work), ball, path) : carve(std::move(work), ball, path);
     EXPECT_TRUE((work - copied).is_empty()) << "stroke " << k;
     EXPECT_TRUE((copied - work).is_empty()) << "stroke " << k;
-    // Freed slots are reused once the storage has grown by a quarter since they last were, so
-    // it never holds a quarter more than the most nodes the tree has had.
+    // Freed slots are taken before the storage grows, so it holds little more than the most
+    // nodes the tree has had (the slots a stroke frees are taken from the next stroke on).
     most_live = std::max(most_live, std::size_t(tree_stats(work).nodes));
     EXPECT_LT(double(work.nodes().size()), 1.25 * double(std::max<std::size_t>(most_live, 64))) << "stroke " << k;
     EXPECT_EQ(work.polygons().size(), work.nodes().size()) << "stroke " << k;

@@ -23,6 +23,8 @@ struct SolidAccess {
     solid.grid_ = grid;
     return std::move(solid);
   }
+  /// The free node and plane slots in-place operations keep in a solid's storage (tree_arena.hpp).
+  static const FreeSlots& free_slots(const Solid& solid) { return solid.free_; }
   /// Boxes of solid.boundary() (same order), or empty if not computed.
   static const FragmentBoxes& boundary_boxes(const Solid& solid) { return solid.boundary_boxes_; }
 };

@@ -57,8 +57,7 @@ TreeRef Arena::adopt(Solid&& solid) {
   nodes = std::move(s.nodes);
   polygons = std::move(s.polygons);
   opposite_of.clear();
-  free_planes = std::move(s.free_planes);
-  recycled_size = s.recycled_size;
+  free = std::move(s.free);
   boundary = std::move(s.boundary);
   boundary_boxes = std::move(s.boundary_boxes);
   last_shift_ = 0;
@@ -109,85 +108,35 @@ void complement_in_place(Arena& arena, TreeRef& root) {
   }
 }
 
-TreeRef recycle_free_nodes(Arena& arena, TreeRef root) {
-  if (is_leaf(root)) {
-    arena.nodes.clear();
-    arena.polygons.clear();
-    return root;
-  }
-  std::vector<BspNode>& nodes = arena.nodes;
-  const std::size_t n = nodes.size();
-  // Post-order (explicit stack): result[i] is node i itself when it stays, a leaf when it
-  // collapsed, kUnreached when the root does not reach it.
-  constexpr TreeRef kUnreached = std::numeric_limits<TreeRef>::min();
-  std::vector<TreeRef> result(n, kUnreached);
-  struct Frame {
-    TreeRef node;
-    bool expanded;
-  };
-  std::vector<Frame> stack{{root, false}};
-  std::size_t live = 0;
-  while (!stack.empty()) {
-    const Frame f = stack.back();
-    stack.pop_back();
-    BspNode& node = nodes[std::size_t(f.node)];
-    if (!f.expanded) {
-      stack.push_back({f.node, true});
-      if (!is_leaf(node.positive)) stack.push_back({node.positive, false});
-      if (!is_leaf(node.negative)) stack.push_back({node.negative, false});
-      continue;
-    }
-    if (!is_leaf(node.negative)) node.negative = result[std::size_t(node.negative)];
-    if (!is_leaf(node.positive)) node.positive = result[std::size_t(node.positive)];
-    if (is_leaf(node.negative) && node.negative == node.positive) {
-      result[std::size_t(f.node)] = node.negative;
-      continue;
-    }
-    result[std::size_t(f.node)] = f.node;
-    ++live;
-  }
-  if (is_leaf(result[std::size_t(root)])) {
-    nodes.clear();
-    arena.polygons.clear();
-    return result[std::size_t(root)];
-  }
-  // Two fingers: the first free slot below `live` takes the last live node above it.
-  auto is_live = [&](std::size_t i) { return result[i] == TreeRef(i); };
-  std::size_t lo = 0, hi = n;
-  while (true) {
-    while (lo < live && is_live(lo)) ++lo;
-    while (hi > live && !is_live(hi - 1)) --hi;
-    if (lo >= live || hi <= live) break;
-    --hi;
-    nodes[lo] = nodes[hi];
-    arena.polygons[lo] = std::move(arena.polygons[hi]);
-    result[hi] = TreeRef(lo);  // forwarding address (hi >= live: no longer read as "live")
-    result[lo] = TreeRef(lo);
-    ++lo;
-  }
-  auto forward = [&](TreeRef& r) {
-    if (!is_leaf(r) && std::size_t(r) >= live) r = result[std::size_t(r)];
-  };
-  for (std::size_t i = 0; i < live; ++i) {
-    forward(nodes[i].negative);
-    forward(nodes[i].positive);
-  }
-  forward(root);
-  nodes.resize(live);
-  arena.polygons.resize(live);
-  return root;
+namespace {
+
+// Calls at(p) for the support plane and every corner plane of a polygon.
+template <class Polygon, class At>
+void each_plane(Polygon& poly, At&& at) {
+  at(poly.support);
+  for (auto& c : poly.corners) at(c.edge), at(c.p), at(c.q);
 }
+
+// A free node slot: referring to plane 0 only (the world box, never freed), no children.
+void clear_node(Arena& arena, TreeRef t) {
+  arena.nodes[std::size_t(t)] = {0, kOut, kOut};
+  arena.polygons[std::size_t(t)] = ConvexPolygon{};
+  arena.polygons[std::size_t(t)].support = 0;
+}
+
+}  // namespace
 
 TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
   const std::size_t n0 = added.first_node;
   const std::int32_t p0 = added.first_plane;
   std::vector<BspNode>& nodes = arena.nodes;
   std::vector<ConvexPolygon>& polygons = arena.polygons;
+  FreeSlots& free = arena.free;
   // 1. The added nodes the result reaches, in pre-order: they hang below the reused nodes of
   // tree a (or are the root); an added node's children are added nodes (partitioned subtrees of
   // the other operand, moved, never shared), so older nodes are not visited.
   const bool nodes_added = nodes.size() > n0;
-  std::vector<std::int32_t> node_map(nodes_added ? nodes.size() - n0 : 0, -1);  // new offset from n0
+  std::vector<std::int32_t> node_map(nodes_added ? nodes.size() - n0 : 0, -1);  // pre-order number, later the slot
   std::vector<TreeRef> order;
   std::vector<TreeRef> stack;
   auto is_added = [n0](TreeRef r) { return !is_leaf(r) && std::size_t(r) >= n0; };
@@ -217,14 +166,30 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
       reach(nodes[std::size_t(t)].positive);
     }
   }
-  // A reused node the merge collapsed (both children the same leaf) is no longer reached: its
-  // polygon (which may have been computed by the merge) is cleared rather than kept referring to
-  // planes that go.
+  // The older nodes the result no longer reaches: reused nodes the merge collapsed (both
+  // children the same leaf) and the subtrees of tree a it replaced by a leaf (a tree: nothing
+  // else reaches their nodes). They are cleared now (a collapsed node's polygon may have been
+  // computed by the merge on planes that go) and become free slots once this operation's nodes
+  // are placed. The cost is the number of nodes freed.
+  std::vector<TreeRef> freed;
   for (const TreeRef t : arena.merged) {
     const BspNode& n = nodes[std::size_t(t)];
     if (std::size_t(t) < n0 && is_leaf(n.negative) && n.negative == n.positive) {
-      polygons[std::size_t(t)].corners.clear();
-      polygons[std::size_t(t)].support = n.plane;
+      clear_node(arena, t);
+      freed.push_back(t);
+    }
+  }
+  for (const TreeRef d : arena.dropped) {
+    stack.push_back(d);
+    while (!stack.empty()) {
+      const TreeRef t = stack.back();
+      stack.pop_back();
+      if (is_leaf(t) || std::size_t(t) >= n0) continue;  // (added nodes are never below tree a's)
+      const BspNode n = nodes[std::size_t(t)];
+      stack.push_back(n.negative);
+      stack.push_back(n.positive);
+      clear_node(arena, t);
+      freed.push_back(t);
     }
   }
   // The fragments the operation may have written: changed blocks, and all from a point on.
@@ -239,27 +204,28 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
     written.erase(std::unique(written.begin(), written.end()), written.end());
     for (std::size_t i = from; i < count; ++i) written.push_back(i);
   }
-  // 2. The added planes something references: the kept added nodes (plane, polygon), the
-  // reused nodes' polygons (a pending one the merge computed refers to new opposites), the
-  // written fragments.
+  // Every reference to a plane the operation may have written: kept added nodes (plane,
+  // polygon), the reused nodes' polygons (a pending one the merge computed refers to new
+  // opposites), the written fragments.
+  auto each_reference = [&](auto&& at) {
+    for (const TreeRef t : order) {
+      at(nodes[std::size_t(t)].plane);
+      each_plane(polygons[std::size_t(t)], at);
+    }
+    for (const TreeRef t : arena.merged)
+      if (std::size_t(t) < n0) each_plane(polygons[std::size_t(t)], at);
+    for (const std::size_t i : written) each_plane((*fragments)[i].polygon, at);
+  };
+  // While a scan for free planes is in progress, what is written is marked (the scan may have
+  // passed its place already).
+  std::vector<bool>& marks = free.plane_marked;
+  auto mark = [&marks](std::int32_t p) {
+    if (std::size_t(p) < marks.size()) marks[std::size_t(p)] = true;
+  };
+  // 2. The added planes something references are kept; the others are dropped.
   const std::int32_t p1 = arena.planes.size();
   if (p1 > p0) {
     std::vector<std::int32_t> plane_map(std::size_t(p1 - p0), -1);
-    // Every reference to a plane the step may touch: kept added nodes, reused nodes' polygons,
-    // written fragments (visited once to mark, once to rewrite).
-    auto each_reference = [&](auto&& at) {
-      auto in_polygon = [&](ConvexPolygon& poly) {
-        at(poly.support);
-        for (auto& c : poly.corners) at(c.edge), at(c.p), at(c.q);
-      };
-      for (const TreeRef t : order) {
-        at(nodes[std::size_t(t)].plane);
-        in_polygon(polygons[std::size_t(t)]);
-      }
-      for (const TreeRef t : arena.merged)
-        if (std::size_t(t) < n0) in_polygon(polygons[std::size_t(t)]);
-      for (const std::size_t i : written) in_polygon((*fragments)[i].polygon);
-    };
     each_reference([&](std::int32_t& p) {
       if (p >= p0) plane_map[std::size_t(p - p0)] = 0;
     });
@@ -270,14 +236,13 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
       std::int32_t to;
     };
     std::vector<Kept> kept;
-    std::vector<std::int32_t>& free = arena.free_planes;
     std::int32_t next = p0;
     for (std::int32_t i = p0; i < p1; ++i)
       if (plane_map[std::size_t(i - p0)] >= 0) {
         std::int32_t to = next;
-        if (!free.empty() && free.back() < p0) {
-          to = free.back();
-          free.pop_back();
+        if (!free.planes.empty() && free.planes.back() < p0) {
+          to = free.planes.back();
+          free.planes.pop_back();
         } else {
           ++next;
         }
@@ -292,13 +257,28 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
         arena.planes.add(k.plane, k.auxiliary);
     each_reference([&](std::int32_t& p) {
       if (p >= p0) p = plane_map[std::size_t(p - p0)];
+      mark(p);
     });
+  } else if (!marks.empty()) {
+    each_reference([&](std::int32_t& p) { mark(p); });
   }
   arena.opposite_of.clear();  // indices changed
-  // 3. The kept added nodes move down to n0 on, in pre-order; references to them rewritten.
+  // 3. The kept added nodes take free slots, then go to n0 on, in pre-order; references to them
+  // rewritten.
   if (nodes_added) {
+    std::size_t next = n0;
+    for (const TreeRef t : order) {
+      std::int32_t to;
+      if (!free.nodes.empty()) {
+        to = free.nodes.back();
+        free.nodes.pop_back();
+      } else {
+        to = std::int32_t(next++);
+      }
+      node_map[std::size_t(t) - n0] = to;
+    }
     auto forward = [&](TreeRef& r) {
-      if (is_added(r)) r = TreeRef(n0 + std::size_t(node_map[std::size_t(r) - n0]));
+      if (is_added(r)) r = node_map[std::size_t(r) - n0];
     };
     std::vector<BspNode> kept_nodes;
     std::vector<ConvexPolygon> kept_polygons;
@@ -316,28 +296,52 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
     forward(root);
     nodes.resize(n0);
     polygons.resize(n0);
-    nodes.insert(nodes.end(), kept_nodes.begin(), kept_nodes.end());
-    std::move(kept_polygons.begin(), kept_polygons.end(), std::back_inserter(polygons));
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const auto to = std::size_t(node_map[std::size_t(order[i]) - n0]);
+      if (to < n0) {
+        nodes[to] = kept_nodes[i];
+        polygons[to] = std::move(kept_polygons[i]);
+      } else {
+        nodes.push_back(kept_nodes[i]);
+        polygons.push_back(std::move(kept_polygons[i]));
+      }
+    }
   }
+  free.nodes.insert(free.nodes.end(), freed.begin(), freed.end());
+  arena.nodes_kept_and_freed = order.size() + freed.size();
   arena.merged.clear();
+  arena.dropped.clear();
   return root;
 }
 
-void find_free_planes(Arena& arena) {
-  const std::int32_t count = arena.planes.size();
-  std::vector<bool> used(std::size_t(count), false);
-  auto use = [&](std::int32_t p) { used[std::size_t(p)] = true; };
-  auto use_polygon = [&](const ConvexPolygon& poly) {
-    use(poly.support);
-    for (const auto& c : poly.corners) use(c.edge), use(c.p), use(c.q);
+void scan_for_free_planes(Arena& arena, std::size_t budget) {
+  FreeSlots& free = arena.free;
+  std::vector<bool>& marks = free.plane_marked;
+  if (marks.empty()) {  // a new scan
+    marks.assign(std::size_t(arena.planes.size()), false);
+    free.node_cursor = 0;
+    free.fragment_cursor = 0;
+  }
+  auto mark = [&marks](std::int32_t p) {
+    if (std::size_t(p) < marks.size()) marks[std::size_t(p)] = true;
   };
-  for (const BspNode& n : arena.nodes) use(n.plane);
-  for (const ConvexPolygon& poly : arena.polygons) use_polygon(poly);
-  if (arena.boundary)
-    for (const BoundaryFragment& f : *arena.boundary) use_polygon(f.polygon);
-  arena.free_planes.clear();
-  for (std::int32_t i = kernel::kWorldPlanes; i < count; ++i)
-    if (!used[std::size_t(i)]) arena.free_planes.push_back(i);
+  const std::size_t node_end = std::min(arena.nodes.size(), free.node_cursor + budget);
+  for (std::size_t i = free.node_cursor; i < node_end; ++i) {
+    mark(arena.nodes[i].plane);
+    each_plane(arena.polygons[i], mark);
+  }
+  budget -= node_end - std::min(node_end, free.node_cursor);
+  free.node_cursor = std::max(free.node_cursor, node_end);
+  const std::size_t fragment_count = arena.boundary ? arena.boundary->size() : 0;
+  const std::size_t fragment_end = std::min(fragment_count, free.fragment_cursor + budget);
+  for (std::size_t i = free.fragment_cursor; i < fragment_end; ++i) each_plane((*arena.boundary)[i].polygon, mark);
+  free.fragment_cursor = std::max(free.fragment_cursor, fragment_end);
+  if (free.node_cursor < arena.nodes.size() || free.fragment_cursor < fragment_count) return;
+  // The scan is complete: what it left unmarked nothing refers to.
+  free.planes.clear();
+  for (std::size_t i = std::size_t(kernel::kWorldPlanes); i < marks.size(); ++i)
+    if (!marks[i]) free.planes.push_back(std::int32_t(i));
+  marks.clear();
 }
 
 Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
@@ -433,7 +437,7 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
       for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
     }
   }
-  return SolidAccess::make(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), std::vector<std::int32_t>{},
+  return SolidAccess::make(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), FreeSlots{},
                std::move(boundary), std::move(boxes));
 }
 

@@ -25,20 +25,25 @@ struct Arena {
   /// The boundary fragments of a solid already appended (or adopted) last, on arena planes: the
   /// carried ones, or extracted from its tree (boundary_fragments) when it carries none.
   std::vector<BoundaryFragment> boundary_of(const Solid& solid);
-  /// Of an adopted solid: plane slots nothing refers to, which reclaim_added gives to the planes
-  /// an operation adds; find_free_planes() recomputes them.
-  std::vector<std::int32_t> free_planes;
-  std::size_t recycled_size = 0;   ///< of an adopted solid: its node storage after freed nodes were last recycled
+  /// Of an adopted solid: node slots nothing reaches and plane slots nothing refers to, which
+  /// reclaim_added gives to the nodes and planes an operation keeps, and the scan that finds
+  /// free plane slots a slice at a time (scan_for_free_planes).
+  FreeSlots free;
   /// Boundary of the tree being built, when known; compact() keeps it (and its planes).
   std::optional<std::vector<BoundaryFragment>> boundary;
   FragmentBoxes boundary_boxes;  ///< of `boundary`, or empty
   /// What the last set operation wrote, for in-place operations (reclaim_added): the nodes of
   /// tree a the merge reused (their children and pending polygons may be written), in pre-order;
   /// the fragments of `boundary` merge_boundaries rewrote in place (indices, maybe repeated), and
-  /// the first fragment from which all may have changed.
+  /// the first fragment from which all may have changed; the roots of tree a's subtrees the
+  /// merge replaced by a leaf (their nodes are no longer reached).
   std::vector<TreeRef> merged;
   std::vector<std::size_t> boundary_changed;
   std::size_t boundary_changed_from = 0;
+  std::vector<TreeRef> dropped;
+  /// Set by reclaim_added: the nodes the operation kept (added) and freed (older), a measure of
+  /// what it touched (the slice of the scan for free planes follows it).
+  std::size_t nodes_kept_and_freed = 0;
 
  private:
   std::int32_t last_shift_ = 0;  ///< plane index shift of the last append (0 after adopt)
@@ -54,16 +59,6 @@ struct CompactOptions {
 /// takes over the arena's node and polygon buffers (permuted in place).
 Solid compact(Arena& arena, TreeRef root, const CompactOptions& options = {});
 
-/// Frees the storage of nodes the tree at `root` no longer reaches without renumbering the
-/// planes or moving the live nodes below the new size (for in-place operations, after each one
-/// instead of compaction): nodes whose two children are the same leaf collapse (as in
-/// compact()), and the live nodes beyond the live count move into the freed slots below it
-/// (nodes and polygons together), children rewritten. Costs a traversal of the live tree's
-/// nodes (12 bytes each), a scan of the storage and one move per freed slot below the live
-/// count, so a stroke pays for what it freed and added, not for a copy of the whole tree.
-/// Returns the root (a leaf if the tree collapsed).
-TreeRef recycle_free_nodes(Arena& arena, TreeRef root);
-
 /// What an in-place operation added to an adopted solid's storage: planes at indices >=
 /// first_plane, nodes at indices >= first_node; the nodes below first_node whose children or
 /// polygons it may have written are arena.merged, the fragments arena.boundary_changed and
@@ -73,22 +68,28 @@ struct AddedStorage {
   std::size_t first_node = 0;
   bool all_fragments = false;
 };
-/// Drops what an in-place operation added and left unused, in time proportional to what it
-/// added (the solid's older storage is not read): the added nodes the result does not reach (a
-/// partitioned tree's dropped side, pruned nodes) and the added planes nothing references (most
-/// of the other operand's planes, opposites made for one operation). The kept added nodes move
-/// down to first_node on (pre-order), the kept added planes down to first_plane on (in order);
-/// the references to them are rewritten. Nodes and planes below the marks are neither moved nor
-/// renumbered. Returns the root (moved if it was an added node).
+/// Drops what an in-place operation added and left unused, and frees what it cut away, in time
+/// proportional to what it added and freed (the solid's older storage is not read): the added
+/// nodes the result does not reach (a partitioned tree's dropped side, pruned nodes) and the
+/// added planes nothing references (most of the other operand's planes, opposites made for one
+/// operation) are dropped; the kept added nodes take free node slots (arena.free.nodes), then
+/// go to first_node on (pre-order), the kept added planes take free plane slots
+/// (arena.free.planes), then go to first_plane on (in order); the references to them are
+/// rewritten. The older nodes the result no longer reaches (arena.dropped's subtrees, reused
+/// nodes the merge collapsed) are cleared and become free node slots for later operations.
+/// While a scan for free planes is in progress, the planes that everything written refers to
+/// are marked. Older nodes and planes are neither moved nor renumbered. Returns the root
+/// (moved if it was an added node).
 TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added);
 
-/// Recomputes arena.free_planes: the planes (beyond the world box) that no node, no node
-/// polygon and no boundary fragment refers to. Every node of the storage must be reachable (as
-/// right after recycle_free_nodes): dead nodes are not told apart. A plane nothing refers to
-/// stays so (an operation refers to its operands' live planes and to planes it adds), so its
-/// slot can take a plane a later operation adds. One scan of the nodes, polygons and fragments,
-/// no renumbering and no moves.
-void find_free_planes(Arena& arena);
+/// Advances the scan for plane slots nothing refers to by about `budget` node slots and
+/// boundary fragments (starting a scan if none is in progress); when the scan has reached the
+/// end of both, arena.free.planes becomes the planes beyond the world box it left unmarked and
+/// the scan ends. A plane nothing refers to stays so (an operation refers to its operands' live
+/// planes and to planes it adds), and reclaim_added marks what operations write during the
+/// scan, so an unmarked plane is unreferenced when the scan ends, however many operations it
+/// spanned. Requires every node slot the tree does not reach to be free (cleared).
+void scan_for_free_planes(Arena& arena, std::size_t budget);
 
 /// Flips in and out leaves of the subtree at `root` in place (explicit stack).
 void complement_in_place(Arena& arena, TreeRef& root);

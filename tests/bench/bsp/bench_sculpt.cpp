@@ -8,6 +8,7 @@
 //   variable holding the workpiece during the stroke, the copying path, side by side per stroke)
 // Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h>
 //            storage_nodes=<node slots> planes=<plane table size> fragments=<boundary fragments> volume=<v>
+//          bench impl=sculpt|subtract case=distribution ... (whole strokes; the subtraction alone)
 //          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m> ... strokes_over_50ms=<n>
 //          (--rebuild-every: case=rebuild_after_<k> per rebuild; --compare-old: impl=old lines and the median ratio;
 //           --script: impl=script / impl=script_copy distributions and ratios to the library's in-place carve)
@@ -213,6 +214,7 @@ int main(int argc, char** argv) {
     std::printf("bench impl=sculpt case=rebuilds count=%zu median_cpu_ms=%.2f max_cpu_ms=%.2f\n", rebuild_cpu.size(), median(rebuild_cpu),
                 *std::max_element(rebuild_cpu.begin(), rebuild_cpu.end()));
   distribution("sculpt", cpu);
+  distribution("subtract", subtract_cpu);
   if (script) {
     distribution("script", script_cpu);
     distribution("script_copy", copy_cpu);
