@@ -273,48 +273,55 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   return orient2d_exact(a, b, c);
 }
 
-int orient3d_filtered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                      const Eigen::Vector3d& d) {
-  // The first stage of orient3d below, the same expressions and bound.
-  const double adx = a.x() - d.x(), bdx = b.x() - d.x(), cdx = c.x() - d.x();
-  const double ady = a.y() - d.y(), bdy = b.y() - d.y(), cdy = c.y() - d.y();
-  const double adz = a.z() - d.z(), bdz = b.z() - d.z(), cdz = c.z() - d.z();
+namespace {
+
+/// orient3d's first stage: the differences to d, the determinant's permanent, and its sign when
+/// the filter certifies it (kUndecided otherwise).
+struct Orient3dFilter {
+  double dx[3], dy[3], dz[3];  // a - d, b - d, c - d by coordinate
+  double permanent = 0;
+  int sign = kUndecided;
+};
+
+Orient3dFilter orient3d_filter(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                               const Eigen::Vector3d& d) {
+  // Shewchuk's orient3d evaluates det[a-d, b-d, c-d], which is -det[b-a, c-a, d-a].
+  Orient3dFilter f;
+  const Eigen::Vector3d* rows[3] = {&a, &b, &c};
+  for (int i = 0; i < 3; ++i) f.dx[i] = (*rows[i]).x() - d.x(), f.dy[i] = (*rows[i]).y() - d.y(), f.dz[i] = (*rows[i]).z() - d.z();
+  const double adx = f.dx[0], bdx = f.dx[1], cdx = f.dx[2], ady = f.dy[0], bdy = f.dy[1], cdy = f.dy[2];
+  const double adz = f.dz[0], bdz = f.dz[1], cdz = f.dz[2];
   const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
   const double cdxady = cdx * ady, adxcdy = adx * cdy;
   const double adxbdy = adx * bdy, bdxady = bdx * ady;
   const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double permanent = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(adz) +
-                           (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bdz) +
-                           (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
-  const double bound = kOrient3dBound * permanent;
-  if (std::isfinite(det) && std::isfinite(bound) && permanent > kNoUnderflow && (det > bound || -det > bound))
-    return det > 0 ? -1 : 1;
-  return kUndecided;
+  f.permanent = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(adz) +
+                (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bdz) +
+                (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
+  const double bound = kOrient3dBound * f.permanent;
+  if (std::isfinite(det) && std::isfinite(bound) && f.permanent > kNoUnderflow && (det > bound || -det > bound))
+    f.sign = det > 0 ? -1 : 1;
+  return f;
+}
+
+}  // namespace
+
+int orient3d_filtered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& d) {
+  return orient3d_filter(a, b, c, d).sign;
 }
 
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d) {
-  // Shewchuk's orient3d evaluates det[a-d, b-d, c-d], which is -det[b-a, c-a, d-a].
-  const double adx = a.x() - d.x(), bdx = b.x() - d.x(), cdx = c.x() - d.x();
-  const double ady = a.y() - d.y(), bdy = b.y() - d.y(), cdy = c.y() - d.y();
-  const double adz = a.z() - d.z(), bdz = b.z() - d.z(), cdz = c.z() - d.z();
-  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
-  const double cdxady = cdx * ady, adxcdy = adx * cdy;
-  const double adxbdy = adx * bdy, bdxady = bdx * ady;
-  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double permanent = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(adz) +
-                           (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bdz) +
-                           (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
-  const double bound = kOrient3dBound * permanent;
-  if (std::isfinite(det) && std::isfinite(bound) && permanent > kNoUnderflow && (det > bound || -det > bound))
-    return det > 0 ? -1 : 1;
+  const Orient3dFilter f = orient3d_filter(a, b, c, d);
+  if (f.sign != kUndecided) return f.sign;
   // All terms zero (points on a plane parallel to a coordinate plane, say): a product of computed
   // differences is zero only when a factor is, which is exact (a - b rounds to 0 only when a == b),
   // unless a product of non-zero factors underflowed; with every non-zero difference at least
   // 2^-300 in magnitude no product of three does.
-  if (permanent == 0 && in_expansion_range(adx) && in_expansion_range(bdx) && in_expansion_range(cdx) &&
-      in_expansion_range(ady) && in_expansion_range(bdy) && in_expansion_range(cdy) && in_expansion_range(adz) &&
-      in_expansion_range(bdz) && in_expansion_range(cdz))
+  if (f.permanent == 0 && std::all_of(std::begin(f.dx), std::end(f.dx), in_expansion_range) &&
+      std::all_of(std::begin(f.dy), std::end(f.dy), in_expansion_range) &&
+      std::all_of(std::begin(f.dz), std::end(f.dz), in_expansion_range))
     return 0;
   // Second stage: the differences are exact (often for nearby points), so det[a-d, b-d, c-d] is
   // evaluated exactly as an expansion.
