@@ -16,6 +16,7 @@
 #include <Eigen/Geometry>
 
 #include "base/errors.hpp"
+#include "mesh/detail/box_grid.hpp"
 #include "mesh/formats/mesh_formats.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "mesh/predicates.hpp"
@@ -618,71 +619,32 @@ class Cleaner {
   }
 
   /// Pairs of live, non-degenerate triangles that meet beyond what they share, all searched.
-  /// Candidates come from one pass over a uniform grid (as in search_self_intersections: cells
-  /// about the median box extent, coarsened until there are at most 8 entries per triangle, and a
-  /// pair whose closed boxes overlap examined in the one cell holding the minimum corner of their
-  /// intersection), not from a query per triangle: every such pair once, so the same pairs as
-  /// meeting_partners over all triangles.
+  /// Candidates come from one pass over a uniform grid (mesh/detail/box_grid.hpp, the broad phase
+  /// of search_self_intersections too), not from a query per triangle: every pair of overlapping
+  /// boxes once, so the same pairs as meeting_partners over all triangles.
   std::vector<std::pair<int, int>> full_crossings() const {
     std::vector<std::pair<int, int>> out;
     std::vector<int> live;
     for (size_t t = 0; t < tris_.size(); ++t)
       if (alive_[t] && prepared_[t].axis >= 0) live.push_back(static_cast<int>(t));
     if (live.size() < 2) return out;
+    std::vector<Eigen::AlignedBox3d> boxes;
+    boxes.reserve(live.size());
     Eigen::AlignedBox3d all;
-    std::vector<double> extents;
-    extents.reserve(live.size());
-    for (int t : live) {
-      all.extend(boxes_[t]);
-      extents.push_back(boxes_[t].sizes().maxCoeff());
-    }
-    if (!all.min().allFinite() || !all.max().allFinite() || !all.sizes().allFinite()) {  // no grid: a query per triangle
-      for (int t : live) meeting_partners(t, [&](int u) { return u <= t; }, out);
-      std::sort(out.begin(), out.end());
-      return out;
-    }
-    std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2), extents.end());
-    double cell = std::max(extents[extents.size() / 2], all.sizes().maxCoeff() * 0x1p-20);
-    if (!(cell > 0) || !std::isfinite(cell)) cell = 1;
-    const Vector3d origin = all.min();
-    std::vector<std::array<std::int64_t, 6>> range(live.size());  // first and last cell per axis
-    const size_t budget = 8 * live.size() + 1024;
-    for (;;) {
-      size_t entries = 0;
-      for (size_t i = 0; i < live.size(); ++i) {
-        size_t n = 1;
-        for (int axis = 0; axis < 3; ++axis) {
-          const auto lo = static_cast<std::int64_t>(std::floor((boxes_[live[i]].min()[axis] - origin[axis]) / cell));
-          const auto hi = static_cast<std::int64_t>(std::floor((boxes_[live[i]].max()[axis] - origin[axis]) / cell));
-          range[i][size_t(axis)] = lo;
-          range[i][size_t(axis) + 3] = hi;
-          n *= static_cast<size_t>(hi - lo + 1);
-        }
-        entries += n;
+    for (int t : live) boxes.push_back(boxes_[t]), all.extend(boxes_[t]);
+    if (!all.min().allFinite() || !all.max().allFinite() || !all.sizes().allFinite()) {
+      for (int t : live) meeting_partners(t, [&](int u) { return u <= t; }, out);  // no grid: a query per triangle
+    } else {
+      const mesh::detail::BoxGrid grid(boxes);
+      for (size_t k = 0; k < grid.cells(); ++k) {
+        const std::span<const int> here = grid.cell(k);
+        for (size_t i = 0; i < here.size(); ++i)
+          for (size_t j = i + 1; j < here.size(); ++j) {
+            const int t = live[size_t(here[i])], u = live[size_t(here[j])];
+            if (boxes_[t].intersects(boxes_[u]) && grid.owns(k, here[i], here[j]) && triangles_meet(prepared_[t], prepared_[u]))
+              out.push_back(std::minmax(t, u));
+          }
       }
-      if (entries <= budget) break;
-      cell *= 2;
-    }
-    // Cell keys: 21 bits per axis (at most 2^20 + 1 cells along the widest axis).
-    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) { return (x << 42) | (y << 21) | z; };
-    std::vector<std::pair<std::int64_t, int>> entries;
-    for (size_t i = 0; i < live.size(); ++i)
-      for (std::int64_t x = range[i][0]; x <= range[i][3]; ++x)
-        for (std::int64_t y = range[i][1]; y <= range[i][4]; ++y)
-          for (std::int64_t z = range[i][2]; z <= range[i][5]; ++z) entries.emplace_back(key(x, y, z), static_cast<int>(i));
-    std::sort(entries.begin(), entries.end());
-    for (size_t begin = 0; begin < entries.size();) {
-      size_t end = begin;
-      while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
-      for (size_t i = begin; i < end; ++i)
-        for (size_t j = i + 1; j < end; ++j) {
-          const auto &ri = range[size_t(entries[i].second)], &rj = range[size_t(entries[j].second)];
-          const int t = live[size_t(entries[i].second)], u = live[size_t(entries[j].second)];
-          if (!boxes_[t].intersects(boxes_[u])) continue;
-          if (key(std::max(ri[0], rj[0]), std::max(ri[1], rj[1]), std::max(ri[2], rj[2])) != entries[begin].first) continue;
-          if (triangles_meet(prepared_[t], prepared_[u])) out.push_back(std::minmax(t, u));
-        }
-      begin = end;
     }
     std::sort(out.begin(), out.end());  // worked on in this order
     return out;

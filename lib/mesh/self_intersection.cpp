@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "mesh/detail/box_grid.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/triangulate.hpp"
 
@@ -314,128 +315,53 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     }
   }
   if (moved == 0) return result;
-  // Broad phase: a uniform grid of cubic cells (about the median extent of the triangles'
-  // boxes, coarsened until the boxes' cell entries stay within a few per triangle); each triangle
-  // is listed in every cell its box overlaps, and a pair whose boxes overlap is examined in the
-  // one cell that holds the minimum corner of the boxes' intersection, so once.
+  // Broad phase (mesh/detail/box_grid.hpp): a uniform grid over the triangles' boxes; a pair
+  // whose boxes overlap is examined in the one cell that owns it, so once.
   std::set<std::pair<int, int>> found;
   if (tris.empty()) return result;
-  Eigen::AlignedBox3d all;
-  std::vector<double> extents;
-  extents.reserve(tris.size());
-  for (const Tri& t : tris) {
-    all.extend(t.box);
-    extents.push_back(t.box.sizes().maxCoeff());
-  }
-  std::nth_element(extents.begin(), extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2), extents.end());
-  double cell = std::max(extents[extents.size() / 2], all.sizes().maxCoeff() * 0x1p-20);
-  if (!(cell > 0) || !std::isfinite(cell)) cell = 1;
-  const Vector3d origin = all.min();
-  auto cell_of = [&](double x, int axis) {
-    return static_cast<std::int64_t>(std::floor((x - origin[axis]) / cell));
-  };
-  // Per triangle, what the scan below reads: its box and the cells its box spans (cell_of is
-  // monotone, so the cell of the minimum corner of two boxes' intersection is the larger of
-  // their first cells along each axis).
-  struct Slot {
+  struct Slot {  // what the scan reads per triangle, kept together
     Eigen::AlignedBox3d box;
-    std::array<std::int64_t, 3> lo{}, hi{};
     int face = 0;
     bool exact = false;
   };
   std::vector<Slot> slots(tris.size());
-  auto place = [&] {
-    size_t entries = 0;
-    for (size_t i = 0; i < tris.size(); ++i) {
-      Slot& c = slots[i];
-      c.box = tris[i].box;
-      c.face = tris[i].face;
-      c.exact = tris[i].exact;
-      size_t n = 1;
-      for (int axis = 0; axis < 3; ++axis) {
-        c.lo[size_t(axis)] = cell_of(c.box.min()[axis], axis);
-        c.hi[size_t(axis)] = cell_of(c.box.max()[axis], axis);
-        n *= static_cast<size_t>(c.hi[size_t(axis)] - c.lo[size_t(axis)] + 1);
-      }
-      entries += n;
-    }
-    return entries;
-  };
-  const size_t entry_budget = 8 * tris.size() + 1024;
-  size_t entry_count = place();
-  while (entry_count > entry_budget) {
-    cell *= 2;
-    entry_count = place();
+  std::vector<Eigen::AlignedBox3d> boxes(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    slots[i] = {tris[i].box, tris[i].face, tris[i].exact};
+    boxes[i] = tris[i].box;
   }
-  // Cells in the order of (x, y, z), numbered densely over the grid's extent when that is small
-  // (a counting sort), else by 21 bits per axis (the grid has at most 2^20 + 1 cells along the
-  // widest axis) and sorted; either way the entries come in the order (cell, triangle).
-  std::array<std::int64_t, 3> dims{};
-  for (int axis = 0; axis < 3; ++axis) dims[size_t(axis)] = cell_of(all.max()[axis], axis) + 1;
-  const double dense_cells = double(dims[0]) * double(dims[1]) * double(dims[2]);
-  const bool dense = dense_cells <= double(4 * entry_count + 4096);
-  auto key = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    return dense ? (x * dims[1] + y) * dims[2] + z : (x << 42) | (y << 21) | z;
-  };
-  std::vector<std::pair<std::int64_t, int>> entries;
-  entries.reserve(entry_count);
-  auto list = [&](auto&& emit) {
-    for (size_t i = 0; i < slots.size(); ++i) {
-      const Slot& c = slots[i];
-      for (std::int64_t x = c.lo[0]; x <= c.hi[0]; ++x)
-        for (std::int64_t y = c.lo[1]; y <= c.hi[1]; ++y)
-          for (std::int64_t z = c.lo[2]; z <= c.hi[2]; ++z) emit(key(x, y, z), static_cast<int>(i));
-    }
-  };
-  if (dense) {
-    std::vector<int> start(static_cast<size_t>(dense_cells) + 1, 0);
-    list([&](std::int64_t k, int) { ++start[size_t(k) + 1]; });
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    entries.resize(entry_count);
-    list([&](std::int64_t k, int i) { entries[size_t(start[size_t(k)]++)] = {k, i}; });
-  } else {
-    list([&](std::int64_t k, int i) { entries.emplace_back(k, i); });
-    std::sort(entries.begin(), entries.end());
-  }
-
+  const mesh::detail::BoxGrid grid(boxes);
   size_t candidates = 0, scanned = 0;
-  for (size_t begin = 0; begin < entries.size() && found.size() < options.max_pairs && result.complete;) {
-    size_t end = begin;
-    while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
-    const std::int64_t here = entries[begin].first;
-    if (moved < tris.size() &&
-        std::all_of(entries.begin() + std::ptrdiff_t(begin), entries.begin() + std::ptrdiff_t(end),
-                    [&](const auto& e) { return slots[size_t(e.second)].exact; })) {
-      begin = end;  // only exact triangles here: nothing to examine
-      continue;
-    }
-    for (size_t i = begin; i < end && found.size() < options.max_pairs && result.complete; ++i) {
-      const Slot& s = slots[static_cast<size_t>(entries[i].second)];
-      for (size_t j = i + 1; j < end; ++j) {
+  for (size_t k = 0; k < grid.cells() && found.size() < options.max_pairs && result.complete; ++k) {
+    const std::span<const int> here = grid.cell(k);
+    if (moved < tris.size() && std::all_of(here.begin(), here.end(), [&](int i) { return slots[size_t(i)].exact; }))
+      continue;  // only exact triangles here: nothing to examine
+    for (size_t i = 0; i < here.size() && found.size() < options.max_pairs && result.complete; ++i) {
+      const Slot& s = slots[size_t(here[i])];
+      for (size_t j = i + 1; j < here.size(); ++j) {
         if (++scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
           result.complete = false;
           break;
         }
-        const Slot& t = slots[static_cast<size_t>(entries[j].second)];
+        const Slot& t = slots[size_t(here[j])];
         if (s.face == t.face || (s.exact && t.exact)) continue;
         if (t.box.min().x() > s.box.max().x() || s.box.min().x() > t.box.max().x() ||
             t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
             t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())
           continue;
-        if (key(std::max(s.lo[0], t.lo[0]), std::max(s.lo[1], t.lo[1]), std::max(s.lo[2], t.lo[2])) != here) continue;
+        if (!grid.owns(k, here[i], here[j])) continue;
         if (++candidates > options.max_candidates) {
           result.complete = false;
           break;
         }
         const auto face_pair = std::minmax(s.face, t.face);
         if (found.count(face_pair)) continue;
-        if (triangles_conflict(tris[size_t(entries[i].second)], tris[size_t(entries[j].second)])) {
+        if (triangles_conflict(tris[size_t(here[i])], tris[size_t(here[j])])) {
           found.insert(face_pair);
           if (found.size() >= options.max_pairs) break;
         }
       }
     }
-    begin = end;
   }
   for (auto [a, b] : found) result.pairs.push_back({a, b});
   return result;

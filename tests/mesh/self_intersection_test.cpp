@@ -8,9 +8,11 @@
 #include "support/rational_orientation.hpp"
 
 #include <boost/multiprecision/cpp_int.hpp>
+#include <map>
 #include <random>
 #include <set>
 
+#include "mesh/detail/box_grid.hpp"
 #include "mesh/triangulate.hpp"
 #include "shapes.hpp"
 
@@ -277,6 +279,44 @@ TEST(SelfIntersection, MovedCornerCrossingAnExactFaceIsFound) {
   for (const FacePair& p : search.pairs) got.insert(std::minmax(p.face_a, p.face_b));
   EXPECT_EQ(got, all);  // every pair involves one of b's faces at the moved corner
   for (const auto& [f, g] : got) EXPECT_TRUE(f < 6 && g >= 6);
+}
+
+// The broad phase: every pair of overlapping boxes (closed, so touching counts) is owned by
+// exactly one cell that lists both, and no other pair is; against brute force, with boxes of very
+// different sizes (long boxes coarsen the grid), flat boxes and repeated boxes.
+TEST(BoxGrid, EveryOverlappingPairIsOwnedByExactlyOneCell) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> at(-10, 10), size(0, 1);
+  for (int round = 0; round < 20; ++round) {
+    std::vector<Eigen::AlignedBox3d> boxes;
+    for (int i = 0; i < 300; ++i) {
+      const Vector3d lo(at(rng), at(rng), at(rng));
+      Vector3d extent(size(rng), size(rng), size(rng));
+      if (i % 17 == 0) extent *= 15;         // long ones
+      if (i % 11 == 0) extent.z() = 0;       // flat ones
+      boxes.emplace_back(lo, lo + extent);
+      if (i % 29 == 0) boxes.push_back(boxes.back());  // the same box twice
+    }
+    const mesh::detail::BoxGrid grid(boxes);
+    std::map<std::pair<int, int>, int> owned;
+    for (size_t k = 0; k < grid.cells(); ++k) {
+      const auto cell = grid.cell(k);
+      for (size_t i = 0; i < cell.size(); ++i)
+        for (size_t j = i + 1; j < cell.size(); ++j)
+          if (boxes[size_t(cell[i])].intersects(boxes[size_t(cell[j])]) && grid.owns(k, cell[i], cell[j]))
+            ++owned[std::minmax(cell[i], cell[j])];
+    }
+    size_t expected = 0;
+    for (size_t a = 0; a < boxes.size(); ++a)
+      for (size_t b = a + 1; b < boxes.size(); ++b)
+        if (boxes[a].intersects(boxes[b])) {
+          ++expected;
+          EXPECT_EQ(owned[std::pair(int(a), int(b))], 1) << "boxes " << a << " and " << b;
+        }
+    size_t found = 0;
+    for (const auto& [pair, count] : owned) found += count > 0 ? 1 : 0;
+    EXPECT_EQ(found, expected);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,80 @@
+#include "mesh/detail/box_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace sculpt::mesh::detail {
+
+BoxGrid::BoxGrid(std::span<const Eigen::AlignedBox3d> boxes) {
+  if (boxes.empty()) return;
+  Eigen::AlignedBox3d all;
+  std::vector<double> extents;
+  extents.reserve(boxes.size());
+  for (const Eigen::AlignedBox3d& b : boxes) {
+    all.extend(b);
+    extents.push_back(b.sizes().maxCoeff());
+  }
+  std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2), extents.end());
+  double cell = std::max(extents[extents.size() / 2], all.sizes().maxCoeff() * 0x1p-20);
+  if (!(cell > 0) || !std::isfinite(cell)) cell = 1;
+  const Eigen::Vector3d origin = all.min();
+  auto cell_of = [&](double x, int axis) { return static_cast<std::int64_t>(std::floor((x - origin[axis]) / cell)); };
+  range_.resize(boxes.size());
+  auto place = [&] {
+    size_t entries = 0;
+    for (size_t i = 0; i < boxes.size(); ++i) {
+      size_t n = 1;
+      for (int axis = 0; axis < 3; ++axis) {
+        range_[i][size_t(axis)] = cell_of(boxes[i].min()[axis], axis);
+        range_[i][size_t(axis) + 3] = cell_of(boxes[i].max()[axis], axis);
+        n *= static_cast<size_t>(range_[i][size_t(axis) + 3] - range_[i][size_t(axis)] + 1);
+      }
+      entries += n;
+    }
+    return entries;
+  };
+  const size_t budget = 8 * boxes.size() + 1024;
+  size_t count = place();
+  while (count > budget) {
+    cell *= 2;
+    count = place();
+  }
+  // Cells in the order (x, y, z): numbered densely over the grid's extent when that is small (a
+  // counting sort), else 21 bits per axis (at most 2^20 + 1 cells along the widest axis) and
+  // sorted; either way the entries come in the order (cell, box).
+  for (int axis = 0; axis < 3; ++axis) dims_[size_t(axis)] = cell_of(all.max()[axis], axis) + 1;
+  const double dense_cells = double(dims_[0]) * double(dims_[1]) * double(dims_[2]);
+  dense_ = dense_cells <= double(4 * count + 4096);
+  std::vector<std::pair<std::int64_t, int>> entries;
+  entries.reserve(count);
+  auto list = [&](auto&& emit) {
+    for (size_t i = 0; i < range_.size(); ++i) {
+      const auto& r = range_[i];
+      for (std::int64_t x = r[0]; x <= r[3]; ++x)
+        for (std::int64_t y = r[1]; y <= r[4]; ++y)
+          for (std::int64_t z = r[2]; z <= r[5]; ++z) emit(key(x, y, z), static_cast<int>(i));
+    }
+  };
+  if (dense_) {
+    std::vector<int> start(static_cast<size_t>(dense_cells) + 1, 0);
+    list([&](std::int64_t k, int) { ++start[size_t(k) + 1]; });
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    entries.resize(count);
+    list([&](std::int64_t k, int i) { entries[size_t(start[size_t(k)]++)] = {k, i}; });
+  } else {
+    list([&](std::int64_t k, int i) { entries.emplace_back(k, i); });
+    std::sort(entries.begin(), entries.end());
+  }
+  members_.reserve(entries.size());
+  for (size_t e = 0; e < entries.size(); ++e) {
+    if (e == 0 || entries[e].first != entries[e - 1].first) {
+      keys_.push_back(entries[e].first);
+      starts_.push_back(members_.size());
+    }
+    members_.push_back(entries[e].second);
+  }
+  starts_.push_back(members_.size());
+}
+
+}  // namespace sculpt::mesh::detail

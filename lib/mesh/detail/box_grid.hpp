@@ -1,0 +1,52 @@
+#pragma once
+/// \file box_grid.hpp
+/// The broad phase of the self-intersection searches (search_self_intersections and the output
+/// rounding's crossing search): a uniform grid of cubic cells over a set of boxes, each box listed
+/// in every cell it overlaps. A pair of overlapping boxes is to be examined in one cell only, the
+/// one holding the minimum corner of the boxes' intersection (owns()), so each pair once.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace sculpt::mesh::detail {
+
+class BoxGrid {
+ public:
+  /// Cells about the median box extent (at least 2^-20 of the boxes' whole extent), coarsened
+  /// until the boxes' cell entries stay within 8 per box (plus 1024). Boxes must be finite.
+  explicit BoxGrid(std::span<const Eigen::AlignedBox3d> boxes);
+
+  /// The non-empty cells, in order.
+  [[nodiscard]] size_t cells() const { return starts_.empty() ? 0 : starts_.size() - 1; }
+  /// The boxes listed in cell k (indices into the boxes given, ascending).
+  [[nodiscard]] std::span<const int> cell(size_t k) const {
+    return {members_.data() + starts_[k], members_.data() + starts_[k + 1]};
+  }
+  /// Whether the pair (a, b) of overlapping boxes is examined in cell k (the cell of the minimum
+  /// corner of their intersection; cell indices are monotone, so that is the larger first cell of
+  /// the two along each axis).
+  [[nodiscard]] bool owns(size_t k, int a, int b) const {
+    const auto &x = range_[size_t(a)], &y = range_[size_t(b)];
+    return key(std::max(x[0], y[0]), std::max(x[1], y[1]), std::max(x[2], y[2])) == keys_[k];
+  }
+
+ private:
+  [[nodiscard]] std::int64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return dense_ ? (x * dims_[1] + y) * dims_[2] + z : (x << 42) | (y << 21) | z;
+  }
+
+  std::vector<std::array<std::int64_t, 6>> range_;  ///< per box: first cells (x, y, z), last cells
+  std::array<std::int64_t, 3> dims_{};
+  bool dense_ = false;  ///< keys number the cells densely (counting sort), else 21 bits per axis
+  std::vector<std::int64_t> keys_;  ///< per non-empty cell
+  std::vector<size_t> starts_;      ///< per non-empty cell, where its members begin (one more at the end)
+  std::vector<int> members_;
+};
+
+}  // namespace sculpt::mesh::detail
