@@ -1,6 +1,7 @@
 #pragma once
 /// \file base.hpp
-/// Umbrella header of lib/base: typed errors shared by every layer.
+/// Umbrella header of lib/base: typed errors shared by every layer, and a container.
 /// Every public header of the layer (the headers directly in lib/base/).
 
+#include "base/chunked_vector.hpp"
 #include "base/errors.hpp"

@@ -265,9 +265,8 @@ TreeRef merge_operands(Arena& arena, TreeRef ra, std::vector<BoundaryFragment> f
   if (sides) rb = bsp::detail::prune_to_extent(arena, rb, *sides);
   bsp::detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
   // Room for the nodes partition() adds (2.5-3.5 per node of b on the curved cases): one
-  // allocation instead of regrowth copies of the polygon buffer; untouched room maps no pages.
+  // allocation instead of regrowth copies (the polygons never move: PolygonStore).
   const std::size_t need = arena.nodes.size() + 4 * b_nodes;
-  if (need > arena.polygons.capacity()) arena.polygons.reserve(std::max(need, 2 * arena.polygons.capacity()));
   if (need > arena.nodes.capacity()) arena.nodes.reserve(std::max(need, 2 * arena.nodes.capacity()));
   Merger m(arena);
   return m.merge(ra, rb, op);
@@ -296,20 +295,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 }
 
 // In place: the larger operand's storage is reused and nothing older than the operation is
-// moved or renumbered. reclaim_added drops the nodes and planes the operation added and left
-// unused, and frees the older nodes it cut away, in time proportional to what it added and
-// freed; the nodes and planes it keeps take free slots. Free plane slots are found by a scan
-// that advances by a slice per operation (scan_for_free_planes), kScanPerNode node slots and
-// fragments per node the operation kept or freed (at least kMinScanSlice), so no operation reads
-// the whole tree and a stroke's cost still follows what it touches; the planes an operation
-// leaves unreferenced are found after about tree size / (kScanPerNode * nodes touched)
-// operations (docs/sculpting.md, "Strokes"). When more than half of the node slots are free (an
-// operation cut away most of the tree), the solid is compacted: that costs about what freeing
-// them did.
-constexpr std::size_t kScanPerNode = 2;
-constexpr std::size_t kMinScanSlice = 512;
-constexpr std::size_t kMinCompactNodes = 4096;
-
+// moved or renumbered (reclaim_added and finish_in_place, tree_arena.hpp).
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < y.nodes().size()) return apply(x, y, table);
   // The boundary of x must be known before its storage moves into the arena.
@@ -341,14 +327,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   const TreeRef rb = arena.append(y);
   const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
   TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, y.nodes().size(), table);
-  r = bsp::detail::reclaim_added(arena, r, added);
-  if (is_leaf(r)) return Solid::leaf(r == kIn);
-  if (arena.free.nodes.size() > arena.nodes.size() / 2 && arena.nodes.size() > kMinCompactNodes)
-    return bsp::detail::compact(arena, r, {.keep_capacity = true});
-  bsp::detail::scan_for_free_planes(arena, std::max(kMinScanSlice, kScanPerNode * arena.nodes_kept_and_freed));
-  return bsp::detail::SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), r,
-                                        std::move(arena.free), std::move(arena.boundary),
-                                        std::move(arena.boundary_boxes));
+  return bsp::detail::finish_in_place(arena, bsp::detail::reclaim_added(arena, r, added));
 }
 
 constexpr bool kUnion[2][2] = {{false, true}, {true, true}};

@@ -6,7 +6,7 @@
 namespace sculpt {
 
 Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-             std::vector<kernel::ConvexPolygon> polygons, TreeRef root, FreeSlots free,
+             PolygonStore polygons, TreeRef root, FreeSlots free,
              std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes)
     : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
       free_(std::move(free)),

@@ -26,6 +26,7 @@
 #include <optional>
 #include <vector>
 
+#include "base/chunked_vector.hpp"
 #include "base/errors.hpp"
 #include "bsp/tree/fragment_boxes.hpp"
 #include "bsp/tree/free_slots.hpp"
@@ -57,6 +58,10 @@ struct BoundaryFragment {
   bool flip = false;  ///< true: the outward normal is the plane's negative normal
 };
 
+/// The node polygons of a tree: indexed like a vector, never relocated as it grows (see
+/// base/chunked_vector.hpp; in-place set operations append to a workpiece's polygons).
+using PolygonStore = ChunkedVector<kernel::ConvexPolygon>;
+
 class Solid {
  public:
   /// The empty solid (a single out leaf), at the default grid.
@@ -72,7 +77,7 @@ class Solid {
   [[nodiscard]] const kernel::PlaneTable& planes() const { return planes_; }
   [[nodiscard]] const std::vector<BspNode>& nodes() const { return nodes_; }
   /// Sub-hyperplane of node i (same index as nodes()); no corners while pending (see above).
-  [[nodiscard]] const std::vector<kernel::ConvexPolygon>& polygons() const { return polygons_; }
+  [[nodiscard]] const PolygonStore& polygons() const { return polygons_; }
 
   /// True if the solid carries its boundary fragments (results of set operations, leaves).
   [[nodiscard]] bool has_boundary() const { return boundary_.has_value(); }
@@ -89,7 +94,7 @@ class Solid {
   /// algorithms only follow the tree from root(). `boundary`, when given, must tile the
   /// solid's boundary exactly.
   Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
-        std::vector<kernel::ConvexPolygon> polygons, TreeRef root, FreeSlots free = {},
+        PolygonStore polygons, TreeRef root, FreeSlots free = {},
         std::optional<std::vector<BoundaryFragment>> boundary = std::nullopt,
         FragmentBoxes boundary_boxes = {});
 
@@ -97,7 +102,7 @@ class Solid {
   struct Storage {
     kernel::PlaneTable planes;
     std::vector<BspNode> nodes;
-    std::vector<kernel::ConvexPolygon> polygons;
+    PolygonStore polygons;
     TreeRef root;
     FreeSlots free;  ///< free node and plane slots (to reuse) and the scan for free planes
     std::optional<std::vector<BoundaryFragment>> boundary;
@@ -108,7 +113,7 @@ class Solid {
 
   kernel::PlaneTable planes_;
   std::vector<BspNode> nodes_;
-  std::vector<kernel::ConvexPolygon> polygons_;
+  PolygonStore polygons_;
   TreeRef root_ = kOut;
   /// Node slots nothing reaches and plane slots nothing refers to, taken by the nodes and planes
   /// later in-place operations add (bsp/tree/tree_arena.hpp).

@@ -10,6 +10,7 @@
 #include "bsp/cells.hpp"
 #include "bsp/hull.hpp"
 #include "bsp/merge/convex_union.hpp"
+#include "bsp/rebuild.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
 #include "kernel/convex_hull.hpp"
@@ -171,36 +172,47 @@ Solid sweep(const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
   return unite_all(std::move(parts));
 }
 
+// Strokes: the result with the subtrees the stroke touched rebuilt where that makes them smaller
+// (rebuild.hpp, rebuild_region), so the tree stays in check over many strokes.
+
 Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
-  return work - sweep(tool, poses);
+  const Solid swept = sweep(tool, poses);
+  return rebuild_region(work - swept, swept);
 }
 
 Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
-  return work | sweep(tool, poses);
+  const Solid swept = sweep(tool, poses);
+  return rebuild_region(work | swept, swept);
 }
 
 Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
-  return work - sweep(tool, path);
+  const Solid swept = sweep(tool, path);
+  return rebuild_region(work - swept, swept);
 }
 
 Solid add(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
-  return work | sweep(tool, path);
+  const Solid swept = sweep(tool, path);
+  return rebuild_region(work | swept, swept);
 }
 
 Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
-  return std::move(work) - sweep(tool, poses);
+  const Solid swept = sweep(tool, poses);
+  return rebuild_region(std::move(work) - swept, swept);
 }
 
 Solid add(Solid&& work, const Solid& tool, std::span<const Eigen::Isometry3d> poses) {
-  return std::move(work) | sweep(tool, poses);
+  const Solid swept = sweep(tool, poses);
+  return rebuild_region(std::move(work) | swept, swept);
 }
 
 Solid carve(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
-  return std::move(work) - sweep(tool, path);
+  const Solid swept = sweep(tool, path);
+  return rebuild_region(std::move(work) - swept, swept);
 }
 
 Solid add(Solid&& work, const Solid& tool, std::span<const Eigen::Vector3d> path) {
-  return std::move(work) | sweep(tool, path);
+  const Solid swept = sweep(tool, path);
+  return rebuild_region(std::move(work) | swept, swept);
 }
 
 }  // namespace sculpt

@@ -242,12 +242,18 @@ TEST(Sweep, InPlaceStrokesReuseTheFreedStorage) {
       path.emplace_back(0.6 * std::cos(t), 0.6 * std::sin(t), 0.1 * std::sin(2.0 * t) - (k % 3 == 2 ? 0.3 : 0.0));
     }
     const Solid copied = k % 3 == 2 ? add(work, ball, path) : carve(work, ball, path);
-    work = k % 3 == 2 ? add(std::move(work), ball, path) : carve(std::move(work), ball, path);
+    // In place, carve and add in their two steps: the set operation, then rebuild_region.
+    const Solid swept = sweep(ball, path);
+    work = k % 3 == 2 ? std::move(work) | swept : std::move(work) - swept;
+    const auto live = std::size_t(tree_stats(work).nodes);
+    RegionRebuildStats rebuilt;
+    work = rebuild_region(std::move(work), swept, {}, &rebuilt);
+    most_live = std::max(most_live, live + std::size_t(rebuilt.nodes_after));
     EXPECT_TRUE((work - copied).is_empty()) << "stroke " << k;
     EXPECT_TRUE((copied - work).is_empty()) << "stroke " << k;
     // Freed slots are taken before the storage grows, so it holds little more than the most
-    // nodes the tree has had (the slots a stroke frees are taken from the next stroke on).
-    most_live = std::max(most_live, std::size_t(tree_stats(work).nodes));
+    // nodes the tree has had at once (the slots a stroke frees are taken from the next stroke
+    // on; a rebuilt subtree's new nodes are made while the old ones are still there).
     EXPECT_LT(double(work.nodes().size()), 1.25 * double(std::max<std::size_t>(most_live, 64))) << "stroke " << k;
     EXPECT_EQ(work.polygons().size(), work.nodes().size()) << "stroke " << k;
   }

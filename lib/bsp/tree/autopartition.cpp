@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <span>
 #include <utility>
 
 #include "bsp/tree/node_polygons.hpp"
@@ -24,13 +25,7 @@ struct Piece {
   std::int32_t outward;  // support, or its opposite for a flipped fragment
 };
 
-struct Node {
-  std::int32_t plane;
-  TreeRef negative = kOut, positive = kOut;
-  bool auxiliary = false;  // a splitting plane that carries no fragment
-  std::int32_t parent = -1;
-  int side = 0;  // of the parent
-};
+using Node = PartitionNode;
 
 // An auxiliary plane with no fragment on one side (ExpectedDepth): that side's status is not
 // known when the node is made. The cell has no boundary there, and the plane carries none, so
@@ -99,8 +94,10 @@ bool half_step_plane(int axis, double c, kernel::Plane& out) {
 
 }  // namespace
 
-Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options) {
-  if (fragments.empty()) return Solid();
+PartitionTree partition_fragments(Arena& arena, const std::vector<BoundaryFragment>& fragments,
+                                  const AutopartitionOptions& options, std::span<const std::int32_t> cell) {
+  PartitionTree tree;
+  if (fragments.empty()) return tree;
   const kernel::PlaneTable& planes = arena.planes;
   // Pieces live in one pool (split parts are appended); frames hold indices into it.
   std::vector<Piece> pool;
@@ -138,14 +135,14 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
     all_points.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) all_points[i] = std::int32_t(i);
   }
-  std::vector<Node> nodes;
+  std::vector<Node>& nodes = tree.nodes;
   std::vector<Frame> stack;
   {
     std::vector<std::int32_t> all(pool.size());
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = std::int32_t(i);
     stack.push_back({std::move(all), -1, 0, std::move(all_points)});
   }
-  TreeRef root = kOut;
+  TreeRef& root = tree.root;
   std::vector<PendingSide> pending_sides;
   std::vector<std::int32_t> path;
   const std::size_t candidates = std::size_t(std::max(1, options.candidates));
@@ -387,6 +384,7 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
           side = a.side;
           up = a.parent;
         }
+        path.insert(path.end(), cell.rbegin(), cell.rend());
         std::reverse(path.begin(), path.end());
         ConvexPolygon cut;
         std::int32_t on = -1;
@@ -433,6 +431,15 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
     }
     (it->empty_side == 0 ? nd.negative : nd.positive) = t;
   }
+  return tree;
+}
+
+Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options) {
+  if (fragments.empty()) return Solid();
+  const kernel::PlaneTable& planes = arena.planes;
+  const PartitionTree tree = partition_fragments(arena, fragments, options, {});
+  const std::vector<Node>& nodes = tree.nodes;
+  const TreeRef root = tree.root;
 
   // Bottom-up into the builder (children have larger indices), with the planes in use.
   TreeBuilder b;
@@ -454,6 +461,20 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
     for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
   }
   return std::move(b).build(made[std::size_t(root)], std::move(fragments), {.nodes_cut_cells = true});
+}
+
+TreeRef autopartition_into(Arena& arena, const std::vector<BoundaryFragment>& fragments, std::span<const std::int32_t> cell,
+                           const AutopartitionOptions& options) {
+  const PartitionTree tree = partition_fragments(arena, fragments, options, cell);
+  if (is_leaf(tree.root)) return tree.root;
+  const auto first = TreeRef(arena.nodes.size());
+  auto slot = [first](TreeRef c) { return is_leaf(c) ? c : first + c; };
+  for (const Node& nd : tree.nodes) {
+    arena.nodes.push_back({nd.plane, slot(nd.negative), slot(nd.positive)});
+    arena.polygons.emplace_back();  // pending: the node cuts its cell
+    arena.polygons.back().support = nd.plane;
+  }
+  return slot(tree.root);
 }
 
 }  // namespace sculpt::bsp::detail

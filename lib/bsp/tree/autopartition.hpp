@@ -31,6 +31,7 @@
 ///   the splits and the cut test are exact. Optionally (`separating_planes`), the scored face planes
 ///   moved past all of the cell's fragments compete as well.
 
+#include <span>
 #include <vector>
 
 #include "bsp/tree/tree_arena.hpp"
@@ -72,6 +73,31 @@ struct AutopartitionOptions {
   /// candidate (the splits themselves are always exact); false: exact scores.
   bool approximate_scores = true;
 };
+
+/// A node of the tree partition_fragments() grows (children: indices into its node list, or leaves).
+struct PartitionNode {
+  std::int32_t plane;
+  TreeRef negative = kOut, positive = kOut;
+  bool auxiliary = false;  ///< a splitting plane that carries no fragment
+  std::int32_t parent = -1;
+  int side = 0;  ///< of the parent
+};
+struct PartitionTree {
+  std::vector<PartitionNode> nodes;  ///< parents before children
+  TreeRef root = kOut;               ///< a leaf only for no fragments
+};
+/// The tree autopartition() builds, as a node list on arena planes (auxiliary planes it chooses
+/// are added to the arena). `cell` (plane indices, root first, the cell on their negative sides)
+/// bounds the region the fragments lie in: empty for the whole space; otherwise the fragments
+/// must be the solid's whole boundary inside that cell (its walls excepted), and the tree gives
+/// the solid there.
+PartitionTree partition_fragments(Arena& arena, const std::vector<BoundaryFragment>& fragments,
+                                  const AutopartitionOptions& options, std::span<const std::int32_t> cell);
+
+/// partition_fragments() appended to arena.nodes (pending polygons: each node cuts its cell);
+/// returns its root, or a leaf for no fragments. The caller links it in.
+TreeRef autopartition_into(Arena& arena, const std::vector<BoundaryFragment>& fragments, std::span<const std::int32_t> cell,
+                           const AutopartitionOptions& options = {});
 
 /// The solid bounded by `fragments`: convex pieces on arena planes (outward normal per `flip`)
 /// that tile a closed, consistently oriented surface without overlaps, such as the boundary of

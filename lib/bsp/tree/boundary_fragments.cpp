@@ -1,6 +1,8 @@
 #include "bsp/tree/boundary_fragments.hpp"
 
 #include <algorithm>
+#include <span>
+#include <utility>
 
 #include "bsp/tree/node_polygons.hpp"
 
@@ -11,16 +13,10 @@ using kernel::Side;
 
 namespace {
 
+// Pushes node polygons down a tree (nodes `nodes`, planes and their opposites in `arena`).
 class Extractor {
  public:
-  explicit Extractor(const Solid& s) : solid_(s) {
-    if (std::any_of(s.polygons().begin(), s.polygons().end(), pending)) {
-      arena_ = with_node_polygons(s);  // its plane table extends the solid's
-      polygons_ = &arena_.polygons;
-    } else {
-      arena_.planes = s.planes();
-    }
-  }
+  Extractor(std::span<const BspNode> nodes, Arena& arena) : nodes_(nodes), arena_(arena) {}
 
   // Pushes `poly` down the subtree `t` and calls out(piece, in) for every leaf reached.
   template <typename Out>
@@ -38,7 +34,7 @@ class Extractor {
         stack_.pop_back();
         continue;
       }
-      const BspNode& n = solid_.nodes()[std::size_t(r)];
+      const BspNode& n = nodes_[std::size_t(r)];
       const Side quick = kernel::box_side(top.box, arena_.planes[n.plane]);
       if (quick == Side::Negative || quick == Side::Positive) {
         top.at = quick == Side::Negative ? n.negative : n.positive;
@@ -66,51 +62,55 @@ class Extractor {
     }
   }
 
-  Fragments run() {
-    Fragments result;
-    std::vector<std::pair<ConvexPolygon, bool>> negative_pieces;
-    // Nodes reachable from the root (storage may hold unreachable nodes, see Solid).
-    std::vector<TreeRef> order;
-    if (!is_leaf(solid_.root())) order.push_back(solid_.root());
-    for (std::size_t j = 0; j < order.size(); ++j) {
-      const BspNode& m = solid_.nodes()[std::size_t(order[j])];
-      if (!is_leaf(m.negative)) order.push_back(m.negative);
-      if (!is_leaf(m.positive)) order.push_back(m.positive);
-    }
-    // Subtree sizes (children come after parents in `order`): the polygon goes first into the
+  // The boundary pieces on the planes of the nodes order[j] (a subtree in breadth-first order:
+  // children after parents), polygon(j) giving node order[j]'s sub-hyperplane: each polygon is
+  // pushed down both subtrees and the pieces with an in-cell on exactly one side are kept.
+  template <typename Polygon>
+  void collect(const std::vector<TreeRef>& order, Polygon&& polygon, std::vector<Fragment>& out) {
+    // Subtree sizes (by position; children come after parents): the polygon goes first into the
     // smaller subtree, so fewer pieces travel through the larger one.
-    std::vector<std::int32_t> size(solid_.nodes().size(), 0);
-    auto size_of = [&](TreeRef r) { return is_leaf(r) ? 0 : size[std::size_t(r)]; };
-    for (auto it = order.rbegin(); it != order.rend(); ++it) {
-      const BspNode& m = solid_.nodes()[std::size_t(*it)];
-      size[std::size_t(*it)] = 1 + size_of(m.negative) + size_of(m.positive);
+    std::vector<std::int32_t> size(order.size(), 1);
+    std::vector<std::size_t> parent(order.size(), 0);
+    {
+      std::size_t next = 1;  // position of the next child met, as in the breadth-first order
+      for (std::size_t j = 0; j < order.size(); ++j) {
+        const BspNode& m = nodes_[std::size_t(order[j])];
+        for (const TreeRef c : {m.negative, m.positive})
+          if (!is_leaf(c)) parent[next++] = j;
+      }
+      for (std::size_t j = order.size(); j-- > 1;) size[parent[j]] += size[j];
     }
-    for (const TreeRef node : order) {
-      const std::size_t i = std::size_t(node);
-      const BspNode& n = solid_.nodes()[i];
+    std::vector<std::int32_t> child_size(2 * order.size(), 0);  // [2j]: negative child's, [2j+1]: positive's
+    {
+      std::size_t next = 1;
+      for (std::size_t j = 0; j < order.size(); ++j) {
+        const BspNode& m = nodes_[std::size_t(order[j])];
+        if (!is_leaf(m.negative)) child_size[2 * j] = size[next++];
+        if (!is_leaf(m.positive)) child_size[2 * j + 1] = size[next++];
+      }
+    }
+    std::vector<std::pair<ConvexPolygon, bool>> negative_pieces;
+    for (std::size_t j = 0; j < order.size(); ++j) {
+      const BspNode& n = nodes_[std::size_t(order[j])];
       // An auxiliary plane carries no face of any operand, hence no boundary (the boundary of
       // a regularized set operation lies on its operands' boundaries).
-      if (solid_.planes().auxiliary(n.plane)) continue;
-      const bool neg_first = size_of(n.negative) <= size_of(n.positive);
+      if (arena_.planes.auxiliary(n.plane)) continue;
+      const bool neg_first = child_size[2 * j] <= child_size[2 * j + 1];
       const TreeRef first = neg_first ? n.negative : n.positive, second = neg_first ? n.positive : n.negative;
       negative_pieces.clear();
-      push_down(first, (*polygons_)[i],
-                [&](ConvexPolygon p, bool in) { negative_pieces.emplace_back(std::move(p), in); });
+      push_down(first, polygon(j), [&](ConvexPolygon p, bool in) { negative_pieces.emplace_back(std::move(p), in); });
       for (auto& [piece, first_in] : negative_pieces) {
         const bool fi = first_in;
         push_down(second, std::move(piece), [&](ConvexPolygon p, bool second_in) {
-          if (fi != second_in) result.fragments.push_back({std::move(p), neg_first ? second_in : fi});
+          if (fi != second_in) out.push_back({std::move(p), neg_first ? second_in : fi});
         });
       }
     }
-    result.planes = std::move(arena_.planes);
-    return result;
   }
 
  private:
-  const Solid& solid_;
-  Arena arena_;
-  const std::vector<ConvexPolygon>* polygons_ = &solid_.polygons();
+  std::span<const BspNode> nodes_;
+  Arena& arena_;
   struct Piece {
     TreeRef at;
     ConvexPolygon polygon;
@@ -119,8 +119,75 @@ class Extractor {
   std::vector<Piece> stack_;
 };
 
+// The nodes of the subtree at `root`, breadth-first (children after parents).
+std::vector<TreeRef> breadth_first(std::span<const BspNode> nodes, TreeRef root) {
+  std::vector<TreeRef> order;
+  if (!is_leaf(root)) order.push_back(root);
+  for (std::size_t j = 0; j < order.size(); ++j) {
+    const BspNode& m = nodes[std::size_t(order[j])];
+    if (!is_leaf(m.negative)) order.push_back(m.negative);
+    if (!is_leaf(m.positive)) order.push_back(m.positive);
+  }
+  return order;
+}
+
 }  // namespace
 
-Fragments boundary_fragments(const Solid& solid) { return Extractor(solid).run(); }
+Fragments boundary_fragments(const Solid& solid) {
+  // Nodes reachable from the root (storage may hold unreachable nodes, see Solid).
+  const std::vector<TreeRef> order = breadth_first(solid.nodes(), solid.root());
+  Arena arena;
+  const PolygonStore* polygons = &solid.polygons();
+  if (std::any_of(solid.polygons().begin(), solid.polygons().end(), pending)) {
+    arena = with_node_polygons(solid);  // its plane table extends the solid's
+    polygons = &arena.polygons;
+  } else {
+    arena.planes = solid.planes();
+  }
+  Fragments result;
+  Extractor(solid.nodes(), arena).collect(order, [&](std::size_t j) { return (*polygons)[std::size_t(order[j])]; },
+                                          result.fragments);
+  result.planes = std::move(arena.planes);
+  return result;
+}
+
+std::vector<Fragment> subtree_boundary(Arena& arena, TreeRef root, std::span<const std::int32_t> path) {
+  std::vector<Fragment> out;
+  const std::vector<TreeRef> order = breadth_first(arena.nodes, root);
+  if (order.empty()) return out;
+  // The subtree's polygons, pending ones computed from their paths (depth-first, parents first).
+  std::vector<ConvexPolygon> polygons(order.size());
+  {
+    struct Frame {
+      std::size_t position;  // in `order`
+      std::size_t depth;     // path length of the parent's cell
+      std::int32_t add;      // half-space this node adds to its parent's path, -1 at the root
+    };
+    std::vector<std::int32_t> cell(path.begin(), path.end());
+    std::vector<Frame> stack{{0, cell.size(), -1}};
+    std::size_t next = 1;  // breadth-first positions of children, assigned as in breadth_first
+    std::vector<std::pair<std::size_t, std::size_t>> children(order.size(), {0, 0});
+    for (std::size_t j = 0; j < order.size(); ++j) {
+      const BspNode& m = arena.nodes[std::size_t(order[j])];
+      if (!is_leaf(m.negative)) children[j].first = next++;
+      if (!is_leaf(m.positive)) children[j].second = next++;
+    }
+    while (!stack.empty()) {
+      const Frame f = stack.back();
+      stack.pop_back();
+      cell.resize(f.depth);
+      if (f.add >= 0) cell.push_back(f.add);
+      const TreeRef t = order[f.position];
+      const BspNode n = arena.nodes[std::size_t(t)];
+      polygons[f.position] = pending(arena.polygons[std::size_t(t)]) ? node_polygon(arena, n.plane, cell)
+                                                                     : arena.polygons[std::size_t(t)];
+      if (children[f.position].second) stack.push_back({children[f.position].second, cell.size(), arena.opposite(n.plane)});
+      if (children[f.position].first) stack.push_back({children[f.position].first, cell.size(), n.plane});
+    }
+  }
+  // arena.nodes does not change while pieces are pushed (only planes are added).
+  Extractor(arena.nodes, arena).collect(order, [&](std::size_t j) { return std::move(polygons[j]); }, out);
+  return out;
+}
 
 }  // namespace sculpt::bsp::detail

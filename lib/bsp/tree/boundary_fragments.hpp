@@ -4,6 +4,7 @@
 /// Naylor et al. 1990 sec. 5): each node's sub-hyperplane is pushed down both subtrees and the
 /// pieces with an in-cell on exactly one side are kept.
 
+#include <span>
 #include <vector>
 
 #include "bsp/tree/tree_arena.hpp"
@@ -19,5 +20,11 @@ struct Fragments {
 };
 
 Fragments boundary_fragments(const Solid& solid);
+
+/// The boundary of the solid in arena inside the cell of the subtree at `root`, whose path from
+/// the tree's root is `path` (plane indices, root first, the cell on their negative sides): the
+/// pieces of the subtree's node polygons (pending ones computed from their paths) with an in-cell
+/// on exactly one side. On arena planes (opposites are added); the arena's nodes are not changed.
+std::vector<Fragment> subtree_boundary(Arena& arena, TreeRef root, std::span<const std::int32_t> path);
 
 }  // namespace sculpt::bsp::detail

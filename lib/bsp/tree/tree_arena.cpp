@@ -130,7 +130,7 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
   const std::size_t n0 = added.first_node;
   const std::int32_t p0 = added.first_plane;
   std::vector<BspNode>& nodes = arena.nodes;
-  std::vector<ConvexPolygon>& polygons = arena.polygons;
+  PolygonStore& polygons = arena.polygons;
   FreeSlots& free = arena.free;
   // 1. The added nodes the result reaches, in pre-order: they hang below the reused nodes of
   // tree a (or are the root); an added node's children are added nodes (partitioned subtrees of
@@ -344,6 +344,18 @@ void scan_for_free_planes(Arena& arena, std::size_t budget) {
   marks.clear();
 }
 
+Solid finish_in_place(Arena& arena, TreeRef root) {
+  constexpr std::size_t kScanPerNode = 2;
+  constexpr std::size_t kMinScanSlice = 512;
+  constexpr std::size_t kMinCompactNodes = 4096;
+  if (is_leaf(root)) return Solid::leaf(root == kIn);
+  if (arena.free.nodes.size() > arena.nodes.size() / 2 && arena.nodes.size() > kMinCompactNodes)
+    return compact(arena, root, {.keep_capacity = true});
+  scan_for_free_planes(arena, std::max(kMinScanSlice, kScanPerNode * arena.nodes_kept_and_freed));
+  return SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), root,
+                           std::move(arena.free), std::move(arena.boundary), std::move(arena.boundary_boxes));
+}
+
 Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
   if (is_leaf(root)) return Solid::leaf(root == kIn);
   // Post-order: a node is emitted after both children, so collapses propagate upwards.
@@ -392,7 +404,7 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
   auto flip = [k](TreeRef r) { return is_leaf(r) ? r : TreeRef(k - 1 - std::size_t(r)); };
   // Polygons by cycles of the permutation: `result` holds each kept node's post-order number,
   // negative for the others; a slot whose number is cleared to -1 is free or final.
-  std::vector<ConvexPolygon>& polygons = arena.polygons;
+  PolygonStore& polygons = arena.polygons;
   auto target = [&](std::size_t i) { return result[i] < 0 ? std::size_t(-1) : k - 1 - std::size_t(result[i]); };
   ConvexPolygon carried[2];  // the polygon on its way and the one it displaces (two moves each)
   for (std::size_t i = 0; i < polygons.size(); ++i) {

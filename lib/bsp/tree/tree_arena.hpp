@@ -12,7 +12,7 @@ namespace sculpt::bsp::detail {
 struct Arena {
   kernel::PlaneTable planes;
   std::vector<BspNode> nodes;
-  std::vector<kernel::ConvexPolygon> polygons;
+  PolygonStore polygons;
   std::vector<std::int32_t> opposite_of;  ///< cache: index of the opposite plane, or -1
 
   /// Index of the plane opposite to plane i (added on first use).
@@ -90,6 +90,16 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added);
 /// scan, so an unmarked plane is unreferenced when the scan ends, however many operations it
 /// spanned. Requires every node slot the tree does not reach to be free (cleared).
 void scan_for_free_planes(Arena& arena, std::size_t budget);
+
+/// The solid an in-place operation leaves in `arena` (adopted, then reclaim_added; `root` is
+/// what reclaim_added returned), taking over the arena's storage. Free plane slots are found by
+/// a scan that advances by a slice per operation (scan_for_free_planes): 2 node slots or
+/// fragments per node the operation kept or freed, at least 512, so no operation reads the whole
+/// tree and its cost follows what it touched; the planes an operation leaves unreferenced are
+/// found after about tree size / (2 * nodes touched) operations (docs/sculpting.md, "Strokes").
+/// When more than half of the node slots are free (the operation cut away most of the tree), the
+/// solid is compacted instead: that costs about what freeing them did.
+Solid finish_in_place(Arena& arena, TreeRef root);
 
 /// Flips in and out leaves of the subtree at `root` in place (explicit stack).
 void complement_in_place(Arena& arena, TreeRef& root);

@@ -2,11 +2,13 @@
 // carved into the goblet in at most 50 ms, and still at most 50 ms per stroke after 100 strokes):
 // 100 carving strokes, each along a different 20-segment arc around the goblet's bowl, with the
 // time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
-//   bench_sculpt [--strokes N] [--rebuild-every K] [--compare-old] [--script]
-//   (K: rebuild the tree from the boundary every K strokes; --script: the same strokes also through
+//   bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--repeat-stroke K] [--rebuild-every K] [--compare-old] [--script]
+//   (--no-tidy: without the stroke's last step, the rebuild of the subtrees it touched
+//   (rebuild_region), which carve and add do; --tidy-nodes N: its max_nodes and max_subtree_nodes;
+//   --repeat-stroke K: stroke K's subtraction 20 more times on copies of the workpiece, for a profiler; K: rebuild the tree from the boundary every K strokes; --script: the same strokes also through
 //   the interpreter, `work = carve(work, ball, path)` (handed over, in place) and, with another
 //   variable holding the workpiece during the stroke, the copying path, side by side per stroke)
-// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h>
+// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> tidy_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h>
 //            storage_nodes=<node slots> planes=<plane table size> fragments=<boundary fragments> volume=<v>
 //          bench impl=sculpt|subtract case=distribution ... (whole strokes; the subtraction alone)
 //          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m> ... strokes_over_50ms=<n>
@@ -115,14 +117,20 @@ int main(int argc, char** argv) {
   int rebuild_every = 0;  // 0: never
   bool compare_old = false;
   bool script = false;
+  bool tidy = true;
+  RegionRebuildOptions tidy_options;
+  int repeat_stroke = 0;  // --repeat-stroke K: stroke K's subtraction again 20 times on copies (for profilers)
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--strokes" && i + 1 < argc) strokes = std::stoi(argv[++i]);
     else if (a == "--rebuild-every" && i + 1 < argc) rebuild_every = std::stoi(argv[++i]);
     else if (a == "--compare-old") compare_old = true;
     else if (a == "--script") script = true;
+    else if (a == "--no-tidy") tidy = false;
+    else if (a == "--repeat-stroke" && i + 1 < argc) repeat_stroke = std::stoi(argv[++i]);
+    else if (a == "--tidy-nodes" && i + 1 < argc) tidy_options.max_nodes = tidy_options.max_subtree_nodes = std::stoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--rebuild-every K] [--compare-old] [--script]\n");
+      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--repeat-stroke K] [--rebuild-every K] [--compare-old] [--script]\n");
       return 2;
     }
   }
@@ -131,7 +139,7 @@ int main(int argc, char** argv) {
   Solid work_old = work;  // carved the old way with --compare-old
   const Eigen::AlignedBox3d box = bounding_box(work);
   const Solid ball = sphere(0.15, {.segments = 16});
-  std::vector<double> cpu, sweep_cpu, subtract_cpu, rebuild_cpu, old_cpu, script_cpu, copy_cpu;
+  std::vector<double> cpu, sweep_cpu, subtract_cpu, tidy_cpu, rebuild_cpu, old_cpu, script_cpu, copy_cpu;
   // --script: two sessions, each with the goblet in `work` and the ball in `ball`.
   std::ostringstream script_out;
   language::Interpreter session({.out = &script_out}), copying({.out = &script_out});
@@ -151,20 +159,35 @@ int main(int argc, char** argv) {
       const double t = start + 1.2 * i / 20;
       path.emplace_back(r * std::cos(t), r * std::sin(t), z + 0.05 * std::sin(3 * t));
     }
+    if (k + 1 == repeat_stroke) {
+      const Solid swept = sweep(ball, path);
+      for (int r = 0; r < 20; ++r) {
+        Solid copy = work;
+        const double c0 = cpu_ms();
+        copy = std::move(copy) - swept;
+        std::printf("bench impl=sculpt case=repeat_%d subtract_cpu_ms=%.2f\n", k + 1, cpu_ms() - c0);
+      }
+    }
+    const std::size_t capacity_before = work.polygons().capacity();
     const auto wall0 = Clock::now();
     const double cpu0 = cpu_ms();
-    // carve(std::move(work), ball, path), in its two steps, timed separately.
+    // carve(std::move(work), ball, path), in its three steps, timed separately.
     const Solid swept = sweep(ball, path);
     const double cpu1 = cpu_ms();
     work = std::move(work) - swept;
+    const double cpu2 = cpu_ms();
+    RegionRebuildStats tidied;
+    if (tidy) work = rebuild_region(std::move(work), swept, tidy_options, &tidied);
     const double c = cpu_ms() - cpu0;
     sweep_cpu.push_back(cpu1 - cpu0);
-    subtract_cpu.push_back(c - (cpu1 - cpu0));
+    subtract_cpu.push_back(cpu2 - cpu1);
+    tidy_cpu.push_back(c - (cpu2 - cpu0));
     const double w = std::chrono::duration<double, std::milli>(Clock::now() - wall0).count();
     cpu.push_back(c);
     if (c > 50)
-      std::printf("bench impl=sculpt case=slow_stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f storage_nodes=%zu planes=%d\n", k + 1, c,
-                  cpu1 - cpu0, c - (cpu1 - cpu0), work.nodes().size(), work.planes().size());
+      std::printf("bench impl=sculpt case=slow_stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f tidy_cpu_ms=%.2f storage_nodes=%zu planes=%d capacity=%zu->%zu\n",
+                  k + 1, c, sweep_cpu.back(), subtract_cpu.back(), tidy_cpu.back(), work.nodes().size(), work.planes().size(),
+                  capacity_before, work.polygons().capacity());
     if (script) {
       session.define("path", point_list(path));
       copying.define("path", point_list(path));
@@ -191,10 +214,11 @@ int main(int argc, char** argv) {
     }
     if (k % 10 == 0 || k + 1 == strokes) {
       const TreeStats t = tree_stats(work);
-      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d "
-                  "storage_nodes=%zu planes=%d fragments=%zu volume=%.6f\n",
-                  k + 1, c, sweep_cpu.back(), subtract_cpu.back(), w, t.nodes, t.height, work.nodes().size(), work.planes().size(),
-                  work.boundary().size(), volume(work));
+      std::printf("bench impl=sculpt case=stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f tidy_cpu_ms=%.2f wall_ms=%.2f nodes=%d height=%d "
+                  "storage_nodes=%zu planes=%d fragments=%zu volume=%.6f rebuilt=%d/%d rebuilt_nodes=%d->%d\n",
+                  k + 1, c, sweep_cpu.back(), subtract_cpu.back(), tidy_cpu.back(), w, t.nodes, t.height, work.nodes().size(),
+                  work.planes().size(), work.boundary().size(), volume(work), tidied.rebuilt, tidied.candidates, tidied.nodes_before,
+                  tidied.nodes_after);
       if (compare_old) {
         const TreeStats o = tree_stats(work_old);
         std::printf("bench impl=old case=stroke_%d cpu_ms=%.2f nodes=%d height=%d volume=%.6f\n", k + 1, old_cpu.back(), o.nodes,
@@ -207,14 +231,15 @@ int main(int argc, char** argv) {
   const std::vector<double> last(cpu.end() - std::min<std::size_t>(10, cpu.size()), cpu.end());
   const auto over_50 = std::count_if(cpu.begin(), cpu.end(), [](double c) { return c > 50; });
   std::printf("bench impl=sculpt case=strokes strokes=%d median_cpu_ms=%.2f max_cpu_ms=%.2f first10_cpu_ms=%.2f last10_cpu_ms=%.2f "
-              "median_sweep_cpu_ms=%.2f median_subtract_cpu_ms=%.2f strokes_over_50ms=%d\n",
+              "median_sweep_cpu_ms=%.2f median_subtract_cpu_ms=%.2f median_tidy_cpu_ms=%.2f strokes_over_50ms=%d\n",
               strokes, median(cpu), *std::max_element(cpu.begin(), cpu.end()), median(first), median(last), median(sweep_cpu),
-              median(subtract_cpu), int(over_50));
+              median(subtract_cpu), median(tidy_cpu), int(over_50));
   if (!rebuild_cpu.empty())
     std::printf("bench impl=sculpt case=rebuilds count=%zu median_cpu_ms=%.2f max_cpu_ms=%.2f\n", rebuild_cpu.size(), median(rebuild_cpu),
                 *std::max_element(rebuild_cpu.begin(), rebuild_cpu.end()));
   distribution("sculpt", cpu);
   distribution("subtract", subtract_cpu);
+  distribution("tidy", tidy_cpu);
   if (script) {
     distribution("script", script_cpu);
     distribution("script_copy", copy_cpu);
