@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "base/errors.hpp"
+#include "base/memory_policy.hpp"
 #include "interactive.hpp"
 #include "language/interpreter.hpp"
 
@@ -95,6 +96,7 @@ Value definition_value(Interpreter& interpreter, const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sculpt::keep_freed_memory();  // strokes reuse what the previous one freed (base/memory_policy.hpp)
   std::vector<Job> jobs;
   std::vector<std::pair<std::string, std::string>> definitions;
   sculpt::kernel::Grid grid;

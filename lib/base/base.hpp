@@ -1,7 +1,9 @@
 #pragma once
 /// \file base.hpp
-/// Umbrella header of lib/base: typed errors shared by every layer, and a container.
+/// Umbrella header of lib/base: typed errors shared by every layer, a container, the memory policy
+/// of executables.
 /// Every public header of the layer (the headers directly in lib/base/).
 
 #include "base/chunked_vector.hpp"
 #include "base/errors.hpp"
+#include "base/memory_policy.hpp"

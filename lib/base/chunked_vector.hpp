@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <compare>
 #include <cstddef>
 #include <iterator>
 #include <memory>
@@ -103,30 +104,44 @@ class ChunkedVector {
   template <bool Const>
   class Iterator {
    public:
-    using iterator_category = std::forward_iterator_tag;
+    using iterator_category = std::random_access_iterator_tag;
     using value_type = T;
     using difference_type = std::ptrdiff_t;
     using pointer = std::conditional_t<Const, const T*, T*>;
     using reference = std::conditional_t<Const, const T&, T&>;
     using Owner = std::conditional_t<Const, const ChunkedVector, ChunkedVector>;
     Iterator() = default;
-    Iterator(Owner* owner, std::size_t i) : owner_(owner), i_(i) {}
-    reference operator*() const { return (*owner_)[i_]; }
-    pointer operator->() const { return &(*owner_)[i_]; }
-    Iterator& operator++() {
-      ++i_;
-      return *this;
-    }
+    Iterator(Owner* owner, std::size_t i) : owner_(owner), i_(std::ptrdiff_t(i)) {}
+    reference operator*() const { return (*owner_)[std::size_t(i_)]; }
+    pointer operator->() const { return &**this; }
+    reference operator[](difference_type d) const { return (*owner_)[std::size_t(i_ + d)]; }
+    Iterator& operator++() { return *this += 1; }
+    Iterator& operator--() { return *this -= 1; }
     Iterator operator++(int) {
       Iterator old = *this;
       ++i_;
       return old;
     }
+    Iterator operator--(int) {
+      Iterator old = *this;
+      --i_;
+      return old;
+    }
+    Iterator& operator+=(difference_type d) {
+      i_ += d;
+      return *this;
+    }
+    Iterator& operator-=(difference_type d) { return *this += -d; }
+    friend Iterator operator+(Iterator a, difference_type d) { return a += d; }
+    friend Iterator operator+(difference_type d, Iterator a) { return a += d; }
+    friend Iterator operator-(Iterator a, difference_type d) { return a -= d; }
+    friend difference_type operator-(const Iterator& a, const Iterator& b) { return a.i_ - b.i_; }
     friend bool operator==(const Iterator& a, const Iterator& b) { return a.i_ == b.i_; }
+    friend auto operator<=>(const Iterator& a, const Iterator& b) { return a.i_ <=> b.i_; }
 
    private:
     Owner* owner_ = nullptr;
-    std::size_t i_ = 0;
+    difference_type i_ = 0;
   };
   using iterator = Iterator<false>;
   using const_iterator = Iterator<true>;

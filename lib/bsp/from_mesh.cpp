@@ -141,7 +141,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
   // Thibault & Naylor 1987 (autopartition.hpp): each candidate scored against every polygon.
   bsp::detail::Arena arena;
   arena.planes = std::move(table);
-  std::vector<BoundaryFragment> fragments;
+  FragmentList fragments;
   fragments.reserve(polys.size());
   for (ConvexPolygon& p : polys) fragments.push_back({std::move(p), false});
   Solid solid = bsp::detail::autopartition(arena, std::move(fragments),

@@ -54,7 +54,7 @@ Solid box(const Eigen::Vector3d& min, const Eigen::Vector3d& max, const kernel::
   for (const Plane& p : value) faces.push_back(b.add_plane(p));
   // The six faces, carried by the solid: face 2a + s (axis a, s = 0 for +, 1 for -) has the four
   // faces of the other two axes as edges, counter-clockwise about its outward normal.
-  std::vector<BoundaryFragment> boundary;
+  FragmentList boundary;
   for (int axis = 0; axis < 3; ++axis)
     for (int side = 0; side < 2; ++side) {
       const int u = (axis + 1) % 3, v = (axis + 2) % 3;  // (u, v, axis) right-handed

@@ -16,7 +16,7 @@ Solid rebuild_from_boundary(const Solid& solid) {
   if (is_leaf(solid.root())) return solid;
   Arena arena;
   (void)arena.append(solid);
-  std::vector<BoundaryFragment> fragments = arena.boundary_of(solid);
+  FragmentList fragments = arena.boundary_of(solid);
   if (fragments.empty()) return solid;  // no boundary: a leaf in effect
   return bsp::detail::SolidAccess::at_grid(bsp::detail::autopartition(arena, std::move(fragments)), solid.grid());
 }
@@ -55,6 +55,10 @@ Solid rebuild_region(Solid&& solid, const Eigen::AlignedBox3d& region, const Reg
   RegionRebuildStats& st = stats ? *stats : local;
   st = {};
   if (is_leaf(solid.root()) || region.isEmpty()) return std::move(solid);
+  if (solid.has_boundary()) {  // the tree's nodes per fragment, without reading the tree
+    const std::size_t live = solid.nodes().size() - bsp::detail::SolidAccess::free_slots(solid).nodes.size();
+    if (double(live) <= options.above_nodes_per_fragment * double(solid.boundary().size())) return std::move(solid);
+  }
   const kernel::Grid grid = solid.grid();
   kernel::CornerBox box;  // the region in grid units, widened by a step (box_side is conservative)
   for (int a = 0; a < 3; ++a) {
@@ -109,7 +113,7 @@ Solid rebuild_region(Solid&& solid, const Eigen::AlignedBox3d& region, const Reg
   for (const Candidate& c : candidates) {
     if (c.size > budget) continue;
     budget -= c.size;
-    const std::vector<BoundaryFragment> fragments = bsp::detail::subtree_boundary(arena, c.node, c.path);
+    const FragmentList fragments = bsp::detail::subtree_boundary(arena, c.node, c.path);
     if (fragments.empty()) continue;  // no boundary in the cell: left as it is
     // A tree from n fragments has about 0.55-0.8 n nodes (the goblet's strokes): a subtree with
     // about as many nodes as fragments is not rebuilt (that would not reach keep_below).

@@ -26,6 +26,9 @@ struct RegionRebuildOptions {
   int max_nodes = 2048;
   /// A rebuilt subtree replaces the old one only if it has at most this share of its nodes.
   double keep_below = 0.75;
+  /// Nothing is rebuilt while the tree has at most this many nodes per boundary fragment of the
+  /// solid (0: always look; a solid that carries no boundary is always looked at).
+  double above_nodes_per_fragment = 0;
   /// The nodes a rebuilt subtree is expected to have per boundary fragment in its cell: a
   /// candidate whose fragments predict more than keep_below of its nodes is not rebuilt.
   double nodes_per_fragment = 0.6;

@@ -254,8 +254,8 @@ class Merger {
 // The boundary of op(a, b) (to arena.boundary), then the merged tree; returns its root. Where the
 // result out of a does not depend on b (op[0][*] constant), b only matters inside a: b's planes
 // with a on one closed side are dropped first (extent_pruning.hpp).
-TreeRef merge_operands(Arena& arena, TreeRef ra, std::vector<BoundaryFragment> fa, bsp::detail::FragmentBoxes boxes, TreeRef rb,
-                       const std::vector<BoundaryFragment>& fb, std::size_t b_nodes, const bool op[2][2]) {
+TreeRef merge_operands(Arena& arena, TreeRef ra, FragmentList fa, bsp::detail::FragmentBoxes boxes, TreeRef rb,
+                       const FragmentList& fb, std::size_t b_nodes, const bool op[2][2]) {
   std::optional<bsp::detail::ExtentSides> sides;
   if (op[0][0] == op[0][1] && !is_leaf(rb)) {
     bsp::detail::complete_boxes(fa, boxes);
@@ -286,9 +286,9 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   arena.nodes.reserve(a.nodes().size() + 5 * b.nodes().size());
   arena.polygons.reserve(a.nodes().size() + 5 * b.nodes().size());
   const TreeRef ra = arena.append(a);
-  std::vector<BoundaryFragment> fa = arena.boundary_of(a);
+  FragmentList fa = arena.boundary_of(a);
   const TreeRef rb = arena.append(b);
-  const std::vector<BoundaryFragment> fb = arena.boundary_of(b);
+  const FragmentList fb = arena.boundary_of(b);
   const TreeRef r = merge_operands(arena, ra, std::move(fa), bsp::detail::SolidAccess::boundary_boxes(a), rb, fb,
                                    b.nodes().size(), op);
   return bsp::detail::compact(arena, r);
@@ -305,7 +305,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   const TreeRef ra = arena.adopt(std::move(x));
   const bsp::detail::AddedStorage added{
       .first_plane = arena.planes.size(), .first_node = arena.nodes.size(), .all_fragments = extracted.has_value()};
-  std::vector<BoundaryFragment> fa;
+  FragmentList fa;
   if (extracted) {
     const std::int32_t own = arena.planes.size();
     std::vector<std::int32_t> extra;
@@ -325,7 +325,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
     fa = std::move(*arena.boundary);
   }
   const TreeRef rb = arena.append(y);
-  const std::vector<BoundaryFragment> fb = arena.boundary_of(y);
+  const FragmentList fb = arena.boundary_of(y);
   TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, y.nodes().size(), table);
   return bsp::detail::finish_in_place(arena, bsp::detail::reclaim_added(arena, r, added));
 }

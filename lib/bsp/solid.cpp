@@ -7,7 +7,7 @@ namespace sculpt {
 
 Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
              PolygonStore polygons, TreeRef root, FreeSlots free,
-             std::optional<std::vector<BoundaryFragment>> boundary, FragmentBoxes boundary_boxes)
+             std::optional<FragmentList> boundary, FragmentBoxes boundary_boxes)
     : planes_(std::move(planes)), nodes_(std::move(nodes)), polygons_(std::move(polygons)), root_(root),
       free_(std::move(free)),
       boundary_(std::move(boundary)),
@@ -27,13 +27,13 @@ Solid::Storage Solid::release() && {
   polygons_.clear();
   root_ = kOut;
   free_ = {};
-  boundary_ = std::vector<BoundaryFragment>{};
+  boundary_ = FragmentList{};
   boundary_boxes_ = {};
   return s;
 }
 
-const std::vector<BoundaryFragment>& Solid::boundary() const {
-  static const std::vector<BoundaryFragment> none;
+const FragmentList& Solid::boundary() const {
+  static const FragmentList none;
   return boundary_ ? *boundary_ : none;
 }
 

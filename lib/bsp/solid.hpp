@@ -57,6 +57,9 @@ struct BoundaryFragment {
   kernel::ConvexPolygon polygon;
   bool flip = false;  ///< true: the outward normal is the plane's negative normal
 };
+/// Boundary fragments: indexed like a vector, never relocated as the list grows (in-place set
+/// operations append to a workpiece's boundary; base/chunked_vector.hpp).
+using FragmentList = ChunkedVector<BoundaryFragment>;
 
 /// The node polygons of a tree: indexed like a vector, never relocated as it grows (see
 /// base/chunked_vector.hpp; in-place set operations append to a workpiece's polygons).
@@ -82,7 +85,7 @@ class Solid {
   /// True if the solid carries its boundary fragments (results of set operations, leaves).
   [[nodiscard]] bool has_boundary() const { return boundary_.has_value(); }
   /// The carried boundary fragments (planes of planes()); empty unless has_boundary().
-  [[nodiscard]] const std::vector<BoundaryFragment>& boundary() const;
+  [[nodiscard]] const FragmentList& boundary() const;
 
  private:
   friend struct bsp::detail::SolidAccess;
@@ -95,7 +98,7 @@ class Solid {
   /// solid's boundary exactly.
   Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
         PolygonStore polygons, TreeRef root, FreeSlots free = {},
-        std::optional<std::vector<BoundaryFragment>> boundary = std::nullopt,
+        std::optional<FragmentList> boundary = std::nullopt,
         FragmentBoxes boundary_boxes = {});
 
   /// Storage moved out of a solid (which becomes empty), for in-place operations.
@@ -105,7 +108,7 @@ class Solid {
     PolygonStore polygons;
     TreeRef root;
     FreeSlots free;  ///< free node and plane slots (to reuse) and the scan for free planes
-    std::optional<std::vector<BoundaryFragment>> boundary;
+    std::optional<FragmentList> boundary;
     FragmentBoxes boundary_boxes;
   };
   Storage release() &&;
@@ -118,7 +121,7 @@ class Solid {
   /// Node slots nothing reaches and plane slots nothing refers to, taken by the nodes and planes
   /// later in-place operations add (bsp/tree/tree_arena.hpp).
   FreeSlots free_;
-  std::optional<std::vector<BoundaryFragment>> boundary_ = std::vector<BoundaryFragment>{};
+  std::optional<FragmentList> boundary_ = FragmentList{};
   FragmentBoxes boundary_boxes_;
   kernel::Grid grid_;
 };

@@ -76,7 +76,7 @@ Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror =
   if (!solid.has_boundary()) return SolidAccess::at_grid(std::move(b).build(root, BuildOptions{.nodes_cut_cells = true}), grid);
   // An exact map takes the boundary along: same plane triples on the mapped planes. A mirror
   // (negative determinant) reverses the corner order about the mapped support planes.
-  std::vector<BoundaryFragment> boundary;
+  FragmentList boundary;
   boundary.reserve(solid.boundary().size());
   for (const BoundaryFragment& f : solid.boundary()) {
     kernel::ConvexPolygon poly;

@@ -116,7 +116,7 @@ TreeRef TreeBuilder::add_convex_chain(const std::vector<std::int32_t>& face_plan
 
 Solid TreeBuilder::build(TreeRef root) && { return std::move(*this).build(root, BuildOptions{}); }
 
-Solid TreeBuilder::build(TreeRef root, std::vector<BoundaryFragment> boundary, const BuildOptions& options) && {
+Solid TreeBuilder::build(TreeRef root, FragmentList boundary, const BuildOptions& options) && {
   if (unset_ != 0) throw std::logic_error("TreeBuilder: a node made by open_nodes was never set");
   check_child(root, nodes_.size());
   using bsp::detail::SolidAccess;
@@ -134,7 +134,7 @@ Solid TreeBuilder::build(TreeRef root, const BuildOptions& options) && {
 
 // Every node cuts its cell: the tree in pre-order from the root (as laid out, or copied), with
 // pending sub-hyperplanes (node_polygons.hpp).
-Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
+Solid TreeBuilder::build_as_given(TreeRef root, std::optional<FragmentList> boundary) && {
   if (is_leaf(root)) return Solid::leaf(root == kIn);
   const std::size_t room = room_for(nodes_.size());
   std::vector<BspNode> nodes;
@@ -152,7 +152,7 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<std::vector<Bounda
   return bsp::detail::SolidAccess::make(std::move(planes_), std::move(nodes), std::move(polygons), 0, bsp::detail::FreeSlots{}, std::move(boundary));
 }
 
-Solid TreeBuilder::build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) && {
+Solid TreeBuilder::build_with(TreeRef root, std::optional<FragmentList> boundary) && {
   bsp::detail::Arena arena;
   arena.planes = std::move(planes_);
   // Every builder node is kept at most once (unless shared) and adds its plane's opposite.

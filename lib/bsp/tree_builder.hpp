@@ -65,14 +65,14 @@ class TreeBuilder {
   /// As build(root), for a caller that knows the solid's boundary exactly: convex fragments on
   /// this builder's planes that tile the surface between in and out (solid.hpp). The solid
   /// carries it, so set operations need not extract it from the tree.
-  Solid build(TreeRef root, std::vector<BoundaryFragment> boundary, const BuildOptions& options = {}) &&;
+  Solid build(TreeRef root, FragmentList boundary, const BuildOptions& options = {}) &&;
   /// As build(root), with options.
   Solid build(TreeRef root, const BuildOptions& options) &&;
 
  private:
   [[noreturn]] void reject_node(TreeRef node, std::int32_t plane, TreeRef negative, TreeRef positive) const;
-  Solid build_with(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) &&;
-  Solid build_as_given(TreeRef root, std::optional<std::vector<BoundaryFragment>> boundary) &&;
+  Solid build_with(TreeRef root, std::optional<FragmentList> boundary) &&;
+  Solid build_as_given(TreeRef root, std::optional<FragmentList> boundary) &&;
   kernel::PlaneTable planes_;
   std::vector<BspNode> nodes_;
   std::int32_t unset_ = 0;  ///< opened nodes not filled yet

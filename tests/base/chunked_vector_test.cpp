@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <random>
 #include <string>
@@ -43,6 +44,8 @@ TEST(ChunkedVector, RandomOperationsMatchAStdVector) {
     if (!v.empty()) ASSERT_EQ(c.back(), v.back());
   }
   ASSERT_EQ(std::vector<std::string>(c.begin(), c.end()), v);
+  std::sort(c.begin(), c.end());  // random access iterators
+  std::sort(v.begin(), v.end());
   for (std::size_t i = 0; i < v.size(); ++i) ASSERT_EQ(c[i], v[i]);
 }
 

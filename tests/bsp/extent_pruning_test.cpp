@@ -33,7 +33,7 @@ struct Sides {
   bsp::detail::Arena arena;
   bsp::detail::ExtentSides sides;
   TreeRef b = kOut;
-  std::vector<BoundaryFragment> a_faces;  // A's boundary on the arena's planes
+  FragmentList a_faces;  // A's boundary on the arena's planes
   Side of(const kernel::Plane& p) const {  // the side for B's plane equal to p (Both if none)
     for (std::int32_t i = 0; i < arena.planes.size(); ++i)
       if (arena.planes[i] == p && sides.of(i) != Side::Both) return sides.of(i);
@@ -44,9 +44,9 @@ Sides sides_of(const Solid& a, const Solid& b) {
   Sides s;
   const TreeRef ra = s.arena.append(a);
   s.a_faces = s.arena.boundary_of(a);
-  const std::vector<BoundaryFragment>& fa = s.a_faces;
+  const FragmentList& fa = s.a_faces;
   s.b = s.arena.append(b);
-  const std::vector<BoundaryFragment> fb = s.arena.boundary_of(b);
+  const FragmentList fb = s.arena.boundary_of(b);
   FragmentBoxes boxes;
   bsp::detail::complete_boxes(fa, boxes);
   s.sides = bsp::detail::extent_sides(s.arena, ra, fa, boxes, s.b, fb);
@@ -199,7 +199,7 @@ TEST(ExtentPruning, SidesOfManyPlanesMatchEveryCornerExactly) {
     for (std::size_t k = 0; k < others.size(); ++k) {
       SCOPED_TRACE(testing::Message() << "segments " << n << ", other solid " << k);
       Sides s = sides_of(a, others[k]);
-      const std::vector<BoundaryFragment>& fa = s.a_faces;
+      const FragmentList& fa = s.a_faces;
       ASSERT_GT(fa.size(), 1000u);
       // Every plane of B's nodes.
       std::vector<std::int32_t> planes;

@@ -15,7 +15,7 @@ namespace {
 
 struct Operand {
   TreeRef root;
-  std::vector<BoundaryFragment> faces;
+  FragmentList faces;
   CornerBox box;  // around its boundary; invalid: unbounded or unknown
   bool far_in;    // status outside the box (a connected region without boundary)
   // Whether it can matter to every other operand's boundary: its box is unknown, or it is in
@@ -70,9 +70,9 @@ Solid unite_by_boundaries(std::vector<Solid> solids) {
     }
   }
   // Each operand's boundary outside all the others.
-  std::vector<BoundaryFragment> result, kept;
+  FragmentList result, kept;
   for (std::size_t i = 0; i < ops.size(); ++i) {
-    std::vector<BoundaryFragment>& faces = ops[i].faces;
+    FragmentList& faces = ops[i].faces;
     std::sort(near[i].begin(), near[i].end());
     for (const std::size_t j : near[i]) {
       const Operand& o = ops[j];

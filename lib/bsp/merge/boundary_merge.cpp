@@ -20,13 +20,13 @@ int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDro
 
 }  // namespace
 
-void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_faces, FragmentBoxes a_boxes_in,
-                      TreeRef b, const std::vector<BoundaryFragment>& b_faces, const bool op[2][2],
+void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBoxes a_boxes_in,
+                      TreeRef b, const FragmentList& b_faces, const bool op[2][2],
                       const ExtentSides* a_sides) {
   Clipper clip(arena);
   // B's fragments against A's tree. Where A has a face on the same plane region (A's status
   // differs across it), A's fragment stands for both.
-  std::vector<BoundaryFragment> from_b;
+  FragmentList from_b;
   const bool b_matters_inside_a_only = op[0][0] == op[0][1];  // out of A, op does not read B
   for (const BoundaryFragment& f : b_faces) {
     // On a plane with A on one closed side: no interior point of A, so out of A or on A's
@@ -75,7 +75,7 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
     todo.resize(a_faces.size());
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = todo.size() - 1 - i;
   }
-  std::vector<BoundaryFragment> pieces;
+  FragmentList pieces;
   std::vector<std::size_t> changed;  // fragments rewritten in place (below the shortened end)
   std::size_t shortest = a_faces.size();
   // Downwards, so that fragments moved into a freed slot (from the end) are already decided.
@@ -111,7 +111,7 @@ void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_f
     a_boxes.pop_back();
     shortest = std::min(shortest, a_faces.size());
   }
-  for (std::vector<BoundaryFragment>* more : {&pieces, &from_b})
+  for (FragmentList* more : {&pieces, &from_b})
     for (BoundaryFragment& p : *more) {
       a_boxes.push_back(fragment_box(p.polygon));
       a_faces.push_back(std::move(p));

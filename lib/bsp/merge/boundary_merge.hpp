@@ -24,8 +24,8 @@ class ExtentSides;
 /// decided by one box test (one per block of fragments apart from it) without being moved. Call it before merging the trees: the merge reuses their nodes.
 /// With `a_sides` (extent_sides() of A) and an op whose result out of A does not depend on B,
 /// B's fragments on planes with A on one closed side are dropped without being pushed down A.
-void merge_boundaries(Arena& arena, TreeRef a, std::vector<BoundaryFragment> a_faces, FragmentBoxes a_boxes,
-                      TreeRef b, const std::vector<BoundaryFragment>& b_faces, const bool op[2][2],
+void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBoxes a_boxes,
+                      TreeRef b, const FragmentList& b_faces, const bool op[2][2],
                       const ExtentSides* a_sides = nullptr);
 
 }  // namespace sculpt::bsp::detail

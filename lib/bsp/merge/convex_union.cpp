@@ -37,7 +37,7 @@ bool plane_less(const Plane& x, const Plane& y) { return std::tuple(x.a, x.b, x.
 /// `radius` > 0: a quick test that drops a piece without a test against each plane.
 struct Polytope {
   std::vector<std::int32_t> planes;
-  std::vector<BoundaryFragment> faces;
+  FragmentList faces;
   std::vector<GridPoint> vertices;                  ///< the hull's vertices
   std::vector<std::int32_t> sorted_vertices;        ///< their indices, sorted by grid_less
   /// The faces around each vertex (those of the triangles at it): vertex_faces[vertex_start[v] ..
@@ -512,7 +512,7 @@ Solid unite_convex_hulls(const std::vector<std::vector<GridPoint>>& point_sets, 
   for (std::size_t x = 0; x < n; ++x)
     for (std::size_t y = x + 1; y < n && polys[order[y]].box.lo[0] <= polys[order[x]].box.hi[0]; ++y)
       if (overlap(polys[order[x]].box, polys[order[y]].box)) near[order[x]].push_back(order[y]), near[order[y]].push_back(order[x]);
-  std::vector<BoundaryFragment> result;
+  FragmentList result;
   std::vector<Piece> pieces, kept;
   VertexSides sides;
   for (std::size_t i = 0; i < n; ++i) {

@@ -115,7 +115,7 @@ void add_corner_signs(const kernel::PlaneTable& planes, const BoundaryFragment& 
 }
 
 // side_of_corners through the block boxes alone (no hierarchy to build: for few planes).
-Side side_by_blocks(const kernel::PlaneTable& planes, const std::vector<BoundaryFragment>& faces, const FragmentBoxes& boxes,
+Side side_by_blocks(const kernel::PlaneTable& planes, const FragmentList& faces, const FragmentBoxes& boxes,
                     const kernel::Plane& h, Seen seen) {
   const std::size_t w = FragmentBoxes::kBlock;
   for (std::size_t j = 0; j < boxes.blocks.size() && !seen.both(); ++j) {
@@ -141,7 +141,7 @@ Side side_by_blocks(const kernel::PlaneTable& planes, const std::vector<Boundary
 // Boxes (exact-safe, box_side) decide whole groups of fragments; the corners of fragments whose
 // boxes the plane meets are decided by the exact predicates.
 // Through `hierarchy_or_null` if given, else through the block boxes.
-Side side_of_corners(const kernel::PlaneTable& planes, const std::vector<BoundaryFragment>& faces,
+Side side_of_corners(const kernel::PlaneTable& planes, const FragmentList& faces,
                      const FragmentBoxes& boxes, const FragmentHierarchy* hierarchy_or_null, const kernel::Plane& h) {
   Seen seen;
   if (hierarchy_or_null == nullptr) return side_by_blocks(planes, faces, boxes, h, seen);
@@ -178,7 +178,7 @@ Side side_of_corners(const kernel::PlaneTable& planes, const std::vector<Boundar
 // Corners of A's boundary near its extremes along the axes (a corner of each fragment whose box
 // reaches furthest): a plane with witnesses strictly on both sides crosses A at once, without the
 // scan of side_of_corners. Any boundary corners would be correct; extreme ones decide most planes.
-std::vector<kernel::ApproxPoint> witnesses(const std::vector<BoundaryFragment>& faces, const FragmentBoxes& boxes) {
+std::vector<kernel::ApproxPoint> witnesses(const FragmentList& faces, const FragmentBoxes& boxes) {
   std::size_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (std::size_t i = 1; i < boxes.each.size(); ++i)
     for (int k = 0; k < 3; ++k) {
@@ -212,7 +212,7 @@ bool crosses(const std::vector<kernel::ApproxPoint>& witnesses, const kernel::Pl
 
 }  // namespace
 
-void complete_boxes(const std::vector<BoundaryFragment>& faces, FragmentBoxes& boxes) {
+void complete_boxes(const FragmentList& faces, FragmentBoxes& boxes) {
   if (boxes.each.size() != faces.size()) {
     boxes.each.clear();
     boxes.each.reserve(faces.size());
@@ -225,8 +225,8 @@ void complete_boxes(const std::vector<BoundaryFragment>& faces, FragmentBoxes& b
   }
 }
 
-ExtentSides extent_sides(Arena& arena, TreeRef a, const std::vector<BoundaryFragment>& a_faces,
-                         const FragmentBoxes& a_boxes, TreeRef b, const std::vector<BoundaryFragment>& b_faces) {
+ExtentSides extent_sides(Arena& arena, TreeRef a, const FragmentList& a_faces,
+                         const FragmentBoxes& a_boxes, TreeRef b, const FragmentList& b_faces) {
   ExtentSides sides;
   if (is_leaf(a) || is_leaf(b) || a_faces.empty() || a_boxes.each.size() != a_faces.size() ||
       a_boxes.blocks.size() != FragmentBoxes::block_count(a_faces.size()))

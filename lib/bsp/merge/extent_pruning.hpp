@@ -32,8 +32,8 @@ class ExtentSides {
   [[nodiscard]] bool none() const { return one_sided_ == 0; }
 
  private:
-  friend ExtentSides extent_sides(Arena&, TreeRef, const std::vector<BoundaryFragment>&, const FragmentBoxes&,
-                                  TreeRef, const std::vector<BoundaryFragment>&);
+  friend ExtentSides extent_sides(Arena&, TreeRef, const FragmentList&, const FragmentBoxes&,
+                                  TreeRef, const FragmentList&);
   std::vector<std::int32_t> planes_;  // sorted plane indices that were computed
   std::vector<kernel::Side> side_;    // their sides
   std::size_t one_sided_ = 0;
@@ -43,8 +43,8 @@ class ExtentSides {
 /// (root `a`, boundary `a_faces` with complete boxes `a_boxes`, see complete_boxes()). Nothing is
 /// computed (every plane Both) unless A is bounded: its fragments stay off the world box and
 /// its tree is out there.
-ExtentSides extent_sides(Arena& arena, TreeRef a, const std::vector<BoundaryFragment>& a_faces,
-                         const FragmentBoxes& a_boxes, TreeRef b, const std::vector<BoundaryFragment>& b_faces);
+ExtentSides extent_sides(Arena& arena, TreeRef a, const FragmentList& a_faces,
+                         const FragmentBoxes& a_boxes, TreeRef b, const FragmentList& b_faces);
 
 /// Replaces every node of tree `b` whose plane has A on one closed side by its child on that side
 /// (explicit stack) and returns the new root. Nodes below a replaced one keep their planes but
@@ -52,6 +52,6 @@ ExtentSides extent_sides(Arena& arena, TreeRef a, const std::vector<BoundaryFrag
 TreeRef prune_to_extent(Arena& arena, TreeRef b, const ExtentSides& sides);
 
 /// Makes `boxes` the boxes of `faces` (each fragment and each block), computing what is missing.
-void complete_boxes(const std::vector<BoundaryFragment>& faces, FragmentBoxes& boxes);
+void complete_boxes(const FragmentList& faces, FragmentBoxes& boxes);
 
 }  // namespace sculpt::bsp::detail

@@ -83,7 +83,7 @@ std::vector<ApproxPoint> approximate_vertices(const kernel::PlaneTable& planes, 
   return out;
 }
 
-std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring,
+FragmentList ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring,
                                             const std::vector<std::vector<std::int32_t>>& face,
                                             const std::vector<double>& scale) {
   const std::size_t r = ring.size();
@@ -97,7 +97,7 @@ std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<st
   Approximator approximate(planes);
   std::vector<PlaneTriple> triples;
   std::vector<ApproxPoint> at;
-  std::vector<BoundaryFragment> faces;
+  FragmentList faces;
   faces.reserve((r - 1) * std::size_t(n) + 2);
   auto fragments = [&](std::int32_t support, bool flip, std::size_t corners) {  // `corners` triples each
     at.resize(triples.size());

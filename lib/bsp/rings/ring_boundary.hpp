@@ -28,7 +28,7 @@ std::vector<kernel::ApproxPoint> approximate_vertices(const kernel::PlaneTable& 
 /// are caps. `ring[k]` is ring k's plane z - z_k, `face[k]` band k's face planes (builder indices),
 /// `scale[k]` ring k's scale; the opposites of the ring planes below each band are added to `b`.
 /// Each corner carries approximate_vertex(support, p, q) of its own labels (docs/kernel.md).
-std::vector<BoundaryFragment> ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring,
+FragmentList ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring,
                                             const std::vector<std::vector<std::int32_t>>& face,
                                             const std::vector<double>& scale);
 

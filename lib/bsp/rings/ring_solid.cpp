@@ -198,7 +198,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // reach the world box), and each chain face keeps the middle part of its facet inside its wedge
   // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as
   // built. Widened chains may hold faces outside their wedges: those are left to the full build.
-  std::vector<BoundaryFragment> boundary = ring_boundary(b, ring_plane, face_index, scale);
+  FragmentList boundary = ring_boundary(b, ring_plane, face_index, scale);
   return SolidAccess::at_grid(std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors.widened()}), grid);
 }
 

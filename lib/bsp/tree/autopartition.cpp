@@ -94,7 +94,7 @@ bool half_step_plane(int axis, double c, kernel::Plane& out) {
 
 }  // namespace
 
-PartitionTree partition_fragments(Arena& arena, const std::vector<BoundaryFragment>& fragments,
+PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments,
                                   const AutopartitionOptions& options, std::span<const std::int32_t> cell) {
   PartitionTree tree;
   if (fragments.empty()) return tree;
@@ -434,7 +434,7 @@ PartitionTree partition_fragments(Arena& arena, const std::vector<BoundaryFragme
   return tree;
 }
 
-Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options) {
+Solid autopartition(Arena& arena, FragmentList fragments, const AutopartitionOptions& options) {
   if (fragments.empty()) return Solid();
   const kernel::PlaneTable& planes = arena.planes;
   const PartitionTree tree = partition_fragments(arena, fragments, options, {});
@@ -463,7 +463,7 @@ Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const
   return std::move(b).build(made[std::size_t(root)], std::move(fragments), {.nodes_cut_cells = true});
 }
 
-TreeRef autopartition_into(Arena& arena, const std::vector<BoundaryFragment>& fragments, std::span<const std::int32_t> cell,
+TreeRef autopartition_into(Arena& arena, const FragmentList& fragments, std::span<const std::int32_t> cell,
                            const AutopartitionOptions& options) {
   const PartitionTree tree = partition_fragments(arena, fragments, options, cell);
   if (is_leaf(tree.root)) return tree.root;

@@ -91,12 +91,12 @@ struct PartitionTree {
 /// bounds the region the fragments lie in: empty for the whole space; otherwise the fragments
 /// must be the solid's whole boundary inside that cell (its walls excepted), and the tree gives
 /// the solid there.
-PartitionTree partition_fragments(Arena& arena, const std::vector<BoundaryFragment>& fragments,
+PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments,
                                   const AutopartitionOptions& options, std::span<const std::int32_t> cell);
 
 /// partition_fragments() appended to arena.nodes (pending polygons: each node cuts its cell);
 /// returns its root, or a leaf for no fragments. The caller links it in.
-TreeRef autopartition_into(Arena& arena, const std::vector<BoundaryFragment>& fragments, std::span<const std::int32_t> cell,
+TreeRef autopartition_into(Arena& arena, const FragmentList& fragments, std::span<const std::int32_t> cell,
                            const AutopartitionOptions& options = {});
 
 /// The solid bounded by `fragments`: convex pieces on arena planes (outward normal per `flip`)
@@ -105,6 +105,6 @@ TreeRef autopartition_into(Arena& arena, const std::vector<BoundaryFragment>& fr
 /// nodes are not used (only its planes). Empty `fragments` gives the empty solid. With `sample`
 /// at least the number of fragments, each candidate is scored against all of them in order.
 /// The build is deterministic (a fixed seed for sampling).
-Solid autopartition(Arena& arena, std::vector<BoundaryFragment> fragments, const AutopartitionOptions& options = {});
+Solid autopartition(Arena& arena, FragmentList fragments, const AutopartitionOptions& options = {});
 
 }  // namespace sculpt::bsp::detail

@@ -163,7 +163,7 @@ class Clipper {
 
 // The box around a set of fragments (corner boxes), or invalid if a fragment touches the world
 // box (the solid is unbounded there) or has no usable corner approximation.
-inline kernel::CornerBox bounds(const std::vector<BoundaryFragment>& faces) {
+inline kernel::CornerBox bounds(const FragmentList& faces) {
   kernel::CornerBox box;
   box.valid = !faces.empty();
   for (int k = 0; k < 3; ++k) box.lo[k] = 1e300, box.hi[k] = -1e300;

@@ -66,7 +66,7 @@ class Extractor {
   // children after parents), polygon(j) giving node order[j]'s sub-hyperplane: each polygon is
   // pushed down both subtrees and the pieces with an in-cell on exactly one side are kept.
   template <typename Polygon>
-  void collect(const std::vector<TreeRef>& order, Polygon&& polygon, std::vector<Fragment>& out) {
+  void collect(const std::vector<TreeRef>& order, Polygon&& polygon, FragmentList& out) {
     // Subtree sizes (by position; children come after parents): the polygon goes first into the
     // smaller subtree, so fewer pieces travel through the larger one.
     std::vector<std::int32_t> size(order.size(), 1);
@@ -151,8 +151,8 @@ Fragments boundary_fragments(const Solid& solid) {
   return result;
 }
 
-std::vector<Fragment> subtree_boundary(Arena& arena, TreeRef root, std::span<const std::int32_t> path) {
-  std::vector<Fragment> out;
+FragmentList subtree_boundary(Arena& arena, TreeRef root, std::span<const std::int32_t> path) {
+  FragmentList out;
   const std::vector<TreeRef> order = breadth_first(arena.nodes, root);
   if (order.empty()) return out;
   // The subtree's polygons, pending ones computed from their paths (depth-first, parents first).

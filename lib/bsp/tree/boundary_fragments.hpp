@@ -16,7 +16,7 @@ using Fragment = BoundaryFragment;
 
 struct Fragments {
   kernel::PlaneTable planes;  ///< the solid's planes plus opposites created while splitting
-  std::vector<Fragment> fragments;
+  FragmentList fragments;
 };
 
 Fragments boundary_fragments(const Solid& solid);
@@ -25,6 +25,6 @@ Fragments boundary_fragments(const Solid& solid);
 /// the tree's root is `path` (plane indices, root first, the cell on their negative sides): the
 /// pieces of the subtree's node polygons (pending ones computed from their paths) with an in-cell
 /// on exactly one side. On arena planes (opposites are added); the arena's nodes are not changed.
-std::vector<Fragment> subtree_boundary(Arena& arena, TreeRef root, std::span<const std::int32_t> path);
+FragmentList subtree_boundary(Arena& arena, TreeRef root, std::span<const std::int32_t> path);
 
 }  // namespace sculpt::bsp::detail

@@ -64,11 +64,11 @@ TreeRef Arena::adopt(Solid&& solid) {
   return s.root;
 }
 
-std::vector<BoundaryFragment> Arena::boundary_of(const Solid& solid) {
+FragmentList Arena::boundary_of(const Solid& solid) {
   const std::int32_t shift = last_shift_;
   const std::int32_t own = solid.planes().size();
   std::vector<std::int32_t> extra;  // extracted fragments may use opposites beyond the solid's planes
-  auto remap = [&](std::vector<BoundaryFragment>& fragments, const kernel::PlaneTable& from) {
+  auto remap = [&](FragmentList& fragments, const kernel::PlaneTable& from) {
     auto map = [&](std::int32_t p) {
       if (p < 6) return p;
       if (p < own) return p + shift;
@@ -83,7 +83,7 @@ std::vector<BoundaryFragment> Arena::boundary_of(const Solid& solid) {
     }
   };
   if (solid.has_boundary()) {
-    std::vector<BoundaryFragment> out = solid.boundary();
+    FragmentList out = solid.boundary();
     if (shift != 0) remap(out, solid.planes());
     return out;
   }
@@ -193,7 +193,7 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
     }
   }
   // The fragments the operation may have written: changed blocks, and all from a point on.
-  std::vector<BoundaryFragment>* fragments = arena.boundary ? &*arena.boundary : nullptr;
+  FragmentList* fragments = arena.boundary ? &*arena.boundary : nullptr;
   std::vector<std::size_t> written;  // fragment indices, each once
   if (fragments) {
     const std::size_t count = fragments->size();
@@ -439,7 +439,7 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
     arena.nodes.shrink_to_fit();
     polygons.shrink_to_fit();
   }
-  std::optional<std::vector<BoundaryFragment>> boundary;
+  std::optional<FragmentList> boundary;
   FragmentBoxes boxes = std::move(arena.boundary_boxes);
   if (arena.boundary) {
     boundary = std::move(*arena.boundary);

@@ -24,13 +24,13 @@ struct Arena {
   TreeRef adopt(Solid&& solid);
   /// The boundary fragments of a solid already appended (or adopted) last, on arena planes: the
   /// carried ones, or extracted from its tree (boundary_fragments) when it carries none.
-  std::vector<BoundaryFragment> boundary_of(const Solid& solid);
+  FragmentList boundary_of(const Solid& solid);
   /// Of an adopted solid: node slots nothing reaches and plane slots nothing refers to, which
   /// reclaim_added gives to the nodes and planes an operation keeps, and the scan that finds
   /// free plane slots a slice at a time (scan_for_free_planes).
   FreeSlots free;
   /// Boundary of the tree being built, when known; compact() keeps it (and its planes).
-  std::optional<std::vector<BoundaryFragment>> boundary;
+  std::optional<FragmentList> boundary;
   FragmentBoxes boundary_boxes;  ///< of `boundary`, or empty
   /// What the last set operation wrote, for in-place operations (reclaim_added): the nodes of
   /// tree a the merge reused (their children and pending polygons may be written), in pre-order;

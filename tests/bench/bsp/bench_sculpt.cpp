@@ -2,10 +2,11 @@
 // carved into the goblet in at most 50 ms, and still at most 50 ms per stroke after 100 strokes):
 // 100 carving strokes, each along a different 20-segment arc around the goblet's bowl, with the
 // time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
-//   bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--repeat-stroke K] [--rebuild-every K] [--compare-old] [--script]
+//   bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--tidy-above R] [--repeat-stroke K] [--system-malloc] [--rebuild-every K] [--compare-old] [--script]
 //   (--no-tidy: without the stroke's last step, the rebuild of the subtrees it touched
-//   (rebuild_region), which carve and add do; --tidy-nodes N: its max_nodes and max_subtree_nodes;
-//   --repeat-stroke K: stroke K's subtraction 20 more times on copies of the workpiece, for a profiler; K: rebuild the tree from the boundary every K strokes; --script: the same strokes also through
+//   (rebuild_region), which carve and add do; --tidy-nodes N: its max_nodes and max_subtree_nodes; --tidy-above R: its above_nodes_per_fragment;
+//   --system-malloc: glibc's allocation defaults instead of the executable's keep_freed_memory();
+//   --repeat-stroke K: stroke K's sweep and its subtraction (on copies of the workpiece) 20 more times each, for a profiler; K: rebuild the tree from the boundary every K strokes; --script: the same strokes also through
 //   the interpreter, `work = carve(work, ball, path)` (handed over, in place) and, with another
 //   variable holding the workpiece during the stroke, the copying path, side by side per stroke)
 // Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> tidy_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h>
@@ -18,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <numbers>
 #include <sstream>
@@ -34,6 +36,7 @@
 #include "curves/digitized_curve.hpp"
 #include "curves/profiles.hpp"
 #include "revolution/revolve.hpp"
+#include "base/memory_policy.hpp"
 #include "bench/bench_timing.hpp"
 #include "language/interpreter.hpp"
 #include "language/solid_values.hpp"
@@ -113,6 +116,11 @@ language::Value point_list(const std::vector<Eigen::Vector3d>& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The allocation policy of the `sculpt` executable, whose interactive session this models
+  // (base/memory_policy.hpp); --system-malloc: glibc's defaults.
+  bool system_malloc = false;
+  for (int i = 1; i < argc; ++i) system_malloc |= std::string(argv[i]) == "--system-malloc";
+  if (!system_malloc) keep_freed_memory();
   int strokes = 100;
   int rebuild_every = 0;  // 0: never
   bool compare_old = false;
@@ -127,10 +135,12 @@ int main(int argc, char** argv) {
     else if (a == "--compare-old") compare_old = true;
     else if (a == "--script") script = true;
     else if (a == "--no-tidy") tidy = false;
+    else if (a == "--system-malloc") continue;
     else if (a == "--repeat-stroke" && i + 1 < argc) repeat_stroke = std::stoi(argv[++i]);
     else if (a == "--tidy-nodes" && i + 1 < argc) tidy_options.max_nodes = tidy_options.max_subtree_nodes = std::stoi(argv[++i]);
+    else if (a == "--tidy-above" && i + 1 < argc) tidy_options.above_nodes_per_fragment = std::stod(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--repeat-stroke K] [--rebuild-every K] [--compare-old] [--script]\n");
+      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--tidy-above R] [--repeat-stroke K] [--system-malloc] [--rebuild-every K] [--compare-old] [--script]\n");
       return 2;
     }
   }
@@ -160,8 +170,13 @@ int main(int argc, char** argv) {
       path.emplace_back(r * std::cos(t), r * std::sin(t), z + 0.05 * std::sin(3 * t));
     }
     if (k + 1 == repeat_stroke) {
+      for (int rep = 0; rep < 20; ++rep) {
+        const double c0 = cpu_ms();
+        const Solid again = sweep(ball, path);
+        std::printf("bench impl=sculpt case=repeat_%d sweep_cpu_ms=%.2f\n", k + 1, cpu_ms() - c0);
+      }
       const Solid swept = sweep(ball, path);
-      for (int r = 0; r < 20; ++r) {
+      for (int rep = 0; rep < 20; ++rep) {
         Solid copy = work;
         const double c0 = cpu_ms();
         copy = std::move(copy) - swept;
@@ -184,7 +199,7 @@ int main(int argc, char** argv) {
     tidy_cpu.push_back(c - (cpu2 - cpu0));
     const double w = std::chrono::duration<double, std::milli>(Clock::now() - wall0).count();
     cpu.push_back(c);
-    if (c > 50)
+    if (c > 50 || std::getenv("SCULPT_BENCH_EVERY_STROKE"))
       std::printf("bench impl=sculpt case=slow_stroke_%d cpu_ms=%.2f sweep_cpu_ms=%.2f subtract_cpu_ms=%.2f tidy_cpu_ms=%.2f storage_nodes=%zu planes=%d capacity=%zu->%zu\n",
                   k + 1, c, sweep_cpu.back(), subtract_cpu.back(), tidy_cpu.back(), work.nodes().size(), work.planes().size(),
                   capacity_before, work.polygons().capacity());
@@ -238,6 +253,7 @@ int main(int argc, char** argv) {
     std::printf("bench impl=sculpt case=rebuilds count=%zu median_cpu_ms=%.2f max_cpu_ms=%.2f\n", rebuild_cpu.size(), median(rebuild_cpu),
                 *std::max_element(rebuild_cpu.begin(), rebuild_cpu.end()));
   distribution("sculpt", cpu);
+  distribution("sweep", sweep_cpu);
   distribution("subtract", subtract_cpu);
   distribution("tidy", tidy_cpu);
   if (script) {
