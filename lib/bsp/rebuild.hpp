@@ -19,11 +19,11 @@ Solid rebuild_from_boundary(const Solid& solid);
 struct RegionRebuildOptions {
   /// A subtree of at most this many nodes whose cell meets the region is a candidate; a larger
   /// one is not rebuilt, its children that meet the region are looked at instead.
-  int max_subtree_nodes = 2048;
+  int max_subtree_nodes = 1536;
   /// Candidates smaller than this are left alone (little to gain for the cost of looking).
   int min_subtree_nodes = 256;
   /// At most this many nodes are rebuilt per call, the largest candidates first.
-  int max_nodes = 2048;
+  int max_nodes = 1536;
   /// A rebuilt subtree replaces the old one only if it has at most this share of its nodes.
   double keep_below = 0.75;
   /// Nothing is rebuilt while the tree has at most this many nodes per boundary fragment of the

@@ -23,7 +23,10 @@ namespace sculpt {
 /// \throw InvalidInput if the path is empty.
 Solid sweep(const Solid& tool, std::span<const Eigen::Vector3d> path);
 
-/// `work` minus the tool swept along `path` (a carving stroke).
+/// `work` minus the tool swept along `path` (a carving stroke). Strokes (carve and add, every
+/// variant) then rebuild the subtrees of the result that the sweep's extent meets where that
+/// makes them smaller (rebuild.hpp, rebuild_region, default options), so the tree of a workpiece
+/// carved stroke by stroke stays closer to its boundary's size; the set is exactly the same.
 Solid carve(const Solid& work, const Solid& tool, std::span<const Eigen::Vector3d> path);
 
 /// `work` united with the tool swept along `path` (an adding stroke).

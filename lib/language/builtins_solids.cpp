@@ -332,7 +332,9 @@ void register_solids(BuiltinTable& table) {
              }});
   add_stroke(table, "carve", "carve(work, tool, path, tol=e)",
              "Solid `work` minus `tool` swept along `path` (see sweep): a carving stroke. `w = carve(w, ...)` "
-             "carves w in place (no copy of its tree) unless another variable holds the same solid.",
+             "carves w in place (no copy of its tree) unless another variable holds the same solid. The "
+             "subtrees the stroke touched are then rebuilt from the boundary where that makes them smaller "
+             "(the same solid, a smaller tree: docs/sculpting.md).",
              [](auto&& w, const Solid& t, const auto& p) { return carve(std::forward<decltype(w)>(w), t, p); });
   add_stroke(table, "add", "add(work, tool, path, tol=e)",
              "Solid `work` united with `tool` swept along `path` (see sweep): an adding stroke. `w = add(w, ...)` "
