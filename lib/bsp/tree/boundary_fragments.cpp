@@ -1,6 +1,7 @@
 #include "bsp/tree/boundary_fragments.hpp"
 
 #include <algorithm>
+#include <array>
 #include <span>
 #include <utility>
 
@@ -12,6 +13,30 @@ using kernel::ConvexPolygon;
 using kernel::Side;
 
 namespace {
+
+// The nodes of a subtree breadth-first (children after parents), with the positions of each
+// node's children in that order (0: a leaf; position 0 is the subtree's root, nobody's child).
+struct BreadthFirst {
+  std::vector<TreeRef> order;
+  std::vector<std::array<std::size_t, 2>> children;  // [negative, positive]
+};
+
+BreadthFirst breadth_first(std::span<const BspNode> nodes, TreeRef root) {
+  BreadthFirst b;
+  if (!is_leaf(root)) b.order.push_back(root);
+  for (std::size_t j = 0; j < b.order.size(); ++j) {
+    const BspNode& m = nodes[std::size_t(b.order[j])];
+    std::array<std::size_t, 2> at{0, 0};
+    for (int side = 0; side < 2; ++side) {
+      const TreeRef c = side == 0 ? m.negative : m.positive;
+      if (is_leaf(c)) continue;
+      at[std::size_t(side)] = b.order.size();
+      b.order.push_back(c);
+    }
+    b.children.push_back(at);
+  }
+  return b;
+}
 
 // Pushes node polygons down a tree (nodes `nodes`, planes and their opposites in `arena`).
 class Extractor {
@@ -62,40 +87,26 @@ class Extractor {
     }
   }
 
-  // The boundary pieces on the planes of the nodes order[j] (a subtree in breadth-first order:
-  // children after parents), polygon(j) giving node order[j]'s sub-hyperplane: each polygon is
-  // pushed down both subtrees and the pieces with an in-cell on exactly one side are kept.
+  // The boundary pieces on the planes of the subtree's nodes, polygon(j) giving node
+  // tree.order[j]'s sub-hyperplane: each polygon is pushed down both subtrees and the pieces with
+  // an in-cell on exactly one side are kept.
   template <typename Polygon>
-  void collect(const std::vector<TreeRef>& order, Polygon&& polygon, FragmentList& out) {
-    // Subtree sizes (by position; children come after parents): the polygon goes first into the
-    // smaller subtree, so fewer pieces travel through the larger one.
+  void collect(const BreadthFirst& tree, Polygon&& polygon, FragmentList& out) {
+    const std::vector<TreeRef>& order = tree.order;
+    // Subtree sizes (children come after parents): the polygon goes first into the smaller
+    // subtree, so fewer pieces travel through the larger one.
     std::vector<std::int32_t> size(order.size(), 1);
-    std::vector<std::size_t> parent(order.size(), 0);
-    {
-      std::size_t next = 1;  // position of the next child met, as in the breadth-first order
-      for (std::size_t j = 0; j < order.size(); ++j) {
-        const BspNode& m = nodes_[std::size_t(order[j])];
-        for (const TreeRef c : {m.negative, m.positive})
-          if (!is_leaf(c)) parent[next++] = j;
-      }
-      for (std::size_t j = order.size(); j-- > 1;) size[parent[j]] += size[j];
-    }
-    std::vector<std::int32_t> child_size(2 * order.size(), 0);  // [2j]: negative child's, [2j+1]: positive's
-    {
-      std::size_t next = 1;
-      for (std::size_t j = 0; j < order.size(); ++j) {
-        const BspNode& m = nodes_[std::size_t(order[j])];
-        if (!is_leaf(m.negative)) child_size[2 * j] = size[next++];
-        if (!is_leaf(m.positive)) child_size[2 * j + 1] = size[next++];
-      }
-    }
+    for (std::size_t j = order.size(); j-- > 0;)
+      for (const std::size_t c : tree.children[j])
+        if (c) size[j] += size[c];
+    auto size_of = [&](std::size_t c) { return c ? size[c] : 0; };
     std::vector<std::pair<ConvexPolygon, bool>> negative_pieces;
     for (std::size_t j = 0; j < order.size(); ++j) {
       const BspNode& n = nodes_[std::size_t(order[j])];
       // An auxiliary plane carries no face of any operand, hence no boundary (the boundary of
       // a regularized set operation lies on its operands' boundaries).
       if (arena_.planes.auxiliary(n.plane)) continue;
-      const bool neg_first = child_size[2 * j] <= child_size[2 * j + 1];
+      const bool neg_first = size_of(tree.children[j][0]) <= size_of(tree.children[j][1]);
       const TreeRef first = neg_first ? n.negative : n.positive, second = neg_first ? n.positive : n.negative;
       negative_pieces.clear();
       push_down(first, polygon(j), [&](ConvexPolygon p, bool in) { negative_pieces.emplace_back(std::move(p), in); });
@@ -119,23 +130,11 @@ class Extractor {
   std::vector<Piece> stack_;
 };
 
-// The nodes of the subtree at `root`, breadth-first (children after parents).
-std::vector<TreeRef> breadth_first(std::span<const BspNode> nodes, TreeRef root) {
-  std::vector<TreeRef> order;
-  if (!is_leaf(root)) order.push_back(root);
-  for (std::size_t j = 0; j < order.size(); ++j) {
-    const BspNode& m = nodes[std::size_t(order[j])];
-    if (!is_leaf(m.negative)) order.push_back(m.negative);
-    if (!is_leaf(m.positive)) order.push_back(m.positive);
-  }
-  return order;
-}
-
 }  // namespace
 
 Fragments boundary_fragments(const Solid& solid) {
   // Nodes reachable from the root (storage may hold unreachable nodes, see Solid).
-  const std::vector<TreeRef> order = breadth_first(solid.nodes(), solid.root());
+  const BreadthFirst tree = breadth_first(solid.nodes(), solid.root());
   Arena arena;
   const PolygonStore* polygons = &solid.polygons();
   if (std::any_of(solid.polygons().begin(), solid.polygons().end(), pending)) {
@@ -145,7 +144,7 @@ Fragments boundary_fragments(const Solid& solid) {
     arena.planes = solid.planes();
   }
   Fragments result;
-  Extractor(solid.nodes(), arena).collect(order, [&](std::size_t j) { return (*polygons)[std::size_t(order[j])]; },
+  Extractor(solid.nodes(), arena).collect(tree, [&](std::size_t j) { return (*polygons)[std::size_t(tree.order[j])]; },
                                           result.fragments);
   result.planes = std::move(arena.planes);
   return result;
@@ -153,40 +152,32 @@ Fragments boundary_fragments(const Solid& solid) {
 
 FragmentList subtree_boundary(Arena& arena, TreeRef root, std::span<const std::int32_t> path) {
   FragmentList out;
-  const std::vector<TreeRef> order = breadth_first(arena.nodes, root);
-  if (order.empty()) return out;
+  const BreadthFirst tree = breadth_first(arena.nodes, root);
+  if (tree.order.empty()) return out;
   // The subtree's polygons, pending ones computed from their paths (depth-first, parents first).
-  std::vector<ConvexPolygon> polygons(order.size());
-  {
-    struct Frame {
-      std::size_t position;  // in `order`
-      std::size_t depth;     // path length of the parent's cell
-      std::int32_t add;      // half-space this node adds to its parent's path, -1 at the root
-    };
-    std::vector<std::int32_t> cell(path.begin(), path.end());
-    std::vector<Frame> stack{{0, cell.size(), -1}};
-    std::size_t next = 1;  // breadth-first positions of children, assigned as in breadth_first
-    std::vector<std::pair<std::size_t, std::size_t>> children(order.size(), {0, 0});
-    for (std::size_t j = 0; j < order.size(); ++j) {
-      const BspNode& m = arena.nodes[std::size_t(order[j])];
-      if (!is_leaf(m.negative)) children[j].first = next++;
-      if (!is_leaf(m.positive)) children[j].second = next++;
-    }
-    while (!stack.empty()) {
-      const Frame f = stack.back();
-      stack.pop_back();
-      cell.resize(f.depth);
-      if (f.add >= 0) cell.push_back(f.add);
-      const TreeRef t = order[f.position];
-      const BspNode n = arena.nodes[std::size_t(t)];
-      polygons[f.position] = pending(arena.polygons[std::size_t(t)]) ? node_polygon(arena, n.plane, cell)
-                                                                     : arena.polygons[std::size_t(t)];
-      if (children[f.position].second) stack.push_back({children[f.position].second, cell.size(), arena.opposite(n.plane)});
-      if (children[f.position].first) stack.push_back({children[f.position].first, cell.size(), n.plane});
-    }
+  std::vector<ConvexPolygon> polygons(tree.order.size());
+  struct Frame {
+    std::size_t position;  // in tree.order
+    std::size_t depth;     // path length of the parent's cell
+    std::int32_t add;      // half-space this node adds to its parent's path, -1 at the root
+  };
+  std::vector<std::int32_t> cell(path.begin(), path.end());
+  std::vector<Frame> stack{{0, cell.size(), -1}};
+  while (!stack.empty()) {
+    const Frame f = stack.back();
+    stack.pop_back();
+    cell.resize(f.depth);
+    if (f.add >= 0) cell.push_back(f.add);
+    const TreeRef t = tree.order[f.position];
+    const BspNode n = arena.nodes[std::size_t(t)];
+    polygons[f.position] =
+        pending(arena.polygons[std::size_t(t)]) ? node_polygon(arena, n.plane, cell) : arena.polygons[std::size_t(t)];
+    const auto [negative, positive] = tree.children[f.position];
+    if (positive) stack.push_back({positive, cell.size(), arena.opposite(n.plane)});
+    if (negative) stack.push_back({negative, cell.size(), n.plane});
   }
   // arena.nodes does not change while pieces are pushed (only planes are added).
-  Extractor(arena.nodes, arena).collect(order, [&](std::size_t j) { return std::move(polygons[j]); }, out);
+  Extractor(arena.nodes, arena).collect(tree, [&](std::size_t j) { return std::move(polygons[j]); }, out);
   return out;
 }
 
