@@ -5,6 +5,7 @@
 //         boundary_fragments=<count carried by the result solid>
 //         to_mesh_ms=<min of to_mesh on the result> to_mesh_unclean_ms=<the same with {.clean = false}>
 //         operands_ms=<min, building the two operands> operation_ms=<min, the set operation alone>
+//         malloc=<kept|system>
 // cpu_ms / min_cpu_ms: median / min of this thread's CPU time per run (less sensitive to a busy
 // machine than the wall clock); to_mesh_ms and to_mesh_unclean_ms are thread CPU times.
 // Without arguments it runs every case, each in its own process (so peak RSS is per case):
@@ -13,6 +14,10 @@
 //                             boxes_pairwise 1000: the same union one box at a time,
 //                             sphere_minus_sphere 32|64|128, sphere_minus_tilted_cube 64,
 //                             drilled_plate 100, rotated_boxes 200)
+//   --system-malloc (anywhere): glibc's allocation defaults instead of the `sculpt` executable's
+//                             keep_freed_memory() (base/memory_policy.hpp), which the cases use
+//                             by default, as a session of the executable would; the line says
+//                             malloc=kept or malloc=system.
 #include <sys/resource.h>
 #include <time.h>
 
@@ -27,6 +32,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/memory_policy.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
@@ -37,6 +43,8 @@
 using namespace sculpt;
 
 namespace {
+
+bool system_malloc = false;  // --system-malloc: glibc's defaults (see main)
 
 long rss_kb() {
   std::ifstream f("/proc/self/status");
@@ -243,20 +251,29 @@ int run_case(const std::string& name, int n, int runs) {
               "volume=%.12g expected=%s "
               "faces=%zu vertices=%zu peak_rss_kb=%ld base_rss_kb=%ld tree_nodes=%d tree_height=%d "
               "exact_predicates=%llu filtered_predicates=%llu boundary_fragments=%zu to_mesh_ms=%.3f to_mesh_unclean_ms=%.3f "
-              "operands_ms=%.3f operation_ms=%.3f\n",
+              "operands_ms=%.3f operation_ms=%.3f malloc=%s\n",
               name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), cpu_times[cpu_times.size() / 2],
               cpu_times.front(), volume, expected.c_str(),
               r.mesh.faces.size(), r.mesh.vertices.size(), peak_rss_kb(), base, st.nodes, st.height,
               (unsigned long long)pc.exact, (unsigned long long)pc.filtered, r.solid.boundary().size(), mesh_ms, unclean_ms,
-              operands_ms, operation_ms);
+              operands_ms, operation_ms, system_malloc ? "system" : "kept");
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--system-malloc")
+      system_malloc = true;
+    else
+      args.emplace_back(argv[i]);
+  }
+  if (!system_malloc) keep_freed_memory();
   // 7 runs by default, as the peers' harness (tests/bench/peers/run.sh).
-  if (argc >= 3) return run_case(argv[1], std::atoi(argv[2]), argc >= 4 ? std::atoi(argv[3]) : 7);
+  if (args.size() >= 2)
+    return run_case(args[0], std::atoi(args[1].c_str()), args.size() >= 3 ? std::atoi(args[2].c_str()) : 7);
   const std::vector<std::pair<std::string, int>> cases = {{"sphere_minus_cube", 32}, {"sphere_minus_cube", 64},
                                                           {"sphere_minus_cube", 128}, {"sphere_minus_cube", 256},
                                                           {"menger", 3}, {"boxes", 1000},
@@ -265,7 +282,8 @@ int main(int argc, char** argv) {
                                                           {"drilled_plate", 100}, {"rotated_boxes", 200}};
   int status = 0;
   for (const auto& [name, n] : cases) {
-    const std::string cmd = std::string("'") + argv[0] + "' " + name + " " + std::to_string(n);
+    const std::string cmd = std::string("'") + argv[0] + "' " + name + " " + std::to_string(n) +
+                            (system_malloc ? " --system-malloc" : "");
     std::fflush(stdout);
     status |= std::system(cmd.c_str());
   }

@@ -2,11 +2,13 @@
 # Peer benchmarks: manifold-3d (WASM) and @jscad/modeling on the BSP cases of
 # tests/bench/bsp/CASES.md. Installs the pinned packages into tests/bench/peers/node_modules
 # on first use (npm; never committed), then prints one "bench key=value ..." line per case.
-#   tests/bench/peers/run.sh [--impl manifold|jscad] [--case NAME] [--runs R] [--budget-ms B] [--timeout S]
+#   tests/bench/peers/run.sh [--impl manifold|jscad] [--case NAME] [--n N] [--runs R] [--budget-ms B] [--timeout S]
+# --case / --n: only the cases of that name / that size.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 impls=(manifold jscad)
 only_case=""
+only_n=""
 runs=7
 budget=30000
 timeout_s=600
@@ -14,6 +16,7 @@ while (($#)); do
   case "$1" in
     --impl) impls=("$2"); shift 2 ;;
     --case) only_case="$2"; shift 2 ;;
+    --n) only_n="$2"; shift 2 ;;
     --runs) runs="$2"; shift 2 ;;
     --budget-ms) budget="$2"; shift 2 ;;
     --timeout) timeout_s="$2"; shift 2 ;;
@@ -38,6 +41,7 @@ for impl in "${impls[@]}"; do
   for c in "${cases[@]}"; do
     set -- $c
     [ -n "$only_case" ] && [ "$only_case" != "$1" ] && continue
+    [ -n "$only_n" ] && [ "$only_n" != "$2" ] && continue
     # One process per case, so that peak_rss_kb belongs to that case alone.
     if ! (cd "$here" && timeout "$timeout_s" node peer.mjs "$impl" "$1" "$2" --runs "$runs" --budget-ms "$budget"); then
       echo "bench impl=$impl case=$1 n=$2 status=failed_or_timeout timeout_s=$timeout_s"
