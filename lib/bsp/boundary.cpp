@@ -1,5 +1,7 @@
 #include "bsp/boundary.hpp"
 
+#include <optional>
+
 #include "bsp/tree/boundary_fragments.hpp"
 #include "bsp/assembly/mesh_assembly.hpp"
 #include "mesh/mesh_measures.hpp"
@@ -8,10 +10,15 @@
 namespace sculpt {
 
 PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
-  if (is_leaf(solid.root())) return {};
-  // A carried boundary (set operation results) is used as is; otherwise it is extracted.
-  bsp::detail::Fragments f = solid.has_boundary() ? bsp::detail::Fragments{solid.planes(), solid.boundary()}
-                                             : bsp::detail::boundary_fragments(solid);
+  // A carried boundary (set operation results) is used as is, without building a deferred tree
+  // (solid.hpp): a solid with boundary fragments is not a leaf. Otherwise it is extracted.
+  const Solid::BoundaryView view = solid.boundary_view();
+  const bool carried = view.fragments != nullptr && !view.fragments->empty();
+  if (!carried && is_leaf(solid.root())) return {};
+  std::optional<bsp::detail::Fragments> extracted;
+  if (!carried) extracted = bsp::detail::boundary_fragments(solid);
+  const bsp::detail::FragmentsView f = carried ? bsp::detail::FragmentsView(*view.planes, *view.fragments)
+                                               : bsp::detail::FragmentsView(*extracted);
   if (!options.clean)
     return bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate, .grid = solid.grid()});
   // Vertices written exactly (a grid point, say) are marked for the clean check: the assembled

@@ -1,11 +1,14 @@
 #include "bsp/set_operations.hpp"
 #include "bsp/tree/solid_access.hpp"
 
+#include <memory>
+#include <optional>
 #include <tuple>
 #include <utility>
 
 #include "bsp/merge/batch_union.hpp"
 #include "bsp/tree/boundary_fragments.hpp"
+#include "bsp/tree/deferred_tree.hpp"
 #include "bsp/merge/boundary_merge.hpp"
 #include "bsp/merge/extent_pruning.hpp"
 #include "bsp/tree/node_polygons.hpp"
@@ -251,26 +254,56 @@ class Merger {
   ConvexPolygon scratch_;
 };
 
-// The boundary of op(a, b) (to arena.boundary), then the merged tree; returns its root. Where the
-// result out of a does not depend on b (op[0][*] constant), b only matters inside a: b's planes
-// with a on one closed side are dropped first (extent_pruning.hpp).
-TreeRef merge_operands(Arena& arena, TreeRef ra, FragmentList fa, bsp::detail::FragmentBoxes boxes, TreeRef rb,
-                       const FragmentList& fb, std::size_t b_nodes, const bool op[2][2]) {
-  std::optional<bsp::detail::ExtentSides> sides;
-  if (op[0][0] == op[0][1] && !is_leaf(rb)) {
-    bsp::detail::complete_boxes(fa, boxes);
-    sides = bsp::detail::extent_sides(arena, ra, fa, boxes, rb, fb);
+// A set operation in two steps: the boundary of op(a, b) (to arena.boundary), then the merged
+// tree. Where the result out of a does not depend on b (op[0][*] constant), b only matters
+// inside a: b's planes with a on one closed side are dropped first (extent_pruning.hpp).
+class MergeSteps {
+ public:
+  MergeSteps(TreeRef ra, TreeRef rb, std::size_t b_nodes, const bool op[2][2]) : ra_(ra), rb_(rb), b_nodes_(b_nodes) {
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) op_[i][j] = op[i][j];
   }
-  bsp::detail::merge_boundaries(arena, ra, std::move(fa), std::move(boxes), rb, fb, op, sides ? &*sides : nullptr);
-  if (sides) rb = bsp::detail::prune_to_extent(arena, rb, *sides);
-  bsp::detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
-  // Room for the nodes partition() adds (2.5-3.5 per node of b on the curved cases): one
-  // allocation instead of regrowth copies (the polygons never move: PolygonStore).
-  const std::size_t need = arena.nodes.size() + 4 * b_nodes;
-  if (need > arena.nodes.capacity()) arena.nodes.reserve(std::max(need, 2 * arena.nodes.capacity()));
-  Merger m(arena);
-  return m.merge(ra, rb, op);
-}
+  // The result's boundary, from a's fragments `fa` (boxes `boxes`) and b's `fb`.
+  void boundary(Arena& arena, FragmentList fa, bsp::detail::FragmentBoxes boxes, const FragmentList& fb) {
+    if (op_[0][0] == op_[0][1] && !is_leaf(rb_)) {
+      bsp::detail::complete_boxes(fa, boxes);
+      sides_ = bsp::detail::extent_sides(arena, ra_, fa, boxes, rb_, fb);
+    }
+    bsp::detail::merge_boundaries(arena, ra_, std::move(fa), std::move(boxes), rb_, fb, op_, sides_ ? &*sides_ : nullptr);
+  }
+  // The merged tree (after boundary()); returns its root.
+  TreeRef tree(Arena& arena) {
+    TreeRef rb = rb_;
+    if (sides_) rb = bsp::detail::prune_to_extent(arena, rb, *sides_);
+    bsp::detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
+    // Room for the nodes partition() adds (2.5-3.5 per node of b on the curved cases): one
+    // allocation instead of regrowth copies (the polygons never move: PolygonStore).
+    const std::size_t need = arena.nodes.size() + 4 * b_nodes_;
+    if (need > arena.nodes.capacity()) arena.nodes.reserve(std::max(need, 2 * arena.nodes.capacity()));
+    Merger m(arena);
+    return m.merge(ra_, rb, op_);
+  }
+
+ private:
+  TreeRef ra_, rb_;
+  std::size_t b_nodes_;
+  bool op_[2][2];
+  std::optional<bsp::detail::ExtentSides> sides_;
+};
+
+// A copying set operation whose tree merge waits until the result's tree is first used
+// (deferred_tree.hpp): the arena keeps both operands' trees and the result's boundary.
+class DeferredMerge final : public bsp::detail::DeferredTree {
+ public:
+  DeferredMerge(Arena&& arena, MergeSteps steps) : arena_(std::move(arena)), steps_(std::move(steps)) {}
+  const kernel::PlaneTable& planes() const override { return arena_.planes; }
+  const FragmentList& boundary() const override { return *arena_.boundary; }
+  Solid build() override { return bsp::detail::compact(arena_, steps_.tree(arena_)); }
+
+ private:
+  Arena arena_;
+  MergeSteps steps_;
+};
 
 Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   // Partition the smaller tree by the planes of the larger one (cost ~ the larger tree's
@@ -282,22 +315,27 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j) op[i][j] = swap ? table[j][i] : table[i][j];
   Arena arena;
-  // The operands and the room merge_operands() reserves for the merge, at once.
+  // The operands and the room MergeSteps::tree() reserves for the merge, at once.
   arena.nodes.reserve(a.nodes().size() + 5 * b.nodes().size());
   arena.polygons.reserve(a.nodes().size() + 5 * b.nodes().size());
   const TreeRef ra = arena.append(a);
   FragmentList fa = arena.boundary_of(a);
   const TreeRef rb = arena.append(b);
   const FragmentList fb = arena.boundary_of(b);
-  const TreeRef r = merge_operands(arena, ra, std::move(fa), bsp::detail::SolidAccess::boundary_boxes(a), rb, fb,
-                                   b.nodes().size(), op);
-  return bsp::detail::compact(arena, r);
+  MergeSteps steps(ra, rb, b.nodes().size(), op);
+  steps.boundary(arena, std::move(fa), bsp::detail::SolidAccess::boundary_boxes(a), fb);
+  // The tree waits for its first use (output needs the boundary alone).
+  return SolidAccess::deferred(std::make_unique<DeferredMerge>(std::move(arena), std::move(steps)));
 }
 
 // In place: the larger operand's storage is reused and nothing older than the operation is
 // moved or renumbered (reclaim_added and finish_in_place, tree_arena.hpp).
+// That pays when y is small beside x (a tool on a workpiece). When y has at least half as many
+// nodes, most of the result's nodes are new, and placing them one by one after the merge costs
+// more than the copying path's compaction, which can also wait for the tree's first use: x is
+// copied (docs/benchmarks.md, "Sphere minus sphere").
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
-  if (&x == &y || x.nodes().size() < y.nodes().size()) return apply(x, y, table);
+  if (&x == &y || x.nodes().size() < 2 * y.nodes().size()) return apply(x, y, table);
   // The boundary of x must be known before its storage moves into the arena.
   std::optional<bsp::detail::Fragments> extracted;
   if (!x.has_boundary()) extracted = bsp::detail::boundary_fragments(x);
@@ -326,7 +364,9 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   }
   const TreeRef rb = arena.append(y);
   const FragmentList fb = arena.boundary_of(y);
-  TreeRef r = merge_operands(arena, ra, std::move(fa), std::move(arena.boundary_boxes), rb, fb, y.nodes().size(), table);
+  MergeSteps steps(ra, rb, y.nodes().size(), table);
+  steps.boundary(arena, std::move(fa), std::move(arena.boundary_boxes), fb);
+  const TreeRef r = steps.tree(arena);
   return bsp::detail::finish_in_place(arena, bsp::detail::reclaim_added(arena, r, added));
 }
 

@@ -1,5 +1,7 @@
 #include "bsp/solid.hpp"
 
+#include "bsp/tree/deferred_tree.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -19,7 +21,56 @@ Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
     throw std::logic_error("Solid: inconsistent tree storage");
 }
 
+Solid::Solid() = default;
+Solid::~Solid() = default;
+Solid::Solid(Solid&& other) noexcept = default;
+Solid& Solid::operator=(Solid&& other) noexcept = default;
+
+void Solid::copy_from(const Solid& other) {
+  other.settled();
+  planes_ = other.planes_;
+  nodes_ = other.nodes_;
+  polygons_ = other.polygons_;
+  root_ = other.root_;
+  free_ = other.free_;
+  boundary_ = other.boundary_;
+  boundary_boxes_ = other.boundary_boxes_;
+  grid_ = other.grid_;
+  deferred_.reset();
+}
+
+Solid::Solid(const Solid& other) { copy_from(other); }
+
+Solid& Solid::operator=(const Solid& other) {
+  if (this != &other) copy_from(other);
+  return *this;
+}
+
+Solid::Solid(std::unique_ptr<bsp::detail::DeferredTree> deferred) : deferred_(std::move(deferred)) {}
+
+void Solid::build_deferred() const {
+  // The built result replaces the (empty) storage; the grid stays (the operation labelled this
+  // solid, the merge works at the default grid). deferred_ is released last: if build() throws,
+  // the solid still holds its deferred merge.
+  Solid built = deferred_->build();
+  planes_ = std::move(built.planes_);
+  nodes_ = std::move(built.nodes_);
+  polygons_ = std::move(built.polygons_);
+  root_ = built.root_;
+  free_ = std::move(built.free_);
+  boundary_ = std::move(built.boundary_);
+  boundary_boxes_ = std::move(built.boundary_boxes_);
+  deferred_.reset();
+}
+
+Solid::BoundaryView Solid::boundary_view() const {
+  if (deferred_) return {&deferred_->planes(), &deferred_->boundary()};
+  if (!boundary_) return {};
+  return {&planes_, &*boundary_};
+}
+
 Solid::Storage Solid::release() && {
+  settled();
   Storage s{std::move(planes_), std::move(nodes_), std::move(polygons_), root_, std::move(free_), std::move(boundary_),
             std::move(boundary_boxes_)};
   planes_ = kernel::PlaneTable();
@@ -34,6 +85,7 @@ Solid::Storage Solid::release() && {
 
 const FragmentList& Solid::boundary() const {
   static const FragmentList none;
+  settled();
   return boundary_ ? *boundary_ : none;
 }
 

@@ -17,12 +17,21 @@
 /// operands' boundaries (each operand's fragments clipped by the other tree), so boundary
 /// extraction from the whole tree is needed only for solids built without one.
 ///
+/// Deferred trees: the result of a set operation may hold its boundary and the operation's tree
+/// merge still to be done (bsp/tree/deferred_tree.hpp). The first call of anything that reads the
+/// tree or the storage (root(), nodes(), polygons(), planes(), boundary(), copying, the tree
+/// algorithms) runs the merge; the solid is then exactly what the operation would have returned
+/// at once. grid(), has_boundary() and boundary_view() do not build it, so output (to_mesh,
+/// export, volume) of a result never pays for its tree. A solid is a value for one thread: one
+/// whose tree is deferred may not be read from two threads at once before it is built.
+///
 /// A solid carries the kernel::Grid its planes are in (world = grid units * step; docs/kernel.md,
 /// "World range"): operations take it from their operands or parameters, and binary operations
 /// on solids of different grids throw GridMismatch. A leaf solid (empty, or all of space) has no
 /// coordinates: it combines with a solid of any grid, and the result takes the other's grid.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -37,6 +46,7 @@ namespace sculpt {
 
 namespace bsp::detail {
 struct SolidAccess;  // the tree algorithms' access to a solid's storage (bsp/tree/solid_access.hpp)
+class DeferredTree;  // a set operation's tree merge still to be done (bsp/tree/deferred_tree.hpp)
 }
 
 /// Reference to a subtree: a node index (>= 0) or a leaf.
@@ -68,24 +78,41 @@ using PolygonStore = ChunkedVector<kernel::ConvexPolygon>;
 class Solid {
  public:
   /// The empty solid (a single out leaf), at the default grid.
-  Solid() = default;
+  Solid();
+  ~Solid();
+  /// A copy (builds a deferred tree first: the copy and the original share nothing).
+  Solid(const Solid& other);
+  Solid& operator=(const Solid& other);
+  Solid(Solid&& other) noexcept;
+  Solid& operator=(Solid&& other) noexcept;
   /// The solid whose tree is a single leaf: empty (false) or all of space (true).
   static Solid leaf(bool inside, const kernel::Grid& grid = {});
 
   /// The grid of the solid's planes: world coordinates are grid units * grid().step().
   [[nodiscard]] const kernel::Grid& grid() const { return grid_; }
 
-  [[nodiscard]] TreeRef root() const { return root_; }
-  [[nodiscard]] bool is_empty() const { return root_ == kOut; }
-  [[nodiscard]] const kernel::PlaneTable& planes() const { return planes_; }
-  [[nodiscard]] const std::vector<BspNode>& nodes() const { return nodes_; }
+  [[nodiscard]] TreeRef root() const { return settled().root_; }
+  [[nodiscard]] bool is_empty() const { return settled().root_ == kOut; }
+  [[nodiscard]] const kernel::PlaneTable& planes() const { return settled().planes_; }
+  [[nodiscard]] const std::vector<BspNode>& nodes() const { return settled().nodes_; }
   /// Sub-hyperplane of node i (same index as nodes()); no corners while pending (see above).
-  [[nodiscard]] const PolygonStore& polygons() const { return polygons_; }
+  [[nodiscard]] const PolygonStore& polygons() const { return settled().polygons_; }
 
   /// True if the solid carries its boundary fragments (results of set operations, leaves).
-  [[nodiscard]] bool has_boundary() const { return boundary_.has_value(); }
+  [[nodiscard]] bool has_boundary() const { return deferred_ != nullptr || boundary_.has_value(); }
   /// The carried boundary fragments (planes of planes()); empty unless has_boundary().
   [[nodiscard]] const FragmentList& boundary() const;
+
+  /// The carried boundary and the planes it is on, without building a deferred tree (see
+  /// above): what output needs. Both are valid until the solid changes or its tree is built
+  /// (then read planes() and boundary()). Null members if the solid carries no boundary.
+  struct BoundaryView {
+    const kernel::PlaneTable* planes = nullptr;
+    const FragmentList* fragments = nullptr;
+  };
+  [[nodiscard]] BoundaryView boundary_view() const;
+  /// True while the solid's tree is deferred (not built yet).
+  [[nodiscard]] bool tree_deferred() const { return deferred_ != nullptr; }
 
  private:
   friend struct bsp::detail::SolidAccess;
@@ -113,17 +140,30 @@ class Solid {
   };
   Storage release() &&;
 
+  /// A solid whose tree is deferred (see above); its grid is the default one.
+  explicit Solid(std::unique_ptr<bsp::detail::DeferredTree> deferred);
+  /// This solid with its deferred tree built, if it had one.
+  const Solid& settled() const {
+    if (deferred_) build_deferred();
+    return *this;
+  }
+  void build_deferred() const;
+  void copy_from(const Solid& other);
 
-  kernel::PlaneTable planes_;
-  std::vector<BspNode> nodes_;
-  PolygonStore polygons_;
-  TreeRef root_ = kOut;
+  // Mutable: a deferred tree is built, and stored here, on first use from a const solid (the
+  // solid's value does not change; see "Deferred trees" above).
+  mutable kernel::PlaneTable planes_;
+  mutable std::vector<BspNode> nodes_;
+  mutable PolygonStore polygons_;
+  mutable TreeRef root_ = kOut;
   /// Node slots nothing reaches and plane slots nothing refers to, taken by the nodes and planes
   /// later in-place operations add (bsp/tree/tree_arena.hpp).
-  FreeSlots free_;
-  std::optional<FragmentList> boundary_ = FragmentList{};
-  FragmentBoxes boundary_boxes_;
+  mutable FreeSlots free_;
+  mutable std::optional<FragmentList> boundary_ = FragmentList{};
+  mutable FragmentBoxes boundary_boxes_;
   kernel::Grid grid_;
+  /// The tree merge still to be done, or null (then the members above are the solid).
+  mutable std::unique_ptr<bsp::detail::DeferredTree> deferred_;
 };
 
 /// Two solids of different grids given to one operation (a set operation, union_all): the

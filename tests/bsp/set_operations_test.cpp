@@ -8,10 +8,12 @@
 #include <random>
 #include <set>
 
+#include "bsp/assembly/mesh_assembly.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/transform.hpp"
+#include "bsp/tree/boundary_fragments.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
@@ -285,6 +287,80 @@ TEST(SetOperations, CompactedResultsAreDepthFirstWithoutUnusedNodesOrPlanes) {
     }
     for (std::size_t i = 6; i < plane_used.size(); ++i) EXPECT_TRUE(plane_used[i]) << "unused plane " << i;
   }
+}
+
+}  // namespace
+}  // namespace sculpt
+
+namespace sculpt {
+namespace {
+
+// Deferred trees (bsp/solid.hpp): a set operation's result carries its boundary and builds its
+// tree on first use. Output must not build it, and the built solid must be the operation's result.
+TEST(DeferredTree, OutputReadsTheBoundaryWithoutBuildingTheTree) {
+  const Solid a = sphere(1.0, {.segments = 24});
+  const Solid b = translate(a, {0.5, 0.375, 0.25});
+  const Solid d = a - b;  // const: the tree is built through const accessors (mutable storage)
+  ASSERT_TRUE(d.tree_deferred());
+  EXPECT_TRUE(d.has_boundary());
+  const PolygonMesh before = to_mesh(d);
+  const double v = volume(d);
+  (void)surface_area(d);
+  (void)bounding_box(d);
+  EXPECT_TRUE(d.tree_deferred()) << "output built the tree";
+  // Built: the same mesh from the compacted boundary, and a tree that agrees with it.
+  EXPECT_GT(tree_stats(d).nodes, 0);
+  EXPECT_FALSE(d.tree_deferred());
+  const PolygonMesh after = to_mesh(d);
+  ASSERT_EQ(before.vertices.size(), after.vertices.size());
+  EXPECT_EQ(before.vertices, after.vertices);
+  EXPECT_EQ(before.faces, after.faces);
+  EXPECT_EQ(volume(d), v);
+  // The tree against its operands at random points (it is built from their trees, not the mesh).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> coord(-1.25, 1.75);
+  int inside = 0;
+  for (int i = 0; i < 1500; ++i) {
+    const Eigen::Vector3d p{coord(rng), coord(rng), coord(rng)};
+    const Location la = classify(a, p).location, lb = classify(b, p).location;
+    if (la == Location::Boundary || lb == Location::Boundary) continue;
+    const bool want = la == Location::Inside && lb == Location::Outside;
+    inside += want;
+    EXPECT_EQ(classify(d, p).location, want ? Location::Inside : Location::Outside) << p.transpose();
+  }
+  EXPECT_GT(inside, 30);
+  // The boundary extracted from the built tree (not the carried one) bounds the same volume.
+  const bsp::detail::Fragments extracted = bsp::detail::boundary_fragments(d);
+  EXPECT_NEAR(double(checks::reference_signed_volume(bsp::detail::assemble_mesh(extracted, {}))), v, 1e-12);
+}
+
+TEST(DeferredTree, CopiesMovesAndFurtherOperations) {
+  const Solid a = sphere(1.0, {.segments = 16});
+  const Solid b = translate(a, {0.5, 0, 0});
+  const Solid c = box({-0.25, -2, -2}, {0.25, 2, 2});
+  Solid d = a - b;
+  ASSERT_TRUE(d.tree_deferred());
+  Solid moved = std::move(d);  // the deferred merge moves along
+  EXPECT_TRUE(moved.tree_deferred());
+  EXPECT_FALSE(d.tree_deferred());  // NOLINT(bugprone-use-after-move): moved-from is a valid solid
+  const Solid copy = moved;         // a copy builds the tree first, then shares nothing
+  EXPECT_FALSE(moved.tree_deferred());
+  EXPECT_FALSE(copy.tree_deferred());
+  EXPECT_EQ(tree_stats(copy).nodes, tree_stats(moved).nodes);
+  EXPECT_EQ(volume(copy), volume(moved));
+  // A deferred result as an operand, both ways, and in place: inclusion-exclusion on volumes.
+  const Solid e = a - b, f = a - b;
+  ASSERT_TRUE(e.tree_deferred() && f.tree_deferred());
+  const double ve = volume(e), vc = volume(c);
+  EXPECT_NEAR(volume(e | c) + volume(e & c), ve + vc, 1e-9);
+  EXPECT_NEAR(volume(c - f) + volume(c & f), vc, 1e-9);
+  Solid g = a - b;
+  g = std::move(g) - c;
+  EXPECT_NEAR(volume(g) + volume(e & c), ve, 1e-9);
+  // Results that are leaves: nothing to build, and an empty mesh.
+  const Solid none = a - a;
+  EXPECT_TRUE(to_mesh(none).faces.empty());
+  EXPECT_TRUE(none.is_empty());
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ namespace sculpt::bsp::detail {
 // merged vertices (vertex_merge), T-junction removal (junction_removal), coplanar merging and
 // straight vertices (assembly_coplanar), one vertex copy per sheet and output
 // (assembly_sheets); shared data in assembly_faces.
-PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& options) {
+PolygonMesh assemble_mesh(FragmentsView fragments, const AssemblyOptions& options) {
   MergedFragments merged = merge_vertices(fragments);
   const PlaneIds& ids = merged.ids;
   const VertexGeometry geometry(fragments.planes, ids, merged.vertices);

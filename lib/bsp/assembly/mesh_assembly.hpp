@@ -17,6 +17,6 @@ struct AssemblyOptions {
   std::vector<char>* exact_vertices = nullptr;
 };
 
-PolygonMesh assemble_mesh(const Fragments& fragments, const AssemblyOptions& options);
+PolygonMesh assemble_mesh(FragmentsView fragments, const AssemblyOptions& options);
 
 }  // namespace sculpt::bsp::detail

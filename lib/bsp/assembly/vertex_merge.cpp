@@ -265,7 +265,7 @@ class CornerMerger {
 
 }  // namespace
 
-MergedFragments merge_vertices(const Fragments& fragments) {
+MergedFragments merge_vertices(FragmentsView fragments) {
   // (No counting pass over the fragments first: it would read them twice.)
   const std::size_t nf = fragments.fragments.size();
   const std::size_t expected = 4 * nf + 16;  // corners, mostly quadrilaterals

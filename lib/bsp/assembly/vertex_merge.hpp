@@ -22,6 +22,6 @@ struct MergedFragments {
 /// the triple and approximation of its first corner and the canonical ids of every plane of
 /// its corners), and the fragments as faces on those vertices, with the plane of the edge
 /// leaving each corner.
-MergedFragments merge_vertices(const Fragments& fragments);
+MergedFragments merge_vertices(FragmentsView fragments);
 
 }  // namespace sculpt::bsp::detail

@@ -19,6 +19,14 @@ struct Fragments {
   FragmentList fragments;
 };
 
+/// Fragments read where they are (a solid's carried boundary, say), without a copy.
+struct FragmentsView {
+  const kernel::PlaneTable& planes;
+  const FragmentList& fragments;
+  FragmentsView(const kernel::PlaneTable& p, const FragmentList& f) : planes(p), fragments(f) {}
+  FragmentsView(const Fragments& f) : planes(f.planes), fragments(f.fragments) {}  // NOLINT: implicit on purpose
+};
+
 Fragments boundary_fragments(const Solid& solid);
 
 /// The boundary of the solid in arena inside the cell of the subtree at `root`, whose path from

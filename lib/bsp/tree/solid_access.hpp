@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "bsp/solid.hpp"
+#include "bsp/tree/deferred_tree.hpp"
 
 namespace sculpt::bsp::detail {
 
@@ -23,10 +24,12 @@ struct SolidAccess {
     solid.grid_ = grid;
     return std::move(solid);
   }
+  /// A solid whose tree is built on first use (deferred_tree.hpp), at the default grid.
+  static Solid deferred(std::unique_ptr<DeferredTree> tree) { return Solid(std::move(tree)); }
   /// The free node and plane slots in-place operations keep in a solid's storage (tree_arena.hpp).
-  static const FreeSlots& free_slots(const Solid& solid) { return solid.free_; }
+  static const FreeSlots& free_slots(const Solid& solid) { return solid.settled().free_; }
   /// Boxes of solid.boundary() (same order), or empty if not computed.
-  static const FragmentBoxes& boundary_boxes(const Solid& solid) { return solid.boundary_boxes_; }
+  static const FragmentBoxes& boundary_boxes(const Solid& solid) { return solid.settled().boundary_boxes_; }
 };
 
 }  // namespace sculpt::bsp::detail

@@ -5,7 +5,11 @@
 //         boundary_fragments=<count carried by the result solid>
 //         to_mesh_ms=<min of to_mesh on the result> to_mesh_unclean_ms=<the same with {.clean = false}>
 //         operands_ms=<min, building the two operands> operation_ms=<min, the set operation alone>
-//         malloc=<kept|system>
+//         operation_boundary_ms=<min, the set operation before its tree is built (solid.hpp,
+//         "Deferred trees"): what an output needs> with_tree_cpu_ms / with_tree_min_cpu_ms=<median /
+//         min thread CPU of the case plus building its result's tree> tree_deferred=<yes|no: the
+//         case's result still had its tree to build> malloc=<kept|system>
+// The predicate counts include building the result's tree.
 // cpu_ms / min_cpu_ms: median / min of this thread's CPU time per run (less sensitive to a busy
 // machine than the wall clock); to_mesh_ms and to_mesh_unclean_ms are thread CPU times.
 // Without arguments it runs every case, each in its own process (so peak RSS is per case):
@@ -184,22 +188,32 @@ int run_case(const std::string& name, int n, int runs) {
   }
   const long base = rss_kb();
   std::vector<double> times, cpu_times;  // wall clock and this thread's CPU time (a loaded machine)
+  std::vector<double> tree_cpu_times;        // the same with the result's tree built (see below)
   Result r;
+  bool deferred = false;
   const int warmup = 1;
   for (int i = 0; i < runs + warmup; ++i) {
+    r = Result{};  // the previous result is freed outside the timing
     kernel::predicate_counters() = {};
     const double c0 = thread_cpu_ms();
     const auto t0 = std::chrono::steady_clock::now();
     r = f();
     const auto t1 = std::chrono::steady_clock::now();
     const double c1 = thread_cpu_ms();
+    // The case's output (a mesh) does not need the result's tree, which a set operation builds on
+    // first use (bsp/solid.hpp, "Deferred trees"); with_tree_*: the case plus that tree.
+    deferred = r.solid.tree_deferred();
+    (void)r.solid.nodes();
+    const double c2 = thread_cpu_ms();
     if (i >= warmup) {
       times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
       cpu_times.push_back(c1 - c0);
+      tree_cpu_times.push_back(c2 - c0);
     }
   }
   std::sort(times.begin(), times.end());
   std::sort(cpu_times.begin(), cpu_times.end());
+  std::sort(tree_cpu_times.begin(), tree_cpu_times.end());
   const kernel::PredicateCounters pc = kernel::predicate_counters();
   double volume = mesh_volume(r.mesh);
   if (name == "menger") volume *= scale;
@@ -224,15 +238,17 @@ int run_case(const std::string& name, int n, int runs) {
   }
   // For the differences of two solids: building the operands alone and the set operation alone
   // (operands built untimed, copied untimed), min thread CPU time over the runs.
-  double operands_ms = -1, operation_ms = -1;
+  double operands_ms = -1, operation_ms = -1, boundary_ms = -1;
   if (name == "sphere_minus_sphere" || name == "sphere_minus_tilted_cube" || name == "sphere_minus_cube") {
-    operands_ms = operation_ms = 1e300;
+    operands_ms = operation_ms = boundary_ms = 1e300;
     for (int i = 0; i < std::max(3, runs); ++i) {
       double t0 = thread_cpu_ms();
       auto [a, b] = operands(name, n);
       operands_ms = std::min(operands_ms, thread_cpu_ms() - t0);
       t0 = thread_cpu_ms();
       const Solid d = std::move(a) - b;
+      boundary_ms = std::min(boundary_ms, thread_cpu_ms() - t0);  // the tree may still be deferred
+      (void)d.nodes();
       operation_ms = std::min(operation_ms, thread_cpu_ms() - t0);
     }
   }
@@ -251,12 +267,14 @@ int run_case(const std::string& name, int n, int runs) {
               "volume=%.12g expected=%s "
               "faces=%zu vertices=%zu peak_rss_kb=%ld base_rss_kb=%ld tree_nodes=%d tree_height=%d "
               "exact_predicates=%llu filtered_predicates=%llu boundary_fragments=%zu to_mesh_ms=%.3f to_mesh_unclean_ms=%.3f "
-              "operands_ms=%.3f operation_ms=%.3f malloc=%s\n",
+              "operands_ms=%.3f operation_ms=%.3f operation_boundary_ms=%.3f with_tree_cpu_ms=%.3f "
+              "with_tree_min_cpu_ms=%.3f tree_deferred=%s malloc=%s\n",
               name.c_str(), n, runs, warmup, times[times.size() / 2], times.front(), cpu_times[cpu_times.size() / 2],
               cpu_times.front(), volume, expected.c_str(),
               r.mesh.faces.size(), r.mesh.vertices.size(), peak_rss_kb(), base, st.nodes, st.height,
               (unsigned long long)pc.exact, (unsigned long long)pc.filtered, r.solid.boundary().size(), mesh_ms, unclean_ms,
-              operands_ms, operation_ms, system_malloc ? "system" : "kept");
+              operands_ms, operation_ms, boundary_ms, tree_cpu_times[tree_cpu_times.size() / 2], tree_cpu_times.front(),
+              deferred ? "yes" : "no", system_malloc ? "system" : "kept");
   return 0;
 }
 

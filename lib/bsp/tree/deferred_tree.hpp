@@ -1,0 +1,26 @@
+#pragma once
+/// \file deferred_tree.hpp
+/// Internal: the tree of a set operation's result, built when it is first used. A set operation
+/// computes the result's boundary from its operands' boundaries before it merges their trees
+/// (merge/boundary_merge.hpp), and output (to_mesh, export, volume) needs that boundary alone, so
+/// the merge can wait. A Solid holding a DeferredTree reads the boundary through it and runs
+/// build() the first time anything asks for its tree (see Solid, "Deferred trees").
+
+#include <memory>
+
+#include "bsp/solid.hpp"
+
+namespace sculpt::bsp::detail {
+
+class DeferredTree {
+ public:
+  virtual ~DeferredTree() = default;
+  /// The result's boundary and the planes it is on (valid until build()).
+  [[nodiscard]] virtual const kernel::PlaneTable& planes() const = 0;
+  [[nodiscard]] virtual const FragmentList& boundary() const = 0;
+  /// The complete result (tree, boundary, at the default grid): exactly what the operation would
+  /// have returned without deferring. Called once; the object is discarded after it.
+  virtual Solid build() = 0;
+};
+
+}  // namespace sculpt::bsp::detail
