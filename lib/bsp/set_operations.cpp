@@ -256,24 +256,43 @@ class Merger {
 
 // A set operation in two steps: the boundary of op(a, b) (to arena.boundary), then the merged
 // tree. Where the result out of a does not depend on b (op[0][*] constant), b only matters
-// inside a: b's planes with a on one closed side are dropped first (extent_pruning.hpp).
+// inside a: b's planes with a on one closed side are dropped (extent_pruning.hpp), from b's
+// fragments before the boundary merge and from b's tree before the merge of the trees.
 class MergeSteps {
  public:
   MergeSteps(TreeRef ra, TreeRef rb, std::size_t b_nodes, const bool op[2][2]) : ra_(ra), rb_(rb), b_nodes_(b_nodes) {
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j) op_[i][j] = op[i][j];
   }
-  // The result's boundary, from a's fragments `fa` (boxes `boxes`) and b's `fb`.
+  // The result's boundary, from a's fragments `fa` (boxes `boxes`) and b's `fb`; the extent
+  // sides first, for both steps.
   void boundary(Arena& arena, FragmentList fa, bsp::detail::FragmentBoxes boxes, const FragmentList& fb) {
-    if (op_[0][0] == op_[0][1] && !is_leaf(rb_)) {
+    if (prunes()) {
       bsp::detail::complete_boxes(fa, boxes);
       sides_ = bsp::detail::extent_sides(arena, ra_, fa, boxes, rb_, fb);
     }
     bsp::detail::merge_boundaries(arena, ra_, std::move(fa), std::move(boxes), rb_, fb, op_, sides_ ? &*sides_ : nullptr);
   }
+  // The same boundary without the extent sides, which wait for tree() (a deferred tree may never
+  // be built): b's fragments that they would drop are pushed down a's tree and dropped there,
+  // which costs less than the sides (sphere minus sphere: 2.6 against 3.4 ms at 64 segments).
+  // Keeps a copy of a's fragments and b's for them.
+  void boundary_sides_later(Arena& arena, FragmentList fa, bsp::detail::FragmentBoxes boxes, FragmentList fb) {
+    if (prunes()) {
+      bsp::detail::complete_boxes(fa, boxes);
+      later_ = Later{fa, boxes, std::move(fb)};
+      bsp::detail::merge_boundaries(arena, ra_, std::move(fa), std::move(boxes), rb_, later_->b_faces, op_, nullptr);
+    } else {
+      bsp::detail::merge_boundaries(arena, ra_, std::move(fa), std::move(boxes), rb_, fb, op_, nullptr);
+    }
+  }
   // The merged tree (after boundary()); returns its root.
   TreeRef tree(Arena& arena) {
     TreeRef rb = rb_;
+    if (later_) {  // the trees are as they were: merge_boundaries does not change them
+      sides_ = bsp::detail::extent_sides(arena, ra_, later_->a_faces, later_->a_boxes, rb_, later_->b_faces);
+      later_.reset();
+    }
     if (sides_) rb = bsp::detail::prune_to_extent(arena, rb, *sides_);
     bsp::detail::fill_node_polygons(arena, rb);  // b is partitioned: all its sub-hyperplanes are needed
     // Room for the nodes partition() adds (2.5-3.5 per node of b on the curved cases): one
@@ -285,10 +304,17 @@ class MergeSteps {
   }
 
  private:
+  bool prunes() const { return op_[0][0] == op_[0][1] && !is_leaf(rb_); }
+  struct Later {  // what the extent sides are computed from
+    FragmentList a_faces;
+    bsp::detail::FragmentBoxes a_boxes;
+    FragmentList b_faces;
+  };
   TreeRef ra_, rb_;
   std::size_t b_nodes_;
   bool op_[2][2];
   std::optional<bsp::detail::ExtentSides> sides_;
+  std::optional<Later> later_;
 };
 
 // A copying set operation whose tree merge waits until the result's tree is first used
@@ -321,9 +347,9 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   const TreeRef ra = arena.append(a);
   FragmentList fa = arena.boundary_of(a);
   const TreeRef rb = arena.append(b);
-  const FragmentList fb = arena.boundary_of(b);
+  FragmentList fb = arena.boundary_of(b);
   MergeSteps steps(ra, rb, b.nodes().size(), op);
-  steps.boundary(arena, std::move(fa), bsp::detail::SolidAccess::boundary_boxes(a), fb);
+  steps.boundary_sides_later(arena, std::move(fa), bsp::detail::SolidAccess::boundary_boxes(a), std::move(fb));
   // The tree waits for its first use (output needs the boundary alone).
   return SolidAccess::deferred(std::make_unique<DeferredMerge>(std::move(arena), std::move(steps)));
 }
