@@ -25,9 +25,9 @@ PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
   // faces are the exact boundary of the solid, which is clean (docs/kernel.md, "Clean output"),
   // so only pairs of faces with a rounded corner need a test.
   std::vector<char> exact_vertices;
-  const PolygonMesh exact = bsp::detail::assemble_mesh(
+  PolygonMesh exact = bsp::detail::assemble_mesh(
       f, {.triangulate = options.triangulate, .grid = solid.grid(), .exact_vertices = &exact_vertices});
-  return round_for_output(exact,
+  return round_for_output(std::move(exact),
                           {.precision = OutputPrecision::Double, .max_feature = solid.grid().step(),
                            .exact_vertices = exact_vertices},
                           options.report);

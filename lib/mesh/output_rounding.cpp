@@ -870,13 +870,18 @@ std::string output_problem(const PolygonMesh& mesh, const OutputRoundingOptions&
 
 PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOptions& given,
                              OutputRoundingReport* report) {
+  return round_for_output(PolygonMesh(mesh), given, report);
+}
+
+PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& given,
+                             OutputRoundingReport* report) {
   // The exact-vertex marks hold for `mesh` only: its first judgement; repaired meshes are judged in full.
   OutputRoundingOptions options = given;
   options.exact_vertices = {};
   OutputRoundingReport local;
   OutputRoundingReport& r = report != nullptr ? *report : local;
   r = {};
-  if (mesh.faces.empty()) return mesh;
+  if (mesh.faces.empty()) return std::move(mesh);
   // Only closed, oriented 2-manifolds are rounded: anything else (an open patch) is left as it is.
   const ValidationReport topology =
       check_closed_manifold(mesh, {.check_self_intersections = false, .check_face_shapes = false,
@@ -887,7 +892,7 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
       continue;
     r.clean = false;
     r.problem = d.message;
-    return mesh;
+    return std::move(mesh);
   }
   const Rounder round(options);
   const bool topology_clean = topology.defects.empty() && options.precision == OutputPrecision::Double;
@@ -895,11 +900,11 @@ PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOption
   if (first == kUnchecked) {  // too costly to judge: written as it is, and said so
     r.clean = false;
     r.problem = first;
-    return mesh;
+    return std::move(mesh);
   }
   if (first.empty()) {
-    if (options.precision == OutputPrecision::Double) return mesh;
-    PolygonMesh rounded = mesh;
+    if (options.precision == OutputPrecision::Double) return std::move(mesh);
+    PolygonMesh rounded = std::move(mesh);
     for (Vector3d& v : rounded.vertices) v = round(v);
     return rounded;
   }

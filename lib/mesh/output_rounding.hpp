@@ -72,6 +72,9 @@ struct OutputRoundingReport {
 /// budget of 16 candidate pairs per corner).
 PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOptions& options = {},
                              OutputRoundingReport* report = nullptr);
+/// The same, taking the mesh: returned without a copy where it is returned unchanged.
+PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& options = {},
+                             OutputRoundingReport* report = nullptr);
 
 /// The first reason `mesh` is not clean for other tools in `options.precision` (after rounding each
 /// coordinate; max_feature is not used), or an empty string: an edge not used once in each direction, two vertices at one
