@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 
@@ -324,11 +325,17 @@ class DeferredMerge final : public bsp::detail::DeferredTree {
   DeferredMerge(Arena&& arena, MergeSteps steps) : arena_(std::move(arena)), steps_(std::move(steps)) {}
   const kernel::PlaneTable& planes() const override { return arena_.planes; }
   const FragmentList& boundary() const override { return *arena_.boundary; }
-  Solid build() override { return bsp::detail::compact(arena_, steps_.tree(arena_)); }
+  Solid build() override {
+    // The merge changes the arena: a merge that threw (out of memory) cannot be run again.
+    if (started_) throw std::logic_error("a deferred set operation failed earlier and cannot be completed");
+    started_ = true;
+    return bsp::detail::compact(arena_, steps_.tree(arena_));
+  }
 
  private:
   Arena arena_;
   MergeSteps steps_;
+  bool started_ = false;
 };
 
 Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
@@ -359,7 +366,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 // That pays when y is small beside x (a tool on a workpiece). When y has at least half as many
 // nodes, most of the result's nodes are new, and placing them one by one after the merge costs
 // more than the copying path's compaction, which can also wait for the tree's first use: x is
-// copied (docs/benchmarks.md, "Sphere minus sphere").
+// copied (docs/benchmarks.md, "Session 15: deferred trees").
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < 2 * y.nodes().size()) return apply(x, y, table);
   // The boundary of x must be known before its storage moves into the arena.

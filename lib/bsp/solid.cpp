@@ -51,7 +51,7 @@ Solid::Solid(std::unique_ptr<bsp::detail::DeferredTree> deferred) : deferred_(st
 void Solid::build_deferred() const {
   // The built result replaces the (empty) storage; the grid stays (the operation labelled this
   // solid, the merge works at the default grid). deferred_ is released last: if build() throws,
-  // the solid still holds its deferred merge.
+  // every later use of the solid throws too (DeferredTree::build is called once).
   Solid built = deferred_->build();
   planes_ = std::move(built.planes_);
   nodes_ = std::move(built.nodes_);

@@ -19,7 +19,8 @@ class DeferredTree {
   [[nodiscard]] virtual const kernel::PlaneTable& planes() const = 0;
   [[nodiscard]] virtual const FragmentList& boundary() const = 0;
   /// The complete result (tree, boundary, at the default grid): exactly what the operation would
-  /// have returned without deferring. Called once; the object is discarded after it.
+  /// have returned without deferring. Called once; the object is discarded after it. If it
+  /// throws, a second call throws std::logic_error (the work it began cannot be resumed).
   virtual Solid build() = 0;
 };
 
