@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace sculpt {
 
@@ -23,8 +24,35 @@ Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
 
 Solid::Solid() = default;
 Solid::~Solid() = default;
-Solid::Solid(Solid&& other) noexcept = default;
-Solid& Solid::operator=(Solid&& other) noexcept = default;
+// A moved-from solid is the empty solid (its root an out leaf over its emptied storage).
+Solid::Solid(Solid&& other) noexcept
+    : planes_(std::move(other.planes_)),
+      nodes_(std::move(other.nodes_)),
+      polygons_(std::move(other.polygons_)),
+      root_(std::exchange(other.root_, kOut)),
+      free_(std::move(other.free_)),
+      boundary_(std::move(other.boundary_)),
+      boundary_boxes_(std::move(other.boundary_boxes_)),
+      grid_(other.grid_),
+      deferred_(std::move(other.deferred_)) {
+  other.boundary_ = FragmentList{};
+}
+
+Solid& Solid::operator=(Solid&& other) noexcept {
+  if (this != &other) {
+    planes_ = std::move(other.planes_);
+    nodes_ = std::move(other.nodes_);
+    polygons_ = std::move(other.polygons_);
+    root_ = std::exchange(other.root_, kOut);
+    free_ = std::move(other.free_);
+    boundary_ = std::move(other.boundary_);
+    boundary_boxes_ = std::move(other.boundary_boxes_);
+    grid_ = other.grid_;
+    deferred_ = std::move(other.deferred_);
+    other.boundary_ = FragmentList{};
+  }
+  return *this;
+}
 
 void Solid::copy_from(const Solid& other) {
   other.settled();

@@ -83,6 +83,7 @@ class Solid {
   /// A copy (builds a deferred tree first: the copy and the original share nothing).
   Solid(const Solid& other);
   Solid& operator=(const Solid& other);
+  /// Moves leave `other` the empty solid (at its grid).
   Solid(Solid&& other) noexcept;
   Solid& operator=(Solid&& other) noexcept;
   /// The solid whose tree is a single leaf: empty (false) or all of space (true).

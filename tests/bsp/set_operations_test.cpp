@@ -342,7 +342,14 @@ TEST(DeferredTree, CopiesMovesAndFurtherOperations) {
   ASSERT_TRUE(d.tree_deferred());
   Solid moved = std::move(d);  // the deferred merge moves along
   EXPECT_TRUE(moved.tree_deferred());
-  EXPECT_FALSE(d.tree_deferred());  // NOLINT(bugprone-use-after-move): moved-from is a valid solid
+  EXPECT_FALSE(d.tree_deferred());  // NOLINT(bugprone-use-after-move): moved-from is the empty solid
+  EXPECT_TRUE(d.is_empty());
+  EXPECT_TRUE(to_mesh(d).faces.empty());
+  Solid eager = box({0, 0, 0}, {1, 1, 1});  // a solid with its tree, moved from by assignment
+  Solid target;
+  target = std::move(eager);
+  EXPECT_TRUE(eager.is_empty());  // NOLINT(bugprone-use-after-move)
+  EXPECT_EQ(volume(target), 1.0);
   const Solid copy = moved;         // a copy builds the tree first, then shares nothing
   EXPECT_FALSE(moved.tree_deferred());
   EXPECT_FALSE(copy.tree_deferred());
