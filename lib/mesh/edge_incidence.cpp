@@ -9,22 +9,55 @@
 namespace sculpt {
 
 std::vector<HalfEdgeRecord> sorted_edge_records(const PolygonMesh& mesh) {
-  std::vector<HalfEdgeRecord> records;
-  size_t total = 0;
-  for (const auto& f : mesh.faces) total += f.size();
-  records.reserve(total);
+  // A counting sort by the lower vertex, then each vertex's few sides by the rest of the key:
+  // the order of one std::sort by (lo, hi, face, corner), in linear time for bounded valence.
+  int top = -1, bottom = 0;
+  for (const auto& f : mesh.faces)
+    for (int v : f) top = std::max(top, v), bottom = std::min(bottom, v);
+  if (bottom < 0) {  // invalid indices (callers report them): one comparison sort
+    std::vector<HalfEdgeRecord> records;
+    for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+      const auto& f = mesh.faces[fi];
+      for (size_t k = 0; k < f.size(); ++k) {
+        const int a = f[k], b = f[(k + 1) % f.size()];
+        if (a != b) records.push_back({std::min(a, b), std::max(a, b), static_cast<int>(fi), static_cast<int>(k), a < b});
+      }
+    }
+    std::sort(records.begin(), records.end(), [](const HalfEdgeRecord& x, const HalfEdgeRecord& y) {
+      return std::tie(x.lo, x.hi, x.face, x.corner) < std::tie(y.lo, y.hi, y.face, y.corner);
+    });
+    return records;
+  }
+  std::vector<size_t> start(size_t(top + 2), 0);
+  for (const auto& f : mesh.faces)
+    for (size_t k = 0; k < f.size(); ++k) {
+      const int a = f[k], b = f[(k + 1) % f.size()];
+      if (a != b) ++start[size_t(std::min(a, b)) + 1];
+    }
+  for (size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+  std::vector<HalfEdgeRecord> records(start.back());
+  std::vector<size_t> next(start.begin(), start.end() - 1);
   for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
     const auto& f = mesh.faces[fi];
     for (size_t k = 0; k < f.size(); ++k) {
       const int a = f[k], b = f[(k + 1) % f.size()];
       if (a == b) continue;
-      records.push_back({std::min(a, b), std::max(a, b), static_cast<int>(fi),
-                         static_cast<int>(k), a < b});
+      records[next[size_t(std::min(a, b))]++] = {std::min(a, b), std::max(a, b), static_cast<int>(fi),
+                                                 static_cast<int>(k), a < b};
     }
   }
-  std::sort(records.begin(), records.end(), [](const HalfEdgeRecord& x, const HalfEdgeRecord& y) {
-    return std::tie(x.lo, x.hi, x.face, x.corner) < std::tie(y.lo, y.hi, y.face, y.corner);
-  });
+  auto before = [](const HalfEdgeRecord& x, const HalfEdgeRecord& y) {
+    return std::tie(x.hi, x.face, x.corner) < std::tie(y.hi, y.face, y.corner);
+  };
+  for (size_t v = 0; v + 1 < start.size(); ++v) {
+    const auto first = records.begin() + std::ptrdiff_t(start[v]), last = records.begin() + std::ptrdiff_t(start[v + 1]);
+    if (last - first <= 16) {  // insertion sort: a vertex has a few sides
+      for (auto i = first + (first != last ? 1 : 0); i < last; ++i)
+        for (auto j = i; j > first && before(*j, *(j - 1)); --j) std::iter_swap(j, j - 1);
+    } else {
+      std::sort(first, last, before);
+    }
+  }
   return records;
 }
 

@@ -43,7 +43,7 @@ bool collinear(const PolygonMesh& m, const std::vector<int>& f) {
   for (size_t i = 1; i < f.size(); ++i) {
     const Eigen::Vector3d& b = m.vertices[f[i]];
     if (b == a) continue;
-    for (size_t k = 1; k < f.size(); ++k) {
+    for (size_t k = i + 1; k < f.size(); ++k) {  // corners before b are at a
       const Eigen::Vector3d& c = m.vertices[f[k]];
       for (int axis = 0; axis < 3; ++axis) {
         const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -103,11 +103,11 @@ class Validator {
   void check_degenerate_faces() {
     for (size_t fi = 0; fi < m_.faces.size(); ++fi) {
       const auto& f = m_.faces[fi];
-      std::vector<int> sorted = f;
-      std::sort(sorted.begin(), sorted.end());
-      const auto dup = std::adjacent_find(sorted.begin(), sorted.end());
+      sorted_.assign(f.begin(), f.end());
+      std::sort(sorted_.begin(), sorted_.end());
+      const auto dup = std::adjacent_find(sorted_.begin(), sorted_.end());
       const int id = static_cast<int>(fi);
-      if (dup != sorted.end())
+      if (dup != sorted_.end())
         add(DefectKind::DegenerateFace, {id}, {*dup},
             "face " + std::to_string(fi) + " visits " + vertex(m_, *dup) + " twice");
       else if (collinear(m_, f))
@@ -243,6 +243,7 @@ class Validator {
   ValidationOptions opt_;
   ValidationReport report_;
   std::map<DefectKind, size_t> counts_;
+  std::vector<int> sorted_;  ///< check_degenerate_faces: one face's corners, sorted
 };
 
 }  // namespace

@@ -4,9 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+#include <tuple>
+#include <algorithm>
 #include <numbers>
 
 #include "base/errors.hpp"
+#include "mesh/edge_incidence.hpp"
 #include "shapes.hpp"
 
 namespace sculpt {
@@ -88,6 +92,46 @@ TEST(Measures, OpenMeshHasNoGenusAndBadIndicesThrow) {
   EXPECT_THROW(euler_characteristic(c), InvalidInput);
   EXPECT_TRUE(mesh_bounding_box(PolygonMesh{}).isEmpty());
   EXPECT_EQ(mesh_volume(PolygonMesh{}), 0);
+}
+
+}  // namespace
+}  // namespace sculpt
+
+namespace sculpt {
+namespace {
+
+// sorted_edge_records sorts by counting (lower vertex) and then per vertex: the same order as one
+// comparison sort by (lo, hi, face, corner), on random polygon soups with repeated corners,
+// high-valence vertices (more sides than the per-vertex insertion sort takes) and unused vertices.
+TEST(EdgeRecords, OrderOfOneComparisonSort) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 200; ++trial) {
+    PolygonMesh m;
+    const int nv = 1 + int(rng() % 40);
+    m.vertices.assign(size_t(nv), Eigen::Vector3d::Zero());
+    const int nf = int(rng() % 60);
+    for (int f = 0; f < nf; ++f) {
+      std::vector<int> face(3 + rng() % 5);
+      for (int& v : face) v = trial % 3 == 0 && rng() % 2 ? 0 : int(rng() % unsigned(nv));  // vertex 0: high valence
+      m.faces.push_back(face);
+    }
+    std::vector<HalfEdgeRecord> expected;
+    for (size_t fi = 0; fi < m.faces.size(); ++fi)
+      for (size_t k = 0; k < m.faces[fi].size(); ++k) {
+        const int a = m.faces[fi][k], b = m.faces[fi][(k + 1) % m.faces[fi].size()];
+        if (a != b) expected.push_back({std::min(a, b), std::max(a, b), int(fi), int(k), a < b});
+      }
+    std::sort(expected.begin(), expected.end(), [](const HalfEdgeRecord& x, const HalfEdgeRecord& y) {
+      return std::tie(x.lo, x.hi, x.face, x.corner) < std::tie(y.lo, y.hi, y.face, y.corner);
+    });
+    const std::vector<HalfEdgeRecord> got = sorted_edge_records(m);
+    ASSERT_EQ(got.size(), expected.size());
+    for (size_t i = 0; i < got.size(); ++i) {
+      ASSERT_EQ(std::tie(got[i].lo, got[i].hi, got[i].face, got[i].corner, got[i].forward),
+                std::tie(expected[i].lo, expected[i].hi, expected[i].face, expected[i].corner, expected[i].forward))
+          << trial << " " << i;
+    }
+  }
 }
 
 }  // namespace
