@@ -853,7 +853,7 @@ std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options,
   }
   const SelfIntersectionSearch search = search_self_intersections(
       rounded, {.max_pairs = 1, .max_candidates = kCandidatesPerCorner * corner_count(rounded) + kMinCandidates,
-                .exact_vertices = exact});
+                .exact_vertices = exact, .distinct_vertices = !options.keep_copies});
   if (!search.pairs.empty()) {
     const FacePair& p = search.pairs.front();
     return "faces " + std::to_string(p.face_a) + " and " + std::to_string(p.face_b) + " intersect";

@@ -4,8 +4,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -16,6 +18,12 @@
 
 namespace sculpt {
 namespace {
+
+// Shewchuk's first-stage orient2d bound (ccwerrboundA) and the magnitude below which an underflow
+// could void it, as in mesh/predicates.cpp.
+constexpr double kOrient2dFilterBound =
+    (3.0 + 16.0 * (std::numeric_limits<double>::epsilon() / 2)) * (std::numeric_limits<double>::epsilon() / 2);
+constexpr double kOrient2dNoUnderflow = 1e-280;
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
@@ -95,12 +103,17 @@ bool projections_separated(const PreparedTriangle& x, const PreparedTriangle& y,
 /// `axis`, along which both project without degeneracy.
 bool coplanar_triangles_meet(const PreparedTriangle& x, const PreparedTriangle& y, int axis) { return !projections_separated(x, y, axis); }
 
+/// orient3d(t.p[0], t.p[1], t.p[2], q): t's plane filter first, the exact predicate where it is
+/// undecided.
+int side(const PreparedTriangle& t, const Vector3d& q) {
+  const int f = orient3d_filtered(t.plane, q);
+  return f != kUndecided ? f : orient3d(t.p[0], t.p[1], t.p[2], q);
+}
+
 /// Any edge of `x` (among those listed) meets triangle `y`.
 bool edges_meet(const PreparedTriangle& x, std::initializer_list<std::pair<int, int>> edges, const PreparedTriangle& y) {
   for (auto [i, j] : edges)
-    if (segment_meets_triangle(x.p[i], x.p[j], orient3d(y.p[0], y.p[1], y.p[2], x.p[i]),
-                               orient3d(y.p[0], y.p[1], y.p[2], x.p[j]), y))
-      return true;
+    if (segment_meets_triangle(x.p[i], x.p[j], side(y, x.p[i]), side(y, x.p[j]), y)) return true;
   return false;
 }
 
@@ -153,9 +166,9 @@ bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
   if (shared == 0) {
     // One triangle strictly on one side of the other's plane: they cannot meet (the same
     // decisions as the edge tests below, with fewer predicates).
-    const int f0 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[0]);
-    const int f1 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[1]);
-    const int f2 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s.p[2]);
+    const int f0 = orient3d_filtered(t.plane, s.p[0]);
+    const int f1 = orient3d_filtered(t.plane, s.p[1]);
+    const int f2 = orient3d_filtered(t.plane, s.p[2]);
     const bool undecided = f0 == kUndecided || f1 == kUndecided || f2 == kUndecided;
     if (!undecided && ((f0 > 0 && f1 > 0 && f2 > 0) || (f0 < 0 && f1 < 0 && f2 < 0))) return false;
     if (undecided && projections_separated(s, t, t.axis)) return false;
@@ -163,8 +176,7 @@ bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
     const int s2 = decided(f2, t.p[0], t.p[1], t.p[2], s.p[2]);
     if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0)) return false;
     if (s0 == 0 && s1 == 0 && s2 == 0) return coplanar_triangles_meet(s, t, t.axis);
-    const int t0 = orient3d(s.p[0], s.p[1], s.p[2], t.p[0]), t1 = orient3d(s.p[0], s.p[1], s.p[2], t.p[1]);
-    const int t2 = orient3d(s.p[0], s.p[1], s.p[2], t.p[2]);
+    const int t0 = side(s, t.p[0]), t1 = side(s, t.p[1]), t2 = side(s, t.p[2]);
     if ((t0 > 0 && t1 > 0 && t2 > 0) || (t0 < 0 && t1 < 0 && t2 < 0)) return false;
     return all_edges_meet(s, {s0, s1, s2}, t) || all_edges_meet(t, {t0, t1, t2}, s);
   }
@@ -175,9 +187,12 @@ bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
     // only at p: no other test is needed.
     const int i = s_shared[0], j = t_of[i];
     const Vector3d &s1 = s.p[(i + 1) % 3], &s2 = s.p[(i + 2) % 3];
-    const int f1 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s1), f2 = orient3d_filtered(t.p[0], t.p[1], t.p[2], s2);
+    const int f1 = orient3d_filtered(t.plane, s1), f2 = orient3d_filtered(t.plane, s2);
     const bool undecided = f1 == kUndecided || f2 == kUndecided;
     if (!undecided && f1 * f2 > 0) return false;
+    // The same with the roles exchanged: t meets s's plane only at p.
+    const int g1 = orient3d_filtered(s.plane, t.p[(j + 1) % 3]), g2 = orient3d_filtered(s.plane, t.p[(j + 2) % 3]);
+    if (g1 != kUndecided && g2 != kUndecided && g1 * g2 > 0) return false;
     if (undecided && wedges_separated(s, i, t, j)) return false;
     const int o1 = decided(f1, t.p[0], t.p[1], t.p[2], s1), o2 = decided(f2, t.p[0], t.p[1], t.p[2], s2);
     if (o1 * o2 > 0) return false;
@@ -193,6 +208,8 @@ bool triangles_conflict(const PreparedTriangle& s, const PreparedTriangle& t) {
     for (int j = 0; j < 3; ++j)
       if (j != t_of[i0] && j != t_of[i1]) jb = j;
     const Vector3d &p = s.p[i0], &q = s.p[i1], &a = s.p[ia], &b = t.p[jb];
+    const int fb = orient3d_filtered(s.plane, b);
+    if (fb != kUndecided) return false;  // not coplanar (the filter decides no zero)
     const int sa = orient2d(drop(p, s.axis), drop(q, s.axis), drop(a, s.axis));
     const int sb = orient2d(drop(p, s.axis), drop(q, s.axis), drop(b, s.axis));
     return sa == sb && orient3d(p, q, a, b) == 0;
@@ -220,13 +237,50 @@ int projection_axis(const PolygonMesh& mesh, const std::vector<int>& face) {
   return normal[axis] == 0 ? -1 : axis;
 }
 
+/// Canonical vertex ids: vertices with equal coordinates get the same id (of the first of them in
+/// sorted order).
+std::vector<int> canonical_ids(const std::vector<Vector3d>& vertices) {
+  struct Keyed {
+    double x, y, z;
+    int id;
+  };
+  std::vector<Keyed> keyed(vertices.size());
+  for (size_t v = 0; v < vertices.size(); ++v) keyed[v] = {vertices[v].x(), vertices[v].y(), vertices[v].z(), int(v)};
+  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
+    return std::tie(a.x, a.y, a.z, a.id) < std::tie(b.x, b.y, b.z, b.id);
+  });
+  std::vector<int> canon(vertices.size());
+  for (size_t k = 0; k < keyed.size(); ++k) {
+    const bool same = k > 0 && keyed[k].x == keyed[k - 1].x && keyed[k].y == keyed[k - 1].y && keyed[k].z == keyed[k - 1].z;
+    canon[size_t(keyed[k].id)] = same ? canon[size_t(keyed[k - 1].id)] : keyed[k].id;
+  }
+  return canon;
+}
+
+std::vector<int> identity_ids(size_t n) {
+  std::vector<int> ids(n);
+  std::iota(ids.begin(), ids.end(), 0);
+  return ids;
+}
+
 }  // namespace
 
 PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
   PreparedTriangle t;
   t.ids = ids;
   t.p = p;
+  t.plane = orient3d_plane(p[0], p[1], p[2]);
+  // The projection along axis k has the signed area plane.minor[k], computed as orient2d's filter
+  // computes it (differences to p[0], Shewchuk's form), so his orient2d bound certifies a non-zero
+  // one: the axis of the largest certified area, else the first whose exact orient2d is non-zero.
   t.axis = -1;
+  double best = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double area = std::abs(t.plane.minor[axis]);
+    if (area > kOrient2dFilterBound * t.plane.permanent[axis] && t.plane.permanent[axis] > kOrient2dNoUnderflow &&
+        std::isfinite(area) && area > best)
+      t.axis = axis, best = area;
+  }
   for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
     if (orient2d(drop(p[0], axis), drop(p[1], axis), drop(p[2], axis)) != 0) t.axis = axis;
   return t;
@@ -269,20 +323,8 @@ std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh, SelfInter
 
 SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIntersectionOptions options) {
   SelfIntersectionSearch result;
-  // Canonical ids: vertices with equal coordinates get the same id.
   const size_t nv = mesh.vertices.size();
-  std::vector<int> order(nv);
-  std::iota(order.begin(), order.end(), 0);
-  auto less = [&](int a, int b) {
-    const Vector3d &u = mesh.vertices[a], &v = mesh.vertices[b];
-    return std::tie(u.x(), u.y(), u.z()) < std::tie(v.x(), v.y(), v.z());
-  };
-  std::sort(order.begin(), order.end(), less);
-  std::vector<int> canon(nv);
-  for (size_t k = 0; k < nv; ++k)
-    canon[order[k]] = (k > 0 && mesh.vertices[order[k]] == mesh.vertices[order[k - 1]])
-                          ? canon[order[k - 1]]
-                          : order[k];
+  const std::vector<int> canon = options.distinct_vertices ? identity_ids(nv) : canonical_ids(mesh.vertices);
 
   // Faces with every corner marked exact (the flags are used only when there is one per vertex):
   // pairs of their triangles are not examined (see SelfIntersectionOptions::exact_vertices).
@@ -292,26 +334,28 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   };
   if (marked && std::all_of(mesh.faces.begin(), mesh.faces.end(), exact_face)) return result;
   std::vector<Tri> tris;
+  {
+    size_t corners = 0;
+    for (const auto& f : mesh.faces) corners += f.size() >= 2 ? f.size() - 2 : 0;
+    tris.reserve(corners);
+  }
   size_t moved = 0;  // triangles of faces with a corner not marked exact
+  PolygonTriangulator triangulator;
+  std::vector<IndexTriangle> face_tris;
   for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
     const bool exact = exact_face(mesh.faces[fi]);
-    for (const IndexTriangle& it : triangulate_polygon(mesh.vertices, mesh.faces[fi])) {
+    face_tris.clear();
+    triangulator.append(mesh.vertices, mesh.faces[fi], face_tris);
+    for (const IndexTriangle& it : face_tris) {
       Tri t;
+      static_cast<PreparedTriangle&>(t) = prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
+                                                           {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
+      if (t.axis < 0) continue;  // collinear corners: degenerate, reported elsewhere
       t.face = static_cast<int>(fi);
       t.exact = exact;
-      for (int k = 0; k < 3; ++k) {
-        t.ids[k] = canon[it[k]];
-        t.p[k] = mesh.vertices[it[k]];
-        t.box.extend(t.p[k]);
-      }
-      t.axis = -1;
-      for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
-        if (orient2d(drop(t.p[0], axis), drop(t.p[1], axis), drop(t.p[2], axis)) != 0)
-          t.axis = axis;
-      if (t.axis >= 0) {  // collinear corners: degenerate, reported elsewhere
-        tris.push_back(t);
-        moved += t.exact ? 0 : 1;
-      }
+      for (int k = 0; k < 3; ++k) t.box.extend(t.p[k]);
+      tris.push_back(t);
+      moved += t.exact ? 0 : 1;
     }
   }
   if (moved == 0) return result;
@@ -323,6 +367,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     Eigen::AlignedBox3d box;
     int face = 0;
     bool exact = false;
+    unsigned first = 0;  // in a cell's gathered copy: BoxGrid::first_cell_mask
   };
   std::vector<Slot> slots(tris.size());
   std::vector<Eigen::AlignedBox3d> boxes(tris.size());
@@ -332,30 +377,48 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   }
   const mesh::detail::BoxGrid grid(boxes);
   size_t candidates = 0, scanned = 0;
+  // Per cell: its members' slots gathered, then for each member the later members whose boxes
+  // overlap its own collected without branching (the box tests are unpredictable), then those
+  // examined.
+  std::vector<Slot> local;
+  std::vector<int> hits;
   for (size_t k = 0; k < grid.cells() && found.size() < options.max_pairs && result.complete; ++k) {
     const std::span<const int> here = grid.cell(k);
     if (moved < tris.size() && std::all_of(here.begin(), here.end(), [&](int i) { return slots[size_t(i)].exact; }))
       continue;  // only exact triangles here: nothing to examine
-    for (size_t i = 0; i < here.size() && found.size() < options.max_pairs && result.complete; ++i) {
-      const Slot& s = slots[size_t(here[i])];
-      for (size_t j = i + 1; j < here.size(); ++j) {
-        if (++scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
-          result.complete = false;
-          break;
-        }
-        const Slot& t = slots[size_t(here[j])];
-        if (s.face == t.face || (s.exact && t.exact)) continue;
-        if (t.box.min().x() > s.box.max().x() || s.box.min().x() > t.box.max().x() ||
-            t.box.min().y() > s.box.max().y() || s.box.min().y() > t.box.max().y() ||
-            t.box.min().z() > s.box.max().z() || s.box.min().z() > t.box.max().z())
-          continue;
-        if (!grid.owns(k, here[i], here[j])) continue;
+    const size_t m = here.size();
+    local.resize(m);
+    hits.resize(m);
+    const std::array<std::int64_t, 3> cell = grid.cell_coordinates(k);
+    for (size_t i = 0; i < m; ++i) {
+      local[i] = slots[size_t(here[i])];
+      local[i].first = grid.first_cell_mask(cell, here[i]);
+    }
+    for (size_t i = 0; i < m && found.size() < options.max_pairs && result.complete; ++i) {
+      const Slot& s = local[i];
+      scanned += m - i - 1;
+      if (scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
+        result.complete = false;
+        break;
+      }
+      size_t count = 0;
+      for (size_t j = i + 1; j < m; ++j) {
+        const Slot& t = local[j];
+        const bool apart = (s.face == t.face) | (s.exact & t.exact) | (t.box.min().x() > s.box.max().x()) |
+                           (s.box.min().x() > t.box.max().x()) | (t.box.min().y() > s.box.max().y()) |
+                           (s.box.min().y() > t.box.max().y()) | (t.box.min().z() > s.box.max().z()) |
+                           (s.box.min().z() > t.box.max().z()) | ((s.first | t.first) != 7u);  // owned elsewhere
+        hits[count] = int(j);
+        count += apart ? 0 : 1;
+      }
+      for (size_t h = 0; h < count; ++h) {
+        const size_t j = size_t(hits[h]);
         if (++candidates > options.max_candidates) {
           result.complete = false;
           break;
         }
-        const auto face_pair = std::minmax(s.face, t.face);
-        if (found.count(face_pair)) continue;
+        const auto face_pair = std::minmax(s.face, local[j].face);
+        if (!found.empty() && found.count(face_pair)) continue;
         if (triangles_conflict(tris[size_t(here[i])], tris[size_t(here[j])])) {
           found.insert(face_pair);
           if (found.size() >= options.max_pairs) break;

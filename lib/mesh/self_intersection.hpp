@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "mesh/polygon_mesh.hpp"
+#include "mesh/predicates.hpp"
 
 namespace sculpt {
 
@@ -39,6 +40,9 @@ struct SelfIntersectionOptions {
   /// pairs with a face that has an unmarked corner are. bsp's to_mesh fills it from the assembly
   /// (docs/kernel.md, "Clean output").
   std::span<const char> exact_vertices = {};
+  /// The caller's promise that no two vertices used by faces have the same coordinates: the
+  /// vertex indices are then the ids, and the search does not sort the vertices to find copies.
+  bool distinct_vertices = false;
 };
 
 /// The pairs found, and whether the search looked at every candidate.
@@ -57,15 +61,19 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
 std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
                                               SelfIntersectionOptions options = {});
 
-/// A triangle as triangles_meet reads it: corner ids, corners, and the first coordinate axis
-/// along which it projects without degeneracy (-1: its corners are collinear).
+/// A triangle as triangles_meet reads it: corner ids, corners, a coordinate axis along which it
+/// projects without degeneracy (-1: its corners are collinear), and the plane part of orient3d's
+/// filter for its plane (the sides of the other triangle's corners are read from it).
 struct PreparedTriangle {
   std::array<int, 3> ids{};
   std::array<Eigen::Vector3d, 3> p;
   int axis = 0;
+  Orient3dPlane plane;  ///< orient3d_plane(p[0], p[1], p[2])
 };
 
-/// The triangle with these ids and corners, its axis found (at most three exact orient2d).
+/// The triangle with these ids and corners, its plane filter computed and its axis found: that of
+/// the largest projected area when the filter certifies it non-zero, else the first along which an
+/// exact orient2d is non-zero.
 PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Eigen::Vector3d, 3>& p);
 
 /// triangles_meet on prepared triangles, for callers that keep them between queries.

@@ -14,11 +14,15 @@ namespace {
 
 
 /// Ear clipping on a doubly linked ring of polygon corners projected to 2D, counter-clockwise.
+/// The ring lives in the caller's buffers (PolygonTriangulator), so many faces allocate nothing.
 class EarClipper {
  public:
-  EarClipper(std::vector<Eigen::Vector2d> points, std::span<const int> ids)
-      : p_(std::move(points)), ids_(ids.begin(), ids.end()), next_(p_.size()), prev_(p_.size()) {
+  EarClipper(const std::vector<Eigen::Vector2d>& points, std::span<const int> ids, std::vector<int>& next,
+             std::vector<int>& prev)
+      : p_(points), ids_(ids), next_(next), prev_(prev) {
     const int n = static_cast<int>(p_.size());
+    next_.resize(p_.size());
+    prev_.resize(p_.size());
     for (int i = 0; i < n; ++i) {
       next_[i] = (i + 1) % n;
       prev_[i] = (i + n - 1) % n;
@@ -26,8 +30,7 @@ class EarClipper {
     remaining_ = n;
   }
 
-  std::vector<IndexTriangle> run() {
-    std::vector<IndexTriangle> out;
+  void run(std::vector<IndexTriangle>& out) {
     int cur = 0;
     while (remaining_ > 3) {
       int tried = 0;
@@ -40,12 +43,11 @@ class EarClipper {
         continue;
       }
       // No ear: the rest is degenerate (zero area, spikes) or not simple.
-      if (!drop_spike() && !clip_any_convex(out)) return out;  // zero-area remainder: dropped
+      if (!drop_spike() && !clip_any_convex(out)) return;  // zero-area remainder: dropped
       cur = start_;
     }
     const int a = prev_[cur], b = cur, c = next_[cur];
     if (orient2d(p_[a], p_[b], p_[c]) != 0) out.push_back({ids_[a], ids_[b], ids_[c]});
-    return out;
   }
 
  private:
@@ -107,17 +109,18 @@ class EarClipper {
     return false;
   }
 
-  std::vector<Eigen::Vector2d> p_;
-  std::vector<int> ids_;
-  std::vector<int> next_, prev_;
+  const std::vector<Eigen::Vector2d>& p_;
+  std::span<const int> ids_;
+  std::vector<int>& next_;
+  std::vector<int>& prev_;
   int remaining_ = 0;
   int start_ = 0;
 };
 
 }  // namespace
 
-std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
-                                          std::span<const int> face) {
+void PolygonTriangulator::append(const std::vector<Eigen::Vector3d>& vertices, std::span<const int> face,
+                                 std::vector<IndexTriangle>& out) {
   if (face.size() < 3)
     throw InvalidInput("triangulate_polygon: a face needs at least 3 vertices, got " +
                        std::to_string(face.size()));
@@ -127,7 +130,8 @@ std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d
                          " out of range (mesh has " + std::to_string(vertices.size()) +
                          " vertices)");
   if (face.size() == 3) {
-    return {{face[0], face[1], face[2]}};
+    out.push_back({face[0], face[1], face[2]});
+    return;
   }
   // Newell normal, relative to the first corner and scaled to unit size (no overflow or
   // underflow for huge or tiny coordinates).
@@ -143,24 +147,34 @@ std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d
   }
   int axis = 0;
   normal.cwiseAbs().maxCoeff(&axis);
-  if (normal[axis] == 0) return {};  // zero area: nothing to cover
+  if (normal[axis] == 0) return;  // zero area: nothing to cover
   // Project on the two other axes in cyclic order (keeps handedness); mirror if the
   // polygon runs clockwise there, so that the ring is counter-clockwise.
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   const double mirror = normal[axis] > 0 ? 1.0 : -1.0;
-  std::vector<Eigen::Vector2d> points;
-  points.reserve(face.size());
-  for (int id : face) points.emplace_back(mirror * vertices[id][u], vertices[id][v]);
-  return EarClipper(std::move(points), face).run();
+  points_.clear();
+  for (int id : face) points_.emplace_back(mirror * vertices[id][u], vertices[id][v]);
+  EarClipper(points_, face, next_, prev_).run(out);
+}
+
+std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
+                                          std::span<const int> face) {
+  std::vector<IndexTriangle> out;
+  PolygonTriangulator().append(vertices, face, out);
+  return out;
 }
 
 PolygonMesh triangulate(const PolygonMesh& mesh) {
   PolygonMesh out;
   out.vertices = mesh.vertices;
   out.faces.reserve(mesh.faces.size());
-  for (const auto& face : mesh.faces)
-    for (const IndexTriangle& t : triangulate_polygon(mesh.vertices, face))
-      out.faces.push_back({t[0], t[1], t[2]});
+  PolygonTriangulator triangulator;
+  std::vector<IndexTriangle> tris;
+  for (const auto& face : mesh.faces) {
+    tris.clear();
+    triangulator.append(mesh.vertices, face, tris);
+    for (const IndexTriangle& t : tris) out.faces.push_back({t[0], t[1], t[2]});
+  }
   return out;
 }
 

@@ -24,6 +24,20 @@ using IndexTriangle = std::array<int, 3>;
 std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
                                           std::span<const int> face);
 
+/// triangulate_polygon for many faces: its buffers are kept from one face to the next, so a
+/// triangulation allocates nothing once they have grown.
+class PolygonTriangulator {
+ public:
+  /// The triangles of triangulate_polygon(vertices, face), appended to `out`.
+  /// \throw InvalidInput as triangulate_polygon.
+  void append(const std::vector<Eigen::Vector3d>& vertices, std::span<const int> face,
+              std::vector<IndexTriangle>& out);
+
+ private:
+  std::vector<Eigen::Vector2d> points_;
+  std::vector<int> next_, prev_;
+};
+
 /// The mesh with every face triangulated by triangulate_polygon (same vertices).
 /// \throw InvalidInput as triangulate_polygon.
 PolygonMesh triangulate(const PolygonMesh& mesh);
