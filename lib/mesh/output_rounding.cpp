@@ -816,21 +816,25 @@ std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options,
   if (!options.keep_copies) {
     // Two used vertices at one point: of all such pairs, the one whose later vertex comes first
     // (with the first vertex at that point), as a scan in index order finds it.
-    std::vector<int> order;
-    order.reserve(rounded.vertices.size());
-    for (size_t v = 0; v < rounded.vertices.size(); ++v)
-      if (used[v] && rounded.vertices[v].allFinite()) order.push_back(static_cast<int>(v));  // NaN: no order
-    auto key = [&](int v) {
-      const Vector3d& p = rounded.vertices[v];
-      return std::make_tuple(p.x(), p.y(), p.z(), v);
+    struct Keyed {  // sorted in place, not through indices: a third of the time
+      double x, y, z;
+      int v;
+      bool operator<(const Keyed& o) const { return std::tie(x, y, z, v) < std::tie(o.x, o.y, o.z, o.v); }
+      bool same_point(const Keyed& o) const { return x == o.x && y == o.y && z == o.z; }
     };
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+    std::vector<Keyed> order;
+    order.reserve(rounded.vertices.size());
+    for (size_t v = 0; v < rounded.vertices.size(); ++v) {
+      const Vector3d& p = rounded.vertices[v];
+      if (used[v] && p.allFinite()) order.push_back({p.x(), p.y(), p.z(), static_cast<int>(v)});  // NaN: no order
+    }
+    std::sort(order.begin(), order.end());
     int first = -1, second = -1;
     for (size_t i = 1; i < order.size(); ++i) {
-      if (rounded.vertices[order[i]] != rounded.vertices[order[i - 1]]) continue;
+      if (!order[i].same_point(order[i - 1])) continue;
       size_t g = i - 1;  // the group's first member (smallest index)
-      while (g > 0 && rounded.vertices[order[g - 1]] == rounded.vertices[order[i]]) --g;
-      if (g + 1 == i && (second < 0 || order[i] < second)) first = order[g], second = order[i];
+      while (g > 0 && order[g - 1].same_point(order[i])) --g;
+      if (g + 1 == i && (second < 0 || order[i].v < second)) first = order[g].v, second = order[i].v;
     }
     if (second >= 0)
       return "vertices " + std::to_string(first) + " and " + std::to_string(second) + " are at the same point";
