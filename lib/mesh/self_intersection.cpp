@@ -345,7 +345,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
     const bool exact = exact_face(mesh.faces[fi]);
     face_tris.clear();
-    triangulator.append(mesh.vertices, mesh.faces[fi], face_tris);
+    triangulator.append(mesh.vertices, mesh.faces[fi], face_tris, EarOrder::Spread);
     for (const IndexTriangle& it : face_tris) {
       Tri t;
       static_cast<PreparedTriangle&>(t) = prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},

@@ -1,6 +1,7 @@
 #pragma once
 /// \file self_intersection.hpp
-/// Exact detection of self-intersections of a polygon mesh: faces are triangulated, a uniform
+/// Exact detection of self-intersections of a polygon mesh: faces are triangulated (ear clipping
+/// round the rim, EarOrder::Spread: a face with many corners gives few long triangles), a uniform
 /// grid of cells over the triangles' boxes finds the pairs whose boxes overlap, and each pair is
 /// decided exactly with orient3d (a triangle strictly on one side of the other's plane is
 /// rejected first; coplanar pairs by separating edge lines; otherwise segment-triangle tests;

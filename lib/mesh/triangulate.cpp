@@ -18,8 +18,8 @@ namespace {
 class EarClipper {
  public:
   EarClipper(const std::vector<Eigen::Vector2d>& points, std::span<const int> ids, std::vector<int>& next,
-             std::vector<int>& prev)
-      : p_(points), ids_(ids), next_(next), prev_(prev) {
+             std::vector<int>& prev, EarOrder order)
+      : p_(points), ids_(ids), next_(next), prev_(prev), spread_(order == EarOrder::Spread) {
     const int n = static_cast<int>(p_.size());
     next_.resize(p_.size());
     prev_.resize(p_.size());
@@ -28,6 +28,7 @@ class EarClipper {
       prev_[i] = (i + n - 1) % n;
     }
     remaining_ = n;
+    convex_ = strictly_convex();
   }
 
   void run(std::vector<IndexTriangle>& out) {
@@ -40,6 +41,7 @@ class EarClipper {
       }
       if (tried < remaining_) {
         cur = clip(cur, out);
+        if (spread_) cur = next_[next_[cur]];  // past the corner that just became the ear's neighbour
         continue;
       }
       // No ear: the rest is degenerate (zero area, spikes) or not simple.
@@ -58,6 +60,7 @@ class EarClipper {
   bool is_ear(int b) const {
     const int a = prev_[b], c = next_[b];
     if (orient2d(p_[a], p_[b], p_[c]) <= 0) return false;
+    if (convex_) return true;  // no corner of a strictly convex polygon lies in another's ear
     for (int q = next_[c]; q != a; q = next_[q]) {
       if (same_point(q, a) || same_point(q, b) || same_point(q, c)) continue;
       if (orient2d(p_[a], p_[b], p_[q]) >= 0 && orient2d(p_[b], p_[c], p_[q]) >= 0 &&
@@ -109,10 +112,30 @@ class EarClipper {
     return false;
   }
 
+  /// Every corner turns strictly left and the edges' x components change sign exactly twice
+  /// around the ring (the edge direction turns once, not several times): a strictly convex
+  /// polygon, whose every convex corner is an ear and stays one as ears are clipped (exact).
+  bool strictly_convex() const {
+    const size_t n = p_.size();
+    for (size_t i = 0; i < n; ++i)
+      if (orient2d(p_[(i + n - 1) % n], p_[i], p_[(i + 1) % n]) <= 0) return false;
+    int changes = 0, last = 0;
+    for (size_t k = 0; k < 2 * n; ++k) {  // twice around: the first nonzero sign sets `last`
+      const double dx = p_[(k + 1) % n].x() - p_[k % n].x();  // its sign is exact
+      const int sign = dx > 0 ? 1 : (dx < 0 ? -1 : 0);
+      if (sign == 0) continue;
+      if (last != 0 && sign != last && k >= n) ++changes;
+      last = sign;
+    }
+    return changes == 2;
+  }
+
   const std::vector<Eigen::Vector2d>& p_;
   std::span<const int> ids_;
   std::vector<int>& next_;
   std::vector<int>& prev_;
+  bool spread_ = false;
+  bool convex_ = false;
   int remaining_ = 0;
   int start_ = 0;
 };
@@ -120,7 +143,7 @@ class EarClipper {
 }  // namespace
 
 void PolygonTriangulator::append(const std::vector<Eigen::Vector3d>& vertices, std::span<const int> face,
-                                 std::vector<IndexTriangle>& out) {
+                                 std::vector<IndexTriangle>& out, EarOrder order) {
   if (face.size() < 3)
     throw InvalidInput("triangulate_polygon: a face needs at least 3 vertices, got " +
                        std::to_string(face.size()));
@@ -154,7 +177,7 @@ void PolygonTriangulator::append(const std::vector<Eigen::Vector3d>& vertices, s
   const double mirror = normal[axis] > 0 ? 1.0 : -1.0;
   points_.clear();
   for (int id : face) points_.emplace_back(mirror * vertices[id][u], vertices[id][v]);
-  EarClipper(points_, face, next_, prev_).run(out);
+  EarClipper(points_, face, next_, prev_, order).run(out);
 }
 
 std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,

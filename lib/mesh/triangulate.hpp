@@ -24,14 +24,26 @@ using IndexTriangle = std::array<int, 3>;
 std::vector<IndexTriangle> triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
                                           std::span<const int> face);
 
+/// The order in which ears are clipped.
+enum class EarOrder {
+  /// triangulate_polygon's: after an ear, the corner before it is tried next (a convex polygon
+  /// becomes a fan around one corner).
+  Fan,
+  /// After an ear, the corner two further on is tried next, so that ears go round the rim first
+  /// (a convex polygon is halved in rounds): triangles near the boundary are small and only a
+  /// few span the polygon, which suits a search by boxes.
+  Spread,
+};
+
 /// triangulate_polygon for many faces: its buffers are kept from one face to the next, so a
 /// triangulation allocates nothing once they have grown.
 class PolygonTriangulator {
  public:
-  /// The triangles of triangulate_polygon(vertices, face), appended to `out`.
+  /// The triangles of triangulate_polygon(vertices, face) (with EarOrder::Fan; the same polygon
+  /// cut otherwise with Spread), appended to `out`.
   /// \throw InvalidInput as triangulate_polygon.
   void append(const std::vector<Eigen::Vector3d>& vertices, std::span<const int> face,
-              std::vector<IndexTriangle>& out);
+              std::vector<IndexTriangle>& out, EarOrder order = EarOrder::Fan);
 
  private:
   std::vector<Eigen::Vector2d> points_;

@@ -28,7 +28,10 @@ double shoelace(const std::vector<Eigen::Vector3d>& v, const std::vector<int>& f
 /// Checks a triangulation of a polygon lying in z = 0 (after `to_plane`, identity by default).
 void check(const std::vector<Eigen::Vector3d>& v, const std::vector<int>& face, double expected_area,
            const Eigen::Vector3d& normal = Eigen::Vector3d::UnitZ()) {
-  const auto tris = triangulate_polygon(v, face);
+  for (const EarOrder order : {EarOrder::Fan, EarOrder::Spread}) {
+  std::vector<IndexTriangle> tris;
+  PolygonTriangulator().append(v, face, tris, order);
+  if (order == EarOrder::Fan) EXPECT_EQ(tris, triangulate_polygon(v, face));
   double area = 0;
   std::set<int> used;
   for (const auto& t : tris) {
@@ -41,6 +44,7 @@ void check(const std::vector<Eigen::Vector3d>& v, const std::vector<int>& face, 
   EXPECT_NEAR(area, expected_area, 1e-12 * std::max(1.0, expected_area));
   EXPECT_EQ(used, std::set<int>(face.begin(), face.end())) << "a corner is not used (T-junction)";
   EXPECT_EQ(tris.size(), face.size() - 2);
+  }
 }
 
 std::vector<Eigen::Vector3d> xy(std::initializer_list<std::pair<double, double>> pts) {
@@ -109,6 +113,49 @@ TEST(Triangulate, RandomStarShapedPolygons) {
     const auto f = iota_face(v.size());
     check(v, f, shoelace(v, f));
   }
+}
+
+// Strictly convex polygons (the exact convexity test lets ear clipping skip its containment
+// scan): both orders cover the polygon; the fan order keeps its triangles (all through corner 1,
+// as the containment scan finds no corner in any ear), the spread order's triangles are mostly
+// small (the sum of their box areas stays within a few times the polygon's, where the fan's grows
+// with the corner count).
+TEST(Triangulate, ConvexPolygonsFanAndSpread) {
+  for (const int n : {5, 16, 64, 256}) {
+    std::vector<Eigen::Vector3d> v;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * i / n;
+      v.emplace_back(std::cos(a), std::sin(a), 0);
+    }
+    const auto f = iota_face(v.size());
+    check(v, f, shoelace(v, f));
+    auto box_area = [&](const std::vector<IndexTriangle>& tris) {
+      double sum = 0;
+      for (const auto& t : tris) {
+        Eigen::AlignedBox3d b(v[t[0]]);
+        b.extend(v[t[1]]);
+        b.extend(v[t[2]]);
+        sum += b.sizes().x() * b.sizes().y();
+      }
+      return sum;
+    };
+    const auto fan = triangulate_polygon(v, f);
+    for (const auto& t : fan) EXPECT_TRUE(t[0] == 1 || t[1] == 1 || t[2] == 1);
+    std::vector<IndexTriangle> spread;
+    PolygonTriangulator().append(v, f, spread, EarOrder::Spread);
+    const double area = shoelace(v, f);
+    EXPECT_LT(box_area(spread), 4 * area) << n;
+    if (n >= 64) EXPECT_GT(box_area(fan), 8 * area) << n;
+  }
+  // Not convex although every corner turns left: a pentagram's ring turns twice. Treated as
+  // convex, it would be cut into the fan around corner 1, which runs outside the star.
+  std::vector<Eigen::Vector3d> star;
+  for (int i = 0; i < 5; ++i) {
+    const double a = 2 * std::numbers::pi * (2 * i) / 5;
+    star.emplace_back(std::cos(a), std::sin(a), 0);
+  }
+  const std::vector<IndexTriangle> convex_fan = {{4, 0, 1}, {3, 4, 1}, {2, 3, 1}};
+  EXPECT_NE(triangulate_polygon(star, iota_face(5)), convex_fan);
 }
 
 TEST(Triangulate, DegenerateAndInvalidFaces) {
