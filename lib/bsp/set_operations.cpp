@@ -361,6 +361,24 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
   return SolidAccess::deferred(std::make_unique<DeferredMerge>(std::move(arena), std::move(steps)));
 }
 
+// apply() with x given away: when x is the larger operand and carries its boundary, its storage
+// becomes the arena's instead of being copied into it (the same merge, deferred alike).
+Solid apply_adopting(Solid&& x, const Solid& y, const bool table[2][2]) {
+  if (&x == &y || x.nodes().size() < y.nodes().size() || !x.has_boundary()) return apply(x, y, table);
+  const std::size_t a_nodes = x.nodes().size(), b_nodes = y.nodes().size();
+  Arena arena;
+  const TreeRef ra = arena.adopt(std::move(x));
+  arena.nodes.reserve(a_nodes + 5 * b_nodes);
+  arena.polygons.reserve(a_nodes + 5 * b_nodes);
+  FragmentList fa = std::move(*arena.boundary);
+  bsp::detail::FragmentBoxes boxes = std::move(arena.boundary_boxes);
+  const TreeRef rb = arena.append(y);
+  FragmentList fb = arena.boundary_of(y);
+  MergeSteps steps(ra, rb, b_nodes, table);
+  steps.boundary_sides_later(arena, std::move(fa), std::move(boxes), std::move(fb));
+  return SolidAccess::deferred(std::make_unique<DeferredMerge>(std::move(arena), std::move(steps)));
+}
+
 // In place: the larger operand's storage is reused and nothing older than the operation is
 // moved or renumbered (reclaim_added and finish_in_place, tree_arena.hpp).
 // That pays when y is small beside x (a tool on a workpiece). When y has at least half as many
@@ -368,7 +386,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 // more than the copying path's compaction, which can also wait for the tree's first use: x is
 // copied (docs/benchmarks.md, "Session 15: deferred trees").
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
-  if (&x == &y || x.nodes().size() < 2 * y.nodes().size()) return apply(x, y, table);
+  if (&x == &y || x.nodes().size() < 2 * y.nodes().size()) return apply_adopting(std::move(x), y, table);
   // The boundary of x must be known before its storage moves into the arena.
   std::optional<bsp::detail::Fragments> extracted;
   if (!x.has_boundary()) extracted = bsp::detail::boundary_fragments(x);

@@ -28,7 +28,7 @@ class EarClipper {
       prev_[i] = (i + n - 1) % n;
     }
     remaining_ = n;
-    convex_ = strictly_convex();
+    convex_ = n > 8 && strictly_convex();  // a few corners: the containment scans cost less than the test
   }
 
   void run(std::vector<IndexTriangle>& out) {

@@ -364,6 +364,20 @@ TEST(DeferredTree, CopiesMovesAndFurtherOperations) {
   Solid g = a - b;
   g = std::move(g) - c;
   EXPECT_NEAR(volume(g) + volume(e & c), ve, 1e-9);
+  // A given-away operand adopted by the copying path (the larger one, not twice the other's size),
+  // with storage left over from operations in place: the same result as from a copy of it.
+  Solid worked = sphere(1.0, {.segments = 20});
+  for (int i = 0; i < 3; ++i) worked = std::move(worked) - translate(box({0, 0, 0}, {0.25, 0.25, 2}), {0.3 * i - 0.6, 0.1, -1});
+  const Solid kept = worked;
+  const Solid tool = translate(sphere(1.0, {.segments = 24}), {0.75, 0.5, 0.25});
+  ASSERT_GE(kept.nodes().size(), tool.nodes().size());
+  ASSERT_LT(kept.nodes().size(), 2 * tool.nodes().size());
+  const Solid adopted = std::move(worked) - tool;
+  const Solid copied = kept - tool;
+  EXPECT_TRUE(adopted.tree_deferred());
+  EXPECT_EQ(volume(adopted), volume(copied));
+  EXPECT_EQ(tree_stats(adopted).nodes, tree_stats(copied).nodes);
+  EXPECT_EQ(to_mesh(adopted).vertices, to_mesh(copied).vertices);
   // Results that are leaves: nothing to build, and an empty mesh.
   const Solid none = a - a;
   EXPECT_TRUE(to_mesh(none).faces.empty());

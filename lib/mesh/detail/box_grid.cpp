@@ -46,8 +46,6 @@ BoxGrid::BoxGrid(std::span<const Eigen::AlignedBox3d> boxes) {
   for (int axis = 0; axis < 3; ++axis) dims_[size_t(axis)] = cell_of(all.max()[axis], axis) + 1;
   const double dense_cells = double(dims_[0]) * double(dims_[1]) * double(dims_[2]);
   dense_ = dense_cells <= double(4 * count + 4096);
-  std::vector<std::pair<std::int64_t, int>> entries;
-  entries.reserve(count);
   auto list = [&](auto&& emit) {
     for (size_t i = 0; i < range_.size(); ++i) {
       const auto& r = range_[i];
@@ -57,22 +55,29 @@ BoxGrid::BoxGrid(std::span<const Eigen::AlignedBox3d> boxes) {
     }
   };
   if (dense_) {
+    // Counting sort straight into the member list; the non-empty cells read off the counts.
     std::vector<int> start(static_cast<size_t>(dense_cells) + 1, 0);
-    list([&](std::int64_t k, int) { ++start[size_t(k) + 1]; });
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    entries.resize(count);
-    list([&](std::int64_t k, int i) { entries[size_t(start[size_t(k)]++)] = {k, i}; });
+    list([&](std::int64_t k, int) { ++start[size_t(k) + 1]; });  // start[k + 1]: cell k's count
+    for (size_t k = 0; k + 1 < start.size(); ++k)
+      if (start[k + 1] != 0) keys_.push_back(std::int64_t(k));
+    for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];  // start[k]: where cell k begins
+    starts_.resize(keys_.size());
+    for (size_t c = 0; c < keys_.size(); ++c) starts_[c] = size_t(start[size_t(keys_[c])]);
+    members_.resize(count);
+    list([&](std::int64_t k, int i) { members_[size_t(start[size_t(k)]++)] = i; });
   } else {
+    std::vector<std::pair<std::int64_t, int>> entries;
+    entries.reserve(count);
     list([&](std::int64_t k, int i) { entries.emplace_back(k, i); });
     std::sort(entries.begin(), entries.end());
-  }
-  members_.reserve(entries.size());
-  for (size_t e = 0; e < entries.size(); ++e) {
-    if (e == 0 || entries[e].first != entries[e - 1].first) {
-      keys_.push_back(entries[e].first);
-      starts_.push_back(members_.size());
+    members_.reserve(entries.size());
+    for (size_t e = 0; e < entries.size(); ++e) {
+      if (e == 0 || entries[e].first != entries[e - 1].first) {
+        keys_.push_back(entries[e].first);
+        starts_.push_back(members_.size());
+      }
+      members_.push_back(entries[e].second);
     }
-    members_.push_back(entries[e].second);
   }
   starts_.push_back(members_.size());
 }
