@@ -26,6 +26,15 @@ class PlaneTable {
   [[nodiscard]] const Plane& operator[](std::int32_t i) const { return planes_[std::size_t(i)]; }
   [[nodiscard]] std::int32_t size() const { return std::int32_t(planes_.size()); }
   std::int32_t add(const Plane& p, bool auxiliary = false);
+  /// Appends `from`'s planes from index `first` on, with their auxiliary flags, at once (as
+  /// add() one by one); returns the index the first of them gets.
+  std::int32_t append(const PlaneTable& from, std::int32_t first) {
+    const auto at = std::int32_t(planes_.size());
+    if (first >= from.size()) return at;
+    planes_.insert(planes_.end(), from.planes_.begin() + first, from.planes_.end());
+    auxiliary_.insert(auxiliary_.end(), from.auxiliary_.begin() + first, from.auxiliary_.end());
+    return at;
+  }
   [[nodiscard]] const std::vector<Plane>& planes() const { return planes_; }
   [[nodiscard]] bool auxiliary(std::int32_t i) const { return auxiliary_[std::size_t(i)]; }
   void set_auxiliary(std::int32_t i, bool auxiliary) { auxiliary_[std::size_t(i)] = auxiliary; }

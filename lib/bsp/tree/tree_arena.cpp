@@ -37,16 +37,19 @@ TreeRef Arena::append(const Solid& solid) {
   // Geometric growth: an exact reserve would copy the whole table on every in-place operation.
   const std::size_t need = std::size_t(planes.size()) + src.size();
   if (need > planes.planes().capacity()) planes.reserve(std::max(need, 2 * planes.planes().capacity()));
-  for (std::size_t i = 6; i < src.size(); ++i) planes.add(src[i], solid.planes().auxiliary(std::int32_t(i)));
+  planes.append(solid.planes(), 6);
   const auto node_shift = std::int32_t(nodes.size());
   for (const BspNode& n : solid.nodes())
     nodes.push_back({map(n.plane), is_leaf(n.negative) ? n.negative : n.negative + node_shift,
                      is_leaf(n.positive) ? n.positive : n.positive + node_shift});
   for (const ConvexPolygon& poly : solid.polygons()) {
-    ConvexPolygon q = poly;
+    if (poly.corners.empty()) {  // pending (node_polygons.hpp): the support alone, no corner storage copied
+      polygons.push_back(ConvexPolygon{.support = map(poly.support), .corners = {}});
+      continue;
+    }
+    ConvexPolygon& q = polygons.emplace_back(poly);
     q.support = map(q.support);
     for (auto& c : q.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
-    polygons.push_back(std::move(q));
   }
   return solid.root() + node_shift;
 }
