@@ -146,7 +146,8 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<FragmentList> boun
   }
   // Pending sub-hyperplanes: aggregate initialization writes the support and the corners' header
   // only (value initialization would zero each 272-byte polygon first).
-  std::vector<ConvexPolygon> polygons;
+  // Straight into the solid's store (a std::vector here was moved element by element into one).
+  PolygonStore polygons;
   polygons.reserve(room);
   for (const BspNode& n : nodes) polygons.push_back(ConvexPolygon{.support = n.plane, .corners = {}});
   return bsp::detail::SolidAccess::make(std::move(planes_), std::move(nodes), std::move(polygons), 0, bsp::detail::FreeSlots{}, std::move(boundary));
