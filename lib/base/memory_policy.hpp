@@ -8,6 +8,7 @@
 /// the peak stays resident. For executables (the `sculpt` REPL and batch runner, benchmarks that
 /// model it); the library itself never changes the process's allocator.
 
+#include <cstdlib>  // first: on glibc it defines __GLIBC__ (features.h), which the test below reads
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
