@@ -32,6 +32,7 @@ using Eigen::Vector3d;
 struct Tri : PreparedTriangle {
   int face = 0;
   bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
+  Eigen::AlignedBox3d box;
 };
 
 Vector2d drop(const Vector3d& v, int axis) { return {v[(axis + 1) % 3], v[(axis + 2) % 3]}; }
@@ -332,60 +333,49 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     return marked && std::all_of(f.begin(), f.end(), [&](int v) { return options.exact_vertices[size_t(v)] != 0; });
   };
   if (marked && std::all_of(mesh.faces.begin(), mesh.faces.end(), exact_face)) return result;
-  // The triangles' corners and boxes first; each is prepared (its axis and plane filter) once the
-  // grid is known, laid out in the order the cells first list them, so that the tests of one
-  // cell's pairs read nearby memory.
+  std::vector<Tri> tris;
+  {
+    size_t corners = 0;
+    for (const auto& f : mesh.faces) corners += f.size() >= 2 ? f.size() - 2 : 0;
+    tris.reserve(corners);
+  }
+  size_t moved = 0;  // triangles of faces with a corner not marked exact
+  PolygonTriangulator triangulator;
+  std::vector<IndexTriangle> face_tris;
+  for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+    const bool exact = exact_face(mesh.faces[fi]);
+    face_tris.clear();
+    triangulator.append(mesh.vertices, mesh.faces[fi], face_tris, EarOrder::Spread);
+    for (const IndexTriangle& it : face_tris) {
+      Tri t;
+      static_cast<PreparedTriangle&>(t) = prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
+                                                           {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
+      if (t.axis < 0) continue;  // collinear corners: degenerate, reported elsewhere
+      t.face = static_cast<int>(fi);
+      t.exact = exact;
+      for (int k = 0; k < 3; ++k) t.box.extend(t.p[k]);
+      tris.push_back(t);
+      moved += t.exact ? 0 : 1;
+    }
+  }
+  if (moved == 0) return result;
+  // Broad phase (mesh/detail/box_grid.hpp): a uniform grid over the triangles' boxes; a pair
+  // whose boxes overlap is examined in the one cell that owns it, so once.
+  std::set<std::pair<int, int>> found;
+  if (tris.empty()) return result;
   struct Slot {  // what the scan reads per triangle, kept together
     Eigen::AlignedBox3d box;
     int face = 0;
     bool exact = false;
     unsigned first = 0;  // in a cell's gathered copy: BoxGrid::first_cell_mask
   };
-  std::vector<IndexTriangle> corners;
-  std::vector<Slot> slots;
-  std::vector<Eigen::AlignedBox3d> boxes;
-  {
-    size_t count = 0;
-    for (const auto& f : mesh.faces) count += f.size() >= 2 ? f.size() - 2 : 0;
-    corners.reserve(count);
-    slots.reserve(count);
-    boxes.reserve(count);
+  std::vector<Slot> slots(tris.size());
+  std::vector<Eigen::AlignedBox3d> boxes(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    slots[i] = {tris[i].box, tris[i].face, tris[i].exact};
+    boxes[i] = tris[i].box;
   }
-  size_t moved = 0;  // triangles of faces with a corner not marked exact
-  PolygonTriangulator triangulator;
-  for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
-    const bool exact = exact_face(mesh.faces[fi]);
-    const size_t before = corners.size();
-    triangulator.append(mesh.vertices, mesh.faces[fi], corners, EarOrder::Spread);
-    for (size_t t = before; t < corners.size(); ++t) {
-      const IndexTriangle& it = corners[t];
-      Eigen::AlignedBox3d box(mesh.vertices[it[0]]);
-      box.extend(mesh.vertices[it[1]]);
-      box.extend(mesh.vertices[it[2]]);
-      slots.push_back({box, static_cast<int>(fi), exact});
-      boxes.push_back(box);
-      moved += exact ? 0 : 1;
-    }
-  }
-  if (moved == 0 || corners.empty()) return result;
-  // Broad phase (mesh/detail/box_grid.hpp): a uniform grid over the triangles' boxes; a pair
-  // whose boxes overlap is examined in the one cell that owns it, so once.
-  std::set<std::pair<int, int>> found;
   const mesh::detail::BoxGrid grid(boxes);
-  std::vector<int> rank(corners.size(), -1);
-  std::vector<Tri> laid;
-  laid.reserve(corners.size());
-  for (size_t k = 0; k < grid.cells(); ++k)
-    for (const int i : grid.cell(k))
-      if (rank[size_t(i)] < 0) {
-        rank[size_t(i)] = int(laid.size());
-        const IndexTriangle& it = corners[size_t(i)];
-        Tri& t = laid.emplace_back();
-        static_cast<PreparedTriangle&>(t) = prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
-                                                             {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
-        t.face = slots[size_t(i)].face;
-        t.exact = slots[size_t(i)].exact;
-      }
   size_t candidates = 0, scanned = 0;
   // Per cell: its members' slots gathered, then for each member the later members whose boxes
   // overlap its own collected without branching (the box tests are unpredictable), then those
@@ -394,7 +384,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   std::vector<int> hits;
   for (size_t k = 0; k < grid.cells() && found.size() < options.max_pairs && result.complete; ++k) {
     const std::span<const int> here = grid.cell(k);
-    if (moved < corners.size() && std::all_of(here.begin(), here.end(), [&](int i) { return slots[size_t(i)].exact; }))
+    if (moved < tris.size() && std::all_of(here.begin(), here.end(), [&](int i) { return slots[size_t(i)].exact; }))
       continue;  // only exact triangles here: nothing to examine
     const size_t m = here.size();
     local.resize(m);
@@ -429,9 +419,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
         }
         const auto face_pair = std::minmax(s.face, local[j].face);
         if (!found.empty() && found.count(face_pair)) continue;
-        const Tri &ti = laid[size_t(rank[size_t(here[i])])], &tj = laid[size_t(rank[size_t(here[j])])];
-        if (ti.axis < 0 || tj.axis < 0) continue;  // collinear corners: degenerate, reported elsewhere
-        if (triangles_conflict(ti, tj)) {
+        if (triangles_conflict(tris[size_t(here[i])], tris[size_t(here[j])])) {
           found.insert(face_pair);
           if (found.size() >= options.max_pairs) break;
         }
