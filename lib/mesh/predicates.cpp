@@ -13,13 +13,12 @@ using Rational = boost::multiprecision::cpp_rational;
 using Int256 = boost::multiprecision::int256_t;
 using Int512 = boost::multiprecision::int512_t;
 
-constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;  // unit roundoff 2^-53
-// Shewchuk's first-stage bounds (ccwerrboundA, o3derrboundA).
-constexpr double kOrient2dBound = (3.0 + 16.0 * kEps) * kEps;
-constexpr double kOrient3dBound = (7.0 + 56.0 * kEps) * kEps;
+// Shewchuk's first-stage bounds (ccwerrboundA, o3derrboundA), shared with Orient3dPlane.
+constexpr double kOrient2dBound = detail::kOrient2dFilterBound;
+constexpr double kOrient3dBound = detail::kOrient3dFilterBound;
 // The bounds assume no underflow; below this magnitude the exact path decides (each underflow
 // loses at most 2^-1074, far below kOrient*Bound * 1e-280).
-constexpr double kNoUnderflow = 1e-280;
+constexpr double kNoUnderflow = detail::kFilterNoUnderflow;
 
 /// Finite doubles as integers times a common power of two: x_i = m_i * 2^(e_i) with |m_i| < 2^53,
 /// and `shift` = max e_i - min e_i over the non-zero inputs. All inputs scaled by 2^-min(e) are

@@ -32,11 +32,12 @@ int orient3d_filtered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
                       const Eigen::Vector3d& d);
 
 namespace detail {
-/// Shewchuk's first-stage bound for orient3d (o3derrboundA), and the magnitude of the permanent
-/// below which an underflow could void it (the exact path decides there).
-inline constexpr double kOrient3dFilterBound =
-    (7.0 + 56.0 * (std::numeric_limits<double>::epsilon() / 2)) * (std::numeric_limits<double>::epsilon() / 2);
-inline constexpr double kOrient3dNoUnderflow = 1e-280;
+inline constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;  // 2^-53
+/// Shewchuk's first-stage bounds for orient2d and orient3d (ccwerrboundA, o3derrboundA), and the
+/// magnitude of the permanent below which an underflow could void them (the exact path decides).
+inline constexpr double kOrient2dFilterBound = (3.0 + 16.0 * kUnitRoundoff) * kUnitRoundoff;
+inline constexpr double kOrient3dFilterBound = (7.0 + 56.0 * kUnitRoundoff) * kUnitRoundoff;
+inline constexpr double kFilterNoUnderflow = 1e-280;
 }  // namespace detail
 
 /// The part of orient3d's floating-point filter that depends on the plane (a, b, c) alone, kept
@@ -75,7 +76,7 @@ inline int orient3d_filtered(const Orient3dPlane& p, const Eigen::Vector3d& q) {
   const double det = (wx * p.minor[0] + wy * p.minor[1]) + wz * p.minor[2];
   const double permanent = (std::abs(wx) * p.permanent[0] + std::abs(wy) * p.permanent[1]) + std::abs(wz) * p.permanent[2];
   const double bound = detail::kOrient3dFilterBound * permanent;
-  if (std::isfinite(det) && std::isfinite(bound) && permanent > detail::kOrient3dNoUnderflow && (det > bound || -det > bound))
+  if (std::isfinite(det) && std::isfinite(bound) && permanent > detail::kFilterNoUnderflow && (det > bound || -det > bound))
     return det > 0 ? 1 : -1;
   return kUndecided;
 }

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <numeric>
 #include <set>
 #include <tuple>
@@ -18,12 +17,6 @@
 
 namespace sculpt {
 namespace {
-
-// Shewchuk's first-stage orient2d bound (ccwerrboundA) and the magnitude below which an underflow
-// could void it, as in mesh/predicates.cpp.
-constexpr double kOrient2dFilterBound =
-    (3.0 + 16.0 * (std::numeric_limits<double>::epsilon() / 2)) * (std::numeric_limits<double>::epsilon() / 2);
-constexpr double kOrient2dNoUnderflow = 1e-280;
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
@@ -277,7 +270,7 @@ PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::arra
   double best = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const double area = std::abs(t.plane.minor[axis]);
-    if (area > kOrient2dFilterBound * t.plane.permanent[axis] && t.plane.permanent[axis] > kOrient2dNoUnderflow &&
+    if (area > detail::kOrient2dFilterBound * t.plane.permanent[axis] && t.plane.permanent[axis] > detail::kFilterNoUnderflow &&
         std::isfinite(area) && area > best)
       t.axis = axis, best = area;
   }
