@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <set>
 #include <tuple>
@@ -20,13 +21,6 @@ namespace {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
-
-/// A triangle of the search: ids are the vertex ids after merging equal positions.
-struct Tri : PreparedTriangle {
-  int face = 0;
-  bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
-  Eigen::AlignedBox3d box;
-};
 
 Vector2d drop(const Vector3d& v, int axis) { return {v[(axis + 1) % 3], v[(axis + 2) % 3]}; }
 
@@ -256,6 +250,113 @@ std::vector<int> identity_ids(size_t n) {
   return ids;
 }
 
+/// x as a float, clamped to float's range: monotone (x <= y gives as_float(x) <= as_float(y)), so
+/// boxes that overlap still do after this rounding.
+float as_float(double x) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  return static_cast<float>(x < -kMax ? -kMax : x > kMax ? kMax : x);
+}
+
+/// Asks for t's cache lines ahead of its use (a hint; nothing where the compiler has none).
+void prefetch(const PreparedTriangle& t) {
+#if defined(__GNUC__)
+  const char* p = reinterpret_cast<const char*>(&t);
+  for (size_t at = 0; at < sizeof(PreparedTriangle); at += 64) __builtin_prefetch(p + at);
+#else
+  (void)t;
+#endif
+}
+
+/// What certified_stars reads of a triangle: its corner ids, its plane's minors (an area vector,
+/// used only to choose an axis) and the signs of its projections along each axis where the
+/// filter decides them (kUndecided elsewhere).
+struct StarTriangle {
+  std::array<int, 3> ids{};
+  std::array<double, 3> normal{};
+  std::array<signed char, 3> sign{};
+};
+
+/// t's StarTriangle: the plane's minor along axis k is orient2d's filter value for the projection
+/// along k (differences to p[0], Shewchuk's form), so his bound decides its sign.
+StarTriangle star_triangle(const PreparedTriangle& t) {
+  StarTriangle r;
+  r.ids = t.ids;
+  for (int k = 0; k < 3; ++k) {
+    const double m = t.plane.minor[k], perm = t.plane.permanent[k];
+    r.normal[size_t(k)] = m;
+    const bool certain = std::abs(m) > detail::kOrient2dFilterBound * perm && perm > detail::kFilterNoUnderflow && std::isfinite(m);
+    r.sign[size_t(k)] = static_cast<signed char>(certain ? (m > 0 ? 1 : -1) : kUndecided);
+  }
+  return r;
+}
+
+/// Per vertex id: whether its star is certified, that is no two triangles round it meet beyond
+/// the vertex and the edge they share. Certified when, projected along one coordinate axis, the
+/// triangles' opposite edges a -> b (in the triangles' order) form one cycle through distinct
+/// vertices, every triangle v a b is oriented the same way (strictly), and the cycle winds once
+/// round v: the sectors at v then tile the plane round it, two sectors meet only in v or along a
+/// common ray v b, and since each triangle projects one to one, the triangles meet only in v or
+/// along the edge v b. The winding number of a cycle whose every sector turns left is the
+/// number of its edges that cross v's horizontal line upwards (Sunday's crossing rule), so all
+/// of this is decided with exact signs. `points` are the ids' positions.
+std::vector<char> certified_stars(const std::vector<StarTriangle>& tris, const std::vector<Vector3d>& points) {
+  const size_t n = points.size();
+  std::vector<int> start(n + 1, 0);
+  std::vector<Vector3d> normal(n, Vector3d::Zero());  // only chooses the axis; the tests are exact
+  for (const StarTriangle& t : tris)
+    for (int id : t.ids) {
+      ++start[size_t(id) + 1];
+      normal[size_t(id)] += Vector3d(t.normal[0], t.normal[1], t.normal[2]);
+    }
+  for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<signed char> axis(n, 0), orientation(n, 0);
+  for (size_t v = 0; v < n; ++v) {
+    int k = 0;
+    normal[v].cwiseAbs().maxCoeff(&k);
+    axis[v] = static_cast<signed char>(k);
+    orientation[v] = static_cast<signed char>(normal[v][k] > 0 ? 1 : normal[v][k] < 0 ? -1 : 0);
+  }
+  // The link edges a -> b grouped by vertex (turned round where the projection is mirrored, so
+  // that the sectors turn left), each vertex's upward crossings counted, failures marked.
+  std::vector<std::pair<int, int>> link(static_cast<size_t>(start[n]));
+  std::vector<int> upward(n, 0);
+  std::vector<char> failed(n, 0);
+  {
+    std::vector<int> next(start.begin(), start.end() - 1);
+    for (const StarTriangle& t : tris)
+      for (int k = 0; k < 3; ++k) {
+        const size_t v = size_t(t.ids[size_t(k)]);
+        const int along = axis[v];
+        int sign = t.sign[size_t(along)];
+        const Vector3d &pv = points[v], &p1 = points[size_t(t.ids[size_t((k + 1) % 3)])],
+                       &p2 = points[size_t(t.ids[size_t((k + 2) % 3)])];
+        if (sign == kUndecided) sign = orient2d(drop(pv, along), drop(p1, along), drop(p2, along));
+        failed[v] |= static_cast<char>(sign != orientation[v] || orientation[v] == 0);
+        int a = t.ids[size_t((k + 1) % 3)], b = t.ids[size_t((k + 2) % 3)];
+        const Vector3d *pa = &p1, *pb = &p2;
+        if (orientation[v] < 0) std::swap(a, b), std::swap(pa, pb);
+        const int height = (along + 2) % 3;  // drop()'s second coordinate
+        upward[v] += ((*pa)[height] <= pv[height] && pv[height] < (*pb)[height]) ? 1 : 0;
+        link[size_t(next[v]++)] = {a, b};
+      }
+  }
+  std::vector<char> certified(n, 0);
+  std::vector<int> from, to;
+  for (size_t v = 0; v < n; ++v) {
+    if (failed[v] || upward[v] != 1 || start[v + 1] - start[v] < 3) continue;
+    const std::span<const std::pair<int, int>> edges(link.data() + start[v], link.data() + start[v + 1]);
+    // One cycle through distinct vertices (with the winding number 1, several cycles are excluded
+    // already): the starts are distinct and are the ends.
+    from.clear();
+    to.clear();
+    for (auto [a, b] : edges) from.push_back(a), to.push_back(b);
+    std::sort(from.begin(), from.end());
+    std::sort(to.begin(), to.end());
+    certified[v] = from == to && std::adjacent_find(from.begin(), from.end()) == from.end();
+  }
+  return certified;
+}
+
 }  // namespace
 
 PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
@@ -326,11 +427,27 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     return marked && std::all_of(f.begin(), f.end(), [&](int v) { return options.exact_vertices[size_t(v)] != 0; });
   };
   if (marked && std::all_of(mesh.faces.begin(), mesh.faces.end(), exact_face)) return result;
-  std::vector<Tri> tris;
+  // Per triangle: what the exact tests read, its box, what the stars' certification reads, and
+  // what the scan reads (Slot).
+  struct Slot {
+    std::array<float, 6> box{};  // min x, y, z, max x, y, z, as_float
+    int face = 0;
+    bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
+    // Per corner: its id where the vertex's star is certified, else -1 - (its triangle): no
+    // corner of another triangle has that number.
+    std::array<int, 3> star{};
+  };
+  std::vector<PreparedTriangle> tris;
+  std::vector<Eigen::AlignedBox3d> boxes;
+  std::vector<StarTriangle> stars;
+  std::vector<Slot> slots;
   {
     size_t corners = 0;
     for (const auto& f : mesh.faces) corners += f.size() >= 2 ? f.size() - 2 : 0;
     tris.reserve(corners);
+    boxes.reserve(corners);
+    stars.reserve(corners);
+    slots.reserve(corners);
   }
   size_t moved = 0;  // triangles of faces with a corner not marked exact
   PolygonTriangulator triangulator;
@@ -340,77 +457,111 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     face_tris.clear();
     triangulator.append(mesh.vertices, mesh.faces[fi], face_tris, EarOrder::Spread);
     for (const IndexTriangle& it : face_tris) {
-      Tri t;
-      static_cast<PreparedTriangle&>(t) = prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
-                                                           {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
+      const PreparedTriangle t = prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
+                                                  {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
       if (t.axis < 0) continue;  // collinear corners: degenerate, reported elsewhere
-      t.face = static_cast<int>(fi);
-      t.exact = exact;
-      for (int k = 0; k < 3; ++k) t.box.extend(t.p[k]);
+      Eigen::AlignedBox3d box;
+      for (int k = 0; k < 3; ++k) box.extend(t.p[k]);
+      Slot slot;
+      for (int k = 0; k < 3; ++k) {
+        slot.box[size_t(k)] = as_float(box.min()[k]);
+        slot.box[size_t(k) + 3] = as_float(box.max()[k]);
+      }
+      slot.face = static_cast<int>(fi);
+      slot.exact = exact;
       tris.push_back(t);
-      moved += t.exact ? 0 : 1;
+      boxes.push_back(box);
+      stars.push_back(star_triangle(t));
+      slots.push_back(slot);
+      moved += exact ? 0 : 1;
     }
   }
   if (moved == 0) return result;
-  // Broad phase (mesh/detail/box_grid.hpp): a uniform grid over the triangles' boxes; a pair
-  // whose boxes overlap is examined in the one cell that owns it, so once.
-  std::set<std::pair<int, int>> found;
-  if (tris.empty()) return result;
-  struct Slot {  // what the scan reads per triangle, kept together
-    Eigen::AlignedBox3d box;
-    int face = 0;
-    bool exact = false;
-    unsigned first = 0;  // in a cell's gathered copy: BoxGrid::first_cell_mask
-  };
-  std::vector<Slot> slots(tris.size());
-  std::vector<Eigen::AlignedBox3d> boxes(tris.size());
-  for (size_t i = 0; i < tris.size(); ++i) {
-    slots[i] = {tris[i].box, tris[i].face, tris[i].exact};
-    boxes[i] = tris[i].box;
+  // Pairs that share a vertex whose star is certified are not examined (certified_stars).
+  {
+    const std::vector<char> certified = certified_stars(stars, mesh.vertices);
+    for (size_t i = 0; i < tris.size(); ++i)
+      for (size_t k = 0; k < 3; ++k) {
+        const int id = tris[i].ids[k];
+        slots[i].star[k] = certified[size_t(id)] ? id : -1 - int(i);
+      }
   }
+  // Broad phase (mesh/detail/box_grid.hpp): a uniform grid over the triangles' boxes; a pair
+  // whose boxes overlap is examined in the one cell that owns it, so once. The scan compares the
+  // boxes rounded to floats: they overlap where the boxes do, and a pair that overlaps only after
+  // rounding has triangles that do not meet, so the cell that examines it does not matter.
+  std::set<std::pair<int, int>> found;
   const mesh::detail::BoxGrid grid(boxes);
   size_t candidates = 0, scanned = 0;
   // Per cell: its members' slots gathered, then for each member the later members whose boxes
   // overlap its own collected without branching (the box tests are unpredictable), then those
   // examined.
-  std::vector<Slot> local;
-  std::vector<int> hits;
+  // A cell's members gathered field by field, so that the box tests of one member against the
+  // later ones run several at a time; mask: bits 0-2 BoxGrid::first_cell_masks, bit 3 an exact
+  // triangle.
+  std::array<std::vector<float>, 6> lo_hi;
+  std::vector<int> face, keep, hits;
+  std::vector<unsigned> mask;
+  std::vector<std::array<int, 3>> star;
   for (size_t k = 0; k < grid.cells() && found.size() < options.max_pairs && result.complete; ++k) {
     const std::span<const int> here = grid.cell(k);
     if (moved < tris.size() && std::all_of(here.begin(), here.end(), [&](int i) { return slots[size_t(i)].exact; }))
       continue;  // only exact triangles here: nothing to examine
     const size_t m = here.size();
-    local.resize(m);
+    for (auto& v : lo_hi) v.resize(m);
+    face.resize(m);
+    keep.resize(m);
     hits.resize(m);
-    const std::array<std::int64_t, 3> cell = grid.cell_coordinates(k);
+    mask.resize(m);
+    star.resize(m);
+    const std::span<const unsigned char> first = grid.first_cell_masks(k);
     for (size_t i = 0; i < m; ++i) {
-      local[i] = slots[size_t(here[i])];
-      local[i].first = grid.first_cell_mask(cell, here[i]);
+      const Slot& slot = slots[size_t(here[i])];
+      for (size_t c = 0; c < 6; ++c) lo_hi[c][i] = slot.box[c];
+      face[i] = slot.face;
+      mask[i] = first[i] | (slot.exact ? 8u : 0u);
+      star[i] = slot.star;
     }
+    const float *x0 = lo_hi[0].data(), *y0 = lo_hi[1].data(), *z0 = lo_hi[2].data();
+    const float *x1 = lo_hi[3].data(), *y1 = lo_hi[4].data(), *z1 = lo_hi[5].data();
     for (size_t i = 0; i < m && found.size() < options.max_pairs && result.complete; ++i) {
-      const Slot& s = local[i];
       scanned += m - i - 1;
       if (scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
         result.complete = false;
         break;
       }
+      // Examined: another face's triangle whose box overlaps, in the cell that owns the pair, not
+      // both exact.
+      const float sx0 = x0[i], sy0 = y0[i], sz0 = z0[i], sx1 = x1[i], sy1 = y1[i], sz1 = z1[i];
+      const int sf = face[i];
+      const unsigned sm = mask[i];
+      for (size_t j = i + 1; j < m; ++j)
+        keep[j] = int(face[j] != sf) & int(x0[j] <= sx1) & int(sx0 <= x1[j]) & int(y0[j] <= sy1) & int(sy0 <= y1[j]) &
+                  int(z0[j] <= sz1) & int(sz0 <= z1[j]) & int(((mask[j] | sm) & 7u) == 7u) & int((mask[j] & sm & 8u) == 0u);
       size_t count = 0;
       for (size_t j = i + 1; j < m; ++j) {
-        const Slot& t = local[j];
-        const bool apart = (s.face == t.face) | (s.exact & t.exact) | (t.box.min().x() > s.box.max().x()) |
-                           (s.box.min().x() > t.box.max().x()) | (t.box.min().y() > s.box.max().y()) |
-                           (s.box.min().y() > t.box.max().y()) | (t.box.min().z() > s.box.max().z()) |
-                           (s.box.min().z() > t.box.max().z()) | ((s.first | t.first) != 7u);  // owned elsewhere
         hits[count] = int(j);
-        count += apart ? 0 : 1;
+        count += size_t(keep[j]);
       }
+      // Pairs that share a vertex whose star is certified meet only in what they share; the rest
+      // are decided exactly, their triangles fetched ahead.
+      const std::array<int, 3>& x = star[i];
+      size_t left = 0;
       for (size_t h = 0; h < count; ++h) {
+        const std::array<int, 3>& y = star[size_t(hits[h])];
+        const bool shared = (x[0] == y[0]) | (x[0] == y[1]) | (x[0] == y[2]) | (x[1] == y[0]) | (x[1] == y[1]) |
+                            (x[1] == y[2]) | (x[2] == y[0]) | (x[2] == y[1]) | (x[2] == y[2]);
+        hits[left] = hits[h];
+        left += shared ? 0 : 1;
+      }
+      for (size_t h = 0; h < left; ++h) prefetch(tris[size_t(here[size_t(hits[h])])]);
+      for (size_t h = 0; h < left; ++h) {
         const size_t j = size_t(hits[h]);
         if (++candidates > options.max_candidates) {
           result.complete = false;
           break;
         }
-        const auto face_pair = std::minmax(s.face, local[j].face);
+        const auto face_pair = std::minmax(sf, face[j]);
         if (!found.empty() && found.count(face_pair)) continue;
         if (triangles_conflict(tris[size_t(here[i])], tris[size_t(here[j])])) {
           found.insert(face_pair);

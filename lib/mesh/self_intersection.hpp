@@ -2,8 +2,9 @@
 /// \file self_intersection.hpp
 /// Exact detection of self-intersections of a polygon mesh: faces are triangulated (ear clipping
 /// round the rim, EarOrder::Spread: a face with many corners gives few long triangles), a uniform
-/// grid of cells over the triangles' boxes finds the pairs whose boxes overlap, and each pair is
-/// decided exactly with orient3d (a triangle strictly on one side of the other's plane is
+/// grid of cells over the triangles' boxes finds the pairs whose boxes overlap, pairs that share a
+/// vertex whose star is certified (it projects one to one along an axis: docs/mesh_io.md) are
+/// passed over, and each other pair is decided exactly with orient3d (a triangle strictly on one side of the other's plane is
 /// rejected first; coplanar pairs by separating edge lines; otherwise segment-triangle tests;
 /// Guigue & Devillers 2003 give the same decisions).
 /// Vertices at the same position count as the same vertex, so faces that meet at a

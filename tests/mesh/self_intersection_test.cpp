@@ -8,7 +8,9 @@
 #include "support/rational_orientation.hpp"
 
 #include <boost/multiprecision/cpp_int.hpp>
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <random>
 #include <set>
 
@@ -229,6 +231,89 @@ TEST(SelfIntersection, GridBroadPhaseFindsEveryPair) {
 }
 
 
+/// The pairs search_self_intersections reports, both with and without the promise of distinct
+/// vertices (which must hold).
+std::set<std::pair<int, int>> searched_pairs(const PolygonMesh& m, bool distinct) {
+  const SelfIntersectionSearch search = search_self_intersections(m, {.max_pairs = 1u << 30, .distinct_vertices = distinct});
+  EXPECT_TRUE(search.complete);
+  std::set<std::pair<int, int>> got;
+  for (const FacePair& p : search.pairs) got.insert(std::minmax(p.face_a, p.face_b));
+  return got;
+}
+
+/// m with every face replaced by its triangles (so that any triangulation is this one).
+PolygonMesh triangulated(const PolygonMesh& m) {
+  PolygonMesh out;
+  out.vertices = m.vertices;
+  for (const auto& f : m.faces)
+    for (const IndexTriangle& t : triangulate_polygon(m.vertices, f)) out.faces.push_back({t[0], t[1], t[2]});
+  return out;
+}
+
+// Pairs that share a vertex whose star is certified are not examined (the star projects along an
+// axis to sectors that turn one way and wind once). Stars that fold or wind twice must not be
+// certified: on closed meshes shaken until their stars fold, on a sphere with a corner pulled through
+// the centre and out, and on flat fans that wind twice or turn back, the pairs found are
+// those of all pairs of faces.
+TEST(SelfIntersection, FoldedStarsAreStillSearched) {
+  std::vector<PolygonMesh> cases;
+  std::mt19937 rng(17);
+  for (double amplitude : {0.02, 0.1, 0.25, 0.5})
+    for (const PolygonMesh& shape : {test_shapes::uv_sphere(12), test_shapes::torus(12, 8, 1.2, 0.4)}) {
+      PolygonMesh m = triangulated(shape);
+      std::uniform_real_distribution<double> shake(-amplitude, amplitude);
+      for (Vector3d& p : m.vertices) p += Vector3d(shake(rng), shake(rng), shake(rng));
+      cases.push_back(m);
+    }
+  PolygonMesh pushed = triangulated(test_shapes::uv_sphere(12));
+  pushed.vertices[30] = -1.25 * pushed.vertices[30];  // a corner through the centre and out
+  cases.push_back(pushed);
+  // Flat fans round the origin: 7 sectors of 4 pi / 7 each (all turning left, winding twice),
+  // and 6 sectors of which one turns back over its neighbours.
+  PolygonMesh twice;
+  twice.vertices.push_back(Vector3d::Zero());
+  for (int j = 0; j < 7; ++j) {
+    const double angle = 4 * std::numbers::pi * j / 7;
+    twice.vertices.emplace_back(std::cos(angle), std::sin(angle), 0);
+  }
+  for (int j = 0; j < 7; ++j) twice.faces.push_back({0, 1 + j, 1 + (j + 1) % 7});
+  cases.push_back(twice);
+  PolygonMesh back;
+  back.vertices = {Vector3d::Zero(), {1, 0, 0}, {0.5, 0.8, 0}, {-0.5, 0.8, 0}, {0.9, 0.3, 0}, {-0.5, -0.8, 0}, {0.5, -0.8, 0}};
+  for (int j = 1; j <= 6; ++j) back.faces.push_back({0, j, j % 6 + 1});
+  cases.push_back(back);
+  size_t index = 0;
+  for (const PolygonMesh& m : cases) {
+    SCOPED_TRACE(index++);
+    const std::set<std::pair<int, int>> expected = all_pairs(m);
+    EXPECT_EQ(searched_pairs(m, false), expected);
+    EXPECT_EQ(searched_pairs(m, true), expected);
+  }
+  EXPECT_FALSE(all_pairs(twice).empty());
+  EXPECT_FALSE(all_pairs(back).empty());
+  EXPECT_FALSE(all_pairs(pushed).empty());
+}
+
+// The scan compares boxes rounded to floats: triangles that only touch, where the boxes' common
+// side is a double between two floats (0.1 scaled by powers of two from 2^-1060 to 2^200, beyond
+// float's range), are still found, and triangles a double apart are not reported.
+TEST(SelfIntersection, TouchingAtCoordinatesBetweenFloats) {
+  for (int exponent : {-1060, -200, -140, -30, 0, 30, 120, 200}) {
+    SCOPED_TRACE(exponent);
+    const double x = std::ldexp(0.1, exponent), y = std::ldexp(0.3, exponent), z = std::ldexp(0.7, exponent);
+    PolygonMesh m;
+    // A triangle in the plane X = x, and one whose corner is on it, the rest at larger X.
+    m.vertices = {{x, 0, 0}, {x, 2 * y, 0}, {x, 0, 2 * z}, {x, y / 2, z / 2}, {3 * x, y, 0}, {3 * x, 0, z}};
+    m.faces = {{0, 1, 2}, {3, 4, 5}};
+    EXPECT_EQ(searched_pairs(m, true), (std::set<std::pair<int, int>>{{0, 1}}));
+    m.vertices[3].x() = std::nextafter(x, 2 * x);  // a double apart: they do not meet
+    EXPECT_TRUE(searched_pairs(m, true).empty());
+    m.vertices[3].x() = x;
+    for (Vector3d& p : m.vertices) p = -p;  // the same below zero
+    EXPECT_EQ(searched_pairs(m, true), (std::set<std::pair<int, int>>{{0, 1}}));
+  }
+}
+
 // Exact-vertex marks (SelfIntersectionOptions::exact_vertices) skip only pairs of faces whose
 // corners are all marked: on meshes with many crossings and random marks, the pairs found are
 // exactly all pairs (brute force) less those of two all-marked faces, so no crossing that involves
@@ -311,8 +396,12 @@ TEST(BoxGrid, EveryOverlappingPairIsOwnedByExactlyOneCell) {
       const auto cell = grid.cell(k);
       for (size_t i = 0; i < cell.size(); ++i)
         for (size_t j = i + 1; j < cell.size(); ++j)
-          if (boxes[size_t(cell[i])].intersects(boxes[size_t(cell[j])]) && grid.owns(k, cell[i], cell[j]))
-            ++owned[std::minmax(cell[i], cell[j])];
+          if (boxes[size_t(cell[i])].intersects(boxes[size_t(cell[j])])) {
+            // The first-cell masks say the same as owns().
+            const auto masks = grid.first_cell_masks(k);
+            EXPECT_EQ((masks[i] | masks[j]) == 7, grid.owns(k, cell[i], cell[j]));
+            if (grid.owns(k, cell[i], cell[j])) ++owned[std::minmax(cell[i], cell[j])];
+          }
     }
     size_t expected = 0;
     for (size_t a = 0; a < boxes.size(); ++a)

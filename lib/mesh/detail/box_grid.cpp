@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <tuple>
 
 namespace sculpt::mesh::detail {
 
@@ -51,32 +51,44 @@ BoxGrid::BoxGrid(std::span<const Eigen::AlignedBox3d> boxes) {
       const auto& r = range_[i];
       for (std::int64_t x = r[0]; x <= r[3]; ++x)
         for (std::int64_t y = r[1]; y <= r[4]; ++y)
-          for (std::int64_t z = r[2]; z <= r[5]; ++z) emit(key(x, y, z), static_cast<int>(i));
+          for (std::int64_t z = r[2]; z <= r[5]; ++z)
+            emit(key(x, y, z), static_cast<int>(i), (x == r[0] ? 1 : 0) | (y == r[1] ? 2 : 0) | (z == r[2] ? 4 : 0));
     }
   };
   if (dense_) {
     // Counting sort straight into the member list; the non-empty cells read off the counts.
     std::vector<int> start(static_cast<size_t>(dense_cells) + 1, 0);
-    list([&](std::int64_t k, int) { ++start[size_t(k) + 1]; });  // start[k + 1]: cell k's count
+    list([&](std::int64_t k, int, int) { ++start[size_t(k) + 1]; });  // start[k + 1]: cell k's count
     for (size_t k = 0; k + 1 < start.size(); ++k)
       if (start[k + 1] != 0) keys_.push_back(std::int64_t(k));
     for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];  // start[k]: where cell k begins
     starts_.resize(keys_.size());
     for (size_t c = 0; c < keys_.size(); ++c) starts_[c] = size_t(start[size_t(keys_[c])]);
     members_.resize(count);
-    list([&](std::int64_t k, int i) { members_[size_t(start[size_t(k)]++)] = i; });
+    masks_.resize(count);
+    list([&](std::int64_t k, int i, int mask) {
+      const size_t at = size_t(start[size_t(k)]++);
+      members_[at] = i;
+      masks_[at] = static_cast<unsigned char>(mask);
+    });
   } else {
-    std::vector<std::pair<std::int64_t, int>> entries;
+    struct Entry {
+      std::int64_t key;
+      int box, mask;
+    };
+    std::vector<Entry> entries;
     entries.reserve(count);
-    list([&](std::int64_t k, int i) { entries.emplace_back(k, i); });
-    std::sort(entries.begin(), entries.end());
+    list([&](std::int64_t k, int i, int mask) { entries.push_back({k, i, mask}); });
+    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return std::tie(a.key, a.box) < std::tie(b.key, b.box); });
     members_.reserve(entries.size());
+    masks_.reserve(entries.size());
     for (size_t e = 0; e < entries.size(); ++e) {
-      if (e == 0 || entries[e].first != entries[e - 1].first) {
-        keys_.push_back(entries[e].first);
+      if (e == 0 || entries[e].key != entries[e - 1].key) {
+        keys_.push_back(entries[e].key);
         starts_.push_back(members_.size());
       }
-      members_.push_back(entries[e].second);
+      members_.push_back(entries[e].box);
+      masks_.push_back(static_cast<unsigned char>(entries[e].mask));
     }
   }
   starts_.push_back(members_.size());

@@ -35,25 +35,17 @@ class BoxGrid {
     const auto &x = range_[size_t(a)], &y = range_[size_t(b)];
     return key(std::max(x[0], y[0]), std::max(x[1], y[1]), std::max(x[2], y[2])) == keys_[k];
   }
-  /// Cell k's integer coordinates along x, y, z.
-  [[nodiscard]] std::array<std::int64_t, 3> cell_coordinates(size_t k) const { return coordinates(keys_[k]); }
-  /// For box a listed in the cell at coordinates c: bit i set when the box's first cell along axis
-  /// i is the cell's. Two boxes listed in one cell both reach it, so their intersection's minimum
-  /// corner is in that cell (owns) exactly when their two masks together have all three bits.
-  [[nodiscard]] unsigned first_cell_mask(const std::array<std::int64_t, 3>& c, int a) const {
-    const auto& x = range_[size_t(a)];
-    return unsigned(x[0] == c[0]) | unsigned(x[1] == c[1]) << 1 | unsigned(x[2] == c[2]) << 2;
+  /// For each box listed in cell k (in cell(k)'s order): bit i set when the box's first cell along
+  /// axis i is this one. Two boxes listed in one cell both reach it, so their intersection's
+  /// minimum corner is in that cell (owns) exactly when their two masks together have all three
+  /// bits.
+  [[nodiscard]] std::span<const unsigned char> first_cell_masks(size_t k) const {
+    return {masks_.data() + starts_[k], masks_.data() + starts_[k + 1]};
   }
 
  private:
   [[nodiscard]] std::int64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return dense_ ? (x * dims_[1] + y) * dims_[2] + z : (x << 42) | (y << 21) | z;
-  }
-  /// The cell coordinates of a key (key's inverse).
-  [[nodiscard]] std::array<std::int64_t, 3> coordinates(std::int64_t key) const {
-    if (dense_) return {key / (dims_[1] * dims_[2]), (key / dims_[2]) % dims_[1], key % dims_[2]};
-    constexpr std::int64_t mask = (std::int64_t(1) << 21) - 1;
-    return {key >> 42, (key >> 21) & mask, key & mask};
   }
 
   std::vector<std::array<std::int64_t, 6>> range_;  ///< per box: first cells (x, y, z), last cells
@@ -62,6 +54,7 @@ class BoxGrid {
   std::vector<std::int64_t> keys_;  ///< per non-empty cell
   std::vector<size_t> starts_;      ///< per non-empty cell, where its members begin (one more at the end)
   std::vector<int> members_;
+  std::vector<unsigned char> masks_;  ///< per member: first_cell_masks
 };
 
 }  // namespace sculpt::mesh::detail
