@@ -18,7 +18,7 @@ namespace sculpt::mesh::detail {
 
 class BoxGrid {
  public:
-  /// Cells about the median box extent (at least 2^-20 of the boxes' whole extent), coarsened
+  /// Cells of twice the median box extent (at least 2^-20 of the boxes' whole extent), coarsened
   /// until the boxes' cell entries stay within 8 per box (plus 1024). Boxes must be finite.
   explicit BoxGrid(std::span<const Eigen::AlignedBox3d> boxes);
 
