@@ -36,7 +36,7 @@ class Clipper {
   void push(TreeRef t, const BoundaryFragment& f, Fate&& fate, Emit&& emit) {
     stack_.clear();
     splits_.clear();
-    stack_.push_back({t, f.polygon, kernel::corner_box(f.polygon), ClipMode::Both, false, kOut, -1, 0});
+    stack_.emplace_back(t, kernel::ConvexPolygon(f.polygon), kernel::corner_box(f.polygon), ClipMode::Both, false, kOut, -1, 0);
     while (!stack_.empty()) {
       Item& top = stack_.back();
       if (is_leaf(top.at)) {
@@ -66,15 +66,17 @@ class Clipper {
         case kernel::Side::Positive: top.at = n.positive; break;
         case kernel::Side::Both: {
           const auto id = int(splits_.size());
-          splits_.push_back({top.polygon, top.parent, top.which, {kPending, kPending}, {}});
+          splits_.emplace_back(top.polygon, top.parent, top.which);
           const kernel::CornerBox nb = kernel::corner_box(s.negative), pb = kernel::corner_box(s.positive);
-          Item second{n.positive, std::move(s.positive), pb, top.mode, top.back_in, top.then_front, id, 1};
+          const ClipMode mode = top.mode;
+          const bool back_in = top.back_in;
+          const TreeRef then_front = top.then_front;
           top.at = n.negative;
           top.polygon = std::move(s.negative);
           top.box = nb;
           top.parent = id;
           top.which = 0;
-          stack_.push_back(std::move(second));
+          stack_.emplace_back(n.positive, std::move(s.positive), pb, mode, back_in, then_front, id, 1);  // top dangles
           break;
         }
         case kernel::Side::On: {
@@ -116,6 +118,11 @@ class Clipper {
 
  private:
   struct Item {
+    // Constructed in place: braces would zero the whole item (the polygon's inline storage) first.
+    Item(TreeRef at_, kernel::ConvexPolygon&& polygon_, const kernel::CornerBox& box_, ClipMode mode_, bool back_in_,
+         TreeRef then_front_, int parent_, int which_)
+        : at(at_), polygon(std::move(polygon_)), box(box_), mode(mode_), back_in(back_in_), then_front(then_front_),
+          parent(parent_), which(which_) {}
     TreeRef at;
     kernel::ConvexPolygon polygon;
     kernel::CornerBox box;
@@ -125,10 +132,14 @@ class Clipper {
     int parent, which;   // the split that made this piece (-1: none) and which part it is
   };
   struct Split {
+    // A constructor of its own: value-initializing the parts (`{}`) would zero their inline
+    // corner storage first, 2 x 272 bytes per split (a tenth of the boundary merge).
+    Split(const kernel::ConvexPolygon& whole, int parent_split, int part_index)
+        : polygon(whole), parent(parent_split), which(part_index) {}
     kernel::ConvexPolygon polygon;  // before the split
     int parent, which;
-    int fate[2];            // of the two parts (kPending until decided)
-    kernel::ConvexPolygon part[2];  // a part kept whole, until its sibling is decided
+    int fate[2] = {kPending, kPending};  // of the two parts (kPending until decided)
+    kernel::ConvexPolygon part[2];       // a part kept whole, until its sibling is decided
   };
 
   // Records the fate of part `which` of split `parent` and resolves splits whose parts are
