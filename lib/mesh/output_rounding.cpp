@@ -636,13 +636,18 @@ class Cleaner {
       for (int t : live) meeting_partners(t, [&](int u) { return u <= t; }, out);  // no grid: a query per triangle
     } else {
       const mesh::detail::BoxGrid grid(boxes);
+      std::vector<Eigen::AlignedBox3d> local;  // a cell's boxes, gathered
       for (size_t k = 0; k < grid.cells(); ++k) {
         const std::span<const int> here = grid.cell(k);
+        const std::span<const unsigned char> first = grid.first_cell_masks(k);
+        local.clear();
+        for (int i : here) local.push_back(boxes[size_t(i)]);
         for (size_t i = 0; i < here.size(); ++i)
           for (size_t j = i + 1; j < here.size(); ++j) {
+            // Owned by this cell (BoxGrid::first_cell_masks) and overlapping.
+            if ((first[i] | first[j]) != 7 || !local[i].intersects(local[j])) continue;
             const int t = live[size_t(here[i])], u = live[size_t(here[j])];
-            if (boxes_[t].intersects(boxes_[u]) && grid.owns(k, here[i], here[j]) && triangles_meet(prepared_[t], prepared_[u]))
-              out.push_back(std::minmax(t, u));
+            if (triangles_meet(prepared_[t], prepared_[u])) out.push_back(std::minmax(t, u));
           }
       }
     }
