@@ -31,7 +31,9 @@ void check(const std::vector<Eigen::Vector3d>& v, const std::vector<int>& face, 
   for (const EarOrder order : {EarOrder::Fan, EarOrder::Spread}) {
   std::vector<IndexTriangle> tris;
   PolygonTriangulator().append(v, face, tris, order);
-  if (order == EarOrder::Fan) EXPECT_EQ(tris, triangulate_polygon(v, face));
+  if (order == EarOrder::Fan) {
+    EXPECT_EQ(tris, triangulate_polygon(v, face));
+  }
   double area = 0;
   std::set<int> used;
   for (const auto& t : tris) {
@@ -145,7 +147,9 @@ TEST(Triangulate, ConvexPolygonsFanAndSpread) {
     PolygonTriangulator().append(v, f, spread, EarOrder::Spread);
     const double area = shoelace(v, f);
     EXPECT_LT(box_area(spread), 4 * area) << n;
-    if (n >= 64) EXPECT_GT(box_area(fan), 8 * area) << n;
+    if (n >= 64) {
+      EXPECT_GT(box_area(fan), 8 * area) << n;
+    }
   }
   // Not convex although every corner turns left: a pentagram's ring turns twice. Treated as
   // convex, it would be cut into the fan around corner 1, which runs outside the star.
