@@ -493,12 +493,10 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   std::set<std::pair<int, int>> found;
   const mesh::detail::BoxGrid grid(boxes);
   size_t candidates = 0, scanned = 0;
-  // Per cell: its members' slots gathered, then for each member the later members whose boxes
-  // overlap its own collected without branching (the box tests are unpredictable), then those
-  // examined.
-  // A cell's members gathered field by field, so that the box tests of one member against the
-  // later ones run several at a time; mask: bits 0-2 BoxGrid::first_cell_masks, bit 3 an exact
-  // triangle.
+  // Per cell: its members gathered field by field, then for each member the later members whose
+  // boxes overlap its own collected without branching (the box tests are unpredictable; the
+  // compiler runs several at a time), then those examined. mask: bits 0-2
+  // BoxGrid::first_cell_masks, bit 3 an exact triangle.
   std::array<std::vector<float>, 6> lo_hi;
   std::vector<int> face, keep, hits;
   std::vector<unsigned> mask;
