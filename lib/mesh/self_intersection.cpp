@@ -267,6 +267,14 @@ void prefetch(const PreparedTriangle& t) {
 #endif
 }
 
+/// Whether the sign of plane.minor[axis] is certain: that minor is orient2d's filter value for the
+/// projection of the plane's triangle along `axis` (differences to its first corner, Shewchuk's
+/// form), so his orient2d bound applies.
+bool certified_minor(const Orient3dPlane& plane, int axis) {
+  const double m = plane.minor[axis], perm = plane.permanent[axis];
+  return std::abs(m) > detail::kOrient2dFilterBound * perm && perm > detail::kFilterNoUnderflow && std::isfinite(m);
+}
+
 /// What certified_stars reads of a triangle: its corner ids, its plane's minors (an area vector,
 /// used only to choose an axis) and the signs of its projections along each axis where the
 /// filter decides them (kUndecided elsewhere).
@@ -276,16 +284,14 @@ struct StarTriangle {
   std::array<signed char, 3> sign{};
 };
 
-/// t's StarTriangle: the plane's minor along axis k is orient2d's filter value for the projection
-/// along k (differences to p[0], Shewchuk's form), so his bound decides its sign.
+/// t's StarTriangle (the signs by certified_minor).
 StarTriangle star_triangle(const PreparedTriangle& t) {
   StarTriangle r;
   r.ids = t.ids;
   for (int k = 0; k < 3; ++k) {
-    const double m = t.plane.minor[k], perm = t.plane.permanent[k];
+    const double m = t.plane.minor[k];
     r.normal[size_t(k)] = m;
-    const bool certain = std::abs(m) > detail::kOrient2dFilterBound * perm && perm > detail::kFilterNoUnderflow && std::isfinite(m);
-    r.sign[size_t(k)] = static_cast<signed char>(certain ? (m > 0 ? 1 : -1) : kUndecided);
+    r.sign[size_t(k)] = static_cast<signed char>(certified_minor(t.plane, k) ? (m > 0 ? 1 : -1) : kUndecided);
   }
   return r;
 }
@@ -364,16 +370,13 @@ PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::arra
   t.ids = ids;
   t.p = p;
   t.plane = orient3d_plane(p[0], p[1], p[2]);
-  // The projection along axis k has the signed area plane.minor[k], computed as orient2d's filter
-  // computes it (differences to p[0], Shewchuk's form), so his orient2d bound certifies a non-zero
-  // one: the axis of the largest certified area, else the first whose exact orient2d is non-zero.
+  // The projection along axis k has the signed area plane.minor[k] (certified_minor): the axis
+  // of the largest certified area, else the first whose exact orient2d is non-zero.
   t.axis = -1;
   double best = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const double area = std::abs(t.plane.minor[axis]);
-    if (area > detail::kOrient2dFilterBound * t.plane.permanent[axis] && t.plane.permanent[axis] > detail::kFilterNoUnderflow &&
-        std::isfinite(area) && area > best)
-      t.axis = axis, best = area;
+    if (certified_minor(t.plane, axis) && area > best) t.axis = axis, best = area;
   }
   for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
     if (orient2d(drop(p[0], axis), drop(p[1], axis), drop(p[2], axis)) != 0) t.axis = axis;
