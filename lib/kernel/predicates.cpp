@@ -110,9 +110,15 @@ bool split_magnitude(bool negative, U128 upper, U128 lower, Split& out) {
     top = lower << lead;
     out.exponent = -lead;
   }
-  const double h = double(top);  // rounded to nearest
-  // top - h exactly (at most 2^75 in magnitude); h may be 2^128, beyond U128.
-  const double l = h >= 0x1p128 ? -double(U128(0) - top) : (U128(h) >= top ? -double(U128(h) - top) : double(top - U128(h)));
+  // Without the 128-bit conversions (library calls): top / 2^64 rounded to nearest from its upper
+  // half and a sticky bit for the lower (64 - 53 >= 2 bits dropped, so no false tie), then
+  // top - h (at most 2^74 in magnitude; h may be 2^128, beyond U128) as two exact parts and one
+  // rounding: the same h and l as double(top) and double(top - h).
+  const std::uint64_t upper_half = std::uint64_t(top >> 64), lower_half = std::uint64_t(top);
+  const double h64 = double(upper_half | (lower_half != 0 ? 1u : 0u));
+  const Int128 rest = h64 == 0x1p64 ? Int128(top) : Int128(top - (U128(std::uint64_t(h64)) << 64));
+  const double h = h64 * 0x1p64;
+  const double l = double(std::int64_t(rest >> 22)) * 0x1p22 + double(std::int64_t(rest & 0x3fffff));
   out.hi = negative ? -h : h;
   out.lo = negative ? -l : l;
   return true;
@@ -144,7 +150,8 @@ bool split(const ProductSum256& n, Split& out) {
 /// approximation. Returns false otherwise (a quotient at or very near a midpoint, a tie
 /// included, or outside [2^-900, 2^900] in magnitude).
 bool filtered_quotient(const Split& n, const Split& d, double& out) {
-  const double scale = std::ldexp(1.0, n.exponent - d.exponent);  // a power of two, 2^-255 to 2^255
+  // A power of two, 2^-255 to 2^255, built from its exponent bits (std::ldexp is a library call).
+  const double scale = std::bit_cast<double>(std::uint64_t(1023 + n.exponent - d.exponent) << 52);
   const double q1 = n.hi / d.hi;  // about 1 in magnitude
   const double r = std::fma(-q1, d.hi, n.hi);  // n.hi - q1 d.hi, exact (remainder of a rounded division)
   const double q2 = ((r + n.lo) - q1 * d.lo) / d.hi;
@@ -152,7 +159,8 @@ bool filtered_quotient(const Split& n, const Split& d, double& out) {
   const double t = ((q1 * scale - y) + q2 * scale);  // the approximation minus y (Sterbenz: exact difference)
   const double m = std::fabs(y);
   if (!(m >= 0x1p-900 && m <= 0x1p900)) return false;
-  const double half_gap = 0.5 * std::fabs(y - std::nextafter(y, 0.0));  // the smaller gap: toward zero
+  // The smaller gap, toward zero: the next double toward zero has the magnitude's bits less one.
+  const double half_gap = 0.5 * std::fabs(y - std::bit_cast<double>(std::bit_cast<std::uint64_t>(y) - 1));
   if (!(std::fabs(t) * (1 + 0x1p-50) + 0x1p-95 * m < half_gap)) return false;
   out = y;
   return true;

@@ -314,6 +314,33 @@ TEST(RoundedQuotient, WideQuotientsAreNearestInRationals) {
   EXPECT_GT(ties, 1000);
 }
 
+// The splits of wide integers into two doubles at their edge cases, against the definition:
+// numerators just below a power of two (the leading double rounds up to the next power, and the
+// rest, up to 2^74 of 2^128, is negative), and numerators whose leading 128 bits lie at or next to a
+// midpoint between two doubles, with and without bits below them (the sticky bit decides).
+TEST(RoundedQuotient, SplitsAtRoundingEdgesAreNearestInRationals) {
+  const std::array<Int256, 5> denominators = {Int256(3), Int256(-7), Int256(1000003), (Int256(1) << 64) + 13,
+                                              -((Int256(1) << 150) + 12345)};
+  const std::array<Int256, 6> below = {Int256(1), Int256(3), (Int256(1) << 40) + 1, (Int256(1) << 60) - 1,
+                                       (Int256(1) << 73) + 5, (Int256(1) << 74) - 1};
+  for (int k = 128; k <= 250; k += 7)
+    for (const Int256& j : below) {
+      const Int256 n = (Int256(1) << k) - (j << (k - 128));
+      for (const Int256& d : denominators) {
+        ASSERT_TRUE(nearest_in_rationals(rounded_quotient(n, d), n, d)) << n << " / " << d;
+        ASSERT_TRUE(nearest_in_rationals(rounded_quotient(-n, d), -n, d)) << -n << " / " << d;
+      }
+    }
+  for (int shift = 0; shift <= 100; shift += 25)
+    for (const int low : {-1, 0, 1})
+      for (const int odd : {0, 1}) {
+        // Leading 128 bits 2^127 + (2 odd + 1) 2^74 (+ 2^75 odd): a midpoint; `low` below them.
+        const Int256 top = (Int256(1) << 127) + (Int256(2 * odd + 1) << 74);
+        const Int256 n = (top << shift) + low;
+        for (const Int256& d : denominators) ASSERT_TRUE(nearest_in_rationals(rounded_quotient(n, d), n, d)) << n << " / " << d;
+      }
+}
+
 // rounded_vertex's own path (256-bit sums of products and the double-double quotient, taken when
 // the approximation's error bound is not small enough) against the exact vertex in rationals, on
 // planes through random grid points (many nearly parallel), with the approximation's bound
