@@ -472,6 +472,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
       }
       slot.face = static_cast<int>(fi);
       slot.exact = exact;
+      slot.star = t.ids;
       tris.push_back(t);
       boxes.push_back(box);
       stars.push_back(star_triangle(t));
@@ -483,11 +484,8 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   // Pairs that share a vertex whose star is certified are not examined (certified_stars).
   {
     const std::vector<char> certified = certified_stars(stars, mesh.vertices);
-    for (size_t i = 0; i < tris.size(); ++i)
-      for (size_t k = 0; k < 3; ++k) {
-        const int id = tris[i].ids[k];
-        slots[i].star[k] = certified[size_t(id)] ? id : -1 - int(i);
-      }
+    for (size_t i = 0; i < slots.size(); ++i)
+      for (int& id : slots[i].star) id = certified[size_t(id)] != 0 ? id : -1 - int(i);
   }
   // Broad phase (mesh/detail/box_grid.hpp): a uniform grid over the triangles' boxes; a pair
   // whose boxes overlap is examined in the one cell that owns it, so once. The scan compares the
