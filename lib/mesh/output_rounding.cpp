@@ -17,6 +17,7 @@
 
 #include "base/errors.hpp"
 #include "mesh/detail/box_grid.hpp"
+#include "mesh/detail/point_copies.hpp"
 #include "mesh/formats/mesh_formats.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "mesh/predicates.hpp"
@@ -814,33 +815,17 @@ std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options,
     for (Vector3d& v : copy.vertices) v = round(v);
   }
   const PolygonMesh& rounded = options.precision == OutputPrecision::Double ? mesh : copy;
-  std::vector<bool> used(rounded.vertices.size(), false);
+  std::vector<char> used(rounded.vertices.size(), 0);
   for (const auto& f : rounded.faces)
     for (int v : f)
-      if (v >= 0 && static_cast<size_t>(v) < used.size()) used[v] = true;
+      if (v >= 0 && static_cast<size_t>(v) < used.size()) used[size_t(v)] = 1;
   if (!options.keep_copies) {
     // Two used vertices at one point: of all such pairs, the one whose later vertex comes first
     // (with the first vertex at that point), as a scan in index order finds it.
-    struct Keyed {  // sorted in place, not through indices: a third of the time
-      double x, y, z;
-      int v;
-      bool operator<(const Keyed& o) const { return std::tie(x, y, z, v) < std::tie(o.x, o.y, o.z, o.v); }
-      bool same_point(const Keyed& o) const { return x == o.x && y == o.y && z == o.z; }
-    };
-    std::vector<Keyed> order;
-    order.reserve(rounded.vertices.size());
-    for (size_t v = 0; v < rounded.vertices.size(); ++v) {
-      const Vector3d& p = rounded.vertices[v];
-      if (used[v] && p.allFinite()) order.push_back({p.x(), p.y(), p.z(), static_cast<int>(v)});  // NaN: no order
-    }
-    std::sort(order.begin(), order.end());
+    const std::vector<int> copy_of = mesh::detail::first_copies(rounded.vertices, used);
     int first = -1, second = -1;
-    for (size_t i = 1; i < order.size(); ++i) {
-      if (!order[i].same_point(order[i - 1])) continue;
-      size_t g = i - 1;  // the group's first member (smallest index)
-      while (g > 0 && order[g - 1].same_point(order[i])) --g;
-      if (g + 1 == i && (second < 0 || order[i].v < second)) first = order[g].v, second = order[i].v;
-    }
+    for (size_t v = 0; v < copy_of.size() && second < 0; ++v)
+      if (copy_of[v] != int(v)) first = copy_of[v], second = int(v);
     if (second >= 0)
       return "vertices " + std::to_string(first) + " and " + std::to_string(second) + " are at the same point";
   }

@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "mesh/detail/box_grid.hpp"
+#include "mesh/detail/point_copies.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/triangulate.hpp"
 
@@ -226,24 +227,6 @@ int projection_axis(const PolygonMesh& mesh, const std::vector<int>& face) {
 
 /// Canonical vertex ids: vertices with equal coordinates get the same id (of the first of them in
 /// sorted order).
-std::vector<int> canonical_ids(const std::vector<Vector3d>& vertices) {
-  struct Keyed {
-    double x, y, z;
-    int id;
-  };
-  std::vector<Keyed> keyed(vertices.size());
-  for (size_t v = 0; v < vertices.size(); ++v) keyed[v] = {vertices[v].x(), vertices[v].y(), vertices[v].z(), int(v)};
-  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
-    return std::tie(a.x, a.y, a.z, a.id) < std::tie(b.x, b.y, b.z, b.id);
-  });
-  std::vector<int> canon(vertices.size());
-  for (size_t k = 0; k < keyed.size(); ++k) {
-    const bool same = k > 0 && keyed[k].x == keyed[k - 1].x && keyed[k].y == keyed[k - 1].y && keyed[k].z == keyed[k - 1].z;
-    canon[size_t(keyed[k].id)] = same ? canon[size_t(keyed[k - 1].id)] : keyed[k].id;
-  }
-  return canon;
-}
-
 std::vector<int> identity_ids(size_t n) {
   std::vector<int> ids(n);
   std::iota(ids.begin(), ids.end(), 0);
@@ -421,7 +404,7 @@ std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh, SelfInter
 SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIntersectionOptions options) {
   SelfIntersectionSearch result;
   const size_t nv = mesh.vertices.size();
-  const std::vector<int> canon = options.distinct_vertices ? identity_ids(nv) : canonical_ids(mesh.vertices);
+  const std::vector<int> canon = options.distinct_vertices ? identity_ids(nv) : mesh::detail::first_copies(mesh.vertices);
 
   // Faces with every corner marked exact (the flags are used only when there is one per vertex):
   // pairs of their triangles are not examined (see SelfIntersectionOptions::exact_vertices).

@@ -15,6 +15,7 @@
 #include <set>
 
 #include "mesh/detail/box_grid.hpp"
+#include "mesh/detail/point_copies.hpp"
 #include "mesh/triangulate.hpp"
 #include "shapes.hpp"
 
@@ -413,6 +414,37 @@ TEST(BoxGrid, EveryOverlappingPairIsOwnedByExactlyOneCell) {
     size_t found = 0;
     for (const auto& [pair, count] : owned) found += count > 0 ? 1 : 0;
     EXPECT_EQ(found, expected);
+  }
+}
+
+// first_copies against the definition by brute force: points drawn from a small set (many
+// copies), with -0 beside +0, infinities and NaN (never matched), and points left out by `take`.
+TEST(PointCopies, FirstCopiesAreTheSmallestIndexAtEachPoint) {
+  std::mt19937 rng(41);
+  const std::array<double, 7> values = {0.0, -0.0, 1.0, -2.5, 0x1p-1070, std::numeric_limits<double>::infinity(),
+                                        std::numeric_limits<double>::quiet_NaN()};
+  for (int round = 0; round < 200; ++round) {
+    const size_t n = 1 + rng() % 60;
+    std::vector<Eigen::Vector3d> points(n);
+    std::vector<char> take(n);
+    for (size_t v = 0; v < n; ++v) {
+      for (int k = 0; k < 3; ++k) points[v][k] = values[rng() % (round % 2 ? 7 : 4)];
+      take[v] = rng() % 4 != 0;
+    }
+    const bool with_take = round % 3 != 0;
+    const std::vector<int> got = mesh::detail::first_copies(points, with_take ? std::span<const char>(take) : std::span<const char>());
+    ASSERT_EQ(got.size(), n);
+    for (size_t v = 0; v < n; ++v) {
+      auto taken = [&](size_t u) { return (!with_take || take[u] != 0) && points[u].allFinite(); };
+      int expected = int(v);
+      if (taken(v))
+        for (size_t u = 0; u < v; ++u)
+          if (taken(u) && points[u] == points[v]) {
+            expected = int(u);
+            break;
+          }
+      ASSERT_EQ(got[v], expected) << "round " << round << " point " << v;
+    }
   }
 }
 
