@@ -279,7 +279,8 @@ StarTriangle star_triangle(const PreparedTriangle& t) {
   return r;
 }
 
-/// Per vertex id: whether its star is certified, that is no two triangles round it meet beyond
+/// Per vertex id: whether its star is certified (0 if not, else 1 + 2 axis + (orientation > 0)
+/// for the projection that certifies it), that is no two triangles round it meet beyond
 /// the vertex and the edge they share. Certified when, projected along one coordinate axis, the
 /// triangles' opposite edges a -> b (in the triangles' order) form one cycle through distinct
 /// vertices, every triangle v a b is oriented the same way (strictly), and the cycle winds once
@@ -288,9 +289,21 @@ StarTriangle star_triangle(const PreparedTriangle& t) {
 /// along the edge v b. The winding number of a cycle whose every sector turns left is the
 /// number of its edges that cross v's horizontal line upwards (Sunday's crossing rule), so all
 /// of this is decided with exact signs. `points` are the ids' positions.
-std::vector<char> certified_stars(const std::vector<StarTriangle>& tris, const std::vector<Vector3d>& points) {
+/// `links` receives the link edges by vertex, in the vertex's frame (where the sectors turn
+/// left: turned round where the vertex's orientation is negative, which `turned` records).
+struct StarLinks {
+  struct Link {
+    int t, a, b;  // triangle t = v a b, or v b a where turned
+  };
+  std::vector<int> start;  // vertex v's links are link[start[v]] to link[start[v + 1]]
+  std::vector<Link> link;
+  std::vector<char> turned;
+};
+std::vector<signed char> certified_stars(const std::vector<StarTriangle>& tris, const std::vector<Vector3d>& points,
+                                         StarLinks& links) {
   const size_t n = points.size();
-  std::vector<int> start(n + 1, 0);
+  std::vector<int>& start = links.start;
+  start.assign(n + 1, 0);
   std::vector<Vector3d> normal(n, Vector3d::Zero());  // only chooses the axis; the tests are exact
   for (const StarTriangle& t : tris)
     for (int id : t.ids) {
@@ -307,13 +320,17 @@ std::vector<char> certified_stars(const std::vector<StarTriangle>& tris, const s
   }
   // The link edges a -> b grouped by vertex (turned round where the projection is mirrored, so
   // that the sectors turn left), each vertex's upward crossings counted, failures marked.
-  std::vector<std::pair<int, int>> link(static_cast<size_t>(start[n]));
+  std::vector<StarLinks::Link>& link = links.link;
+  link.resize(static_cast<size_t>(start[n]));
+  links.turned.resize(n);
+  for (size_t v = 0; v < n; ++v) links.turned[v] = orientation[v] < 0;
   std::vector<int> upward(n, 0);
   std::vector<char> failed(n, 0);
   {
     std::vector<int> next(start.begin(), start.end() - 1);
-    for (const StarTriangle& t : tris)
+    for (size_t ti = 0; ti < tris.size(); ++ti)
       for (int k = 0; k < 3; ++k) {
+        const StarTriangle& t = tris[ti];
         const size_t v = size_t(t.ids[size_t(k)]);
         const int along = axis[v];
         int sign = t.sign[size_t(along)];
@@ -326,24 +343,222 @@ std::vector<char> certified_stars(const std::vector<StarTriangle>& tris, const s
         if (orientation[v] < 0) std::swap(a, b), std::swap(pa, pb);
         const int height = (along + 2) % 3;  // drop()'s second coordinate
         upward[v] += ((*pa)[height] <= pv[height] && pv[height] < (*pb)[height]) ? 1 : 0;
-        link[size_t(next[v]++)] = {a, b};
+        link[size_t(next[v]++)] = {int(ti), a, b};
       }
   }
-  std::vector<char> certified(n, 0);
+  std::vector<signed char> certified(n, 0);
   std::vector<int> from, to;
   for (size_t v = 0; v < n; ++v) {
     if (failed[v] || upward[v] != 1 || start[v + 1] - start[v] < 3) continue;
-    const std::span<const std::pair<int, int>> edges(link.data() + start[v], link.data() + start[v + 1]);
+    const std::span<const StarLinks::Link> edges(link.data() + start[v], link.data() + start[v + 1]);
     // One cycle through distinct vertices (with the winding number 1, several cycles are excluded
     // already): the starts are distinct and are the ends.
     from.clear();
     to.clear();
-    for (auto [a, b] : edges) from.push_back(a), to.push_back(b);
+    for (const StarLinks::Link& l : edges) from.push_back(l.a), to.push_back(l.b);
     std::sort(from.begin(), from.end());
     std::sort(to.begin(), to.end());
-    certified[v] = from == to && std::adjacent_find(from.begin(), from.end()) == from.end();
+    if (from == to && std::adjacent_find(from.begin(), from.end()) == from.end())
+      certified[v] = static_cast<signed char>(1 + 2 * axis[v] + (orientation[v] > 0 ? 1 : 0));
   }
   return certified;
+}
+
+/// Per triangle: the id of the certified patch it belongs to, else -1 - (its index): two
+/// triangles of one certified patch meet only in what they share. cls: per triangle 2 axis +
+/// (sign > 0), the sign of its projection along its axis as the filter decides it, or -1. A patch
+/// is a connected set of triangles of one class joined across edges they share with opposite
+/// directions. It is certified when
+///  - round each vertex its triangles form one fan, closed or open (distinct ends; a vertex
+///    whose star certified_stars certified for this projection has one closed fan);
+///  - the open fans' outer edges form one loop, which projects to a simple polygon (closed
+///    segments, exact tests).
+/// Then the projection is one to one on the patch (the degree of the map): a point of the
+/// plane off the projected edges is covered once by each triangle over it, all oriented alike,
+/// and as many times as the loop winds round it, at most once. So no two triangles' projections
+/// overlap, and none touch but along shared edges and corners (a corner touching another
+/// triangle would have its fan overlap a neighbour of that triangle or, on the loop, make the
+/// loop touch itself), and the triangles meet only in their common vertices and edges.
+/// Every decision is an exact sign or comparison.
+std::vector<int> certified_patches(const std::vector<signed char>& cls, const StarLinks& links,
+                                   const std::vector<signed char>& stars, const std::vector<Vector3d>& points) {
+  const size_t nt = cls.size(), nv = points.size();
+  std::vector<int> patch(nt);
+  for (size_t t = 0; t < nt; ++t) patch[t] = -1 - int(t);
+  // Per vertex v, its classed triangles' link edges a -> b, turned round where the sign is
+  // negative so that every sector v a b turns left in the projection.
+  using Link = StarLinks::Link;
+  std::vector<int> start(links.start.size(), 0), degree(nv, 0);  // (links.start: nv + 1)
+  for (size_t v = 0; v < nv; ++v) {
+    degree[v] = links.start[v + 1] - links.start[v];
+    for (int i = links.start[v]; i < links.start[v + 1]; ++i) start[v + 1] += cls[size_t(links.link[size_t(i)].t)] >= 0 ? 1 : 0;
+    start[v + 1] += start[v];
+  }
+  std::vector<Link> link(static_cast<size_t>(start[nv]));
+  for (size_t v = 0, at = 0; v < nv; ++v)
+    for (int i = links.start[v]; i < links.start[v + 1]; ++i) {
+      Link l = links.link[size_t(i)];
+      const signed char c = cls[size_t(l.t)];
+      if (c < 0) continue;
+      if ((links.turned[v] != 0) != ((c & 1) == 0)) std::swap(l.a, l.b);
+      link[at++] = l;
+    }
+  // Components: triangles of one class across an edge v a (one's link edge leaves a, the other's
+  // arrives there).
+  std::vector<int> parent(nt);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int x) {
+    while (parent[size_t(x)] != x) x = parent[size_t(x)] = parent[size_t(parent[size_t(x)])];
+    return x;
+  };
+  // Fans of more than kLongFan triangles are not examined (the tests below take the square of a
+  // fan's size): the patches through such a vertex are not certified.
+  constexpr int kLongFan = 64;
+  for (size_t v = 0; v < nv; ++v) {  // each edge v a at its smaller end
+    if (start[v + 1] - start[v] > kLongFan) continue;
+    for (int i = start[v]; i < start[v + 1]; ++i) {
+      const Link& x = link[size_t(i)];
+      if (x.a < int(v)) continue;
+      for (int j = start[v]; j < start[v + 1]; ++j) {
+        const Link& y = link[size_t(j)];
+        if (x.a == y.b && cls[size_t(x.t)] == cls[size_t(y.t)]) parent[size_t(find(x.t))] = find(y.t);
+      }
+    }
+  }
+  std::vector<int> root(nt, -1);  // of each classed triangle's component
+  std::vector<char> failed(nt, 0), bounded(nt, 0);  // by root
+  for (size_t t = 0; t < nt; ++t)
+    if (cls[t] >= 0) root[t] = find(int(t));
+  struct Edge {  // a boundary edge from -> to of a patch, with the patch on its left
+    int root, from, to;
+  };
+  std::vector<Edge> edges;
+  std::vector<std::pair<int, Link>> group;
+  for (size_t v = 0; v < nv; ++v) {
+    if (start[v] == start[v + 1]) continue;
+    // All of v's triangles in one patch, and v's star certified for its projection: a closed fan
+    // that winds once (certified_stars), nothing more to check (the usual case).
+    {
+      const int r = root[size_t(link[size_t(start[v])].t)];
+      bool one = start[v + 1] - start[v] == degree[v] && stars[v] == 1 + cls[size_t(r)];
+      for (int i = start[v] + 1; i < start[v + 1] && one; ++i) one = root[size_t(link[size_t(i)].t)] == r;
+      if (one) continue;
+    }
+    group.clear();
+    bool one = true;  // one patch round v (no sort)
+    for (int i = start[v]; i < start[v + 1]; ++i) {
+      group.push_back({root[size_t(link[size_t(i)].t)], link[size_t(i)]});
+      one = one && group.back().first == group.front().first;
+    }
+    if (!one) std::sort(group.begin(), group.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (size_t g = 0; g < group.size();) {
+      size_t e = g + 1;
+      while (e < group.size() && group[e].first == group[g].first) ++e;
+      const int r = group[g].first;
+      if (e - g > size_t(kLongFan)) {
+        failed[size_t(r)] = 1;
+        g = e;
+        continue;
+      }
+      // One fan: starts distinct, ends distinct, at most one start that no edge arrives at (its
+      // first corner; none: closed), and a walk from there takes every edge.
+      bool ok = true;
+      int first = -1, starts = 0;
+      for (size_t i = g; i < e && ok; ++i) {
+        bool arrives = false;
+        for (size_t j = g; j < e; ++j) {
+          if (j != i) ok = ok && group[j].second.a != group[i].second.a && group[j].second.b != group[i].second.b;
+          arrives = arrives || group[j].second.b == group[i].second.a;
+        }
+        if (!arrives) first = group[i].second.a, ++starts;
+      }
+      ok = ok && starts <= 1;
+      const int begin = starts == 0 ? group[g].second.a : first;
+      size_t walked = 0;
+      for (int at = begin; ok && walked < e - g;) {
+        size_t i = g;
+        while (i < e && group[i].second.a != at) ++i;
+        if (i == e) break;
+        ++walked;
+        at = group[i].second.b;
+        if (at == begin) break;
+      }
+      ok = ok && walked == e - g;
+      if (ok && starts == 1) edges.push_back({r, int(v), first});  // open: v is on the boundary
+      if (!ok) failed[size_t(r)] = 1;
+      g = e;
+    }
+  }
+  // One boundary loop per patch, and its projection simple.
+  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return std::tie(x.root, x.from) < std::tie(y.root, y.from); });
+  struct Segment {
+    Vector2d p, q;
+    int from, to;
+  };
+  std::vector<Segment> segments;
+  for (size_t g = 0; g < edges.size();) {
+    size_t e = g + 1;
+    while (e < edges.size() && edges[e].root == edges[g].root) ++e;
+    const int r = edges[g].root;
+    const int axis = cls[size_t(r)] / 2;
+    bool ok = !failed[size_t(r)];
+    bounded[size_t(r)] = 1;
+    // The loop: from each boundary vertex to the next, once round.
+    auto next_of = [&](int from_vertex) {
+      const auto it = std::lower_bound(edges.begin() + std::ptrdiff_t(g), edges.begin() + std::ptrdiff_t(e), from_vertex,
+                                       [](const Edge& x, int y) { return x.from < y; });
+      return it != edges.begin() + std::ptrdiff_t(e) && it->from == from_vertex ? it->to : -1;
+    };
+    size_t steps = 0;
+    for (int at = edges[g].from; ok;) {
+      at = next_of(at);
+      ++steps;
+      if (at < 0 || steps > e - g) ok = false;
+      else if (at == edges[g].from) break;
+    }
+    ok = ok && steps == e - g;
+    if (ok) {
+      // Simple: no two segments meet but consecutive ones at their common end, and those do not
+      // fold back along each other. A sweep along the first coordinate.
+      segments.clear();
+      for (size_t i = g; i < e; ++i)
+        segments.push_back({drop(points[size_t(edges[i].from)], axis), drop(points[size_t(edges[i].to)], axis), edges[i].from, edges[i].to});
+      std::sort(segments.begin(), segments.end(), [](const Segment& x, const Segment& y) {
+        return std::min(x.p.x(), x.q.x()) < std::min(y.p.x(), y.q.x());
+      });
+      size_t budget = 64 * segments.size() + 4096;  // pairs compared; beyond, not certified
+      for (size_t i = 0; i < segments.size() && ok; ++i) {
+        const Segment& s = segments[i];
+        const double right = std::max(s.p.x(), s.q.x());
+        for (size_t j = i + 1; j < segments.size() && ok && std::min(segments[j].p.x(), segments[j].q.x()) <= right; ++j) {
+          const Segment& u = segments[j];
+          if (budget-- == 0) {
+            ok = false;
+            break;
+          }
+          if (std::max(s.p.y(), s.q.y()) < std::min(u.p.y(), u.q.y()) || std::max(u.p.y(), u.q.y()) < std::min(s.p.y(), s.q.y()))
+            continue;
+          if (s.to == u.from || u.to == s.from) {
+            // Consecutive: w -> m -> z meet only at m unless they run back along each other.
+            const bool s_first = s.to == u.from;
+            const Vector2d &w = s_first ? s.p : u.p, &m = s_first ? s.q : u.q, &z = s_first ? u.q : s.q;
+            ok = orient2d(w, m, z) != 0 || (m - w).dot(z - m) > 0;
+            if (s.to == u.from && u.to == s.from) ok = false;  // a loop of two edges
+            continue;
+          }
+          ok = !segments_meet_2d(s.p, s.q, u.p, u.q);
+        }
+      }
+    }
+    if (!ok) failed[size_t(r)] = 1;
+    g = e;
+  }
+  for (size_t t = 0; t < nt; ++t) {
+    if (cls[t] < 0) continue;
+    const int r = root[t];
+    if (!failed[size_t(r)] && bounded[size_t(r)]) patch[t] = r;
+  }
+  return patch;
 }
 
 }  // namespace
@@ -422,10 +637,12 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     // Per corner: its id where the vertex's star is certified, else -1 - (its triangle): no
     // corner of another triangle has that number.
     std::array<int, 3> star{};
+    int patch = 0;  // certified_patches
   };
   std::vector<PreparedTriangle> tris;
   std::vector<Eigen::AlignedBox3d> boxes;
   std::vector<StarTriangle> stars;
+  std::vector<signed char> cls;
   std::vector<Slot> slots;
   {
     size_t corners = 0;
@@ -433,6 +650,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     tris.reserve(corners);
     boxes.reserve(corners);
     stars.reserve(corners);
+    cls.reserve(corners);
     slots.reserve(corners);
   }
   size_t moved = 0;  // triangles of faces with a corner not marked exact
@@ -459,14 +677,22 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
       tris.push_back(t);
       boxes.push_back(box);
       stars.push_back(star_triangle(t));
+      // Its class for certified_patches: its axis and the sign of its projection there, or -1
+      // where the filter leaves that sign open.
+      const int sign = stars.back().sign[size_t(t.axis)];
+      cls.push_back(static_cast<signed char>(sign == 1 || sign == -1 ? 2 * t.axis + (sign > 0 ? 1 : 0) : -1));
       slots.push_back(slot);
       moved += exact ? 0 : 1;
     }
   }
   if (moved == 0) return result;
-  // Pairs that share a vertex whose star is certified are not examined (certified_stars).
+  // Pairs that share a vertex whose star is certified are not examined (certified_stars), nor
+  // pairs of one certified patch (certified_patches).
   {
-    const std::vector<char> certified = certified_stars(stars, mesh.vertices);
+    StarLinks links;
+    const std::vector<signed char> certified = certified_stars(stars, mesh.vertices, links);
+    const std::vector<int> patch = certified_patches(cls, links, certified, mesh.vertices);
+    for (size_t i = 0; i < slots.size(); ++i) slots[i].patch = patch[i];
     for (size_t i = 0; i < slots.size(); ++i)
       for (int& id : slots[i].star) id = certified[size_t(id)] != 0 ? id : -1 - int(i);
   }
@@ -482,7 +708,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   // compiler runs several at a time), then those examined. mask: bits 0-2
   // BoxGrid::first_cell_masks, bit 3 an exact triangle.
   std::array<std::vector<float>, 6> lo_hi;
-  std::vector<int> face, keep, hits;
+  std::vector<int> face, patch, keep, hits;
   std::vector<unsigned> mask;
   std::vector<std::array<int, 3>> star;
   for (size_t k = 0; k < grid.cells() && found.size() < options.max_pairs && result.complete; ++k) {
@@ -492,6 +718,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     const size_t m = here.size();
     for (auto& v : lo_hi) v.resize(m);
     face.resize(m);
+    patch.resize(m);
     keep.resize(m);
     hits.resize(m);
     mask.resize(m);
@@ -501,6 +728,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
       const Slot& slot = slots[size_t(here[i])];
       for (size_t c = 0; c < 6; ++c) lo_hi[c][i] = slot.box[c];
       face[i] = slot.face;
+      patch[i] = slot.patch;
       mask[i] = first[i] | (slot.exact ? 8u : 0u);
       star[i] = slot.star;
     }
@@ -512,13 +740,13 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
         result.complete = false;
         break;
       }
-      // Examined: another face's triangle whose box overlaps, in the cell that owns the pair, not
-      // both exact.
+      // Examined: a triangle of another face and another patch whose box overlaps, in the cell
+      // that owns the pair, not both exact.
       const float sx0 = x0[i], sy0 = y0[i], sz0 = z0[i], sx1 = x1[i], sy1 = y1[i], sz1 = z1[i];
-      const int sf = face[i];
+      const int sf = face[i], sp = patch[i];
       const unsigned sm = mask[i];
       for (size_t j = i + 1; j < m; ++j)
-        keep[j] = int(face[j] != sf) & int(x0[j] <= sx1) & int(sx0 <= x1[j]) & int(y0[j] <= sy1) & int(sy0 <= y1[j]) &
+        keep[j] = int(face[j] != sf) & int(patch[j] != sp) & int(x0[j] <= sx1) & int(sx0 <= x1[j]) & int(y0[j] <= sy1) & int(sy0 <= y1[j]) &
                   int(z0[j] <= sz1) & int(sz0 <= z1[j]) & int(((mask[j] | sm) & 7u) == 7u) & int((mask[j] & sm & 8u) == 0u);
       size_t count = 0;
       for (size_t j = i + 1; j < m; ++j) {

@@ -295,6 +295,45 @@ TEST(SelfIntersection, FoldedStarsAreStillSearched) {
   EXPECT_FALSE(all_pairs(pushed).empty());
 }
 
+// Strips of triangles that all project the same way along one axis but overlap themselves in
+// that projection: certified_patches must not certify them. A ramp of one and a half turns
+// whose upper turn comes down through the lower one (one boundary loop, which is not simple),
+// and an annulus covered twice, z = sin(theta / 2) (two loops); each along every axis, and
+// mirrored (the other sign). The search must find what all pairs of faces find.
+TEST(SelfIntersection, PatchesOverlappingInProjectionAreStillSearched) {
+  // A strip between radii 4 and 5 over the angles theta(k), k = 0..steps (closed: k mod steps).
+  auto strip = [](int steps, bool closed, auto&& theta, auto&& height) {
+    PolygonMesh m;
+    const int rings = closed ? steps : steps + 1;
+    for (int k = 0; k < rings; ++k)
+      for (const double r : {4.0, 5.0}) m.vertices.emplace_back(r * std::cos(theta(k)), r * std::sin(theta(k)), height(theta(k)));
+    for (int k = 0; k < steps; ++k) {
+      const int in = 2 * k, out = 2 * k + 1, next_in = 2 * ((k + 1) % rings), next_out = next_in + 1;
+      m.faces.push_back({in, out, next_out});
+      m.faces.push_back({in, next_out, next_in});
+    }
+    return m;
+  };
+  const double pi = std::numbers::pi;
+  const PolygonMesh ramp = strip(48, false, [&](int k) { return 3 * pi * k / 48; }, [&](double t) {
+    return t <= 2 * pi ? 0.2 * t : 0.4 * pi - 0.5 * (t - 2 * pi);
+  });
+  const PolygonMesh twice = strip(64, true, [&](int k) { return 4 * pi * (k + 0.5) / 64; },
+                                  [](double t) { return 0.5 * std::sin(t / 2); });
+  for (const PolygonMesh& shape : {ramp, twice}) {
+    ASSERT_FALSE(all_pairs(shape).empty());
+    for (int axis = 0; axis < 3; ++axis)
+      for (const double mirror : {1.0, -1.0}) {
+        SCOPED_TRACE(testing::Message() << "axis " << axis << " mirror " << mirror);
+        PolygonMesh m = shape;
+        for (Vector3d& p : m.vertices) p = Vector3d(p[(3 - axis) % 3], p[(4 - axis) % 3], mirror * p[(5 - axis) % 3]);
+        const std::set<std::pair<int, int>> expected = all_pairs(m);
+        EXPECT_EQ(searched_pairs(m, false), expected);
+        EXPECT_EQ(searched_pairs(m, true), expected);
+      }
+  }
+}
+
 // The scan compares boxes rounded to floats: triangles that only touch, where the boxes' common
 // side is a double between two floats (0.1 scaled by powers of two from 2^-1060 to 2^200, beyond
 // float's range), are still found, and triangles a double apart are not reported.
