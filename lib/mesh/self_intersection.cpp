@@ -352,14 +352,23 @@ std::vector<signed char> certified_stars(const std::vector<StarTriangle>& tris, 
     if (failed[v] || upward[v] != 1 || start[v + 1] - start[v] < 3) continue;
     const std::span<const StarLinks::Link> edges(link.data() + start[v], link.data() + start[v + 1]);
     // One cycle through distinct vertices (with the winding number 1, several cycles are excluded
-    // already): the starts are distinct and are the ends.
-    from.clear();
-    to.clear();
-    for (const StarLinks::Link& l : edges) from.push_back(l.a), to.push_back(l.b);
-    std::sort(from.begin(), from.end());
-    std::sort(to.begin(), to.end());
-    if (from == to && std::adjacent_find(from.begin(), from.end()) == from.end())
-      certified[v] = static_cast<signed char>(1 + 2 * axis[v] + (orientation[v] > 0 ? 1 : 0));
+    // already): the starts are distinct and are the ends. Pairwise for short links, else sorted.
+    bool cycle = true;
+    if (edges.size() <= 16) {
+      for (size_t i = 0; i < edges.size() && cycle; ++i) {
+        int starts = 0, ends = 0;
+        for (const StarLinks::Link& l : edges) starts += l.a == edges[i].a ? 1 : 0, ends += l.b == edges[i].a ? 1 : 0;
+        cycle = starts == 1 && ends == 1;
+      }
+    } else {
+      from.clear();
+      to.clear();
+      for (const StarLinks::Link& l : edges) from.push_back(l.a), to.push_back(l.b);
+      std::sort(from.begin(), from.end());
+      std::sort(to.begin(), to.end());
+      cycle = from == to && std::adjacent_find(from.begin(), from.end()) == from.end();
+    }
+    if (cycle) certified[v] = static_cast<signed char>(1 + 2 * axis[v] + (orientation[v] > 0 ? 1 : 0));
   }
   return certified;
 }
@@ -388,41 +397,44 @@ std::vector<int> certified_patches(const std::vector<signed char>& cls, const St
   // Per vertex v, its classed triangles' link edges a -> b, turned round where the sign is
   // negative so that every sector v a b turns left in the projection.
   using Link = StarLinks::Link;
-  std::vector<int> start(links.start.size(), 0), degree(nv, 0);  // (links.start: nv + 1)
-  for (size_t v = 0; v < nv; ++v) {
-    degree[v] = links.start[v + 1] - links.start[v];
-    for (int i = links.start[v]; i < links.start[v + 1]; ++i) start[v + 1] += cls[size_t(links.link[size_t(i)].t)] >= 0 ? 1 : 0;
-    start[v + 1] += start[v];
-  }
-  std::vector<Link> link(static_cast<size_t>(start[nv]));
-  for (size_t v = 0, at = 0; v < nv; ++v)
-    for (int i = links.start[v]; i < links.start[v + 1]; ++i) {
-      Link l = links.link[size_t(i)];
-      const signed char c = cls[size_t(l.t)];
-      if (c < 0) continue;
-      if ((links.turned[v] != 0) != ((c & 1) == 0)) std::swap(l.a, l.b);
-      link[at++] = l;
-    }
+  auto oriented = [&](size_t v, Link l) {
+    if ((links.turned[v] != 0) != ((cls[size_t(l.t)] & 1) == 0)) std::swap(l.a, l.b);
+    return l;
+  };
+  auto fan = [&](size_t v) {
+    return std::span<const Link>(links.link.data() + links.start[v], links.link.data() + links.start[v + 1]);
+  };
   // Components: triangles of one class across an edge v a (one's link edge leaves a, the other's
-  // arrives there).
+  // arrives there). Round a vertex whose star is certified for the class of all its triangles,
+  // those form one closed fan, consecutive ones sharing an edge: all are joined at once.
   std::vector<int> parent(nt);
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int x) {
     while (parent[size_t(x)] != x) x = parent[size_t(x)] = parent[size_t(parent[size_t(x)])];
     return x;
   };
+  auto whole = [&](size_t v) {  // v's star certified, all its triangles of that class
+    if (stars[v] == 0) return false;
+    for (const Link& l : fan(v))
+      if (cls[size_t(l.t)] != stars[v] - 1) return false;
+    return true;
+  };
   // Fans of more than kLongFan triangles are not examined (the tests below take the square of a
   // fan's size): the patches through such a vertex are not certified.
-  constexpr int kLongFan = 64;
-  for (size_t v = 0; v < nv; ++v) {  // each edge v a at its smaller end
-    if (start[v + 1] - start[v] > kLongFan) continue;
-    for (int i = start[v]; i < start[v + 1]; ++i) {
-      const Link& x = link[size_t(i)];
+  constexpr size_t kLongFan = 64;
+  for (size_t v = 0; v < nv; ++v) {
+    const std::span<const Link> f = fan(v);
+    if (whole(v)) {
+      for (const Link& l : f) parent[size_t(find(l.t))] = find(f.front().t);
+      continue;
+    }
+    if (f.size() > kLongFan) continue;
+    for (const Link& raw : f) {  // each edge v a at its smaller end
+      if (cls[size_t(raw.t)] < 0) continue;
+      const Link x = oriented(v, raw);
       if (x.a < int(v)) continue;
-      for (int j = start[v]; j < start[v + 1]; ++j) {
-        const Link& y = link[size_t(j)];
-        if (x.a == y.b && cls[size_t(x.t)] == cls[size_t(y.t)]) parent[size_t(find(x.t))] = find(y.t);
-      }
+      for (const Link& other : f)
+        if (cls[size_t(other.t)] == cls[size_t(x.t)] && oriented(v, other).b == x.a) parent[size_t(find(x.t))] = find(other.t);
     }
   }
   std::vector<int> root(nt, -1);  // of each classed triangle's component
@@ -435,19 +447,18 @@ std::vector<int> certified_patches(const std::vector<signed char>& cls, const St
   std::vector<Edge> edges;
   std::vector<std::pair<int, Link>> group;
   for (size_t v = 0; v < nv; ++v) {
-    if (start[v] == start[v + 1]) continue;
-    // All of v's triangles in one patch, and v's star certified for its projection: a closed fan
-    // that winds once (certified_stars), nothing more to check (the usual case).
-    {
-      const int r = root[size_t(link[size_t(start[v])].t)];
-      bool one = start[v + 1] - start[v] == degree[v] && stars[v] == 1 + cls[size_t(r)];
-      for (int i = start[v] + 1; i < start[v + 1] && one; ++i) one = root[size_t(link[size_t(i)].t)] == r;
+    // A certified star in one patch: one closed fan, nothing more to check (the usual case).
+    if (whole(v)) {
+      const int r = root[size_t(fan(v).front().t)];
+      bool one = true;
+      for (const Link& l : fan(v)) one = one && root[size_t(l.t)] == r;
       if (one) continue;
     }
     group.clear();
     bool one = true;  // one patch round v (no sort)
-    for (int i = start[v]; i < start[v + 1]; ++i) {
-      group.push_back({root[size_t(link[size_t(i)].t)], link[size_t(i)]});
+    for (const Link& l : fan(v)) {
+      if (cls[size_t(l.t)] < 0) continue;
+      group.push_back({root[size_t(l.t)], oriented(v, l)});
       one = one && group.back().first == group.front().first;
     }
     if (!one) std::sort(group.begin(), group.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -455,7 +466,7 @@ std::vector<int> certified_patches(const std::vector<signed char>& cls, const St
       size_t e = g + 1;
       while (e < group.size() && group[e].first == group[g].first) ++e;
       const int r = group[g].first;
-      if (e - g > size_t(kLongFan)) {
+      if (e - g > kLongFan) {
         failed[size_t(r)] = 1;
         g = e;
         continue;
