@@ -169,8 +169,11 @@ std::optional<Solid> map_boundary(const Solid& solid, const PolygonMesh& exact, 
 
 Solid translate(const Solid& solid, const Eigen::Vector3d& v) {
   const kernel::GridPoint t = solid.grid().snap(v);
+  // A plane is kept normalized (gcd(a, b, c, d) = 1, kernel/plane.hpp) and a move by grid
+  // steps changes d by a multiple of gcd(a, b, c): the image is normalized already, no gcd.
   return map_planes(solid, [&](const Plane& p) {
-    return kernel::make_plane(p.a, p.b, p.c, p.d - (Int128(p.a) * t.x + Int128(p.b) * t.y + Int128(p.c) * t.z));
+    return kernel::make_plane(p.a, p.b, p.c, p.d - (Int128(p.a) * t.x + Int128(p.b) * t.y + Int128(p.c) * t.z),
+                              {.gcd = 1});
   }, true);
 }
 
