@@ -225,8 +225,8 @@ int projection_axis(const PolygonMesh& mesh, const std::vector<int>& face) {
   return normal[axis] == 0 ? -1 : axis;
 }
 
-/// Canonical vertex ids: vertices with equal coordinates get the same id (of the first of them in
-/// sorted order).
+/// Vertex ids when every vertex is distinct (SelfIntersectionOptions::distinct_vertices); else
+/// mesh::detail::first_copies gives copies of a point one id.
 std::vector<int> identity_ids(size_t n) {
   std::vector<int> ids(n);
   std::iota(ids.begin(), ids.end(), 0);
@@ -279,6 +279,18 @@ StarTriangle star_triangle(const PreparedTriangle& t) {
   return r;
 }
 
+/// The link edges a -> b of the triangles v a b round each vertex v, in the vertex's frame (where
+/// the sectors turn left: turned round where the vertex's orientation is negative, which
+/// `turned` records), as certified_stars finds them.
+struct StarLinks {
+  struct Link {
+    int t, a, b;  // triangle t = v a b, or v b a where turned
+  };
+  std::vector<int> start;  // vertex v's links are link[start[v]] to link[start[v + 1]]
+  std::vector<Link> link;
+  std::vector<char> turned;
+};
+
 /// Per vertex id: whether its star is certified (0 if not, else 1 + 2 axis + (orientation > 0)
 /// for the projection that certifies it), that is no two triangles round it meet beyond
 /// the vertex and the edge they share. Certified when, projected along one coordinate axis, the
@@ -289,16 +301,7 @@ StarTriangle star_triangle(const PreparedTriangle& t) {
 /// along the edge v b. The winding number of a cycle whose every sector turns left is the
 /// number of its edges that cross v's horizontal line upwards (Sunday's crossing rule), so all
 /// of this is decided with exact signs. `points` are the ids' positions.
-/// `links` receives the link edges by vertex, in the vertex's frame (where the sectors turn
-/// left: turned round where the vertex's orientation is negative, which `turned` records).
-struct StarLinks {
-  struct Link {
-    int t, a, b;  // triangle t = v a b, or v b a where turned
-  };
-  std::vector<int> start;  // vertex v's links are link[start[v]] to link[start[v + 1]]
-  std::vector<Link> link;
-  std::vector<char> turned;
-};
+/// `links` receives the link edges by vertex (StarLinks).
 std::vector<signed char> certified_stars(const std::vector<StarTriangle>& tris, const std::vector<Vector3d>& points,
                                          StarLinks& links) {
   const size_t n = points.size();
