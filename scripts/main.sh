@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job: set up, build, then run the goblet script (exports a mesh, prints its depth-cost report).
+# The main job: install what the sculpt executable needs, build it (Release), then run the goblet
+# script (exports a mesh, prints its depth-cost report).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=$("$root/scripts/setup.sh" --target sculpt | tail -n 1)

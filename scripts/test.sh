@@ -1,7 +1,17 @@
 #!/usr/bin/env bash
-# Set up, build, and run every test.   scripts/test.sh [--sanitize]
+# Set up, build and run every test.   scripts/test.sh [--sanitize] [--werror] [ctest options...]
+#   --sanitize  in the ASan + UBSan build (build/sanitize); --werror: warnings are errors (CI)
+#   other options go to ctest, e.g. -R mesh (only tests whose names match) or --rerun-failed
+# Tests run in parallel, one per core; the slowest first (their costs are set in the CMake files and kept by ctest).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=$("$root/scripts/setup.sh" "$@" | tail -n 1)
+setup_args=(--tests) ctest_args=()
+for a in "$@"; do
+  case "$a" in
+    --sanitize|--werror) setup_args+=("$a") ;;
+    *) ctest_args+=("$a") ;;
+  esac
+done
+build=$("$root/scripts/setup.sh" "${setup_args[@]}" | tail -n 1)
 cd "$build"
-ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)"
+ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "${ctest_args[@]}"

@@ -20,11 +20,12 @@
 #include "mesh/triangulate.hpp"
 #include "support/bench_solids.hpp"
 #include "support/mesh_checks.hpp"
+#include "support/source_paths.hpp"
 
 namespace sculpt {
 namespace {
 
-PolygonMesh bunny() { return read_mesh(std::string(SCULPT_MODELS_DIR) + "/bunny.off"); }
+PolygonMesh bunny() { return read_mesh(sculpt::test::models_dir() + "/bunny.off"); }
 
 // The mesh from_mesh sees: vertices snapped to the grid, faces triangulated as it does.
 PolygonMesh snapped(PolygonMesh m) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "base/errors.hpp"
+#include "support/source_paths.hpp"
 
 using namespace sculpt;
 using namespace sculpt::curves;
@@ -77,7 +78,7 @@ TEST(AppendixBCurves, ModelFilesMatchTheGenerators) {
   for (AppendixBCurve which : all_appendix_b_curves()) {
     const int n = paper_point_count(which);
     const std::string path =
-        std::string(SCULPT_MODELS_DIR) + "/" + appendix_b_curve_name(which) + "_" + std::to_string(n) + ".txt";
+        sculpt::test::models_dir() + "/" + appendix_b_curve_name(which) + "_" + std::to_string(n) + ".txt";
     ASSERT_TRUE(std::filesystem::exists(path)) << path;
     const DigitizedCurve stored = load_curve(path);
     EXPECT_EQ(stored.points, make_appendix_b_curve(which).points) << path;

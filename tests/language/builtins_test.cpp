@@ -14,6 +14,7 @@
 
 #include "language/builtins.hpp"
 #include "script_runner.hpp"
+#include "support/source_paths.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -653,7 +654,7 @@ TEST(Builtins, OffsetOfACircleIsTheConcentricCircle) {
 // surface, and the hollow goblet's volume is the outer solid's minus the cavity's part inside it,
 // both computed here from the printed profiles by the frustum formula (not by the BSP code).
 TEST(Builtins, SmoothGobletHasAWallOfConstantThickness) {
-  const std::string script = std::string(SCULPT_SOURCE_DIR) + "/scripts/smooth_goblet.bsp";
+  const std::string script = sculpt::test::source_dir() + "/scripts/smooth_goblet.bsp";
   const auto r = run_script("include \"" + script + "\"\nprint(\"@\")\nprint(points(line))\nprint(cavity_points)\n"
                             "print([wall, error(line), error(inner_line), volume(goblet)])\n");
   ASSERT_EQ(r.error, "");

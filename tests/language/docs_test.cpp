@@ -6,12 +6,13 @@
 #include <sstream>
 
 #include "language/builtins.hpp"
+#include "support/source_paths.hpp"
 
 namespace sculpt::language {
 namespace {
 
 std::string reference() {
-  std::ifstream in(std::string(SCULPT_SOURCE_DIR) + "/docs/language.md");
+  std::ifstream in(sculpt::test::source_dir() + "/docs/language.md");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

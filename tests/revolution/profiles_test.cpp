@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "base/errors.hpp"
+#include "support/source_paths.hpp"
 
 using namespace sculpt::curves;
 
@@ -112,14 +113,14 @@ TEST(Profiles, ModelFilesAreReproducible) {
   };
   for (const Model& m : {Model{"goblet_profile", goblet_profile(), 237}, Model{"human_profile", human_profile(), 169},
                          Model{"goblet_cavity_profile", goblet_cavity_profile(), 120}}) {
-    const DigitizedCurve file = load_curve(std::string(SCULPT_MODELS_DIR) + "/" + m.file + ".txt");
+    const DigitizedCurve file = load_curve(sculpt::test::models_dir() + "/" + m.file + ".txt");
     const DigitizedCurve made = sample_profile(m.design, {.points = m.points, .noise = 0.004, .seed = 1990});
     ASSERT_EQ(file.points.size(), made.points.size()) << m.file;
     for (std::size_t i = 0; i < made.points.size(); ++i) EXPECT_EQ(file.points[i], made.points[i]) << m.file << " " << i;
   }
   // The 20-segment goblet: 21 of the sampled points, in order, z increasing.
-  const DigitizedCurve sampled = load_curve(std::string(SCULPT_MODELS_DIR) + "/goblet_profile.txt");
-  const DigitizedCurve lin = load_curve(std::string(SCULPT_MODELS_DIR) + "/goblet_profile_20.txt");
+  const DigitizedCurve sampled = load_curve(sculpt::test::models_dir() + "/goblet_profile.txt");
+  const DigitizedCurve lin = load_curve(sculpt::test::models_dir() + "/goblet_profile_20.txt");
   ASSERT_EQ(lin.points.size(), 21u);
   std::size_t at = 0;
   for (const auto& p : lin.points) {
