@@ -176,7 +176,7 @@ void Session::command(const std::string& line) {
     for (const std::string& name : interpreter_.global_names()) {
       const Value& v = *interpreter_.global(name);
       std::string shown = to_repr(v);
-      if (shown.size() > 70) shown = shown.substr(0, 67) + "...";
+      if (shown.size() > 70) shown.replace(67, std::string::npos, "...");
       out_ << name << " : " << type_name(v) << " = " << shown << "\n";
     }
   } else if (word == ":show") {

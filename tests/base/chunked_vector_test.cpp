@@ -41,7 +41,9 @@ TEST(ChunkedVector, RandomOperationsMatchAStdVector) {
     }
     ASSERT_EQ(c.size(), v.size());
     ASSERT_GE(c.capacity(), c.size());
-    if (!v.empty()) ASSERT_EQ(c.back(), v.back());
+    if (!v.empty()) {
+      ASSERT_EQ(c.back(), v.back());
+    }
   }
   ASSERT_EQ(std::vector<std::string>(c.begin(), c.end()), v);
   std::sort(c.begin(), c.end());  // random access iterators

@@ -46,7 +46,9 @@ void expect_same_set(const Solid& a, const Solid& b, const std::string& what) {
   EXPECT_NEAR(volume(a), volume(b), 1e-9 * (1 + volume(b))) << what;
   // Hulls touching along an edge make a non-manifold edge of the set itself: checked where the
   // reference's surface has none.
-  if (!a.is_empty() && checks::EdgesManifoldAndOriented(to_mesh(b))) EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(a))) << what;
+  if (!a.is_empty() && checks::EdgesManifoldAndOriented(to_mesh(b))) {
+    EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(a))) << what;
+  }
 }
 
 /// Cores for the sets: 0 the centroid of the points to the first point (inside or on the hull),

@@ -160,8 +160,11 @@ void run_operations(Solid work, int count) {
         ASSERT_LT(i, after.plane_used.size());
         ASSERT_EQ(work.planes()[std::int32_t(i)], planes_before[i]) << "operation " << k << " plane " << i;
       }
-    if (single)
-      for (std::size_t i = p0; i < after.plane_used.size(); ++i) EXPECT_TRUE(after.plane_used[i]) << "operation " << k << " plane " << i;
+    if (single) {
+      for (std::size_t i = p0; i < after.plane_used.size(); ++i) {
+        EXPECT_TRUE(after.plane_used[i]) << "operation " << k << " plane " << i;
+      }
+    }
     for (std::size_t i = 0; i < std::min(p0, after.plane_used.size()); ++i) reused_slots += after.plane_used[i] && !before.plane_used[i];
     // Nodes are never moved in place: an old node still reached keeps its plane, and every node slot is
     // reached or listed free (cleared, each once): no slot leaks, none is listed twice.
@@ -173,8 +176,9 @@ void run_operations(Solid work, int count) {
       EXPECT_TRUE(bsp::detail::SolidAccess::free_slots(work).nodes.empty()) << "operation " << k;
     }
     for (std::size_t i = 0; i < n0 && !compacted; ++i) {
-      if (before.node_reached[i] && after.node_reached[i] && single)
+      if (before.node_reached[i] && after.node_reached[i] && single) {
         ASSERT_EQ(work.nodes()[i].plane, nodes_before[i].plane) << "operation " << k;
+      }
       reused_node_slots += !before.node_reached[i] && after.node_reached[i];
     }
     expect_slots_accounted(work, after, "operation " + std::to_string(k));
@@ -287,11 +291,19 @@ void expect_region_rebuilt(Solid work, const Eigen::AlignedBox3d& region, const 
   EXPECT_EQ(tree_stats(copy).nodes - tree_stats(work).nodes, stats.nodes_before - stats.nodes_after);
   // Unless the storage was compacted (more than half of it free), nothing else moved.
   const bool compacted = work.nodes().size() < nodes_before.size();
-  if (compacted) EXPECT_TRUE(bsp::detail::SolidAccess::free_slots(work).nodes.empty());
-  for (std::size_t i = 0; i < nodes_before.size() && !compacted; ++i)
-    if (before.node_reached[i] && after.node_reached[i]) ASSERT_EQ(work.nodes()[i].plane, nodes_before[i].plane) << "node " << i;
-  for (std::size_t i = 0; i < planes_before.size() && !compacted; ++i)
-    if (before.plane_used[i]) ASSERT_EQ(work.planes()[std::int32_t(i)], planes_before[i]) << "plane " << i;
+  if (compacted) {
+    EXPECT_TRUE(bsp::detail::SolidAccess::free_slots(work).nodes.empty());
+  }
+  for (std::size_t i = 0; i < nodes_before.size() && !compacted; ++i) {
+    if (before.node_reached[i] && after.node_reached[i]) {
+      ASSERT_EQ(work.nodes()[i].plane, nodes_before[i].plane) << "node " << i;
+    }
+  }
+  for (std::size_t i = 0; i < planes_before.size() && !compacted; ++i) {
+    if (before.plane_used[i]) {
+      ASSERT_EQ(work.planes()[std::int32_t(i)], planes_before[i]) << "plane " << i;
+    }
+  }
   for (std::size_t i = compacted ? 0 : planes_before.size(); i < after.plane_used.size(); ++i)
     EXPECT_TRUE(after.plane_used[i]) << "plane " << i;
   EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(work)));

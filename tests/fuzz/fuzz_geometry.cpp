@@ -132,7 +132,17 @@ std::string num(double x) {
   const auto r = std::to_chars(buf, buf + sizeof buf, x);
   return {buf, r.ptr};
 }
-std::string vec(const Vector3d& v) { return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]"; }
+std::string vec(const Vector3d& v) {
+  // Appended piece by piece: "[" + num(...) trips a false -Wrestrict in GCC 12's inlined std::string.
+  std::string s = "[";
+  s += num(v.x());
+  s += ", ";
+  s += num(v.y());
+  s += ", ";
+  s += num(v.z());
+  s += "]";
+  return s;
+}
 
 // A coordinate on the 1/16 grid in [-8, 8), sometimes moved by a few kernel grid steps.
 double coordinate(Bytes& in) {
