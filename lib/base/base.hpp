@@ -4,6 +4,7 @@
 /// of executables.
 /// Every public header of the layer (the headers directly in lib/base/).
 
+#include "base/assert.hpp"
 #include "base/chunked_vector.hpp"
 #include "base/errors.hpp"
 #include "base/memory_policy.hpp"

@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "base/assert.hpp"
+
 namespace sculpt {
 
 template <class T>
@@ -160,7 +162,10 @@ class ChunkedVector {
     const auto k = std::size_t(std::bit_width(i / kFirst + 1) - 1);
     return chunks_[k] + (i - end_of(k));
   }
-  T& at(std::size_t i) { return *slot(i); }
+  T& at(std::size_t i) {
+    SCULPT_ASSERT(i < size_, "ChunkedVector: index past the end");
+    return *slot(i);
+  }
   void release() {
     clear();
     for (std::size_t k = 0; k < chunks_.size(); ++k) std::allocator<T>().deallocate(chunks_[k], kFirst << k);

@@ -1,6 +1,8 @@
 #include "bsp/solid.hpp"
 
+#include "base/assert.hpp"
 #include "bsp/tree/deferred_tree.hpp"
+#include "bsp/tree/tree_checks.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -20,6 +22,11 @@ Solid::Solid(kernel::PlaneTable planes, std::vector<BspNode> nodes,
     boundary_boxes_.blocks.clear();
   if (nodes_.size() != polygons_.size() || (!is_leaf(root_) && std::size_t(root_) >= nodes_.size()))
     throw std::logic_error("Solid: inconsistent tree storage");
+#ifndef NDEBUG
+  const char* problem =
+      bsp::detail::tree_storage_problem(planes_, nodes_, polygons_, root_, boundary_ ? &*boundary_ : nullptr);
+  SCULPT_ASSERT(problem == nullptr, problem);
+#endif
 }
 
 Solid::Solid() = default;

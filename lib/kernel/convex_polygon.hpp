@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/assert.hpp"
 #include "kernel/predicates.hpp"
 
 namespace sculpt::kernel {
@@ -23,7 +24,10 @@ namespace sculpt::kernel {
 class PlaneTable {
  public:
   PlaneTable();
-  [[nodiscard]] const Plane& operator[](std::int32_t i) const { return planes_[std::size_t(i)]; }
+  [[nodiscard]] const Plane& operator[](std::int32_t i) const {
+    SCULPT_ASSERT(i >= 0 && i < size(), "PlaneTable: plane index outside the table");
+    return planes_[std::size_t(i)];
+  }
   [[nodiscard]] std::int32_t size() const { return std::int32_t(planes_.size()); }
   std::int32_t add(const Plane& p, bool auxiliary = false);
   /// Appends `from`'s planes from index `first` on, with their auxiliary flags, at once (as

@@ -76,4 +76,16 @@ void check_face_indices(const PolygonMesh& mesh, std::string_view who) {
   }
 }
 
+bool edges_paired(const PolygonMesh& mesh) {
+  const std::vector<HalfEdgeRecord> records = sorted_edge_records(mesh);
+  if (records.size() % 2 != 0) return false;
+  for (size_t i = 0; i < records.size(); i += 2) {
+    const HalfEdgeRecord& a = records[i];
+    const HalfEdgeRecord& b = records[i + 1];
+    if (a.lo != b.lo || a.hi != b.hi || a.forward == b.forward) return false;
+    if (i + 2 < records.size() && records[i + 2].lo == a.lo && records[i + 2].hi == a.hi) return false;
+  }
+  return true;
+}
+
 }  // namespace sculpt

@@ -24,6 +24,11 @@ struct HalfEdgeRecord {
 /// Sides whose two ends are the same vertex are skipped (see validation: degenerate faces).
 std::vector<HalfEdgeRecord> sorted_edge_records(const PolygonMesh& mesh);
 
+/// True when every edge is used exactly once in each direction (sides whose ends are one vertex
+/// aside): a closed, consistently oriented surface whose sheets meet only at copies of a vertex,
+/// what mesh assembly promises (bsp/assembly). \pre face indices are valid.
+bool edges_paired(const PolygonMesh& mesh);
+
 /// \throw InvalidInput naming `who` if a face has fewer than 3 corners or an index is out of range.
 void check_face_indices(const PolygonMesh& mesh, std::string_view who);
 

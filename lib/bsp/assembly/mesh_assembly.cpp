@@ -1,10 +1,12 @@
 #include "bsp/assembly/mesh_assembly.hpp"
 
+#include "base/assert.hpp"
 #include "bsp/assembly/coplanar_faces.hpp"
 #include "bsp/assembly/faces.hpp"
-#include "bsp/assembly/sheets.hpp"
 #include "bsp/assembly/junction_removal.hpp"
+#include "bsp/assembly/sheets.hpp"
 #include "bsp/assembly/vertex_merge.hpp"
+#include "mesh/edge_incidence.hpp"
 
 #include <utility>
 
@@ -22,8 +24,10 @@ PolygonMesh assemble_mesh(FragmentsView fragments, const AssemblyOptions& option
   faces = merge_coplanar_faces(std::move(faces), merged.vertices.size(), ids);
   faces = remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
   const Sheets sheets = split_non_manifold(std::move(faces), merged.vertices, fragments.planes);
-  return output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate, options.grid,
-                     options.exact_vertices);
+  PolygonMesh mesh =
+      output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate, options.grid, options.exact_vertices);
+  SCULPT_ASSERT(edges_paired(mesh), "assemble_mesh: the output uses an edge other than once in each direction");
+  return mesh;
 }
 
 }  // namespace sculpt::bsp::detail
