@@ -31,6 +31,7 @@
 #include "mesh/self_intersection.hpp"
 #include "script_runner.hpp"
 #include "support/cgal_mesh_check.hpp"
+#include "support/source_paths.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -136,15 +137,21 @@ std::pair<size_t, size_t> expect_exact_marks_sound(const Solid& solid) {
 // a mesh whose volume is volume() within what output rounding may move; how many meshes CGAL finds
 // clean in every format is reported; every stored case must be (78 % before output rounding,
 // 99.2 % with it, all since session 11's shifted snaps and corner moves).
-TEST(CleanOutput, RandomSetOperationsOverTransformedPrimitives) {
+// The cases run as kCaseSlices tests that ctest runs side by side: slice k takes cases k,
+// k + kCaseSlices, ... (the costly cases are spread over the file).
+constexpr int kCaseSlices = 8;
+class RandomSetOperationsOverTransformedPrimitives : public ::testing::TestWithParam<int> {};
+
+TEST_P(RandomSetOperationsOverTransformedPrimitives, AreCleanInEveryFormat) {
   const char* env = std::getenv("SCULPT_CSG_CASES");
-  const std::string path = env != nullptr ? env : std::string(SCULPT_MODELS_DIR) + "/fuzz/csg_cases.txt";
+  const std::string path = env != nullptr ? env : sculpt::test::models_dir() + "/fuzz/csg_cases.txt";
   const std::vector<Case> cases = read_cases(path);
   ASSERT_GE(cases.size(), env != nullptr ? 1u : 100u) << path;  // another file may hold a few cases to study
   int checked = 0, empty = 0, clean = 0;
   size_t marked_vertices = 0, all_vertices = 0;  // marked exact by the assembly, for the record
   std::map<std::string, int> problems;  // first problem of each unclean case, by kind
-  for (const Case& c : cases) {
+  for (size_t index = size_t(GetParam()); index < cases.size(); index += kCaseSlices) {
+    const Case& c = cases[index];
     SCOPED_TRACE(::testing::Message() << "case " << c.id << ": " << c.expr);
     const auto started = std::chrono::steady_clock::now();
     struct SlowCase {  // with SCULPT_CSG_CASES: name the cases that take over a second
@@ -226,17 +233,19 @@ TEST(CleanOutput, RandomSetOperationsOverTransformedPrimitives) {
       }
     }
   }
-  std::cout << "[ info ] " << clean << " of " << checked << " non-empty results clean in all 6 formats (" << empty
-            << " empty, " << cases.size() << " cases, " << path << ")\n";
+  std::cout << "[ info ] slice " << GetParam() << " of " << kCaseSlices << ": " << clean << " of " << checked
+            << " non-empty results clean in all 6 formats (" << empty << " empty, " << cases.size() << " cases, "
+            << path << ")\n";
   for (const auto& [kind, n] : problems) std::cout << "[ info ]   " << n << " x " << kind << "\n";
   std::cout << "[ info ] " << marked_vertices << " of " << all_vertices << " assembled vertices marked exact\n";
   // Every stored case (242 of 242 since session 11); another file (thousands, once): 99 %.
   EXPECT_GE(clean, env != nullptr ? 0.99 * checked : checked);
 }
+INSTANTIATE_TEST_SUITE_P(CleanOutput, RandomSetOperationsOverTransformedPrimitives, ::testing::Range(0, kCaseSlices));
 // models/regressions/stroke_export_reimport.bsp: the carved block is written clean (CGAL) and
 // read back as the same solid within what rounding and snapping move (area x 4 grid steps).
 TEST(CleanOutput, CarvedBlockExportsAndReimports) {
-  std::ifstream in(std::string(SCULPT_MODELS_DIR) + "/regressions/stroke_export_reimport.bsp");
+  std::ifstream in(sculpt::test::models_dir() + "/regressions/stroke_export_reimport.bsp");
   std::stringstream script;
   script << in.rdbuf();
   const std::string path = ::testing::TempDir() + "sculpt_stroke_export.off";
@@ -257,7 +266,7 @@ TEST(CleanOutput, CarvedBlockExportsAndReimports) {
 // A stored regression script (models/regressions/) whose result must keep manifold-3d's volume
 // within what the snaps move and be clean in every format.
 void expect_clean_regression(const std::string& file, double manifold_volume, double primitives_area) {
-  std::ifstream in(std::string(SCULPT_MODELS_DIR) + "/regressions/" + file);
+  std::ifstream in(sculpt::test::models_dir() + "/regressions/" + file);
   std::stringstream script;
   script << in.rdbuf();
   Interpreter interpreter;
@@ -301,7 +310,7 @@ TEST(CleanOutput, SliversTouchingAtAnApexAreMovedApart) {
 // Issue 14's third finding: the bunny (npm package, 3674 triangles) united with a rotated copy of
 // itself; CGAL crashed on or rejected such meshes. Every format, judged by CGAL after rounding.
 TEST(CleanOutput, BunnyUnitedWithItsRotatedCopyIsClean) {
-  const std::string bunny = std::string(SCULPT_MODELS_DIR) + "/bunny.off";
+  const std::string bunny = sculpt::test::models_dir() + "/bunny.off";
   Interpreter interpreter;
   const std::optional<Value> value = interpreter.run(testing::text_source(
       "b = import(\"" + bunny + "\")\nb | rotate(b, [1, 2, 3], 37)\n", "bunny_union.bsp"));

@@ -1,26 +1,24 @@
 #!/usr/bin/env bash
-# The example scripts without a .expect (scripts/*.bsp: the goblet of the README's main job, the
-# head profile, the tree comparison) run to completion on a copy of scripts/ and models/, and
-# every mesh they export reads back (import refuses open or non-manifold meshes) with a positive
-# volume; every picture is a PNG.   example_scripts_test.sh SCULPT SOURCE_DIR
+# An example script without a .expect (scripts/*.bsp: the goblet of the README's main job, the
+# head profile, the tree comparison; one test each, tests/language/CMakeLists.txt) runs to
+# completion on a copy of scripts/ and models/, and every mesh it exports reads back (import
+# refuses open or non-manifold meshes) with a positive volume; every picture is a PNG, every plot
+# a complete SVG.   example_scripts_test.sh SCULPT SOURCE_DIR NAME.bsp
 set -u
 sculpt=$1
 source_dir=$2
+name=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp -r "$source_dir/scripts" "$source_dir/models" "$work/"
 failures=0
-ran=0
-for script in "$work"/scripts/*.bsp; do
-  [ -e "${script%.bsp}.expect" ] && continue
-  ran=$((ran + 1))
-  output=$("$sculpt" "$script" 2>&1)
-  status=$?
-  if [ "$status" -ne 0 ]; then
-    echo "FAIL $(basename "$script"): exit status $status"; echo "$output" | tail -n 5
-    failures=$((failures + 1))
-  fi
-done
+script="$work/scripts/$name"
+output=$("$sculpt" "$script" 2>&1)
+status=$?
+if [ "$status" -ne 0 ]; then
+  echo "FAIL $name: exit status $status"; echo "$output" | tail -n 5
+  failures=$((failures + 1))
+fi
 meshes=0
 for mesh in "$work"/out/*.off "$work"/out/*.obj "$work"/out/*.stl "$work"/out/*.ply; do
   [ -e "$mesh" ] || continue
@@ -40,6 +38,5 @@ for png in "$work"/out/*.png; do
   [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
     { echo "FAIL $(basename "$png"): not a PNG"; failures=$((failures + 1)); }
 done
-echo "$ran scripts, $meshes meshes read back, $failures failures"
-[ "$ran" -ge 3 ] && [ "$meshes" -ge 3 ] || { echo "FAIL: expected at least 3 scripts and 3 meshes"; exit 1; }
+echo "$name: $meshes meshes read back, $failures failures"
 [ "$failures" -eq 0 ]
