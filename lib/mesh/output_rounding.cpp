@@ -18,6 +18,7 @@
 #include "base/errors.hpp"
 #include "mesh/detail/box_grid.hpp"
 #include "mesh/detail/point_copies.hpp"
+#include "mesh/detail/triangle_pairs.hpp"
 #include "mesh/formats/mesh_formats.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "mesh/predicates.hpp"
@@ -30,6 +31,7 @@ namespace {
 
 using Eigen::Vector3d;
 using Tri = std::array<int, 3>;
+using mesh::detail::PreparedTriangle;
 
 /// Rounds coordinates to the numbers of the output.
 struct Rounder {
@@ -416,7 +418,7 @@ class Cleaner {
     for (int v : tris_[t]) box.extend(p_[v]);
     boxes_[t] = box;
     index(t, +1);
-    prepared_[t] = prepare_triangle(tris_[t], {p_[tris_[t][0]], p_[tris_[t][1]], p_[tris_[t][2]]});
+    prepared_[t] = mesh::detail::prepare_triangle(tris_[t], {p_[tris_[t][0]], p_[tris_[t][1]], p_[tris_[t][2]]});
   }
 
   /// Farthest input point of u's and v's members from `target`.
@@ -615,7 +617,7 @@ class Cleaner {
     for (int u : near(boxes_[t])) {
       if (u == t || skip(u) || !alive_[u] || !boxes_[t].intersects(boxes_[u])) continue;
       const PreparedTriangle& b = prepared_[u];
-      if (b.axis >= 0 && triangles_meet(a, b)) out.push_back(std::minmax(t, u));
+      if (b.axis >= 0 && mesh::detail::triangles_meet(a, b)) out.push_back(std::minmax(t, u));
     }
   }
 
@@ -648,7 +650,7 @@ class Cleaner {
             // Owned by this cell (BoxGrid::first_cell_masks) and overlapping.
             if ((first[i] | first[j]) != 7 || !local[i].intersects(local[j])) continue;
             const int t = live[size_t(here[i])], u = live[size_t(here[j])];
-            if (triangles_meet(prepared_[t], prepared_[u])) out.push_back(std::minmax(t, u));
+            if (mesh::detail::triangles_meet(prepared_[t], prepared_[u])) out.push_back(std::minmax(t, u));
           }
       }
     }

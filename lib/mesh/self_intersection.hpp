@@ -16,8 +16,9 @@
 #include <span>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "mesh/polygon_mesh.hpp"
-#include "mesh/predicates.hpp"
 
 namespace sculpt {
 
@@ -62,25 +63,6 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
 /// \pre face indices are valid (see check_face_indices).
 std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh,
                                               SelfIntersectionOptions options = {});
-
-/// A triangle as triangles_meet reads it: corner ids, corners, a coordinate axis along which it
-/// projects without degeneracy (-1: its corners are collinear), and the plane part of orient3d's
-/// filter for its plane (the sides of the other triangle's corners are read from it).
-struct PreparedTriangle {
-  std::array<int, 3> ids{};
-  std::array<Eigen::Vector3d, 3> p;
-  int axis = 0;
-  Orient3dPlane plane;  ///< orient3d_plane(p[0], p[1], p[2])
-};
-
-/// The triangle with these ids and corners, its plane filter computed and its axis found: that of
-/// the largest projected area when the filter certifies it non-zero, else the first along which an
-/// exact orient2d is non-zero.
-PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Eigen::Vector3d, 3>& p);
-
-/// triangles_meet on prepared triangles, for callers that keep them between queries.
-/// \pre neither is degenerate (axis >= 0).
-bool triangles_meet(const PreparedTriangle& a, const PreparedTriangle& b);
 
 /// Two triangles meet beyond the corners they share and the edge they share: corners are the
 /// same when their ids are equal (ids_a, ids_b). Decided exactly; neither may be degenerate
