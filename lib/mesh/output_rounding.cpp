@@ -24,12 +24,24 @@ using Eigen::Vector3d;
 using mesh::detail::Rounder;
 
 /// Budget of the self-intersection search (candidate pairs): enough for any mesh whose faces are
-/// not long fans (thousands of corners in one face); beyond it the check gives up (kUnchecked).
+/// not long fans (thousands of corners in one face); beyond it the check gives up
+/// (OutputCheck::Unchecked).
 constexpr size_t kCandidatesPerCorner = 16;
 constexpr size_t kMinCandidates = 500'000;
 /// Faces with more corners are not triangulated for the search (ear clipping is quadratic).
 constexpr size_t kMaxJudgedCorners = 2048;
 constexpr const char* kUnchecked = "self-intersections not checked: the search exceeded its budget";
+
+/// A mesh's verdict: clean, a problem (the first found), or too costly to judge.
+enum class OutputCheck { Clean, Problem, Unchecked };
+
+struct OutputVerdict {
+  OutputCheck check = OutputCheck::Clean;
+  std::string problem;  ///< empty when clean
+
+  static OutputVerdict problem_found(std::string message) { return {OutputCheck::Problem, std::move(message)}; }
+  static OutputVerdict unchecked() { return {OutputCheck::Unchecked, kUnchecked}; }
+};
 
 size_t corner_count(const PolygonMesh& mesh) {
   size_t n = 0;
@@ -47,17 +59,23 @@ std::string inverted_shell(const PolygonMesh& mesh) {
   return {};
 }
 
-/// output_problem; `topology_clean`: the caller found no defect at all in `mesh` with the same
-/// topology check, and the precision is doubles (rounding changes nothing), so it is not repeated.
-/// `options.exact_vertices` (if one per vertex) marks vertices whose pairs of all-marked faces
-/// need no self-intersection test; a vertex the rounding moves loses its mark.
-/// `crossings_searched`: `mesh` is the cleaner's mesh, all triangles, with coordinates already in
-/// the precision, and the cleaner's own exact search (mesh::detail::crossings, every pair of live,
-/// non-degenerate triangles, corners told apart by index) found no two that meet beyond what they
-/// share; the search here (corners at one point counted as one, so it allows more) would find
-/// none either, and is not repeated.
-std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, bool topology_clean,
-                  bool crossings_searched = false) {
+/// What a caller of judge already knows of the mesh.
+struct Known {
+  /// The caller found no defect at all in the mesh with the same topology check, and the
+  /// precision is doubles (rounding changes nothing), so it is not repeated.
+  bool topology_clean = false;
+  /// The mesh is the cleaner's mesh, all triangles, with coordinates already in the precision,
+  /// and the cleaner's own exact search (mesh::detail::crossings, every pair of live,
+  /// non-degenerate triangles, corners told apart by index) found no two that meet beyond what
+  /// they share; the search here (corners at one point counted as one, so it allows more) would
+  /// find none either, and is not repeated.
+  bool crossings_searched = false;
+};
+
+/// output_problem's verdict. `options.exact_vertices` (if one per vertex) marks vertices whose
+/// pairs of all-marked faces need no self-intersection test; a vertex the rounding moves loses
+/// its mark.
+OutputVerdict judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, Known known = {}) {
   const Rounder round(options);
   PolygonMesh copy;
   if (options.precision != OutputPrecision::Double) {  // doubles: rounding is the identity
@@ -77,17 +95,18 @@ std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options,
     for (size_t v = 0; v < copy_of.size() && second < 0; ++v)
       if (copy_of[v] != int(v)) first = copy_of[v], second = int(v);
     if (second >= 0)
-      return "vertices " + std::to_string(first) + " and " + std::to_string(second) + " are at the same point";
+      return OutputVerdict::problem_found("vertices " + std::to_string(first) + " and " + std::to_string(second) +
+                                          " are at the same point");
   }
-  if (!topology_clean) {
+  if (!known.topology_clean) {
     const ValidationReport report =
         check_closed_manifold(rounded, {.check_self_intersections = false, .check_face_shapes = false,
                                         .check_shell_orientation = false, .max_defects_per_kind = 1});
-    if (!report.ok()) return report.defects.front().message;
+    if (!report.ok()) return OutputVerdict::problem_found(report.defects.front().message);
   }
-  if (crossings_searched) return {};
+  if (known.crossings_searched) return {};
   for (const auto& f : rounded.faces)
-    if (f.size() > kMaxJudgedCorners) return std::string(kUnchecked);
+    if (f.size() > kMaxJudgedCorners) return OutputVerdict::unchecked();
   std::vector<char> exact;  // the marks of vertices that the rounding leaves where they are
   if (options.exact_vertices.size() == mesh.vertices.size() && !mesh.vertices.empty()) {
     exact.assign(options.exact_vertices.begin(), options.exact_vertices.end());
@@ -100,16 +119,17 @@ std::string judge(const PolygonMesh& mesh, const OutputRoundingOptions& options,
                 .exact_vertices = exact, .distinct_vertices = !options.keep_copies});
   if (!search.pairs.empty()) {
     const FacePair& p = search.pairs.front();
-    return "faces " + std::to_string(p.face_a) + " and " + std::to_string(p.face_b) + " intersect";
+    return OutputVerdict::problem_found("faces " + std::to_string(p.face_a) + " and " + std::to_string(p.face_b) +
+                                        " intersect");
   }
-  if (!search.complete) return std::string(kUnchecked);
+  if (!search.complete) return OutputVerdict::unchecked();
   return {};
 }
 
 }  // namespace
 
 std::string output_problem(const PolygonMesh& mesh, const OutputRoundingOptions& options) {
-  return judge(mesh, options, false);
+  return judge(mesh, options).problem;
 }
 
 PolygonMesh round_for_output(const PolygonMesh& mesh, const OutputRoundingOptions& given,
@@ -140,13 +160,14 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
   }
   const Rounder round(options);
   const bool topology_clean = topology.defects.empty() && options.precision == OutputPrecision::Double;
-  const std::string first = options.triangles ? std::string("triangles asked for") : judge(mesh, given, topology_clean);
-  if (first == kUnchecked) {  // too costly to judge: written as it is, and said so
+  const OutputVerdict first = options.triangles ? OutputVerdict::problem_found("triangles asked for")
+                                                : judge(mesh, given, {.topology_clean = topology_clean});
+  if (first.check == OutputCheck::Unchecked) {  // too costly to judge: written as it is, and said so
     r.clean = false;
-    r.problem = first;
+    r.problem = first.problem;
     return std::move(mesh);
   }
-  if (first.empty()) {
+  if (first.check == OutputCheck::Clean) {
     if (options.precision == OutputPrecision::Double) return std::move(mesh);
     PolygonMesh rounded = std::move(mesh);
     for (Vector3d& v : rounded.vertices) v = round(v);
@@ -190,7 +211,7 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
       full = mesh::detail::crossings(cleaner).empty();
       if (full) {
         result = cleaner.mesh();
-        r.problem = judge(result, options, false, /*crossings_searched=*/true);
+        r.problem = judge(result, options, {.crossings_searched = true}).problem;
         if (r.problem.empty()) r.problem = inverted_shell(result);
       }
     }
