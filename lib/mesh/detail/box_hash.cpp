@@ -13,8 +13,9 @@ std::int64_t cell_key(int k, int x, int y, int z) {
 
 }  // namespace
 
-/// Cell range of a box at level k, or false if the coordinates are out of range.
-bool BoxHash::cell_range(const Eigen::AlignedBox3d& box, int k, Eigen::Array3i& lo, Eigen::Array3i& hi) const {
+/// Cell range of a box at level k, or false if the coordinates are out of range. (Inline, as
+/// every insert, erase and query computes ranges level by level.)
+inline bool BoxHash::cell_range(const Eigen::AlignedBox3d& box, int k, Eigen::Array3i& lo, Eigen::Array3i& hi) const {
   const double size = std::ldexp(cell_, 2 * k);
   const Eigen::Array3d a = (box.min().array() / size).floor(), b = (box.max().array() / size).floor();
   if (!a.allFinite() || !b.allFinite() || a.abs().maxCoeff() > 1e9 || b.abs().maxCoeff() > 1e9) return false;
@@ -24,7 +25,7 @@ bool BoxHash::cell_range(const Eigen::AlignedBox3d& box, int k, Eigen::Array3i& 
 }
 
 /// The level a box is kept at, or kBig.
-int BoxHash::level_of(const Eigen::AlignedBox3d& box) const {
+inline int BoxHash::level_of(const Eigen::AlignedBox3d& box) const {
   Eigen::Array3i lo, hi;
   for (int k = 0; k < kLevels; ++k)
     if (cell_range(box, k, lo, hi) && (hi - lo).maxCoeff() <= 3) return k;

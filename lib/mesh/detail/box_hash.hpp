@@ -10,7 +10,11 @@
 /// Why not BoxGrid (box_grid.hpp), the broad phase of the full searches: it is built once over
 /// fixed boxes and enumerates all overlapping pairs; the cleaner's checks ask which boxes meet one
 /// box, after each contraction, flip or vertex move, and rebuilding a BoxGrid for each would take
-/// time in proportion to the whole mesh per local edit.
+/// time in proportion to the whole mesh per local edit. Even the search for crossings of the
+/// triangles changed since construction (crossing_search.hpp), done over a BoxGrid of all live
+/// triangles instead of a query per changed triangle here, made round_for_output 7-18 % slower
+/// on UV spheres of 16k triangles with a few hundred changed (float32 and grid rounding), and no
+/// faster at 65k: the first, full search uses BoxGrid, the later ones this index.
 
 #include <array>
 #include <cstdint>

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "mesh/formats/mesh_formats.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/triangulate.hpp"
 
@@ -24,31 +23,6 @@ double index_cell(const PolygonMesh& mesh) {
 
 }  // namespace
 
-double Rounder::operator()(double x) const {
-  switch (precision) {
-    case OutputPrecision::Float32: {
-      // volatile: GCC 12's loop vectorizer at -O3 drops a float round trip inside a loop
-      // (seen in output_problem's rounding loop), leaving the double unrounded.
-      const volatile float f = static_cast<float>(x);
-      return static_cast<double>(f);
-    }
-    case OutputPrecision::Grid: return std::nearbyint(x / step) * step;
-    case OutputPrecision::ThreeMf: {
-      // lib3mf truncates, so what it keeps of a kept value can be a micrometre less: follow it
-      // down to a value it keeps unchanged (a few steps at most in practice).
-      double v = lib3mf_kept(x);
-      for (int i = 0; i < 32; ++i) {
-        const double w = lib3mf_kept(v);
-        if (w == v) break;
-        v = w;
-      }
-      return v;
-    }
-    case OutputPrecision::Double: break;
-  }
-  return x;
-}
-
 double Rounder::resolution(const std::vector<Vector3d>& points) const {
   if (precision == OutputPrecision::Grid) return step;
   double m = std::numeric_limits<double>::min();
@@ -56,14 +30,6 @@ double Rounder::resolution(const std::vector<Vector3d>& points) const {
   const int digits = precision == OutputPrecision::Double ? 53 : 24;
   const double ulp = std::ldexp(1.0, std::ilogb(m) + 1 - digits);
   return precision == OutputPrecision::ThreeMf ? std::max(ulp, 1e-6) : ulp;
-}
-
-bool collinear(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    if (orient2d({a[u], a[v]}, {b[u], b[v]}, {c[u], c[v]}) != 0) return false;
-  }
-  return true;
 }
 
 CleanMesh::CleanMesh(const PolygonMesh& mesh, const Rounder& rounder, CleanLimits limits_given)

@@ -7,6 +7,7 @@
 /// the manner of Fortune's vertex rounding), vertex_moves.hpp, crossing_search.hpp.
 
 #include <array>
+#include <cmath>
 #include <optional>
 #include <set>
 #include <utility>
@@ -17,8 +18,10 @@
 #include "base/errors.hpp"
 #include "mesh/detail/box_hash.hpp"
 #include "mesh/detail/triangle_pairs.hpp"
+#include "mesh/formats/mesh_formats.hpp"
 #include "mesh/output_rounding.hpp"
 #include "mesh/polygon_mesh.hpp"
+#include "mesh/predicates.hpp"
 
 namespace sculpt::mesh::detail {
 
@@ -31,7 +34,30 @@ struct Rounder {
   explicit Rounder(const OutputRoundingOptions& o) : precision(o.precision), step(o.grid_step) {
     if (precision == OutputPrecision::Grid && !(step > 0)) throw InvalidInput("round_for_output: grid_step must be positive");
   }
-  double operator()(double x) const;
+  double operator()(double x) const {
+    switch (precision) {
+      case OutputPrecision::Float32: {
+        // volatile: GCC 12's loop vectorizer at -O3 drops a float round trip inside a loop
+        // (seen in output_problem's rounding loop), leaving the double unrounded.
+        const volatile float f = static_cast<float>(x);
+        return static_cast<double>(f);
+      }
+      case OutputPrecision::Grid: return std::nearbyint(x / step) * step;
+      case OutputPrecision::ThreeMf: {
+        // lib3mf truncates, so what it keeps of a kept value can be a micrometre less: follow it
+        // down to a value it keeps unchanged (a few steps at most in practice).
+        double v = lib3mf_kept(x);
+        for (int i = 0; i < 32; ++i) {
+          const double w = lib3mf_kept(v);
+          if (w == v) break;
+          v = w;
+        }
+        return v;
+      }
+      case OutputPrecision::Double: break;
+    }
+    return x;
+  }
   Eigen::Vector3d operator()(const Eigen::Vector3d& v) const {
     Eigen::Vector3d out;
     for (int k = 0; k < 3; ++k) out[k] = (*this)(v[k]);
@@ -42,7 +68,14 @@ struct Rounder {
 };
 
 /// Exact: a, b, c on one line (all three coordinate projections have zero orientation).
-bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+/// (Inline: the checks call it for every triangle they meet.)
+inline bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    if (orient2d({a[u], a[v]}, {b[u], b[v]}, {c[u], c[v]}) != 0) return false;
+  }
+  return true;
+}
 
 /// What limits the cleaning.
 struct CleanLimits {

@@ -123,11 +123,6 @@ bool segments_meet_2d(const Vector2d& a, const Vector2d& b, const Vector2d& c, c
          (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
 }
 
-bool certified_minor(const Orient3dPlane& plane, int axis) {
-  const double m = plane.minor[axis], perm = plane.permanent[axis];
-  return std::abs(m) > sculpt::detail::kOrient2dFilterBound * perm && perm > sculpt::detail::kFilterNoUnderflow && std::isfinite(m);
-}
-
 PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
   PreparedTriangle t;
   t.ids = ids;

@@ -8,6 +8,7 @@
 /// ids are one corner: what two triangles share is not a meeting.
 
 #include <array>
+#include <cmath>
 
 #include <Eigen/Core>
 
@@ -24,8 +25,13 @@ bool segments_meet_2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const 
 
 /// Whether the sign of plane.minor[axis] is certain: that minor is orient2d's filter value for the
 /// projection of the plane's triangle along `axis` (differences to its first corner, Shewchuk's
-/// form), so his orient2d bound applies.
-bool certified_minor(const Orient3dPlane& plane, int axis);
+/// form), so his orient2d bound applies. (Inline: prepare_triangle and star_triangle call it
+/// per axis of every triangle.)
+inline bool certified_minor(const Orient3dPlane& plane, int axis) {
+  const double m = plane.minor[axis], perm = plane.permanent[axis];
+  return std::abs(m) > sculpt::detail::kOrient2dFilterBound * perm && perm > sculpt::detail::kFilterNoUnderflow &&
+         std::isfinite(m);
+}
 
 /// A triangle as triangles_meet reads it: corner ids, corners, a coordinate axis along which it
 /// projects without degeneracy (-1: its corners are collinear), and the plane part of orient3d's
