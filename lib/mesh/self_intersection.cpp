@@ -152,8 +152,9 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     face_tris.clear();
     triangulator.append(mesh.vertices, mesh.faces[fi], face_tris, EarOrder::Spread);
     for (const IndexTriangle& it : face_tris) {
-      const PreparedTriangle t = mesh::detail::prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
-                                                  {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
+      const PreparedTriangle t =
+          mesh::detail::prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
+                                         {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
       if (t.axis < 0) continue;  // collinear corners: degenerate, reported elsewhere
       Eigen::AlignedBox3d box;
       for (int k = 0; k < 3; ++k) box.extend(t.p[k]);

@@ -40,8 +40,10 @@ void BoxHash::update_cells(int id, const Eigen::AlignedBox3d& box, int k, int si
     for (int y = lo.y(); y <= hi.y(); ++y)
       for (int z = lo.z(); z <= hi.z(); ++z) {
         auto& list = cells_[cell_key(k, x, y, z)];
-        if (sign > 0) list.push_back(id);
-        else std::erase(list, id);
+        if (sign > 0)
+          list.push_back(id);
+        else
+          std::erase(list, id);
       }
 }
 
@@ -49,15 +51,19 @@ void BoxHash::insert(int id, const Eigen::AlignedBox3d& box) {
   if (level_.size() <= size_t(id)) level_.resize(size_t(id) + 1, kAbsent);
   const int k = level_of(box);
   level_[size_t(id)] = k;
-  if (k == kBig) big_.push_back(id);
-  else update_cells(id, box, k, +1);
+  if (k == kBig)
+    big_.push_back(id);
+  else
+    update_cells(id, box, k, +1);
 }
 
 void BoxHash::erase(int id, const Eigen::AlignedBox3d& box) {
   const int k = level_[size_t(id)];
   level_[size_t(id)] = kAbsent;
-  if (k == kBig) std::erase(big_, id);
-  else update_cells(id, box, k, -1);
+  if (k == kBig)
+    std::erase(big_, id);
+  else
+    update_cells(id, box, k, -1);
 }
 
 std::vector<int> BoxHash::near(const Eigen::AlignedBox3d& box) const {

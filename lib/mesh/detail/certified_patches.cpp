@@ -66,7 +66,8 @@ std::vector<int> component_roots(const Fans& fans, size_t nv) {
       const Link x = fans.oriented(v, raw);
       if (x.a < int(v)) continue;
       for (const Link& other : f)
-        if (cls[size_t(other.t)] == cls[size_t(x.t)] && fans.oriented(v, other).b == x.a) parent[size_t(find(x.t))] = find(other.t);
+        if (cls[size_t(other.t)] == cls[size_t(x.t)] && fans.oriented(v, other).b == x.a)
+          parent[size_t(find(x.t))] = find(other.t);
     }
   }
   std::vector<int> root(nt, -1);
@@ -135,8 +136,10 @@ std::vector<Edge> boundary_edges(const Fans& fans, const std::vector<int>& root,
       while (e < group.size() && group[e].first == group[g].first) ++e;
       const int r = group[g].first;
       int first = -1;
-      if (e - g > kLongFan || !one_fan({group.data() + g, e - g}, first)) failed[size_t(r)] = 1;
-      else if (first >= 0) edges.push_back({r, int(v), first});  // open: v is on the boundary
+      if (e - g > kLongFan || !one_fan({group.data() + g, e - g}, first))
+        failed[size_t(r)] = 1;
+      else if (first >= 0)
+        edges.push_back({r, int(v), first});  // open: v is on the boundary
       g = e;
     }
   }
@@ -152,9 +155,8 @@ struct Segment {
 /// ones at their common end, and those do not fold back along each other. A sweep along the
 /// first coordinate; beyond a budget of pairs compared, not certified (false).
 bool simple_loop(std::vector<Segment>& segments) {
-  std::sort(segments.begin(), segments.end(), [](const Segment& x, const Segment& y) {
-    return std::min(x.p.x(), x.q.x()) < std::min(y.p.x(), y.q.x());
-  });
+  std::sort(segments.begin(), segments.end(),
+            [](const Segment& x, const Segment& y) { return std::min(x.p.x(), x.q.x()) < std::min(y.p.x(), y.q.x()); });
   size_t budget = 64 * segments.size() + 4096;
   for (size_t i = 0; i < segments.size(); ++i) {
     const Segment& s = segments[i];
@@ -162,7 +164,8 @@ bool simple_loop(std::vector<Segment>& segments) {
     for (size_t j = i + 1; j < segments.size() && std::min(segments[j].p.x(), segments[j].q.x()) <= right; ++j) {
       const Segment& u = segments[j];
       if (budget-- == 0) return false;
-      if (std::max(s.p.y(), s.q.y()) < std::min(u.p.y(), u.q.y()) || std::max(u.p.y(), u.q.y()) < std::min(s.p.y(), s.q.y()))
+      if (std::max(s.p.y(), s.q.y()) < std::min(u.p.y(), u.q.y()) ||
+          std::max(u.p.y(), u.q.y()) < std::min(s.p.y(), s.q.y()))
         continue;
       if (s.to == u.from || u.to == s.from) {
         // Consecutive: w -> m -> z meet only at m unless they run back along each other.
@@ -182,7 +185,8 @@ bool simple_loop(std::vector<Segment>& segments) {
 /// simple, else `failed`. `edges` are sorted here.
 void check_loops(std::vector<Edge>& edges, const std::vector<signed char>& cls, const std::vector<Vector3d>& points,
                  std::vector<char>& failed, std::vector<char>& bounded) {
-  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return std::tie(x.root, x.from) < std::tie(y.root, y.from); });
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& x, const Edge& y) { return std::tie(x.root, x.from) < std::tie(y.root, y.from); });
   std::vector<Segment> segments;
   for (size_t g = 0; g < edges.size();) {
     size_t e = g + 1;
@@ -193,22 +197,25 @@ void check_loops(std::vector<Edge>& edges, const std::vector<signed char>& cls, 
     bounded[size_t(r)] = 1;
     // The loop: from each boundary vertex to the next, once round.
     auto next_of = [&](int from_vertex) {
-      const auto it = std::lower_bound(edges.begin() + std::ptrdiff_t(g), edges.begin() + std::ptrdiff_t(e), from_vertex,
-                                       [](const Edge& x, int y) { return x.from < y; });
+      const auto it = std::lower_bound(edges.begin() + std::ptrdiff_t(g), edges.begin() + std::ptrdiff_t(e),
+                                       from_vertex, [](const Edge& x, int y) { return x.from < y; });
       return it != edges.begin() + std::ptrdiff_t(e) && it->from == from_vertex ? it->to : -1;
     };
     size_t steps = 0;
     for (int at = edges[g].from; ok;) {
       at = next_of(at);
       ++steps;
-      if (at < 0 || steps > e - g) ok = false;
-      else if (at == edges[g].from) break;
+      if (at < 0 || steps > e - g)
+        ok = false;
+      else if (at == edges[g].from)
+        break;
     }
     ok = ok && steps == e - g;
     if (ok) {
       segments.clear();
       for (size_t i = g; i < e; ++i)
-        segments.push_back({drop(points[size_t(edges[i].from)], axis), drop(points[size_t(edges[i].to)], axis), edges[i].from, edges[i].to});
+        segments.push_back({drop(points[size_t(edges[i].from)], axis), drop(points[size_t(edges[i].to)], axis),
+                            edges[i].from, edges[i].to});
       ok = simple_loop(segments);
     }
     if (!ok) failed[size_t(r)] = 1;

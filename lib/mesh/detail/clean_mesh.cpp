@@ -17,7 +17,8 @@ double index_cell(const PolygonMesh& mesh) {
   double total = 0;
   size_t edges = 0;
   for (const auto& f : mesh.faces)
-    for (size_t k = 0; k < f.size(); ++k, ++edges) total += (mesh.vertices[f[k]] - mesh.vertices[f[(k + 1) % f.size()]]).norm();
+    for (size_t k = 0; k < f.size(); ++k, ++edges)
+      total += (mesh.vertices[f[k]] - mesh.vertices[f[(k + 1) % f.size()]]).norm();
   return edges > 0 && total > 0 ? 2 * total / static_cast<double>(edges) : 1.0;
 }
 

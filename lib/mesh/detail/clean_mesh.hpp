@@ -32,7 +32,8 @@ struct Rounder {
   OutputPrecision precision = OutputPrecision::Double;
   double step = 0;
   explicit Rounder(const OutputRoundingOptions& o) : precision(o.precision), step(o.grid_step) {
-    if (precision == OutputPrecision::Grid && !(step > 0)) throw InvalidInput("round_for_output: grid_step must be positive");
+    if (precision == OutputPrecision::Grid && !(step > 0))
+      throw InvalidInput("round_for_output: grid_step must be positive");
   }
   double operator()(double x) const {
     switch (precision) {
@@ -42,7 +43,8 @@ struct Rounder {
         const volatile float f = static_cast<float>(x);
         return static_cast<double>(f);
       }
-      case OutputPrecision::Grid: return std::nearbyint(x / step) * step;
+      case OutputPrecision::Grid:
+        return std::nearbyint(x / step) * step;
       case OutputPrecision::ThreeMf: {
         // lib3mf truncates, so what it keeps of a kept value can be a micrometre less: follow it
         // down to a value it keeps unchanged (a few steps at most in practice).
@@ -54,7 +56,8 @@ struct Rounder {
         }
         return v;
       }
-      case OutputPrecision::Double: break;
+      case OutputPrecision::Double:
+        break;
     }
     return x;
   }

@@ -21,7 +21,8 @@ void meeting_partners(const CleanMesh& mesh, int t, Skip skip, std::vector<std::
   const PreparedTriangle& a = mesh.prepared[size_t(t)];
   if (a.axis < 0) return;
   for (int u : mesh.index.near(mesh.boxes[size_t(t)])) {
-    if (u == t || skip(u) || !mesh.alive[size_t(u)] || !mesh.boxes[size_t(t)].intersects(mesh.boxes[size_t(u)])) continue;
+    if (u == t || skip(u) || !mesh.alive[size_t(u)] || !mesh.boxes[size_t(t)].intersects(mesh.boxes[size_t(u)]))
+      continue;
     const PreparedTriangle& b = mesh.prepared[size_t(u)];
     if (b.axis >= 0 && triangles_meet(a, b)) out.push_back(std::minmax(t, u));
   }
@@ -42,7 +43,9 @@ std::vector<std::pair<int, int>> full_crossings(const CleanMesh& mesh) {
   Eigen::AlignedBox3d all;
   for (int t : live) boxes.push_back(mesh.boxes[size_t(t)]), all.extend(mesh.boxes[size_t(t)]);
   if (!all.min().allFinite() || !all.max().allFinite() || !all.sizes().allFinite()) {
-    for (int t : live) meeting_partners(mesh, t, [&](int u) { return u <= t; }, out);  // no grid: a query per triangle
+    for (int t : live)
+      meeting_partners(
+          mesh, t, [&](int u) { return u <= t; }, out);  // no grid: a query per triangle
   } else {
     const BoxGrid grid(boxes);
     std::vector<Eigen::AlignedBox3d> local;  // a cell's boxes, gathered
@@ -78,7 +81,8 @@ std::vector<std::pair<int, int>> crossings(CleanMesh& mesh) {
       out.push_back({t, u});
   for (size_t t = 0; t < mesh.tris.size(); ++t)  // each pair once: a dirty partner only from the lower index
     if (mesh.alive[t] && mesh.dirty[t] != 0)
-      meeting_partners(mesh, static_cast<int>(t), [&](int u) { return mesh.dirty[size_t(u)] != 0 && u < static_cast<int>(t); }, out);
+      meeting_partners(
+          mesh, static_cast<int>(t), [&](int u) { return mesh.dirty[size_t(u)] != 0 && u < static_cast<int>(t); }, out);
   std::sort(out.begin(), out.end());  // worked on in this order
   return out;
 }

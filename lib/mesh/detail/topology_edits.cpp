@@ -118,7 +118,8 @@ bool collapse_cluster(CleanMesh& mesh, const std::vector<int>& cluster, double d
   for (size_t i = 0; i < cluster.size(); ++i)
     for (size_t j = 0; j < cluster.size(); ++j) {
       const int u = cluster[i], v = cluster[j];
-      if (u == v || !mesh.vertex_alive(u) || !mesh.vertex_alive(v) || (mesh.p[size_t(u)] - mesh.p[size_t(v)]).norm() >= delta)
+      if (u == v || !mesh.vertex_alive(u) || !mesh.vertex_alive(v) ||
+          (mesh.p[size_t(u)] - mesh.p[size_t(v)]).norm() >= delta)
         continue;
       if (mesh.neighbours(u).count(v) == 0) continue;
       if (collapse(mesh, {u, v}, v, delta)) {
@@ -145,7 +146,8 @@ bool flip(CleanMesh& mesh, int t, int k) {
   if (mesh.neighbours(c).count(d) != 0) return false;
   const Tri first = {a, d, c}, second = {d, b, c};
   const std::vector<Vector3d>& p = mesh.p;
-  if (collinear(p[size_t(a)], p[size_t(d)], p[size_t(c)]) || collinear(p[size_t(d)], p[size_t(b)], p[size_t(c)])) return false;
+  if (collinear(p[size_t(a)], p[size_t(d)], p[size_t(c)]) || collinear(p[size_t(d)], p[size_t(b)], p[size_t(c)]))
+    return false;
   // c lies close to edge ab, so both new triangles face as the neighbour (b, a, d) does.
   const Vector3d reference = mesh.normal(mesh.tris[size_t(other)]);
   if (mesh.normal(first).dot(reference) <= 0 || mesh.normal(second).dot(reference) <= 0) return false;
@@ -163,11 +165,13 @@ bool separate_copies(CleanMesh& mesh, double delta, OutputRoundingReport& report
   bool changed = false;
   std::map<std::array<double, 3>, std::vector<int>> at;
   for (size_t v = 0; v < mesh.p.size(); ++v)
-    if (mesh.vertex_alive(static_cast<int>(v))) at[{mesh.p[v].x(), mesh.p[v].y(), mesh.p[v].z()}].push_back(static_cast<int>(v));
+    if (mesh.vertex_alive(static_cast<int>(v)))
+      at[{mesh.p[v].x(), mesh.p[v].y(), mesh.p[v].z()}].push_back(static_cast<int>(v));
   for (auto& [point, copies] : at)
     for (size_t i = 1; i < copies.size(); ++i) {
       const std::set<int> n = mesh.neighbours(copies[i]);
-      if (std::any_of(copies.begin(), copies.end(), [&](int c) { return n.count(c) != 0; })) continue;  // a zero-length edge
+      if (std::any_of(copies.begin(), copies.end(), [&](int c) { return n.count(c) != 0; }))
+        continue;  // a zero-length edge
       if (separate(mesh, copies[i], delta)) {
         ++report.separated_vertices;
         changed = true;

@@ -13,8 +13,7 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 
 /// Point q in the closed 2D triangle (t0, t1, t2) of either orientation.
-bool point_in_triangle_2d(const Vector2d& q, const Vector2d& t0, const Vector2d& t1,
-                          const Vector2d& t2) {
+bool point_in_triangle_2d(const Vector2d& q, const Vector2d& t0, const Vector2d& t1, const Vector2d& t2) {
   const int a = orient2d(t0, t1, q), b = orient2d(t1, t2, q), c = orient2d(t2, t0, q);
   return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
 }
@@ -27,8 +26,7 @@ bool segment_meets_triangle(const Vector3d& s0, const Vector3d& s1, int o0, int 
     const Vector2d a = drop(s0, t.axis), b = drop(s1, t.axis);
     const Vector2d t0 = drop(t.p[0], t.axis), t1 = drop(t.p[1], t.axis), t2 = drop(t.p[2], t.axis);
     return point_in_triangle_2d(a, t0, t1, t2) || point_in_triangle_2d(b, t0, t1, t2) ||
-           segments_meet_2d(a, b, t0, t1) || segments_meet_2d(a, b, t1, t2) ||
-           segments_meet_2d(a, b, t2, t0);
+           segments_meet_2d(a, b, t0, t1) || segments_meet_2d(a, b, t1, t2) || segments_meet_2d(a, b, t2, t0);
   }
   // The segment reaches the plane: its line must pass through the closed triangle.
   const int a = orient3d(s0, s1, t.p[0], t.p[1]);
@@ -63,7 +61,9 @@ bool projections_separated(const PreparedTriangle& x, const PreparedTriangle& y,
 /// outside (separating axis theorem in the plane: disjoint compact convex polygons have a
 /// strictly separating line along an edge of one of them), decided in the projection along
 /// `axis`, along which both project without degeneracy.
-bool coplanar_triangles_meet(const PreparedTriangle& x, const PreparedTriangle& y, int axis) { return !projections_separated(x, y, axis); }
+bool coplanar_triangles_meet(const PreparedTriangle& x, const PreparedTriangle& y, int axis) {
+  return !projections_separated(x, y, axis);
+}
 
 /// orient3d(t.p[0], t.p[1], t.p[2], q): t's plane filter first, the exact predicate where it is
 /// undecided.
@@ -73,7 +73,8 @@ int side(const PreparedTriangle& t, const Vector3d& q) {
 }
 
 /// Any edge of `x` (among those listed) meets triangle `y`.
-bool edges_meet(const PreparedTriangle& x, std::initializer_list<std::pair<int, int>> edges, const PreparedTriangle& y) {
+bool edges_meet(const PreparedTriangle& x, std::initializer_list<std::pair<int, int>> edges,
+                const PreparedTriangle& y) {
   for (auto [i, j] : edges)
     if (segment_meets_triangle(x.p[i], x.p[j], side(y, x.p[i]), side(y, x.p[j]), y)) return true;
   return false;
@@ -116,11 +117,11 @@ bool segments_meet_2d(const Vector2d& a, const Vector2d& b, const Vector2d& c, c
   const int o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
   if (o1 * o2 < 0 && o3 * o4 < 0) return true;
   auto on_segment = [](const Vector2d& s, const Vector2d& t, const Vector2d& q) {
-    return std::min(s.x(), t.x()) <= q.x() && q.x() <= std::max(s.x(), t.x()) &&
-           std::min(s.y(), t.y()) <= q.y() && q.y() <= std::max(s.y(), t.y());
+    return std::min(s.x(), t.x()) <= q.x() && q.x() <= std::max(s.x(), t.x()) && std::min(s.y(), t.y()) <= q.y() &&
+           q.y() <= std::max(s.y(), t.y());
   };
-  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
-         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) || (o3 == 0 && on_segment(c, d, a)) ||
+         (o4 == 0 && on_segment(c, d, b));
 }
 
 PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::array<Vector3d, 3>& p) {
