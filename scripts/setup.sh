@@ -3,7 +3,7 @@
 #   scripts/setup.sh [--tests] [--sanitize] [--bench] [--werror] [--target NAME]...
 #   (none)      what the sculpt executable needs; builds build/release (Release)
 #   --tests     also what the tests need (GoogleTest, CGAL, clang-format) and the test programs
-#   --sanitize  the AddressSanitizer + UndefinedBehaviorSanitizer build, build/sanitize: -O1, line
+#   --sanitize  the AddressSanitizer + UndefinedBehaviorSanitizer build, build/sanitize: -O2, line
 #               tables, assertions on (no NDEBUG); implies --tests
 #   --bench     the benchmark programs of tests/bench (build/release), not built otherwise
 #   --werror    warnings are errors (CI)

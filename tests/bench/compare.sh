@@ -59,7 +59,7 @@ fi
 if ((rounds > 0)); then
   # Interleaved rounds (see --rounds): the case list of bench_bsp's main() and the peers' run.sh.
   [ -n "$ours_file" ] || [ -n "$peers_file" ] && { echo "compare.sh: --rounds runs both sides; not with --ours-file/--peers-file" >&2; exit 2; }
-  [ -x "$ours" ] || { echo "compare.sh: our bench program was not found (build it with scripts/setup.sh or pass --ours)" >&2; exit 1; }
+  [ -x "$ours" ] || { echo "compare.sh: our bench program was not found (build it with scripts/bench.sh or pass --ours)" >&2; exit 1; }
   cases=("sphere_minus_cube 32" "sphere_minus_cube 64" "sphere_minus_cube 128" "sphere_minus_cube 256"
          "menger 3" "boxes 1000" "sphere_minus_sphere 32" "sphere_minus_sphere 64" "sphere_minus_sphere 128"
          "sphere_minus_tilted_cube 64" "drilled_plate 100" "rotated_boxes 200")
@@ -80,7 +80,7 @@ elif [ -n "$ours_file" ]; then
 else
   if [ -z "$ours" ] || [ ! -x "$ours" ]; then
     echo "compare.sh: our BSP bench program was not found (looked for build/release/tests/bench/bsp/bench_bsp;" >&2
-    echo "            build it with scripts/setup.sh or pass --ours PROGRAM). Showing the peers only." >&2
+    echo "            build it with scripts/bench.sh or pass --ours PROGRAM). Showing the peers only." >&2
     : > "$tmp/ours.txt"
   else
     echo "compare.sh: running $ours" >&2
