@@ -2,7 +2,7 @@
 # Set up, build and run every test.   scripts/test.sh [--sanitize] [--werror] [ctest options...]
 #   --sanitize  in the ASan + UBSan build (build/sanitize); --werror: warnings are errors (CI)
 #   other options go to ctest, e.g. -R mesh (only tests whose names match) or --rerun-failed
-# Tests run in parallel, one per core; the slowest first (their costs are set in the CMake files and kept by ctest).
+# Tests run in parallel, one per core; ctest starts the slowest first from the times it kept in earlier runs.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 setup_args=(--tests) ctest_args=()
