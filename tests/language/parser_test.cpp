@@ -99,6 +99,14 @@ TEST(Parser, ExactMessagesForBadInput) {
   EXPECT_EQ(parse_error("fn = 3"), "t.bsp:1:4: error: expected name here\nfn = 3\n   ^\n");
 }
 
+// Names are ASCII; a byte >= 128 outside a string or comment is a clean error, never passed to
+// the C library's character classes (undefined for a negative char).
+TEST(Parser, NonAsciiBytesAreErrorsOutsideStringsAndComments) {
+  EXPECT_EQ(parse_error("x = \xc3\xa9"), "t.bsp:1:5: error: expected expression here\nx = \xc3\xa9\n    ^\n");
+  EXPECT_NE(parse_error("caf\xc3\xa9 = 1"), "");
+  EXPECT_EQ(parse_error("s = \"caf\xc3\xa9\"  # \xff\xfe"), "");
+}
+
 TEST(Parser, CaretKeepsTabs) {
   EXPECT_EQ(parse_error("\tx = 1 2"), "t.bsp:1:8: error: expected newline or ';' here\n\tx = 1 2\n\t      ^\n");
 }

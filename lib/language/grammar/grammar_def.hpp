@@ -20,8 +20,11 @@
 
 namespace sculpt::language::grammar {
 namespace x3 = boost::spirit::x3;
-using x3::alnum;
-using x3::alpha;
+// Character classes in the ASCII encoding: names and numbers are ASCII, and its ischar refuses
+// a byte >= 128 before classifying it (the standard encoding would pass a negative char to
+// std::isalnum, undefined behaviour; Boost asserts on it).
+using x3::ascii::alnum;
+using x3::ascii::alpha;
 using x3::char_;
 using x3::eoi;
 using x3::eol;
@@ -33,8 +36,8 @@ using ast::Op;
 /// fraction and exponent, or a fraction alone (`.5`). The text is converted by strtod, so a
 /// literal too large for a double becomes infinity and the interpreter reports it (a real
 /// parser would just fail here, and the message would be a puzzling "expected expression").
-const auto digits = +x3::digit;
-const auto number_text = x3::raw[lexeme[((digits >> -(lit('.') >> *x3::digit)) | (lit('.') >> digits)) >>
+const auto digits = +x3::ascii::digit;
+const auto number_text = x3::raw[lexeme[((digits >> -(lit('.') >> *x3::ascii::digit)) | (lit('.') >> digits)) >>
                                          -(x3::no_case[lit('e')] >> -(lit('+') | lit('-')) >> digits)]];
 const auto to_double = [](auto& context) {
   const auto& range = x3::_attr(context);
