@@ -7,11 +7,13 @@
 #include <cstring>
 #include <iostream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "base/errors.hpp"
 #include "base/memory_policy.hpp"
+#include "base/parallel.hpp"
 #include "interactive.hpp"
 #include "language/interpreter.hpp"
 
@@ -32,6 +34,8 @@ constexpr const char* kUsage =
     "                  bound as a string\n"
     "  --grid STEP     make solids at grid step STEP, a power of two written 2^-13 or 0.0001220703125:\n"
     "                  coordinates up to 2^25 steps (default 2^-15: [-1024, 1024]); see grid()\n"
+    "  --threads N     use at most N threads (default: every core, or SCULPT_THREADS); results\n"
+    "                  are the same for every count\n"
     "  --help          show this help\n"
     "  --version       show the version\n"
     "Exit status: 0 on success, 1 on a script error, 2 on a usage error.\n";
@@ -100,6 +104,12 @@ int main(int argc, char** argv) {
   std::vector<Job> jobs;
   std::vector<std::pair<std::string, std::string>> definitions;
   sculpt::kernel::Grid grid;
+  std::optional<int> threads;
+  try {
+    threads = sculpt::threads_from_environment();
+  } catch (const sculpt::InvalidInput& e) {
+    return usage_error(e.what());
+  }
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
@@ -127,6 +137,13 @@ int main(int argc, char** argv) {
       } catch (const sculpt::InvalidInput& e) {
         return usage_error(e.what());
       }
+    } else if (arg == "--threads" || arg.rfind("--threads=", 0) == 0) {
+      const std::string text = arg.size() > 9 ? arg.substr(10) : (i + 1 < argc ? argv[++i] : "");
+      int n = 0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
+      if (error != std::errc() || end != text.data() + text.size() || n < 1)
+        return usage_error("--threads needs a positive integer, got '" + text + "'");
+      threads = n;
     } else if (arg == "-") {
       jobs.push_back({Job::Stdin, ""});
     } else if (arg.size() > 1 && arg[0] == '-') {
@@ -135,6 +152,9 @@ int main(int argc, char** argv) {
       jobs.push_back({Job::File, arg});
     }
   }
+
+  std::optional<sculpt::ThreadLimit> thread_limit;
+  if (threads) thread_limit.emplace(*threads);
 
   auto define_all = [&](Interpreter& interpreter) {
     interpreter.set_grid(grid);

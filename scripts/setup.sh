@@ -43,6 +43,7 @@ packages=(g++ cmake ninja-build ccache pkg-config
           libeigen3-dev libboost-dev libopenmesh-dev  # Eigen, Spirit X3, OpenMesh (.om files)
           libedit-dev   # line editing and history in the REPL (BSD licence)
           libpng-dev    # PNG pictures (lib/render)
+          libtbb-dev    # oneTBB: set operations on every core (lib/base/parallel.hpp)
           lib3mf-dev)   # 3MF export and import (lib/mesh/formats/threemf_format.cpp)
 if [ "$tests" = ON ]; then
   packages+=(libgtest-dev libgmock-dev python3
