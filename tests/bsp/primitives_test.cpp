@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
@@ -37,6 +39,36 @@ TEST(Sphere, MeshIsClosedAndVolumeApproachesTheBall) {
     EXPECT_GT(v, 4.0 / 3.0 * std::numbers::pi * (1 - 8.0 / (n * n) * 4)) << n;
     std::printf("n=%d faces=%zu verts=%zu vol=%.9f nodes=%d height=%d\n", n, m.faces.size(), m.vertices.size(), v,
                 tree_stats(s).nodes, tree_stats(s).height);
+  }
+}
+
+// Rings whose heights snap to one grid value merge into a flat cap (docs/bsp.md, "Any
+// resolution"). At step 2^-4 the rings of sphere(1, 64) nearest the poles, at heights
+// cos(k pi / 32), k = 0, 1, 2 (1, 0.9952, 0.9808), all snap to 1 (within half a step, 1/32); so
+// the solid lies between the polyhedron with those rings (volume below the ball's) and the same
+// solid with the caps raised by half a step.
+TEST(Sphere, RingsThatSnapToOneHeightMergeIntoACap) {
+  const kernel::Grid coarse = kernel::Grid::from_step(1.0 / 16);
+  const Solid s = sphere(1.0, {.segments = 64, .grid = coarse});
+  const PolygonMesh m = to_mesh(s);
+  EXPECT_TRUE(EdgesManifoldAndOriented(m));
+  EXPECT_TRUE(GenusIs(m, 0));
+  double top = -1;
+  for (const auto& v : m.vertices) top = std::max(top, v.z());
+  EXPECT_EQ(top, 1.0);  // the cap at the snapped height of the merged polar rings
+  const double v = checks::reference_signed_volume(m);
+  const double ball = 4.0 / 3.0 * std::numbers::pi;
+  EXPECT_LT(v, ball + 2 * std::numbers::pi * 0.25 * (1.0 / 32));  // caps of radius < 0.5 raised by <= 1/32
+  EXPECT_GT(v, ball * (1 - 8.0 / (64 * 64) * 4) - 2 * std::numbers::pi * (1.0 / 32));
+}
+
+TEST(Sphere, ThinnerThanAGridStepIsAClearError) {
+  const kernel::Grid coarse = kernel::Grid::from_step(4.0);
+  try {
+    (void)sphere(1.0, {.segments = 16, .grid = coarse});
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("thinner than one grid step"), std::string::npos) << e.what();
   }
 }
 

@@ -27,12 +27,44 @@ namespace {
 constexpr int kPathNormalBits = 26;  // integer 2D normals of the path edges (docs/kernel.md)
 constexpr double kPathScale = double(std::int64_t(1) << kPathNormalBits);  // scaling by it is exact
 
+/// Rings whose heights snap to the same grid value become one ring with the group's largest scale
+/// (the polar rings of a fine sphere: a flat cap). Each height of the group lay within half a step
+/// of the kept value, so the surface moves by at most half a step. Heights that decrease are an
+/// error; a ring of scale 0 inside the stack too, unless it merges into a ring of positive scale.
+std::vector<Ring> merge_rings_on_grid(const std::vector<Ring>& rings, const kernel::Grid& grid) {
+  std::vector<Ring> merged;
+  merged.reserve(rings.size());
+  std::int64_t last = 0;
+  for (std::size_t k = 0; k < rings.size(); ++k) {
+    if (!(rings[k].scale >= 0) || !std::isfinite(rings[k].scale) || !std::isfinite(rings[k].z))
+      throw InvalidInput("ring height must be finite and ring scale finite and >= 0");
+    if (k > 0 && !(rings[k].z > rings[k - 1].z)) throw InvalidInput("ring heights must increase");
+    const std::int64_t z = grid.snap(rings[k].z);
+    if (!merged.empty() && z == last) {
+      merged.back().scale = std::max(merged.back().scale, rings[k].scale);
+      continue;
+    }
+    merged.push_back({.z = grid.to_world(double(z)), .scale = rings[k].scale});
+    last = z;
+  }
+  for (std::size_t k = 1; k + 1 < merged.size(); ++k)
+    if (merged[k].scale == 0) throw InvalidInput("only the first and the last ring may have scale 0");
+  if (merged.size() < 2) {
+    std::ostringstream s;
+    s << "revolved solid is thinner than one grid step (" << grid.step() << ")";
+    throw InvalidInput(s.str());
+  }
+  return merged;
+}
+
 }  // namespace
 
-Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings, const kernel::Grid& grid) {
+Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& given_rings,
+                    const kernel::Grid& grid) {
+  if (given_rings.size() < 2) throw InvalidInput("revolution needs at least 2 rings");
+  const std::vector<Ring> rings = merge_rings_on_grid(given_rings, grid);
   const int n = int(path.size());
   if (n < 3) throw InvalidInput("revolution path needs at least 3 vertices");
-  if (rings.size() < 2) throw InvalidInput("revolution needs at least 2 rings");
   // Path edges: integer outward normals and offsets (the origin must be strictly inside).
   std::vector<Eigen::Vector2d> normal(static_cast<std::size_t>(n));
   std::vector<std::int64_t> nx(static_cast<std::size_t>(n)), ny(static_cast<std::size_t>(n));
@@ -62,18 +94,7 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // Rings on the grid: z in grid units, offsets c = scale * offset in grid units * normal scale.
   const std::size_t r = rings.size();
   std::vector<std::int64_t> z(r);
-  for (std::size_t k = 0; k < r; ++k) {
-    if (!(rings[k].scale >= 0) || !std::isfinite(rings[k].scale))
-      throw InvalidInput("ring scale must be finite and >= 0");
-    if (rings[k].scale == 0 && k != 0 && k + 1 != r)
-      throw InvalidInput("only the first and the last ring may have scale 0");
-    z[k] = grid.snap(rings[k].z);
-    if (k > 0 && z[k] <= z[k - 1]) {
-      std::ostringstream s;
-      s << "ring heights must increase by at least one grid step (" << grid.step() << ")";
-      throw InvalidInput(s.str());
-    }
-  }
+  for (std::size_t k = 0; k < r; ++k) z[k] = grid.snap(rings[k].z);
   auto c_of = [&](std::size_t k, int j) -> Int128 {
     const double c = grid.to_grid(rings[k].scale * offset[std::size_t(j)]);
     if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord)) {
