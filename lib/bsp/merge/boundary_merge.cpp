@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+
+#include "base/parallel.hpp"
 
 namespace sculpt::bsp::detail {
 
@@ -18,27 +21,67 @@ namespace {
 // 1 reversed.
 int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDrop : (in_behind ? kKeep : kReverse); }
 
+// Fragments per parallel chunk, and the least work (fragments to push) worth the set-up of the
+// parallel path. Both are constants, so the path taken and the chunks never depend on the thread
+// count, and neither does the result.
+constexpr std::size_t kChunk = 256;
+constexpr std::size_t kParallelWork = 4096;
+
+// Makes the opposite of every node plane of the trees at `roots`, so that pushing fragments down
+// them only reads the arena (Arena::opposite then finds each one made) and can run on threads.
+void make_opposites(Arena& arena, std::initializer_list<TreeRef> roots) {
+  std::vector<TreeRef> stack(roots);
+  while (!stack.empty()) {
+    const TreeRef t = stack.back();
+    stack.pop_back();
+    if (is_leaf(t)) continue;
+    const BspNode n = arena.nodes[std::size_t(t)];
+    arena.opposite(n.plane);
+    stack.push_back(n.negative);
+    stack.push_back(n.positive);
+  }
+}
+
+// Pushes fragments [begin, end) of a list (or of `order`) down a tree, one Clipper per chunk;
+// each chunk's pieces are kept apart and joined in chunk order, so the output is the serial one.
+template <typename PushOne>
+void push_in_chunks(Arena& arena, std::size_t n, bool parallel, PushOne&& push_one) {
+  if (!parallel) {
+    Clipper clip(arena);
+    push_one(clip, std::size_t(0), n);
+    return;
+  }
+  parallel_chunks(n, kChunk, [&](std::size_t begin, std::size_t end) {
+    Clipper clip(arena);
+    push_one(clip, begin, end);
+  });
+}
+
 }  // namespace
 
 void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBoxes a_boxes_in,
                       TreeRef b, const FragmentList& b_faces, const bool op[2][2],
                       const ExtentSides* a_sides) {
   Clipper clip(arena);
-  // B's fragments against A's tree. Where A has a face on the same plane region (A's status
-  // differs across it), A's fragment stands for both.
-  FragmentList from_b;
+  // B's fragments against A's tree, in chunks (see push_in_chunks). Where A has a face on the
+  // same plane region (A's status differs across it), A's fragment stands for both.
   const bool b_matters_inside_a_only = op[0][0] == op[0][1];  // out of A, op does not read B
-  for (const BoundaryFragment& f : b_faces) {
-    // On a plane with A on one closed side: no interior point of A, so out of A or on A's
-    // boundary everywhere (extent_pruning.hpp): dropped like every such piece.
-    if (a_sides && b_matters_inside_a_only && a_sides->of(f.polygon.support) != Side::Both) continue;
-    clip.push(
-        a, f,
-        [&](bool front_in, bool back_in, bool on_plane) {
-          return on_plane && front_in != back_in ? kDrop : verdict(op[back_in][1], op[front_in][0]);
-        },
-        [&](ConvexPolygon piece, int v) { from_b.push_back({std::move(piece), v == kKeep ? f.flip : !f.flip}); });
-  }
+  auto push_b = [&](Clipper& c, std::size_t begin, std::size_t end, FragmentList& out) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const BoundaryFragment& f = b_faces[i];
+      // On a plane with A on one closed side: no interior point of A, so out of A or on A's
+      // boundary everywhere (extent_pruning.hpp): dropped like every such piece.
+      if (a_sides && b_matters_inside_a_only && a_sides->of(f.polygon.support) != Side::Both) continue;
+      c.push(
+          a, f,
+          [&](bool front_in, bool back_in, bool on_plane) {
+            return on_plane && front_in != back_in ? kDrop : verdict(op[back_in][1], op[front_in][0]);
+          },
+          [&](ConvexPolygon piece, int v) {
+            out.push_back({std::move(piece), v == kKeep ? f.flip : !f.flip});
+          });
+    }
+  };
 
   // A's fragments against B's tree, in place. Fragments apart from B's boundary box lie in B's
   // outer region (connected, no boundary of B): decided by one status without being moved.
@@ -75,13 +118,58 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
     todo.resize(a_faces.size());
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = todo.size() - 1 - i;
   }
+  // Each fragment's verdict: far_verdict, or kUndecided to push it down B's tree.
+  auto verdict_of = [&](std::size_t i) {
+    return uniform || (b_box.valid && a_boxes[i].valid && !near(a_boxes[i])) ? far_verdict : kUndecided;
+  };
+  // Pushing the undecided ones reads only the arena, so it runs first, in chunks of `todo`. The
+  // pieces of todo[k] end at pieces_end[k] in its chunk's list (and start where those of
+  // todo[k - 1] end, or at 0 for a chunk's first), in the order they were emitted.
+  const std::size_t work = todo.size() + b_faces.size();
+  const bool parallel = work >= kParallelWork && arena.nodes.size() <= 16 * work;
+  if (parallel) make_opposites(arena, {a, b});
+  const std::size_t chunk = parallel ? kChunk : std::max<std::size_t>(todo.size(), 1);
+  std::vector<FragmentList> chunk_pieces((todo.size() + chunk - 1) / chunk + 1);
+  std::vector<std::uint32_t> pieces_end(todo.size());
+  auto push_a = [&](Clipper& c, std::size_t begin, std::size_t end) {
+    FragmentList& out = chunk_pieces[begin / chunk];
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::size_t i = todo[k];
+      if (verdict_of(i) == kUndecided) {
+        const BoundaryFragment& f = a_faces[i];
+        c.push(
+            b, f, [&](bool front_in, bool back_in, bool) { return verdict(op[1][back_in], op[0][front_in]); },
+            [&](ConvexPolygon piece, int w) {
+              out.push_back({std::move(piece), w == kKeep ? f.flip : !f.flip});
+            });
+      }
+      pieces_end[k] = std::uint32_t(out.size());
+    }
+  };
+  std::vector<FragmentList> b_chunk_pieces(parallel ? (b_faces.size() + kChunk - 1) / kChunk : 1);
+  auto run_b = [&] {
+    push_in_chunks(arena, b_faces.size(), parallel, [&](Clipper& c, std::size_t begin, std::size_t end) {
+      push_b(c, begin, end, b_chunk_pieces[parallel ? begin / kChunk : 0]);
+    });
+  };
+  auto run_a = [&] { push_in_chunks(arena, todo.size(), parallel, push_a); };
+  if (parallel) {
+    parallel_invoke(run_b, run_a);
+  } else {
+    run_b();
+    run_a();
+  }
+  FragmentList from_b = std::move(b_chunk_pieces[0]);
+  for (std::size_t j = 1; j < b_chunk_pieces.size(); ++j)
+    for (BoundaryFragment& p : b_chunk_pieces[j]) from_b.push_back(std::move(p));
+
   FragmentList pieces;
   std::vector<std::size_t> changed;  // fragments rewritten in place (below the shortened end)
   std::size_t shortest = a_faces.size();
   // Downwards, so that fragments moved into a freed slot (from the end) are already decided.
-  for (const std::size_t i : todo) {
-    int v = kUndecided;
-    if (uniform || (b_box.valid && a_boxes[i].valid && !near(a_boxes[i]))) v = far_verdict;
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    const std::size_t i = todo[k];
+    const int v = verdict_of(i);
     if (v == 0) continue;
     BoundaryFragment& f = a_faces[i];
     if (v == 1) {
@@ -89,13 +177,11 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
       continue;
     }
     if (v == kUndecided) {
-      const std::size_t before = pieces.size();
-      clip.push(
-          b, f, [&](bool front_in, bool back_in, bool) { return verdict(op[1][back_in], op[0][front_in]); },
-          [&](ConvexPolygon piece, int w) { pieces.push_back({std::move(piece), w == kKeep ? f.flip : !f.flip}); });
-      if (pieces.size() > before) {  // the first piece takes the fragment's slot
-        f = std::move(pieces.back());
-        pieces.pop_back();
+      FragmentList& made = chunk_pieces[k / chunk];
+      const std::size_t first = k % chunk == 0 ? 0 : pieces_end[k - 1], last = pieces_end[k];
+      if (last > first) {  // the last piece takes the fragment's slot, the others are appended
+        for (std::size_t j = first; j + 1 < last; ++j) pieces.push_back(std::move(made[j]));
+        f = std::move(made[last - 1]);
         a_boxes[i] = fragment_box(f.polygon);
         changed.push_back(i);
         continue;
