@@ -153,7 +153,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
                                      .point_sample = options.point_sample,
                                      .auxiliary_cost = options.auxiliary_cost,
                                      .separating_planes = options.separating_planes,
-                                     .carry_boundary = false,
+                                     .carry_boundary = options.snapped_mesh_is_clean,
                                      .auxiliary_splits = options.auxiliary_planes,
                                      .approximate_scores = true});
   return bsp::detail::SolidAccess::at_grid(std::move(solid), grid);

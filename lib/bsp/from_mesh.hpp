@@ -30,6 +30,11 @@ struct FromMeshOptions {
   /// throwing InvalidInput: the rest still encloses the same volume. General transforms use it
   /// (bsp/transform.hpp), where a face narrower than the grid step is no error of the user's.
   bool skip_degenerate_faces = false;
+  /// The caller has checked the mesh after snapping: its vertices are grid points of `grid` and it
+  /// is clean there (round_for_output's `clean` at OutputPrecision::Grid: closed, oriented, no
+  /// two faces crossing). Its faces then are exactly the solid's boundary, so the solid carries
+  /// them and later operations and to_mesh need not extract the boundary from the tree again.
+  bool snapped_mesh_is_clean = false;
   /// The grid the vertices are snapped to, which the solid carries (docs/kernel.md, "World range").
   kernel::Grid grid{};
 };

@@ -483,8 +483,8 @@ void register_solids(BuiltinTable& table) {
                // import fails only if that does not suffice.
                std::string snap_error = snapped_self_intersection(mesh, args.grid());
                if (snap_error.empty()) {
-                 try {
-                   return solid_value(from_mesh(mesh, {.grid = args.grid()}));
+                 try {  // checked before and after snapping: the faces are the boundary (from_mesh.hpp)
+                   return solid_value(from_mesh(mesh, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
                  } catch (const GeometryError& e) {
                    snap_error = e.what();
                  }
@@ -497,7 +497,7 @@ void register_solids(BuiltinTable& table) {
                args.out() << "import: warning: " << path << ": features below 4 grid steps were collapsed to fit the grid (step "
                           << args.grid().name() << "); vertices moved by up to "
                           << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";
-               return solid_value(from_mesh(snapped, {.grid = args.grid()}));
+               return solid_value(from_mesh(snapped, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
              }});
 }
 

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "bsp/boundary.hpp"
+#include "bsp/from_mesh.hpp"
 #include "bsp/tree/fragment_boxes.hpp"
 #include "bsp/tree/solid_access.hpp"
 #include "bsp/primitives.hpp"
@@ -93,7 +94,7 @@ TEST(BoundaryMerge, RingPrimitivesCarryTheirExactBoundary) {
 
 TEST(BoundaryMerge, ExactTransformsKeepTheBoundary) {
   // Translations, quarter turns, mirrors and integer scales map planes exactly: the boundary goes
-  // along (a mirror reverses the corner order); general transforms drop it.
+  // along (a mirror reverses the corner order).
   const Solid s = sphere(1.0, {.segments = 12}) - cube(0, 0, 0, 1);
   Eigen::Affine3d mirror = Eigen::Affine3d::Identity();
   mirror.linear() = Eigen::Vector3d(-1, 1, 1).asDiagonal();
@@ -110,7 +111,26 @@ TEST(BoundaryMerge, ExactTransformsKeepTheBoundary) {
     EXPECT_NEAR(vol(t), factor * v, 1e-12 * factor * v);
     EXPECT_TRUE(CarriedMatchesExtracted(t - cube(0.5, -0.5, -0.5, 1)));
   }
-  EXPECT_FALSE(rotate(s, {0, 0, 1}, 30).has_boundary());
+  // A general turn rebuilds the solid from its snapped boundary, which round_for_output judged
+  // clean: that surface is the new solid's boundary, carried (from_mesh's snapped_mesh_is_clean)
+  // and equal to the one extracted from the tree.
+  const Solid turned = rotate(s, {0, 0, 1}, 30);
+  EXPECT_TRUE(turned.has_boundary());
+  EXPECT_TRUE(CarriedMatchesExtracted(turned));
+  EXPECT_TRUE(CarriedMatchesExtracted(turned - cube(0.5, -0.5, -0.5, 1)));
+}
+
+// A mesh checked after snapping (as import does) gives a solid that carries its faces; they are
+// the boundary the tree has, and operations keep it.
+TEST(BoundaryMerge, ACleanSnappedMeshCarriesItsFaces) {
+  const PolygonMesh mesh = to_mesh(sphere(1.0, {.segments = 16}) - cube(0, 0, 0, 1));
+  const Solid plain = from_mesh(mesh);
+  const Solid carried = from_mesh(mesh, {.snapped_mesh_is_clean = true});
+  EXPECT_FALSE(plain.has_boundary());
+  EXPECT_TRUE(carried.has_boundary());
+  EXPECT_TRUE(CarriedMatchesExtracted(carried));
+  EXPECT_NEAR(vol(carried), vol(plain), 1e-12);
+  EXPECT_TRUE(CarriedMatchesExtracted(carried | translate(carried, {0.25, 0.5, 0.125})));
 }
 
 TEST(BoundaryMerge, SharedFacesEdgesAndCorners) {
