@@ -145,17 +145,17 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
   fragments.reserve(polys.size());
   for (ConvexPolygon& p : polys) fragments.push_back({std::move(p), false});
   Solid solid = bsp::detail::autopartition(arena, std::move(fragments),
-                                    {.candidates = options.candidates,
-                                     .sample = options.sample,
-                                     .split_weight = options.split_weight,
-                                     .score = bsp::detail::PartitionScore::ExpectedDepth,
-                                     .volume_samples = options.volume_samples,
-                                     .point_sample = options.point_sample,
-                                     .auxiliary_cost = options.auxiliary_cost,
-                                     .separating_planes = options.separating_planes,
-                                     .carry_boundary = options.snapped_mesh_is_clean,
-                                     .auxiliary_splits = options.auxiliary_planes,
-                                     .approximate_scores = true});
+                                           {.candidates = options.candidates,
+                                            .sample = options.sample,
+                                            .split_weight = options.split_weight,
+                                            .score = bsp::detail::PartitionScore::ExpectedDepth,
+                                            .volume_samples = options.volume_samples,
+                                            .point_sample = options.point_sample,
+                                            .auxiliary_cost = options.auxiliary_cost,
+                                            .separating_planes = options.separating_planes,
+                                            .carry_boundary = options.snapped_mesh_is_clean,
+                                            .auxiliary_splits = options.auxiliary_planes,
+                                            .approximate_scores = true});
   return bsp::detail::SolidAccess::at_grid(std::move(solid), grid);
 }
 

@@ -7,14 +7,14 @@
 #include <iterator>
 #include <random>
 
+#include "bench/peers/cases.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/from_mesh.hpp"
-#include "bsp/tree/fragment_boxes.hpp"
-#include "bsp/tree/solid_access.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
-#include "bench/peers/cases.hpp"
+#include "bsp/tree/fragment_boxes.hpp"
+#include "bsp/tree/solid_access.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
