@@ -1,0 +1,130 @@
+// One run of the real-mesh job of issue 33, our side (the peer's is tests/bench/native/
+// manifold_job.cpp; both print the same line, tests/bench/native_compare.sh runs them side by side):
+//   m = import(FILE); r = m turned 33 degrees about (1, 1, 0) around its box centre;
+//   u = m | r; d = u - sphere(radius = a quarter of the box's largest side, 48 segments, centred
+//   three quarters of the way from the box centre to its upper corner); volume(d)
+// or, with --sphere N, sphere(1, N) - sphere(1, N) moved by (0.3, 0.2, 0.1).
+//   bench_mesh_job [--threads T] (--mesh FILE.off | --sphere N)
+// Prints: bench case=NAME n=TRIANGLES threads=T import=S turn=S union=S difference=S total=S
+//         volume=V triangles_out=N (seconds, wall clock; the process's peak memory is measured outside).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "base/memory_policy.hpp"
+#include "base/parallel.hpp"
+#include "bsp/boundary.hpp"
+#include "bsp/from_mesh.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
+#include "mesh/mesh_io.hpp"
+#include "mesh/mesh_measures.hpp"
+#include "mesh/mesh_validation.hpp"
+#include "mesh/self_intersection.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+int usage() {
+  std::fprintf(stderr, "usage: bench_mesh_job [--threads T] (--mesh FILE | --sphere N)\n");
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace sculpt;
+  int threads = 0, n = 0;
+  std::string file;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--threads")
+      threads = std::atoi(argv[i + 1]);
+    else if (a == "--mesh")
+      file = argv[i + 1];
+    else if (a == "--sphere")
+      n = std::atoi(argv[i + 1]);
+    else
+      return usage();
+  }
+  if (file.empty() == (n == 0)) return usage();
+  keep_freed_memory();  // as the sculpt executable does (base/memory_policy.hpp)
+  std::optional<ThreadLimit> limit;
+  if (threads > 0) limit.emplace(threads);
+  const int used = thread_count();
+  const auto start = Clock::now();
+  double t_import = 0, t_turn = 0, t_union = 0, t_difference = 0;
+  Solid result;
+  std::size_t in_triangles = 0;
+  std::string name;
+  if (!file.empty()) {
+    name = std::filesystem::path(file).stem().string();
+    auto t = Clock::now();
+    // As the language's import: read, validate (closed, oriented, no self-intersection), check
+    // that the snapped faces still do not cross, build with the faces as the boundary.
+    const PolygonMesh mesh = read_mesh(file);
+    if (const ValidationReport report = check_closed_manifold(mesh); !report.ok()) {
+      std::fprintf(stderr, "bench_mesh_job: %s: %s\n", file.c_str(), report.summary(3).c_str());
+      return 1;
+    }
+    PolygonMesh snapped = mesh;
+    const kernel::Grid grid;
+    for (auto& v : snapped.vertices) v = grid.to_world(grid.snap(v));
+    if (snapped.vertices != mesh.vertices && !find_self_intersections(snapped, {.max_pairs = 1}).empty()) {
+      std::fprintf(stderr, "bench_mesh_job: %s: faces meet once snapped to the grid\n", file.c_str());
+      return 1;
+    }
+    const Solid m = from_mesh(mesh, {.snapped_mesh_is_clean = true});
+    t_import = since(t);
+    in_triangles = mesh.faces.size();
+    Eigen::Vector3d lo = mesh.vertices[0], hi = lo;
+    for (const auto& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const Eigen::Vector3d c = (lo + hi) / 2;
+    t = Clock::now();
+    const Eigen::Affine3d turn = Eigen::Translation3d(c) *
+                                 Eigen::AngleAxisd(33 * M_PI / 180, Eigen::Vector3d(1, 1, 0).normalized()) *
+                                 Eigen::Translation3d(-c);
+    const Solid r = transform(m, turn);
+    t_turn = since(t);
+    t = Clock::now();
+    const Solid u = m | r;
+    (void)volume(u);  // forces a deferred result, as using it would
+    t_union = since(t);
+    t = Clock::now();
+    const double radius = (hi - lo).maxCoeff() / 4;
+    const Solid ball = translate(sphere(radius, {.segments = 48}), c + 0.75 * (hi - c));
+    result = u - ball;
+    t_difference = since(t);
+  } else {
+    name = "sphere_minus_moved";
+    const auto t = Clock::now();
+    const Solid a = sphere(1.0, {.segments = n});
+    const Solid b = translate(sphere(1.0, {.segments = n}), {0.3, 0.2, 0.1});
+    t_import = since(t);
+    in_triangles = 0;
+    const auto d = Clock::now();
+    result = a - b;
+    t_difference = since(d);
+  }
+  const auto t = Clock::now();
+  const PolygonMesh out = to_mesh(result);
+  const double v = mesh_volume(out);
+  t_difference += since(t);
+  std::size_t triangles = 0;
+  for (const auto& f : out.faces) triangles += f.size() - 2;
+  std::printf(
+      "bench case=%s n=%zu threads=%d import=%.4f turn=%.4f union=%.4f difference=%.4f total=%.4f volume=%.10g "
+      "triangles_out=%zu\n",
+      name.c_str(), file.empty() ? std::size_t(n) : in_triangles, used, t_import, t_turn, t_union, t_difference,
+      since(start), v, triangles);
+  return 0;
+}

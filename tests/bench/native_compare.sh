@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Side by side with native Manifold (../shared/peers: C++, its oneTBB backend) in one run: the
+# real-mesh job of issue 33 (import, a general turn, the union with the turned copy, the difference
+# with a sphere; tests/bench/bsp/bench_mesh_job.cpp) and sphere(1, N) - moved copy.
+#   tests/bench/native_compare.sh [--runs R] [--threads "1 2"] [--mesh FILE.off]... [--sphere N]...
+# Defaults: 5 runs, threads 1 and 2, models/bunny.off, spheres 128 256 512. Each run is its own
+# process (peak memory from /usr/bin/time); rounds are interleaved (ours, then the peer, case by
+# case) so a change in the machine's speed falls on both. Prints a Markdown table of medians.
+# Needs the benchmark build (scripts/bench.sh); builds Manifold into build/peers/manifold once.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+runs=5
+threads="1 2"
+meshes=()
+spheres=()
+while (($#)); do
+  case "$1" in
+    --runs) runs="$2"; shift 2 ;;
+    --threads) threads="$2"; shift 2 ;;
+    --mesh) meshes+=("$2"); shift 2 ;;
+    --sphere) spheres+=("$2"); shift 2 ;;
+    *) echo "native_compare: unknown option $1" >&2; exit 2 ;;
+  esac
+done
+((${#meshes[@]} + ${#spheres[@]})) || { meshes=("$root/models/bunny.off"); spheres=(128 256 512); }
+
+ours="$root/build/release/tests/bench/bsp/bench_mesh_job"
+[ -x "$ours" ] || { echo "native_compare: build the benchmarks first (bash scripts/bench.sh)" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "native_compare: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
+peer_dir=$(bash "$root/../shared/peers/build_manifold.sh" "$root/build/peers/manifold" 2>"$root/build/peers.log" | tail -n 1)
+peer="$root/build/peers/manifold_job"
+if [ ! -x "$peer" ] || [ "$root/tests/bench/native/manifold_job.cpp" -nt "$peer" ]; then
+  g++ -O2 -std=c++17 -I"$peer_dir/include" "$root/tests/bench/native/manifold_job.cpp" "$peer_dir/lib/libmanifold.a" \
+    -ltbb -lpthread -o "$peer"
+fi
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+jobs=()
+for m in "${meshes[@]}"; do jobs+=("--mesh $m"); done
+for n in "${spheres[@]}"; do jobs+=("--sphere $n"); done
+for ((round = 0; round < runs; ++round)); do
+  for job in "${jobs[@]}"; do
+    for t in $threads; do
+      for side in ours peer; do
+        program=$ours; [ $side = peer ] && program=$peer
+        # shellcheck disable=SC2086
+        /usr/bin/time -f "peak_kb=%M" -o "$tmp/time" "$program" --threads "$t" $job > "$tmp/line" ||
+          { echo "native_compare: $side failed on $job" >&2; cat "$tmp/line" >&2; continue; }
+        echo "side=$side $(cat "$tmp/line") $(tail -n 1 "$tmp/time")" >> "$tmp/all"
+      done
+    done
+  done
+done
+
+python3 - "$tmp/all" <<'PY'
+import sys, statistics, collections
+rows = collections.defaultdict(list)
+for line in open(sys.argv[1]):
+    kv = dict(x.split('=', 1) for x in line.split() if '=' in x)
+    rows[(kv['case'], int(kv['n']), int(kv['threads']), kv['side'])].append(kv)
+def med(rs, k): return statistics.median(float(r[k]) for r in rs)
+print('| case | n | threads | sculpt import / turn / union / difference (s) | sculpt total (s) | Manifold total (s) | time sculpt/Manifold | peak MB sculpt / Manifold | memory sculpt/Manifold | volumes |')
+print('|---|---|---|---|---|---|---|---|---|---|')
+for (case, n, t, side) in sorted(k for k in rows if k[3] == 'ours'):
+    o, p = rows[(case, n, t, 'ours')], rows.get((case, n, t, 'peer'), [])
+    phases = ' / '.join('%.3f' % med(o, k) for k in ('import', 'turn', 'union', 'difference'))
+    ot, om = med(o, 'total'), med(o, 'peak_kb') / 1024
+    if p:
+        pt, pm = med(p, 'total'), med(p, 'peak_kb') / 1024
+        print('| %s | %d | %d | %s | %.3f | %.3f | %.1fx | %.0f / %.0f | %.1fx | %s / %s |' % (
+            case, n, t, phases, ot, pt, ot / pt, om, pm, om / pm, o[0]['volume'], p[0]['volume']))
+    else:
+        print('| %s | %d | %d | %s | %.3f | failed | | %.0f / - | | %s |' % (case, n, t, phases, ot, om, o[0]['volume']))
+print()
+print('%d runs each, medians; times are wall clock of the whole job in one process.' % len(next(iter(rows.values()))))
+PY
