@@ -297,7 +297,10 @@ TEST(GlbFormat, MalformedFilesNameWhatIsWrong) {
   EXPECT_THAT(decode_error(edited(R"({"asset")", R"({"extensionsRequired":["KHR_draco_mesh_compression"],"asset")")),
               HasSubstr("KHR_draco_mesh_compression"));
   EXPECT_THAT(decode_error(edited(R"("count":12)", R"("count":13)")), HasSubstr("accessors[1] reads 13 elements"));
-  EXPECT_THAT(decode_error(edited(R"("count":12)", R"("count":4294967295)")), HasSubstr("accessors[1] reads"));
+  EXPECT_THAT(decode_error(edited(R"("count":12)", R"("count":4294967295)")), HasSubstr("triangles in all"));
+  // Counted before anything is read or built: 2^25 triangles and one more, in a file of 200 bytes.
+  EXPECT_THAT(decode_error(edited(R"("count":12)", R"("count":100663299)")),
+              HasSubstr("the nodes place more than 33554432 triangles in all"));
   EXPECT_THAT(decode_error(edited(R"("count":12)", R"("count":1e300)")), HasSubstr("accessors[1].count must be"));
   EXPECT_THAT(decode_error(edited(R"("count":12)", R"("count":-1)")), HasSubstr("non-negative integer"));
   EXPECT_THAT(decode_error(edited(R"("count":12)", R"("count":10)")), HasSubstr("not a multiple of 3"));

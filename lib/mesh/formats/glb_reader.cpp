@@ -28,8 +28,11 @@ namespace {
 /// 2^32, sums and products of offsets, strides and counts stay far below 2^64.
 constexpr double kLargestInteger = 9007199254740992.0;
 constexpr std::uint64_t kLargestCount = 0xFFFFFFFFull;
-/// PolygonMesh indexes with int: at most this many triangles in all (instances included).
-constexpr std::size_t kMaxTriangles = 0x7FFFFFFF / 3;
+/// Triangles in all, instances included: at least 2^25, or one per byte of the file (more than a
+/// file without instancing can hold: a triangle takes at least 3 bytes of indices), so that a small
+/// file that places a large mesh many times cannot exhaust memory; never more than int indexes.
+constexpr std::size_t kFewestAllowedTriangles = std::size_t(1) << 25;
+constexpr std::size_t kMostTriangles = 0x7FFFFFFF / 3;
 
 /// The bytes an accessor reads: `count` elements of `size` bytes, `stride` apart, from `data`
 /// (all checked to lie inside the BIN chunk).
@@ -43,8 +46,11 @@ struct ElementRange {
 /// Reads the glTF asset of one GLB file: its JSON and BIN chunks.
 class GlbReader {
  public:
-  GlbReader(std::string_view json, std::string_view bin, const std::string& name)
-      : name_(name), bin_(bin), doc_(json, name) {
+  GlbReader(std::string_view json, std::string_view bin, std::size_t file_size, const std::string& name)
+      : name_(name),
+        bin_(bin),
+        doc_(json, name),
+        max_triangles_(std::min(std::max(kFewestAllowedTriangles, file_size), kMostTriangles)) {
     if (doc_.root().kind != JsonKind::Object) fail("the JSON chunk is not an object");
   }
 
@@ -55,7 +61,7 @@ class GlbReader {
     // transform is its parent's times its own (sec. 3.5.2).
     const JsonValue* nodes = array(doc_.root(), "nodes", "the asset");
     std::vector<char> reached(nodes ? nodes->children.size() : 0, 0);
-    std::vector<std::pair<std::size_t, Eigen::Matrix4d>> stack;
+    std::vector<std::pair<std::size_t, Eigen::Matrix4d>> stack, placed;  // (node, parent's); (mesh, global)
     for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.emplace_back(*r, Eigen::Matrix4d::Identity());
     while (!stack.empty()) {
       const auto [n, parent] = stack.back();
@@ -65,11 +71,24 @@ class GlbReader {
       reached[n] = 1;
       const JsonValue& node = object(doc_.at(nodes->children[n]), what);
       const Eigen::Matrix4d global = parent * local_transform(node, what);
-      if (const JsonValue* m = doc_.member(node, "mesh")) add_mesh(index(*m, what + ".mesh", "meshes"), global);
+      if (const JsonValue* m = doc_.member(node, "mesh"))
+        placed.emplace_back(index(*m, what + ".mesh", "meshes"), global);
       if (const JsonValue* children = array(node, "children", what))
         for (auto c = children->children.rbegin(); c != children->children.rend(); ++c)
           stack.emplace_back(index(doc_.at(*c), what + ".children", "nodes"), global);
     }
+    // Counted before anything is built, from the accessors' counts.
+    const JsonValue* meshes = array(doc_.root(), "meshes", "the asset");
+    std::vector<std::uint64_t> triangles_of(meshes ? meshes->children.size() : 0, kLargestCount);  // not yet counted
+    std::uint64_t triangles = 0;
+    for (const auto& [m, global] : placed) {
+      if (triangles_of[m] == kLargestCount) triangles_of[m] = triangle_count(m);
+      triangles += triangles_of[m];
+      if (triangles > max_triangles_)
+        fail("the nodes place more than " + std::to_string(max_triangles_) +
+             " triangles in all (at most 2^25 or one per byte of the file are read)");
+    }
+    for (const auto& [m, global] : placed) add_mesh(m, global);
     return std::move(mesh_);
   }
 
@@ -287,6 +306,27 @@ class GlbReader {
     return out;
   }
 
+  /// How many triangles mesh `m` has (its TRIANGLES primitives' index or position counts / 3, each
+  /// count below 2^32), before anything is checked or read.
+  std::uint64_t triangle_count(std::size_t m) const {
+    const std::string what = "meshes[" + std::to_string(m) + "]";
+    std::uint64_t n = 0;
+    const JsonValue* primitives = array(element("meshes", m), "primitives", what);
+    for (std::size_t p = 0; primitives && p < primitives->children.size(); ++p) {
+      const std::string pwhat = what + ".primitives[" + std::to_string(p) + "]";
+      const JsonValue& primitive = object(doc_.at(primitives->children[p]), pwhat);
+      const JsonValue* attributes = doc_.member(primitive, "attributes");
+      const JsonValue* counted = doc_.member(primitive, "indices");
+      if (!counted && attributes) counted = doc_.member(object(*attributes, pwhat + ".attributes"), "POSITION");
+      if (*integer_member(primitive, "mode", pwhat, glb::kTriangles) != glb::kTriangles || !counted) continue;
+      const std::size_t a = index(*counted, pwhat, "accessors");
+      n += std::min(required_integer(element("accessors", a), "count", "accessors[" + std::to_string(a) + "]"),
+                    kLargestCount) /
+           3;
+    }
+    return n;
+  }
+
   /// Adds the triangles of mesh `m` (sec. 3.7.2) placed by `global`. Points and lines are skipped.
   void add_mesh(std::size_t m, const Eigen::Matrix4d& global) {
     const std::string what = "meshes[" + std::to_string(m) + "]";
@@ -316,8 +356,6 @@ class GlbReader {
       }
       if (corners.size() % 3 != 0)
         fail(pwhat + " has " + std::to_string(corners.size()) + " corners, not a multiple of 3 (TRIANGLES)");
-      if (corners.size() / 3 > kMaxTriangles - mesh_.faces.size())
-        fail("more than " + std::to_string(kMaxTriangles) + " triangles in all");
       // The positions the triangles use, in accessor order, placed and merged.
       std::vector<int> vertex(points.size(), -1);
       for (const std::uint32_t c : corners) vertex[c] = 0;
@@ -337,6 +375,7 @@ class GlbReader {
   const std::string& name_;
   std::string_view bin_;
   JsonDocument doc_;
+  std::size_t max_triangles_;
   PolygonMesh mesh_;
   VertexMerger merger_;
 };
@@ -378,7 +417,7 @@ PolygonMesh decode_glb(std::string_view data, const std::string& name) {
     }
   }
   if (!has_json) throw IoError(name, "the GLB file has no JSON chunk");
-  return GlbReader(json, bin, name).read();
+  return GlbReader(json, bin, data.size(), name).read();
 }
 
 }  // namespace sculpt::mesh::detail
