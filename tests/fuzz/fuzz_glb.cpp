@@ -21,8 +21,7 @@ void decode(const std::string& data) {
         if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size()) std::abort();
     for (const auto& p : mesh.vertices)
       if (!p.allFinite()) std::abort();
-  } catch (const sculpt::IoError&) {
-  }
+  } catch (const sculpt::IoError&) {}
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 /// The binary glTF container (glTF 2.0 spec, sec. 4.4 "Binary glTF Layout"; internal): a 12-byte
 /// header (magic, version, total length), then chunks of (length, type, data), the JSON chunk
 /// first and at most one BIN chunk after it; every chunk starts and ends on a 4-byte boundary.
-/// All numbers little endian, like the accessors' data (sec. 3.6.2.1).
+/// All numbers little endian, as the accessors' data.
 
 #include <bit>
 #include <cstdint>
@@ -21,7 +21,7 @@ constexpr std::uint32_t kBinChunk = 0x004E4942;   ///< "BIN\0"
 constexpr std::size_t kHeaderSize = 12;
 constexpr std::size_t kChunkHeaderSize = 8;
 
-/// Accessor component types (sec. 3.6.2.2) and buffer view targets (sec. 3.6.1.1).
+/// Accessor component types (sec. 3.6.2.2) and buffer view targets (sec. 3.6.1).
 constexpr int kUnsignedByte = 5121;
 constexpr int kUnsignedShort = 5123;
 constexpr int kUnsignedInt = 5125;

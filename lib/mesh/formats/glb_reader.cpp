@@ -57,8 +57,8 @@ class GlbReader {
   PolygonMesh read() {
     check_asset();
     const std::vector<std::size_t> roots = scene_roots();
-    // Depth-first over the node trees (sec. 3.5.3) with an explicit stack: a node's global
-    // transform is its parent's times its own (sec. 3.5.2).
+    // Depth-first over the node trees (sec. 3.5.2) with an explicit stack: a node's global
+    // transform is its parent's times its own (sec. 3.5.3).
     const JsonValue* nodes = array(doc_.root(), "nodes", "the asset");
     std::vector<char> reached(nodes ? nodes->children.size() : 0, 0);
     std::vector<std::pair<std::size_t, Eigen::Matrix4d>> stack, placed;  // (node, parent's); (mesh, global)
@@ -67,7 +67,7 @@ class GlbReader {
       const auto [n, parent] = stack.back();
       stack.pop_back();
       const std::string what = "nodes[" + std::to_string(n) + "]";
-      if (reached[n]) fail(what + " is reached twice: the nodes must form trees (glTF 2.0 sec. 3.5.3)");
+      if (reached[n]) fail(what + " is reached twice: the nodes must form trees (glTF 2.0 sec. 3.5.2)");
       reached[n] = 1;
       const JsonValue& node = object(doc_.at(nodes->children[n]), what);
       const Eigen::Matrix4d global = parent * local_transform(node, what);
@@ -190,7 +190,7 @@ class GlbReader {
     return roots;
   }
 
-  /// A node's own transform (sec. 3.5.2): `matrix` (column-major, affine), else T * R * S.
+  /// A node's own transform (sec. 3.5.3): `matrix` (column-major, affine), else T * R * S.
   Eigen::Matrix4d local_transform(const JsonValue& node, const std::string& what) const {
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
     if (const auto a = numbers(node, "matrix", 16, what)) {  // as three.js: a matrix wins over TRS
@@ -247,7 +247,7 @@ class GlbReader {
     const std::uint64_t view_offset = *integer_member(view, "byteOffset", view_what, 0);
     const std::uint64_t view_length = required_integer(view, "byteLength", view_what);
     r.stride = *integer_member(view, "byteStride", view_what, element_size);
-    if (r.stride < element_size || r.stride > 252)  // sec. 3.6.1.1: at most 252
+    if (r.stride < element_size || r.stride > 252)  // the bufferView schema: at most 252
       fail(view_what + ".byteStride " + std::to_string(r.stride) + " does not fit " + what + "'s elements of " +
            std::to_string(element_size) + " bytes");
     // All terms below 2^53 and count * stride below 2^40: no sum overflows.
@@ -259,7 +259,7 @@ class GlbReader {
     const JsonValue& buffer = element("buffers", b);
     if (doc_.member(buffer, "uri"))
       fail(buffer_what + " refers to data outside the file (a uri); only the GLB's own BIN chunk is read");
-    if (b != 0) fail(buffer_what + " has no uri, but only buffers[0] can be the GLB's BIN chunk (sec. 4.4.3.2)");
+    if (b != 0) fail(buffer_what + " has no uri, but only buffers[0] can be the GLB's BIN chunk (sec. 4.4.3.3)");
     const std::uint64_t buffer_length = required_integer(buffer, "byteLength", buffer_what);
     if (buffer_length > bin_.size())
       fail(buffer_what + " has " + std::to_string(buffer_length) + " bytes but the BIN chunk " +
