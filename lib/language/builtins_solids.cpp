@@ -435,7 +435,8 @@ void register_solids(BuiltinTable& table) {
              .signature = "export(s, \"file.off\", tol=1e-3)",
              .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is; or a "
                     "surface's triangle mesh at chord tolerance `tol`, as surface_mesh); the format comes from "
-                    "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres). The file is replaced atomically.",
+                    "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres), .glb (binary glTF). The file is "
+                    "replaced atomically.",
              .params = {{"s"}, {"file"}, {"tol", false}},
              .run = [](const Arguments& args) -> Value {
                if (const auto* surface = args.value(0).object<SurfaceValue>()) {
@@ -463,7 +464,7 @@ void register_solids(BuiltinTable& table) {
              }});
   table.add({.name = "import",
              .signature = "import(\"file.off\")",
-             .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om, .3mf), checks that it is a closed, oriented, "
+             .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om, .3mf, .glb), checks that it is a closed, oriented, "
                     "non-self-intersecting 2-manifold, and builds its BSP solid.",
              .params = {{"file"}},
              .run = [](const Arguments& args) -> Value {

@@ -107,10 +107,10 @@ void check_writable(const PolygonMesh& mesh, MeshFormat format, bool binary) {
     const Eigen::Vector3d& p = mesh.vertices[v];
     if (!p.allFinite())
       throw InvalidInput("write_mesh: vertex " + std::to_string(v) + " has a non-finite coordinate");
-    if (format == MeshFormat::Stl && binary &&
+    if (((format == MeshFormat::Stl && binary) || format == MeshFormat::Glb) &&
         p.cwiseAbs().maxCoeff() > static_cast<double>(std::numeric_limits<float>::max()))
-      throw InvalidInput("write_mesh: vertex " + std::to_string(v) +
-                         " is beyond the float32 range of binary STL");
+      throw InvalidInput("write_mesh: vertex " + std::to_string(v) + " is beyond the float32 range of " +
+                         (format == MeshFormat::Glb ? "glTF" : "binary STL"));
   }
 }
 
@@ -125,7 +125,8 @@ MeshFormat mesh_format_from_path(const fs::path& path) {
   if (ext == ".ply") return MeshFormat::Ply;
   if (ext == ".om") return MeshFormat::Om;
   if (ext == ".3mf") return MeshFormat::ThreeMf;
-  throw IoError(path.string(), "unknown mesh format '" + ext + "' (use .off, .obj, .stl, .ply, .om or .3mf)");
+  if (ext == ".glb") return MeshFormat::Glb;
+  throw IoError(path.string(), "unknown mesh format '" + ext + "' (use .off, .obj, .stl, .ply, .om, .3mf or .glb)");
 }
 
 std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary) {
@@ -137,6 +138,8 @@ std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary)
     case MeshFormat::Ply: return mesh::detail::encode_ply(mesh, binary);
     case MeshFormat::Om: return mesh::detail::encode_om(mesh);
     case MeshFormat::ThreeMf: return mesh::detail::encode_3mf(mesh);
+    case MeshFormat::Glb:
+      return mesh::detail::encode_glb(mesh);
     case MeshFormat::Auto: break;
   }
   throw InvalidInput("encode_mesh: the format must be given (not Auto)");
@@ -150,6 +153,8 @@ PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::str
     case MeshFormat::Ply: return mesh::detail::decode_ply(data, name);
     case MeshFormat::Om: return mesh::detail::decode_om(data, name);
     case MeshFormat::ThreeMf: return mesh::detail::decode_3mf(data, name);
+    case MeshFormat::Glb:
+      return mesh::detail::decode_glb(data, name);
     case MeshFormat::Auto: break;
   }
   throw InvalidInput("decode_mesh: the format must be given (not Auto)");

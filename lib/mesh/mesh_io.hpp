@@ -1,9 +1,10 @@
 #pragma once
 /// \file mesh_io.hpp
 /// Reading and writing polygon meshes as OFF, OBJ, STL (ASCII and binary), PLY (ASCII and
-/// binary), OpenMesh's .om (written and read by OpenMesh itself, points as doubles) and 3MF
-/// (through lib3mf: triangles, float32 positions, millimetres). Text formats and binary PLY carry
-/// doubles exactly (shortest round-trip decimal text, IEEE binary64); binary STL and 3MF carry
+/// binary), OpenMesh's .om (written and read by OpenMesh itself, points as doubles), 3MF
+/// (through lib3mf: triangles, float32 positions, millimetres) and binary glTF 2.0 (.glb:
+/// triangles, float32 positions, one world unit per glTF unit). Text formats and binary PLY carry
+/// doubles exactly (shortest round-trip decimal text, IEEE binary64); binary STL, 3MF and GLB carry
 /// float32. Writes are atomic: the
 /// data goes to a temporary file in the target directory that is renamed over the target
 /// only when complete. Nothing is printed. Precision per format: docs/mesh_io.md.
@@ -16,9 +17,9 @@
 
 namespace sculpt {
 
-enum class MeshFormat { Auto, Off, Obj, Stl, Ply, Om, ThreeMf };
+enum class MeshFormat { Auto, Off, Obj, Stl, Ply, Om, ThreeMf, Glb };
 
-/// Format named by the extension (.off, .obj, .stl, .ply, .om, .3mf; any case).
+/// Format named by the extension (.off, .obj, .stl, .ply, .om, .3mf, .glb; any case).
 /// \throw IoError naming the path if the extension is none of these.
 MeshFormat mesh_format_from_path(const std::filesystem::path& path);
 
@@ -32,13 +33,14 @@ struct ReadOptions {
 };
 
 /// Writes `mesh` to `path` atomically (temporary file + rename; on failure the previous file
-/// is untouched and the temporary removed). STL gets triangulated faces (triangulate.hpp).
+/// is untouched and the temporary removed). STL, 3MF and GLB get triangulated faces (triangulate.hpp).
 /// \throw InvalidInput if a face index is out of range or a coordinate is not finite.
 /// \throw IoError naming the path and what failed.
 void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, WriteOptions options = {});
 
-/// Reads a mesh. STL's per-facet vertices are merged when their coordinates are exactly equal
-/// (0 and -0 count as equal); no other merging or repair happens.
+/// Reads a mesh. STL's per-facet vertices and GLB's positions (after the nodes' transforms) are
+/// merged when their coordinates are exactly equal (0 and -0 count as equal); no other merging or
+/// repair happens.
 /// \throw IoError naming the path and, for text formats, the line of the first problem.
 PolygonMesh read_mesh(const std::filesystem::path& path, ReadOptions options = {});
 

@@ -362,6 +362,21 @@ TEST(Builtins, ExportAndImport3mf) {
   EXPECT_NEAR(v[3], v[2], 2e-6 * v[4]);
 }
 
+TEST(Builtins, ExportAndImportGlb) {
+  // A box whose corners are grid points and float32 values comes back as the same solid; a CSG
+  // result comes back closed (import checks that), its volume within float32 and grid roundings.
+  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  std::filesystem::create_directories(dir);
+  const std::string a = (dir / "box.glb").string(), b = (dir / "carved.glb").string();
+  const auto v = numbers("s = box([-1.5, 0, 0.25], [2, 3.125, 4])\nexport(s, \"" + a + "\")\nt = import(\"" + a +
+                         "\")\nc = s - sphere(1, segments=12)\nexport(c, \"" + b + "\")\nd = import(\"" + b +
+                         "\")\nprint(volume(s - t) + volume(t - s), volume(t), volume(c), volume(d), area(c))");
+  ASSERT_EQ(v.size(), 5u);
+  EXPECT_EQ(v[0], 0.0);
+  EXPECT_EQ(v[1], 3.5 * 3.125 * 3.75);
+  EXPECT_NEAR(v[3], v[2], 2e-6 * v[4]);  // as for 3MF: float32 and the import's grid snapping
+}
+
 TEST(Builtins, ExportAndImportOpenMeshFormat) {
   // The same doubles through .om (OpenMesh) and .off (ours, shortest round-trip decimals): the
   // imported solids are the same (import snaps both to the grid the same way).

@@ -1,7 +1,7 @@
 // Issue 14, "Clean output": seeded random set operations over rotated and translated primitives,
 // written as scripts (models/fuzz/csg_cases.txt, made by tests/bench/peers/csg_fuzz.mjs with
 // manifold-3d's volume of each case). Every result's mesh, as every export format holds it after
-// rounding to its numbers (doubles; float32 for binary STL; lib3mf's for 3MF), must be clean for other tools by
+// rounding to its numbers (doubles; float32 for binary STL and GLB; lib3mf's for 3MF), must be clean for other tools by
 // CGAL's judgement: each edge once in each direction, no two vertices at the same point, no
 // zero-area face, no self-intersection. The mesh's volume must equal volume(), and agree with
 // manifold-3d's within what snapping moves (each general transform moves every vertex by at most
@@ -66,9 +66,10 @@ struct Format {
   bool binary;
   const char* name;
 };
-const Format kFormats[] = {{MeshFormat::Off, false, "off"}, {MeshFormat::Obj, false, "obj"},
-                           {MeshFormat::Ply, false, "ply"}, {MeshFormat::Ply, true, "binary ply"},
-                           {MeshFormat::Stl, true, "binary stl"}, {MeshFormat::ThreeMf, false, "3mf"}};
+const Format kFormats[] = {{MeshFormat::Off, false, "off"},       {MeshFormat::Obj, false, "obj"},
+                           {MeshFormat::Ply, false, "ply"},       {MeshFormat::Ply, true, "binary ply"},
+                           {MeshFormat::Stl, true, "binary stl"}, {MeshFormat::ThreeMf, false, "3mf"},
+                           {MeshFormat::Glb, false, "glb"}};
 
 int transform_levels(const std::string& expr) {
   int n = 0;

@@ -34,7 +34,8 @@ TEST(MeshIoFuzz, TruncatedAndCorruptedFiles) {
   const PolygonMesh mesh = test_shapes::merged(test_shapes::octahedron(), test_shapes::unit_cube());
   const Variant variants[] = {{MeshFormat::Off, false, "off"}, {MeshFormat::Obj, false, "obj"},
                               {MeshFormat::Ply, false, "ply"}, {MeshFormat::Ply, true, "ply binary"},
-                              {MeshFormat::Stl, false, "stl"}, {MeshFormat::Stl, true, "stl binary"}};
+                              {MeshFormat::Stl, false, "stl"}, {MeshFormat::Stl, true, "stl binary"},
+                              {MeshFormat::Glb, false, "glb"}};
   std::mt19937 rng(3);
   for (const Variant& v : variants) {
     const std::string good = encode_mesh(mesh, v.format, v.binary);

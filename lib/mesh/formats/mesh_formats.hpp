@@ -23,6 +23,10 @@ std::string encode_3mf(const PolygonMesh& mesh);
 /// times 10^6 in float32 arithmetic, truncated towards zero, with six decimals; its reader parses
 /// that text into a float32.
 double lib3mf_kept(double x);
+/// Binary glTF 2.0 (.glb): one mesh of one TRIANGLES primitive, float32 positions rounded by
+/// round_for_output (OutputPrecision::Float32, as binary STL), UNSIGNED_INT indices; one world unit
+/// is one glTF unit (no scale node). \throw InvalidInput beyond float32 or 4 GiB.
+std::string encode_glb(const PolygonMesh& mesh);
 
 PolygonMesh decode_off(std::string_view data, const std::string& name);
 PolygonMesh decode_obj(std::string_view data, const std::string& name);
@@ -31,5 +35,8 @@ PolygonMesh decode_ply(std::string_view data, const std::string& name);
 PolygonMesh decode_om(std::string_view data, const std::string& name);
 /// Every build item's mesh (its transform applied), scaled from the file's unit to millimetres.
 PolygonMesh decode_3mf(std::string_view data, const std::string& name);
+/// The triangles of every mesh the scene's nodes instantiate, each node's transform applied and
+/// coincident positions merged; points and lines are skipped.
+PolygonMesh decode_glb(std::string_view data, const std::string& name);
 
 }  // namespace sculpt::mesh::detail

@@ -1,15 +1,14 @@
 // STL: ASCII (full double precision text) and binary (float32 by definition, little endian).
 // Facets carry their own corners; reading merges corners with exactly equal coordinates.
-#include <array>
 #include <bit>
 #include <cstdint>
 #include <cstring>
-#include <unordered_map>
 
 #include <Eigen/Geometry>
 
 #include "mesh/formats/mesh_formats.hpp"
 #include "mesh/formats/text_scanner.hpp"
+#include "mesh/formats/vertex_merger.hpp"
 #include "mesh/output_rounding.hpp"
 #include "mesh/triangulate.hpp"
 
@@ -17,29 +16,6 @@ namespace sculpt::mesh::detail {
 namespace {
 
 static_assert(std::endian::native == std::endian::little, "binary STL/PLY code assumes little endian");
-
-/// Merges corners with exactly equal coordinates (0 and -0 alike) into one vertex.
-class VertexMerger {
- public:
-  int add(PolygonMesh& mesh, const Eigen::Vector3d& p) {
-    const Key key{bits(p.x()), bits(p.y()), bits(p.z())};
-    const auto [it, inserted] = index_.try_emplace(key, static_cast<int>(mesh.vertices.size()));
-    if (inserted) mesh.vertices.push_back(p);
-    return it->second;
-  }
-
- private:
-  using Key = std::array<uint64_t, 3>;
-  static uint64_t bits(double x) { return std::bit_cast<uint64_t>(x + 0.0); }  // -0 + 0 = +0
-  struct Hash {
-    size_t operator()(const Key& k) const {
-      uint64_t h = 0x9e3779b97f4a7c15ull;
-      for (uint64_t v : k) h = (h ^ v) * 0x100000001b3ull + (h >> 29);
-      return static_cast<size_t>(h);
-    }
-  };
-  std::unordered_map<Key, int, Hash> index_;
-};
 
 Eigen::Vector3d facet_normal(const PolygonMesh& m, const IndexTriangle& t) {
   // Edges scaled to unit size first, so that huge or tiny coordinates neither overflow nor underflow.
