@@ -23,14 +23,14 @@ namespace x3 = boost::spirit::x3;
 // Character classes in the ASCII encoding: names and numbers are ASCII, and its ischar refuses
 // a byte >= 128 before classifying it (the standard encoding would pass a negative char to
 // std::isalnum, undefined behaviour; Boost asserts on it).
-using x3::ascii::alnum;
-using x3::ascii::alpha;
+using ast::Op;
 using x3::char_;
 using x3::eoi;
 using x3::eol;
 using x3::lexeme;
 using x3::lit;
-using ast::Op;
+using x3::ascii::alnum;
+using x3::ascii::alpha;
 
 /// Unsigned decimals (`-` is an operator; `nan` and `inf` are names): digits with an optional
 /// fraction and exponent, or a fraction alone (`.5`). The text is converted by strtod, so a
@@ -38,7 +38,7 @@ using ast::Op;
 /// parser would just fail here, and the message would be a puzzling "expected expression").
 const auto digits = +x3::ascii::digit;
 const auto number_text = x3::raw[lexeme[((digits >> -(lit('.') >> *x3::ascii::digit)) | (lit('.') >> digits)) >>
-                                         -(x3::no_case[lit('e')] >> -(lit('+') | lit('-')) >> digits)]];
+                                        -(x3::no_case[lit('e')] >> -(lit('+') | lit('-')) >> digits)]];
 const auto to_double = [](auto& context) {
   const auto& range = x3::_attr(context);
   const std::string text(range.begin(), range.end());
