@@ -193,6 +193,30 @@ Value solid_value(Solid solid) {
   return Value(std::shared_ptr<const Object>(std::make_shared<SolidValue>(std::move(solid))));
 }
 
+void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path) {
+  (void)mesh_format_from_path(path);  // an unknown extension is refused before folders are made
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  write_mesh(mesh, path);
+}
+
+std::string export_solid(const SolidValue& s, const std::filesystem::path& path) {
+  write_mesh_file(s.boundary(), path);
+  // Written all the same (the exact solid is fine; other tools may stumble on it).
+  if (s.boundary_problem().empty()) return "";
+  return path.string() + ": the mesh is not known to be clean for other tools (" + s.boundary_problem() +
+         "; docs/kernel.md, \"Clean output\")";
+}
+
+std::string latest_solid_global(const Interpreter& interpreter) {
+  std::string latest;
+  std::uint64_t serial = 0;
+  for (const std::string& name : interpreter.global_names()) {
+    const std::uint64_t at = interpreter.assigned_at(name);
+    if (at > serial && interpreter.global(name)->object<SolidValue>()) serial = at, latest = name;
+  }
+  return latest;
+}
+
 void register_solids(BuiltinTable& table) {
   table.add({.name = "grid",
              .signature = "grid(step)",
@@ -435,7 +459,8 @@ void register_solids(BuiltinTable& table) {
              .signature = "export(s, \"file.off\", tol=1e-3)",
              .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is; or a "
                     "surface's triangle mesh at chord tolerance `tol`, as surface_mesh); the format comes from "
-                    "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres). The file is replaced atomically.",
+                    "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres). The file is replaced atomically; "
+                    "folders are created.",
              .params = {{"s"}, {"file"}, {"tol", false}},
              .run = [](const Arguments& args) -> Value {
                if (const auto* surface = args.value(0).object<SurfaceValue>()) {
@@ -444,21 +469,17 @@ void register_solids(BuiltinTable& table) {
                    tol = args.number(2);
                    if (!(tol > 0) || !std::isfinite(tol)) args.fail(2, "tol must be a finite number > 0");
                  }
-                 write_mesh(surface_triangle_mesh(args, surface->surface, tol), args.file_path(1));
+                 write_mesh_file(surface_triangle_mesh(args, surface->surface, tol), args.file_path(1));
                  return {};
                }
                if (args.has(2)) args.fail(2, "tol applies to surfaces only");
                if (const auto* m = args.value(0).object<MeshValue>()) {
-                 write_mesh(m->mesh, args.file_path(1));
+                 write_mesh_file(m->mesh, args.file_path(1));
                  return {};
                }
                const auto& s = args.object<SolidValue>(0, "a solid, a mesh or a surface");
-               const std::string path = args.file_path(1);
-               write_mesh(s.boundary(), path);
-               // Written all the same (the exact solid is fine; other tools may stumble on it).
-               if (!s.boundary_problem().empty())
-                 args.out() << "export: warning: " << path << ": the mesh is not known to be clean for other tools ("
-                            << s.boundary_problem() << "; docs/kernel.md, \"Clean output\")\n";
+               if (const std::string warning = export_solid(s, args.file_path(1)); !warning.empty())
+                 args.out() << "export: warning: " << warning << "\n";
                return {};
              }});
   table.add({.name = "import",

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 
@@ -86,6 +87,7 @@ struct Interpreter::Impl {
   InterpreterOptions options;
   RunSettings settings;
   std::map<std::string, Value> globals;
+  std::set<std::string> fixed;                       // globals bound by define_fixed: top-level assignments skip them
   std::map<std::string, std::uint64_t> assigned_at;  // global name -> serial of its last assignment
   std::uint64_t assignments = 0;                    // global assignments so far
   std::vector<Frame*> frames;  // innermost user-function call last; empty at top level
@@ -492,8 +494,13 @@ struct Interpreter::Impl {
   Outcome exec(const ast::Statement& statement) {
     struct Visitor {
       Impl& self;
-      Outcome operator()(const ast::Expression& e) const { return {self.eval(e)}; }
+      Outcome operator()(const ast::Expression& e) const {
+        Value value = self.eval(e);
+        self.report_top_level(value);
+        return {std::move(value)};
+      }
       Outcome operator()(const ast::Assignment& a) const {
+        if (self.frames.empty() && self.fixed.contains(a.target.name)) return {};  // sculpt -D wins
         self.assign(a.target, self.eval_assigned(a));
         return {};
       }
@@ -549,6 +556,10 @@ struct Interpreter::Impl {
     check_stack(where);
     count_step(where);
     return boost::apply_visitor(Visitor{*this}, statement);
+  }
+
+  void report_top_level(const Value& value) const {
+    if (frames.empty() && options.top_level_value) options.top_level_value(value);
   }
 
   Outcome include(const ast::Include& i) {
@@ -631,6 +642,11 @@ void Interpreter::define(const std::string& name, Value value) {
   ast::Identifier id;
   id.name = name;
   impl_->assign(id, std::move(value));
+}
+
+void Interpreter::define_fixed(const std::string& name, Value value) {
+  define(name, std::move(value));
+  impl_->fixed.insert(name);
 }
 
 const Value* Interpreter::global(const std::string& name) const {
