@@ -69,6 +69,41 @@ TEST(Builtins, CoreFunctions) {
             "t.bsp:1:1: error: assert: one is not above two");
 }
 
+// Inverse trigonometric functions in radians (like sin and cos), logarithms and powers of 2,
+// against values known in closed form.
+TEST(Builtins, MathFunctionsHaveTheirAnalyticValues) {
+  const auto v = numbers(
+      "print(acos(0), acos(-1), asin(1), asin(-0.5), atan(1), atan2(-1, 0), log(exp(2)), exp2(10), exp2(-1), "
+      "sign(-3), sign(0), sign(0.25), hypot(3, 4), hypot(1e200, 1e200))");
+  ASSERT_EQ(v.size(), 14u);
+  const double pi = std::numbers::pi;
+  EXPECT_DOUBLE_EQ(v[0], pi / 2);
+  EXPECT_DOUBLE_EQ(v[1], pi);
+  EXPECT_DOUBLE_EQ(v[2], pi / 2);
+  EXPECT_DOUBLE_EQ(v[3], -pi / 6);
+  EXPECT_DOUBLE_EQ(v[4], pi / 4);
+  EXPECT_DOUBLE_EQ(v[5], -pi / 2);
+  EXPECT_DOUBLE_EQ(v[6], 2);
+  EXPECT_EQ(v[7], 1024);
+  EXPECT_EQ(v[8], 0.5);
+  EXPECT_EQ(v[9], -1);
+  EXPECT_EQ(v[10], 0);
+  EXPECT_EQ(v[11], 1);
+  EXPECT_EQ(v[12], 5);
+  EXPECT_DOUBLE_EQ(v[13], 1e200 * std::sqrt(2.0));  // no overflow in between
+}
+
+TEST(Builtins, MathDomainErrorsAtTheArgument) {
+  EXPECT_EQ(first_error_line("x = acos(2)"), "t.bsp:1:10: error: acos: argument 2 is outside [-1, 1]");
+  EXPECT_EQ(first_error_line("x = 1 +  asin(-1.5)"), "t.bsp:1:15: error: asin: argument -1.5 is outside [-1, 1]");
+  EXPECT_EQ(first_error_line("x = log(0)"), "t.bsp:1:9: error: log: logarithm of 0, which is not > 0");
+  EXPECT_EQ(first_error_line("x = log(-2)"), "t.bsp:1:9: error: log: logarithm of -2, which is not > 0");
+  EXPECT_EQ(first_error_line("x = sqrt(-1)"), "t.bsp:1:10: error: sqrt: square root of a negative number");
+  EXPECT_EQ(first_error_line("x = exp2(2000)"), "t.bsp:1:10: error: exp2: result is not a finite number");
+  EXPECT_EQ(first_error_line("x = hypot(1.5e308, 1.5e308)"), "t.bsp:1:5: error: hypot: result is not a finite number");
+  EXPECT_EQ(first_error_line("x = atan(\"a\")"), "t.bsp:1:10: error: atan: argument 'x' must be a number, got string");
+}
+
 TEST(Builtins, BoxMeasuresAreAnalytic) {
   const auto v = numbers("b = box([0, 0, 0], [1, 2, 3])\nprint(volume(b), area(b))");
   ASSERT_EQ(v.size(), 2u);
