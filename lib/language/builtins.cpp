@@ -133,6 +133,7 @@ const BuiltinTable& builtins() {
     register_curves(t);
     t.set_area("solids");
     register_solids(t);
+    register_bounds(t);
     t.set_area("splines");
     register_splines(t);
     t.set_area("surfaces");

@@ -152,6 +152,7 @@ const BuiltinTable& builtins();
 void register_core(BuiltinTable& table);
 void register_curves(BuiltinTable& table);
 void register_solids(BuiltinTable& table);
+void register_bounds(BuiltinTable& table);  ///< bounds(x), in the solids area (builtins_bounds.cpp)
 void register_splines(BuiltinTable& table);
 void register_surfaces(BuiltinTable& table);
 void register_revolution(BuiltinTable& table);

@@ -2,6 +2,7 @@
 // and import (lib/bsp, lib/mesh; Ihm & Naylor 1990 sec. 6, Naylor et al. 1990).
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <sstream>
 
@@ -103,10 +104,47 @@ void add_stroke(BuiltinTable& table, const char* name, const char* signature, co
              }});
 }
 
-CircularOptions circular(const Arguments& args, std::size_t i) {
+/// The segments (argument i) and center=true (argument `center`, if any) of a round primitive.
+CircularOptions circular(const Arguments& args, std::size_t i, std::optional<std::size_t> center = std::nullopt) {
   CircularOptions options{.grid = args.grid()};
   if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
+  if (center && args.has(*center)) options.center = args.boolean(*center);
   return options;
+}
+
+/// The radius given as r (argument r) or as the diameter d= (argument d): exactly one of them.
+double radius_arg(const Arguments& args, std::size_t r, std::size_t d) {
+  if (args.has(r) && args.has(d)) args.fail(d, "give the radius r or the diameter d=, not both");
+  if (args.has(r)) return args.number(r);
+  if (args.has(d)) return args.number(d) / 2;
+  args.fail("missing argument 'r' (or the diameter d=)");
+}
+
+/// box(min, max), box(size) or box(size=v), with center=true centring it on the origin; a size is
+/// [sx, sy, sz] or one number for a cube. Arguments: min 0, max 1, center 2, size 3.
+Solid box_arg(const Arguments& args) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi;
+  const auto size = [&](std::size_t i) -> Eigen::Vector3d {
+    if (const double* s = args.value(i).get<double>()) return Eigen::Vector3d::Constant(*s);
+    return vector3(args, i);
+  };
+  if (args.has(3)) {
+    if (args.has(0) || args.has(1)) args.fail(3, "give size= or the corners min and max, not both");
+    hi = size(3);
+  } else if (args.has(0) && args.has(1)) {
+    lo = vector3(args, 0);
+    hi = vector3(args, 1);
+  } else if (args.has(0)) {
+    hi = size(0);
+  } else {
+    args.fail("give the corners min and max, or a size");
+  }
+  if (args.has(2) && args.boolean(2)) {
+    const Eigen::Vector3d middle = (lo + hi) / 2;
+    lo -= middle;
+    hi -= middle;
+  }
+  return box(lo, hi, args.grid());
 }
 
 // grid(step): the names of global solids made at another grid than `grid` (they cannot be
@@ -247,31 +285,37 @@ void register_solids(BuiltinTable& table) {
                return grid.step();
              }});
   table.add({.name = "box",
-             .signature = "box(min, max)",
-             .doc = "The axis-aligned box with corners min and max ([x, y, z] each, min < max).",
-             .params = {{"min"}, {"max"}},
-             .run = [](const Arguments& args) { return solid_value(box(vector3(args, 0), vector3(args, 1), args.grid())); }});
-  table.add({.name = "sphere",
-             .signature = "sphere(r, segments=32)",
-             .doc = "Sphere of radius r at the origin: a polyhedron with `segments` edges around the "
-                    "equator and (segments + 1) / 2 rings, its vertices on the sphere.",
-             .params = {{"r"}, {"segments", false}},
-             .run = [](const Arguments& args) { return solid_value(sphere(args.number(0), circular(args, 1))); }});
+             .signature = "box(min, max, center=false, size=v)",
+             .doc = "The axis-aligned box with corners min and max ([x, y, z] each, min < max); or, given one "
+                    "vector (or size=), the box of that size ([sx, sy, sz], or one number for a cube) with a "
+                    "corner at the origin. center=true centres the box on the origin.",
+             .params = {{"min", false}, {"max", false}, {"center", false}, {"size", false}},
+             .run = [](const Arguments& args) { return solid_value(box_arg(args)); }});
+  table.add(
+      {.name = "sphere",
+       .signature = "sphere(r, segments=32, d=diameter)",
+       .doc = "Sphere of radius r (or diameter d) at the origin: a polyhedron with `segments` edges around "
+              "the equator and (segments + 1) / 2 rings, its vertices on the sphere.",
+       .params = {{"r", false}, {"segments", false}, {"d", false}},
+       .run = [](const Arguments& args) { return solid_value(sphere(radius_arg(args, 0, 2), circular(args, 1))); }});
   table.add({.name = "cylinder",
-             .signature = "cylinder(r, h, segments=32)",
-             .doc = "Cylinder of radius r around the z axis from z = 0 to z = h (a prism over a "
-                    "regular polygon with `segments` vertices on the circle).",
-             .params = {{"r"}, {"h"}, {"segments", false}},
+             .signature = "cylinder(r, h, segments=32, center=false, d=diameter)",
+             .doc = "Cylinder of radius r (or diameter d) around the z axis from z = 0 to z = h, or from -h/2 "
+                    "to h/2 with center=true (a prism over a regular polygon with `segments` vertices on the "
+                    "circle).",
+             .params = {{"r", false}, {"h"}, {"segments", false}, {"center", false}, {"d", false}},
              .run = [](const Arguments& args) {
-               return solid_value(cylinder(args.number(0), args.number(1), circular(args, 2)));
+               return solid_value(cylinder(radius_arg(args, 0, 4), args.number(1), circular(args, 2, 3)));
              }});
   table.add({.name = "cone",
-             .signature = "cone(r, h, segments=32)",
-             .doc = "Cone around the z axis: base of radius r at z = 0, apex at z = h.",
-             .params = {{"r"}, {"h"}, {"segments", false}},
+             .signature = "cone(r, h, segments=32, center=false, d=diameter)",
+             .doc = "Cone around the z axis: base of radius r (or diameter d) at z = 0, apex at z = h; with "
+                    "center=true the base is at z = -h/2 and the apex at h/2.",
+             .params = {{"r", false}, {"h"}, {"segments", false}, {"center", false}, {"d", false}},
              .run = [](const Arguments& args) {
-               const CircularOptions c = circular(args, 2);
-               return solid_value(cone(args.number(0), args.number(1), {.segments = c.segments, .center = c.center, .grid = c.grid}));
+               const CircularOptions c = circular(args, 2, 3);
+               return solid_value(cone(radius_arg(args, 0, 4), args.number(1),
+                                       {.segments = c.segments, .center = c.center, .grid = c.grid}));
              }});
   table.add({.name = "union_all",
              .signature = "union_all(solids)",

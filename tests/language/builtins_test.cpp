@@ -239,6 +239,76 @@ TEST(Builtins, ExportWritesAClosedMeshThatImportReads) {
             "t.bsp:1:1: error: export: ");
 }
 
+TEST(Builtins, ExportCreatesMissingFolders) {
+  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test_folders";
+  std::filesystem::remove_all(dir);
+  const std::string path = (dir / "a" / "b" / "cube.stl").string();
+  EXPECT_EQ(run_script("export(box([0, 0, 0], [1, 2, 3]), \"" + path + "\")").error, "");
+  EXPECT_EQ(run_script("print(volume(import(\"" + path + "\")))").out, "6\n");
+  // An unknown format is refused before any folder is made.
+  const std::string bad = (dir / "c" / "cube.xyz").string();
+  EXPECT_NE(run_script("export(box([0, 0, 0], [1, 1, 1]), \"" + bad + "\")").error.find("unknown mesh format"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+  std::filesystem::remove_all(dir);
+}
+
+/// The numbers of a printed box (brackets and commas dropped), compared within `tol` with `want`.
+void expect_box(const std::string& script, const std::vector<double>& want, double tol) {
+  std::string text = run_script(script).out;
+  for (char& c : text)
+    if (c == '[' || c == ']' || c == ',') c = ' ';
+  std::istringstream in(text);
+  std::vector<double> got;
+  for (double v; in >> v;) got.push_back(v);
+  ASSERT_EQ(got.size(), want.size()) << script << ": " << text;
+  for (std::size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(got[i], want[i], tol) << script << " number " << i;
+}
+
+// Boxes of every kind of value with points, against corners known by construction.
+TEST(Builtins, BoundsOfSolidsCurvesSplinesAndPoints) {
+  EXPECT_EQ(run_script("print(bounds(translate(box([0, 0, 0], [1, 2, 3]), [1, 1, 1])))").out,
+            "[[1, 1, 1], [2, 3, 4]]\n");
+  // A square prism (4 segments, first vertex on +x) of circumradius 1: its vertices are (+-1, 0),
+  // (0, +-1), up to the exact kernel's rounding of the side planes (far below the grid step).
+  expect_box("print(bounds(cylinder(1, 2, 4)))", {-1, -1, 0, 1, 1, 2}, 1e-6);
+  EXPECT_EQ(run_script("print(bounds(box([0, 0, 0], [1, 1, 1]) | box([2, -1, 0], [3, 0, 5])))").out,
+            "[[0, -1, 0], [3, 1, 5]]\n");
+  EXPECT_EQ(run_script("print(bounds(curve([[0, 0], [2, 1], [-1, 3]])), bounds([[0, 0, 1], [2, -1, 0]]))").out,
+            "[[-1, 0], [2, 3]] [[0, -1, 0], [2, 0, 1]]\n");
+  // One segment: the linearization's vertices are the end points.
+  EXPECT_EQ(run_script("print(bounds(linearize(curve([[0, 0], [2, 1], [-1, 3]]), 1)))").out, "[[-1, 0], [0, 3]]\n");
+  // A spline's box is its control points' (the curve itself reaches y = 1 only).
+  EXPECT_EQ(run_script("print(bounds(bezier([[0, 0], [1, 2], [2, 0]])))").out, "[[0, 0], [2, 2]]\n");
+  EXPECT_EQ(first_error_line("b = box([0, 0, 0], [1, 1, 1])\nx = bounds(b - b)"),
+            "t.bsp:2:12: error: bounds: the solid is empty: it has no bounding box");
+  EXPECT_EQ(first_error_line("x = bounds([])"), "t.bsp:1:12: error: bounds: no points: no bounding box");
+  EXPECT_EQ(first_error_line("x = bounds(3)"),
+            "t.bsp:1:12: error: bounds: argument 'x' must be a solid, a mesh, a curve, a linearization, a spline, a "
+            "surface or a list of points, got number");
+}
+
+// center=true and d= as in OpenSCAD, checked by the bounding boxes they must have.
+TEST(Builtins, PrimitivesTakeCenterAndDiameter) {
+  EXPECT_EQ(run_script("print(bounds(box([2, 4, 6], center=true)), bounds(box(size=3)), bounds(box([1, 2, 3])))").out,
+            "[[-1, -2, -3], [1, 2, 3]] [[0, 0, 0], [3, 3, 3]] [[0, 0, 0], [1, 2, 3]]\n");
+  EXPECT_EQ(run_script("print(bounds(box([1, 1, 1], [3, 5, 7], center=true)))").out, "[[-1, -2, -3], [1, 2, 3]]\n");
+  // Round primitives: their polygon's vertices on the circle, within the kernel's rounding.
+  expect_box("print(bounds(cylinder(d=2, h=4, segments=4, center=true)))", {-1, -1, -2, 1, 1, 2}, 1e-6);
+  expect_box("print(bounds(cone(1, 2, 4, center=true)))", {-1, -1, -1, 1, 1, 1}, 1e-6);
+  expect_box("print(bounds(cone(d=4, h=2, segments=4)))", {-2, -2, 0, 2, 2, 2}, 1e-6);
+  // A sphere of diameter 2 is the sphere of radius 1: the same solid, so the same volume.
+  EXPECT_EQ(run_script("print(volume(sphere(d=2, segments=8)) == volume(sphere(1, 8)))").out, "true\n");
+  EXPECT_EQ(first_error_line("x = cylinder(1, 2, d=2)"),
+            "t.bsp:1:20: error: cylinder: give the radius r or the diameter d=, not both");
+  EXPECT_EQ(first_error_line("x = cone(h=2)"), "t.bsp:1:5: error: cone: missing argument 'r' (or the diameter d=)");
+  EXPECT_EQ(first_error_line("x = box([1, 1, 1], size=2)"),
+            "t.bsp:1:20: error: box: give size= or the corners min and max, not both");
+  EXPECT_EQ(first_error_line("x = box()"), "t.bsp:1:5: error: box: give the corners min and max, or a size");
+  EXPECT_EQ(first_error_line("x = box([1, 1, 1], center=1)"),
+            "t.bsp:1:20: error: box: argument 'center' must be true or false, got number");
+}
+
 // A mesh the output rounding cannot vouch for is written all the same, with a warning that says
 // why; a clean one without a word. (A cap of more than 2048 corners is beyond what the
 // self-intersection search triangulates: docs/mesh_io.md.)
