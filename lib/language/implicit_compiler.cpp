@@ -438,6 +438,7 @@ class Compiler {
   }
 
   Compiled subscript(const Compiled& value, const ast::Subscript& s) {
+    if (s.slice) not_compiled(s.where, "a slice", "index the items one by one");
     const Compiled index = compile(s.index);
     if (value.kind != Compiled::Kind::Vector) {
       fail(s.where, "cannot index " + describe(value) + ": only lists have items");

@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <cstdint>
@@ -329,7 +330,33 @@ struct Interpreter::Impl {
     return value;
   }
 
+  /// A slice bound: a whole number, counted from the end when negative, clamped to [0, n] (as
+  /// in Python); `otherwise` when left out.
+  std::size_t slice_bound(const boost::optional<ast::Expression>& bound, std::size_t n, std::size_t otherwise) {
+    if (!bound) return otherwise;
+    const Value v = eval(*bound);
+    const double* d = v.get<double>();
+    if (!d || *d != std::floor(*d)) {
+      throw ScriptError(at(bound->where),
+                        "a slice bound must be a whole number, got " + (d ? format_number(*d) : type_name(v)));
+    }
+    const double size = static_cast<double>(n);
+    return static_cast<std::size_t>(std::clamp(*d < 0 ? *d + size : *d, 0.0, size));
+  }
+
+  /// xs[a:b]: the items a, ..., b - 1 as a new list (empty when b <= a).
+  Value slice(const Value& value, const ast::Subscript& s) {
+    const List* list = value.list();
+    if (!list) throw ScriptError(at(s.where), "cannot slice " + type_name(value) + ": only lists have items");
+    const std::size_t start = slice_bound(s.start, list->size(), 0);
+    const std::size_t stop = slice_bound(s.stop, list->size(), list->size());
+    if (stop <= start) return List{};
+    charge(stop - start, s.where);
+    return List(list->begin() + static_cast<std::ptrdiff_t>(start), list->begin() + static_cast<std::ptrdiff_t>(stop));
+  }
+
   Value subscript(const Value& value, const ast::Subscript& s) {
+    if (s.slice) return slice(value, s);
     const Value index = eval(s.index);
     const List* list = value.list();
     if (!list) throw ScriptError(at(s.where), "cannot index " + type_name(value) + ": only lists have items");
@@ -409,6 +436,21 @@ struct Interpreter::Impl {
     const std::string what = callee_name ? "'" + callee_name->name + "' is a " + type_name(callee)
                                          : "a " + type_name(callee) + " value";
     throw ScriptError(at(where), what + ", not a function");
+  }
+
+  /// Calls function value `callee` with positional `values` at `where` (Arguments::call: map, filter).
+  Value apply(const Value& callee, std::vector<Value> values, std::size_t where) {
+    check_stack(where);
+    count_step(where);
+    std::vector<ast::Argument> syntax(values.size());
+    Evaluated args{std::move(values), {}};
+    for (ast::Argument& a : syntax) {
+      a.where = where;
+      args.syntax.push_back(&a);
+    }
+    if (const auto* builtin = callee.get<const Builtin*>()) return call_builtin(**builtin, args, where);
+    if (const auto* f = callee.get<std::shared_ptr<const UserFunction>>()) return call_user(**f, args, where);
+    throw ScriptError(at(where), "a " + type_name(callee) + " value, not a function");
   }
 
   Value call_builtin(const Builtin& b, const Evaluated& args, std::size_t where, const std::string* handover = nullptr) {
@@ -599,6 +641,9 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
   impl_->settings.globals = &impl_->globals;
   impl_->grid = options.grid;
   impl_->settings.grid = &impl_->grid;
+  impl_->settings.call = [impl = impl_.get()](const Value& f, std::vector<Value> values, const SourceRef& at) {
+    return impl->apply(f, std::move(values), at.offset);
+  };
   // Keep the budget well inside the real stack limit.
   rlimit limit{};
   if (getrlimit(RLIMIT_STACK, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
