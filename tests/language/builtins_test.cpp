@@ -149,6 +149,10 @@ TEST(Builtins, TransformsScaleVolumes) {
 
 TEST(Builtins, SolidOperatorsNeedSolids) {
   EXPECT_EQ(first_error_line("x = box([0, 0, 0], [1, 1, 1]) | 3"), "t.bsp:1:31: error: cannot apply '|' to solid and number");
+  EXPECT_EQ(first_error_line("b = box([0, 0, 0], [1, 1, 1])\nx = b + b"),
+            "t.bsp:2:7: error: cannot apply '+' to solid and solid; the union of solids is 'a | b'");
+  EXPECT_EQ(first_error_line("b = box([0, 0, 0], [1, 1, 1])\nx = b * box([0, 0, 0], [2, 2, 2])"),
+            "t.bsp:2:7: error: cannot apply '*' to solid and solid; the intersection of solids is 'a & b'");
   EXPECT_EQ(first_error_line("x = 1 | 2"), "t.bsp:1:7: error: cannot apply '|' to number and number");
 }
 
