@@ -1,9 +1,10 @@
 // The sculpt executable: runs .bsp scripts or an interactive session.
-//   sculpt FILE.bsp ...   sculpt -   sculpt -e 'code'   sculpt -D name=value   --help --version
+//   sculpt FILE.bsp ...   sculpt -   sculpt -e 'code'   sculpt -D name=value   -o FILE   --help --version
 // Exit code 0 on success, 1 on a script error, 2 on a usage error.
 #include <unistd.h>
 
 #include <charconv>
+#include <cstdint>
 #include <cstring>
 #include <iostream>
 #include <iterator>
@@ -16,6 +17,8 @@
 #include "base/parallel.hpp"
 #include "interactive.hpp"
 #include "language/interpreter.hpp"
+#include "language/solid_values.hpp"
+#include "mesh/mesh_io.hpp"
 
 namespace {
 
@@ -31,7 +34,12 @@ constexpr const char* kUsage =
     "  -e CODE         run CODE (may be repeated; runs in order with the files)\n"
     "  -D NAME=VALUE   bind NAME before any script runs. VALUE is a number, true, false, a\n"
     "                  sculpt list or string literal ([1, 2, 3], \"text\"); anything else is\n"
-    "                  bound as a string\n"
+    "                  bound as a string. It overrides the scripts' own NAME = ... outside\n"
+    "                  functions (as in OpenSCAD); in a session your entries may rebind it\n"
+    "  -o FILE         after the scripts, export their last solid (the last solid expression\n"
+    "                  statement or solid bound to a global outside functions, whichever came\n"
+    "                  later) to FILE, format by extension (.off .obj .stl .ply .om .3mf .glb);\n"
+    "                  folders are created\n"
     "  --grid STEP     make solids at grid step STEP, a power of two written 2^-13 or 0.0001220703125:\n"
     "                  coordinates up to 2^25 steps (default 2^-15: [-1024, 1024]); see grid()\n"
     "  --threads N     use at most N threads (default: every core, or SCULPT_THREADS); results\n"
@@ -41,7 +49,7 @@ constexpr const char* kUsage =
     "Exit status: 0 on success, 1 on a script error, 2 on a usage error.\n";
 
 int usage_error(const std::string& message) {
-  std::cerr << "sculpt: " << message << "\n" << kUsage;
+  std::cerr << "sculpt: " << message << "; try 'sculpt --help'\n";
   return 2;
 }
 
@@ -97,6 +105,41 @@ Value definition_value(Interpreter& interpreter, const std::string& text) {
   return text;
 }
 
+/// The last solid the scripts made: the value of the latest solid expression statement run
+/// outside functions, or the global most recently bound to a solid, whichever came later.
+struct LastSolid {
+  const Interpreter* interpreter = nullptr;
+  std::optional<Value> value;  // the latest solid expression statement's value
+  std::uint64_t serial = 0;    // the assignment serial when it was made
+
+  void see(const Value& v) {
+    if (v.object<SolidValue>()) value = v, serial = interpreter->assignments();
+  }
+  [[nodiscard]] std::optional<Value> get() const {
+    const std::string name = latest_solid_global(*interpreter);
+    if (value && (name.empty() || serial >= interpreter->assigned_at(name))) return value;
+    if (!name.empty()) return *interpreter->global(name);
+    return std::nullopt;
+  }
+};
+
+/// sculpt -o FILE: exports the last solid. Returns the exit code.
+int export_result(const LastSolid& last, const std::string& path) {
+  const std::optional<Value> solid = last.get();
+  if (!solid) {
+    std::cerr << "sculpt: -o: the scripts made no solid to export\n";
+    return 1;
+  }
+  try {
+    if (const std::string warning = export_solid(*solid->object<SolidValue>(), path); !warning.empty())
+      std::cerr << "sculpt: -o: warning: " << warning << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "sculpt: -o: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -110,6 +153,7 @@ int main(int argc, char** argv) {
   } catch (const sculpt::InvalidInput& e) {
     return usage_error(e.what());
   }
+  std::string output;  // -o FILE
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
@@ -144,6 +188,14 @@ int main(int argc, char** argv) {
       if (error != std::errc() || end != text.data() + text.size() || n < 1)
         return usage_error("--threads needs a positive integer, got '" + text + "'");
       threads = n;
+    } else if (arg == "-o") {
+      if (i + 1 >= argc) return usage_error("-o needs a file name");
+      output = argv[++i];
+      try {
+        (void)sculpt::mesh_format_from_path(output);
+      } catch (const sculpt::IoError& e) {
+        return usage_error(std::string("-o: ") + e.what());
+      }
     } else if (arg == "-") {
       jobs.push_back({Job::Stdin, ""});
     } else if (arg.size() > 1 && arg[0] == '-') {
@@ -156,16 +208,27 @@ int main(int argc, char** argv) {
   std::optional<sculpt::ThreadLimit> thread_limit;
   if (threads) thread_limit.emplace(*threads);
 
-  auto define_all = [&](Interpreter& interpreter) {
+  // In a session the -D bindings are plain globals; scripts run in batch keep them (define_fixed).
+  auto define_all = [&](Interpreter& interpreter, bool fixed) {
     interpreter.set_grid(grid);
-    for (const auto& [name, value] : definitions) interpreter.define(name, definition_value(interpreter, value));
+    for (const auto& [name, text] : definitions) {
+      Value value = definition_value(interpreter, text);
+      fixed ? interpreter.define_fixed(name, std::move(value)) : interpreter.define(name, std::move(value));
+    }
   };
-  if (jobs.empty() && isatty(STDIN_FILENO)) return sculpt::repl::run_interactive(define_all);
+  if (jobs.empty() && isatty(STDIN_FILENO)) {
+    if (!output.empty()) return usage_error("-o needs a script (FILE.bsp, - or -e CODE), not a session");
+    return sculpt::repl::run_interactive([&](Interpreter& interpreter) { define_all(interpreter, false); });
+  }
   if (jobs.empty()) jobs.push_back({Job::Stdin, ""});
 
-  Interpreter interpreter;
+  LastSolid last;
+  InterpreterOptions options;
+  if (!output.empty()) options.top_level_value = [&last](const Value& value) { last.see(value); };
+  Interpreter interpreter(options);
+  last.interpreter = &interpreter;
   try {
-    define_all(interpreter);
+    define_all(interpreter, true);
     for (const Job& job : jobs) {
       switch (job.kind) {
         case Job::File:
@@ -188,5 +251,5 @@ int main(int argc, char** argv) {
     std::cerr << "sculpt: " << e.what() << "\n";
     return 1;
   }
-  return 0;
+  return output.empty() ? 0 : export_result(last, output);
 }

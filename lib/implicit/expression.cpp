@@ -64,6 +64,24 @@ double Expression::value(const Vec& p) const {
       case Op::Cos: r = std::cos(s[node.a]); break;
       case Op::Exp: r = std::exp(s[node.a]); break;
       case Op::Abs: r = std::abs(s[node.a]); break;
+      case Op::Log:
+        r = std::log(s[node.a]);
+        break;
+      case Op::Asin:
+        r = std::asin(s[node.a]);
+        break;
+      case Op::Acos:
+        r = std::acos(s[node.a]);
+        break;
+      case Op::Atan:
+        r = std::atan(s[node.a]);
+        break;
+      case Op::Sign:
+        r = s[node.a] > 0.0 ? 1.0 : s[node.a] < 0.0 ? -1.0 : 0.0;
+        break;
+      case Op::Atan2:
+        r = std::atan2(s[node.a], s[node.b]);
+        break;
       case Op::Pow: r = node.exponent == 2 ? s[node.a] * s[node.a] : detail::power_by_squaring(s[node.a], node.exponent); break;
       case Op::Add: r = s[node.a] + s[node.b]; break;
       case Op::Sub: r = s[node.a] - s[node.b]; break;
@@ -101,6 +119,42 @@ ValueGradient Expression::value_gradient(const Vec& p) const {
         const Dual& a = s[node.a];
         r.v = std::abs(a.v);
         r.d = (a.v > 0.0 ? 1.0 : a.v < 0.0 ? -1.0 : 0.0) * a.d;
+        break;
+      }
+      case Op::Log: {
+        const Dual& a = s[node.a];
+        r.v = std::log(a.v);
+        r.d = a.d / a.v;
+        break;
+      }
+      case Op::Asin: {
+        const Dual& a = s[node.a];
+        r.v = std::asin(a.v);
+        r.d = a.d / std::sqrt(1.0 - a.v * a.v);
+        break;
+      }
+      case Op::Acos: {
+        const Dual& a = s[node.a];
+        r.v = std::acos(a.v);
+        r.d = -a.d / std::sqrt(1.0 - a.v * a.v);
+        break;
+      }
+      case Op::Atan: {
+        const Dual& a = s[node.a];
+        r.v = std::atan(a.v);
+        r.d = a.d / (1.0 + a.v * a.v);
+        break;
+      }
+      case Op::Sign: {
+        const Dual& a = s[node.a];
+        r.v = a.v > 0.0 ? 1.0 : a.v < 0.0 ? -1.0 : 0.0;
+        r.d.setZero();
+        break;
+      }
+      case Op::Atan2: {  // d atan2(y, x) = (x dy - y dx) / (x^2 + y^2)
+        const Dual &y = s[node.a], &x = s[node.b];
+        r.v = std::atan2(y.v, x.v);
+        r.d = (x.v * y.d - y.v * x.d) / (x.v * x.v + y.v * y.v);
         break;
       }
       case Op::Pow: {
@@ -154,6 +208,24 @@ IntervalBounds Expression::bounds(const Box& box) const {
       case Op::Cos: r = d::cos(a); break;
       case Op::Exp: r = d::exp(a); break;
       case Op::Abs: r = d::abs(a); break;
+      case Op::Log:
+        r = d::log(a, out.domain_error);
+        break;
+      case Op::Asin:
+        r = d::asin(a, out.domain_error);
+        break;
+      case Op::Acos:
+        r = d::acos(a, out.domain_error);
+        break;
+      case Op::Atan:
+        r = d::atan(a);
+        break;
+      case Op::Sign:
+        r = d::sign(a);
+        break;
+      case Op::Atan2:
+        r = d::atan2(a, b);
+        break;
       case Op::Pow: r = d::pow(a, n.exponent); break;
       case Op::Add: r = d::add(a, b); break;
       case Op::Sub: r = d::sub(a, b); break;
@@ -192,6 +264,24 @@ std::string Expression::str() const {
       case Op::Cos: t[i] = unary("cos", n); break;
       case Op::Exp: t[i] = unary("exp", n); break;
       case Op::Abs: t[i] = unary("abs", n); break;
+      case Op::Log:
+        t[i] = unary("log", n);
+        break;
+      case Op::Asin:
+        t[i] = unary("asin", n);
+        break;
+      case Op::Acos:
+        t[i] = unary("acos", n);
+        break;
+      case Op::Atan:
+        t[i] = unary("atan", n);
+        break;
+      case Op::Sign:
+        t[i] = unary("sign", n);
+        break;
+      case Op::Atan2:
+        t[i] = "atan2(" + t[n.a] + ", " + t[n.b] + ")";
+        break;
       case Op::Pow: t[i] = t[n.a] + "^" + std::to_string(n.exponent); break;
       case Op::Add: t[i] = binary("+", n); break;
       case Op::Sub: t[i] = binary("-", n); break;
@@ -250,6 +340,12 @@ SCULPT_UNARY(sin, Op::Sin)
 SCULPT_UNARY(cos, Op::Cos)
 SCULPT_UNARY(exp, Op::Exp)
 SCULPT_UNARY(abs, Op::Abs)
+SCULPT_UNARY(log, Op::Log)
+SCULPT_UNARY(asin, Op::Asin)
+SCULPT_UNARY(acos, Op::Acos)
+SCULPT_UNARY(atan, Op::Atan)
+SCULPT_UNARY(sign, Op::Sign)
+SCULPT_BINARY(atan2, Op::Atan2)
 SCULPT_BINARY(add, Op::Add)
 SCULPT_BINARY(sub, Op::Sub)
 SCULPT_BINARY(mul, Op::Mul)

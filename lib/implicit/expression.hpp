@@ -57,9 +57,29 @@ class NonFiniteValue : public InvalidInput {
 
 /// The operations of an expression node.
 enum class Op : std::uint8_t {
-  Constant, X, Y, Z,           // leaves
-  Neg, Sqrt, Sin, Cos, Exp, Abs, Pow,  // unary (Pow: integer exponent)
-  Add, Sub, Mul, Div, Min, Max,        // binary
+  Constant,
+  X,
+  Y,
+  Z,  // leaves
+  Neg,
+  Sqrt,
+  Sin,
+  Cos,
+  Exp,
+  Abs,
+  Pow,  // unary (Pow: integer exponent)
+  Log,
+  Asin,
+  Acos,
+  Atan,
+  Sign,  // unary
+  Add,
+  Sub,
+  Mul,
+  Div,
+  Min,
+  Max,    // binary
+  Atan2,  // binary: atan2(a, b), the angle of the point (b, a)
 };
 
 /// One node: operands a, b are indices of earlier nodes (-1 when unused).
@@ -84,8 +104,8 @@ class Expression {
   /// Value and exact gradient at p (forward-mode AD). \throw NonFiniteValue if either is not finite.
   [[nodiscard]] ValueGradient value_gradient(const Eigen::Vector3d& p) const;
   /// Bounds over a box, outward rounded: every value of the function on the box lies in the range.
-  /// Division by an interval containing 0 gives the whole line; sqrt of a partly negative interval
-  /// sets domain_error. \throw InvalidInput for an invalid box.
+  /// Division by an interval containing 0 gives the whole line; sqrt, log, asin or acos of an
+  /// interval partly outside their domain sets domain_error. \throw InvalidInput for an invalid box.
   [[nodiscard]] IntervalBounds bounds(const Box& box) const;
 
   [[nodiscard]] const std::vector<ExpressionNode>& nodes() const { return nodes_; }
@@ -119,6 +139,12 @@ class ExpressionBuilder {
   Term cos(Term a);
   Term exp(Term a);
   Term abs(Term a);
+  Term log(Term a);  ///< natural logarithm
+  Term asin(Term a);
+  Term acos(Term a);
+  Term atan(Term a);
+  Term sign(Term a);           ///< -1, 0 or 1 (gradient 0)
+  Term atan2(Term a, Term b);  ///< the angle of the point (b, a) in [-pi, pi]
   Term min(Term a, Term b);
   Term max(Term a, Term b);
   /// The expression whose value is `root`; nodes root does not use are dropped.

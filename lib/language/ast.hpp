@@ -88,9 +88,16 @@ struct Argument : Node {
 struct CallArguments : Node {
   std::vector<Argument> arguments;
 };
-/// `[index]` after an operand.
+/// `[index]` after an operand, or a slice `[start:stop]` (either bound may be left out).
 struct Subscript : Node {
-  Expression index;
+  Expression index;  ///< [index]; unused by a slice
+  bool slice = false;
+  boost::optional<Expression> start;
+  boost::optional<Expression> stop;
+};
+/// The `:stop` of a slice (grammar only).
+struct SliceTail : Node {
+  boost::optional<Expression> stop;
 };
 using PostfixOp = boost::variant<CallArguments, Subscript>;
 

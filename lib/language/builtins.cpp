@@ -77,6 +77,17 @@ std::vector<double> Arguments::vector(std::size_t i, std::size_t n) const {
   return out;
 }
 
+const Value& Arguments::function(std::size_t i) const {
+  const Value& v = value(i);
+  if (!v.is<std::shared_ptr<const UserFunction>>() && !v.is<const Builtin*>()) fail_type(i, "a function");
+  return v;
+}
+
+Value Arguments::call(const Value& f, std::vector<Value> values) const {
+  if (!settings_.call) throw std::logic_error("Arguments::call: the run cannot call functions");
+  return settings_.call(f, std::move(values), call_);
+}
+
 void Arguments::charge(std::uint64_t n) const {
   if (settings_.steps == nullptr || settings_.max_steps == 0) return;
   *settings_.steps += n;
@@ -128,11 +139,13 @@ const BuiltinTable& builtins() {
     BuiltinTable t;
     t.set_area("core");
     register_core(t);
+    register_lists(t);
 #ifndef SCULPT_LANGUAGE_CORE_ONLY  // the fuzz target builds the language without the geometry areas
     t.set_area("curves");
     register_curves(t);
     t.set_area("solids");
     register_solids(t);
+    register_bounds(t);
     t.set_area("splines");
     register_splines(t);
     t.set_area("surfaces");

@@ -43,6 +43,9 @@ struct RunSettings {
   /// The grid new solids are made at (grid(), sculpt --grid; docs/kernel.md, "World range"),
   /// kept across runs by the interpreter; null: the default grid, not settable.
   kernel::Grid* grid = nullptr;
+  /// Calls a function value (a user function or a built-in) with positional arguments, as a call
+  /// at `at` would (map, filter); set by the interpreter.
+  std::function<Value(const Value& f, std::vector<Value> values, const SourceRef& at)> call{};
 };
 
 /// The arguments of one call, bound to the built-in's parameters, with their script positions
@@ -65,6 +68,10 @@ class Arguments {
   [[nodiscard]] const List& list(std::size_t i) const;
   /// A list of exactly n numbers.
   [[nodiscard]] std::vector<double> vector(std::size_t i, std::size_t n) const;
+  /// Parameter i, which must be a function (user-defined or built-in).
+  [[nodiscard]] const Value& function(std::size_t i) const;
+  /// Calls function value `f` with positional `values`; an error inside it gets a note at this call.
+  Value call(const Value& f, std::vector<Value> values) const;
   /// The library object of parameter i, which must be of type T (`what` names it in errors).
   template <typename T>
   [[nodiscard]] const T& object(std::size_t i, const char* what) const {
@@ -150,8 +157,10 @@ const BuiltinTable& builtins();
 
 // One register function per library area (builtins_<area>.cpp).
 void register_core(BuiltinTable& table);
+void register_lists(BuiltinTable& table);  ///< in the core area (builtins_lists.cpp)
 void register_curves(BuiltinTable& table);
 void register_solids(BuiltinTable& table);
+void register_bounds(BuiltinTable& table);  ///< bounds(x), in the solids area (builtins_bounds.cpp)
 void register_splines(BuiltinTable& table);
 void register_surfaces(BuiltinTable& table);
 void register_revolution(BuiltinTable& table);

@@ -1,22 +1,18 @@
-// Built-ins of the language itself: output, conversion, lists, arithmetic and vectors, time.
+// Built-ins of the language itself: output, conversion, lists, arithmetic and vectors, time. The
+// math functions of one or two numbers come from their table (math_functions.hpp).
 #include <chrono>
 #include <cmath>
 #include <ostream>
 
 #include "base/errors.hpp"
 #include "language/builtins.hpp"
+#include "language/math_functions.hpp"
 
 namespace sculpt::language {
 namespace {
 
 /// Lists made by range() have at most this many items.
 constexpr double kMaxRangeItems = 1e7;
-
-Value math1(const Arguments& args, double (*f)(double)) {
-  const double y = f(args.number(0));
-  if (!std::isfinite(y)) args.fail(0, "result is not a finite number");
-  return y;
-}
 
 Value extreme(const Arguments& args, bool want_max) {
   std::vector<Value> items = args.rest();
@@ -115,32 +111,23 @@ void register_core(BuiltinTable& table) {
              .doc = "The largest of its numbers (or of the numbers of one list).",
              .variadic = true,
              .run = [](const Arguments& args) { return extreme(args, true); }});
-  table.add({.name = "abs", .signature = "abs(x)", .doc = "Absolute value.", .params = {{"x"}},
-             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::fabs(x); }); }});
-  table.add({.name = "sqrt", .signature = "sqrt(x)", .doc = "Square root of x >= 0.", .params = {{"x"}},
-             .run = [](const Arguments& args) -> Value {
-               if (args.number(0) < 0) args.fail(0, "square root of a negative number");
-               return std::sqrt(args.number(0));
-             }});
-  table.add({.name = "floor", .signature = "floor(x)", .doc = "Largest whole number <= x.", .params = {{"x"}},
-             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::floor(x); }); }});
-  table.add({.name = "ceil", .signature = "ceil(x)", .doc = "Smallest whole number >= x.", .params = {{"x"}},
-             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::ceil(x); }); }});
-  table.add({.name = "round", .signature = "round(x)", .doc = "Nearest whole number (halves away from 0).",
-             .params = {{"x"}},
-             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::round(x); }); }});
-  table.add({.name = "sin", .signature = "sin(x)", .doc = "Sine of x radians.", .params = {{"x"}},
-             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::sin(x); }); }});
-  table.add({.name = "cos", .signature = "cos(x)", .doc = "Cosine of x radians.", .params = {{"x"}},
-             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::cos(x); }); }});
-  table.add({.name = "tan", .signature = "tan(x)", .doc = "Tangent of x radians.", .params = {{"x"}},
-             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::tan(x); }); }});
-  table.add({.name = "exp", .signature = "exp(x)", .doc = "e to the power x (a finite result or an error).",
-             .params = {{"x"}},
-             .run = [](const Arguments& args) { return math1(args, [](double x) { return std::exp(x); }); }});
-  table.add({.name = "atan2", .signature = "atan2(y, x)", .doc = "Angle of the point (x, y) in radians, in [-pi, pi].",
-             .params = {{"y"}, {"x"}},
-             .run = [](const Arguments& args) -> Value { return std::atan2(args.number(0), args.number(1)); }});
+  for (const MathFunction& f : math_functions()) {
+    std::vector<Param> params{{f.params[0]}};
+    if (f.arity == 2) params.push_back({f.params[1]});
+    table.add({.name = f.name,
+               .signature = f.signature,
+               .doc = f.doc,
+               .params = std::move(params),
+               .run = [&f](const Arguments& args) -> Value {
+                 const double a = args.number(0);
+                 const double b = f.arity == 2 ? args.number(1) : 0.0;
+                 std::string error;
+                 const double v = evaluate(f, a, b, error);
+                 if (error.empty()) return v;
+                 if (f.arity == 1) args.fail(0, error);
+                 args.fail(error);
+               }});
+  }
   table.add({.name = "pow", .signature = "pow(x, y)", .doc = "x to the power y (a finite result or an error).",
              .params = {{"x"}, {"y"}},
              .run = [](const Arguments& args) -> Value {

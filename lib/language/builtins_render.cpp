@@ -1,5 +1,6 @@
 // Built-ins of the render area: pictures of solids (PNG) and SVG plots of curves, linearizations
 // and splines (lib/render; docs/pictures.md).
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -74,8 +75,16 @@ render::PictureItem picture_item(const Arguments& args, const Value& v, const st
                    type_name(v));
 }
 
-std::filesystem::path output_path(const Arguments& args, std::size_t i) {
+/// The file of argument i, which must end in `extension` (".png": the picture is PNG whatever the
+/// name says, so render(b, "x.jpg") would write PNG data into a .jpg), with its folders created.
+std::filesystem::path output_path(const Arguments& args, std::size_t i, const std::string& extension,
+                                  const char* format) {
   const std::filesystem::path path = args.file_path(i);
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != extension)
+    args.fail(i, std::string("the picture is ") + format + ": the file name must end in " + extension + ", not '" +
+                     path.extension().string() + "'");
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
   return path;
 }
@@ -95,9 +104,18 @@ void register_render(BuiltinTable& table) {
                     "the shaded items. Hidden surfaces are removed per pixel; lines mark silhouettes and faces "
                     "meeting at more than `edge_angle` degrees. `scale` in pixels per unit with `center` at the "
                     "image centre; 0 frames the items. The file is replaced atomically; folders are created.",
-             .params = {{"x"}, {"file"}, {"view", false}, {"size", false}, {"scale", false}, {"center", false},
-                        {"edge_angle", false}, {"edges", false}, {"tol", false}, {"width", false}},
+             .params = {{"x"},
+                        {"file"},
+                        {"view", false},
+                        {"size", false},
+                        {"scale", false},
+                        {"center", false},
+                        {"edge_angle", false},
+                        {"edges", false},
+                        {"tol", false},
+                        {"width", false}},
              .run = [](const Arguments& args) -> Value {
+               (void)output_path(args, 1, ".png", "PNG");  // a wrong name is refused before the work
                std::vector<render::PictureItem> items;
                const List* list = args.value(0).list();
                if (list && !points_alone(list)) {
@@ -130,7 +148,8 @@ void register_render(BuiltinTable& table) {
                }
                if (args.has(6)) {
                  options.edge_angle = args.number(6);
-                 if (!(options.edge_angle >= 0 && options.edge_angle <= 180)) args.fail(6, "edge_angle must be 0 to 180");
+                 if (!(options.edge_angle >= 0 && options.edge_angle <= 180))
+                   args.fail(6, "edge_angle must be 0 to 180");
                }
                if (args.has(7)) options.edges = args.boolean(7);
                if (args.has(8)) {
@@ -141,7 +160,7 @@ void register_render(BuiltinTable& table) {
                if (args.has(9)) options.curve_width = static_cast<int>(args.integer(9, 0, 64));
                args.charge(static_cast<std::uint64_t>(options.width) * static_cast<std::uint64_t>(options.height) / 1024);
                const render::Image image = render::render_items(items, options);
-               render::write_png(image, output_path(args, 1));
+               render::write_png(image, output_path(args, 1, ".png", "PNG"));
                return {};
              }});
   table.add({.name = "plot",
@@ -203,7 +222,7 @@ void register_render(BuiltinTable& table) {
                  options.size = args.number(3);
                  if (!(options.size >= 50 && options.size <= 10000)) args.fail(3, "size must be 50 to 10000");
                }
-               write_file_atomically(output_path(args, 1), render::svg_panels({panel}, options));
+               write_file_atomically(output_path(args, 1, ".svg", "SVG"), render::svg_panels({panel}, options));
                return {};
              }});
 }

@@ -2,6 +2,7 @@
 // and import (lib/bsp, lib/mesh; Ihm & Naylor 1990 sec. 6, Naylor et al. 1990).
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <sstream>
 
@@ -103,10 +104,47 @@ void add_stroke(BuiltinTable& table, const char* name, const char* signature, co
              }});
 }
 
-CircularOptions circular(const Arguments& args, std::size_t i) {
+/// The segments (argument i) and center=true (argument `center`, if any) of a round primitive.
+CircularOptions circular(const Arguments& args, std::size_t i, std::optional<std::size_t> center = std::nullopt) {
   CircularOptions options{.grid = args.grid()};
   if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
+  if (center && args.has(*center)) options.center = args.boolean(*center);
   return options;
+}
+
+/// The radius given as r (argument r) or as the diameter d= (argument d): exactly one of them.
+double radius_arg(const Arguments& args, std::size_t r, std::size_t d) {
+  if (args.has(r) && args.has(d)) args.fail(d, "give the radius r or the diameter d=, not both");
+  if (args.has(r)) return args.number(r);
+  if (args.has(d)) return args.number(d) / 2;
+  args.fail("missing argument 'r' (or the diameter d=)");
+}
+
+/// box(min, max), box(size) or box(size=v), with center=true centring it on the origin; a size is
+/// [sx, sy, sz] or one number for a cube. Arguments: min 0, max 1, center 2, size 3.
+Solid box_arg(const Arguments& args) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi;
+  const auto size = [&](std::size_t i) -> Eigen::Vector3d {
+    if (const double* s = args.value(i).get<double>()) return Eigen::Vector3d::Constant(*s);
+    return vector3(args, i);
+  };
+  if (args.has(3)) {
+    if (args.has(0) || args.has(1)) args.fail(3, "give size= or the corners min and max, not both");
+    hi = size(3);
+  } else if (args.has(0) && args.has(1)) {
+    lo = vector3(args, 0);
+    hi = vector3(args, 1);
+  } else if (args.has(0)) {
+    hi = size(0);
+  } else {
+    args.fail("give the corners min and max, or a size");
+  }
+  if (args.has(2) && args.boolean(2)) {
+    const Eigen::Vector3d middle = (lo + hi) / 2;
+    lo -= middle;
+    hi -= middle;
+  }
+  return box(lo, hi, args.grid());
 }
 
 // grid(step): the names of global solids made at another grid than `grid` (they cannot be
@@ -193,6 +231,30 @@ Value solid_value(Solid solid) {
   return Value(std::shared_ptr<const Object>(std::make_shared<SolidValue>(std::move(solid))));
 }
 
+void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path) {
+  (void)mesh_format_from_path(path);  // an unknown extension is refused before folders are made
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  write_mesh(mesh, path);
+}
+
+std::string export_solid(const SolidValue& s, const std::filesystem::path& path) {
+  write_mesh_file(s.boundary(), path);
+  // Written all the same (the exact solid is fine; other tools may stumble on it).
+  if (s.boundary_problem().empty()) return "";
+  return path.string() + ": the mesh is not known to be clean for other tools (" + s.boundary_problem() +
+         "; docs/kernel.md, \"Clean output\")";
+}
+
+std::string latest_solid_global(const Interpreter& interpreter) {
+  std::string latest;
+  std::uint64_t serial = 0;
+  for (const std::string& name : interpreter.global_names()) {
+    const std::uint64_t at = interpreter.assigned_at(name);
+    if (at > serial && interpreter.global(name)->object<SolidValue>()) serial = at, latest = name;
+  }
+  return latest;
+}
+
 void register_solids(BuiltinTable& table) {
   table.add({.name = "grid",
              .signature = "grid(step)",
@@ -223,31 +285,37 @@ void register_solids(BuiltinTable& table) {
                return grid.step();
              }});
   table.add({.name = "box",
-             .signature = "box(min, max)",
-             .doc = "The axis-aligned box with corners min and max ([x, y, z] each, min < max).",
-             .params = {{"min"}, {"max"}},
-             .run = [](const Arguments& args) { return solid_value(box(vector3(args, 0), vector3(args, 1), args.grid())); }});
-  table.add({.name = "sphere",
-             .signature = "sphere(r, segments=32)",
-             .doc = "Sphere of radius r at the origin: a polyhedron with `segments` edges around the "
-                    "equator and (segments + 1) / 2 rings, its vertices on the sphere.",
-             .params = {{"r"}, {"segments", false}},
-             .run = [](const Arguments& args) { return solid_value(sphere(args.number(0), circular(args, 1))); }});
+             .signature = "box(min, max, center=false, size=v)",
+             .doc = "The axis-aligned box with corners min and max ([x, y, z] each, min < max); or, given one "
+                    "vector (or size=), the box of that size ([sx, sy, sz], or one number for a cube) with a "
+                    "corner at the origin. center=true centres the box on the origin.",
+             .params = {{"min", false}, {"max", false}, {"center", false}, {"size", false}},
+             .run = [](const Arguments& args) { return solid_value(box_arg(args)); }});
+  table.add(
+      {.name = "sphere",
+       .signature = "sphere(r, segments=32, d=diameter)",
+       .doc = "Sphere of radius r (or diameter d) at the origin: a polyhedron with `segments` edges around "
+              "the equator and (segments + 1) / 2 rings, its vertices on the sphere.",
+       .params = {{"r", false}, {"segments", false}, {"d", false}},
+       .run = [](const Arguments& args) { return solid_value(sphere(radius_arg(args, 0, 2), circular(args, 1))); }});
   table.add({.name = "cylinder",
-             .signature = "cylinder(r, h, segments=32)",
-             .doc = "Cylinder of radius r around the z axis from z = 0 to z = h (a prism over a "
-                    "regular polygon with `segments` vertices on the circle).",
-             .params = {{"r"}, {"h"}, {"segments", false}},
+             .signature = "cylinder(r, h, segments=32, center=false, d=diameter)",
+             .doc = "Cylinder of radius r (or diameter d) around the z axis from z = 0 to z = h, or from -h/2 "
+                    "to h/2 with center=true (a prism over a regular polygon with `segments` vertices on the "
+                    "circle).",
+             .params = {{"r", false}, {"h"}, {"segments", false}, {"center", false}, {"d", false}},
              .run = [](const Arguments& args) {
-               return solid_value(cylinder(args.number(0), args.number(1), circular(args, 2)));
+               return solid_value(cylinder(radius_arg(args, 0, 4), args.number(1), circular(args, 2, 3)));
              }});
   table.add({.name = "cone",
-             .signature = "cone(r, h, segments=32)",
-             .doc = "Cone around the z axis: base of radius r at z = 0, apex at z = h.",
-             .params = {{"r"}, {"h"}, {"segments", false}},
+             .signature = "cone(r, h, segments=32, center=false, d=diameter)",
+             .doc = "Cone around the z axis: base of radius r (or diameter d) at z = 0, apex at z = h; with "
+                    "center=true the base is at z = -h/2 and the apex at h/2.",
+             .params = {{"r", false}, {"h"}, {"segments", false}, {"center", false}, {"d", false}},
              .run = [](const Arguments& args) {
-               const CircularOptions c = circular(args, 2);
-               return solid_value(cone(args.number(0), args.number(1), {.segments = c.segments, .center = c.center, .grid = c.grid}));
+               const CircularOptions c = circular(args, 2, 3);
+               return solid_value(cone(radius_arg(args, 0, 4), args.number(1),
+                                       {.segments = c.segments, .center = c.center, .grid = c.grid}));
              }});
   table.add({.name = "union_all",
              .signature = "union_all(solids)",
@@ -436,7 +504,7 @@ void register_solids(BuiltinTable& table) {
              .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is; or a "
                     "surface's triangle mesh at chord tolerance `tol`, as surface_mesh); the format comes from "
                     "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres), .glb (binary glTF). The file is "
-                    "replaced atomically.",
+                    "replaced atomically; folders are created.",
              .params = {{"s"}, {"file"}, {"tol", false}},
              .run = [](const Arguments& args) -> Value {
                if (const auto* surface = args.value(0).object<SurfaceValue>()) {
@@ -445,21 +513,17 @@ void register_solids(BuiltinTable& table) {
                    tol = args.number(2);
                    if (!(tol > 0) || !std::isfinite(tol)) args.fail(2, "tol must be a finite number > 0");
                  }
-                 write_mesh(surface_triangle_mesh(args, surface->surface, tol), args.file_path(1));
+                 write_mesh_file(surface_triangle_mesh(args, surface->surface, tol), args.file_path(1));
                  return {};
                }
                if (args.has(2)) args.fail(2, "tol applies to surfaces only");
                if (const auto* m = args.value(0).object<MeshValue>()) {
-                 write_mesh(m->mesh, args.file_path(1));
+                 write_mesh_file(m->mesh, args.file_path(1));
                  return {};
                }
                const auto& s = args.object<SolidValue>(0, "a solid, a mesh or a surface");
-               const std::string path = args.file_path(1);
-               write_mesh(s.boundary(), path);
-               // Written all the same (the exact solid is fine; other tools may stumble on it).
-               if (!s.boundary_problem().empty())
-                 args.out() << "export: warning: " << path << ": the mesh is not known to be clean for other tools ("
-                            << s.boundary_problem() << "; docs/kernel.md, \"Clean output\")\n";
+               if (const std::string warning = export_solid(s, args.file_path(1)); !warning.empty())
+                 args.out() << "export: warning: " << warning << "\n";
                return {};
              }});
   table.add({.name = "import",

@@ -12,10 +12,12 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <vector>
 
 #include "language/builtins.hpp"
+#include "language/math_functions.hpp"
 #include "language/operators.hpp"
 
 namespace sculpt::language {
@@ -25,7 +27,16 @@ using implicit::ExpressionBuilder;
 using implicit::Term;
 
 const char* const kNotCompiled = " cannot be compiled into an implicit function";
-const char* const kCompiledBuiltins = "sqrt, sin, cos, tan, exp, abs, min, max, pow, dot, norm, cross";
+/// The built-ins compiled besides the math functions that have a compiled form (math_functions.hpp).
+const char* const kOtherCompiledBuiltins = "min, max, pow, dot, norm, cross";
+
+/// "abs, acos, ...": the compiled built-ins, for messages.
+std::string compiled_builtins() {
+  std::string names;
+  for (const MathFunction& f : math_functions())
+    if (f.form != CompiledForm::None) names += std::string(f.name) + ", ";
+  return names + kOtherCompiledBuiltins;
+}
 /// Largest |n| of pow(a, n) (repeated squaring: about 2 log2 n nodes' worth of work).
 constexpr double kMaxExponent = 1024;
 
@@ -173,27 +184,59 @@ class Compiler {
     return constant(v);
   }
 
-  Scalar unary(const std::string& name, const Scalar& a, std::size_t where) {
-    if (a.is_constant) {
-      const double v = a.constant;
-      if (name == "sqrt" && v < 0) fail(where, "sqrt: square root of a negative number");
-      if (name == "sqrt") return constant(std::sqrt(v));
-      if (name == "sin") return finite(std::sin(v), where, name);
-      if (name == "cos") return finite(std::cos(v), where, name);
-      if (name == "tan") return finite(std::tan(v), where, name);
-      if (name == "exp") return finite(std::exp(v), where, name);
-      return constant(std::fabs(v));
+  /// f(a, b) for a math function: folded by the table's own evaluation when the arguments are
+  /// constants (as the interpreter computes it), else its compiled form.
+  Scalar math(const MathFunction& f, const Scalar& a, const Scalar& b, std::size_t where) {
+    if (a.is_constant && (f.arity == 1 || b.is_constant)) {
+      std::string error;
+      const double v = evaluate(f, a.constant, b.constant, error);
+      if (!error.empty()) fail(where, std::string(f.name) + ": " + error);
+      return constant(v);
     }
-    const Term t = a.term;
-    if (name == "sqrt") return counted(builder_.sqrt(t), where);
-    if (name == "sin") return counted(builder_.sin(t), where);
-    if (name == "cos") return counted(builder_.cos(t), where);
-    if (name == "exp") return counted(builder_.exp(t), where);
-    if (name == "abs") return counted(builder_.abs(t), where);
-    // tan = sin / cos: exact gradient, and interval bounds that widen to the line near a pole.
-    const Scalar s = counted(builder_.sin(t), where);
-    const Scalar c = counted(builder_.cos(t), where);
-    return counted(builder_.div(s.term, c.term), where);
+    if (f.form == CompiledForm::None) {
+      not_compiled(where, "built-in '" + std::string(f.name) + "'",
+                   "it folds constant arguments only; the compiled built-ins are " + compiled_builtins());
+    }
+    const Term x = term(a, where);
+    const Term y = f.arity == 2 ? term(b, where) : Term{};
+    ExpressionBuilder& e = builder_;
+    const auto one = [&](Term t) { return counted(t, where); };
+    switch (f.form) {
+      case CompiledForm::Abs:
+        return one(e.abs(x));
+      case CompiledForm::Acos:
+        return one(e.acos(x));
+      case CompiledForm::Asin:
+        return one(e.asin(x));
+      case CompiledForm::Atan:
+        return one(e.atan(x));
+      case CompiledForm::Atan2:
+        return one(e.atan2(x, y));
+      case CompiledForm::Cos:
+        return one(e.cos(x));
+      case CompiledForm::Exp:
+        return one(e.exp(x));
+      // exp(ln 2 * x): within a few ulps of exp2, with an exact gradient.
+      case CompiledForm::Exp2:
+        return one(e.exp(one(e.mul(one(e.constant(std::numbers::ln2)).term, x)).term));
+      // sqrt(x * x + y * y): may overflow where hypot does not.
+      case CompiledForm::Hypot:
+        return one(e.sqrt(one(e.add(one(e.mul(x, x)).term, one(e.mul(y, y)).term)).term));
+      case CompiledForm::Log:
+        return one(e.log(x));
+      case CompiledForm::Sign:
+        return one(e.sign(x));
+      case CompiledForm::Sin:
+        return one(e.sin(x));
+      case CompiledForm::Sqrt:
+        return one(e.sqrt(x));
+      // sin / cos: an exact gradient, and interval bounds that widen to the line near a pole.
+      case CompiledForm::Tan:
+        return one(e.div(one(e.sin(x)).term, one(e.cos(x)).term));
+      case CompiledForm::None:
+        break;
+    }
+    not_compiled(where, "built-in '" + std::string(f.name) + "'");
   }
 
   Scalar extreme(bool want_max, const Scalar& a, const Scalar& b, std::size_t where) {
@@ -395,6 +438,7 @@ class Compiler {
   }
 
   Compiled subscript(const Compiled& value, const ast::Subscript& s) {
+    if (s.slice) not_compiled(s.where, "a slice", "index the items one by one");
     const Compiled index = compile(s.index);
     if (value.kind != Compiled::Kind::Vector) {
       fail(s.where, "cannot index " + describe(value) + ": only lists have items");
@@ -424,12 +468,10 @@ class Compiler {
 
   Compiled call_builtin(const Builtin& b, const ast::CallArguments& call_args, std::size_t where) {
     const std::string& name = b.name;
-    const bool is_unary = name == "sqrt" || name == "sin" || name == "cos" || name == "tan" || name == "exp" || name == "abs";
-    const bool known = is_unary || name == "min" || name == "max" || name == "pow" || name == "dot" || name == "norm" ||
-                       name == "cross";
-    if (!known) {
-      not_compiled(where, "built-in '" + name + "'", std::string("the compiled built-ins are ") + kCompiledBuiltins);
-    }
+    const MathFunction* math_function = find_math_function(name);
+    const bool known = math_function || name == "min" || name == "max" || name == "pow" || name == "dot" ||
+                       name == "norm" || name == "cross";
+    if (!known) not_compiled(where, "built-in '" + name + "'", "the compiled built-ins are " + compiled_builtins());
     std::vector<Compiled> args;
     std::vector<std::size_t> positions;
     for (const ast::Argument& a : call_args.arguments) {
@@ -443,9 +485,12 @@ class Compiler {
                         std::to_string(args.size()));
       }
     };
-    if (is_unary) {
-      expect(1);
-      return Compiled::scalar(unary(name, as_scalar(args[0], positions[0], name), where));
+    if (math_function) {
+      const auto arity = static_cast<std::size_t>(math_function->arity);
+      expect(arity);
+      const Scalar first = as_scalar(args[0], positions[0], name);
+      const Scalar second = arity == 2 ? as_scalar(args[1], positions[1], name) : constant(0.0);
+      return Compiled::scalar(math(*math_function, first, second, where));
     }
     if (name == "pow") {
       expect(2);
@@ -467,7 +512,7 @@ class Compiler {
     if (name == "norm") {
       expect(1);
       const auto& v = as_vector(args[0], positions[0], "norm", 3);
-      return Compiled::scalar(unary("sqrt", dot(v, v, where), where));
+      return Compiled::scalar(math(*find_math_function("sqrt"), dot(v, v, where), constant(0.0), where));
     }
     expect(2);
     const auto& u = as_vector(args[0], positions[0], name, 3);

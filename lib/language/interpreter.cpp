@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 
@@ -86,6 +88,7 @@ struct Interpreter::Impl {
   InterpreterOptions options;
   RunSettings settings;
   std::map<std::string, Value> globals;
+  std::set<std::string> fixed;                       // globals bound by define_fixed: top-level assignments skip them
   std::map<std::string, std::uint64_t> assigned_at;  // global name -> serial of its last assignment
   std::uint64_t assignments = 0;                    // global assignments so far
   std::vector<Frame*> frames;  // innermost user-function call last; empty at top level
@@ -327,7 +330,33 @@ struct Interpreter::Impl {
     return value;
   }
 
+  /// A slice bound: a whole number, counted from the end when negative, clamped to [0, n] (as
+  /// in Python); `otherwise` when left out.
+  std::size_t slice_bound(const boost::optional<ast::Expression>& bound, std::size_t n, std::size_t otherwise) {
+    if (!bound) return otherwise;
+    const Value v = eval(*bound);
+    const double* d = v.get<double>();
+    if (!d || *d != std::floor(*d)) {
+      throw ScriptError(at(bound->where),
+                        "a slice bound must be a whole number, got " + (d ? format_number(*d) : type_name(v)));
+    }
+    const double size = static_cast<double>(n);
+    return static_cast<std::size_t>(std::clamp(*d < 0 ? *d + size : *d, 0.0, size));
+  }
+
+  /// xs[a:b]: the items a, ..., b - 1 as a new list (empty when b <= a).
+  Value slice(const Value& value, const ast::Subscript& s) {
+    const List* list = value.list();
+    if (!list) throw ScriptError(at(s.where), "cannot slice " + type_name(value) + ": only lists have items");
+    const std::size_t start = slice_bound(s.start, list->size(), 0);
+    const std::size_t stop = slice_bound(s.stop, list->size(), list->size());
+    if (stop <= start) return List{};
+    charge(stop - start, s.where);
+    return List(list->begin() + static_cast<std::ptrdiff_t>(start), list->begin() + static_cast<std::ptrdiff_t>(stop));
+  }
+
   Value subscript(const Value& value, const ast::Subscript& s) {
+    if (s.slice) return slice(value, s);
     const Value index = eval(s.index);
     const List* list = value.list();
     if (!list) throw ScriptError(at(s.where), "cannot index " + type_name(value) + ": only lists have items");
@@ -407,6 +436,21 @@ struct Interpreter::Impl {
     const std::string what = callee_name ? "'" + callee_name->name + "' is a " + type_name(callee)
                                          : "a " + type_name(callee) + " value";
     throw ScriptError(at(where), what + ", not a function");
+  }
+
+  /// Calls function value `callee` with positional `values` at `where` (Arguments::call: map, filter).
+  Value apply(const Value& callee, std::vector<Value> values, std::size_t where) {
+    check_stack(where);
+    count_step(where);
+    std::vector<ast::Argument> syntax(values.size());
+    Evaluated args{std::move(values), {}};
+    for (ast::Argument& a : syntax) {
+      a.where = where;
+      args.syntax.push_back(&a);
+    }
+    if (const auto* builtin = callee.get<const Builtin*>()) return call_builtin(**builtin, args, where);
+    if (const auto* f = callee.get<std::shared_ptr<const UserFunction>>()) return call_user(**f, args, where);
+    throw ScriptError(at(where), "a " + type_name(callee) + " value, not a function");
   }
 
   Value call_builtin(const Builtin& b, const Evaluated& args, std::size_t where, const std::string* handover = nullptr) {
@@ -492,8 +536,13 @@ struct Interpreter::Impl {
   Outcome exec(const ast::Statement& statement) {
     struct Visitor {
       Impl& self;
-      Outcome operator()(const ast::Expression& e) const { return {self.eval(e)}; }
+      Outcome operator()(const ast::Expression& e) const {
+        Value value = self.eval(e);
+        self.report_top_level(value);
+        return {std::move(value)};
+      }
       Outcome operator()(const ast::Assignment& a) const {
+        if (self.frames.empty() && self.fixed.contains(a.target.name)) return {};  // sculpt -D wins
         self.assign(a.target, self.eval_assigned(a));
         return {};
       }
@@ -551,6 +600,10 @@ struct Interpreter::Impl {
     return boost::apply_visitor(Visitor{*this}, statement);
   }
 
+  void report_top_level(const Value& value) const {
+    if (frames.empty() && options.top_level_value) options.top_level_value(value);
+  }
+
   Outcome include(const ast::Include& i) {
     if (!settings.allow_files) throw ScriptError(at(i.where), "include: file access is disabled in this session");
     std::filesystem::path path(i.path.value);
@@ -588,6 +641,9 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
   impl_->settings.globals = &impl_->globals;
   impl_->grid = options.grid;
   impl_->settings.grid = &impl_->grid;
+  impl_->settings.call = [impl = impl_.get()](const Value& f, std::vector<Value> values, const SourceRef& at) {
+    return impl->apply(f, std::move(values), at.offset);
+  };
   // Keep the budget well inside the real stack limit.
   rlimit limit{};
   if (getrlimit(RLIMIT_STACK, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
@@ -631,6 +687,11 @@ void Interpreter::define(const std::string& name, Value value) {
   ast::Identifier id;
   id.name = name;
   impl_->assign(id, std::move(value));
+}
+
+void Interpreter::define_fixed(const std::string& name, Value value) {
+  define(name, std::move(value));
+  impl_->fixed.insert(name);
 }
 
 const Value* Interpreter::global(const std::string& name) const {

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -34,6 +35,9 @@ struct InterpreterOptions {
   const std::atomic<bool>* interrupt = nullptr;
   /// The grid solids are made at until a script calls grid(step) (sculpt --grid; docs/kernel.md).
   kernel::Grid grid{};
+  /// Called with the value of each expression statement run outside functions (sculpt -o
+  /// exports the last solid made; assignments show in assigned_at()).
+  std::function<void(const Value&)> top_level_value{};
 };
 
 class Interpreter {
@@ -49,8 +53,12 @@ class Interpreter {
   /// \throw ScriptError for syntax and run-time errors, positioned in the script.
   std::optional<Value> run(const SourcePtr& source);
 
-  /// Binds a global (sculpt -D name=value). \throw ScriptError if `name` is a built-in.
+  /// Binds a global. \throw ScriptError if `name` is a built-in.
   void define(const std::string& name, Value value);
+  /// Binds a global that assignments outside functions leave alone (sculpt -D name=value
+  /// overrides a script's own `name = ...`, OpenSCAD's rule); `for` variables still rebind it.
+  /// \throw ScriptError if `name` is a built-in.
+  void define_fixed(const std::string& name, Value value);
   [[nodiscard]] const Value* global(const std::string& name) const;
   /// The serial number of the last assignment to global `name` (1 for the session's first
   /// global assignment, 2 for the next, ...), 0 if never assigned: tells which was bound last.

@@ -8,9 +8,17 @@ namespace {
 
 using ast::Op;
 
+/// For `+` and `*` on two solids (OpenSCAD users write union and intersection so): the operator.
+std::string solid_hint(Op op, const Value& a, const Value& b) {
+  if (type_name(a) != "solid" || type_name(b) != "solid") return "";
+  if (op == Op::Add) return "; the union of solids is 'a | b'";
+  if (op == Op::Mul) return "; the intersection of solids is 'a & b'";
+  return "";
+}
+
 [[noreturn]] void unsupported(Op op, const Value& a, const Value& b) {
-  throw OperatorError(std::string("cannot apply '") + ast::spelling(op) + "' to " + type_name(a) +
-                      " and " + type_name(b));
+  throw OperatorError(std::string("cannot apply '") + ast::spelling(op) + "' to " + type_name(a) + " and " +
+                      type_name(b) + solid_hint(op, a, b));
 }
 
 double finite(double x, Op op) {

@@ -215,11 +215,8 @@ void Session::show(const std::string& argument) {
     value = *v;
   } else {
     // The most recently bound global solid, unless an entry's solid value came later.
-    std::uint64_t best = 0;
-    for (const std::string& n : interpreter_.global_names()) {
-      const std::uint64_t at = interpreter_.assigned_at(n);
-      if (at > best && interpreter_.global(n)->object<SolidValue>()) best = at, file = n;
-    }
+    file = latest_solid_global(interpreter_);
+    const std::uint64_t best = file.empty() ? 0 : interpreter_.assigned_at(file);
     if (last_value_ && last_value_serial_ >= best) {
       value = last_value_;
       file = "last";

@@ -5,12 +5,14 @@
 /// Other areas (revolve, ...) return solids with `solid_value(...)` and read them with
 /// `args.object<SolidValue>(i, "a solid").solid`.
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "bsp/boundary.hpp"
 #include "bsp/solid.hpp"
+#include "language/interpreter.hpp"
 #include "language/value.hpp"
 
 namespace sculpt::language {
@@ -75,6 +77,17 @@ struct MeshValue final : Object {
 
 /// Wraps a solid as a script value.
 Value solid_value(Solid solid);
+
+/// Writes `mesh` to `path` (write_mesh: the format from the extension, atomically), creating
+/// missing folders first. \throw IoError, InvalidInput (write_mesh)
+void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path);
+
+/// Writes the boundary of solid `s` to `path` as write_mesh_file does (export, sculpt -o).
+/// Returns a warning when the mesh is not known to be clean for other tools, else "".
+std::string export_solid(const SolidValue& s, const std::filesystem::path& path);
+
+/// The name of the global most recently bound to a solid, or "" (:show, sculpt -o).
+std::string latest_solid_global(const Interpreter& interpreter);
 
 /// Empty when `mesh` (a valid closed mesh) stays free of self-intersections with its vertices
 /// snapped to `grid`; else what meets where, for an error message. A valid mesh with features

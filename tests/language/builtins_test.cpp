@@ -69,6 +69,41 @@ TEST(Builtins, CoreFunctions) {
             "t.bsp:1:1: error: assert: one is not above two");
 }
 
+// Inverse trigonometric functions in radians (like sin and cos), logarithms and powers of 2,
+// against values known in closed form.
+TEST(Builtins, MathFunctionsHaveTheirAnalyticValues) {
+  const auto v = numbers(
+      "print(acos(0), acos(-1), asin(1), asin(-0.5), atan(1), atan2(-1, 0), log(exp(2)), exp2(10), exp2(-1), "
+      "sign(-3), sign(0), sign(0.25), hypot(3, 4), hypot(1e200, 1e200))");
+  ASSERT_EQ(v.size(), 14u);
+  const double pi = std::numbers::pi;
+  EXPECT_DOUBLE_EQ(v[0], pi / 2);
+  EXPECT_DOUBLE_EQ(v[1], pi);
+  EXPECT_DOUBLE_EQ(v[2], pi / 2);
+  EXPECT_DOUBLE_EQ(v[3], -pi / 6);
+  EXPECT_DOUBLE_EQ(v[4], pi / 4);
+  EXPECT_DOUBLE_EQ(v[5], -pi / 2);
+  EXPECT_DOUBLE_EQ(v[6], 2);
+  EXPECT_EQ(v[7], 1024);
+  EXPECT_EQ(v[8], 0.5);
+  EXPECT_EQ(v[9], -1);
+  EXPECT_EQ(v[10], 0);
+  EXPECT_EQ(v[11], 1);
+  EXPECT_EQ(v[12], 5);
+  EXPECT_DOUBLE_EQ(v[13], 1e200 * std::sqrt(2.0));  // no overflow in between
+}
+
+TEST(Builtins, MathDomainErrorsAtTheArgument) {
+  EXPECT_EQ(first_error_line("x = acos(2)"), "t.bsp:1:10: error: acos: argument 2 is outside [-1, 1]");
+  EXPECT_EQ(first_error_line("x = 1 +  asin(-1.5)"), "t.bsp:1:15: error: asin: argument -1.5 is outside [-1, 1]");
+  EXPECT_EQ(first_error_line("x = log(0)"), "t.bsp:1:9: error: log: logarithm of 0, which is not > 0");
+  EXPECT_EQ(first_error_line("x = log(-2)"), "t.bsp:1:9: error: log: logarithm of -2, which is not > 0");
+  EXPECT_EQ(first_error_line("x = sqrt(-1)"), "t.bsp:1:10: error: sqrt: square root of a negative number");
+  EXPECT_EQ(first_error_line("x = exp2(2000)"), "t.bsp:1:10: error: exp2: result is not a finite number");
+  EXPECT_EQ(first_error_line("x = hypot(1.5e308, 1.5e308)"), "t.bsp:1:5: error: hypot: result is not a finite number");
+  EXPECT_EQ(first_error_line("x = atan(\"a\")"), "t.bsp:1:10: error: atan: argument 'x' must be a number, got string");
+}
+
 TEST(Builtins, BoxMeasuresAreAnalytic) {
   const auto v = numbers("b = box([0, 0, 0], [1, 2, 3])\nprint(volume(b), area(b))");
   ASSERT_EQ(v.size(), 2u);
@@ -114,6 +149,10 @@ TEST(Builtins, TransformsScaleVolumes) {
 
 TEST(Builtins, SolidOperatorsNeedSolids) {
   EXPECT_EQ(first_error_line("x = box([0, 0, 0], [1, 1, 1]) | 3"), "t.bsp:1:31: error: cannot apply '|' to solid and number");
+  EXPECT_EQ(first_error_line("b = box([0, 0, 0], [1, 1, 1])\nx = b + b"),
+            "t.bsp:2:7: error: cannot apply '+' to solid and solid; the union of solids is 'a | b'");
+  EXPECT_EQ(first_error_line("b = box([0, 0, 0], [1, 1, 1])\nx = b * box([0, 0, 0], [2, 2, 2])"),
+            "t.bsp:2:7: error: cannot apply '*' to solid and solid; the intersection of solids is 'a & b'");
   EXPECT_EQ(first_error_line("x = 1 | 2"), "t.bsp:1:7: error: cannot apply '|' to number and number");
 }
 
@@ -202,6 +241,76 @@ TEST(Builtins, ExportWritesAClosedMeshThatImportReads) {
   }
   EXPECT_EQ(first_error_line("export(box([0, 0, 0], [1, 1, 1]), \"" + (dir / "x.xyz").string() + "\")").substr(0, 26),
             "t.bsp:1:1: error: export: ");
+}
+
+TEST(Builtins, ExportCreatesMissingFolders) {
+  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test_folders";
+  std::filesystem::remove_all(dir);
+  const std::string path = (dir / "a" / "b" / "cube.stl").string();
+  EXPECT_EQ(run_script("export(box([0, 0, 0], [1, 2, 3]), \"" + path + "\")").error, "");
+  EXPECT_EQ(run_script("print(volume(import(\"" + path + "\")))").out, "6\n");
+  // An unknown format is refused before any folder is made.
+  const std::string bad = (dir / "c" / "cube.xyz").string();
+  EXPECT_NE(run_script("export(box([0, 0, 0], [1, 1, 1]), \"" + bad + "\")").error.find("unknown mesh format"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+  std::filesystem::remove_all(dir);
+}
+
+/// The numbers of a printed box (brackets and commas dropped), compared within `tol` with `want`.
+void expect_box(const std::string& script, const std::vector<double>& want, double tol) {
+  std::string text = run_script(script).out;
+  for (char& c : text)
+    if (c == '[' || c == ']' || c == ',') c = ' ';
+  std::istringstream in(text);
+  std::vector<double> got;
+  for (double v; in >> v;) got.push_back(v);
+  ASSERT_EQ(got.size(), want.size()) << script << ": " << text;
+  for (std::size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(got[i], want[i], tol) << script << " number " << i;
+}
+
+// Boxes of every kind of value with points, against corners known by construction.
+TEST(Builtins, BoundsOfSolidsCurvesSplinesAndPoints) {
+  EXPECT_EQ(run_script("print(bounds(translate(box([0, 0, 0], [1, 2, 3]), [1, 1, 1])))").out,
+            "[[1, 1, 1], [2, 3, 4]]\n");
+  // A square prism (4 segments, first vertex on +x) of circumradius 1: its vertices are (+-1, 0),
+  // (0, +-1), up to the exact kernel's rounding of the side planes (far below the grid step).
+  expect_box("print(bounds(cylinder(1, 2, 4)))", {-1, -1, 0, 1, 1, 2}, 1e-6);
+  EXPECT_EQ(run_script("print(bounds(box([0, 0, 0], [1, 1, 1]) | box([2, -1, 0], [3, 0, 5])))").out,
+            "[[0, -1, 0], [3, 1, 5]]\n");
+  EXPECT_EQ(run_script("print(bounds(curve([[0, 0], [2, 1], [-1, 3]])), bounds([[0, 0, 1], [2, -1, 0]]))").out,
+            "[[-1, 0], [2, 3]] [[0, -1, 0], [2, 0, 1]]\n");
+  // One segment: the linearization's vertices are the end points.
+  EXPECT_EQ(run_script("print(bounds(linearize(curve([[0, 0], [2, 1], [-1, 3]]), 1)))").out, "[[-1, 0], [0, 3]]\n");
+  // A spline's box is its control points' (the curve itself reaches y = 1 only).
+  EXPECT_EQ(run_script("print(bounds(bezier([[0, 0], [1, 2], [2, 0]])))").out, "[[0, 0], [2, 2]]\n");
+  EXPECT_EQ(first_error_line("b = box([0, 0, 0], [1, 1, 1])\nx = bounds(b - b)"),
+            "t.bsp:2:12: error: bounds: the solid is empty: it has no bounding box");
+  EXPECT_EQ(first_error_line("x = bounds([])"), "t.bsp:1:12: error: bounds: no points: no bounding box");
+  EXPECT_EQ(first_error_line("x = bounds(3)"),
+            "t.bsp:1:12: error: bounds: argument 'x' must be a solid, a mesh, a curve, a linearization, a spline, a "
+            "surface or a list of points, got number");
+}
+
+// center=true and d= as in OpenSCAD, checked by the bounding boxes they must have.
+TEST(Builtins, PrimitivesTakeCenterAndDiameter) {
+  EXPECT_EQ(run_script("print(bounds(box([2, 4, 6], center=true)), bounds(box(size=3)), bounds(box([1, 2, 3])))").out,
+            "[[-1, -2, -3], [1, 2, 3]] [[0, 0, 0], [3, 3, 3]] [[0, 0, 0], [1, 2, 3]]\n");
+  EXPECT_EQ(run_script("print(bounds(box([1, 1, 1], [3, 5, 7], center=true)))").out, "[[-1, -2, -3], [1, 2, 3]]\n");
+  // Round primitives: their polygon's vertices on the circle, within the kernel's rounding.
+  expect_box("print(bounds(cylinder(d=2, h=4, segments=4, center=true)))", {-1, -1, -2, 1, 1, 2}, 1e-6);
+  expect_box("print(bounds(cone(1, 2, 4, center=true)))", {-1, -1, -1, 1, 1, 1}, 1e-6);
+  expect_box("print(bounds(cone(d=4, h=2, segments=4)))", {-2, -2, 0, 2, 2, 2}, 1e-6);
+  // A sphere of diameter 2 is the sphere of radius 1: the same solid, so the same volume.
+  EXPECT_EQ(run_script("print(volume(sphere(d=2, segments=8)) == volume(sphere(1, 8)))").out, "true\n");
+  EXPECT_EQ(first_error_line("x = cylinder(1, 2, d=2)"),
+            "t.bsp:1:20: error: cylinder: give the radius r or the diameter d=, not both");
+  EXPECT_EQ(first_error_line("x = cone(h=2)"), "t.bsp:1:5: error: cone: missing argument 'r' (or the diameter d=)");
+  EXPECT_EQ(first_error_line("x = box([1, 1, 1], size=2)"),
+            "t.bsp:1:20: error: box: give size= or the corners min and max, not both");
+  EXPECT_EQ(first_error_line("x = box()"), "t.bsp:1:5: error: box: give the corners min and max, or a size");
+  EXPECT_EQ(first_error_line("x = box([1, 1, 1], center=1)"),
+            "t.bsp:1:20: error: box: argument 'center' must be true or false, got number");
 }
 
 // A mesh the output rounding cannot vouch for is written all the same, with a warning that says

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The sculpt executable's command line: -e, -, -D, --help, --version, files, exit codes 0/1/2.
+# The sculpt executable's command line: -e, -, -D, -o, --help, --version, files, exit codes 0/1/2.
 set -u
 sculpt=$1
 failures=0
@@ -40,17 +40,48 @@ return 2
 ^" "$sculpt" -e 'print(1)
 return 2'
 check missing_file 1 "sculpt: $tmp/none.bsp: cannot open for reading" "$sculpt" "$tmp/none.bsp"
-check unknown_option 2 "sculpt: unknown option '--frobnicate'" first_line "$sculpt" --frobnicate
-check e_without_code 2 "sculpt: -e needs code" first_line "$sculpt" -e
-check bad_define 2 "sculpt: -D needs NAME=VALUE, got '1x=2'" first_line "$sculpt" -D 1x=2
+# Usage errors are one line each (exit 2).
+check unknown_option 2 "sculpt: unknown option '--frobnicate'; try 'sculpt --help'" "$sculpt" --frobnicate
+check e_without_code 2 "sculpt: -e needs code; try 'sculpt --help'" "$sculpt" -e
+check bad_define 2 "sculpt: -D needs NAME=VALUE, got '1x=2'; try 'sculpt --help'" "$sculpt" -D 1x=2
 check help 0 "usage: sculpt [options] [FILE.bsp ... | -]" first_line "$sculpt" --help
 check version 0 "sculpt 0.1.0" "$sculpt" --version
 # --grid STEP: the world range of the run's solids (docs/kernel.md, "World range").
 check grid_power 0 "3e+05 0.0001220703125" "$sculpt" --grid 2^-13 -e 'print(volume(box([0, 0, 0], [3000, 10, 10])), grid())'
 check grid_decimal 0 "<solid: 6 nodes, height 6, grid 2^-13>" "$sculpt" --grid=0.0001220703125 -e 'print(box([0, 0, 0], [3000, 1, 1]))'
-check grid_not_a_power 2 "sculpt: grid step must be a power of two (2^k, k in [-64, 32]), got 0.001; the nearest is 2^-10 = 0.000976562" first_line "$sculpt" --grid 0.001
-check grid_missing 2 "sculpt: --grid: '' is not a number or 2^K" first_line "$sculpt" --grid
-check grid_outside 2 "sculpt: grid step 2^-70 is outside the supported steps 2^-64 .. 2^32" first_line "$sculpt" --grid 2^-70
+check grid_not_a_power 2 "sculpt: grid step must be a power of two (2^k, k in [-64, 32]), got 0.001; the nearest is 2^-10 = 0.000976562; try 'sculpt --help'" "$sculpt" --grid 0.001
+check grid_missing 2 "sculpt: --grid: '' is not a number or 2^K; try 'sculpt --help'" "$sculpt" --grid
+check grid_outside 2 "sculpt: grid step 2^-70 is outside the supported steps 2^-64 .. 2^32; try 'sculpt --help'" "$sculpt" --grid 2^-70
+
+# -D overrides the script's own assignments outside functions (OpenSCAD's rule), not a
+# function's locals nor a for variable.
+printf 'size = 10\nprint(size)\nif true { size = 11 }\nprint(size)\n' > "$tmp/size.bsp"
+check define_overrides_script 0 "3
+3" "$sculpt" -D size=3 "$tmp/size.bsp"
+check define_without_override 0 "10
+11" "$sculpt" "$tmp/size.bsp"
+check define_function_local 0 "1 3" "$sculpt" -D size=3 -e 'fn f() { size = 1; return size }' -e 'print(f(), size)'
+check define_for_variable 0 "0 1 3" "$sculpt" -D i=3 -e 's = []' -e 'for i in range(0, 2) { s = append(s, i) }' -e 'print(s[0], s[1], i + 2)'
+check help_mentions_override 0 "1" bash -c "'$sculpt' --help | grep -c 'overrides the scripts'"
+
+# -o FILE: the last solid made (a solid expression statement or a global bound to a solid,
+# whichever came later) exported by the file's extension, folders created.
+volume_of() { "$sculpt" -e "print(volume(import(\"$1\")))"; }
+check output_global 0 "" "$sculpt" -o "$tmp/out/deep/b.stl" -e 'b = box([0, 0, 0], [1, 2, 3])' -e 'n = 5'
+check output_global_volume 0 "6" volume_of "$tmp/out/deep/b.stl"
+check output_expression_later 0 "" "$sculpt" -o "$tmp/e.off" -e 'a = box([0, 0, 0], [1, 1, 1])' -e 'a | box([0, 0, 0], [2, 1, 1])'
+check output_expression_volume 0 "2" volume_of "$tmp/e.off"
+check output_global_later 0 "" "$sculpt" -o "$tmp/g.obj" -e 'box([0, 0, 0], [2, 2, 2])' -e 'b = box([0, 0, 0], [1, 1, 3])'
+check output_global_later_volume 0 "3" volume_of "$tmp/g.obj"
+check output_function_local_ignored 0 "" "$sculpt" -o "$tmp/f.ply" -e 'fn f() { inner = box([0, 0, 0], [4, 4, 4]); box([0, 0, 0], [1, 1, 1]) }' -e 'b = box([0, 0, 0], [1, 1, 5])' -e 'v = volume(f())'
+check output_function_local_volume 0 "5" volume_of "$tmp/f.ply"
+check output_no_solid 1 "sculpt: -o: the scripts made no solid to export" "$sculpt" -o "$tmp/none.stl" -e 'x = 1'
+check output_not_after_error 1 "<command line>:1:33: error: unknown name 'y'
+b = box([0, 0, 0], [1, 1, 1]) | y
+                                ^" "$sculpt" -o "$tmp/err.stl" -e 'b = box([0, 0, 0], [1, 1, 1]) | y'
+check output_not_written 1 "" test -e "$tmp/err.stl"
+check output_bad_extension 2 "sculpt: -o: $tmp/x.jpg: unknown mesh format '.jpg' (use .off, .obj, .stl, .ply, .om or .3mf); try 'sculpt --help'" "$sculpt" -o "$tmp/x.jpg" -e 'b = 1'
+check output_missing_name 2 "sculpt: -o needs a file name; try 'sculpt --help'" "$sculpt" -e 'b = 1' -o
 
 # Files run in order; include and relative paths resolve against the including script's folder.
 mkdir -p "$tmp/lib"

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <string>
 
@@ -80,13 +81,14 @@ fn vectors(p) {
   dot(d, d) + norm(c) - 2 * d[1] + max(p) - min(d * 2)
 }
 fn constants(x, y, z) { k = pow(R, 3) / 2; k * x + sqrt(R) * 0 + y }
+fn inverse(x, y, z) { acos(x / 3) + asin(y / 3) * atan(z) + atan2(y, x) + log(1 + x * x) + exp2(z / 2) + sign(y) * hypot(x, z) }
 )";
 
 TEST(ImplicitCompiler, ValuesAgreeWithTheInterpreter) {
   Compiled c(kFunctions);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-2.0, 2.0);
-  for (const char* name : {"quart", "locals", "trig", "calls", "torus", "vectors", "constants"}) {
+  for (const char* name : {"quart", "locals", "trig", "calls", "torus", "vectors", "constants", "inverse"}) {
     const bool point = std::string(name) == "torus" || std::string(name) == "vectors";
     const implicit::Expression e = c.compile(name);
     for (int k = 0; k < 200; ++k) {
@@ -134,7 +136,7 @@ TEST(ImplicitCompiler, IntervalBoundsContainSampledValues) {
   Compiled c(kFunctions);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-2.0, 2.0), w(0.01, 1.0), t(0.0, 1.0);
-  for (const char* name : {"quart", "locals", "trig", "torus", "vectors"}) {
+  for (const char* name : {"quart", "locals", "trig", "torus", "vectors", "inverse"}) {
     const implicit::Expression e = c.compile(name);
     for (int b = 0; b < 40; ++b) {
       const Vec lo(u(rng), u(rng), u(rng));
@@ -153,6 +155,49 @@ TEST(ImplicitCompiler, IntervalBoundsContainSampledValues) {
       }
     }
   }
+}
+
+// The inverse functions, log, exp2, sign and hypot (math_functions.hpp), differentiated by hand.
+TEST(ImplicitCompiler, InverseFunctionGradientsMatchAnalyticDerivatives) {
+  Compiled c(kFunctions);
+  const implicit::Expression e = c.compile("inverse");
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int k = 0; k < 200; ++k) {
+    const Vec p(u(rng), u(rng), u(rng));
+    const double x = p.x(), y = p.y(), z = p.z();
+    const double s = y > 0 ? 1.0 : -1.0, h = std::hypot(x, z), r2 = x * x + y * y;
+    const Vec want(-1 / (3 * std::sqrt(1 - x * x / 9)) - y / r2 + 2 * x / (1 + x * x) + s * x / h,
+                   std::atan(z) / (3 * std::sqrt(1 - y * y / 9)) + x / r2,
+                   std::asin(y / 3) / (1 + z * z) + std::pow(2.0, z / 2) * std::log(2.0) / 2 + s * z / h);
+    EXPECT_LE((e.value_gradient(p).gradient - want).norm(), 1e-12 * std::max(1.0, want.norm())) << p.transpose();
+  }
+}
+
+// Interval bounds at the edges: a box partly outside the domain of acos or log proves nothing
+// (domain_error), atan2 is bounded by [-pi, pi] across its branch cut and by its corners elsewhere.
+TEST(ImplicitCompiler, InverseFunctionBoundsAtDomainEdgesAndTheBranchCut) {
+  Compiled c("fn a(x, y, z) { acos(x) }\nfn t(x, y, z) { atan2(y, x) }\nfn l(x, y, z) { log(x) + sign(y) }");
+  const double pi = std::numbers::pi;
+  const implicit::Expression a = c.compile("a");
+  implicit::IntervalBounds b = a.bounds({.lo = Vec(-0.5, 0, 0), .hi = Vec(0.5, 1, 1)});
+  EXPECT_FALSE(b.domain_error);
+  EXPECT_TRUE(b.range.contains(2 * pi / 3) && b.range.contains(pi / 3));
+  EXPECT_NEAR(b.range.hi, 2 * pi / 3, 1e-12);
+  EXPECT_TRUE(a.bounds({.lo = Vec(0.5, 0, 0), .hi = Vec(2, 1, 1)}).domain_error);
+  const implicit::Expression t = c.compile("t");
+  b = t.bounds({.lo = Vec(-2, -0.1, 0), .hi = Vec(-1, 0.1, 1)});  // across the negative x axis
+  EXPECT_TRUE(b.range.contains(std::atan2(-0.1, -1.0)) && b.range.contains(std::atan2(0.1, -1.0)));
+  b = t.bounds({.lo = Vec(1, 1, 0), .hi = Vec(2, 2, 1)});
+  EXPECT_NEAR(b.range.lo, std::atan2(1.0, 2.0), 1e-12);
+  EXPECT_NEAR(b.range.hi, std::atan2(2.0, 1.0), 1e-12);
+  EXPECT_TRUE(b.range.contains(pi / 4));
+  const implicit::Expression l = c.compile("l");
+  EXPECT_TRUE(l.bounds({.lo = Vec(-1, 0, 0), .hi = Vec(1, 1, 1)}).domain_error);
+  b = l.bounds({.lo = Vec(1, 1, 0), .hi = Vec(std::exp(1.0), 2, 1)});  // log in [0, 1], sign(y) = 1
+  EXPECT_FALSE(b.domain_error);
+  EXPECT_NEAR(b.range.lo, 1.0, 1e-12);
+  EXPECT_NEAR(b.range.hi, 2.0, 1e-12);
 }
 
 TEST(ImplicitCompiler, GlobalsAreReadWhenCompiled) {
@@ -185,8 +230,12 @@ TEST(ImplicitCompiler, UnsupportedConstructsAreErrorsAtTheirPosition) {
   EXPECT_EQ(error("x % 2"), "t.bsp:2:5: error: '%' cannot be compiled into an implicit function");
   EXPECT_EQ(error("x | y"), "t.bsp:2:5: error: '|' cannot be compiled into an implicit function: it combines solids");
   EXPECT_EQ(error("floor(x)"),
-            "t.bsp:2:3: error: built-in 'floor' cannot be compiled into an implicit function: the compiled "
-            "built-ins are sqrt, sin, cos, tan, exp, abs, min, max, pow, dot, norm, cross");
+            "t.bsp:2:3: error: built-in 'floor' cannot be compiled into an implicit function: it folds constant "
+            "arguments only; the compiled built-ins are abs, acos, asin, atan, atan2, cos, exp, exp2, hypot, log, "
+            "sign, sin, sqrt, tan, min, max, pow, dot, norm, cross");
+  EXPECT_EQ(error("x + floor(2.5)"), "");  // constant arguments fold as in the interpreter
+  EXPECT_EQ(error("x + acos(2)"), "t.bsp:2:7: error: acos: argument 2 is outside [-1, 1]");
+  EXPECT_EQ(error("x + log(0)"), "t.bsp:2:7: error: log: logarithm of 0, which is not > 0");
   EXPECT_EQ(error("pow(x, y)"),
             "t.bsp:2:10: error: pow: the exponent of a compiled implicit function must be a constant whole "
             "number (write sqrt for 1/2)");

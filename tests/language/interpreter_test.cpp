@@ -2,6 +2,8 @@
 // the right position; depth and work limits end in clean errors.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "script_runner.hpp"
 
 namespace sculpt::language {
@@ -43,6 +45,59 @@ TEST(Interpreter, VectorsAndLists) {
             "[2, 3, 4] [0, 0, 0] [2, 4, 6] [2, 4, 6] [0.5, 1, 1.5] [-1, -2, -3] 1 3 3\n");
   EXPECT_EQ(out("print([1, \"a\", [true]], [] == [], [1, [2]] == [1, [2]], \"ab\" + \"c\", \"a\" < \"b\")"),
             "[1, \"a\", [true]] true true abc true\n");
+}
+
+TEST(Interpreter, SlicesFollowPython) {
+  const std::string v = "v = [1, 2, 3, 4, 5]\n";
+  EXPECT_EQ(out(v + "print(v[1:3], v[:2], v[3:], v[:], v[-2:], v[:-1], v[-3:-1])"),
+            "[2, 3] [1, 2] [4, 5] [1, 2, 3, 4, 5] [4, 5] [1, 2, 3, 4] [3, 4]\n");
+  // Bounds out of range clamp; an empty range gives [].
+  EXPECT_EQ(out(v + "print(v[1:100], v[-100:2], v[4:2], v[5:], v[0:0], [][0:1])"), "[2, 3, 4, 5] [1, 2] [] [] [] []\n");
+  EXPECT_EQ(out(v + "w = v[1:]\nprint(w[0], v[0], len(v[:3][1:]))"), "2 1 2\n");  // a new list; chains
+  EXPECT_EQ(error(v + "x = v[0.5:2]"), "t.bsp:2:7: error: a slice bound must be a whole number, got 0.5");
+  EXPECT_EQ(error(v + "x = v[1:\"a\"]"), "t.bsp:2:9: error: a slice bound must be a whole number, got string");
+  EXPECT_EQ(error("x = \"abc\"[0:1]"), "t.bsp:1:10: error: cannot slice string: only lists have items");
+}
+
+TEST(Interpreter, ListFunctions) {
+  EXPECT_EQ(out("print(reverse([1, 2, 3]), reverse([]), zip([1, 2, 3], [\"a\", \"b\"]), enumerate([\"a\", \"b\"]))"),
+            "[3, 2, 1] [] [[1, \"a\"], [2, \"b\"]] [[0, \"a\"], [1, \"b\"]]\n");
+  EXPECT_EQ(out("print(sum([1, 2, 3.5]), sum([]), sum([[1, 2, 3], [10, 20, 30]]), sum([\"a\", \"b\"]))"),
+            "6.5 0 [11, 22, 33] ab\n");
+  EXPECT_EQ(error("x = sum([1, \"a\"])"), "t.bsp:1:9: error: sum: cannot apply '+' to number and string (item 1)");
+}
+
+TEST(Interpreter, MapAndFilterTakeUserFunctionsAndBuiltins) {
+  EXPECT_EQ(out("fn double(x) { 2 * x }\nfn big(x) { x > 10 }\n"
+                "print(map(double, [1, 2, 3]), map(sqrt, [4, 9]), filter(big, [1, 20, 5, 30]), map(double, []))"),
+            "[2, 4, 6] [2, 3] [20, 30] []\n");
+  EXPECT_EQ(out("fs = [sqrt, abs]\nprint(map(fs[1], [-1, 2]))"), "[1, 2]\n");
+  // Functions see the globals; a map inside a function works on its locals' values.
+  EXPECT_EQ(out("k = 3\nfn times_k(x) { k * x }\nfn all(xs) { map(times_k, xs) }\nprint(all([1, 2]))"), "[3, 6]\n");
+  EXPECT_EQ(error("x = map(3, [1])"), "t.bsp:1:9: error: map: argument 'f' must be a function, got number");
+  EXPECT_EQ(error("x = filter(sqrt, [4])"),
+            "t.bsp:1:12: error: filter: f must give true or false, got number for item 0 (4)");
+  EXPECT_EQ(error("fn two(a, b) { a }\nx = map(two, [1])"), "t.bsp:2:5: error: two: missing argument 'b'");
+  EXPECT_EQ(error("x = map(sqrt, [4, -1])"), "t.bsp:1:5: error: sqrt: square root of a negative number");
+  const auto r = run_script("fn bad(x) { x + \"s\" }\nx = map(bad, [1])");
+  EXPECT_EQ(r.error,
+            "t.bsp:1:15: error: cannot apply '+' to number and string\n"
+            "fn bad(x) { x + \"s\" }\n"
+            "              ^\n"
+            "t.bsp:2:5: note: in call to 'bad'\n");
+  // Calls made by map count as steps; recursion through map is bounded like any other.
+  EXPECT_NE(error("fn f(x) { x }\nx = map(f, range(0, 100))", {.max_steps = 150}).find("step limit of 150 exceeded"),
+            std::string::npos);
+  EXPECT_NE(error("fn f(x) { map(f, [x]) }\nx = f(1)").find("recursion too deep"), std::string::npos);
+}
+
+TEST(Interpreter, FixedDefinitionsWinOverTopLevelAssignments) {
+  std::ostringstream printed;
+  Interpreter interpreter({.out = &printed});
+  interpreter.define_fixed("size", 3.0);
+  interpreter.run(
+      testing::text_source("size = 10\nfn f() { size = 1\n size }\nprint(size, f())\nfor size in [7] { print(size) }"));
+  EXPECT_EQ(printed.str(), "3 1\n7\n");
 }
 
 TEST(Interpreter, ControlFlow) {

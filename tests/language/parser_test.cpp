@@ -54,6 +54,9 @@ TEST(Parser, AcceptsTheLanguageSummary) {
       "return",
       "iffy = 1; format = 2; inside = 3",
       "x = 1 # trailing comment\n",
+      "x = v[1:2] + v[:2] + v[1:] + v[:] + v[-2:-1]",
+      "x = v[a[0]:b[1:][0]]\ny = v[\n  1 :\n  2\n]",
+      "x[0] == 5",
   };
   for (const char* text : good) EXPECT_EQ(parse_error(text), "") << text;
 }
@@ -113,6 +116,33 @@ TEST(Parser, ExactMessagesForBadInput) {
 
 // Names are ASCII; a byte >= 128 outside a string or comment is a clean error, never passed to
 // the C library's character classes (undefined for a negative char).
+TEST(Parser, SlicesAndIndexes) {
+  const ast::Program program = parse(text_source("a = v[2]\nb = v[1:]\nc = v[:-1]\nd = v[:]"));
+  ASSERT_EQ(program.statements.size(), 4u);
+  const auto subscript = [&](std::size_t k) {
+    const auto& postfix = boost::get<ast::Postfix>(boost::get<ast::Assignment>(program.statements[k]).value.first);
+    return boost::get<ast::Subscript>(postfix.ops.at(0));
+  };
+  EXPECT_FALSE(subscript(0).slice);
+  EXPECT_EQ(subscript(0).where, 5u);  // the '[' of "a = v[2]"
+  EXPECT_TRUE(subscript(1).slice);
+  EXPECT_TRUE(subscript(1).start && !subscript(1).stop);
+  EXPECT_TRUE(subscript(2).slice);
+  EXPECT_TRUE(!subscript(2).start && subscript(2).stop);
+  EXPECT_TRUE(subscript(3).slice);
+  EXPECT_TRUE(!subscript(3).start && !subscript(3).stop);
+}
+
+TEST(Parser, SliceAndElementAssignmentErrors) {
+  EXPECT_EQ(parse_error("x = v[]"), "t.bsp:1:7: error: expected expression here\nx = v[]\n      ^\n");
+  EXPECT_EQ(parse_error("x = v[1:2:3]"), "t.bsp:1:10: error: expected ']' here\nx = v[1:2:3]\n         ^\n");
+  const std::string element =
+      "error: only a name can be assigned: assignment to an element (x[i] = v) is not supported, lists are values; "
+      "build a new list instead, e.g. xs = concat(xs[:i], concat([v], xs[i + 1:]))";
+  EXPECT_EQ(parse_error("x = [1, 2]\nx[0] = 5"), "t.bsp:2:6: " + element + "\nx[0] = 5\n     ^\n");
+  EXPECT_EQ(parse_error("f(x) = 1"), "t.bsp:1:6: " + element + "\nf(x) = 1\n     ^\n");
+}
+
 TEST(Parser, NonAsciiBytesAreErrorsOutsideStringsAndComments) {
   EXPECT_EQ(parse_error("x = \xc3\xa9"), "t.bsp:1:5: error: expected expression here\nx = \xc3\xa9\n    ^\n");
   EXPECT_NE(parse_error("caf\xc3\xa9 = 1"), "");

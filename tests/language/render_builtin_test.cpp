@@ -53,6 +53,23 @@ TEST(RenderBuiltin, WritesAPictureOfTheRequestedSize) {
   EXPECT_EQ(covered(render::read_png(dir.file("top.png"))), 400);
 }
 
+// The picture is PNG (plot: SVG) whatever the name says: another extension is refused (render's
+// before any work) and nothing is written.
+TEST(RenderBuiltin, RefusesAFileNameOfAnotherFormat) {
+  TempDir dir;
+  const std::string jpg = dir.file("x.jpg");
+  const std::string error = run_script("render(box([0,0,0],[1,1,1]), \"" + jpg + "\")").error;
+  EXPECT_EQ(error.substr(0, error.find('\n')),
+            "t.bsp:1:30: error: render: the picture is PNG: the file name must end in .png, not '.jpg'");
+  EXPECT_FALSE(fs::exists(jpg));
+  const std::string no_extension = run_script("render(box([0,0,0],[1,1,1]), \"" + dir.file("x") + "\")").error;
+  EXPECT_NE(no_extension.find("must end in .png, not ''"), std::string::npos) << no_extension;
+  EXPECT_EQ(run_script("render(box([0,0,0],[1,1,1]), \"" + dir.file("upper.PNG") + "\")").error, "");
+  const std::string svg = run_script("plot([[0, 0], [1, 1]], \"" + dir.file("p.png") + "\")").error;
+  EXPECT_NE(svg.find("plot: the picture is SVG: the file name must end in .svg, not '.png'"), std::string::npos) << svg;
+  EXPECT_FALSE(fs::exists(dir.file("p.png")));
+}
+
 TEST(RenderBuiltin, ErrorsPointAtTheArgument) {
   TempDir dir;
   std::string f = "\"";

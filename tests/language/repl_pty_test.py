@@ -87,7 +87,7 @@ def main():
     t.mark(); t.type("twice(x)\r"); t.read_until("84")
 
     # Tab completion of a built-in name: "cyli<TAB>" becomes "cylinder", whose value is echoed.
-    t.mark(); t.type("cyli\t\r"); t.read_until("<built-in cylinder(r, h, segments=32)>")
+    t.mark(); t.type("cyli\t\r"); t.read_until("<built-in cylinder(r, h, segments=32, center=false, d=diameter)>")
 
     # History recall: the up arrow brings back the last entry.
     t.mark(); t.type("print(\"again\", x)\r"); t.read_until("again 42")
@@ -110,7 +110,7 @@ def main():
     t.mark(); t.type(":show\r"); t.read_until(picture)
     assert open(picture, "rb").read(8) == b"\x89PNG\r\n\x1a\n", "not a PNG"
 
-    t.mark(); t.type(":help box\r"); t.read_until("box(min, max)")
+    t.mark(); t.type(":help box\r"); t.read_until("box(min, max, center=false, size=v)")
     t.mark(); t.type(":vars\r"); t.read_until("x : number = 42")
     t.type(":quit\r")
     status = t.close()
@@ -122,7 +122,7 @@ def main():
     t = Terminal(home)
     t.read_until("sculpt> ")
     t.mark(); t.type("\x1b[A\x1b[A\x1b[A\r")  # three entries back: ':help box' of the first session
-    t.read_until("min < max).\r\nsculpt> ")  # the help text, then the next prompt
+    t.read_until("centres the box on the origin.\r\nsculpt> ")  # the help text, then the next prompt
     time.sleep(0.3)
     t.type("\x04")  # end of input leaves the session
     status = t.close()

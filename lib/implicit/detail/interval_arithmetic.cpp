@@ -112,6 +112,43 @@ Interval abs(Interval a) {
   return {0.0, std::max(-a.lo, a.hi)};
 }
 
+Interval log(Interval a, bool& domain_error) {
+  if (a.lo <= 0.0) domain_error = true;
+  if (a.hi <= 0.0) return whole_line();
+  return {a.lo <= 0.0 ? -kInf : down(std::log(a.lo), 2), up(std::log(a.hi), 2)};
+}
+
+// asin and acos: monotone on [-1, 1]; the part of `a` outside is a domain error.
+Interval asin(Interval a, bool& domain_error) {
+  if (a.lo < -1.0 || a.hi > 1.0) domain_error = true;
+  if (a.hi < -1.0 || a.lo > 1.0) return whole_line();
+  return widen(std::asin(std::max(a.lo, -1.0)), std::asin(std::min(a.hi, 1.0)), 2);
+}
+
+Interval acos(Interval a, bool& domain_error) {
+  if (a.lo < -1.0 || a.hi > 1.0) domain_error = true;
+  if (a.hi < -1.0 || a.lo > 1.0) return whole_line();
+  return widen(std::acos(std::min(a.hi, 1.0)), std::acos(std::max(a.lo, -1.0)), 2);
+}
+
+Interval atan(Interval a) { return widen(std::atan(a.lo), std::atan(a.hi), 2); }
+
+Interval sign(Interval a) {
+  auto s = [](double v) { return v > 0.0 ? 1.0 : v < 0.0 ? -1.0 : 0.0; };
+  return {s(a.lo), s(a.hi)};
+}
+
+// Off the branch cut (x <= 0, y = 0) atan2 is continuous and, in each of the half planes x > 0,
+// y > 0, y < 0, monotone in each argument, so its extremes over a box there lie at corners.
+Interval atan2(Interval y, Interval x) {
+  constexpr double pi = std::numbers::pi;
+  const Interval whole{down(-pi), up(pi)};
+  if (!(x.lo > 0.0 || y.lo > 0.0 || y.hi < 0.0)) return whole;
+  if (!std::isfinite(x.lo) || !std::isfinite(x.hi) || !std::isfinite(y.lo) || !std::isfinite(y.hi)) return whole;
+  const double c[4] = {std::atan2(y.lo, x.lo), std::atan2(y.lo, x.hi), std::atan2(y.hi, x.lo), std::atan2(y.hi, x.hi)};
+  return widen(*std::min_element(c, c + 4), *std::max_element(c, c + 4), 2);
+}
+
 Interval min(Interval a, Interval b) { return {std::min(a.lo, b.lo), std::min(a.hi, b.hi)}; }
 Interval max(Interval a, Interval b) { return {std::max(a.lo, b.lo), std::max(a.hi, b.hi)}; }
 

@@ -36,6 +36,12 @@ namespace sculpt::implicit::detail {
 [[nodiscard]] Interval cos(Interval a);
 [[nodiscard]] Interval exp(Interval a);
 [[nodiscard]] Interval abs(Interval a);
+[[nodiscard]] Interval log(Interval a, bool& domain_error);
+[[nodiscard]] Interval asin(Interval a, bool& domain_error);
+[[nodiscard]] Interval acos(Interval a, bool& domain_error);
+[[nodiscard]] Interval atan(Interval a);
+[[nodiscard]] Interval sign(Interval a);
+[[nodiscard]] Interval atan2(Interval y, Interval x);  ///< [-pi, pi] where the box meets x <= 0, y = 0
 [[nodiscard]] Interval min(Interval a, Interval b);
 [[nodiscard]] Interval max(Interval a, Interval b);
 

@@ -82,6 +82,11 @@ ast::Program parse(const SourcePtr& source) {
     const auto offset = static_cast<std::size_t>(at - begin);
     std::string message = "expected " + failure.which();
     message += at_end ? " at end of input" : " here";
+    if (failure.which() == "element assignment") {  // `x[0] = 5`, `f(x) = 1` (grammar_def.hpp)
+      message =
+          "only a name can be assigned: assignment to an element (x[i] = v) is not supported, lists are "
+          "values; build a new list instead, e.g. xs = concat(xs[:i], concat([v], xs[i + 1:]))";
+    }
     throw ScriptError({source, offset}, message);
   }
   return program;

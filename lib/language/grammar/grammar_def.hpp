@@ -58,6 +58,10 @@ struct named_argument_class : annotate_position {};
 struct positional_argument_class : annotate_position {};
 struct call_class : annotate_position {};
 struct subscript_class : annotate_position {};
+struct subscript_body_class : annotate_position {};
+struct index_or_slice_class : annotate_position {};
+struct slice_from_start_class : annotate_position {};
+struct slice_tail_class : annotate_position {};
 struct postfix_class : annotate_position {};
 struct prefix_op_class : annotate_position {};
 struct prefixed_class : annotate_position {};
@@ -91,6 +95,7 @@ struct end_of_input_class;
 struct escape_class;
 struct keyword_in_class;
 struct close_brace_class;
+struct not_element_assignment_class;
 
 const x3::rule<identifier_class, ast::Identifier> identifier = "name";
 const x3::rule<number_class, ast::NumberLiteral> number = "number";
@@ -105,6 +110,10 @@ const x3::rule<named_argument_class, ast::Argument> named_argument = "argument";
 const x3::rule<positional_argument_class, ast::Argument> positional_argument = "argument";
 const x3::rule<call_class, ast::CallArguments> call = "call";
 const x3::rule<subscript_class, ast::Subscript> subscript = "subscript";
+const x3::rule<subscript_body_class, ast::Subscript> subscript_body = "expression";
+const x3::rule<index_or_slice_class, ast::Subscript> index_or_slice = "expression";
+const x3::rule<slice_from_start_class, ast::Subscript> slice_from_start = "expression";
+const x3::rule<slice_tail_class, ast::SliceTail> slice_tail = "':'";
 const x3::rule<postfix_class, ast::Operand> postfix = "value";
 const x3::rule<prefix_op_class, ast::Op> prefix_op = "prefix operator";
 const x3::rule<prefixed_class, ast::Operand> prefixed = "expression";
@@ -137,6 +146,8 @@ const x3::rule<end_of_statement_class> end_of_statement = "newline or ';'";
 const x3::rule<end_of_input_class> end_of_input = "statement";
 const x3::rule<keyword_in_class> keyword_in = "'in'";
 const x3::rule<close_brace_class> close_brace = "'}'";
+/// Named for grammar.cpp, which words the message (kElementAssignment in parser.hpp).
+const x3::rule<not_element_assignment_class> not_element_assignment = "element assignment";
 const skipper_type skipper = "whitespace";
 const program_type program = "program";
 
@@ -234,7 +245,31 @@ const auto positional_argument_def = (mark >> expression)[([](auto& context) {
 })];
 const auto argument_def = named_argument | positional_argument;
 const auto call_def = (mark >> lit('(') > lb > as<std::vector<ast::Argument>>(-(argument >> *((lit(',') >> lb) > argument))) > lb > lit(')'))[into(&ast::CallArguments::arguments)];
-const auto subscript_def = (mark >> lit('[') > lb > expression > lb > lit(']'))[into(&ast::Subscript::index)];
+// `[i]`, `[a:b]`, `[a:]`, `[:b]`, `[:]`: the first expression is parsed once (no backtracking
+// over it, which nested subscripts would make exponential).
+const auto slice_tail_def =
+    (mark >> lit(':') >> lb >> as<boost::optional<ast::Expression>>(-expression))[into(&ast::SliceTail::stop)];
+const auto index_or_slice_def = (mark >> expression >> -slice_tail)[([](auto& context) {
+  ast::Subscript& node = x3::_val(context);
+  auto& tail = boost::fusion::at_c<1>(x3::_attr(context));
+  if (tail) {
+    node.slice = true;
+    node.start = std::move(boost::fusion::at_c<0>(x3::_attr(context)));
+    node.stop = std::move(tail->stop);
+  } else {
+    node.index = std::move(boost::fusion::at_c<0>(x3::_attr(context)));
+  }
+})];
+const auto slice_from_start_def = (mark >> slice_tail)[([](auto& context) {
+  x3::_val(context).slice = true;
+  x3::_val(context).stop = std::move(x3::_attr(context).stop);
+})];
+const auto subscript_body_def = index_or_slice | slice_from_start;
+const auto subscript_def = (mark >> lit('[') > lb > subscript_body > lb > lit(']'))[([](auto& context) {
+  const std::size_t where = x3::_val(context).where;
+  x3::_val(context) = std::move(x3::_attr(context));
+  x3::_val(context).where = where;
+})];
 const auto postfix_def = (primary >> *(call | subscript))[collapse<ast::Postfix, 0>];
 
 const x3::symbols<Op> sign_ops({{"-", Op::Neg}, {"+", Op::Pos}}, "sign");
@@ -273,6 +308,7 @@ const auto end_of_statement_def = +(eol | ';') | &lit('}') | eoi;
 const auto end_of_input_def = eoi;
 const auto keyword_in_def = keyword("in");
 const auto close_brace_def = lit('}');
+const auto not_element_assignment_def = !(lit('=') >> !lit('='));
 const auto block_def = (lb >> mark >> lit('{') > as<std::vector<ast::Statement>>(separators >> *(statement > end_of_statement)) > close_brace)[into(&ast::Block::statements)];
 const auto assignment_def = identifier >> lit('=') >> !lit('=') > expression;
 const auto return_statement_def = (mark >> keyword("return") >> as<boost::optional<ast::Expression>>(-expression))[into(&ast::Return::value)];
@@ -283,18 +319,19 @@ const auto if_statement_def = ((keyword("if") > conditional) % (lb >> keyword("e
 const auto for_statement_def = keyword("for") > identifier > keyword_in > expression > block;
 const auto function_definition_def =
     keyword("fn") > identifier > lit('(') > lb > -(identifier % (lit(',') >> lb)) > lb > lit(')') > block;
-const auto statement_def = function_definition | if_statement | for_statement | return_statement |
-                           include_statement | assignment | expression;
+const auto statement_def = function_definition | if_statement | for_statement | return_statement | include_statement |
+                           assignment | (expression > not_element_assignment);
 const auto program_def = (mark >> as<std::vector<ast::Statement>>(separators >> *(statement > end_of_statement)) > end_of_input)[into(&ast::Program::statements)];
 
-BOOST_SPIRIT_DEFINE(identifier, number, string, escape, boolean, list, parenthesized, primary,
-                    argument, named_argument, positional_argument, call, subscript, postfix, prefix_op, prefixed, multiplicative,
-                    additive, intersection, union_, comparison, negation, conjunction, expression)
+BOOST_SPIRIT_DEFINE(identifier, number, string, escape, boolean, list, parenthesized, primary, argument, named_argument,
+                    positional_argument, call, subscript, subscript_body, index_or_slice, slice_from_start, slice_tail,
+                    postfix, prefix_op, prefixed, multiplicative, additive, intersection, union_, comparison, negation,
+                    conjunction, expression)
 BOOST_SPIRIT_DEFINE(multiplicative_operation, additive_operation, intersect_operation,
                     union_operation, compare_operation, and_operation, or_operation)
-BOOST_SPIRIT_DEFINE(assignment, return_statement, include_statement, block, conditional,
-                    if_statement, for_statement, function_definition, statement, end_of_statement,
-                    end_of_input, keyword_in, close_brace, skipper, program)
+BOOST_SPIRIT_DEFINE(assignment, return_statement, include_statement, block, conditional, if_statement, for_statement,
+                    function_definition, statement, end_of_statement, end_of_input, keyword_in, close_brace,
+                    not_element_assignment, skipper, program)
 
 }  // namespace sculpt::language::grammar
 
