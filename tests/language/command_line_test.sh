@@ -51,6 +51,11 @@ check grid_power 0 "3e+05 0.0001220703125" "$sculpt" --grid 2^-13 -e 'print(volu
 check grid_decimal 0 "<solid: 6 nodes, height 6, grid 2^-13>" "$sculpt" --grid=0.0001220703125 -e 'print(box([0, 0, 0], [3000, 1, 1]))'
 check grid_not_a_power 2 "sculpt: grid step must be a power of two (2^k, k in [-64, 32]), got 0.001; the nearest is 2^-10 = 0.000976562; try 'sculpt --help'" "$sculpt" --grid 0.001
 check grid_missing 2 "sculpt: --grid: '' is not a number or 2^K; try 'sculpt --help'" "$sculpt" --grid
+check threads_one 0 "8" "$sculpt" --threads 1 -e 'print(volume(box([0, 0, 0], [2, 2, 2])))'
+check threads_equals 0 "8" "$sculpt" --threads=2 -e 'print(volume(box([0, 0, 0], [2, 2, 2])))'
+check threads_zero 2 "sculpt: --threads needs a positive integer, got '0'; try 'sculpt --help'" "$sculpt" --threads 0
+check threads_environment 0 "8" env SCULPT_THREADS=1 "$sculpt" -e 'print(volume(box([0, 0, 0], [2, 2, 2])))'
+check threads_environment_bad 2 "sculpt: SCULPT_THREADS must be an integer from 1 to 4096, got 'two'; try 'sculpt --help'" env SCULPT_THREADS=two "$sculpt" -e 'print(1)'
 check grid_outside 2 "sculpt: grid step 2^-70 is outside the supported steps 2^-64 .. 2^32; try 'sculpt --help'" "$sculpt" --grid 2^-70
 
 # -D overrides the script's own assignments outside functions (OpenSCAD's rule), not a
@@ -80,7 +85,7 @@ check output_not_after_error 1 "<command line>:1:33: error: unknown name 'y'
 b = box([0, 0, 0], [1, 1, 1]) | y
                                 ^" "$sculpt" -o "$tmp/err.stl" -e 'b = box([0, 0, 0], [1, 1, 1]) | y'
 check output_not_written 1 "" test -e "$tmp/err.stl"
-check output_bad_extension 2 "sculpt: -o: $tmp/x.jpg: unknown mesh format '.jpg' (use .off, .obj, .stl, .ply, .om or .3mf); try 'sculpt --help'" "$sculpt" -o "$tmp/x.jpg" -e 'b = 1'
+check output_bad_extension 2 "sculpt: -o: $tmp/x.jpg: unknown mesh format '.jpg' (use .off, .obj, .stl, .ply, .om, .3mf or .glb); try 'sculpt --help'" "$sculpt" -o "$tmp/x.jpg" -e 'b = 1'
 check output_missing_name 2 "sculpt: -o needs a file name; try 'sculpt --help'" "$sculpt" -e 'b = 1' -o
 
 # Files run in order; include and relative paths resolve against the including script's folder.
