@@ -79,12 +79,12 @@ struct MeshValue final : Object {
 Value solid_value(Solid solid);
 
 /// Writes `mesh` to `path` (write_mesh: the format from the extension, atomically), creating
-/// missing folders first. \throw IoError, InvalidInput (write_mesh)
-void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path);
+/// missing folders first; `binary`: binary STL or PLY. \throw IoError, InvalidInput (write_mesh)
+void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path, bool binary = false);
 
 /// Writes the boundary of solid `s` to `path` as write_mesh_file does (export, sculpt -o).
 /// Returns a warning when the mesh is not known to be clean for other tools, else "".
-std::string export_solid(const SolidValue& s, const std::filesystem::path& path);
+std::string export_solid(const SolidValue& s, const std::filesystem::path& path, bool binary = false);
 
 /// The name of the global most recently bound to a solid, or "" (:show, sculpt -o).
 std::string latest_solid_global(const Interpreter& interpreter);

@@ -257,6 +257,23 @@ TEST(Builtins, ExportCreatesMissingFolders) {
   std::filesystem::remove_all(dir);
 }
 
+// binary=true: binary STL is an 80-byte header, a 4-byte count and 50 bytes per triangle (the
+// format's definition); a box's 6 faces are 12 triangles. It reads back as the same solid.
+TEST(Builtins, ExportWritesBinaryStlWhenAsked) {
+  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test_binary";
+  std::filesystem::remove_all(dir);
+  const std::string path = (dir / "box.stl").string();
+  EXPECT_EQ(run_script("export(box([0, 0, 0], [1, 2, 3]), \"" + path + "\", binary=true)").error, "");
+  EXPECT_EQ(std::filesystem::file_size(path), 80u + 4u + 12u * 50u);
+  EXPECT_EQ(run_script("print(volume(import(\"" + path + "\")))").out, "6\n");
+  const std::string off = (dir / "box.off").string();
+  EXPECT_NE(run_script("export(box([0, 0, 0], [1, 1, 1]), \"" + off + "\", binary=true)")
+                .error.find("applies to .stl and .ply"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(off));
+  std::filesystem::remove_all(dir);
+}
+
 /// The numbers of a printed box (brackets and commas dropped), compared within `tol` with `want`.
 void expect_box(const std::string& script, const std::vector<double>& want, double tol) {
   std::string text = run_script(script).out;
