@@ -8,9 +8,10 @@
 #include <Eigen/Geometry>
 
 #include "base/errors.hpp"
-#include "mesh/triangulate.hpp"
+#include "bsp/local/deferred_build.hpp"
 #include "bsp/tree/autopartition.hpp"
 #include "bsp/tree/solid_access.hpp"
+#include "mesh/triangulate.hpp"
 
 namespace sculpt {
 
@@ -67,6 +68,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
 
   kernel::PlaneTable table;
   std::vector<ConvexPolygon> polys;
+  Int128 volume6 = 0;  // six times the signed volume of the snapped triangles (exact: |coords| < 2^26)
   for (std::size_t fi = 0; fi < mesh.faces.size(); ++fi) {
     const auto& f = mesh.faces[fi];
     if (f.size() < 3) throw InvalidInput("from_mesh: face " + std::to_string(fi) + " has fewer than 3 vertices");
@@ -135,27 +137,38 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       if (!(tn.dot(original) > 0))
         throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[std::size_t(tri[0])])], grid));
       polys.push_back(triangle_polygon(table, planar ? support : table.add(kernel::plane_through(v[0], v[1], v[2])), v));
+      volume6 += Int128(v[0].x) * (Int128(v[1].y) * v[2].z - Int128(v[1].z) * v[2].y) -
+                 Int128(v[0].y) * (Int128(v[1].x) * v[2].z - Int128(v[1].z) * v[2].x) +
+                 Int128(v[0].z) * (Int128(v[1].x) * v[2].y - Int128(v[1].y) * v[2].x);
     }
   }
 
   // Thibault & Naylor 1987 (autopartition.hpp): each candidate scored against every polygon.
-  bsp::detail::Arena arena;
-  arena.planes = std::move(table);
   FragmentList fragments;
   fragments.reserve(polys.size());
   for (ConvexPolygon& p : polys) fragments.push_back({std::move(p), false});
-  Solid solid = bsp::detail::autopartition(arena, std::move(fragments),
-                                           {.candidates = options.candidates,
-                                            .sample = options.sample,
-                                            .split_weight = options.split_weight,
-                                            .score = bsp::detail::PartitionScore::ExpectedDepth,
-                                            .volume_samples = options.volume_samples,
-                                            .point_sample = options.point_sample,
-                                            .auxiliary_cost = options.auxiliary_cost,
-                                            .separating_planes = options.separating_planes,
-                                            .carry_boundary = options.snapped_mesh_is_clean,
-                                            .auxiliary_splits = options.auxiliary_planes,
-                                            .approximate_scores = true});
+  const bsp::detail::AutopartitionOptions build{.candidates = options.candidates,
+                                                .sample = options.sample,
+                                                .split_weight = options.split_weight,
+                                                .score = bsp::detail::PartitionScore::ExpectedDepth,
+                                                .volume_samples = options.volume_samples,
+                                                .point_sample = options.point_sample,
+                                                .auxiliary_cost = options.auxiliary_cost,
+                                                .separating_planes = options.separating_planes,
+                                                .carry_boundary = options.snapped_mesh_is_clean,
+                                                .auxiliary_splits = options.auxiliary_planes,
+                                                .approximate_scores = true};
+  if (options.snapped_mesh_is_clean && !fragments.empty()) {
+    // A clean closed surface: the tree waits for its first use. Far from it the solid is out when
+    // the surface's orientation is outward (positive volume), in when it is turned inside out.
+    std::optional<bool> far_in;
+    if (volume6 != 0) far_in = volume6 < 0;
+    return bsp::detail::SolidAccess::at_grid(
+        bsp::detail::solid_from_boundary(std::move(table), std::move(fragments), far_in, build), grid);
+  }
+  bsp::detail::Arena arena;
+  arena.planes = std::move(table);
+  Solid solid = bsp::detail::autopartition(arena, std::move(fragments), build);
   return bsp::detail::SolidAccess::at_grid(std::move(solid), grid);
 }
 

@@ -34,6 +34,8 @@ struct FromMeshOptions {
   /// is clean there (round_for_output's `clean` at OutputPrecision::Grid: closed, oriented, no
   /// two faces crossing). Its faces then are exactly the solid's boundary, so the solid carries
   /// them and later operations and to_mesh need not extract the boundary from the tree again.
+  /// The tree itself is then built on first use (bsp/local/deferred_build.hpp): an import that is
+  /// only transformed, combined by the set operations' cell path and written out never builds it.
   bool snapped_mesh_is_clean = false;
   /// The grid the vertices are snapped to, which the solid carries (docs/kernel.md, "World range").
   kernel::Grid grid{};

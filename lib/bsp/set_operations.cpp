@@ -7,11 +7,12 @@
 #include <tuple>
 #include <utility>
 
+#include "bsp/local/cell_merge.hpp"
 #include "bsp/merge/batch_union.hpp"
-#include "bsp/tree/boundary_fragments.hpp"
-#include "bsp/tree/deferred_tree.hpp"
 #include "bsp/merge/boundary_merge.hpp"
 #include "bsp/merge/extent_pruning.hpp"
+#include "bsp/tree/boundary_fragments.hpp"
+#include "bsp/tree/deferred_tree.hpp"
 #include "bsp/tree/node_polygons.hpp"
 #include "bsp/tree/tree_arena.hpp"
 
@@ -425,13 +426,31 @@ constexpr bool kUnion[2][2] = {{false, true}, {true, true}};
 constexpr bool kIntersection[2][2] = {{false, false}, {false, true}};
 constexpr bool kDifference[2][2] = {{false, false}, {true, false}};
 
+// True if op(a, b) takes the cell path (local/cell_merge.hpp): both carry their boundary (read
+// without building a deferred tree) and together have enough fragments. With `in_place`, a
+// workpiece whose tree is built keeps the in-place merge for a tool of under an eighth of its
+// fragments: that merge costs what the tool touches, the cell path what both have (strokes).
+bool by_cells(const Solid& a, const Solid& b, bool in_place) {
+  const Solid::BoundaryView va = a.boundary_view(), vb = b.boundary_view();
+  if (!va.fragments || !vb.fragments || va.fragments->empty() || vb.fragments->empty()) return false;
+  const std::size_t na = va.fragments->size(), nb = vb.fragments->size();
+  if (na + nb < bsp::detail::cell_merge_threshold()) return false;
+  return !in_place || a.tree_deferred() || 8 * nb >= na;
+}
+
 // The operations work in grid units; the operands' common grid labels the result.
 Solid operate(const Solid& a, const Solid& b, const bool table[2][2]) {
   const kernel::Grid grid = common_grid(a, b);
+  if (by_cells(a, b, false))
+    if (std::optional<Solid> r = bsp::detail::merge_by_cells(a, b, table))
+      return SolidAccess::at_grid(std::move(*r), grid);
   return SolidAccess::at_grid(apply(a, b, table), grid);
 }
 Solid operate(Solid&& a, const Solid& b, const bool table[2][2]) {
   const kernel::Grid grid = common_grid(a, b);
+  if (by_cells(a, b, true))
+    if (std::optional<Solid> r = bsp::detail::merge_by_cells(a, b, table))
+      return SolidAccess::at_grid(std::move(*r), grid);
   return SolidAccess::at_grid(apply_in_place(std::move(a), b, table), grid);
 }
 

@@ -32,8 +32,11 @@ class Clipper {
   // outward normal points to) and behind it; on_plane: the piece lies on a plane of the tree.
   // Kept pieces go to emit(polygon, fate). Where both parts of a split get the same fate, their
   // parent is emitted instead (the split was needless: fewer, larger fragments).
+  // Returns the fate of `f` as a whole: kKeep, kReverse or kDrop when every piece had that fate
+  // (then `f` itself was emitted, or nothing), kMixed when its parts differ.
   template <typename Fate, typename Emit>
-  void push(TreeRef t, const BoundaryFragment& f, Fate&& fate, Emit&& emit) {
+  int push(TreeRef t, const BoundaryFragment& f, Fate&& fate, Emit&& emit) {
+    whole_ = kPending;
     stack_.clear();
     splits_.clear();
     stack_.emplace_back(t, kernel::ConvexPolygon(f.polygon), kernel::corner_box(f.polygon), ClipMode::Both, false, kOut, -1, 0);
@@ -97,6 +100,7 @@ class Clipper {
         }
       }
     }
+    return whole_;
   }
 
   // Status of the tree in the region around the world box boundary (where `t` has no boundary):
@@ -148,6 +152,7 @@ class Clipper {
   void report(int parent, int which, int fate, kernel::ConvexPolygon poly, Emit& emit) {
     while (true) {
       if (parent < 0) {
+        whole_ = fate;
         if (fate == kKeep || fate == kReverse) emit(std::move(poly), fate);
         return;
       }
@@ -168,6 +173,7 @@ class Clipper {
   }
 
   Arena& a_;
+  int whole_ = kPending;  // the fate of the fragment being pushed as a whole
   std::vector<Item> stack_;
   std::vector<Split> splits_;
 };

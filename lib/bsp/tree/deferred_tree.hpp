@@ -7,6 +7,7 @@
 /// build() the first time anything asks for its tree (see Solid, "Deferred trees").
 
 #include <memory>
+#include <optional>
 
 #include "bsp/solid.hpp"
 
@@ -18,6 +19,8 @@ class DeferredTree {
   /// The result's boundary and the planes it is on (valid until build()).
   [[nodiscard]] virtual const kernel::PlaneTable& planes() const = 0;
   [[nodiscard]] virtual const FragmentList& boundary() const = 0;
+  /// The result's status far from its boundary, when known without the tree.
+  [[nodiscard]] virtual std::optional<bool> far_in() const { return std::nullopt; }
   /// The complete result (tree, boundary, at the default grid): exactly what the operation would
   /// have returned without deferring. Called once; the object is discarded after it. If it
   /// throws, a second call throws std::logic_error (the work it began cannot be resumed).

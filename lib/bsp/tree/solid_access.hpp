@@ -26,6 +26,11 @@ struct SolidAccess {
   }
   /// A solid whose tree is built on first use (deferred_tree.hpp), at the default grid.
   static Solid deferred(std::unique_ptr<DeferredTree> tree) { return Solid(std::move(tree)); }
+  /// A deferred solid's status far from its boundary, if it knows it (nullopt otherwise, and for
+  /// solids whose tree is built).
+  static std::optional<bool> deferred_far_in(const Solid& solid) {
+    return solid.deferred_ ? solid.deferred_->far_in() : std::nullopt;
+  }
   /// The free node and plane slots in-place operations keep in a solid's storage (tree_arena.hpp).
   static const FreeSlots& free_slots(const Solid& solid) { return solid.settled().free_; }
   /// Boxes of solid.boundary() (same order), or empty if not computed.

@@ -4,7 +4,8 @@
 //   u = m | r; d = u - sphere(radius = a quarter of the box's largest side, 48 segments, centred
 //   three quarters of the way from the box centre to its upper corner); volume(d)
 // or, with --sphere N, sphere(1, N) - sphere(1, N) moved by (0.3, 0.2, 0.1).
-//   bench_mesh_job [--threads T] (--mesh FILE.off | --sphere N)
+//   bench_mesh_job [--threads T] [--classic] (--mesh FILE.off | --sphere N)
+// --classic: set operations by merging whole trees, never by cells (bsp/local/cell_merge.hpp).
 // Prints: bench case=NAME n=TRIANGLES threads=T import=S turn=S union=S difference=S total=S
 //         volume=V triangles_out=N (seconds, wall clock; the process's peak memory is measured outside).
 #include <chrono>
@@ -21,6 +22,7 @@
 #include "base/parallel.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/from_mesh.hpp"
+#include "bsp/local/cell_merge.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
@@ -35,7 +37,7 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 int usage() {
-  std::fprintf(stderr, "usage: bench_mesh_job [--threads T] (--mesh FILE | --sphere N)\n");
+  std::fprintf(stderr, "usage: bench_mesh_job [--threads T] [--classic] (--mesh FILE | --sphere N)\n");
   return 2;
 }
 
@@ -45,8 +47,14 @@ int main(int argc, char** argv) {
   using namespace sculpt;
   int threads = 0, n = 0;
   std::string file;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
+    if (a == "--classic") {
+      bsp::detail::set_cell_merge_threshold(bsp::detail::kClassicMergeOnly);
+      --i;
+      continue;
+    }
+    if (i + 1 >= argc) return usage();
     if (a == "--threads")
       threads = std::atoi(argv[i + 1]);
     else if (a == "--mesh")

@@ -1,0 +1,511 @@
+#include "bsp/local/cell_merge.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <unordered_map>
+#include <utility>
+
+#include "base/assert.hpp"
+#include "base/parallel.hpp"
+#include "bsp/local/deferred_build.hpp"
+#include "bsp/tree/autopartition.hpp"
+#include "bsp/tree/boundary_clipper.hpp"
+
+namespace sculpt::bsp::detail {
+
+using kernel::ConvexPolygon;
+using kernel::CornerBox;
+using kernel::Side;
+
+namespace {
+
+constexpr TreeRef kUnbuilt = -100;      // a leaf's local tree not built yet
+constexpr std::size_t kLeafChunk = 16;  // leaves per parallel chunk (fixed: results never depend on threads)
+
+// Keeps a piece whose two sides get `in_behind` / `in_front` in the result: drop, keep, reverse.
+int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDrop : (in_behind ? kKeep : kReverse); }
+
+struct Operand {
+  FragmentList faces;
+  std::vector<FragmentBox> boxes;
+  CornerBox box;            // around the boundary; invalid when it reaches the world box
+  std::optional<bool> far;  // status outside `box`
+};
+
+// One operand's pieces in a leaf: fragments clipped to the leaf, and the fragment each came from.
+struct Pieces {
+  FragmentList faces;
+  std::vector<std::uint32_t> origin;
+};
+
+enum class CellClip { Outside, Inside, Cut };
+// `poly` clipped to the closed cell whose walls are `walls` (the cell on their negative sides):
+// Outside when nothing of positive area is left, Inside when all of it is in the cell (`out` is
+// then not written), Cut with the part in the cell in `out`.
+CellClip clip_to_cell(const kernel::PlaneTable& planes, const ConvexPolygon& poly,
+                      const std::array<std::int32_t, 6>& walls, ConvexPolygon& out, ConvexPolygon& scratch) {
+  CornerBox box = kernel::corner_box(poly);
+  bool inside = true;
+  for (const std::int32_t w : walls) inside = inside && kernel::box_side(box, planes[w]) == Side::Negative;
+  if (inside) return CellClip::Inside;
+  out = poly;
+  for (const std::int32_t w : walls) {
+    const Side s = kernel::clip_to_negative(planes, out, scratch, box, w);
+    SCULPT_ASSERT(s != Side::On, "cell_merge: a fragment lies on a cell wall");
+    if (s == Side::Positive || s == Side::On) return CellClip::Outside;
+    if (s == Side::Both) std::swap(out, scratch);
+  }
+  return out.empty() ? CellClip::Outside : CellClip::Cut;
+}
+
+class CellMerge {
+ public:
+  CellMerge(Arena& arena, std::array<Operand, 2>& ops, const bool op[2][2], const KdOptions& options)
+      : arena_(arena), ops_(ops) {
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) op_[i][j] = op[i][j];
+    cells_ =
+        subdivide({std::span<const FragmentBox>(ops[0].boxes), std::span<const FragmentBox>(ops[1].boxes)}, options);
+  }
+
+  // The result's fragments; `uniform` is set to the result's status when none is kept.
+  FragmentList run(std::optional<bool>& uniform) {
+    make_walls();
+    clip_leaves();
+    count_pieces();
+    build_mixed_trees();
+    for (std::size_t l = 0; l < leaf_count(); ++l)
+      for (int x = 0; x < 2; ++x)
+        if (pieces_[l][x].origin.empty() && !pieces_[l][1 - x].origin.empty()) status(node_of(l), x);
+    for (const BspNode& n : arena_.nodes) arena_.opposite(n.plane);  // the pushes then only read the arena
+    return emit(uniform);
+  }
+
+ private:
+  [[nodiscard]] std::size_t leaf_count() const { return cells_.leaves.size(); }
+  [[nodiscard]] std::int32_t node_of(std::size_t leaf) const { return cells_.leaves[leaf]; }
+  [[nodiscard]] bool mixed(std::size_t l) const {
+    return !pieces_[l][0].origin.empty() && !pieces_[l][1].origin.empty();
+  }
+
+  // The walls of every kd node as arena planes (upper then lower per axis), each plane made once;
+  // each node's range of leaves (leaves are in depth-first order).
+  void make_walls() {
+    std::unordered_map<std::int64_t, std::int32_t> made[3][2];  // per axis and orientation
+    auto wall = [&](int axis, std::int64_t at, bool upper) {
+      auto [it, fresh] = made[axis][upper].try_emplace(at, -1);
+      if (fresh) {
+        std::int64_t n[3] = {0, 0, 0};
+        n[axis] = upper ? 2 : -2;  // upper: 2x - at <= 0; lower: -2x + at <= 0
+        it->second =
+            arena_.planes.add(kernel::Plane(n[0], n[1], n[2], upper ? -kernel::Int128(at) : kernel::Int128(at)));
+      }
+      return it->second;
+    };
+    walls_.resize(cells_.nodes.size());
+    for (std::size_t i = 0; i < cells_.nodes.size(); ++i) {
+      const CellBounds& b = cells_.nodes[i].bounds;
+      for (int k = 0; k < 3; ++k) {
+        walls_[i][std::size_t(2 * k)] = wall(k, b.hi[k], true);
+        walls_[i][std::size_t(2 * k + 1)] = wall(k, b.lo[k], false);
+      }
+    }
+    leaf_index_.assign(cells_.nodes.size(), -1);
+    leaf_range_.assign(cells_.nodes.size(), {0, 0});
+    for (std::size_t l = 0; l < leaf_count(); ++l) leaf_index_[std::size_t(node_of(l))] = std::int32_t(l);
+    for (std::size_t i = cells_.nodes.size(); i-- > 0;) {
+      const KdNode& n = cells_.nodes[i];
+      if (n.axis < 0) {
+        const auto l = std::uint32_t(leaf_index_[i]);
+        leaf_range_[i] = {l, l + 1};
+      } else {
+        leaf_range_[i] = {leaf_range_[std::size_t(n.child[0])][0], leaf_range_[std::size_t(n.child[1])][1]};
+      }
+    }
+  }
+
+  // Step 2: every fragment clipped to each leaf its box meets (reads the arena only). The pieces'
+  // polygons are kept where both operands have boxes (the others are needed only where a status
+  // is read from a leaf: pieces_of() makes them then).
+  void clip_leaves() {
+    pieces_.resize(leaf_count());
+    parallel_chunks(leaf_count(), kLeafChunk, [&](std::size_t begin, std::size_t end) {
+      ConvexPolygon piece, scratch;
+      for (std::size_t l = begin; l < end; ++l) {
+        const KdNode& n = cells_.nodes[std::size_t(node_of(l))];
+        const bool keep = !n.items[0].empty() && !n.items[1].empty();
+        for (int x = 0; x < 2; ++x) {
+          Pieces& p = pieces_[l][x];
+          for (const std::uint32_t i : n.items[x]) {
+            const BoundaryFragment& f = ops_[x].faces[i];
+            const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
+            if (c == CellClip::Outside) continue;
+            if (keep) p.faces.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
+            p.origin.push_back(i);
+          }
+        }
+      }
+    });
+    for (KdNode& n : cells_.nodes) n.items = {};
+  }
+
+  // Operand x's pieces in leaf l, their polygons made if clip_leaves() did not keep them.
+  const FragmentList& pieces_of(std::size_t l, int x) {
+    Pieces& p = pieces_[l][x];
+    if (p.faces.size() == p.origin.size()) return p.faces;
+    ConvexPolygon piece, scratch;
+    for (const std::uint32_t i : p.origin) {
+      const BoundaryFragment& f = ops_[x].faces[i];
+      const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
+      p.faces.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
+    }
+    return p.faces;
+  }
+
+  // Pieces per kd node and operand (bottom-up).
+  void count_pieces() {
+    count_.assign(cells_.nodes.size(), {0, 0});
+    for (std::size_t l = 0; l < leaf_count(); ++l)
+      for (int x = 0; x < 2; ++x) count_[std::size_t(node_of(l))][x] = pieces_[l][x].origin.size();
+    for (std::size_t i = cells_.nodes.size(); i-- > 1;) {
+      const std::int32_t up = cells_.nodes[i].parent;
+      for (int x = 0; x < 2; ++x) count_[std::size_t(up)][x] += count_[i][x];
+    }
+    status_.assign(cells_.nodes.size(), {-1, -1});
+  }
+
+  // Step 3: local trees (Thibault & Naylor's autopartition over one leaf's pieces), with face
+  // planes only: an auxiliary plane (half a grid step off the grid) would cut the other operand's
+  // pieces next to its edges into slivers, and a leaf's few pieces need no balancing. Their nodes
+  // go to the arena (no node polygons: nothing here reads them).
+  static constexpr AutopartitionOptions kLocal{.auxiliary_splits = false};
+  TreeRef append_tree(const PartitionTree& tree) {
+    if (is_leaf(tree.root)) return tree.root;
+    const auto first = TreeRef(arena_.nodes.size());
+    auto slot = [first](TreeRef c) { return is_leaf(c) ? c : first + c; };
+    for (const PartitionNode& n : tree.nodes) arena_.nodes.push_back({n.plane, slot(n.negative), slot(n.positive)});
+    return slot(tree.root);
+  }
+  // Operand x's local tree in leaf l, built on first use (serial: it may add arena planes).
+  TreeRef local_tree(std::size_t l, int x) {
+    TreeRef& t = trees_[l][x];
+    if (t == kUnbuilt)
+      t = append_tree(partition_fragments(arena_, pieces_of(l, x), kLocal, walls_[std::size_t(node_of(l))]));
+    return t;
+  }
+  // Both local trees of every mixed leaf, on every core: the opposites of the pieces' planes are
+  // made first, so that the builds only read the arena; the trees are appended in leaf order.
+  void build_mixed_trees() {
+    trees_.assign(leaf_count(), {kUnbuilt, kUnbuilt});
+    std::vector<std::size_t> mixed_leaves;
+    for (std::size_t l = 0; l < leaf_count(); ++l)
+      if (mixed(l)) {
+        mixed_leaves.push_back(l);
+        for (int x = 0; x < 2; ++x)
+          for (const BoundaryFragment& f : pieces_[l][x].faces) arena_.opposite(f.polygon.support);
+      }
+    std::vector<std::array<PartitionTree, 2>> built(mixed_leaves.size());
+    parallel_chunks(mixed_leaves.size(), 4, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+        for (int x = 0; x < 2; ++x) {
+          const std::size_t l = mixed_leaves[k];
+          built[k][x] = partition_fragments(arena_, pieces_[l][x].faces, kLocal, walls_[std::size_t(node_of(l))]);
+        }
+    });
+    for (std::size_t k = 0; k < mixed_leaves.size(); ++k)
+      for (int x = 0; x < 2; ++x) trees_[mixed_leaves[k]][x] = append_tree(built[k][x]);
+  }
+
+  // Step 4: operand x's status in kd node `id`, which holds none of x's pieces. The largest such
+  // node around it shares a wall with its sibling, where x's pieces are; a leaf of the sibling on
+  // that wall tells the status by the wall's polygon pushed down its local tree of x (or, if that
+  // leaf has no piece of x either, by its own status, found deeper in the kd-tree: the recursion
+  // is at most the kd-tree's depth).
+  bool status(std::int32_t id, int x) {
+    if (status_[std::size_t(id)][x] >= 0) return status_[std::size_t(id)][x] == 1;
+    SCULPT_ASSERT(count_[std::size_t(id)][x] == 0, "cell_merge: status asked where the operand has boundary");
+    bool s;
+    if (outside_box(id, x)) {
+      s = *ops_[x].far;
+    } else {
+      std::int32_t top = id;
+      while (cells_.nodes[std::size_t(top)].parent >= 0 &&
+             count_[std::size_t(cells_.nodes[std::size_t(top)].parent)][x] == 0)
+        top = cells_.nodes[std::size_t(top)].parent;
+      const KdNode& up = cells_.nodes[std::size_t(cells_.nodes[std::size_t(top)].parent)];
+      const int side = up.child[0] == top ? 1 : 0;  // the sibling's side of the wall
+      std::int32_t m = up.child[side];
+      while (cells_.nodes[std::size_t(m)].axis >= 0) {
+        const KdNode& n = cells_.nodes[std::size_t(m)];
+        if (n.axis == up.axis) {
+          m = n.child[1 - side];  // towards the wall
+        } else {
+          // The child with fewer of x's pieces, but some (a small local tree to build).
+          const std::size_t c0 = count_[std::size_t(n.child[0])][x], c1 = count_[std::size_t(n.child[1])][x];
+          m = c0 > 0 && (c1 == 0 || c0 <= c1) ? n.child[0] : n.child[1];
+        }
+      }
+      s = count_[std::size_t(m)][x] == 0 ? status(m, x) : status_across(m, up.axis, up.split, side == 1, x);
+      status_[std::size_t(top)][x] = s ? 1 : 0;
+    }
+    status_[std::size_t(id)][x] = s ? 1 : 0;
+    return s;
+  }
+
+  // True if kd node `id` reaches outside operand x's box (then part of it is far from x's
+  // boundary, and all of it, holding none, has x's far status).
+  bool outside_box(std::int32_t id, int x) const {
+    const Operand& o = ops_[x];
+    if (!o.box.valid || !o.far) return false;
+    const CellBounds& b = cells_.nodes[std::size_t(id)].bounds;
+    for (int k = 0; k < 3; ++k)
+      if (0.5 * double(b.lo[k]) < o.box.lo[k] || 0.5 * double(b.hi[k]) > o.box.hi[k]) return true;
+    return false;
+  }
+
+  // Operand x's status just across the wall `split` (axis `axis`) from kd leaf `m`, which lies
+  // above the wall when `above`: the polygon of m's face on the wall, pushed down m's local tree
+  // of x. The wall crosses no boundary of x there, so every piece reaches the same status; the
+  // side behind the polygon (its support has m on the negative side) is m's.
+  bool status_across(std::int32_t m, int axis, std::int64_t split, bool above, int x) {
+    const std::size_t l = std::size_t(leaf_index_[std::size_t(m)]);
+    const std::array<std::int32_t, 6>& walls = walls_[std::size_t(m)];
+    // m's wall on the split: its lower wall when it lies above the split, else its upper one.
+    const std::int32_t support = walls[std::size_t(2 * axis + (above ? 1 : 0))];
+    SCULPT_ASSERT(
+        (above ? cells_.nodes[std::size_t(m)].bounds.lo : cells_.nodes[std::size_t(m)].bounds.hi)[axis] == split,
+        "cell_merge: the leaf found does not touch the wall");
+    ConvexPolygon face = kernel::world_polygon(arena_.planes, support), scratch;
+    CornerBox box = kernel::corner_box(face);
+    for (int k = 0; k < 6; ++k) {
+      if (k / 2 == axis) continue;
+      if (kernel::clip_to_negative(arena_.planes, face, scratch, box, walls[std::size_t(k)]) == Side::Both)
+        std::swap(face, scratch);
+    }
+    const TreeRef t = local_tree(l, x);
+    Clipper clip(arena_);
+    int behind = -1;
+    clip.push(
+        t, BoundaryFragment{face, false},
+        [&](bool, bool back_in, bool) {
+          if (behind < 0) behind = back_in ? 1 : 0;
+          return kDrop;
+        },
+        [](ConvexPolygon, int) {});
+    SCULPT_ASSERT(behind >= 0, "cell_merge: a wall polygon reached no cell");
+    return behind == 1;
+  }
+
+  // The fates of operand x's pieces (x = 0: A, 1: B) where the other operand's status is
+  // `behind` / `front` on the piece's two sides; A's piece stands for a shared plane region.
+  int fate(int x, bool front_in, bool back_in, bool on_plane) const {
+    if (x == 0) return verdict(op_[1][back_in], op_[0][front_in]);
+    return on_plane && front_in != back_in ? kDrop : verdict(op_[back_in][1], op_[front_in][0]);
+  }
+  // The result's status just behind a piece of operand x whose other operand has status `other`.
+  bool behind_status(int x, bool other) const { return x == 0 ? op_[1][other] : op_[other][1]; }
+
+  // Steps 3 and 4's decisions. Each piece's fate: a mixed leaf's pieces pushed down the other
+  // operand's local tree, the others by status (in chunks of leaves, reading the arena only).
+  // Then each fragment is put back together where the walls cut it needlessly: below the highest
+  // kd nodes where all its pieces had one fate, it is emitted as one polygon (the fragment
+  // clipped to that node's cell: the fragment itself at the root), so cell walls leave no seams
+  // where nothing changes across them (in fragment order, in chunks).
+  FragmentList emit(std::optional<bool>& uniform) {
+    whole_.resize(leaf_count());
+    parts_.resize(leaf_count());
+    mixed_parts_.resize(leaf_count());
+    std::vector<int> first_behind((leaf_count() + kLeafChunk - 1) / kLeafChunk, -1);
+    parallel_chunks(leaf_count(), kLeafChunk, [&](std::size_t begin, std::size_t end) {
+      int& fb = first_behind[begin / kLeafChunk];
+      Clipper clip(arena_);
+      for (std::size_t l = begin; l < end; ++l)
+        for (int x = 0; x < 2; ++x) {
+          const Pieces& p = pieces_[l][x];
+          std::vector<std::int8_t>& whole = whole_[l][x];
+          whole.assign(p.origin.size(), std::int8_t(kDrop));
+          if (p.origin.empty()) continue;
+          if (!mixed(l)) {
+            const bool s = status_[std::size_t(node_of(l))][1 - x] == 1;
+            if (fb < 0) fb = behind_status(x, s) ? 1 : 0;
+            whole.assign(p.origin.size(), std::int8_t(fate(x, s, s, false)));
+            continue;
+          }
+          FragmentList& parts = parts_[l][x];
+          for (std::size_t j = 0; j < p.faces.size(); ++j) {
+            const BoundaryFragment& f = p.faces[j];
+            const std::size_t before = parts.size();
+            const int w = clip.push(
+                trees_[l][1 - x], f,
+                [&](bool front_in, bool back_in, bool on) {
+                  if (fb < 0) fb = behind_status(x, back_in) ? 1 : 0;
+                  return fate(x, front_in, back_in, on);
+                },
+                [&](ConvexPolygon piece, int v) {
+                  parts.push_back({std::move(piece), v == kKeep ? f.flip : !f.flip});
+                });
+            whole[j] = std::int8_t(w);
+            if (w != kMixed) parts.resize(before);  // whole: emitted (or not) with its fragment below
+            if (w == kMixed)
+              mixed_parts_[l][x].push_back({std::uint32_t(j), std::uint32_t(before), std::uint32_t(parts.size())});
+          }
+        }
+    });
+    // Each fragment's pieces, by leaf (leaves ascending).
+    for (int x = 0; x < 2; ++x) {
+      by_fragment_[x].assign(ops_[x].faces.size(), {});
+      for (std::size_t l = 0; l < leaf_count(); ++l)
+        for (std::size_t j = 0; j < pieces_[l][x].origin.size(); ++j)
+          by_fragment_[x][pieces_[l][x].origin[j]].push_back({std::uint32_t(l), std::uint32_t(j)});
+    }
+    FragmentList result;
+    for (int x = 0; x < 2; ++x) {
+      const std::size_t n = ops_[x].faces.size();
+      constexpr std::size_t kFragmentChunk = 1024;
+      std::vector<FragmentList> out((n + kFragmentChunk - 1) / kFragmentChunk);
+      parallel_chunks(n, kFragmentChunk, [&](std::size_t begin, std::size_t end) {
+        ConvexPolygon piece, scratch;
+        for (std::size_t i = begin; i < end; ++i) rejoin(x, i, out[begin / kFragmentChunk], piece, scratch);
+      });
+      for (FragmentList& o : out)
+        for (BoundaryFragment& f : o) result.push_back(std::move(f));
+    }
+    for (const int fb : first_behind)
+      if (fb >= 0) {
+        uniform = fb == 1;
+        break;
+      }
+    return result;
+  }
+
+  // Fragment i of operand x put back together (see emit): an explicit stack over the kd nodes
+  // its pieces lie under, from the root.
+  void rejoin(int x, std::size_t i, FragmentList& out, ConvexPolygon& piece, ConvexPolygon& scratch) {
+    const std::vector<std::array<std::uint32_t, 2>>& mine = by_fragment_[x][i];  // (leaf, piece), leaves ascending
+    const BoundaryFragment& f = ops_[x].faces[i];
+    std::vector<std::pair<std::int32_t, std::array<std::size_t, 2>>> stack{
+        {0, {0, mine.size()}}};  // node, pieces [a, b)
+    while (!stack.empty()) {
+      const auto [id, range] = stack.back();
+      stack.pop_back();
+      if (range[0] == range[1]) continue;
+      const int first = whole_[mine[range[0]][0]][x][mine[range[0]][1]];
+      bool same = first != kMixed;
+      for (std::size_t k = range[0] + 1; k < range[1] && same; ++k) same = whole_[mine[k][0]][x][mine[k][1]] == first;
+      const KdNode& n = cells_.nodes[std::size_t(id)];
+      if (same) {
+        if (first == kDrop) continue;
+        const bool flip = first == kKeep ? f.flip : !f.flip;
+        const CellClip c = id == 0 ? CellClip::Inside
+                                   : clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(id)], piece, scratch);
+        if (c != CellClip::Outside) out.push_back({c == CellClip::Inside ? f.polygon : piece, flip});
+        continue;
+      }
+      if (n.axis < 0) {  // a leaf: its one piece, split by the other operand's local tree
+        const std::size_t l = mine[range[0]][0], j = mine[range[0]][1];
+        for (const auto& [index, begin, end] : mixed_parts_[l][x])
+          if (index == j)
+            for (std::size_t k = begin; k < end; ++k) out.push_back(parts_[l][x][k]);
+        continue;
+      }
+      // Split the pieces between the children by their leaves' ranges (children pushed upper first).
+      const std::uint32_t mid = leaf_range_[std::size_t(n.child[1])][0];
+      std::size_t k = range[0];
+      while (k < range[1] && mine[k][0] < mid) ++k;
+      stack.push_back({n.child[1], {k, range[1]}});
+      stack.push_back({n.child[0], {range[0], k}});
+    }
+  }
+
+  Arena& arena_;
+  std::array<Operand, 2>& ops_;
+  bool op_[2][2];
+  KdCells cells_;
+  std::vector<std::array<std::int32_t, 6>> walls_;        // per kd node
+  std::vector<std::int32_t> leaf_index_;                  // per kd node: its leaf index, or -1
+  std::vector<std::array<std::uint32_t, 2>> leaf_range_;  // per kd node: its leaves [first, end)
+  std::vector<std::array<Pieces, 2>> pieces_;             // per leaf and operand
+  std::vector<std::array<std::size_t, 2>> count_;         // per kd node and operand
+  std::vector<std::array<TreeRef, 2>> trees_;             // per leaf and operand
+  std::vector<std::array<std::int8_t, 2>> status_;        // per kd node and operand: -1 unknown
+  // emit(): per leaf and operand, each piece's fate as a whole (kMixed: split), the parts of the
+  // split ones and where each one's parts are (piece, first part, end); per fragment its pieces.
+  std::vector<std::array<std::vector<std::int8_t>, 2>> whole_;
+  std::vector<std::array<FragmentList, 2>> parts_;
+  struct PartRange {
+    std::uint32_t piece, begin, end;
+  };
+  std::vector<std::array<std::vector<PartRange>, 2>> mixed_parts_;
+  std::array<std::vector<std::vector<std::array<std::uint32_t, 2>>>, 2> by_fragment_;
+};
+
+// Operand x's fragments on the arena's planes (B's planes appended after A's; the world box
+// planes are shared), with their boxes, bounds and far status.
+Operand load(Arena& arena, const Solid& s, bool first) {
+  const Solid::BoundaryView view = s.boundary_view();
+  Operand o;
+  const std::int32_t shift = first ? 0 : arena.planes.size() - kernel::kWorldPlanes;
+  if (first)
+    arena.planes = *view.planes;
+  else
+    arena.planes.append(*view.planes, kernel::kWorldPlanes);
+  auto map = [shift](std::int32_t p) { return p < kernel::kWorldPlanes ? p : p + shift; };
+  o.faces.reserve(view.fragments->size());
+  o.boxes.reserve(view.fragments->size());
+  for (const BoundaryFragment& f : *view.fragments) {
+    BoundaryFragment& g = o.faces.emplace_back(f);
+    if (shift != 0) {
+      g.polygon.support = map(g.polygon.support);
+      for (auto& c : g.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
+    }
+    o.boxes.push_back(fragment_box(g.polygon));
+  }
+  o.box = bounds(o.faces);
+  o.far = far_status(s);
+  return o;
+}
+
+// The planes `fragments` use, in a table of their own (the world box first), and the fragments
+// renumbered to it: a result does not keep its operands' unused planes.
+kernel::PlaneTable compact_planes(const kernel::PlaneTable& planes, FragmentList& fragments) {
+  kernel::PlaneTable table;
+  table.reserve(std::min(std::size_t(planes.size()), 4 * fragments.size() + std::size_t(kernel::kWorldPlanes)));
+  std::vector<std::int32_t> map(std::size_t(planes.size()), -1);
+  for (std::int32_t i = 0; i < kernel::kWorldPlanes; ++i) map[std::size_t(i)] = i;
+  auto use = [&](std::int32_t p) {
+    std::int32_t& m = map[std::size_t(p)];
+    if (m < 0) m = table.add(planes[p], planes.auxiliary(p));
+    return m;
+  };
+  for (BoundaryFragment& f : fragments) {
+    f.polygon.support = use(f.polygon.support);
+    for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
+  }
+  return table;
+}
+
+std::atomic<std::size_t> g_threshold{kDefaultCellMergeFragments};
+
+}  // namespace
+
+std::size_t cell_merge_threshold() { return g_threshold.load(std::memory_order_relaxed); }
+void set_cell_merge_threshold(std::size_t fragments) { g_threshold.store(fragments, std::memory_order_relaxed); }
+
+std::optional<Solid> merge_by_cells(const Solid& a, const Solid& b, const bool op[2][2],
+                                    const CellMergeOptions& options) {
+  for (const Solid* s : {&a, &b}) {
+    const Solid::BoundaryView v = s->boundary_view();
+    if (!v.fragments || v.fragments->empty()) return std::nullopt;
+  }
+  Arena arena;
+  std::array<Operand, 2> ops{load(arena, a, true), load(arena, b, false)};
+  std::optional<bool> uniform;
+  FragmentList result = CellMerge(arena, ops, op, options.cells).run(uniform);
+  std::optional<bool> far;
+  if (ops[0].far && ops[1].far) far = op[*ops[0].far][*ops[1].far];
+  if (result.empty()) far = uniform;
+  kernel::PlaneTable planes = compact_planes(arena.planes, result);
+  return solid_from_boundary(std::move(planes), std::move(result), far);
+}
+
+}  // namespace sculpt::bsp::detail

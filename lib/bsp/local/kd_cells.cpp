@@ -1,0 +1,140 @@
+#include "bsp/local/kd_cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernel/convex_polygon.hpp"
+
+namespace sculpt::bsp::detail {
+
+namespace {
+
+constexpr std::int64_t kWorldHalf = 2 * kernel::PlaneTable::kWorld + 1;  // beyond the world box
+
+// The closed box of a fragment, widened to everything for an invalid one.
+double lo_of(const FragmentBox& b, int k) { return b.valid ? double(b.lo[k]) : -1e300; }
+double hi_of(const FragmentBox& b, int k) { return b.valid ? double(b.hi[k]) : 1e300; }
+
+// An odd value (half units) for the grid coordinate v: the wall just above floor(v).
+std::int64_t odd_at(double v) { return 2 * std::int64_t(std::floor(v)) + 1; }
+
+CellBounds root_bounds(const std::array<std::span<const FragmentBox>, 2>& boxes) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (const auto& list : boxes)
+    for (const FragmentBox& b : list)
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], lo_of(b, k)), hi[k] = std::max(hi[k], hi_of(b, k));
+  CellBounds c;
+  for (int k = 0; k < 3; ++k) {
+    const double w = double(kernel::PlaneTable::kWorld);
+    c.lo[k] = lo[k] < -w ? -kWorldHalf : odd_at(lo[k]) - 2;  // floor(lo) - 1/2
+    c.hi[k] = hi[k] > w ? kWorldHalf : odd_at(hi[k]) + 2;    // floor(hi) + 3/2 > hi
+  }
+  return c;
+}
+
+struct Choice {
+  int axis = -1;
+  std::int64_t split = 0;
+};
+
+// Where to split a cell: across its longest side, in the widest gap between its fragments' box
+// ends among the middle half of them (balanced counts, and a wall far from every vertex it might
+// cut near: a piece cut off within a grid step of an edge would round to a sliver), or at the
+// middle when that makes no progress; none if the cell is too thin to hold an odd wall inside.
+Choice choose_split(const KdNode& n, const std::array<std::span<const FragmentBox>, 2>& boxes, int attempt) {
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (n.bounds.hi[k] - n.bounds.lo[k] > n.bounds.hi[axis] - n.bounds.lo[axis]) axis = k;
+  const std::int64_t lo = n.bounds.lo[axis], hi = n.bounds.hi[axis];
+  if (hi - lo < 4) return {};
+  std::int64_t s;
+  if (attempt == 0) {
+    // The ends of at most about 256 boxes, evenly spaced through both lists.
+    std::vector<double> ends;
+    const std::size_t total = n.items[0].size() + n.items[1].size(), step = std::max<std::size_t>(1, total / 256);
+    for (std::size_t k = 0; k < total; k += step) {
+      const int op = k < n.items[0].size() ? 0 : 1;
+      const FragmentBox& b = boxes[op][n.items[op][op == 0 ? k : k - n.items[0].size()]];
+      if (b.valid) ends.push_back(double(b.lo[axis])), ends.push_back(double(b.hi[axis]));
+    }
+    if (ends.size() < 2) return {};
+    std::sort(ends.begin(), ends.end());
+    const std::size_t first = ends.size() / 4, last = std::max(first + 1, 3 * ends.size() / 4);
+    std::size_t best = first;
+    for (std::size_t k = first; k < last && k + 1 < ends.size(); ++k)
+      if (ends[k + 1] - ends[k] > ends[best + 1] - ends[best]) best = k;
+    s = odd_at(0.5 * (ends[best] + ends[std::min(best + 1, ends.size() - 1)]));
+  } else {
+    s = lo + (hi - lo) / 2;
+    if (s % 2 == 0) s += 1;  // lo, hi odd: hi - lo even, so the middle is odd or one off
+  }
+  s = std::clamp(s, lo + 2, hi - 2);
+  return {axis, s};
+}
+
+}  // namespace
+
+KdCells subdivide(const std::array<std::span<const FragmentBox>, 2>& boxes, const KdOptions& options) {
+  KdCells cells;
+  KdNode root;
+  root.bounds = root_bounds(boxes);
+  for (int op = 0; op < 2; ++op) {
+    root.items[op].resize(boxes[op].size());
+    for (std::uint32_t i = 0; i < boxes[op].size(); ++i) root.items[op][i] = i;
+  }
+  cells.nodes.push_back(std::move(root));
+  std::vector<std::pair<std::int32_t, int>> stack{{0, 0}};  // node, depth
+  while (!stack.empty()) {
+    const auto [id, depth] = stack.back();
+    stack.pop_back();
+    KdNode& n = cells.nodes[std::size_t(id)];
+    const std::size_t total = n.items[0].size() + n.items[1].size();
+    const bool split_worthwhile =
+        !n.items[0].empty() && !n.items[1].empty() && total > options.leaf_size && depth < options.max_depth;
+    std::array<std::array<std::vector<std::uint32_t>, 2>, 2> parts;  // [side][operand]
+    Choice c;
+    for (int attempt = 0; split_worthwhile && attempt < 2; ++attempt) {
+      c = choose_split(n, boxes, attempt);
+      if (c.axis < 0) break;
+      const double wall = 0.5 * double(c.split);
+      for (int side = 0; side < 2; ++side)
+        for (int op = 0; op < 2; ++op) parts[side][op].clear();
+      for (int op = 0; op < 2; ++op)
+        for (const std::uint32_t i : n.items[op]) {
+          const FragmentBox& b = boxes[op][i];
+          if (lo_of(b, c.axis) <= wall) parts[0][op].push_back(i);
+          if (hi_of(b, c.axis) >= wall) parts[1][op].push_back(i);
+        }
+      // Progress: neither side keeps every fragment.
+      const bool progress =
+          parts[0][0].size() + parts[0][1].size() < total && parts[1][0].size() + parts[1][1].size() < total;
+      if (progress) break;
+      c.axis = -1;
+    }
+    if (c.axis < 0) {
+      cells.leaves.push_back(id);
+      continue;
+    }
+    n.axis = c.axis;
+    n.split = c.split;
+    n.items[0] = {};
+    n.items[1] = {};
+    const CellBounds bounds = n.bounds;
+    for (int side = 0; side < 2; ++side) {
+      KdNode child;
+      child.bounds = bounds;
+      (side == 0 ? child.bounds.hi : child.bounds.lo)[c.axis] = c.split;
+      child.parent = id;
+      child.items[0] = std::move(parts[side][0]);
+      child.items[1] = std::move(parts[side][1]);
+      cells.nodes[std::size_t(id)].child[side] = std::int32_t(cells.nodes.size());
+      cells.nodes.push_back(std::move(child));  // invalidates n
+    }
+    // The lower child is visited first: leaves come in depth-first order, below before above.
+    stack.push_back({cells.nodes[std::size_t(id)].child[1], depth + 1});
+    stack.push_back({cells.nodes[std::size_t(id)].child[0], depth + 1});
+  }
+  return cells;
+}
+
+}  // namespace sculpt::bsp::detail
