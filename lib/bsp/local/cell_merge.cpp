@@ -26,7 +26,9 @@ constexpr std::size_t kLeafChunk = 16;  // leaves per parallel chunk (fixed: res
 int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDrop : (in_behind ? kKeep : kReverse); }
 
 struct Operand {
-  FragmentList faces;
+  const FragmentList* list = nullptr;  // the solid's own fragments, or null for `owned` (renumbered planes)
+  FragmentList owned;
+  [[nodiscard]] const FragmentList& faces() const { return list ? *list : owned; }
   std::vector<FragmentBox> boxes;
   CornerBox box;            // around the boundary; invalid when it reaches the world box
   std::optional<bool> far;  // status outside `box`
@@ -137,7 +139,7 @@ class CellMerge {
         for (int x = 0; x < 2; ++x) {
           Pieces& p = pieces_[l][x];
           for (const std::uint32_t i : n.items[x]) {
-            const BoundaryFragment& f = ops_[x].faces[i];
+            const BoundaryFragment& f = ops_[x].faces()[i];
             const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
             if (c == CellClip::Outside) continue;
             if (keep) p.faces.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
@@ -155,7 +157,7 @@ class CellMerge {
     if (p.faces.size() == p.origin.size()) return p.faces;
     ConvexPolygon piece, scratch;
     for (const std::uint32_t i : p.origin) {
-      const BoundaryFragment& f = ops_[x].faces[i];
+      const BoundaryFragment& f = ops_[x].faces()[i];
       const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
       p.faces.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
     }
@@ -351,16 +353,22 @@ class CellMerge {
           }
         }
     });
-    // Each fragment's pieces, by leaf (leaves ascending).
+    // Each fragment's pieces, by leaf (leaves ascending): fragment i's are [first[i], first[i + 1]).
     for (int x = 0; x < 2; ++x) {
-      by_fragment_[x].assign(ops_[x].faces.size(), {});
+      std::vector<std::uint32_t>& first = by_fragment_first_[x];
+      first.assign(ops_[x].faces().size() + 1, 0);
+      for (std::size_t l = 0; l < leaf_count(); ++l)
+        for (const std::uint32_t i : pieces_[l][x].origin) ++first[i + 1];
+      for (std::size_t i = 1; i < first.size(); ++i) first[i] += first[i - 1];
+      std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
+      by_fragment_[x].resize(first.back());
       for (std::size_t l = 0; l < leaf_count(); ++l)
         for (std::size_t j = 0; j < pieces_[l][x].origin.size(); ++j)
-          by_fragment_[x][pieces_[l][x].origin[j]].push_back({std::uint32_t(l), std::uint32_t(j)});
+          by_fragment_[x][at[pieces_[l][x].origin[j]]++] = {std::uint32_t(l), std::uint32_t(j)};
     }
     FragmentList result;
     for (int x = 0; x < 2; ++x) {
-      const std::size_t n = ops_[x].faces.size();
+      const std::size_t n = ops_[x].faces().size();
       constexpr std::size_t kFragmentChunk = 1024;
       std::vector<FragmentList> out((n + kFragmentChunk - 1) / kFragmentChunk);
       parallel_chunks(n, kFragmentChunk, [&](std::size_t begin, std::size_t end) {
@@ -381,8 +389,9 @@ class CellMerge {
   // Fragment i of operand x put back together (see emit): an explicit stack over the kd nodes
   // its pieces lie under, from the root.
   void rejoin(int x, std::size_t i, FragmentList& out, ConvexPolygon& piece, ConvexPolygon& scratch) {
-    const std::vector<std::array<std::uint32_t, 2>>& mine = by_fragment_[x][i];  // (leaf, piece), leaves ascending
-    const BoundaryFragment& f = ops_[x].faces[i];
+    const std::span<const std::array<std::uint32_t, 2>> mine(by_fragment_[x].data() + by_fragment_first_[x][i],
+                                                             by_fragment_first_[x][i + 1] - by_fragment_first_[x][i]);
+    const BoundaryFragment& f = ops_[x].faces()[i];
     std::vector<std::pair<std::int32_t, std::array<std::size_t, 2>>> stack{
         {0, {0, mine.size()}}};  // node, pieces [a, b)
     while (!stack.empty()) {
@@ -436,31 +445,42 @@ class CellMerge {
     std::uint32_t piece, begin, end;
   };
   std::vector<std::array<std::vector<PartRange>, 2>> mixed_parts_;
-  std::array<std::vector<std::vector<std::array<std::uint32_t, 2>>>, 2> by_fragment_;
+  std::array<std::vector<std::array<std::uint32_t, 2>>, 2> by_fragment_;  // (leaf, piece) per fragment, in order
+  std::array<std::vector<std::uint32_t>, 2> by_fragment_first_;
 };
 
 // Operand x's fragments on the arena's planes (B's planes appended after A's; the world box
-// planes are shared), with their boxes, bounds and far status.
-Operand load(Arena& arena, const Solid& s, bool first) {
+// planes are shared), with their boxes, bounds and far status. A's fragments are read in place.
+Operand load(Arena& arena, const Solid& s) {
   const Solid::BoundaryView view = s.boundary_view();
   Operand o;
-  const std::int32_t shift = first ? 0 : arena.planes.size() - kernel::kWorldPlanes;
-  if (first)
-    arena.planes = *view.planes;
-  else
-    arena.planes.append(*view.planes, kernel::kWorldPlanes);
+  const std::int32_t shift = arena.planes.size() - kernel::kWorldPlanes;
+  arena.planes.append(*view.planes, kernel::kWorldPlanes);
   auto map = [shift](std::int32_t p) { return p < kernel::kWorldPlanes ? p : p + shift; };
-  o.faces.reserve(view.fragments->size());
-  o.boxes.reserve(view.fragments->size());
-  for (const BoundaryFragment& f : *view.fragments) {
-    BoundaryFragment& g = o.faces.emplace_back(f);
-    if (shift != 0) {
+  if (shift == 0) {
+    o.list = view.fragments;
+  } else {
+    o.owned.reserve(view.fragments->size());
+    for (const BoundaryFragment& f : *view.fragments) {
+      BoundaryFragment& g = o.owned.emplace_back(f);
       g.polygon.support = map(g.polygon.support);
       for (auto& c : g.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
     }
-    o.boxes.push_back(fragment_box(g.polygon));
   }
-  o.box = bounds(o.faces);
+  // Boxes, and their union as the operand's box (invalid if a fragment reaches the world box:
+  // the operand is unbounded there, or if a box is unknown).
+  o.boxes.reserve(o.faces().size());
+  o.box.valid = true;
+  for (int k = 0; k < 3; ++k) o.box.lo[k] = 1e300, o.box.hi[k] = -1e300;
+  for (const BoundaryFragment& f : o.faces()) {
+    const FragmentBox& b = o.boxes.emplace_back(fragment_box(f.polygon));
+    bool world = f.polygon.support < kernel::kWorldPlanes;
+    for (const auto& c : f.polygon.corners)
+      world |= c.edge < kernel::kWorldPlanes || c.p < kernel::kWorldPlanes || c.q < kernel::kWorldPlanes;
+    o.box.valid = o.box.valid && b.valid && !world;
+    for (int k = 0; k < 3; ++k)
+      o.box.lo[k] = std::min(o.box.lo[k], double(b.lo[k])), o.box.hi[k] = std::max(o.box.hi[k], double(b.hi[k]));
+  }
   o.far = far_status(s);
   return o;
 }
@@ -497,8 +517,12 @@ std::optional<Solid> merge_by_cells(const Solid& a, const Solid& b, const bool o
     const Solid::BoundaryView v = s->boundary_view();
     if (!v.fragments || v.fragments->empty()) return std::nullopt;
   }
+  // The planes of both, the walls and the opposites the local trees need, in one allocation.
   Arena arena;
-  std::array<Operand, 2> ops{load(arena, a, true), load(arena, b, false)};
+  const std::size_t pa = std::size_t(a.boundary_view().planes->size()),
+                    pb = std::size_t(b.boundary_view().planes->size());
+  arena.planes.reserve(pa + pb + (pa + pb) / 4 + 4096);
+  std::array<Operand, 2> ops{load(arena, a), load(arena, b)};
   std::optional<bool> uniform;
   FragmentList result = CellMerge(arena, ops, op, options.cells).run(uniform);
   std::optional<bool> far;
