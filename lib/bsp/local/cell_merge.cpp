@@ -266,11 +266,31 @@ class CellMerge {
   }
 
   // Operand x's status just across the wall `split` (axis `axis`) from kd leaf `m`, which lies
-  // above the wall when `above`: the polygon of m's face on the wall, pushed down m's local tree
-  // of x. The wall crosses no boundary of x there, so every piece reaches the same status; the
-  // side behind the polygon (its support has m on the negative side) is m's.
+  // above the wall when `above`. The wall crosses no boundary of x there. First a few points of
+  // m's face on the wall, walked down m's local tree of x: a point on none of its planes is on no
+  // piece of x (each piece lies on a plane its region reaches), so its leaf's status is the
+  // status across the wall. Failing that (every point tried lies on a plane), the face's polygon
+  // pushed down the tree: every piece reaches the same status; the side behind the polygon (its
+  // support has m on the negative side) is m's.
   bool status_across(std::int32_t m, int axis, std::int64_t split, bool above, int x) {
     const std::size_t l = std::size_t(leaf_index_[std::size_t(m)]);
+    const TreeRef t = local_tree(l, x);
+    const CellBounds& b = cells_.nodes[std::size_t(m)].bounds;
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      // Doubled coordinates: the wall's (odd) on its axis, even values strictly inside on the others.
+      std::int64_t p[3];
+      for (int k = 0; k < 3; ++k) {
+        if (k == axis) {
+          p[k] = split;
+          continue;
+        }
+        const std::int64_t first = (b.lo[k] + 1) / 2, last = (b.hi[k] - 1) / 2;  // integers inside
+        const std::int64_t span = last - first + 1;
+        const std::int64_t pick = attempt == 0 ? span / 2 : (attempt * 40503 + k * 9973) % span;
+        p[k] = 2 * (first + pick);
+      }
+      if (const std::optional<bool> s = status_at(t, p)) return *s;
+    }
     const std::array<std::int32_t, 6>& walls = walls_[std::size_t(m)];
     // m's wall on the split: its lower wall when it lies above the split, else its upper one.
     const std::int32_t support = walls[std::size_t(2 * axis + (above ? 1 : 0))];
@@ -284,7 +304,6 @@ class CellMerge {
       if (kernel::clip_to_negative(arena_.planes, face, scratch, box, walls[std::size_t(k)]) == Side::Both)
         std::swap(face, scratch);
     }
-    const TreeRef t = local_tree(l, x);
     Clipper clip(arena_);
     int behind = -1;
     clip.push(
@@ -296,6 +315,20 @@ class CellMerge {
         [](ConvexPolygon, int) {});
     SCULPT_ASSERT(behind >= 0, "cell_merge: a wall polygon reached no cell");
     return behind == 1;
+  }
+
+  // The leaf of the arena tree `t` a point reaches (doubled grid coordinates), or nothing if it
+  // lies on a plane on the way. Exact: 2 f(p) = a X + b Y + c Z + 2 d fits in 128 bits.
+  std::optional<bool> status_at(TreeRef t, const std::int64_t (&p)[3]) const {
+    while (!is_leaf(t)) {
+      const BspNode& n = arena_.nodes[std::size_t(t)];
+      const kernel::Plane& q = arena_.planes[n.plane];
+      const kernel::Int128 v =
+          kernel::Int128(q.a) * p[0] + kernel::Int128(q.b) * p[1] + kernel::Int128(q.c) * p[2] + 2 * q.d;
+      if (v == 0) return std::nullopt;
+      t = v < 0 ? n.negative : n.positive;
+    }
+    return t == kIn;
   }
 
   // The fates of operand x's pieces (x = 0: A, 1: B) where the other operand's status is
@@ -366,18 +399,26 @@ class CellMerge {
         for (std::size_t j = 0; j < pieces_[l][x].origin.size(); ++j)
           by_fragment_[x][at[pieces_[l][x].origin[j]]++] = {std::uint32_t(l), std::uint32_t(j)};
     }
+    // Both operands' fragments in chunks, each chunk's output placed at its offset in the result.
+    constexpr std::size_t kFragmentChunk = 1024;
+    const std::size_t na = ops_[0].faces().size(), n = na + ops_[1].faces().size();
+    std::vector<FragmentList> out((n + kFragmentChunk - 1) / kFragmentChunk);
+    parallel_chunks(n, kFragmentChunk, [&](std::size_t begin, std::size_t end) {
+      ConvexPolygon piece, scratch;
+      std::vector<RejoinFrame> stack;
+      for (std::size_t i = begin; i < end; ++i)
+        rejoin(i < na ? 0 : 1, i < na ? i : i - na, out[begin / kFragmentChunk], piece, scratch, stack);
+    });
+    std::vector<std::size_t> offset(out.size() + 1, 0);
+    for (std::size_t k = 0; k < out.size(); ++k) offset[k + 1] = offset[k] + out[k].size();
     FragmentList result;
-    for (int x = 0; x < 2; ++x) {
-      const std::size_t n = ops_[x].faces().size();
-      constexpr std::size_t kFragmentChunk = 1024;
-      std::vector<FragmentList> out((n + kFragmentChunk - 1) / kFragmentChunk);
-      parallel_chunks(n, kFragmentChunk, [&](std::size_t begin, std::size_t end) {
-        ConvexPolygon piece, scratch;
-        for (std::size_t i = begin; i < end; ++i) rejoin(x, i, out[begin / kFragmentChunk], piece, scratch);
-      });
-      for (FragmentList& o : out)
-        for (BoundaryFragment& f : o) result.push_back(std::move(f));
-    }
+    result.resize(offset.back());
+    parallel_chunks(out.size(), 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        for (std::size_t j = 0; j < out[k].size(); ++j) result[offset[k] + j] = std::move(out[k][j]);
+        out[k] = FragmentList();
+      }
+    });
     for (const int fb : first_behind)
       if (fb >= 0) {
         uniform = fb == 1;
@@ -388,12 +429,13 @@ class CellMerge {
 
   // Fragment i of operand x put back together (see emit): an explicit stack over the kd nodes
   // its pieces lie under, from the root.
-  void rejoin(int x, std::size_t i, FragmentList& out, ConvexPolygon& piece, ConvexPolygon& scratch) {
+  using RejoinFrame = std::pair<std::int32_t, std::array<std::size_t, 2>>;  // kd node, pieces [a, b)
+  void rejoin(int x, std::size_t i, FragmentList& out, ConvexPolygon& piece, ConvexPolygon& scratch,
+              std::vector<RejoinFrame>& stack) {
     const std::span<const std::array<std::uint32_t, 2>> mine(by_fragment_[x].data() + by_fragment_first_[x][i],
                                                              by_fragment_first_[x][i + 1] - by_fragment_first_[x][i]);
     const BoundaryFragment& f = ops_[x].faces()[i];
-    std::vector<std::pair<std::int32_t, std::array<std::size_t, 2>>> stack{
-        {0, {0, mine.size()}}};  // node, pieces [a, b)
+    stack.assign(1, {0, {0, mine.size()}});
     while (!stack.empty()) {
       const auto [id, range] = stack.back();
       stack.pop_back();
