@@ -67,7 +67,9 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
   for (const auto& v : mesh.vertices) g.push_back(grid.snap(v));
 
   kernel::PlaneTable table;
+  table.reserve(std::size_t(kernel::kWorldPlanes) + 4 * mesh.faces.size() + mesh.faces.size() / 2);
   std::vector<ConvexPolygon> polys;
+  polys.reserve(mesh.faces.size());
   Int128 volume6 = 0;  // six times the signed volume of the snapped triangles (exact: |coords| < 2^26)
   for (std::size_t fi = 0; fi < mesh.faces.size(); ++fi) {
     const auto& f = mesh.faces[fi];

@@ -9,6 +9,7 @@
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/from_mesh.hpp"
+#include "bsp/local/deferred_build.hpp"
 #include "bsp/tree/solid_access.hpp"
 #include "bsp/tree_builder.hpp"
 #include "mesh/mesh_measures.hpp"
@@ -39,7 +40,58 @@ std::optional<Eigen::Matrix<std::int64_t, 3, 3>> integer_matrix(const Eigen::Mat
 // `exact`: the map is exact, so the image of a plane that carries no face carries none either
 // and the auxiliary marks are kept. Re-quantized planes no longer meet where they did, and the
 // image tree can have sliver faces on any plane: then no plane is auxiliary.
+// Fragments on the images of their planes: `mapped(p)` is plane p's index in the image table and
+// image[p] the image plane. A mirror (negative determinant) reverses the corner order about the
+// mapped support planes.
+FragmentList map_fragments(const FragmentList& fragments, auto&& mapped, const std::vector<kernel::Plane>& image,
+                           bool mirror) {
+  FragmentList boundary;
+  boundary.reserve(fragments.size());
+  for (const BoundaryFragment& f : fragments) {
+    kernel::ConvexPolygon poly;
+    poly.support = mapped(f.polygon.support);
+    const auto& c = f.polygon.corners;
+    const std::size_t m = c.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      // A corner is the vertex support ∩ p ∩ q and the edge leaving it. Mirrored, the cycle is
+      // reversed: the edge leaving old vertex k is the old edge arriving there, that of k - 1.
+      const std::size_t k = mirror ? m - 1 - i : i;
+      const kernel::Corner& old = c[k];
+      const std::int32_t edge = mirror ? c[(k + m - 1) % m].edge : old.edge;
+      const std::int32_t p = mapped(old.p), q = mapped(old.q), e = mapped(edge);
+      poly.corners.push_back({e, p, q,
+                              kernel::approximate_vertex(image[std::size_t(f.polygon.support)],
+                                                         image[std::size_t(old.p)], image[std::size_t(old.q)])});
+    }
+    boundary.push_back({std::move(poly), f.flip});
+  }
+  return boundary;
+}
+
+// An exact map of a solid whose tree is deferred and whose far status is known: its boundary
+// alone, the tree again deferred (an exact map keeps the far status and the plane triples).
+Solid map_deferred(const Solid& solid, auto&& map_plane, bool mirror) {
+  const Solid::BoundaryView view = solid.boundary_view();
+  const kernel::PlaneTable& planes = *view.planes;
+  kernel::PlaneTable table;
+  std::vector<std::int32_t> plane_map(std::size_t(planes.size()), -1);
+  std::vector<kernel::Plane> image(std::size_t(planes.size()));
+  auto mapped = [&](std::int32_t p) {
+    if (plane_map[std::size_t(p)] < 0) {
+      image[std::size_t(p)] = map_plane(planes[p]);
+      plane_map[std::size_t(p)] = table.add(image[std::size_t(p)], planes.auxiliary(p));
+    }
+    return plane_map[std::size_t(p)];
+  };
+  FragmentList boundary = map_fragments(*view.fragments, mapped, image, mirror);
+  return SolidAccess::at_grid(
+      bsp::detail::solid_from_boundary(std::move(table), std::move(boundary), *bsp::detail::far_status(solid)),
+      solid.grid());
+}
+
 Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror = false) {
+  if (exact && solid.tree_deferred() && !solid.boundary_view().fragments->empty() && bsp::detail::far_status(solid))
+    return map_deferred(solid, map_plane, mirror);
   if (is_leaf(solid.root())) return solid;
   TreeBuilder b;
   std::vector<std::int32_t> plane_map(std::size_t(solid.planes().size()), -1);
@@ -74,28 +126,8 @@ Solid map_planes(const Solid& solid, auto&& map_plane, bool exact, bool mirror =
   if (!exact) return SolidAccess::at_grid(std::move(b).build(root), grid);
   // An exact map takes each plane to its exact image (an affine bijection): every node still cuts its cell.
   if (!solid.has_boundary()) return SolidAccess::at_grid(std::move(b).build(root, BuildOptions{.nodes_cut_cells = true}), grid);
-  // An exact map takes the boundary along: same plane triples on the mapped planes. A mirror
-  // (negative determinant) reverses the corner order about the mapped support planes.
-  FragmentList boundary;
-  boundary.reserve(solid.boundary().size());
-  for (const BoundaryFragment& f : solid.boundary()) {
-    kernel::ConvexPolygon poly;
-    poly.support = mapped(f.polygon.support);
-    const auto& c = f.polygon.corners;
-    const std::size_t m = c.size();
-    for (std::size_t i = 0; i < m; ++i) {
-      // A corner is the vertex support ∩ p ∩ q and the edge leaving it. Mirrored, the cycle is
-      // reversed: the edge leaving old vertex k is the old edge arriving there, that of k - 1.
-      const std::size_t k = mirror ? m - 1 - i : i;
-      const kernel::Corner& old = c[k];
-      const std::int32_t edge = mirror ? c[(k + m - 1) % m].edge : old.edge;
-      const std::int32_t p = mapped(old.p), q = mapped(old.q), e = mapped(edge);
-      poly.corners.push_back({e, p, q,
-                              kernel::approximate_vertex(image[std::size_t(f.polygon.support)], image[std::size_t(old.p)],
-                                                         image[std::size_t(old.q)])});
-    }
-    boundary.push_back({std::move(poly), f.flip});
-  }
+  // An exact map takes the boundary along: same plane triples on the mapped planes.
+  FragmentList boundary = map_fragments(solid.boundary(), mapped, image, mirror);
   return SolidAccess::at_grid(std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = true}), grid);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <unordered_map>
 #include <utility>
 
@@ -546,7 +547,16 @@ kernel::PlaneTable compact_planes(const kernel::PlaneTable& planes, FragmentList
   return table;
 }
 
-std::atomic<std::size_t> g_threshold{kDefaultCellMergeFragments};
+// SCULPT_CELL_MERGE_MIN overrides the default (developers' A/B runs: 0 sends every operation with
+// boundaries down the cell path); anything but a plain number is ignored.
+std::size_t initial_threshold() {
+  const char* v = std::getenv("SCULPT_CELL_MERGE_MIN");
+  if (!v || !*v) return kDefaultCellMergeFragments;
+  char* end = nullptr;
+  const unsigned long long n = std::strtoull(v, &end, 10);
+  return *end == '\0' ? std::size_t(n) : kDefaultCellMergeFragments;
+}
+std::atomic<std::size_t> g_threshold{initial_threshold()};
 
 }  // namespace
 

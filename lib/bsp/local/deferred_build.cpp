@@ -12,9 +12,14 @@ DeferredBuild::DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, 
                              const AutopartitionOptions& options)
     : planes_(std::move(planes)), fragments_(std::move(fragments)), far_in_(far_in), options_(options) {}
 
+DeferredBuild::DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
+                             std::function<Solid()> build)
+    : planes_(std::move(planes)), fragments_(std::move(fragments)), far_in_(far_in), build_(std::move(build)) {}
+
 Solid DeferredBuild::build() {
   if (started_) throw std::logic_error("a deferred tree build failed earlier and cannot be completed");
   started_ = true;
+  if (build_) return build_();
   Arena arena;
   arena.planes = std::move(planes_);
   AutopartitionOptions options = options_;
@@ -30,6 +35,12 @@ Solid solid_from_boundary(kernel::PlaneTable planes, FragmentList fragments, std
   }
   return SolidAccess::deferred(
       std::make_unique<DeferredBuild>(std::move(planes), std::move(fragments), far_in, options));
+}
+
+Solid solid_with_tree_later(kernel::PlaneTable planes, FragmentList fragments, bool far_in,
+                            std::function<Solid()> build) {
+  return SolidAccess::deferred(
+      std::make_unique<DeferredBuild>(std::move(planes), std::move(fragments), far_in, std::move(build)));
 }
 
 std::optional<bool> far_status(const Solid& solid) {

@@ -6,6 +6,7 @@
 /// solids: output, volume and the next set operation read the boundary only, so a chain of
 /// operations on real meshes never builds a whole tree unless a query asks for one.
 
+#include <functional>
 #include <optional>
 
 #include "bsp/tree/autopartition.hpp"
@@ -19,6 +20,9 @@ class DeferredBuild final : public DeferredTree {
   /// status far from it, when known.
   DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
                 const AutopartitionOptions& options);
+  /// The tree made by `build` instead (a solid with the same boundary: a primitive's own tree).
+  DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
+                std::function<Solid()> build);
   [[nodiscard]] const kernel::PlaneTable& planes() const override { return planes_; }
   [[nodiscard]] const FragmentList& boundary() const override { return fragments_; }
   [[nodiscard]] std::optional<bool> far_in() const override { return far_in_; }
@@ -29,6 +33,7 @@ class DeferredBuild final : public DeferredTree {
   FragmentList fragments_;
   std::optional<bool> far_in_;
   AutopartitionOptions options_;
+  std::function<Solid()> build_;
   bool started_ = false;
 };
 
@@ -36,6 +41,12 @@ class DeferredBuild final : public DeferredTree {
 /// (then `far_in` must be known: it is the leaf's status). At the default grid.
 Solid solid_from_boundary(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
                           const AutopartitionOptions& options = {});
+
+/// The solid bounded by `fragments` whose tree, when first used, is `build()` (which must return
+/// a solid with exactly that boundary, at the default grid), e.g. a ring primitive's section-6
+/// tree. At the default grid.
+Solid solid_with_tree_later(kernel::PlaneTable planes, FragmentList fragments, bool far_in,
+                            std::function<Solid()> build);
 
 /// The status of `solid` far from its boundary (the region around the world box): what a deferred
 /// solid knows, or the leaf its tree reaches there; nullopt if the solid's boundary reaches the

@@ -63,7 +63,19 @@ Choice choose_split(const KdNode& n, const std::array<std::span<const FragmentBo
     std::size_t best = first;
     for (std::size_t k = first; k < last && k + 1 < ends.size(); ++k)
       if (ends[k + 1] - ends[k] > ends[best + 1] - ends[best]) best = k;
-    s = odd_at(0.5 * (ends[best] + ends[std::min(best + 1, ends.size() - 1)]));
+    // The sample's gap, widened to the gap between the nearest ends of all the cell's boxes.
+    const double mid = 0.5 * (ends[best] + ends[std::min(best + 1, ends.size() - 1)]);
+    double below = -1e300, above = 1e300;
+    for (int op = 0; op < 2; ++op)
+      for (const std::uint32_t i : n.items[op]) {
+        const FragmentBox& b = boxes[op][i];
+        if (!b.valid) continue;
+        for (const double e : {double(b.lo[axis]), double(b.hi[axis])}) {
+          if (e <= mid) below = std::max(below, e);
+          if (e >= mid) above = std::min(above, e);
+        }
+      }
+    s = odd_at(below > -1e300 && above < 1e300 ? 0.5 * (below + above) : mid);
   } else {
     s = lo + (hi - lo) / 2;
     if (s % 2 == 0) s += 1;  // lo, hi odd: hi - lo even, so the middle is odd or one off

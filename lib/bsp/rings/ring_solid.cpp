@@ -8,10 +8,12 @@
 #include <new>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "base/errors.hpp"
+#include "bsp/local/deferred_build.hpp"
 #include "bsp/rings/ring_boundary.hpp"
 #include "bsp/rings/sector_tree.hpp"
 #include "bsp/tree/solid_access.hpp"
@@ -57,10 +59,10 @@ std::vector<Ring> merge_rings_on_grid(const std::vector<Ring>& rings, const kern
   return merged;
 }
 
-}  // namespace
-
-Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& given_rings,
-                    const kernel::Grid& grid) {
+// The solid of revolution (revolve_rings). With `boundary_only`, its direct boundary alone,
+// without the tree (nothing when the boundary must be extracted from the tree).
+std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& given_rings,
+                                 const kernel::Grid& grid, bool boundary_only) {
   if (given_rings.size() < 2) throw InvalidInput("revolution needs at least 2 rings");
   const std::vector<Ring> rings = merge_rings_on_grid(given_rings, grid);
   const int n = int(path.size());
@@ -149,16 +151,21 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   const double delta = (grid.to_grid(largest * far) + 1) * std::ldexp(1.0, -24);
   const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
   const bool direct = !degenerate && shortest * min_sin > 8 * delta;
+  if (boundary_only && !direct) return std::nullopt;
 
   TreeBuilder b;
   // Below that bound, rounding can move a face out of the wedge whose chain should hold it: the
   // solid then bends along an axial plane, which must then count as a face plane (not auxiliary)
   // for extraction to find that boundary. Chains are widened so that this stays rare.
-  SectorTree sectors(b, start, {.auxiliary_axes = direct, .widen = direct ? 0 : 1, .axis_vertex = axis_vertex});
+  std::optional<SectorTree> sectors;
+  if (!boundary_only)
+    sectors.emplace(b, start,
+                    SectorOptions{.auxiliary_axes = direct, .widen = direct ? 0 : 1, .axis_vertex = axis_vertex});
   // Exactly: the ring planes, per band n face planes, its axial planes and the opposite of its
   // lower ring plane; the two cap nodes, the inner ring nodes and each band's sector tree.
-  b.reserve(std::size_t(kernel::kWorldPlanes) + r + (r - 1) * (std::size_t(n) + sectors.axial_planes() + 1),
-            r + (r - 1) * sectors.nodes());
+  b.reserve(
+      std::size_t(kernel::kWorldPlanes) + r + (r - 1) * (std::size_t(n) + (sectors ? sectors->axial_planes() : 0) + 1),
+      sectors ? r + (r - 1) * sectors->nodes() : 0);
   // Ring planes z = z_k: f = z - z_k.
   std::vector<std::int32_t> ring_plane(r);
   std::vector<std::vector<std::int32_t>> face_index(r - 1);
@@ -196,10 +203,19 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
     }
     for (std::size_t j = 0; j < std::size_t(n); ++j) faces[j] = b.add_plane(face_plane[j]);
     const double min_scale = std::min(rings[k].scale, rings[k + 1].scale);
-    const TreeRef t = sectors.build(faces, 0.05 * min_scale * min_edge, grid);
+    const TreeRef t = sectors ? sectors->build(faces, 0.05 * min_scale * min_edge, grid) : kOut;
     face_index[k] = std::move(faces);
     return t;
   };
+  if (boundary_only) {
+    // The face planes of every band, then the boundary on them; the tree when first used.
+    for (std::size_t k = 0; k + 1 < r; ++k) band(k);
+    FragmentList boundary = ring_boundary(b, ring_plane, face_index, scale);
+    return SolidAccess::at_grid(
+        solid_with_tree_later(b.planes(), std::move(boundary), false,
+                              [path, given_rings, grid] { return *build_rings(path, given_rings, grid, false); }),
+        grid);
+  }
   // The tree top-down in pre-order (TreeBuilder::open_nodes), so the builder keeps it as laid out:
   // the bottom cap's plane, the top cap's, then a balanced tree over the bands split by the inner
   // ring planes (explicit recursion depth is log2 of the ring count), lower bands first.
@@ -220,7 +236,18 @@ Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<
   // (wedges end at face middles, facets are convex and survive rounding), so the tree is kept as
   // built. Widened chains may hold faces outside their wedges: those are left to the full build.
   FragmentList boundary = ring_boundary(b, ring_plane, face_index, scale);
-  return SolidAccess::at_grid(std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors.widened()}), grid);
+  return SolidAccess::at_grid(std::move(b).build(root, std::move(boundary), {.nodes_cut_cells = !sectors->widened()}),
+                              grid);
+}
+
+}  // namespace
+
+Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& given_rings,
+                    const kernel::Grid& grid) {
+  // The direct boundary now, the section-6 tree when something first reads it (set operations by
+  // cells, output and volume read the boundary alone).
+  if (std::optional<Solid> later = build_rings(path, given_rings, grid, true)) return std::move(*later);
+  return std::move(*build_rings(path, given_rings, grid, false));
 }
 
 }  // namespace sculpt::bsp::detail
