@@ -109,8 +109,9 @@ std::string history_path() {
 
 }  // namespace
 
-int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
+int run_interactive(const std::function<void(language::Interpreter&)>& setup, const SessionViewOptions& view_options) {
   language::Session session(std::cout, std::cerr, &interrupted);
+  SessionView view(session, view_options.port, std::cout, std::cerr);
   try {
     setup(session.interpreter());
   } catch (const language::ScriptError& e) {
@@ -118,6 +119,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
     return 1;
   }
   std::cout << "sculpt " << SCULPT_VERSION << " - :help for help, :quit to leave\n" << std::flush;
+  if (view_options.open) view.start();
   const InterruptHandler handler;
 #ifdef SCULPT_HAVE_LIBEDIT
   completing_session = &session;
@@ -147,6 +149,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
       if (!history.empty()) write_history(history.c_str());
     }
     if (!session.feed(text)) break;
+    view.update();
   }
   completing_session = nullptr;
 #else
@@ -165,6 +168,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
       break;
     }
     if (!session.feed(text)) break;
+    view.update();
   }
 #endif
   return 0;
