@@ -1,11 +1,14 @@
 #include "view/scene_message.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <string_view>
+#include <unordered_map>
 
 #include "base/errors.hpp"
 #include "mesh/edge_incidence.hpp"
@@ -40,19 +43,75 @@ void append_vector(std::string& out, const Eigen::Vector3d& v) {
   out += ']';
 }
 
-/// The feature edges of `mesh` as float32 segments (6 numbers each).
-std::string edge_data(const PolygonMesh& mesh, std::size_t& count) {
-  const auto edges = detail::feature_edges(mesh);
-  count = edges.size();
-  std::string data(edges.size() * 6 * sizeof(float), '\0');
-  char* out = data.data();
-  for (const auto& edge : edges)
-    for (const int v : edge)
-      for (int k = 0; k < 3; ++k) {
-        const auto f = static_cast<float>(mesh.vertices[v][k]);
-        std::memcpy(out, &f, sizeof f);
-        out += sizeof f;
-      }
+/// The bytes of the float32 positions at the start of the BIN chunk of a GLB made by encode_mesh
+/// (mesh/formats/glb_writer.cpp: positions first, their count in the first accessor); empty for a
+/// GLB without triangles.
+std::string_view glb_positions(const std::string& glb) {
+  if (glb.size() < 20) return {};
+  std::uint32_t json_size;
+  std::memcpy(&json_size, glb.data() + 12, 4);
+  if (glb.size() < 28 + std::size_t(json_size)) return {};
+  const std::string_view json(glb.data() + 20, json_size);
+  const std::size_t accessors = json.find("\"accessors\":[{");
+  const std::size_t count = accessors == std::string_view::npos ? accessors : json.find("\"count\":", accessors);
+  if (count == std::string_view::npos) return {};
+  std::size_t vertices = 0;
+  const char* first = json.data() + count + 8;
+  if (std::from_chars(first, json.data() + json.size(), vertices).ec != std::errc()) return {};
+  const std::size_t bin = 28 + std::size_t(json_size);
+  if (vertices > (glb.size() - bin) / 12) return {};
+  return {glb.data() + bin, 12 * vertices};
+}
+
+struct FloatPoint {
+  std::array<std::uint32_t, 3> bits;
+  bool operator==(const FloatPoint&) const = default;
+};
+
+struct FloatPointHash {
+  std::size_t operator()(const FloatPoint& p) const {
+    return (std::size_t(p.bits[0]) * 0x9E3779B97F4A7C15ull) ^ (std::size_t(p.bits[1]) * 0xC2B2AE3D27D4EB4Full) ^
+           std::size_t(p.bits[2]);
+  }
+};
+
+FloatPoint float_point(const void* xyz) {
+  FloatPoint p;
+  std::memcpy(p.bits.data(), xyz, 12);
+  return p;
+}
+
+/// The feature edges of a part: as pairs of indices (uint32) into its GLB's positions, 8 bytes an
+/// edge; an end the GLB does not hold at the same float32 point (output rounding moved it)
+/// sends its edge as 6 float32 ("loose"), as does every edge of a part without positions.
+struct EdgeData {
+  std::string indexed;
+  std::size_t indexed_count = 0;
+  std::string loose;
+  std::size_t loose_count = 0;
+};
+
+EdgeData edge_data(const PolygonMesh& mesh, const std::string& glb) {
+  const std::string_view positions = glb_positions(glb);  // 12 bytes a vertex
+  std::unordered_map<FloatPoint, std::uint32_t, FloatPointHash> index;
+  index.reserve(positions.size() / 12);
+  for (std::size_t v = 0; 12 * v < positions.size(); ++v)
+    index.emplace(float_point(positions.data() + 12 * v), static_cast<std::uint32_t>(v));
+  EdgeData data;
+  for (const auto& edge : detail::feature_edges(mesh)) {
+    float ends[6];
+    for (int e = 0; e < 2; ++e)
+      for (int k = 0; k < 3; ++k) ends[3 * e + k] = static_cast<float>(mesh.vertices[edge[e]][k]);
+    const auto a = index.find(float_point(ends)), b = index.find(float_point(ends + 3));
+    if (a != index.end() && b != index.end()) {
+      append_u32(data.indexed, a->second);
+      append_u32(data.indexed, b->second);
+      ++data.indexed_count;
+    } else {
+      data.loose.append(reinterpret_cast<const char*>(ends), sizeof ends);
+      ++data.loose_count;
+    }
+  }
   return data;
 }
 
@@ -98,8 +157,7 @@ std::string encode_scene(const Scene& scene) {
     const ViewPart& part = scene.parts[p];
     check_face_indices(part.mesh, "view");
     const std::string glb = encode_mesh(part.mesh, MeshFormat::Glb);
-    std::size_t edge_count = 0;
-    const std::string edges = edge_data(part.mesh, edge_count);
+    const EdgeData edges = edge_data(part.mesh, glb);
     std::size_t triangles = 0;
     for (const auto& face : part.mesh.faces) triangles += face.size() - 2;
     if (p) json += ',';
@@ -133,8 +191,10 @@ std::string encode_scene(const Scene& scene) {
     json += ",\"glb\":[" + std::to_string(data.size()) + "," + std::to_string(glb.size()) + "]";
     data += glb;
     data.append((4 - data.size() % 4) % 4, '\0');
-    json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edge_count) + "]}";
-    data += edges;
+    json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edges.indexed_count) + "]";
+    data += edges.indexed;
+    json += ",\"loose\":[" + std::to_string(data.size()) + "," + std::to_string(edges.loose_count) + "]}";
+    data += edges.loose;
   }
   json += "]}";
   json.append((4 - json.size() % 4) % 4, ' ');

@@ -6,11 +6,13 @@
 /// (padded with spaces to a multiple of 4), then the data. The JSON lists the parts:
 ///   {"parts": [{"name", "color": [r, g, b], "solid", "volume" (solids; else null), "area",
 ///               "box": [[x, y, z], [x, y, z]] (null if empty), "triangles",
-///               "glb": [offset, length], "edges": [offset, count]}, ...]}
+///               "glb": [offset, length], "edges": [offset, count], "loose": [offset, count]}, ...]}
 /// Offsets count from the start of the data and are multiples of 4. "glb" is the part as binary
-/// glTF (mesh/mesh_io.hpp's GLB writer: float32 positions, uint32 indices); "edges" is `count`
-/// feature edges as 6 float32 each (x, y, z of both ends), the edges between faces of the exact
-/// boundary that are not coplanar (never a triangulation's diagonal).
+/// glTF (mesh/mesh_io.hpp's GLB writer: float32 positions, uint32 indices). The feature edges, the
+/// edges between faces of the exact boundary that are not coplanar (never a triangulation's
+/// diagonal), are "edges": `count` pairs of uint32 indices into the GLB's positions (8 bytes an
+/// edge), and "loose": `count` edges as 6 float32 (x, y, z of both ends) for the few whose ends
+/// the GLB's output rounding moved.
 ///
 /// A status is one text message: {"type": "status", "ok": true|false, "run": n, "ms": t,
 /// "parts": p, "error": "file:line:col: error: ...\n<the line>\n<caret>"}; an error leaves the

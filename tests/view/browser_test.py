@@ -11,7 +11,9 @@ as OUTDIR/view.png (docs/viewing.md's picture comes from here). Exit 77 (skipped
 chromedriver or Selenium is missing.
 """
 import os
+import pty
 import re
+import select
 import shutil
 import signal
 import subprocess
@@ -58,6 +60,62 @@ def write(text):
     with open(script + ".tmp", "w") as f:
         f.write(text)
     os.replace(script + ".tmp", script)  # as editors save: the new file at once
+
+
+def repl_view(driver, state, wait_for):
+    pid, fd = pty.fork()
+    if pid == 0:
+        os.environ["TERM"] = "dumb"
+        os.environ["HOME"] = outdir  # the REPL's history file goes there
+        os.execv(sculpt, [sculpt, "--port", "0"])
+    screen = ""
+
+    def read_until(pattern, seconds=10):
+        nonlocal screen
+        end = time.time() + seconds
+        while time.time() < end:
+            m = re.search(pattern, screen)
+            if m:
+                return m
+            ready, _, _ = select.select([fd], [], [], 0.1)
+            if ready:
+                try:
+                    screen += os.read(fd, 4096).decode("utf-8", "replace")
+                except OSError:
+                    break
+        return re.search(pattern, screen)
+
+    try:
+        read_until(r"sculpt> ")
+        os.write(fd, b":view\n")
+        m = read_until(r"view: (http://127\.0\.0\.1:\d+/)")
+        check(m is not None, ":view prints the page's address")
+        if not m:
+            return
+        driver.get(m.group(1))
+        check(wait_for("window.sculptView && sculptView.state.scenes >= 1"), "the session's page connects")
+        os.write(fd, b"b = box([0, 0, 0], [1, 1, 1])\n")
+        check(wait_for("sculptView.state.parts.length == 1 && sculptView.state.parts[0].name == 'last solid'"),
+              "after an entry the page shows the session's last solid")
+        os.write(fd, b'show(sphere(1), name="ball", color="blue")\n')
+        check(wait_for("sculptView.state.parts.length == 1 && sculptView.state.parts[0].name == 'ball'"),
+              "after show() the page shows what was shown")
+        check(state("sculptView.pixels(%s)" % BLUE)["near"] > 2000, "the session's ball is drawn")
+        os.write(fd, b":quit\n")
+        end = time.time() + 10
+        while time.time() < end:
+            done, status = os.waitpid(pid, os.WNOHANG)
+            if done == pid:
+                check(os.waitstatus_to_exitcode(status) == 0, ":quit ends the session with its view")
+                return
+            read_until(r"$^", 0.1)
+        check(False, ":quit ends the session with its view")
+    finally:
+        try:
+            os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+        except (ProcessLookupError, ChildProcessError):
+            pass
 
 
 write(GOOD)
@@ -163,6 +221,9 @@ try:
     driver.find_element(By.ID, "projection").click()
     ortho = state("sculptView.pixels(null)")["model"]
     check(top > 0.02 * pixels["total"] and ortho > 0.02 * pixels["total"], "top view and orthographic show the model")
+
+    # 6. The REPL's :view follows the session: its last solid, then what it shows.
+    repl_view(driver, state, wait_for)
 finally:
     if driver:
         driver.quit()

@@ -59,15 +59,23 @@ TEST(SceneMessage, HoldsEachPartAsGlbWithEdgesAndMeasures) {
   EXPECT_EQ(back.faces.size(), 12u);  // triangles
   const auto edges_offset = static_cast<std::size_t>(number_after(json, "edges"));
   const std::size_t edges_count = std::stoul(json.substr(json.find(',', json.find("\"edges\":")) + 1));
-  EXPECT_EQ(edges_count, 12u);
+  EXPECT_EQ(edges_count, 12u);  // each as two indices into the GLB's positions
   EXPECT_EQ(edges_offset % 4, 0u);
-  EXPECT_EQ(data + edges_offset + edges_count * 24, message.size());
-  // Every edge end is a corner of the box.
-  for (std::size_t k = 0; k < edges_count * 6; ++k) {
-    float x;
-    std::memcpy(&x, message.data() + data + edges_offset + 4 * k, 4);
-    const double limit = k % 3 == 0 ? 1 : k % 3 == 1 ? 2 : 3;
-    EXPECT_TRUE(x == 0 || x == limit) << k << ": " << x;
+  EXPECT_EQ(number_after(json, "loose"), edges_offset + 8 * edges_count);
+  EXPECT_NE(json.find("\"loose\":[" + std::to_string(edges_offset + 8 * edges_count) + ",0]"), std::string::npos);
+  EXPECT_EQ(data + edges_offset + edges_count * 8, message.size());
+  // Every edge joins two corners of the box along one axis.
+  const char* positions = message.data() + data + glb_offset + 28 + u32_at(message, data + glb_offset + 12);
+  for (std::size_t e = 0; e < edges_count; ++e) {
+    float ends[2][3];
+    for (int k = 0; k < 2; ++k) {
+      const std::uint32_t v = u32_at(message, data + edges_offset + 8 * e + 4 * k);
+      ASSERT_LT(v, 8u);
+      std::memcpy(ends[k], positions + 12 * v, 12);
+    }
+    int differing = 0;
+    for (int k = 0; k < 3; ++k) differing += ends[0][k] != ends[1][k];
+    EXPECT_EQ(differing, 1) << "edge " << e;
   }
 }
 
