@@ -2,6 +2,7 @@
 
 #include <boost/asio/buffer.hpp>
 #include <boost/beast/websocket.hpp>
+#include <chrono>
 
 namespace sculpt::view::detail {
 
@@ -16,8 +17,12 @@ WebSocketSession::~WebSocketSession() {
 }
 
 void WebSocketSession::run(beast::http::request<beast::http::string_body> request) {
-  // Pings keep a quiet connection open and end one whose page has gone (Beast's server defaults).
-  ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  // The page never sends: pings (answered by the browser itself) keep a quiet connection open, and
+  // a page that has gone without closing (a machine asleep, a cable out) is dropped after 30 s.
+  auto timeout = websocket::stream_base::timeout::suggested(beast::role_type::server);
+  timeout.idle_timeout = std::chrono::seconds(30);
+  timeout.keep_alive_pings = true;
+  ws_.set_option(timeout);
   ws_.read_message_max(4096);  // the page sends nothing that matters; refuse anything large
   ws_.async_accept(request, [self = shared_from_this()](beast::error_code ec) { self->on_accept(ec); });
 }
