@@ -110,7 +110,10 @@ std::string history_path() {
 }  // namespace
 
 int run_interactive(const std::function<void(language::Interpreter&)>& setup, const SessionViewOptions& view_options) {
-  language::Session session(std::cout, std::cerr, &interrupted);
+  // Error messages go to the terminal and, as the page's error panel, to the view.
+  TeeBuffer errors(std::cerr.rdbuf());
+  std::ostream error_stream(&errors);
+  language::Session session(std::cout, error_stream, &interrupted);
   SessionView view(session, view_options.port, std::cout, std::cerr);
   try {
     setup(session.interpreter());
@@ -149,7 +152,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup, co
       if (!history.empty()) write_history(history.c_str());
     }
     if (!session.feed(text)) break;
-    view.update();
+    view.update(errors.take());
   }
   completing_session = nullptr;
 #else
@@ -168,7 +171,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup, co
       break;
     }
     if (!session.feed(text)) break;
-    view.update();
+    view.update(errors.take());
   }
 #endif
   return 0;

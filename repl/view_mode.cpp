@@ -162,26 +162,41 @@ void SessionView::start() {
   update();
 }
 
-void SessionView::update() {
+void SessionView::update(const std::string& errors) {
   if (!server_) return;
   const auto& shown = session_.interpreter().shown();
   const std::optional<language::Value> last = shown.empty() ? session_.last_solid() : std::nullopt;
   std::string key = scene_key(shown, last);
-  if (key == sent_key_ && updates_ > 0) return;
+  const bool new_scene = key != sent_key_ || updates_ == 0;
+  if (!new_scene && errors.empty() && !showing_error_) return;
   const auto start = std::chrono::steady_clock::now();
-  view::Status status{.run = ++updates_};
-  try {
-    const view::Scene scene = view::scene_of(shown, last);
-    server_->publish_scene(view::encode_scene(scene));
-    status.parts = scene.parts.size();
-  } catch (const std::exception& e) {
-    status.ok = false;
-    status.error = std::string("view: ") + e.what() + "\n";
-    err_ << status.error;
+  view::Status status{.ok = errors.empty(), .error = errors, .run = ++updates_};
+  if (new_scene) {
+    try {
+      const view::Scene scene = view::scene_of(shown, last);
+      server_->publish_scene(view::encode_scene(scene));
+      status.parts = scene.parts.size();
+    } catch (const std::exception& e) {
+      status.ok = false;
+      status.error += std::string("view: ") + e.what() + "\n";
+      err_ << "view: " << e.what() << "\n";
+    }
+    sent_key_ = std::move(key);
   }
   status.milliseconds = milliseconds_since(start);
   server_->publish_status(view::encode_status(status));
-  sent_key_ = std::move(key);
+  showing_error_ = !status.ok;
+}
+
+int TeeBuffer::overflow(int c) {
+  if (c == traits_type::eof()) return traits_type::not_eof(c);
+  if (copy_.size() < (64u << 10)) copy_ += static_cast<char>(c);
+  return target_->sputc(static_cast<char>(c));
+}
+
+std::streamsize TeeBuffer::xsputn(const char* text, std::streamsize n) {
+  if (copy_.size() < (64u << 10)) copy_.append(text, static_cast<std::size_t>(n));
+  return target_->sputn(text, n);
 }
 
 }  // namespace sculpt::repl

@@ -6,7 +6,9 @@
 #include <functional>
 #include <iosfwd>
 #include <memory>
+#include <streambuf>
 #include <string>
+#include <utility>
 
 #include "language/interpreter.hpp"
 #include "language/session.hpp"
@@ -42,8 +44,9 @@ class SessionView {
   SessionView(language::Session& session, ViewPort port, std::ostream& out, std::ostream& err);
   /// Starts the server unless it runs (`:view` does this).
   void start();
-  /// Sends the scene to the page if it changed since the last one sent (call after each entry).
-  void update();
+  /// Sends the scene to the page if it changed since the last one sent, and the entry's error
+  /// messages (empty: none) as the page's error panel (call after each entry).
+  void update(const std::string& errors = {});
 
  private:
   language::Session& session_;
@@ -53,6 +56,25 @@ class SessionView {
   std::unique_ptr<view::ViewServer> server_;
   std::string sent_key_;  ///< what the last scene sent was made of
   long long updates_ = 0;
+  bool showing_error_ = false;
+};
+
+/// A stream buffer that passes everything on to `target` and keeps a copy (at most 64 KiB) until
+/// take(): the session's error messages, for its view.
+class TeeBuffer : public std::streambuf {
+ public:
+  explicit TeeBuffer(std::streambuf* target) : target_(target) {}
+  /// What was written since the last take().
+  std::string take() { return std::exchange(copy_, {}); }
+
+ protected:
+  int overflow(int c) override;
+  std::streamsize xsputn(const char* text, std::streamsize n) override;
+  int sync() override { return target_->pubsync(); }
+
+ private:
+  std::streambuf* target_;
+  std::string copy_;
 };
 
 }  // namespace sculpt::repl

@@ -101,6 +101,14 @@ def repl_view(driver, state, wait_for):
         check(wait_for("sculptView.state.parts.length == 1 && sculptView.state.parts[0].name == 'ball'"),
               "after show() the page shows what was shown")
         check(state("sculptView.pixels(%s)" % BLUE)["near"] > 2000, "the session's ball is drawn")
+        os.write(fd, b"nothing + 1\n")
+        check(wait_for("sculptView.state.status && !sculptView.state.status.ok"), "an entry's error reaches the page")
+        text = driver.find_element(By.ID, "error").text
+        check("<stdin>:" in text and "unknown name 'nothing'" in text and "^" in text,
+              "the session's error panel shows the message and caret (got %r)" % text)
+        check(state("sculptView.state.parts.length") == 1, "the session's model stays after an error")
+        os.write(fd, b"1 + 1\n")
+        check(wait_for("sculptView.state.status.ok"), "the next entry clears the error")
         os.write(fd, b":quit\n")
         end = time.time() + 10
         while time.time() < end:
