@@ -172,6 +172,11 @@ void Session::command(const std::string& line) {
   argument.erase(argument.find_last_not_of(" \t\r") + 1);
   if (word == ":help" || word == ":h") {
     out_ << help_text(argument);
+    if (argument.empty() && !extra_commands_.empty()) {
+      out_ << "More commands:";
+      for (const auto& [name, _] : extra_commands_) out_ << " " << name;
+      out_ << "\n";
+    }
   } else if (word == ":vars") {
     for (const std::string& name : interpreter_.global_names()) {
       const Value& v = *interpreter_.global(name);
@@ -195,9 +200,14 @@ void Session::command(const std::string& line) {
     }
   } else {
     std::vector<std::string> commands(std::begin(kCommands), std::end(kCommands));
+    std::string extras;
+    for (const auto& [name, _] : extra_commands_) {
+      commands.push_back(name);
+      extras += ", " + name;
+    }
     err_ << "error: unknown command '" << word << "'";
     if (auto guess = closest_name(word, commands)) err_ << "; did you mean '" << *guess << "'?";
-    err_ << " (commands: :help, :load, :vars, :show, :quit)\n";
+    err_ << " (commands: :help, :load, :vars, :show, :quit" << extras << ")\n";
   }
   out_.flush();
   err_.flush();
