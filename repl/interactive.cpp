@@ -109,8 +109,12 @@ std::string history_path() {
 
 }  // namespace
 
-int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
-  language::Session session(std::cout, std::cerr, &interrupted);
+int run_interactive(const std::function<void(language::Interpreter&)>& setup, const SessionViewOptions& view_options) {
+  // Error messages go to the terminal and, as the page's error panel, to the view.
+  TeeBuffer errors(std::cerr.rdbuf());
+  std::ostream error_stream(&errors);
+  language::Session session(std::cout, error_stream, &interrupted);
+  SessionView view(session, view_options.port, std::cout, std::cerr);
   try {
     setup(session.interpreter());
   } catch (const language::ScriptError& e) {
@@ -118,6 +122,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
     return 1;
   }
   std::cout << "sculpt " << SCULPT_VERSION << " - :help for help, :quit to leave\n" << std::flush;
+  if (view_options.open) view.start();
   const InterruptHandler handler;
 #ifdef SCULPT_HAVE_LIBEDIT
   completing_session = &session;
@@ -147,6 +152,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
       if (!history.empty()) write_history(history.c_str());
     }
     if (!session.feed(text)) break;
+    view.update(errors.take());
   }
   completing_session = nullptr;
 #else
@@ -165,6 +171,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup) {
       break;
     }
     if (!session.feed(text)) break;
+    view.update(errors.take());
   }
 #endif
   return 0;

@@ -18,12 +18,15 @@
 #include "interactive.hpp"
 #include "language/interpreter.hpp"
 #include "language/solid_values.hpp"
+#include "last_solid.hpp"
 #include "mesh/mesh_io.hpp"
+#include "view_mode.hpp"
 
 namespace {
 
 using namespace sculpt;
 using namespace sculpt::language;
+using sculpt::repl::LastSolid;
 
 constexpr const char* kUsage =
     "usage: sculpt [options] [FILE.bsp ... | -]\n"
@@ -44,6 +47,11 @@ constexpr const char* kUsage =
     "                  coordinates up to 2^25 steps (default 2^-15: [-1024, 1024]); see grid()\n"
     "  --threads N     use at most N threads (default: every core, or SCULPT_THREADS); results\n"
     "                  are the same for every count\n"
+    "  --view          show the script's parts (show(x), else its last solid) in a browser page\n"
+    "                  and run the script again whenever it or a file it includes changes; with\n"
+    "                  no script, the interactive session with its view open (docs/viewing.md)\n"
+    "  --port N        the view's port on 127.0.0.1 (default 8417, else the next free one of\n"
+    "                  8418 to 8426; 0: any free port); :view in a session uses it too\n"
     "  --help          show this help\n"
     "  --version       show the version\n"
     "Exit status: 0 on success, 1 on a script error, 2 on a usage error.\n";
@@ -105,24 +113,6 @@ Value definition_value(Interpreter& interpreter, const std::string& text) {
   return text;
 }
 
-/// The last solid the scripts made: the value of the latest solid expression statement run
-/// outside functions, or the global most recently bound to a solid, whichever came later.
-struct LastSolid {
-  const Interpreter* interpreter = nullptr;
-  std::optional<Value> value;  // the latest solid expression statement's value
-  std::uint64_t serial = 0;    // the assignment serial when it was made
-
-  void see(const Value& v) {
-    if (v.object<SolidValue>()) value = v, serial = interpreter->assignments();
-  }
-  [[nodiscard]] std::optional<Value> get() const {
-    const std::string name = latest_solid_global(*interpreter);
-    if (value && (name.empty() || serial >= interpreter->assigned_at(name))) return value;
-    if (!name.empty()) return *interpreter->global(name);
-    return std::nullopt;
-  }
-};
-
 /// sculpt -o FILE: exports the last solid. Returns the exit code.
 int export_result(const LastSolid& last, const std::string& path) {
   const std::optional<Value> solid = last.get();
@@ -154,6 +144,8 @@ int main(int argc, char** argv) {
     return usage_error(e.what());
   }
   std::string output;  // -o FILE
+  bool view = false;   // --view
+  sculpt::repl::ViewPort view_port;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
@@ -188,6 +180,15 @@ int main(int argc, char** argv) {
       if (error != std::errc() || end != text.data() + text.size() || n < 1)
         return usage_error("--threads needs a positive integer, got '" + text + "'");
       threads = n;
+    } else if (arg == "--view") {
+      view = true;
+    } else if (arg == "--port" || arg.rfind("--port=", 0) == 0) {
+      const std::string text = arg.size() > 6 ? arg.substr(7) : (i + 1 < argc ? argv[++i] : "");
+      int n = 0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
+      if (error != std::errc() || end != text.data() + text.size() || n < 0 || n > 65535)
+        return usage_error("--port needs a port number in [0, 65535], got '" + text + "'");
+      view_port = {.port = n, .given = true};
     } else if (arg == "-o") {
       if (i + 1 >= argc) return usage_error("-o needs a file name");
       output = argv[++i];
@@ -216,9 +217,17 @@ int main(int argc, char** argv) {
       fixed ? interpreter.define_fixed(name, std::move(value)) : interpreter.define(name, std::move(value));
     }
   };
-  if (jobs.empty() && isatty(STDIN_FILENO)) {
+  if (view && !jobs.empty()) {
+    if (jobs.size() != 1 || jobs[0].kind != Job::File) return usage_error("--view needs one script file (FILE.bsp)");
+    if (!output.empty()) return usage_error("--view and -o do not go together");
+    return sculpt::repl::run_script_view({.script = jobs[0].text,
+                                          .port = view_port,
+                                          .setup = [&](Interpreter& interpreter) { define_all(interpreter, true); }});
+  }
+  if (jobs.empty() && (isatty(STDIN_FILENO) || view)) {
     if (!output.empty()) return usage_error("-o needs a script (FILE.bsp, - or -e CODE), not a session");
-    return sculpt::repl::run_interactive([&](Interpreter& interpreter) { define_all(interpreter, false); });
+    return sculpt::repl::run_interactive([&](Interpreter& interpreter) { define_all(interpreter, false); },
+                                         {.port = view_port, .open = view});
   }
   if (jobs.empty()) jobs.push_back({Job::Stdin, ""});
 

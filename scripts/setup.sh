@@ -44,11 +44,13 @@ packages=(g++ cmake ninja-build ccache pkg-config
           libedit-dev   # line editing and history in the REPL (BSD licence)
           libpng-dev    # PNG pictures (lib/render)
           libtbb-dev    # oneTBB: set operations on every core (lib/base/parallel.hpp)
-          lib3mf-dev)   # 3MF export and import (lib/mesh/formats/threemf_format.cpp)
+          lib3mf-dev    # 3MF export and import (lib/mesh/formats/threemf_format.cpp)
+          libjs-three)  # three.js, served by sculpt --view to its page at run time (lib/view)
 if [ "$tests" = ON ]; then
   packages+=(libgtest-dev libgmock-dev python3
              libcgal-dev    # the tests' independent mesh validator (tests/support/cgal_mesh_check.*)
-             clang-format)  # the format check (scripts/check_format.sh)
+             clang-format   # the format check (scripts/check_format.sh)
+             chromium chromium-driver python3-selenium)  # the view's page in a browser (tests/view/browser_test.py)
 fi
 missing=()
 for p in "${packages[@]}"; do

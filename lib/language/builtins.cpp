@@ -160,6 +160,8 @@ const BuiltinTable& builtins() {
     register_render(t);
     t.set_area("motions");
     register_motions(t);
+    t.set_area("view");
+    register_view(t);
 #endif
     return t;
   }();

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "kernel/grid.hpp"
+#include "language/shown_part.hpp"
 #include "language/value.hpp"
 
 namespace sculpt::language {
@@ -34,6 +35,9 @@ struct Param {
 /// Settings of a run that built-ins may consult.
 struct RunSettings {
   std::ostream* out = nullptr;   ///< where print() writes
+  /// What show() collected in this interpreter (the interpreter's list); null: show() only checks
+  /// its arguments.
+  std::vector<ShownPart>* shown = nullptr;
   bool allow_files = true;       ///< false: built-ins that touch files raise an error (fuzzing)
   std::uint64_t* steps = nullptr;  ///< the run's step counter (see InterpreterOptions::max_steps)
   std::uint64_t max_steps = 0;     ///< 0 = no limit
@@ -110,6 +114,8 @@ class Arguments {
   void set_grid(const kernel::Grid& grid) const;
 
   [[nodiscard]] std::ostream& out() const { return *settings_.out; }
+  /// The run's list of shown parts (RunSettings::shown), or null.
+  [[nodiscard]] std::vector<ShownPart>* shown() const { return settings_.shown; }
   [[nodiscard]] const SourceRef& call() const { return call_; }
 
  private:
@@ -168,6 +174,7 @@ void register_reports(BuiltinTable& table);
 void register_implicit(BuiltinTable& table);
 void register_render(BuiltinTable& table);
 void register_motions(BuiltinTable& table);
+void register_view(BuiltinTable& table);  ///< show(x), in the view area (builtins_view.cpp)
 
 /// Names of the language's keywords (for completion and the docs check).
 std::span<const char* const> keywords();

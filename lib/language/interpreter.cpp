@@ -98,6 +98,7 @@ struct Interpreter::Impl {
   std::uintptr_t stack_base = 0;
   std::uint64_t steps = 0;
   kernel::Grid grid;  // the grid new solids are made at (RunSettings::grid points here)
+  std::vector<ShownPart> shown;  // what show() collected (RunSettings::shown points here)
 
   SourceRef at(std::size_t where) const { return {source, where}; }
 
@@ -614,6 +615,7 @@ struct Interpreter::Impl {
       if (open == key) throw ScriptError(at(i.path.where), "include: '" + path.string() + "' includes itself");
     }
     const SourcePtr included = positioned(at(i.path.where), "include: ", [&] { return load_source(path.string()); });
+    if (options.included) options.included(path.string());
     auto parsed = std::make_shared<const ast::Program>(parse(included));
     includes.push_back(key);
     struct PopInclude {
@@ -641,6 +643,7 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
   impl_->settings.globals = &impl_->globals;
   impl_->grid = options.grid;
   impl_->settings.grid = &impl_->grid;
+  impl_->settings.shown = &impl_->shown;
   impl_->settings.call = [impl = impl_.get()](const Value& f, std::vector<Value> values, const SourceRef& at) {
     return impl->apply(f, std::move(values), at.offset);
   };
@@ -654,6 +657,7 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
 Interpreter::~Interpreter() = default;
 
 kernel::Grid Interpreter::grid() const { return impl_->grid; }
+const std::vector<ShownPart>& Interpreter::shown() const { return impl_->shown; }
 void Interpreter::set_grid(const kernel::Grid& grid) { impl_->grid = grid; }
 
 std::optional<Value> Interpreter::run(const SourcePtr& source) {

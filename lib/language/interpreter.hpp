@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "kernel/grid.hpp"
+#include "language/shown_part.hpp"
 #include "language/source.hpp"
 #include "language/value.hpp"
 
@@ -38,6 +39,8 @@ struct InterpreterOptions {
   /// Called with the value of each expression statement run outside functions (sculpt -o
   /// exports the last solid made; assignments show in assigned_at()).
   std::function<void(const Value&)> top_level_value{};
+  /// Called with the path of each file an `include` reads (sculpt --view watches them).
+  std::function<void(const std::string& path)> included{};
 };
 
 class Interpreter {
@@ -68,6 +71,9 @@ class Interpreter {
   /// The grid new solids are made at (InterpreterOptions::grid, then grid(step) in a script).
   [[nodiscard]] kernel::Grid grid() const;
   void set_grid(const kernel::Grid& grid);
+  /// The parts show() put in the view so far, in order (a later show with a name already shown
+  /// replaces that part in place).
+  [[nodiscard]] const std::vector<ShownPart>& shown() const;
   /// Global names in alphabetical order.
   [[nodiscard]] std::vector<std::string> global_names() const;
 

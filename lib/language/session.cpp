@@ -172,6 +172,11 @@ void Session::command(const std::string& line) {
   argument.erase(argument.find_last_not_of(" \t\r") + 1);
   if (word == ":help" || word == ":h") {
     out_ << help_text(argument);
+    if (argument.empty() && !extra_commands_.empty()) {
+      out_ << "More commands:";
+      for (const auto& [name, _] : extra_commands_) out_ << " " << name;
+      out_ << "\n";
+    }
   } else if (word == ":vars") {
     for (const std::string& name : interpreter_.global_names()) {
       const Value& v = *interpreter_.global(name);
@@ -181,6 +186,8 @@ void Session::command(const std::string& line) {
     }
   } else if (word == ":show") {
     show(argument);
+  } else if (auto extra = extra_commands_.find(word); extra != extra_commands_.end()) {
+    extra->second(argument);
   } else if (word == ":load") {
     if (argument.empty()) {
       err_ << "error: :load needs a file name\n";
@@ -193,9 +200,14 @@ void Session::command(const std::string& line) {
     }
   } else {
     std::vector<std::string> commands(std::begin(kCommands), std::end(kCommands));
+    std::string extras;
+    for (const auto& [name, _] : extra_commands_) {
+      commands.push_back(name);
+      extras += ", " + name;
+    }
     err_ << "error: unknown command '" << word << "'";
     if (auto guess = closest_name(word, commands)) err_ << "; did you mean '" << *guess << "'?";
-    err_ << " (commands: :help, :load, :vars, :show, :quit)\n";
+    err_ << " (commands: :help, :load, :vars, :show, :quit" << extras << ")\n";
   }
   out_.flush();
   err_.flush();
@@ -217,15 +229,12 @@ void Session::show(const std::string& argument) {
     // The most recently bound global solid, unless an entry's solid value came later.
     file = latest_solid_global(interpreter_);
     const std::uint64_t best = file.empty() ? 0 : interpreter_.assigned_at(file);
-    if (last_value_ && last_value_serial_ >= best) {
-      value = last_value_;
-      file = "last";
-    } else if (best > 0) {
-      value = *interpreter_.global(file);
-    } else {
+    value = last_solid();
+    if (!value) {
       err_ << "error: :show: no solid made yet (:show name shows the solid bound to name)\n";
       return;
     }
+    if (last_value_ && last_value_serial_ >= best) file = "last";
   }
   const std::vector<PolygonMesh> meshes = solid_meshes(*value);
   if (meshes.empty()) {
@@ -244,6 +253,18 @@ void Session::show(const std::string& argument) {
   }
 }
 
+std::optional<Value> Session::last_solid() const {
+  const std::string name = latest_solid_global(interpreter_);
+  const std::uint64_t best = name.empty() ? 0 : interpreter_.assigned_at(name);
+  if (last_value_ && last_value_serial_ >= best) return last_value_;
+  if (best > 0) return *interpreter_.global(name);
+  return std::nullopt;
+}
+
+void Session::add_command(std::string name, std::function<void(const std::string& argument)> run) {
+  extra_commands_[std::move(name)] = std::move(run);
+}
+
 std::vector<std::string> Session::complete(std::string_view text) const {
   std::vector<std::string> names;
   auto consider = [&](const std::string& name) {
@@ -251,6 +272,7 @@ std::vector<std::string> Session::complete(std::string_view text) const {
   };
   if (!text.empty() && text[0] == ':') {
     for (const char* c : kCommands) consider(c);
+    for (const auto& [name, _] : extra_commands_) consider(name);
   } else {
     for (const char* k : keywords()) consider(k);
     for (const auto& [name, _] : builtins().entries()) consider(name);

@@ -12,6 +12,8 @@
 /// global most recently bound to a solid, whichever came later (`last.png` for the former).
 
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -39,6 +41,12 @@ class Session {
   /// start with `text`, sorted.
   [[nodiscard]] std::vector<std::string> complete(std::string_view text) const;
   [[nodiscard]] Interpreter& interpreter() { return interpreter_; }
+  /// Adds a command such as `:view` that the session itself does not know (the sculpt executable
+  /// adds it: the view is a layer above the language). `run` gets the rest of the line.
+  void add_command(std::string name, std::function<void(const std::string& argument)> run);
+  /// The last solid made: the value of the latest entry that was a solid, or the global most
+  /// recently bound to a solid, whichever came later (what `:show` alone shows); nullopt if none.
+  [[nodiscard]] std::optional<Value> last_solid() const;
   /// Where `:show` writes its pictures (created when needed). Default: show_directory_default().
   void set_show_directory(std::filesystem::path dir) { show_dir_ = std::move(dir); }
   [[nodiscard]] const std::filesystem::path& show_directory() const { return show_dir_; }
@@ -57,6 +65,7 @@ class Session {
   /// The latest entry value that was a solid, with the assignment serial at that time.
   std::optional<Value> last_value_;
   std::uint64_t last_value_serial_ = 0;
+  std::map<std::string, std::function<void(const std::string&)>> extra_commands_;
 };
 
 /// `$SCULPT_SHOW_DIR` if set, else `<temporary directory>/sculpt-show-<uid>` (one per user).

@@ -56,6 +56,19 @@ check threads_equals 0 "8" "$sculpt" --threads=2 -e 'print(volume(box([0, 0, 0],
 check threads_zero 2 "sculpt: --threads needs a positive integer, got '0'; try 'sculpt --help'" "$sculpt" --threads 0
 check threads_environment 0 "8" env SCULPT_THREADS=1 "$sculpt" -e 'print(volume(box([0, 0, 0], [2, 2, 2])))'
 check threads_environment_bad 2 "sculpt: SCULPT_THREADS must be an integer from 1 to 4096, got 'two'; try 'sculpt --help'" env SCULPT_THREADS=two "$sculpt" -e 'print(1)'
+check port_bad 2 "sculpt: --port needs a port number in [0, 65535], got 'x'; try 'sculpt --help'" "$sculpt" --port x
+check view_with_code 2 "sculpt: --view needs one script file (FILE.bsp); try 'sculpt --help'" "$sculpt" --view -e 'print(1)'
+check view_with_output 2 "sculpt: --view and -o do not go together; try 'sculpt --help'" "$sculpt" --view -o "$tmp/x.stl" "$tmp/none.bsp"
+# A port in use: the second view says so and names --port (the first is ended by its id).
+printf 'box([0, 0, 0], [1, 1, 1])\n' > "$tmp/view.bsp"
+"$sculpt" --view --port 0 "$tmp/view.bsp" > "$tmp/view.out" 2>&1 &
+view_pid=$!
+for _ in $(seq 100); do grep -q "view: run 1" "$tmp/view.out" && break; sleep 0.1; done
+view_port=$(sed -n 's|^view: http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$tmp/view.out")
+check view_port_in_use 1 "sculpt: --view: port $view_port on 127.0.0.1 is in use (another sculpt view, or another program); choose a free port with --port N, or --port 0 for any free port" "$sculpt" --view --port "$view_port" "$tmp/view.bsp"
+kill -INT "$view_pid"
+wait "$view_pid"
+check view_ends_on_interrupt 0 "view: stopped" tail -n 1 "$tmp/view.out"
 check grid_outside 2 "sculpt: grid step 2^-70 is outside the supported steps 2^-64 .. 2^32; try 'sculpt --help'" "$sculpt" --grid 2^-70
 
 # -D overrides the script's own assignments outside functions (OpenSCAD's rule), not a

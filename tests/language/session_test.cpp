@@ -7,6 +7,7 @@
 
 #include "language/builtins.hpp"
 #include "language/session.hpp"
+#include "language/solid_values.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -122,6 +123,37 @@ TEST(Session, LoadRunsAFile) {
   Fixture f;
   f.session.feed(":load /nonexistent/file.bsp");
   EXPECT_EQ(f.err.str(), "error: /nonexistent/file.bsp: cannot open for reading\n");
+}
+
+// A command the layer above adds (the executable's :view): run with its argument, listed by :help,
+// suggested for a near miss, completed.
+TEST(Session, CommandsAddedFromAbove) {
+  Fixture f;
+  std::string got = "none";
+  f.session.add_command(":view", [&got](const std::string& argument) { got = "ran with '" + argument + "'"; });
+  f.session.feed(":view  now ");
+  EXPECT_EQ(got, "ran with 'now'");
+  f.session.feed(":help");
+  EXPECT_NE(f.out.str().find("More commands: :view\n"), std::string::npos);
+  f.session.feed(":veiw");
+  EXPECT_EQ(
+      f.err.str(),
+      "error: unknown command ':veiw'; did you mean ':view'? (commands: :help, :load, :vars, :show, :quit, :view)\n");
+  const auto names = f.session.complete(":v");
+  EXPECT_EQ(names, (std::vector<std::string>{":vars", ":view"}));
+}
+
+// The last solid made: the latest solid entry or the global most recently bound to a solid.
+TEST(Session, LastSolidFollowsEntriesAndAssignments) {
+  Fixture f;
+  EXPECT_FALSE(f.session.last_solid());
+  f.session.feed("a = box([0, 0, 0], [1, 1, 1])");
+  ASSERT_TRUE(f.session.last_solid());
+  EXPECT_EQ(f.session.last_solid()->object<SolidValue>(), f.session.interpreter().global("a")->object<SolidValue>());
+  f.session.feed("box([0, 0, 0], [2, 2, 2])");
+  EXPECT_NE(f.session.last_solid()->object<SolidValue>(), f.session.interpreter().global("a")->object<SolidValue>());
+  f.session.feed("b = sphere(1)");
+  EXPECT_EQ(f.session.last_solid()->object<SolidValue>(), f.session.interpreter().global("b")->object<SolidValue>());
 }
 
 }  // namespace

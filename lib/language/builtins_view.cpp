@@ -1,0 +1,114 @@
+// show(x, name=, color=): puts solids and meshes in the live view (sculpt --view, the REPL's
+// :view; lib/view, docs/viewing.md). The interpreter keeps the list (Interpreter::shown()); the
+// view reads it after each run or entry.
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "language/builtins.hpp"
+#include "language/solid_values.hpp"
+
+namespace sculpt::language {
+namespace {
+
+/// At most this many parts in one view (a list given to show in a loop stays bounded).
+constexpr std::size_t kMaxShownParts = 10000;
+
+struct NamedColor {
+  const char* name;
+  std::array<double, 3> rgb;
+};
+
+constexpr NamedColor kNamedColors[] = {
+    {"red", {0.85, 0.2, 0.2}},    {"green", {0.25, 0.7, 0.3}},    {"blue", {0.25, 0.45, 0.85}},
+    {"yellow", {0.9, 0.8, 0.2}},  {"orange", {0.95, 0.55, 0.15}}, {"purple", {0.6, 0.35, 0.75}},
+    {"cyan", {0.2, 0.75, 0.8}},   {"magenta", {0.85, 0.3, 0.7}},  {"grey", {0.6, 0.6, 0.6}},
+    {"gray", {0.6, 0.6, 0.6}},    {"white", {0.95, 0.95, 0.95}},  {"black", {0.1, 0.1, 0.1}},
+    {"brown", {0.55, 0.35, 0.2}}, {"gold", {0.85, 0.65, 0.2}}};
+
+int hex_digit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return -1;
+}
+
+/// The color argument: "#rrggbb", a name (red, green, ...) or [r, g, b] with each in [0, 1].
+std::array<double, 3> color_arg(const Arguments& args, std::size_t i) {
+  if (const std::string* text = args.value(i).get<std::string>()) {
+    if (text->size() == 7 && (*text)[0] == '#') {
+      std::array<double, 3> rgb{};
+      bool ok = true;
+      for (int k = 0; k < 3; ++k) {
+        const int hi = hex_digit((*text)[1 + 2 * k]), lo = hex_digit((*text)[2 + 2 * k]);
+        ok = ok && hi >= 0 && lo >= 0;
+        rgb[k] = (16 * hi + lo) / 255.0;
+      }
+      if (ok) return rgb;
+    }
+    for (const NamedColor& c : kNamedColors)
+      if (*text == c.name) return c.rgb;
+    std::string names;
+    for (const NamedColor& c : kNamedColors) names += std::string(names.empty() ? "" : ", ") + c.name;
+    args.fail(i, "unknown color '" + *text + "' (give \"#rrggbb\", [r, g, b] in [0, 1], or one of " + names + ")");
+  }
+  const std::vector<double> v = args.vector(i, 3);
+  for (double x : v)
+    if (!(x >= 0 && x <= 1)) args.fail(i, "color components must be in [0, 1]");
+  return {v[0], v[1], v[2]};
+}
+
+bool viewable(const Value& v) { return v.object<SolidValue>() || v.object<MeshValue>(); }
+
+Value show(const Arguments& args) {
+  const Value& x = args.value(0);
+  std::vector<Value> items;
+  if (viewable(x)) {
+    items.push_back(x);
+  } else if (const List* list = x.list(); list && !list->empty()) {
+    for (const Value& item : *list) {
+      if (!viewable(item)) args.fail_type(0, "a solid, a mesh or a list of them");
+      items.push_back(item);
+    }
+  } else {
+    args.fail_type(0, "a solid, a mesh or a list of them");
+  }
+  std::optional<std::array<double, 3>> color;
+  if (args.has(2)) color = color_arg(args, 2);
+  std::string name = args.has(1) ? args.string(1) : std::string();
+  if (args.has(1) && name.empty()) args.fail(1, "the name must not be empty");
+  if (name.size() > 200) args.fail(1, "the name is longer than 200 characters");
+  std::vector<ShownPart>* shown = args.shown();
+  if (!shown) return x;
+  if (name.empty()) name = "part " + std::to_string(shown->size() + 1);
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    ShownPart part{items.size() == 1 ? name : name + " " + std::to_string(k + 1), color, items[k]};
+    bool replaced = false;
+    for (ShownPart& old : *shown)
+      if (old.name == part.name) old = part, replaced = true;
+    if (replaced) continue;
+    if (shown->size() >= kMaxShownParts)
+      args.fail("more than " + std::to_string(kMaxShownParts) + " parts shown (show a union instead)");
+    shown->push_back(std::move(part));
+  }
+  return x;
+}
+
+}  // namespace
+
+void register_view(BuiltinTable& table) {
+  table.add({.name = "show",
+             .signature = "show(x, name=\"part N\", color=none)",
+             .doc = "Puts x (a solid, a mesh or a list of them) in the live view (sculpt --view FILE, :view in the "
+                    "REPL; docs/viewing.md) as a part called name, in color (\"#rrggbb\", [r, g, b] with each "
+                    "in [0, 1], or red, green, blue, yellow, orange, purple, cyan, magenta, grey, white, black, "
+                    "brown, gold). Showing a name again replaces that part; a list gives parts \"name 1\", "
+                    "\"name 2\", .... Without any show the view shows the last solid made. Returns x.",
+             .params = {{"x"}, {"name", false}, {"color", false}},
+             .run = show});
+}
+
+}  // namespace sculpt::language

@@ -1,0 +1,220 @@
+#include "view/scene_message.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string_view>
+#include <unordered_map>
+
+#include "base/errors.hpp"
+#include "mesh/edge_incidence.hpp"
+#include "mesh/mesh_io.hpp"
+#include "view/detail/feature_edges.hpp"
+
+namespace sculpt::view {
+namespace {
+
+void append_number(std::string& out, double x) {
+  if (!std::isfinite(x)) {
+    out += "null";
+    return;
+  }
+  char text[32];
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, x);
+  out.append(text, end);
+}
+
+void append_u32(std::string& out, std::uint32_t x) {
+  char b[4];
+  std::memcpy(b, &x, 4);  // little endian, as glTF (mesh/formats/glb_container.hpp checks it)
+  out.append(b, 4);
+}
+
+void append_vector(std::string& out, const Eigen::Vector3d& v) {
+  out += '[';
+  for (int k = 0; k < 3; ++k) {
+    if (k) out += ',';
+    append_number(out, v[k]);
+  }
+  out += ']';
+}
+
+/// The bytes of the float32 positions at the start of the BIN chunk of a GLB made by encode_mesh
+/// (mesh/formats/glb_writer.cpp: positions first, their count in the first accessor); empty for a
+/// GLB without triangles.
+std::string_view glb_positions(const std::string& glb) {
+  if (glb.size() < 20) return {};
+  std::uint32_t json_size;
+  std::memcpy(&json_size, glb.data() + 12, 4);
+  if (glb.size() < 28 + std::size_t(json_size)) return {};
+  const std::string_view json(glb.data() + 20, json_size);
+  const std::size_t accessors = json.find("\"accessors\":[{");
+  const std::size_t count = accessors == std::string_view::npos ? accessors : json.find("\"count\":", accessors);
+  if (count == std::string_view::npos) return {};
+  std::size_t vertices = 0;
+  const char* first = json.data() + count + 8;
+  if (std::from_chars(first, json.data() + json.size(), vertices).ec != std::errc()) return {};
+  const std::size_t bin = 28 + std::size_t(json_size);
+  if (vertices > (glb.size() - bin) / 12) return {};
+  return {glb.data() + bin, 12 * vertices};
+}
+
+struct FloatPoint {
+  std::array<std::uint32_t, 3> bits;
+  bool operator==(const FloatPoint&) const = default;
+};
+
+struct FloatPointHash {
+  std::size_t operator()(const FloatPoint& p) const {
+    return (std::size_t(p.bits[0]) * 0x9E3779B97F4A7C15ull) ^ (std::size_t(p.bits[1]) * 0xC2B2AE3D27D4EB4Full) ^
+           std::size_t(p.bits[2]);
+  }
+};
+
+FloatPoint float_point(const void* xyz) {
+  FloatPoint p;
+  std::memcpy(p.bits.data(), xyz, 12);
+  return p;
+}
+
+/// The feature edges of a part: as pairs of indices (uint32) into its GLB's positions, 8 bytes an
+/// edge; an end the GLB does not hold at the same float32 point (output rounding moved it)
+/// sends its edge as 6 float32 ("loose"), as does every edge of a part without positions.
+struct EdgeData {
+  std::string indexed;
+  std::size_t indexed_count = 0;
+  std::string loose;
+  std::size_t loose_count = 0;
+};
+
+EdgeData edge_data(const PolygonMesh& mesh, const std::string& glb) {
+  const std::string_view positions = glb_positions(glb);  // 12 bytes a vertex
+  std::unordered_map<FloatPoint, std::uint32_t, FloatPointHash> index;
+  index.reserve(positions.size() / 12);
+  for (std::size_t v = 0; 12 * v < positions.size(); ++v)
+    index.emplace(float_point(positions.data() + 12 * v), static_cast<std::uint32_t>(v));
+  EdgeData data;
+  for (const auto& edge : detail::feature_edges(mesh)) {
+    float ends[6];
+    for (int e = 0; e < 2; ++e)
+      for (int k = 0; k < 3; ++k) ends[3 * e + k] = static_cast<float>(mesh.vertices[edge[e]][k]);
+    const auto a = index.find(float_point(ends)), b = index.find(float_point(ends + 3));
+    if (a != index.end() && b != index.end()) {
+      append_u32(data.indexed, a->second);
+      append_u32(data.indexed, b->second);
+      ++data.indexed_count;
+    } else {
+      data.loose.append(reinterpret_cast<const char*>(ends), sizeof ends);
+      ++data.loose_count;
+    }
+  }
+  return data;
+}
+
+}  // namespace
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c < 0x20) {
+      char code[8];
+      std::snprintf(code, sizeof code, "\\u%04x", c);
+      out += code;
+    } else if (c < 0x80) {
+      out += static_cast<char>(c);
+    } else {
+      // Copy a well-formed UTF-8 sequence; replace a stray byte by U+FFFD.
+      const int length = c >= 0xF0 && c < 0xF5 ? 4 : c >= 0xE0 ? 3 : c >= 0xC2 && c < 0xE0 ? 2 : 0;
+      bool ok = length > 0 && i + length <= text.size();
+      for (int k = 1; ok && k < length; ++k) ok = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+      if (ok) {
+        out.append(text, i, length);
+        i += length - 1;
+      } else {
+        out += "\\ufffd";
+      }
+    }
+  }
+  return out + "\"";
+}
+
+std::string encode_scene(const Scene& scene) {
+  std::string json = "{\"parts\":[";
+  std::string data;
+  for (std::size_t p = 0; p < scene.parts.size(); ++p) {
+    const ViewPart& part = scene.parts[p];
+    check_face_indices(part.mesh, "view");
+    const std::string glb = encode_mesh(part.mesh, MeshFormat::Glb);
+    const EdgeData edges = edge_data(part.mesh, glb);
+    std::size_t triangles = 0;
+    for (const auto& face : part.mesh.faces) triangles += face.size() - 2;
+    if (p) json += ',';
+    json += "{\"name\":" + json_string(part.name) + ",\"color\":[";
+    for (int k = 0; k < 3; ++k) {
+      if (k) json += ',';
+      append_number(json, part.color[k]);
+    }
+    json += "],\"solid\":";
+    json += part.solid ? "true" : "false";
+    json += ",\"volume\":";
+    if (part.volume) {
+      append_number(json, *part.volume);
+    } else {
+      json += "null";
+    }
+    json += ",\"area\":";
+    append_number(json, part.area);
+    json += ",\"box\":";
+    if (part.box.isEmpty()) {
+      json += "null";
+    } else {
+      json += '[';
+      append_vector(json, part.box.min());
+      json += ',';
+      append_vector(json, part.box.max());
+      json += ']';
+    }
+    json += ",\"triangles\":" + std::to_string(triangles);
+    // GLB files are whole multiples of 4 bytes (glTF 2.0 sec. 4.4), so every offset stays aligned.
+    json += ",\"glb\":[" + std::to_string(data.size()) + "," + std::to_string(glb.size()) + "]";
+    data += glb;
+    data.append((4 - data.size() % 4) % 4, '\0');
+    json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edges.indexed_count) + "]";
+    data += edges.indexed;
+    json += ",\"loose\":[" + std::to_string(data.size()) + "," + std::to_string(edges.loose_count) + "]}";
+    data += edges.loose;
+  }
+  json += "]}";
+  json.append((4 - json.size() % 4) % 4, ' ');
+  if (json.size() + data.size() > std::numeric_limits<std::uint32_t>::max() - 8u)
+    throw InvalidInput("view: the scene is too large to send (" + std::to_string(data.size()) + " bytes)");
+  std::string message = "SCLV";
+  append_u32(message, static_cast<std::uint32_t>(json.size()));
+  message += json;
+  message += data;
+  return message;
+}
+
+std::string encode_status(const Status& status) {
+  std::string out = "{\"type\":\"status\",\"ok\":";
+  out += status.ok ? "true" : "false";
+  out += ",\"run\":" + std::to_string(status.run) + ",\"ms\":";
+  append_number(out, status.milliseconds);
+  out += ",\"parts\":" + std::to_string(status.parts);
+  out += ",\"error\":" + json_string(status.ok ? std::string() : status.error) + "}";
+  return out;
+}
+
+}  // namespace sculpt::view
