@@ -136,6 +136,28 @@ TEST(CellMerge, TheSetOperationsTakeThePathAboveTheThreshold) {
   EXPECT_NEAR(surface_area(u), 42.0, 1e-12);
 }
 
+// The real-mesh job (issue 33): an import, a general turn, their union and a difference with a
+// ball read boundaries only: no whole tree is built on the way, and the result is the classic one.
+TEST(CellMerge, ImportTurnUnionAndDifferenceBuildNoTree) {
+  const PolygonMesh mesh = to_mesh(sphere(1.0, {.segments = 48}));
+  const Solid m = from_mesh(mesh, {.snapped_mesh_is_clean = true});
+  EXPECT_TRUE(m.tree_deferred());
+  const Solid r = rotate(m, {1, 1, 0}, 33);
+  EXPECT_TRUE(r.tree_deferred());
+  const Solid u = m | r;  // about 8000 fragments: the cell path
+  const Solid d = u - translate(sphere(0.5, {.segments = 32}), {0.7, 0.7, 0.7});
+  EXPECT_TRUE(m.tree_deferred());
+  EXPECT_TRUE(r.tree_deferred());
+  EXPECT_TRUE(u.tree_deferred());
+  EXPECT_TRUE(d.tree_deferred());
+  const double got = vol(to_mesh(d, {.clean = false}));
+  EXPECT_TRUE(d.tree_deferred());  // output reads the boundary alone
+  const Solid want =
+      classic(classic(m, r, kUnion), translate(sphere(0.5, {.segments = 32}), {0.7, 0.7, 0.7}), kDifference);
+  EXPECT_NEAR(got, vol(to_mesh(want, {.clean = false})), 1e-9);
+  EXPECT_TRUE(((d - want) | (want - d)).is_empty());
+}
+
 // A Menger sponge made by cells (faces with holes, walls everywhere): exact volume, and its mesh
 // reads back (the walls leave no seams where nothing changes, and no slivers next to edges).
 TEST(CellMerge, ASpongeByCellsReadsBack) {
