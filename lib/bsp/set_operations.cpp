@@ -1,4 +1,5 @@
 #include "bsp/set_operations.hpp"
+#include "base/cancel.hpp"
 #include "bsp/tree/solid_access.hpp"
 
 #include <memory>
@@ -67,6 +68,7 @@ class Merger {
     // allocated (about 3 allocations per split node).
     ConvexPolygon& part = scratch_;
     while (!stack.empty()) {
+      poll_.tick();
       PartitionFrame& f = stack.back();
       if (is_leaf(f.t)) {
         set(f.neg, f.t);
@@ -185,6 +187,7 @@ class Merger {
         set(s, v);
     };
     while (!stack.empty()) {
+      poll_.tick();
       Frame f = stack.back();
       stack.pop_back();
       if (is_leaf(f.a) || is_leaf(f.b)) {
@@ -248,6 +251,7 @@ class Merger {
   };
 
   Arena& a_;
+  CancelPoll poll_;  // Ctrl-C (base/cancel.hpp)
   TreeRef out_[2] = {kOut, kOut};
   // Working storage of partition(), kept between calls (one partition per node of the merge).
   std::vector<PartitionFrame> partition_stack_;
@@ -326,16 +330,17 @@ class DeferredMerge final : public bsp::detail::DeferredTree {
   const kernel::PlaneTable& planes() const override { return arena_.planes; }
   const FragmentList& boundary() const override { return *arena_.boundary; }
   Solid build() override {
-    // The merge changes the arena: a merge that threw (out of memory) cannot be run again.
-    if (started_) throw std::logic_error("a deferred set operation failed earlier and cannot be completed");
-    started_ = true;
-    return bsp::detail::compact(arena_, steps_.tree(arena_));
+    // The merge changes the arena: it runs on a copy, so that a merge stopped by Ctrl-C
+    // (Cancelled) or out of memory leaves this solid whole and can be run again (the copy costs
+    // little beside the merge).
+    Arena work = arena_;
+    MergeSteps steps = steps_;
+    return bsp::detail::compact(work, steps.tree(work));
   }
 
  private:
   Arena arena_;
   MergeSteps steps_;
-  bool started_ = false;
 };
 
 Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
@@ -365,6 +370,7 @@ Solid apply(const Solid& x, const Solid& y, const bool table[2][2]) {
 // becomes the arena's instead of being copied into it (the same merge, deferred alike).
 Solid apply_adopting(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < y.nodes().size() || !x.has_boundary()) return apply(x, y, table);
+  const CancelShield shield;  // x's storage moves into the arena: stopping halfway would lose x
   const std::size_t a_nodes = x.nodes().size(), b_nodes = y.nodes().size();
   Arena arena;
   const TreeRef ra = arena.adopt(std::move(x));
@@ -387,6 +393,7 @@ Solid apply_adopting(Solid&& x, const Solid& y, const bool table[2][2]) {
 // copied (docs/benchmarks.md, "Session 15: deferred trees").
 Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   if (&x == &y || x.nodes().size() < 2 * y.nodes().size()) return apply_adopting(std::move(x), y, table);
+  const CancelShield shield;  // x's storage moves into the arena: stopping halfway would lose x
   // The boundary of x must be known before its storage moves into the arena.
   std::optional<bsp::detail::Fragments> extracted;
   if (!x.has_boundary()) extracted = bsp::detail::boundary_fragments(x);

@@ -19,8 +19,8 @@ class DeferredTree {
   [[nodiscard]] virtual const kernel::PlaneTable& planes() const = 0;
   [[nodiscard]] virtual const FragmentList& boundary() const = 0;
   /// The complete result (tree, boundary, at the default grid): exactly what the operation would
-  /// have returned without deferring. Called once; the object is discarded after it. If it
-  /// throws, a second call throws std::logic_error (the work it began cannot be resumed).
+  /// have returned without deferring. The object is discarded after it returns. If it throws
+  /// (Cancelled by Ctrl-C, out of memory), the object is unchanged and may be called again.
   virtual Solid build() = 0;
 };
 

@@ -1,0 +1,101 @@
+// Ctrl-C in the set operations (base/cancel.hpp): a request made from another thread while a large
+// operation runs stops it with Cancelled, and the operands are as they were; a deferred tree whose
+// build was stopped is still whole and builds later; in-place work, which has taken its operand's
+// storage, is shielded and finishes.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "base/cancel.hpp"
+#include "bsp/boundary.hpp"
+#include "bsp/classify.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
+
+namespace sculpt {
+namespace {
+
+class CancelSetOperations : public ::testing::Test {
+ protected:
+  void SetUp() override { clear_cancel(); }
+  void TearDown() override { clear_cancel(); }
+};
+
+// Shape of a solid's tree and storage, to compare before and after.
+struct Footprint {
+  std::size_t nodes, planes, fragments;
+  TreeStats stats;
+  double volume;
+};
+Footprint footprint(const Solid& s) {
+  return {s.nodes().size(), std::size_t(s.planes().size()), s.boundary().size(), tree_stats(s), volume(s)};
+}
+void expect_same(const Footprint& a, const Footprint& b) {
+  EXPECT_EQ(a.nodes, b.nodes);
+  EXPECT_EQ(a.planes, b.planes);
+  EXPECT_EQ(a.fragments, b.fragments);
+  EXPECT_EQ(a.stats.nodes, b.stats.nodes);
+  EXPECT_EQ(a.stats.height, b.stats.height);
+  EXPECT_EQ(a.volume, b.volume);
+}
+
+TEST_F(CancelSetOperations, RequestFromAnotherThreadStopsALargeUnion) {
+  // Two 400-segment spheres: their union takes seconds (the boundary merge alone); the request
+  // comes after 50 ms.
+  const Solid a = sphere(1.0, {.segments = 400});
+  const Solid b = translate(a, Eigen::Vector3d(0.5, 0, 0));
+  const Footprint a_before = footprint(a), b_before = footprint(b);
+  std::thread asker([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    request_cancel();
+  });
+  bool stopped = false;
+  try {
+    const Solid u = unite(a, b);
+    (void)u.nodes();  // the deferred tree merge too
+  } catch (const Cancelled&) {
+    stopped = true;
+  }
+  asker.join();
+  clear_cancel();
+  EXPECT_TRUE(stopped);
+  expect_same(footprint(a), a_before);
+  expect_same(footprint(b), b_before);
+}
+
+TEST_F(CancelSetOperations, StoppedDeferredTreeIsWholeAndBuildsLater) {
+  const Solid a = sphere(1.0, {.segments = 96});
+  const Solid b = translate(a, Eigen::Vector3d(0.5, 0.25, 0));
+  const Solid u = subtract(a, b);
+  ASSERT_TRUE(u.tree_deferred());
+  const double boundary_volume = volume(u);  // from the carried boundary: no tree needed
+  request_cancel();
+  EXPECT_THROW((void)u.nodes(), Cancelled);
+  EXPECT_TRUE(u.tree_deferred());  // still the operation's result, not half a tree
+  clear_cancel();
+  const Solid fresh = subtract(a, b);
+  const TreeStats built = tree_stats(u), reference = tree_stats(fresh);
+  EXPECT_FALSE(u.tree_deferred());
+  EXPECT_EQ(built.nodes, reference.nodes);
+  EXPECT_EQ(built.height, reference.height);
+  EXPECT_EQ(volume(u), boundary_volume);
+  EXPECT_EQ(classify(u, Eigen::Vector3d(-0.9, 0, 0)).location, Location::Inside);
+  EXPECT_EQ(classify(u, Eigen::Vector3d(0.9, 0, 0)).location, Location::Outside);
+}
+
+TEST_F(CancelSetOperations, InPlaceOperationIsShieldedAndTheRequestStays) {
+  Solid work = sphere(1.0, {.segments = 128});
+  const Solid tool = box(Eigen::Vector3d(0.5, -0.1, -0.1), Eigen::Vector3d(1.5, 0.1, 0.1));
+  const double expected = volume(subtract(work, tool));
+  request_cancel();
+  Solid result;
+  EXPECT_NO_THROW(result = subtract(std::move(work), tool));  // work's storage was taken: no stop halfway
+  EXPECT_TRUE(cancel_requested());
+  clear_cancel();
+  EXPECT_NEAR(volume(result), expected, 1e-12);
+}
+
+}  // namespace
+}  // namespace sculpt
