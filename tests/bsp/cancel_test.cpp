@@ -1,7 +1,7 @@
 // Ctrl-C in the set operations (base/cancel.hpp): a request made from another thread while a large
-// operation runs stops it with Cancelled, and the operands are as they were; a deferred tree whose
-// build was stopped is still whole and builds later; in-place work, which has taken its operand's
-// storage, is shielded and finishes.
+// operation runs stops it with Cancelled, and the operands are as they were; a large deferred tree
+// whose build was stopped is still whole and builds later; a small one, and in-place work, which has
+// taken its operand's storage, are shielded and finish.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -66,7 +66,8 @@ TEST_F(CancelSetOperations, RequestFromAnotherThreadStopsALargeUnion) {
 }
 
 TEST_F(CancelSetOperations, StoppedDeferredTreeIsWholeAndBuildsLater) {
-  const Solid a = sphere(1.0, {.segments = 96});
+  // 2 x 63,501 nodes: a merge large enough to run on a copy (DeferredMerge::build).
+  const Solid a = sphere(1.0, {.segments = 256});
   const Solid b = translate(a, Eigen::Vector3d(0.5, 0.25, 0));
   const Solid u = subtract(a, b);
   ASSERT_TRUE(u.tree_deferred());
@@ -83,6 +84,16 @@ TEST_F(CancelSetOperations, StoppedDeferredTreeIsWholeAndBuildsLater) {
   EXPECT_EQ(volume(u), boundary_volume);
   EXPECT_EQ(classify(u, Eigen::Vector3d(-0.9, 0, 0)).location, Location::Inside);
   EXPECT_EQ(classify(u, Eigen::Vector3d(0.9, 0, 0)).location, Location::Outside);
+}
+
+TEST_F(CancelSetOperations, SmallDeferredTreeIsBuiltAndTheRequestStays) {
+  const Solid a = sphere(1.0, {.segments = 48});
+  const Solid u = subtract(a, translate(a, Eigen::Vector3d(0.5, 0.25, 0)));
+  ASSERT_TRUE(u.tree_deferred());
+  request_cancel();
+  EXPECT_NO_THROW((void)u.nodes());  // well under a second: shielded, not copied
+  EXPECT_FALSE(u.tree_deferred());
+  EXPECT_TRUE(cancel_requested());
 }
 
 TEST_F(CancelSetOperations, InPlaceOperationIsShieldedAndTheRequestStays) {
