@@ -102,7 +102,7 @@ def main():
     t.mark(); t.type("for i in range(0, 10000) { for j in range(0, 10000) { z = j } }\r")
     time.sleep(0.5)
     t.type("\x03"); t.read_until("error: interrupted"); t.read_until("sculpt> ")
-    t.mark(); t.type("x\r"); t.read_until("42")
+    t.mark(); t.type("x\r"); t.read_until("42"); t.read_until("sculpt> ")
     # Ctrl-C during one long built-in (a union of two 500-segment spheres takes seconds): it stops
     # with "interrupted" (base/cancel.hpp), the variables are as they were, and the session goes on.
     t.mark(); t.type("s = sphere(1, 500)\r"); t.read_until("sculpt> ", timeout=60)
