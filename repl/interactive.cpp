@@ -8,6 +8,7 @@
 #include <iostream>
 #include <string>
 
+#include "base/cancel.hpp"
 #include "language/session.hpp"
 
 #ifdef SCULPT_HAVE_LIBEDIT
@@ -24,13 +25,17 @@ namespace {
 constexpr const char* kPrompt = "sculpt> ";
 constexpr const char* kContinuation = "   ...> ";
 
-// Ctrl-C: the handler only raises this flag. At a prompt the line editor returns (the handler
-// is installed without SA_RESTART) and the unfinished entry is dropped; while an entry runs,
-// the interpreter stops at its next step with "interrupted". Either way the session goes on.
+// Ctrl-C: the handler only raises this flag and the library's cancellation request. At a prompt
+// the line editor returns (the handler is installed without SA_RESTART) and the unfinished entry
+// is dropped; while an entry runs, the interpreter stops at its next step, and a long built-in at
+// its next cancellation check, with "interrupted". Either way the session goes on.
 std::atomic<bool> interrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the flag is set from a signal handler");
 
-extern "C" void on_interrupt(int) { interrupted.store(true, std::memory_order_relaxed); }
+extern "C" void on_interrupt(int) {
+  interrupted.store(true, std::memory_order_relaxed);
+  sculpt::request_cancel();  // long library work stops too (base/cancel.hpp)
+}
 
 struct InterruptHandler {
   struct sigaction previous {};
@@ -49,6 +54,7 @@ struct InterruptHandler {
 /// After Ctrl-C at a prompt: drop the unfinished entry and say so.
 void cancel_entry(language::Session& session) {
   interrupted.store(false);
+  sculpt::clear_cancel();
   session.discard_pending();
   std::cout << "^C (entry cancelled)\n" << std::flush;
 }
@@ -135,6 +141,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup, co
   if (!history.empty()) read_history(history.c_str());
   while (true) {
     interrupted.store(false);
+    sculpt::clear_cancel();
     char* line = readline(session.continuing() ? kContinuation : kPrompt);
     if (interrupted.load()) {
       std::free(line);
@@ -159,6 +166,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup, co
   std::string text;
   while (true) {
     interrupted.store(false);
+    sculpt::clear_cancel();
     std::cout << (session.continuing() ? kContinuation : kPrompt) << std::flush;
     const bool got = static_cast<bool>(std::getline(std::cin, text));
     if (interrupted.load()) {

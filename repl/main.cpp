@@ -1,7 +1,9 @@
 // The sculpt executable: runs .bsp scripts or an interactive session.
 //   sculpt FILE.bsp ...   sculpt -   sculpt -e 'code'   sculpt -D name=value   -o FILE   --help --version
-// Exit code 0 on success, 1 on a script error, 2 on a usage error.
+// Exit code 0 on success, 1 on a script error, 2 on a usage error, 130 when stopped by Ctrl-C.
 #include <unistd.h>
+
+#include <csignal>
 
 #include <charconv>
 #include <cstdint>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "base/cancel.hpp"
 #include "base/errors.hpp"
 #include "base/memory_policy.hpp"
 #include "base/parallel.hpp"
@@ -54,7 +57,25 @@ constexpr const char* kUsage =
     "                  8418 to 8426; 0: any free port); :view in a session uses it too\n"
     "  --help          show this help\n"
     "  --version       show the version\n"
-    "Exit status: 0 on success, 1 on a script error, 2 on a usage error.\n";
+    "Exit status: 0 on success, 1 on a script error, 2 on a usage error, 130 when Ctrl-C\n"
+    "stopped the scripts (the statement running stops within a fraction of a second; a\n"
+    "second Ctrl-C ends the process at once).\n";
+
+/// Exit status of a run stopped by Ctrl-C (128 + SIGINT, as shells report it).
+constexpr int kInterruptedStatus = 130;
+
+extern "C" void on_batch_interrupt(int) { sculpt::request_cancel(); }
+
+/// Batch runs: the first Ctrl-C asks the running statement to stop (base/cancel.hpp), which ends
+/// the run with status 130; the handler then resets itself, so a second Ctrl-C ends the process.
+/// SA_RESTART: a script being read from standard input is read whole, never cut short.
+void stop_on_interrupt() {
+  struct sigaction action {};
+  action.sa_handler = on_batch_interrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+}
 
 int usage_error(const std::string& message) {
   std::cerr << "sculpt: " << message << "; try 'sculpt --help'\n";
@@ -123,6 +144,9 @@ int export_result(const LastSolid& last, const std::string& path) {
   try {
     if (const std::string warning = export_solid(*solid->object<SolidValue>(), path); !warning.empty())
       std::cerr << "sculpt: -o: warning: " << warning << "\n";
+  } catch (const sculpt::Cancelled&) {
+    std::cerr << "sculpt: -o: interrupted (nothing written)\n";
+    return kInterruptedStatus;
   } catch (const std::exception& e) {
     std::cerr << "sculpt: -o: " << e.what() << "\n";
     return 1;
@@ -231,8 +255,10 @@ int main(int argc, char** argv) {
   }
   if (jobs.empty()) jobs.push_back({Job::Stdin, ""});
 
+  stop_on_interrupt();
   LastSolid last;
   InterpreterOptions options;
+  options.interrupt = sculpt::cancel_request_flag();
   if (!output.empty()) options.top_level_value = [&last](const Value& value) { last.see(value); };
   Interpreter interpreter(options);
   last.interpreter = &interpreter;
@@ -254,7 +280,7 @@ int main(int argc, char** argv) {
   } catch (const ScriptError& e) {
     std::cout.flush();
     std::cerr << format_error(e);
-    return 1;
+    return sculpt::cancel_requested() ? kInterruptedStatus : 1;
   } catch (const IoError& e) {
     std::cout.flush();
     std::cerr << "sculpt: " << e.what() << "\n";

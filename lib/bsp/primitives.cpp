@@ -127,8 +127,9 @@ Solid cone(double radius, double height, const ConeOptions& options) {
   check_positive(height, "cone height");
   if (!(options.top_radius >= 0)) throw InvalidInput("cone top radius must be >= 0");
   const double z0 = options.center ? -height / 2 : 0.0;
+  // The larger ring's vertices on grid points (a vertex on a box face stays on it; issue 35).
   return bsp::detail::revolve_rings(circle_points(options.segments), {{z0, radius}, {z0 + height, options.top_radius}},
-                                    options.grid);
+                                    options.grid, /*snap_reference=*/true);
 }
 
 Solid sphere(double radius, const CircularOptions& options) {

@@ -35,7 +35,9 @@ struct CircularOptions {
   bool center = false;   ///< cylinder/cone: centre the height on z = 0 instead of z in [0, h]
   kernel::Grid grid{};   ///< the grid of the solid (docs/kernel.md, "World range")
 };
-/// Cylinder of radius r around the z axis, z in [0, h]; the polygon has its vertices on the circle.
+/// Cylinder of radius r around the z axis, z in [0, h]: the regular polygon inscribed in the circle,
+/// its vertices snapped to the grid points nearest to (r cos 2 pi k / n, r sin 2 pi k / n), the
+/// planes through them exact (docs/kernel.md, "Primitives' vertices").
 Solid cylinder(double radius, double height, const CircularOptions& options = {});
 struct ConeOptions {
   int segments = 32;        ///< as CircularOptions::segments
@@ -43,10 +45,13 @@ struct ConeOptions {
   double top_radius = 0;    ///< > 0: a frustum with this radius at the top
   kernel::Grid grid{};      ///< as CircularOptions::grid
 };
-/// Cone (frustum if top_radius > 0) around the z axis, base radius r at z = 0, apex at z = h.
+/// Cone (frustum if top_radius > 0) around the z axis, base radius r at z = 0, apex at z = h. The
+/// larger ring's vertices are grid points as a cylinder's; the apex is on the axis; a frustum's
+/// smaller ring is that polygon scaled (its vertices need not be grid points).
 Solid cone(double radius, double height, const ConeOptions& options = {});
 /// Sphere of radius r centred at the origin: segments edges around the equator,
-/// (segments + 1) / 2 rings like OpenSCAD, flat polar caps; vertices on the sphere.
+/// (segments + 1) / 2 rings like OpenSCAD, flat polar caps at grid heights; vertices on the sphere
+/// within the rounding of the planes' integer normals (not snapped to grid points).
 Solid sphere(double radius, const CircularOptions& options = {});
 
 }  // namespace sculpt

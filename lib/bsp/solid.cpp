@@ -85,8 +85,8 @@ Solid::Solid(std::unique_ptr<bsp::detail::DeferredTree> deferred) : deferred_(st
 
 void Solid::build_deferred() const {
   // The built result replaces the (empty) storage; the grid stays (the operation labelled this
-  // solid, the merge works at the default grid). deferred_ is released last: if build() throws,
-  // every later use of the solid throws too (DeferredTree::build is called once).
+  // solid, the merge works at the default grid). deferred_ is released last: if build() throws
+  // (Ctrl-C, out of memory), the solid stays deferred and whole, and a later use builds again.
   Solid built = deferred_->build();
   planes_ = std::move(built.planes_);
   nodes_ = std::move(built.nodes_);

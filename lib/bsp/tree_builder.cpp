@@ -1,4 +1,5 @@
 #include "bsp/tree_builder.hpp"
+#include "base/cancel.hpp"
 #include "bsp/tree/solid_access.hpp"
 
 #include <algorithm>
@@ -149,7 +150,11 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<FragmentList> boun
   // Straight into the solid's store (a std::vector here was moved element by element into one).
   PolygonStore polygons;
   polygons.reserve(room);
-  for (const BspNode& n : nodes) polygons.push_back(ConvexPolygon{.support = n.plane, .corners = {}});
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp): a large tree's polygons take a while to write
+  for (const BspNode& n : nodes) {
+    poll.tick();
+    polygons.push_back(ConvexPolygon{.support = n.plane, .corners = {}});
+  }
   return bsp::detail::SolidAccess::make(std::move(planes_), std::move(nodes), std::move(polygons), 0, bsp::detail::FreeSlots{}, std::move(boundary));
 }
 
@@ -178,7 +183,9 @@ Solid TreeBuilder::build_with(TreeRef root, std::optional<FragmentList> boundary
   std::vector<std::int32_t> constraints;  // plane indices; the cell is on their negative side
   TreeRef result_root = kOut;
   std::vector<Frame> stack{{root, 0, -1, -1, 0}};
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   while (!stack.empty()) {
+    poll.tick();
     const Frame f = stack.back();
     stack.pop_back();
     constraints.resize(f.depth);

@@ -1,5 +1,6 @@
 // Implicit solids: adaptive octree, conforming tetrahedra, marching tetrahedra (polygonize.hpp).
 #include "implicit/polygonize.hpp"
+#include "base/cancel.hpp"
 
 #include "implicit/detail/refine.hpp"
 #include "implicit/detail/simplify.hpp"
@@ -237,6 +238,7 @@ class Polygonizer {
 
   void charge(long& counter) {
     ++counter;
+    poll_.tick();  // Ctrl-C (base/cancel.hpp)
     if (result_.cells + result_.search_cells + leaf_count_ > o_.max_cells) {
       throw GeometryError("polygonize: the work budget of " + std::to_string(o_.max_cells) +
                           " cells ran out (the surface is too large for the box and tol, or f's interval bounds "
@@ -739,6 +741,7 @@ class Polygonizer {
   bool coarse_ = false;   // the coarse octree and edge splits (with simplify)
   bool refined_ = false;  // the edge splits succeeded
   PolygonizeResult result_;
+  CancelPoll poll_;
   FlatMap<Key, Kind, KeyHash> leaves_;                  // leaves (and split former leaves) by cell key
   long leaf_count_ = 0;
   FlatMap<Key, PointData, KeyHash> points_;

@@ -190,6 +190,9 @@ std::string snapped_self_intersection(const PolygonMesh& mesh, const PolygonMesh
 std::string SolidValue::repr() const {
   // The grid is shown when it is not the default (docs/language.md, "World range").
   const std::string grid = solid.grid() == kernel::Grid{} ? "" : ", grid " + solid.grid().name();
+  // A set operation's result whose tree is not built yet: printing never builds it (issue 35:
+  // `:vars` after a large union ran for minutes); its first use that needs the tree does.
+  if (solid.tree_deferred()) return "<solid: tree pending" + grid + ">";
   if (solid.is_empty()) return "<solid: empty" + grid + ">";
   const TreeStats stats = tree_stats(solid);
   return "<solid: " + std::to_string(stats.nodes) + " nodes, height " + std::to_string(stats.height) + grid + ">";

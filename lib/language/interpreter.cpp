@@ -14,6 +14,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "base/cancel.hpp"
 #include "base/errors.hpp"
 #include "language/builtins.hpp"
 #include "language/operators.hpp"
@@ -65,6 +66,8 @@ auto positioned(const SourceRef& at, const std::string& prefix, F&& f) -> declty
     return f();
   } catch (const ScriptError&) {
     throw;
+  } catch (const Cancelled&) {  // Ctrl-C in library code (base/cancel.hpp)
+    throw ScriptError(at, "interrupted");
   } catch (const OperatorError& e) {
     throw ScriptError(at, prefix + e.what());
   } catch (const InvalidInput& e) {

@@ -32,7 +32,8 @@ struct InterpreterOptions {
   bool core_only = false;             ///< hide the built-ins of the library areas (fuzzing)
   /// When set and true, the run stops at its next step (statement, call or item made) with the
   /// error "interrupted"; the REPL points it at a flag its SIGINT handler sets. A built-in that
-  /// is working (a set operation, say) finishes first.
+  /// is working (a set operation, say) stops at its next check of base/cancel.hpp's request
+  /// (request_cancel(), which the executable's SIGINT handler also calls) with the same error.
   const std::atomic<bool>* interrupt = nullptr;
   /// The grid solids are made at until a script calls grid(step) (sculpt --grid; docs/kernel.md).
   kernel::Grid grid{};

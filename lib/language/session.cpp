@@ -6,14 +6,15 @@
 #include <cstdlib>
 #include <map>
 
+#include "base/cancel.hpp"
 #include "base/errors.hpp"
 #include "language/builtins.hpp"
 #include "language/parser.hpp"
 #include "language/solid_values.hpp"
+#include "language/suggest.hpp"
 #include "render/camera.hpp"
 #include "render/picture.hpp"
 #include "render/png_image.hpp"
-#include "language/suggest.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -129,7 +130,13 @@ bool Session::feed(const std::string& line) {
     const std::string word = first_word(line);
     if (word == ":quit" || word == ":q") return false;
     if (!word.empty() && word[0] == ':') {
-      command(line);
+      try {
+        command(line);
+      } catch (const Cancelled&) {  // Ctrl-C during a command's work (base/cancel.hpp)
+        out_.flush();
+        err_ << "error: interrupted\n";
+        err_.flush();
+      }
       return true;
     }
   }
@@ -159,6 +166,8 @@ void Session::run(const SourcePtr& source) {
     }
   } catch (const ScriptError& e) {
     err_ << format_error(e);
+  } catch (const Cancelled&) {  // Ctrl-C outside a statement's built-ins (base/cancel.hpp)
+    err_ << "error: interrupted\n";
   }
   out_.flush();
   err_.flush();

@@ -1,4 +1,5 @@
 #include "mesh/output_rounding.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -201,6 +202,7 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
     // Contractions and flips until nothing changes (at most 20 passes), then corner moves; again
     // while corner moves made a difference (at most 4 times).
     for (int alternation = 0; alternation < 4; ++alternation) {
+      check_cancel();  // Ctrl-C (base/cancel.hpp): a sweep over a large mesh takes a while
       for (int pass = 0; pass < 20 && mesh::detail::sweep(cleaner, delta, r); ++pass) changed = true;
       if (!mesh::detail::nudge_crossings(cleaner, delta, r)) break;
       changed = true;

@@ -1,4 +1,5 @@
 #include "mesh/self_intersection.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -203,6 +204,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   std::vector<int> face, patch, keep, hits;
   std::vector<unsigned> mask;
   std::vector<std::array<int, 3>> star;
+  CancelPoll poll;
   for (size_t k = 0; k < grid.cells() && found.size() < options.max_pairs && result.complete; ++k) {
     const std::span<const int> here = grid.cell(k);
     if (moved < tris.size() && std::all_of(here.begin(), here.end(), [&](int i) { return slots[size_t(i)].exact; }))
@@ -227,6 +229,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     const float *x0 = lo_hi[0].data(), *y0 = lo_hi[1].data(), *z0 = lo_hi[2].data();
     const float *x1 = lo_hi[3].data(), *y1 = lo_hi[4].data(), *z1 = lo_hi[5].data();
     for (size_t i = 0; i < m && found.size() < options.max_pairs && result.complete; ++i) {
+      poll.tick(std::uint32_t(std::min<size_t>(m - i, kCancelStride)));  // Ctrl-C (base/cancel.hpp)
       scanned += m - i - 1;
       if (scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
         result.complete = false;

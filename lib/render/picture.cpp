@@ -1,4 +1,5 @@
 #include "render/picture.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <Eigen/Geometry>
@@ -124,11 +125,13 @@ Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera, c
                  const std::vector<int>& ids) {
   Scene scene{.buffer = DepthBuffer(camera.width, camera.height), .faces = {}};
   ScreenPolygon polygon;
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const PolygonMesh& mesh = meshes[m];
     std::vector<Eigen::Vector3d> screen(mesh.vertices.size());
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) screen[v] = camera.project(mesh.vertices[v]);
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      poll.tick();
       const auto& face = mesh.faces[f];
       if (face.size() < 3) continue;
       const Eigen::Vector3d n = newell_normal(mesh, face);

@@ -1,4 +1,5 @@
 #include "splines/fit_surface.hpp"
+#include "base/cancel.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -223,6 +224,7 @@ FitSurfaceResult fit_surface(const std::vector<Eigen::Vector3d>& points, const F
   result.history.push_back({0, current.objective, current.max, current.rms, 0.0, 1.0, thread_cpu_ms() - t0});
   double lambda = options.smoothing;
   for (int k = 1; k <= options.iterations; ++k) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp): one iteration solves the whole fit
     t0 = thread_cpu_ms();
     detail::SurfaceNormalEquations system(surface);
     for (std::size_t i = 0; i < points.size(); ++i) {

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The sculpt executable's command line: -e, -, -D, -o, --help, --version, files, exit codes 0/1/2.
+# The sculpt executable's command line: -e, -, -D, -o, --help, --version, files, exit codes 0/1/2,
+# Ctrl-C in a batch run (130).
 set -u
 sculpt=$1
 failures=0
@@ -120,6 +121,28 @@ check export_relative 0 "" bash -c "cd / && '$sculpt' '$tmp/export.bsp' && test 
 # Deeply nested input is an error, not a crash.
 python3 -c "print('x = ' + '(' * 100000)" > "$tmp/deep.bsp"
 check deep_nesting 1 "$tmp/deep.bsp:1:69: error: brackets nested deeper than 64 levels" first_line "$sculpt" "$tmp/deep.bsp"
+
+# Ctrl-C (SIGINT) stops a batch run: the message at the running statement, exit status 130, and no
+# export left behind (half-written or temporary); the first statements' export is complete.
+interrupted() {  # runs a script that exports a cube, then a long union; SIGINT after 1 s
+  cd "$tmp" || return 99
+  "$sculpt" -e 'export(box([0, 0, 0], [1, 1, 1]), "first.off")
+s = sphere(1, 500)
+u = s | translate(s, [0.5, 0, 0])
+export(u, "u.off")' 2> interrupted.err &
+  local pid=$!
+  sleep 1
+  kill -INT $pid
+  wait $pid
+  local status=$?
+  grep -o "error: interrupted" interrupted.err
+  ls -A "$tmp" | grep -c "u.off\|\.tmp$"
+  test -s "$tmp/first.off" && echo "first.off written"
+  return $status
+}
+check interrupted 130 "error: interrupted
+0
+first.off written" interrupted
 
 if [ "$failures" != 0 ]; then
   echo "$failures command-line checks failed"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Drives the sculpt REPL through a pseudo-terminal, as a user would: typed lines, an error,
 a multi-line function, tab completion, history recall with the up arrow (also across
-sessions through ~/.sculpt_history), Ctrl-C at a prompt and during a run, :help and :quit. Reads what the terminal shows."""
+sessions through ~/.sculpt_history), Ctrl-C at a prompt, during a run and during a long built-in, :help and :quit. Reads what the terminal shows."""
 import os
 import pty
 import select
@@ -102,7 +102,20 @@ def main():
     t.mark(); t.type("for i in range(0, 10000) { for j in range(0, 10000) { z = j } }\r")
     time.sleep(0.5)
     t.type("\x03"); t.read_until("error: interrupted"); t.read_until("sculpt> ")
-    t.mark(); t.type("x\r"); t.read_until("42")
+    t.mark(); t.type("x\r"); t.read_until("42"); t.read_until("sculpt> ")
+    # Ctrl-C during one long built-in (a union of two 500-segment spheres takes seconds): it stops
+    # with "interrupted" (base/cancel.hpp), the variables are as they were, and the session goes on.
+    t.mark(); t.type("s = sphere(1, 500)\r"); t.read_until("sculpt> ", timeout=60)
+    t.mark(); t.type("u = s | translate(s, [0.5, 0, 0])\r")
+    time.sleep(0.3)
+    asked = time.time()
+    t.type("\x03"); t.read_until("error: interrupted", timeout=30); t.read_until("sculpt> ")
+    print("Ctrl-C during a union answered in %.2f s" % (time.time() - asked))
+    t.mark(); t.type(":vars\r"); t.read_until("s : solid = <solid: "); t.read_until("sculpt> ")
+    assert "u : " not in t.screen, t.screen
+    # Printing a result whose tree is still to be merged does not merge it.
+    t.mark(); t.type("v = sphere(1, 24) | translate(sphere(1, 24), [0.5, 0, 0])\r"); t.read_until("sculpt> ")
+    t.mark(); t.type(":vars\r"); t.read_until("v : solid = <solid: tree pending>")
 
     # :show renders the solid and prints the picture's path.
     t.mark(); t.type("b = box([0,0,0],[1,1,1])\r"); t.read_until("sculpt> ")

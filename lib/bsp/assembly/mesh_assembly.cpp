@@ -1,6 +1,7 @@
 #include "bsp/assembly/mesh_assembly.hpp"
 
 #include "base/assert.hpp"
+#include "base/cancel.hpp"
 #include "bsp/assembly/coplanar_faces.hpp"
 #include "bsp/assembly/faces.hpp"
 #include "bsp/assembly/junction_removal.hpp"
@@ -17,13 +18,18 @@ namespace sculpt::bsp::detail {
 // straight vertices (assembly_coplanar), one vertex copy per sheet and output
 // (assembly_sheets); shared data in assembly_faces.
 PolygonMesh assemble_mesh(FragmentsView fragments, const AssemblyOptions& options) {
+  // Ctrl-C (base/cancel.hpp) is checked between the steps (each linear in the fragments).
   MergedFragments merged = merge_vertices(fragments);
+  check_cancel();
   const PlaneIds& ids = merged.ids;
   const VertexGeometry geometry(fragments.planes, ids, merged.vertices);
   FaceList faces = remove_t_junctions(std::move(merged.faces), geometry, ids).faces;
+  check_cancel();
   faces = merge_coplanar_faces(std::move(faces), merged.vertices.size(), ids);
+  check_cancel();
   faces = remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
   const Sheets sheets = split_non_manifold(std::move(faces), merged.vertices, fragments.planes);
+  check_cancel();
   PolygonMesh mesh =
       output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate, options.grid, options.exact_vertices);
   SCULPT_ASSERT(edges_paired(mesh), "assemble_mesh: the output uses an edge other than once in each direction");

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "base/assert.hpp"
+#include "base/cancel.hpp"
 #include "base/parallel.hpp"
 #include "bsp/local/deferred_build.hpp"
 #include "bsp/tree/autopartition.hpp"
@@ -73,13 +74,19 @@ class CellMerge {
 
   // The result's fragments; `uniform` is set to the result's status when none is kept.
   FragmentList run(std::optional<bool>& uniform) {
+    // Ctrl-C (base/cancel.hpp) between the steps and per leaf inside them: the operands are
+    // never written, so a stopped operation leaves nothing behind.
     make_walls();
+    check_cancel();
     clip_leaves();
+    check_cancel();
     count_pieces();
     build_mixed_trees();
+    check_cancel();
     for (std::size_t l = 0; l < leaf_count(); ++l)
       for (int x = 0; x < 2; ++x)
         if (pieces_[l][x].origin.empty() && !pieces_[l][1 - x].origin.empty()) status(node_of(l), x);
+    check_cancel();
     for (const BspNode& n : arena_.nodes) arena_.opposite(n.plane);  // the pushes then only read the arena
     return emit(uniform);
   }
@@ -134,6 +141,7 @@ class CellMerge {
     pieces_.resize(leaf_count());
     parallel_chunks(leaf_count(), kLeafChunk, [&](std::size_t begin, std::size_t end) {
       ConvexPolygon piece, scratch;
+      check_cancel();
       for (std::size_t l = begin; l < end; ++l) {
         const KdNode& n = cells_.nodes[std::size_t(node_of(l))];
         const bool keep = !n.items[0].empty() && !n.items[1].empty();
@@ -209,6 +217,7 @@ class CellMerge {
       }
     std::vector<std::array<PartitionTree, 2>> built(mixed_leaves.size());
     parallel_chunks(mixed_leaves.size(), 4, [&](std::size_t begin, std::size_t end) {
+      check_cancel();
       for (std::size_t k = begin; k < end; ++k)
         for (int x = 0; x < 2; ++x) {
           const std::size_t l = mixed_leaves[k];
@@ -354,6 +363,7 @@ class CellMerge {
     std::vector<int> first_behind((leaf_count() + kLeafChunk - 1) / kLeafChunk, -1);
     parallel_chunks(leaf_count(), kLeafChunk, [&](std::size_t begin, std::size_t end) {
       int& fb = first_behind[begin / kLeafChunk];
+      check_cancel();
       Clipper clip(arena_);
       for (std::size_t l = begin; l < end; ++l)
         for (int x = 0; x < 2; ++x) {

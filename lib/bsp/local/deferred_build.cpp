@@ -17,14 +17,14 @@ DeferredBuild::DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, 
     : planes_(std::move(planes)), fragments_(std::move(fragments)), far_in_(far_in), build_(std::move(build)) {}
 
 Solid DeferredBuild::build() {
-  if (started_) throw std::logic_error("a deferred tree build failed earlier and cannot be completed");
-  started_ = true;
+  // Nothing here is consumed, so a build stopped by Ctrl-C (base/cancel.hpp) can run again later:
+  // the builder works from its parameters, autopartition from copies.
   if (build_) return build_();
   Arena arena;
-  arena.planes = std::move(planes_);
+  arena.planes = planes_;
   AutopartitionOptions options = options_;
   options.carry_boundary = true;
-  return autopartition(arena, std::move(fragments_), options);
+  return autopartition(arena, fragments_, options);
 }
 
 Solid solid_from_boundary(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,

@@ -34,7 +34,6 @@ class DeferredBuild final : public DeferredTree {
   std::optional<bool> far_in_;
   AutopartitionOptions options_;
   std::function<Solid()> build_;
-  bool started_ = false;
 };
 
 /// The solid bounded by `fragments`, its tree deferred (see above); a leaf for no fragments

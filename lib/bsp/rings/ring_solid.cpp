@@ -59,14 +59,69 @@ std::vector<Ring> merge_rings_on_grid(const std::vector<Ring>& rings, const kern
   return merged;
 }
 
+/// The reference ring's polygon snapped to the grid (issue 35, "flush stays flush"): vertex j is
+/// the grid point nearest to scale * path[j], so a vertex the user's numbers put on a grid point
+/// (a cylinder's vertex on a box face) is exactly there. Empty when the snapped polygon is not
+/// strictly convex, counter-clockwise around the axis (fine paths at small scales: snapping moves
+/// a vertex by up to half a step, more than a nearly straight turn); the caller then keeps the
+/// path's own vertices.
+std::vector<kernel::GridPoint> snapped_ring(const std::vector<Eigen::Vector2d>& path, double scale,
+                                            const kernel::Grid& grid) {
+  const std::size_t n = path.size();
+  std::vector<kernel::GridPoint> g(n);
+  for (std::size_t j = 0; j < n; ++j) g[j] = grid.snap(Eigen::Vector3d(scale * path[j].x(), scale * path[j].y(), 0.0));
+  for (std::size_t j = 0; j < n; ++j) {
+    const kernel::GridPoint &a = g[(j + n - 1) % n], &b = g[j], &c = g[(j + 1) % n];
+    // Every turn strictly left (coordinates below 2^25: the products fit Int128 easily) and the
+    // axis strictly inside every edge's line.
+    const Int128 turn = Int128(b.x - a.x) * (c.y - b.y) - Int128(b.y - a.y) * (c.x - b.x);
+    const Int128 inside = Int128(b.x) * (c.y - b.y) - Int128(b.y) * (c.x - b.x);
+    if (!(turn > 0) || !(inside > 0)) return {};
+  }
+  return g;
+}
+
 // The solid of revolution (revolve_rings). With `boundary_only`, its direct boundary alone,
 // without the tree (nothing when the boundary must be extracted from the tree).
-std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& given_rings,
-                                 const kernel::Grid& grid, bool boundary_only) {
+std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& given_path, const std::vector<Ring>& given_rings,
+                                 const kernel::Grid& grid, bool snap_reference, bool boundary_only) {
   if (given_rings.size() < 2) throw InvalidInput("revolution needs at least 2 rings");
   const std::vector<Ring> rings = merge_rings_on_grid(given_rings, grid);
-  const int n = int(path.size());
+  const int n = int(given_path.size());
   if (n < 3) throw InvalidInput("revolution path needs at least 3 vertices");
+  // The reference ring (the first of largest scale) has its vertices on grid points and its edge
+  // lines through them, exactly (integer normals and offsets); every other ring's edge lines are
+  // parallel to those (planar band faces), offsets scaled and rounded. Without a valid snapped
+  // polygon, normals and offsets are rounded from the path (below).
+  std::size_t ref = 0;
+  for (std::size_t k = 1; k < rings.size(); ++k)
+    if (rings[k].scale > rings[ref].scale) ref = k;
+  const double ref_scale = rings[ref].scale;
+  for (const Eigen::Vector2d& v : given_path)
+    if (!v.allFinite()) throw InvalidInput("revolution path vertex is not finite");
+  // The reach check first (its message names the solid): each edge line's distance from the axis
+  // at the largest ring, with a margin of 1.5.
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector2d& v = given_path[std::size_t(j)];
+    const Eigen::Vector2d e = given_path[std::size_t((j + 1) % n)] - v;
+    if (!(e.norm() > 0)) continue;  // refused below
+    const double c = grid.to_grid(ref_scale * std::fabs(Eigen::Vector2d(e.y(), -e.x()).normalized().dot(v)));
+    if (c * 1.5 > double(kernel::kMaxCoord)) {
+      const double reach = grid.to_world(c * 1.5);
+      std::ostringstream what;
+      what << "revolved solid (reach " << reach << ")";
+      throw RangeError(grid.out_of_range(what.str(), reach));
+    }
+  }
+  const std::vector<kernel::GridPoint> snapped =
+      snap_reference && ref_scale > 0 ? snapped_ring(given_path, ref_scale, grid) : std::vector<kernel::GridPoint>{};
+  std::vector<Eigen::Vector2d> snapped_path;
+  if (!snapped.empty()) {  // the snapped polygon in the path's units, for angles and lengths
+    const double unit = grid.to_grid(ref_scale);
+    for (const kernel::GridPoint& g : snapped) snapped_path.emplace_back(double(g.x) / unit, double(g.y) / unit);
+  }
+  const std::vector<Eigen::Vector2d>& path = snapped.empty() ? given_path : snapped_path;
+  std::vector<Int128> c_ref(static_cast<std::size_t>(n));
   // Path edges: integer outward normals and offsets (the origin must be strictly inside).
   std::vector<Eigen::Vector2d> normal(static_cast<std::size_t>(n));
   std::vector<std::int64_t> nx(static_cast<std::size_t>(n)), ny(static_cast<std::size_t>(n));
@@ -79,8 +134,22 @@ std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& path, const
     Eigen::Vector2d m(e.y(), -e.x());
     m.normalize();
     normal[std::size_t(j)] = m;
-    nx[std::size_t(j)] = std::llround(std::ldexp(m.x(), kPathNormalBits));
-    ny[std::size_t(j)] = std::llround(std::ldexp(m.y(), kPathNormalBits));
+    if (!snapped.empty()) {  // exact: (dy, -dx) of the grid edge, through its grid points
+      const kernel::GridPoint &a = snapped[std::size_t(j)], &c = snapped[std::size_t((j + 1) % n)];
+      nx[std::size_t(j)] = c.y - a.y;
+      ny[std::size_t(j)] = a.x - c.x;
+      // Scaled by a power of two up to 26 bits like the rounded normals, so that the other rings'
+      // rounded offsets move their lines by at most 2^-27 grid units as before.
+      const std::int64_t top = std::max(std::llabs(nx[std::size_t(j)]), std::llabs(ny[std::size_t(j)]));
+      int shift = 0;
+      while ((top << (shift + 1)) <= (std::int64_t(1) << kPathNormalBits)) ++shift;
+      nx[std::size_t(j)] *= std::int64_t(1) << shift;
+      ny[std::size_t(j)] *= std::int64_t(1) << shift;
+      c_ref[std::size_t(j)] = Int128(nx[std::size_t(j)]) * a.x + Int128(ny[std::size_t(j)]) * a.y;
+    } else {
+      nx[std::size_t(j)] = std::llround(std::ldexp(m.x(), kPathNormalBits));
+      ny[std::size_t(j)] = std::llround(std::ldexp(m.y(), kPathNormalBits));
+    }
     offset[std::size_t(j)] = m.dot(v);
     if (!(offset[std::size_t(j)] > 0))
       throw InvalidInput("revolution path must be convex, counter-clockwise and contain the axis");
@@ -98,6 +167,10 @@ std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& path, const
   std::vector<std::int64_t> z(r);
   for (std::size_t k = 0; k < r; ++k) z[k] = grid.snap(rings[k].z);
   auto c_of = [&](std::size_t k, int j) -> Int128 {
+    if (!snapped.empty()) {  // the reference ring's exact offset, scaled (|C| < 2^52: exact double)
+      if (rings[k].scale == ref_scale) return c_ref[std::size_t(j)];
+      return Int128(std::llround(double(c_ref[std::size_t(j)]) * (rings[k].scale / ref_scale)));
+    }
     const double c = grid.to_grid(rings[k].scale * offset[std::size_t(j)]);
     if (std::fabs(c) * 1.5 > double(kernel::kMaxCoord)) {
       const double reach = grid.to_world(std::fabs(c) * 1.5);  // with the margin of the check
@@ -148,6 +221,8 @@ std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& path, const
   // rounded to 2^-27 grid units: delta below (R + 1) 2^-25, taken with a margin of 2. Two lines
   // moved by delta at exterior angle t meet at most 2 delta / sin t away, so an edge of length L
   // survives if L sin t > 4 delta; 8 delta leaves another factor of 2.
+  // With the snapped reference ring, normals are exact and the other rings' offsets are rounded to
+  // integers: a line moves by at most 1 / (2 |n|) grid units (|n| >= 2^25); the bound holds too.
   const double delta = (grid.to_grid(largest * far) + 1) * std::ldexp(1.0, -24);
   const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
   const bool direct = !degenerate && shortest * min_sin > 8 * delta;
@@ -211,10 +286,12 @@ std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& path, const
     // The face planes of every band, then the boundary on them; the tree when first used.
     for (std::size_t k = 0; k + 1 < r; ++k) band(k);
     FragmentList boundary = ring_boundary(b, ring_plane, face_index, scale);
-    return SolidAccess::at_grid(
-        solid_with_tree_later(b.planes(), std::move(boundary), false,
-                              [path, given_rings, grid] { return *build_rings(path, given_rings, grid, false); }),
-        grid);
+    return SolidAccess::at_grid(solid_with_tree_later(b.planes(), std::move(boundary), false,
+                                                      [given_path, given_rings, grid, snap_reference] {
+                                                        return *build_rings(given_path, given_rings, grid,
+                                                                            snap_reference, false);
+                                                      }),
+                                grid);
   }
   // The tree top-down in pre-order (TreeBuilder::open_nodes), so the builder keeps it as laid out:
   // the bottom cap's plane, the top cap's, then a balanced tree over the bands split by the inner
@@ -243,11 +320,11 @@ std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& path, const
 }  // namespace
 
 Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& given_rings,
-                    const kernel::Grid& grid) {
+                    const kernel::Grid& grid, bool snap_reference) {
   // The direct boundary now, the section-6 tree when something first reads it (set operations by
   // cells, output and volume read the boundary alone).
-  if (std::optional<Solid> later = build_rings(path, given_rings, grid, true)) return std::move(*later);
-  return std::move(*build_rings(path, given_rings, grid, false));
+  if (std::optional<Solid> later = build_rings(path, given_rings, grid, snap_reference, true)) return std::move(*later);
+  return std::move(*build_rings(path, given_rings, grid, snap_reference, false));
 }
 
 }  // namespace sculpt::bsp::detail

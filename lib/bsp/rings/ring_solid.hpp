@@ -23,8 +23,12 @@ struct Ring {
 /// is Ihm & Naylor's sec. 6 structure: a balanced tree of the ring planes, in each band a
 /// balanced tree of planes through the axis, then the face planes. Only the first and the last
 /// ring may have scale 0. Heights and scales in world units of `grid`, which the solid carries.
+/// With `snap_reference` (cylinders, cones), the first ring of largest scale has its vertices on
+/// the grid points nearest to scale * path[k] and its edge planes through them, exactly, when that
+/// snapped polygon is strictly convex around the axis (docs/kernel.md, "Primitives' vertices");
+/// otherwise every ring's edge lines come from the path, rounded.
 /// \throw InvalidInput for a bad path or rings, RangeError beyond the grid's range.
 Solid revolve_rings(const std::vector<Eigen::Vector2d>& path, const std::vector<Ring>& rings,
-                    const kernel::Grid& grid = {});
+                    const kernel::Grid& grid = {}, bool snap_reference = false);
 
 }  // namespace sculpt::bsp::detail

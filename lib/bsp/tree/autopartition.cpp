@@ -1,4 +1,5 @@
 #include "bsp/tree/autopartition.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -280,7 +281,9 @@ PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments,
     return {best, aux};
   };
   ConvexPolygon neg_part, pos_part;
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   while (!stack.empty()) {
+    poll.tick();
     Frame f = std::move(stack.back());
     stack.pop_back();
     const std::size_t n = f.pieces.size();

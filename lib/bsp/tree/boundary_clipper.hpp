@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "base/cancel.hpp"
 #include "bsp/tree/tree_arena.hpp"
 
 namespace sculpt::bsp::detail {
@@ -41,6 +42,7 @@ class Clipper {
     splits_.clear();
     stack_.emplace_back(t, kernel::ConvexPolygon(f.polygon), kernel::corner_box(f.polygon), ClipMode::Both, false, kOut, -1, 0);
     while (!stack_.empty()) {
+      poll_.tick();
       Item& top = stack_.back();
       if (is_leaf(top.at)) {
         const bool in = top.at == kIn;
@@ -174,6 +176,7 @@ class Clipper {
 
   Arena& a_;
   int whole_ = kPending;  // the fate of the fragment being pushed as a whole
+  CancelPoll poll_;       // Ctrl-C (base/cancel.hpp): a boundary merge may run for minutes
   std::vector<Item> stack_;
   std::vector<Split> splits_;
 };

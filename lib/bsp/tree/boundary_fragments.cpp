@@ -1,4 +1,5 @@
 #include "bsp/tree/boundary_fragments.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -52,6 +53,7 @@ class Extractor {
     // The polygon on top of the stack descends in place; only splits push a second one. Its
     // corner box is kept with it, so most nodes are passed with one quick box test.
     while (!stack_.empty()) {
+      poll_.tick();  // Ctrl-C (base/cancel.hpp)
       Piece& top = stack_.back();
       const TreeRef r = top.at;
       if (is_leaf(r)) {
@@ -122,6 +124,7 @@ class Extractor {
  private:
   std::span<const BspNode> nodes_;
   Arena& arena_;
+  CancelPoll poll_;
   struct Piece {
     TreeRef at;
     ConvexPolygon polygon;
@@ -163,7 +166,9 @@ FragmentList subtree_boundary(Arena& arena, TreeRef root, std::span<const std::i
   };
   std::vector<std::int32_t> cell(path.begin(), path.end());
   std::vector<Frame> stack{{0, cell.size(), -1}};
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   while (!stack.empty()) {
+    poll.tick();
     const Frame f = stack.back();
     stack.pop_back();
     cell.resize(f.depth);

@@ -22,8 +22,8 @@ class DeferredTree {
   /// The result's status far from its boundary, when known without the tree.
   [[nodiscard]] virtual std::optional<bool> far_in() const { return std::nullopt; }
   /// The complete result (tree, boundary, at the default grid): exactly what the operation would
-  /// have returned without deferring. Called once; the object is discarded after it. If it
-  /// throws, a second call throws std::logic_error (the work it began cannot be resumed).
+  /// have returned without deferring. The object is discarded after it returns. If it throws
+  /// (Cancelled by Ctrl-C, out of memory), the object is unchanged and may be called again.
   virtual Solid build() = 0;
 };
 

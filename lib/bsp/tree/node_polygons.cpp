@@ -1,4 +1,5 @@
 #include "bsp/tree/node_polygons.hpp"
+#include "base/cancel.hpp"
 
 #include <stdexcept>
 
@@ -47,7 +48,9 @@ void fill_node_polygons(Arena& arena, TreeRef root) {
   };
   std::vector<std::int32_t> path;
   std::vector<Frame> stack{{root, 0, -1}};
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   while (!stack.empty()) {
+    poll.tick();
     const Frame f = stack.back();
     stack.pop_back();
     path.resize(f.depth);

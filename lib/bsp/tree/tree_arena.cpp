@@ -1,4 +1,5 @@
 #include "bsp/tree/tree_arena.hpp"
+#include "base/cancel.hpp"
 #include "bsp/tree/solid_access.hpp"
 
 #include <algorithm>
@@ -42,7 +43,9 @@ TreeRef Arena::append(const Solid& solid) {
   for (const BspNode& n : solid.nodes())
     nodes.push_back({map(n.plane), is_leaf(n.negative) ? n.negative : n.negative + node_shift,
                      is_leaf(n.positive) ? n.positive : n.positive + node_shift});
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp): a large tree takes a while to copy
   for (const ConvexPolygon& poly : solid.polygons()) {
+    poll.tick();
     if (poly.corners.empty()) {  // pending (node_polygons.hpp): the support alone, no corner storage copied
       polygons.push_back(ConvexPolygon{.support = map(poly.support), .corners = {}});
       continue;

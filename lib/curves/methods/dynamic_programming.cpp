@@ -1,4 +1,5 @@
 #include "curves/methods/dynamic_programming.hpp"
+#include "base/cancel.hpp"
 
 #include <limits>
 #include <utility>
@@ -31,7 +32,7 @@ Linearization dynamic_linearization(const std::vector<Eigen::Vector3d>& points, 
     const int half = 1 << (d - 1), full = 1 << d;
     std::vector<double> current(static_cast<std::size_t>(n) * n, kInf);
     split[d].assign(static_cast<std::size_t>(n) * n, -1);
-    for (int i = 0; i + full < n; ++i)
+    for (int i = 0; i + full < n; ++i, check_cancel())  // Ctrl-C (base/cancel.hpp)
       for (int j = i + full; j < n; ++j) {
         double best = kInf;
         int best_k = -1;

@@ -1,5 +1,6 @@
 // FeasibilitySolver: the fewest segments within eps (the first problem of sec. 2), by DAG
 // relaxation over stored errors or breadth-first by layers with on-demand edge tests.
+#include "base/cancel.hpp"
 #include "curves/optimal/feasibility_solver_impl.hpp"
 
 #include <algorithm>
@@ -30,7 +31,9 @@ std::vector<int> FeasibilitySolver::Impl::min_path() const {
 
 void FeasibilitySolver::Impl::relax_stored(double eps) {
   const int count = this->count();
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   for (int a = 0; a + 1 < count; ++a) {
+    poll.tick();
     if (dist_[a] == kUnreached) continue;
     const int next = dist_[a] + 1;
     const double* row = stored_.data() + row_[a];

@@ -1,5 +1,6 @@
 // Half-edge collapses with a distance bound (simplify.hpp).
 #include "implicit/detail/simplify.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -40,9 +41,11 @@ class Simplifier {
     std::vector<int> tried(m_.vertices.size(), -1);       // stamp of the last try
     std::vector<char> topology_failed(m_.vertices.size(), 0);
     std::vector<int> ring;
+    CancelPoll poll;
     for (int pass = 0; pass < o_.passes; ++pass) {
       int before = collapses;
       for (int u = 0; u < int(m_.vertices.size()); ++u) {
+        poll.tick();  // Ctrl-C (base/cancel.hpp)
         if (locked_[u] || incident_[u].empty()) continue;
         neighbours(u, ring);
         if (!o_.retry_all && fan_changed[u] <= tried[u]) {

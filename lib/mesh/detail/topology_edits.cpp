@@ -1,4 +1,5 @@
 #include "mesh/detail/topology_edits.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -238,6 +239,7 @@ bool flip_slivers(CleanMesh& mesh, double delta, OutputRoundingReport& report) {
 }  // namespace
 
 bool sweep(CleanMesh& mesh, double delta, OutputRoundingReport& report) {
+  check_cancel();  // Ctrl-C (base/cancel.hpp)
   bool changed = separate_copies(mesh, delta, report);
   changed = collapse_short_edges(mesh, delta, report) || changed;
   changed = flip_slivers(mesh, delta, report) || changed;

@@ -1,4 +1,5 @@
 #include "splines/detail/fit_loop.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +26,7 @@ FitResult run_active_curve(const BSpline& start, const Evaluate& evaluate, const
     return r;
   };
   for (int k = 1; k <= options.iterations; ++k) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp): one iteration solves the whole fit
     const auto& h = result.history;
     // The second-order phase starts once a step gained less than half of the objective: the foot
     // points then move little, and SDM's missing terms (of the same order as its tangential
