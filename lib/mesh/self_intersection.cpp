@@ -1,8 +1,10 @@
 #include "mesh/self_intersection.hpp"
 #include "base/cancel.hpp"
+#include "base/parallel.hpp"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -73,6 +75,126 @@ void prefetch(const PreparedTriangle& t) {
 #endif
 }
 
+/// What the scan of the cells reads per triangle.
+struct Slot {
+  std::array<float, 6> box{};  // min x, y, z, max x, y, z, as_float
+  int face = 0;
+  bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
+  // Per corner: its id where the vertex's star is certified, else -1 - (its triangle): no
+  // corner of another triangle has that number.
+  std::array<int, 3> star{};
+  int patch = 0;  // certified_patches
+};
+
+/// Cells per parallel run: about this many cell entries (a run of the scan costs about 10 us per entry).
+constexpr size_t kMembersPerRun = 4096;
+
+struct ScanInput {
+  const mesh::detail::BoxGrid& grid;
+  const std::vector<Slot>& slots;
+  const std::vector<PreparedTriangle>& tris;
+  const SelfIntersectionOptions& options;
+  bool some_exact;  // some triangle is marked exact
+};
+
+/// What a run of cells found: face pairs (at most options.max_pairs), the candidate pairs examined
+/// and the pairs scanned, and whether it stopped on the budget (complete = false).
+struct CellScan {
+  std::set<std::pair<int, int>> found;
+  size_t candidates = 0, scanned = 0;
+  bool complete = true;
+};
+
+/// Examines the pairs owned by cells [first, last) of the grid.
+CellScan scan_cells(const ScanInput& in, size_t first, size_t last) {
+  CellScan out;
+  const SelfIntersectionOptions& options = in.options;
+  const auto& slots = in.slots;
+  const auto& tris = in.tris;
+  // Per cell: its members gathered field by field, then for each member the later members whose
+  // boxes overlap its own collected without branching (the box tests are unpredictable; the
+  // compiler runs several at a time), then those examined. mask: bits 0-2
+  // BoxGrid::first_cell_masks, bit 3 an exact triangle.
+  std::array<std::vector<float>, 6> lo_hi;
+  std::vector<int> face, patch, keep, hits;
+  std::vector<unsigned> mask;
+  std::vector<std::array<int, 3>> star;
+  CancelPoll poll;
+  std::set<std::pair<int, int>>& found = out.found;
+  for (size_t k = first; k < last && found.size() < options.max_pairs && out.complete; ++k) {
+    const std::span<const int> here = in.grid.cell(k);
+    if (in.some_exact && std::all_of(here.begin(), here.end(), [&](int i) { return slots[size_t(i)].exact; }))
+      continue;  // only exact triangles here: nothing to examine
+    const size_t m = here.size();
+    for (auto& v : lo_hi) v.resize(m);
+    face.resize(m);
+    patch.resize(m);
+    keep.resize(m);
+    hits.resize(m);
+    mask.resize(m);
+    star.resize(m);
+    const std::span<const unsigned char> first_masks = in.grid.first_cell_masks(k);
+    for (size_t i = 0; i < m; ++i) {
+      const Slot& slot = slots[size_t(here[i])];
+      for (size_t c = 0; c < 6; ++c) lo_hi[c][i] = slot.box[c];
+      face[i] = slot.face;
+      patch[i] = slot.patch;
+      mask[i] = first_masks[i] | (slot.exact ? 8u : 0u);
+      star[i] = slot.star;
+    }
+    const float *x0 = lo_hi[0].data(), *y0 = lo_hi[1].data(), *z0 = lo_hi[2].data();
+    const float *x1 = lo_hi[3].data(), *y1 = lo_hi[4].data(), *z1 = lo_hi[5].data();
+    for (size_t i = 0; i < m && found.size() < options.max_pairs && out.complete; ++i) {
+      poll.tick(std::uint32_t(std::min<size_t>(m - i, kCancelStride)));  // Ctrl-C (base/cancel.hpp)
+      out.scanned += m - i - 1;
+      if (out.scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
+        out.complete = false;
+        break;
+      }
+      // Examined: a triangle of another face and another patch whose box overlaps, in the cell
+      // that owns the pair, not both exact.
+      const float sx0 = x0[i], sy0 = y0[i], sz0 = z0[i], sx1 = x1[i], sy1 = y1[i], sz1 = z1[i];
+      const int sf = face[i], sp = patch[i];
+      const unsigned sm = mask[i];
+      for (size_t j = i + 1; j < m; ++j)
+        keep[j] = int(face[j] != sf) & int(patch[j] != sp) & int(x0[j] <= sx1) & int(sx0 <= x1[j]) & int(y0[j] <= sy1) &
+                  int(sy0 <= y1[j]) & int(z0[j] <= sz1) & int(sz0 <= z1[j]) & int(((mask[j] | sm) & 7u) == 7u) &
+                  int((mask[j] & sm & 8u) == 0u);
+      size_t count = 0;
+      for (size_t j = i + 1; j < m; ++j) {
+        hits[count] = int(j);
+        count += size_t(keep[j]);
+      }
+      // Pairs that share a vertex whose star is certified meet only in what they share; the rest
+      // are decided exactly, their triangles fetched ahead.
+      const std::array<int, 3>& x = star[i];
+      size_t left = 0;
+      for (size_t h = 0; h < count; ++h) {
+        const std::array<int, 3>& y = star[size_t(hits[h])];
+        const bool shared = (x[0] == y[0]) | (x[0] == y[1]) | (x[0] == y[2]) | (x[1] == y[0]) | (x[1] == y[1]) |
+                            (x[1] == y[2]) | (x[2] == y[0]) | (x[2] == y[1]) | (x[2] == y[2]);
+        hits[left] = hits[h];
+        left += shared ? 0 : 1;
+      }
+      for (size_t h = 0; h < left; ++h) prefetch(tris[size_t(here[size_t(hits[h])])]);
+      for (size_t h = 0; h < left; ++h) {
+        const size_t j = size_t(hits[h]);
+        if (++out.candidates > options.max_candidates) {
+          out.complete = false;
+          break;
+        }
+        const auto face_pair = std::minmax(sf, face[j]);
+        if (!found.empty() && found.count(face_pair)) continue;
+        if (mesh::detail::triangles_meet(tris[size_t(here[i])], tris[size_t(here[j])])) {
+          found.insert(face_pair);
+          if (found.size() >= options.max_pairs) break;
+        }
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Vector3d, 3>& a,
@@ -122,15 +244,6 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   if (marked && std::all_of(mesh.faces.begin(), mesh.faces.end(), exact_face)) return result;
   // Per triangle: what the exact tests read, its box, what the stars' certification reads, and
   // what the scan reads (Slot).
-  struct Slot {
-    std::array<float, 6> box{};  // min x, y, z, max x, y, z, as_float
-    int face = 0;
-    bool exact = false;  // every corner of its face is marked exact (SelfIntersectionOptions)
-    // Per corner: its id where the vertex's star is certified, else -1 - (its triangle): no
-    // corner of another triangle has that number.
-    std::array<int, 3> star{};
-    int patch = 0;  // certified_patches
-  };
   std::vector<PreparedTriangle> tris;
   std::vector<Eigen::AlignedBox3d> boxes;
   std::vector<mesh::detail::StarTriangle> stars;
@@ -193,88 +306,44 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   // whose boxes overlap is examined in the one cell that owns it, so once. The scan compares the
   // boxes rounded to floats: they overlap where the boxes do, and a pair that overlaps only after
   // rounding has triangles that do not meet, so the cell that examines it does not matter.
-  std::set<std::pair<int, int>> found;
   const mesh::detail::BoxGrid grid(boxes);
-  size_t candidates = 0, scanned = 0;
-  // Per cell: its members gathered field by field, then for each member the later members whose
-  // boxes overlap its own collected without branching (the box tests are unpredictable; the
-  // compiler runs several at a time), then those examined. mask: bits 0-2
-  // BoxGrid::first_cell_masks, bit 3 an exact triangle.
-  std::array<std::vector<float>, 6> lo_hi;
-  std::vector<int> face, patch, keep, hits;
-  std::vector<unsigned> mask;
-  std::vector<std::array<int, 3>> star;
-  CancelPoll poll;
-  for (size_t k = 0; k < grid.cells() && found.size() < options.max_pairs && result.complete; ++k) {
-    const std::span<const int> here = grid.cell(k);
-    if (moved < tris.size() && std::all_of(here.begin(), here.end(), [&](int i) { return slots[size_t(i)].exact; }))
-      continue;  // only exact triangles here: nothing to examine
-    const size_t m = here.size();
-    for (auto& v : lo_hi) v.resize(m);
-    face.resize(m);
-    patch.resize(m);
-    keep.resize(m);
-    hits.resize(m);
-    mask.resize(m);
-    star.resize(m);
-    const std::span<const unsigned char> first = grid.first_cell_masks(k);
-    for (size_t i = 0; i < m; ++i) {
-      const Slot& slot = slots[size_t(here[i])];
-      for (size_t c = 0; c < 6; ++c) lo_hi[c][i] = slot.box[c];
-      face[i] = slot.face;
-      patch[i] = slot.patch;
-      mask[i] = first[i] | (slot.exact ? 8u : 0u);
-      star[i] = slot.star;
+  // The cells in runs of about kMembersPerRun entries, scanned in parallel (base/parallel.hpp).
+  // A run's bounds depend on the grid only, and the runs' findings are joined in run order, so the
+  // pairs and the verdict are the same for every thread count.
+  std::vector<size_t> run_starts{0};
+  for (size_t k = 0, members = 0; k < grid.cells(); ++k) {
+    members += grid.cell(k).size();
+    if (members >= kMembersPerRun && k + 1 < grid.cells()) run_starts.push_back(k + 1), members = 0;
+  }
+  run_starts.push_back(grid.cells());
+  const size_t runs = run_starts.size() - 1;
+  std::vector<CellScan> scans(runs);
+  // Runs after one that found max_pairs by itself cannot change the result (their pairs come
+  // later in the join): they are skipped.
+  std::atomic<size_t> filled(runs);
+  const ScanInput input{grid, slots, tris, options, moved < tris.size()};
+  parallel_chunks(runs, 1, [&](size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) {
+      if (r > filled.load(std::memory_order_relaxed)) continue;
+      scans[r] = scan_cells(input, run_starts[r], run_starts[r + 1]);
+      if (scans[r].found.size() >= options.max_pairs) {
+        size_t seen = filled.load(std::memory_order_relaxed);
+        while (r < seen && !filled.compare_exchange_weak(seen, r, std::memory_order_relaxed)) {}
+      }
     }
-    const float *x0 = lo_hi[0].data(), *y0 = lo_hi[1].data(), *z0 = lo_hi[2].data();
-    const float *x1 = lo_hi[3].data(), *y1 = lo_hi[4].data(), *z1 = lo_hi[5].data();
-    for (size_t i = 0; i < m && found.size() < options.max_pairs && result.complete; ++i) {
-      poll.tick(std::uint32_t(std::min<size_t>(m - i, kCancelStride)));  // Ctrl-C (base/cancel.hpp)
-      scanned += m - i - 1;
-      if (scanned / 64 > options.max_candidates) {  // the sweep itself is cheap, not free
-        result.complete = false;
-        break;
-      }
-      // Examined: a triangle of another face and another patch whose box overlaps, in the cell
-      // that owns the pair, not both exact.
-      const float sx0 = x0[i], sy0 = y0[i], sz0 = z0[i], sx1 = x1[i], sy1 = y1[i], sz1 = z1[i];
-      const int sf = face[i], sp = patch[i];
-      const unsigned sm = mask[i];
-      for (size_t j = i + 1; j < m; ++j)
-        keep[j] = int(face[j] != sf) & int(patch[j] != sp) & int(x0[j] <= sx1) & int(sx0 <= x1[j]) & int(y0[j] <= sy1) & int(sy0 <= y1[j]) &
-                  int(z0[j] <= sz1) & int(sz0 <= z1[j]) & int(((mask[j] | sm) & 7u) == 7u) & int((mask[j] & sm & 8u) == 0u);
-      size_t count = 0;
-      for (size_t j = i + 1; j < m; ++j) {
-        hits[count] = int(j);
-        count += size_t(keep[j]);
-      }
-      // Pairs that share a vertex whose star is certified meet only in what they share; the rest
-      // are decided exactly, their triangles fetched ahead.
-      const std::array<int, 3>& x = star[i];
-      size_t left = 0;
-      for (size_t h = 0; h < count; ++h) {
-        const std::array<int, 3>& y = star[size_t(hits[h])];
-        const bool shared = (x[0] == y[0]) | (x[0] == y[1]) | (x[0] == y[2]) | (x[1] == y[0]) | (x[1] == y[1]) |
-                            (x[1] == y[2]) | (x[2] == y[0]) | (x[2] == y[1]) | (x[2] == y[2]);
-        hits[left] = hits[h];
-        left += shared ? 0 : 1;
-      }
-      for (size_t h = 0; h < left; ++h) prefetch(tris[size_t(here[size_t(hits[h])])]);
-      for (size_t h = 0; h < left; ++h) {
-        const size_t j = size_t(hits[h]);
-        if (++candidates > options.max_candidates) {
-          result.complete = false;
-          break;
-        }
-        const auto face_pair = std::minmax(sf, face[j]);
-        if (!found.empty() && found.count(face_pair)) continue;
-        if (mesh::detail::triangles_meet(tris[size_t(here[i])], tris[size_t(here[j])])) {
-          found.insert(face_pair);
-          if (found.size() >= options.max_pairs) break;
-        }
-      }
+  });
+  std::set<std::pair<int, int>> found;
+  size_t candidates = 0, scanned = 0;
+  for (size_t r = 0; r < runs && r <= filled.load(); ++r) {
+    candidates += scans[r].candidates;
+    scanned += scans[r].scanned;
+    result.complete = result.complete && scans[r].complete;
+    for (const auto& pair : scans[r].found) {
+      if (found.size() >= options.max_pairs) break;
+      found.insert(pair);
     }
   }
+  if (candidates > options.max_candidates || scanned / 64 > options.max_candidates) result.complete = false;
   for (auto [a, b] : found) result.pairs.push_back({a, b});
   return result;
 }

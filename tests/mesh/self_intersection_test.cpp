@@ -14,6 +14,7 @@
 #include <random>
 #include <set>
 
+#include "base/parallel.hpp"
 #include "mesh/detail/box_grid.hpp"
 #include "mesh/detail/point_copies.hpp"
 #include "mesh/triangulate.hpp"
@@ -252,6 +253,47 @@ PolygonMesh triangulated(const PolygonMesh& m) {
   for (const auto& f : m.faces)
     for (const IndexTriangle& t : triangulate_polygon(m.vertices, f)) out.faces.push_back({t[0], t[1], t[2]});
   return out;
+}
+
+// The scan runs over runs of cells in parallel (base/parallel.hpp): on meshes large enough for
+// many runs it finds every pair (against all pairs whose boxes overlap, tested one by one), and
+// the same pairs with one thread as with every thread, also when it stops at max_pairs.
+TEST(SelfIntersection, ParallelRunsFindEveryPairForAnyThreadCount) {
+  PolygonMesh small = test_shapes::uv_sphere(64, 0.7);
+  for (auto& p : small.vertices) p += Vector3d(0.5, 0.2, 0.1);
+  const PolygonMesh m = triangulated(test_shapes::merged(test_shapes::uv_sphere(96), small));
+  ASSERT_GT(m.faces.size(), 10000u);
+  std::vector<Eigen::AlignedBox3d> boxes;
+  for (const auto& f : m.faces) {
+    Eigen::AlignedBox3d b;
+    for (int v : f) b.extend(m.vertices[size_t(v)]);
+    boxes.push_back(b);
+  }
+  std::set<std::pair<int, int>> expected;
+  for (size_t i = 0; i < m.faces.size(); ++i)
+    for (size_t j = i + 1; j < m.faces.size(); ++j) {
+      if (!boxes[i].intersects(boxes[j])) continue;
+      const auto& s = m.faces[i];
+      const auto& t = m.faces[j];
+      if (triangles_meet({s[0], s[1], s[2]}, {m.vertices[s[0]], m.vertices[s[1]], m.vertices[s[2]]}, {t[0], t[1], t[2]},
+                         {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]}))
+        expected.insert({int(i), int(j)});
+    }
+  ASSERT_GT(expected.size(), 200u);
+  auto pairs = [&](size_t max_pairs) {
+    std::vector<std::pair<int, int>> out;
+    for (const FacePair& p : search_self_intersections(m, {.max_pairs = max_pairs}).pairs)
+      out.push_back({p.face_a, p.face_b});
+    return out;
+  };
+  const std::vector<std::pair<int, int>> all = pairs(1u << 30), first = pairs(3);
+  EXPECT_EQ((std::set<std::pair<int, int>>(all.begin(), all.end())), expected);
+  ASSERT_EQ(first.size(), 3u);
+  {
+    const ThreadLimit one(1);
+    EXPECT_EQ(pairs(1u << 30), all);
+    EXPECT_EQ(pairs(3), first);
+  }
 }
 
 // Pairs that share a vertex whose star is certified are not examined (the star projects along an
