@@ -2,8 +2,9 @@
 
 #include <optional>
 
-#include "bsp/tree/boundary_fragments.hpp"
 #include "bsp/assembly/mesh_assembly.hpp"
+#include "bsp/tree/boundary_fragments.hpp"
+#include "bsp/tree/solid_access.hpp"
 #include "mesh/mesh_measures.hpp"
 #include "mesh/output_rounding.hpp"
 
@@ -12,6 +13,9 @@ namespace sculpt {
 PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
   // A carried boundary (set operation results) is used as is, without building a deferred tree
   // (solid.hpp): a solid with boundary fragments is not a leaf. Otherwise it is extracted.
+  // An import whose tree waits keeps the triangles it was made from: they are its exact boundary.
+  if (!options.clean)
+    if (const PolygonMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid)) return *source;
   const Solid::BoundaryView view = solid.boundary_view();
   const bool carried = view.fragments != nullptr && !view.fragments->empty();
   if (!carried && is_leaf(solid.root())) return {};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -55,6 +56,29 @@ std::string folded_message(std::size_t face, const Eigen::Vector3d& near, const 
     << ") folds when its vertices are snapped to the exact kernel's grid (step " << grid.name()
     << "): the mesh has features smaller than the grid step";
   return s.str();
+}
+
+/// The mesh at its snapped vertices (used ones only), when every face is a triangle that became
+/// one fragment (`fragments` of them): the fragments' boundary as a mesh (DeferredTree::source_mesh).
+std::shared_ptr<const PolygonMesh> source_triangles(const PolygonMesh& mesh, const std::vector<GridPoint>& g,
+                                                    std::size_t fragments, const kernel::Grid& grid) {
+  if (fragments != mesh.faces.size()) return nullptr;  // a face was split or left out
+  auto source = std::make_shared<PolygonMesh>();
+  std::vector<int> index(g.size(), -1);
+  source->faces.reserve(mesh.faces.size());
+  for (const auto& f : mesh.faces) {
+    if (f.size() != 3) return nullptr;
+    std::vector<int>& out = source->faces.emplace_back(f);
+    for (int& v : out) {
+      int& at = index[std::size_t(v)];
+      if (at < 0) {
+        at = int(source->vertices.size());
+        source->vertices.push_back(grid.to_world(g[std::size_t(v)]));
+      }
+      v = at;
+    }
+  }
+  return source;
 }
 
 }  // namespace
@@ -165,8 +189,10 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
     // the surface's orientation is outward (positive volume), in when it is turned inside out.
     std::optional<bool> far_in;
     if (volume6 != 0) far_in = volume6 < 0;
+    std::shared_ptr<const PolygonMesh> source = source_triangles(mesh, g, fragments.size(), grid);
     return bsp::detail::SolidAccess::at_grid(
-        bsp::detail::solid_from_boundary(std::move(table), std::move(fragments), far_in, build), grid);
+        bsp::detail::solid_from_boundary(std::move(table), std::move(fragments), far_in, build, std::move(source)),
+        grid);
   }
   bsp::detail::Arena arena;
   arena.planes = std::move(table);

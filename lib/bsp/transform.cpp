@@ -171,9 +171,17 @@ std::optional<Solid> map_boundary(const Solid& solid, const PolygonMesh& exact, 
   // Snapping can fold faces, make them cross or collapse them below the grid step: features
   // below a few grid steps are collapsed (mesh/output_rounding.hpp) so that the snapped surface
   // bounds a solid again. Copies of a vertex where the solid touches itself stay.
+  // A mesh of triangles already (an import's, DeferredTree::source_mesh) is judged as it is first:
+  // asking for triangles would rebuild it through the repairing cleaner even where it is clean.
+  const bool triangles = std::all_of(mesh.faces.begin(), mesh.faces.end(), [](const auto& f) { return f.size() == 3; });
   OutputRoundingReport rounding;
-  mesh = round_for_output(mesh, {.precision = OutputPrecision::Grid, .max_feature = kSnapFeatureSteps * grid.step(),
-                                 .triangles = true, .grid_step = grid.step(), .keep_copies = true}, &rounding);
+  mesh = round_for_output(mesh,
+                          {.precision = OutputPrecision::Grid,
+                           .max_feature = kSnapFeatureSteps * grid.step(),
+                           .triangles = !triangles,
+                           .grid_step = grid.step(),
+                           .keep_copies = true},
+                          &rounding);
   if (!rounding.clean) return std::nullopt;
   // round_for_output judged the snapped surface clean: closed, oriented, no two faces crossing.
   // It is then exactly the boundary of the tree from_mesh builds, which carries it. (Before that

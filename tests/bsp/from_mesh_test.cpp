@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <set>
 #include <string>
 
 #include "bsp/boundary.hpp"
@@ -14,6 +15,7 @@
 #include "bsp/from_mesh.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
 #include "kernel/grid.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
@@ -139,6 +141,42 @@ TEST(FromMesh, EveryOptionSettingGivesTheSamePointSet) {
     EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(s)));
     expect_same_point_set(s, grid_mesh, 500, 3);
   }
+}
+
+// A clean import keeps its triangles while its tree waits (DeferredTree::source_mesh): the exact
+// boundary without cleaning is those triangles at their grid points, and a general rotation, which
+// starts from that boundary, gives the rotated mesh's point set and volume.
+TEST(FromMesh, ACleanImportKeepsItsTrianglesForItsBoundaryAndTurns) {
+  const PolygonMesh mesh = bunny();
+  const PolygonMesh grid_mesh = snapped(mesh);
+  const Solid s = from_mesh(mesh, {.snapped_mesh_is_clean = true});
+  ASSERT_TRUE(s.tree_deferred());
+  const PolygonMesh boundary = to_mesh(s, {.clean = false});
+  EXPECT_TRUE(s.tree_deferred());  // nothing built for it
+  ASSERT_EQ(boundary.faces.size(), mesh.faces.size());
+  std::set<std::array<double, 3>> expected, got;
+  for (const auto& v : grid_mesh.vertices) expected.insert({v.x(), v.y(), v.z()});
+  for (const auto& f : boundary.faces) {
+    ASSERT_EQ(f.size(), 3u);
+    for (int v : f)
+      got.insert({boundary.vertices[std::size_t(v)].x(), boundary.vertices[std::size_t(v)].y(),
+                  boundary.vertices[std::size_t(v)].z()});
+  }
+  EXPECT_EQ(got, expected);
+  EXPECT_EQ(volume(s), mesh_volume(grid_mesh));
+  // The turn of issue 33's benchmark: 33 degrees about (1, 1, 0) through the box centre.
+  Eigen::AlignedBox3d box;
+  for (const auto& v : mesh.vertices) box.extend(v);
+  const Eigen::Affine3d turn = Eigen::Translation3d(box.center()) *
+                               Eigen::AngleAxisd(33 * std::numbers::pi / 180, Eigen::Vector3d(1, 1, 0).normalized()) *
+                               Eigen::Translation3d(-box.center());
+  PolygonMesh turned_mesh = grid_mesh;
+  for (auto& v : turned_mesh.vertices) v = turn * v;
+  const Solid turned = transform(s, turn);
+  // Snapping moves each vertex by at most half a grid step's diagonal.
+  EXPECT_NEAR(volume(turned), mesh_volume(turned_mesh), 1e-5 * mesh_volume(turned_mesh));
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(turned)));
+  expect_same_point_set(turned, turned_mesh, 500, 4);
 }
 
 }  // namespace

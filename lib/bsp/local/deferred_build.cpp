@@ -9,8 +9,12 @@
 namespace sculpt::bsp::detail {
 
 DeferredBuild::DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
-                             const AutopartitionOptions& options)
-    : planes_(std::move(planes)), fragments_(std::move(fragments)), far_in_(far_in), options_(options) {}
+                             const AutopartitionOptions& options, std::shared_ptr<const PolygonMesh> source)
+    : planes_(std::move(planes)),
+      fragments_(std::move(fragments)),
+      far_in_(far_in),
+      options_(options),
+      source_(std::move(source)) {}
 
 DeferredBuild::DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
                              std::function<Solid()> build)
@@ -28,13 +32,13 @@ Solid DeferredBuild::build() {
 }
 
 Solid solid_from_boundary(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
-                          const AutopartitionOptions& options) {
+                          const AutopartitionOptions& options, std::shared_ptr<const PolygonMesh> source) {
   if (fragments.empty()) {
     if (!far_in) throw std::logic_error("solid_from_boundary: no fragments and no status");
     return Solid::leaf(*far_in);
   }
   return SolidAccess::deferred(
-      std::make_unique<DeferredBuild>(std::move(planes), std::move(fragments), far_in, options));
+      std::make_unique<DeferredBuild>(std::move(planes), std::move(fragments), far_in, options, std::move(source)));
 }
 
 Solid solid_with_tree_later(kernel::PlaneTable planes, FragmentList fragments, bool far_in,

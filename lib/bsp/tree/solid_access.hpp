@@ -31,6 +31,10 @@ struct SolidAccess {
   static std::optional<bool> deferred_far_in(const Solid& solid) {
     return solid.deferred_ ? solid.deferred_->far_in() : std::nullopt;
   }
+  /// A deferred solid's source mesh (DeferredTree::source_mesh), or nullptr.
+  static const PolygonMesh* deferred_source_mesh(const Solid& solid) {
+    return solid.deferred_ ? solid.deferred_->source_mesh() : nullptr;
+  }
   /// The free node and plane slots in-place operations keep in a solid's storage (tree_arena.hpp).
   static const FreeSlots& free_slots(const Solid& solid) { return solid.settled().free_; }
   /// Boxes of solid.boundary() (same order), or empty if not computed.
