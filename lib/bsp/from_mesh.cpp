@@ -1,14 +1,18 @@
 #include "bsp/from_mesh.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 #include <sstream>
 #include <string>
 
 #include <Eigen/Geometry>
 
+#include "base/cancel.hpp"
 #include "base/errors.hpp"
+#include "base/parallel.hpp"
 #include "bsp/local/deferred_build.hpp"
 #include "bsp/tree/autopartition.hpp"
 #include "bsp/tree/solid_access.hpp"
@@ -25,27 +29,31 @@ namespace {
 
 GridPoint sub(const GridPoint& a, const GridPoint& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 
-// Convex plane-based polygon of the triangle a, b, c on plane `support` (index in `t`): each edge
-// plane contains the edge and a grid point off the support plane (transverse to it).
-ConvexPolygon triangle_polygon(kernel::PlaneTable& t, std::int32_t support, const GridPoint* v) {
-  const Plane s = t[support];
+// Convex plane-based polygon of the triangle a, b, c on plane `support` (index in `planes`): each
+// edge plane contains the edge and a grid point off the support plane (transverse to it).
+ConvexPolygon triangle_polygon(std::vector<Plane>& planes, std::int32_t support, const GridPoint* v) {
+  const Plane s = planes[std::size_t(support)];
   const std::int64_t n[3] = {std::abs(s.a), std::abs(s.b), std::abs(s.c)};
   const int k = n[0] >= n[1] && n[0] >= n[2] ? 0 : (n[1] >= n[2] ? 1 : 2);
   const GridPoint off{k == 0, k == 1, k == 2};
   std::int32_t edge[3];
+  Plane edge_plane[3];
   for (int i = 0; i < 3; ++i) {
     const GridPoint& a = v[i];
     const GridPoint& b = v[(i + 1) % 3];
     const GridPoint lifted{a.x + off.x, a.y + off.y, a.z + off.z};
     Plane e = kernel::plane_through(a, b, lifted);
     if (kernel::orient(v[(i + 2) % 3], e) == kernel::Sign::Positive) e = e.opposite();
-    edge[i] = t.add(e);
+    edge[i] = std::int32_t(planes.size());
+    edge_plane[i] = e;
+    planes.push_back(e);
   }
   ConvexPolygon poly;
   poly.support = support;
   for (int i = 0; i < 3; ++i) {
-    const std::int32_t prev = edge[(i + 2) % 3];
-    poly.corners.push_back({edge[i], prev, edge[i], kernel::approximate_vertex(s, t[prev], t[edge[i]])});
+    const int prev = (i + 2) % 3;
+    poly.corners.push_back(
+        {edge[i], edge[prev], edge[i], kernel::approximate_vertex(s, edge_plane[prev], edge_plane[i])});
   }
   return poly;
 }
@@ -81,26 +89,44 @@ std::shared_ptr<const PolygonMesh> source_triangles(const PolygonMesh& mesh, con
   return source;
 }
 
-}  // namespace
-
-Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
-  const kernel::Grid& grid = options.grid;
-  if (mesh.faces.empty()) return Solid::leaf(false, grid);
-  std::vector<GridPoint> g;
-  g.reserve(mesh.vertices.size());
-  for (const auto& v : mesh.vertices) g.push_back(grid.snap(v));
-
-  kernel::PlaneTable table;
-  table.reserve(std::size_t(kernel::kWorldPlanes) + 4 * mesh.faces.size() + mesh.faces.size() / 2);
+/// What a run of faces makes (from_mesh): planes and triangles numbered within the run, the six-fold
+/// signed volume of its triangles, and the first face that cannot be made, with its error.
+struct FaceRun {
+  std::vector<Plane> planes;
   std::vector<ConvexPolygon> polys;
-  polys.reserve(mesh.faces.size());
-  Int128 volume6 = 0;  // six times the signed volume of the snapped triangles (exact: |coords| < 2^26)
-  for (std::size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+  Int128 volume6 = 0;
+  std::size_t bad_face = SIZE_MAX;
+  std::function<void()> error;  // throws that face's error
+};
+
+/// Faces [begin, end) of `mesh` (vertices snapped: `g`) as convex triangles on planes.
+FaceRun make_faces(const PolygonMesh& mesh, const std::vector<GridPoint>& g, const FromMeshOptions& options,
+                   std::size_t begin, std::size_t end) {
+  const kernel::Grid& grid = options.grid;
+  FaceRun run;
+  run.planes.reserve(4 * (end - begin));
+  run.polys.reserve(end - begin);
+  auto fail = [&](std::size_t fi, auto error) {
+    run.bad_face = fi;
+    run.error = error;
+  };
+  std::vector<Eigen::Vector3d> pts;
+  std::vector<int> local;
+  CancelPoll poll;
+  for (std::size_t fi = begin; fi < end; ++fi) {
+    poll.tick();  // Ctrl-C (base/cancel.hpp)
     const auto& f = mesh.faces[fi];
-    if (f.size() < 3) throw InvalidInput("from_mesh: face " + std::to_string(fi) + " has fewer than 3 vertices");
+    if (f.size() < 3) {
+      fail(fi, [fi] { throw InvalidInput("from_mesh: face " + std::to_string(fi) + " has fewer than 3 vertices"); });
+      return run;
+    }
     for (int i : f)
-      if (i < 0 || std::size_t(i) >= g.size())
-        throw InvalidInput("from_mesh: face " + std::to_string(fi) + " has a vertex index out of range");
+      if (i < 0 || std::size_t(i) >= g.size()) {
+        fail(fi, [fi] {
+          throw InvalidInput("from_mesh: face " + std::to_string(fi) + " has a vertex index out of range");
+        });
+        return run;
+      }
     // Face plane: the corner triple with the largest normal (robust for nearly straight corners).
     Plane best{};
     Int128 best_len = 0;
@@ -120,8 +146,17 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
     }
     if (best_len == 0) {
       if (options.skip_degenerate_faces) continue;
-      throw InvalidInput("from_mesh: face " + std::to_string(fi) + " is degenerate (collinear vertices)");
+      {
+        fail(fi, [fi] {
+          throw InvalidInput("from_mesh: face " + std::to_string(fi) + " is degenerate (collinear vertices)");
+        });
+        return run;
+      }
     }
+    const Eigen::Vector3d near = mesh.vertices[std::size_t(f[0])];
+    auto folded = [&](const Eigen::Vector3d& at) {
+      return fail(fi, [fi, at, grid] { throw GeometryError(folded_message(fi, at, grid)); });
+    };
     // The largest corner may be a reflex corner of a non-convex face: orient the plane by the
     // face's area vector (Newell's method, exact on the snapped grid points) instead.
     Int128 area[3] = {0, 0, 0};
@@ -133,7 +168,10 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
       area[2] += Int128(a.x) * b.y - Int128(a.y) * b.x;
     }
     const Int128 along = area[0] * best.a + area[1] * best.b + area[2] * best.c;
-    if (along == 0) throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[0])], grid));
+    if (along == 0) {
+      folded(near);
+      return run;
+    }
     if (along < 0) best = best.opposite();
     // Orientation of the face before snapping: a snapped triangle turned against it is a fold.
     Eigen::Vector3d original = Eigen::Vector3d::Zero();
@@ -143,10 +181,11 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
     // its own plane, so that the polygons still close up exactly.
     bool planar = true;
     for (int i : f) planar = planar && best.eval(g[std::size_t(i)]) == 0;
-    const std::int32_t support = table.add(best);
+    const auto support = std::int32_t(run.planes.size());
+    run.planes.push_back(best);
     // Triangulate (faces may be non-convex); every triangle is a convex plane-based polygon.
-    std::vector<Eigen::Vector3d> pts;
-    std::vector<int> local;
+    pts.clear();
+    local.clear();
     for (std::size_t i = 0; i < m; ++i) {
       pts.push_back(grid.to_world(g[std::size_t(f[i])]));
       local.push_back(int(i));
@@ -160,19 +199,64 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
         continue;  // zero-area triangle after snapping
       const Eigen::Vector3d tn(double(Int128(u.y) * w.z - Int128(u.z) * w.y), double(Int128(u.z) * w.x - Int128(u.x) * w.z),
                                double(Int128(u.x) * w.y - Int128(u.y) * w.x));
-      if (!(tn.dot(original) > 0))
-        throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[std::size_t(tri[0])])], grid));
-      polys.push_back(triangle_polygon(table, planar ? support : table.add(kernel::plane_through(v[0], v[1], v[2])), v));
-      volume6 += Int128(v[0].x) * (Int128(v[1].y) * v[2].z - Int128(v[1].z) * v[2].y) -
-                 Int128(v[0].y) * (Int128(v[1].x) * v[2].z - Int128(v[1].z) * v[2].x) +
-                 Int128(v[0].z) * (Int128(v[1].x) * v[2].y - Int128(v[1].y) * v[2].x);
+      if (!(tn.dot(original) > 0)) {
+        folded(mesh.vertices[std::size_t(f[std::size_t(tri[0])])]);
+        return run;
+      }
+      std::int32_t on = support;
+      if (!planar) {
+        on = std::int32_t(run.planes.size());
+        run.planes.push_back(kernel::plane_through(v[0], v[1], v[2]));
+      }
+      run.polys.push_back(triangle_polygon(run.planes, on, v));
+      run.volume6 += Int128(v[0].x) * (Int128(v[1].y) * v[2].z - Int128(v[1].z) * v[2].y) -
+                     Int128(v[0].y) * (Int128(v[1].x) * v[2].z - Int128(v[1].z) * v[2].x) +
+                     Int128(v[0].z) * (Int128(v[1].x) * v[2].y - Int128(v[1].y) * v[2].x);
     }
+  }
+  return run;
+}
+
+/// Faces per run of make_faces (the runs are made in parallel and joined in order, so the planes
+/// and fragments are the same for every thread count).
+constexpr std::size_t kFacesPerRun = 8192;
+
+}  // namespace
+
+Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
+  const kernel::Grid& grid = options.grid;
+  if (mesh.faces.empty()) return Solid::leaf(false, grid);
+  std::vector<GridPoint> g;
+  g.reserve(mesh.vertices.size());
+  for (const auto& v : mesh.vertices) g.push_back(grid.snap(v));
+
+  std::vector<FaceRun> runs((mesh.faces.size() + kFacesPerRun - 1) / kFacesPerRun);
+  parallel_chunks(mesh.faces.size(), kFacesPerRun, [&](std::size_t begin, std::size_t end) {
+    runs[begin / kFacesPerRun] = make_faces(mesh, g, options, begin, end);
+  });
+  // The first face that cannot be made, in face order, reports its error.
+  for (const FaceRun& run : runs)
+    if (run.error) run.error();
+  kernel::PlaneTable table;
+  std::size_t plane_count = 0, poly_count = 0;
+  for (const FaceRun& run : runs) plane_count += run.planes.size(), poly_count += run.polys.size();
+  table.reserve(std::size_t(kernel::kWorldPlanes) + plane_count);
+  FragmentList fragments;
+  fragments.reserve(poly_count);
+  Int128 volume6 = 0;  // six times the signed volume of the snapped triangles (exact: |coords| < 2^26)
+  for (FaceRun& run : runs) {
+    const std::int32_t base = table.size();
+    for (const Plane& p : run.planes) table.add(p);
+    for (ConvexPolygon& p : run.polys) {
+      p.support += base;
+      for (auto& c : p.corners) c.edge += base, c.p += base, c.q += base;
+      fragments.push_back({std::move(p), false});
+    }
+    volume6 += run.volume6;
+    run = FaceRun();
   }
 
   // Thibault & Naylor 1987 (autopartition.hpp): each candidate scored against every polygon.
-  FragmentList fragments;
-  fragments.reserve(polys.size());
-  for (ConvexPolygon& p : polys) fragments.push_back({std::move(p), false});
   const bsp::detail::AutopartitionOptions build{.candidates = options.candidates,
                                                 .sample = options.sample,
                                                 .split_weight = options.split_weight,
