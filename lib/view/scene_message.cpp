@@ -113,9 +113,9 @@ EdgeData edge_data(const PolygonMesh& mesh, const std::string& glb) {
     index.emplace(float_point(positions.data() + 12 * v), static_cast<std::uint32_t>(v));
   EdgeData data;
   const detail::ClassifiedEdges features = detail::classified_feature_edges(mesh);
-  for (std::size_t e = 0; e < features.edges.size(); ++e) {
-    const auto& edge = features.edges[e];
-    const bool crease = e < features.creases;
+  for (std::size_t i = 0; i < features.edges.size(); ++i) {
+    const auto& edge = features.edges[i];
+    const bool crease = i < features.creases;
     float ends[6];
     for (int e = 0; e < 2; ++e)
       for (int k = 0; k < 3; ++k) ends[3 * e + k] = static_cast<float>(mesh.vertices[edge[e]][k]);
@@ -248,7 +248,8 @@ std::string encode_scene(const Scene& scene, const SceneOptions& options) {
     const auto* solid = part.value.object<language::SolidValue>();
     if (options.depth && solid) {
       auto [depths, count] = depth_data(solid->solid, glb);
-      json += "[" + std::to_string(data.size()) + "," + std::to_string(count) + "]}";
+      json += '[';  // (not "[" + std::string: GCC 12 warns falsely about its memcpy)
+      json += std::to_string(data.size()) + "," + std::to_string(count) + "]}";
       data += depths;
     } else {
       json += "null}";
