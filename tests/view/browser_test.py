@@ -182,13 +182,13 @@ def tools(driver, state, wait_for, total):
     check(red2 < red0 / 20 and blue2 > blue0 / 2, "flipped, it keeps the ball and hides the block (red %d, blue %d)" % (red2, blue2))
     driver.execute_script("const s = document.getElementById('section-axis'); s.value = 'z';"
                           "s.dispatchEvent(new Event('input'));")
-    driver.execute_script("const s = document.getElementById('section-offset'); s.value = 500;"
+    driver.execute_script("const s = document.getElementById('section-offset'); s.value = 450;"
                           "s.dispatchEvent(new Event('input'));")
     driver.find_element(By.ID, "section-flip").click()
     driver.save_screenshot(os.path.join(outdir, "view_section.png"))
     red3 = state("sculptView.pixels(%s)" % RED)["near"]
     model3 = state("sculptView.pixels(null)")["model"]
-    check(red3 > 0 and model3 < model0, "a z section at mid height cuts the block (model pixels %d -> %d)" % (model0, model3))
+    check(red3 > 0 and model3 < model0, "a z section at 0.45 cuts the block (model pixels %d -> %d)" % (model0, model3))
     driver.find_element(By.ID, "section").click()
     check(abs(state("sculptView.pixels(%s)" % RED)["near"] - red0) < red0 / 50, "unticked, the whole model is back")
 
