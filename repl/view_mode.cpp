@@ -111,7 +111,7 @@ int run_script_view(const ScriptViewOptions& options) {
         if (options.setup) options.setup(interpreter);
         interpreter.run(language::load_source(options.script));
         const view::Scene scene = view::scene_of(interpreter.shown(), last.get());
-        server->publish_scene(view::encode_scene(scene));
+        server->publish_scene(view::encode_scene(scene, {.depth = server->depth_wanted()}));
         status.parts = scene.parts.size();
       } catch (const language::ScriptError& e) {
         status.ok = false;
@@ -134,7 +134,7 @@ int run_script_view(const ScriptViewOptions& options) {
     // Wait for a change to any file the run read.
     while (!stop_requested.load()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      bool changed = false;
+      bool changed = server->take_scene_request();  // a page asks for the depths: run again
       for (std::size_t k = 0; k < watched.size() && !changed; ++k) changed = stamp_of(watched[k]) != stamps[k];
       if (changed) break;
     }
@@ -166,7 +166,8 @@ void SessionView::update(const std::string& errors) {
   if (!server_) return;
   const auto& shown = session_.interpreter().shown();
   const std::optional<language::Value> last = shown.empty() ? session_.last_solid() : std::nullopt;
-  std::string key = scene_key(shown, last);
+  const bool depth = server_->depth_wanted();
+  std::string key = scene_key(shown, last) + (depth ? "depth" : "");
   const bool new_scene = key != sent_key_ || updates_ == 0;
   if (!new_scene && errors.empty() && !showing_error_) return;
   const auto start = std::chrono::steady_clock::now();
@@ -174,7 +175,7 @@ void SessionView::update(const std::string& errors) {
   if (new_scene) {
     try {
       const view::Scene scene = view::scene_of(shown, last);
-      server_->publish_scene(view::encode_scene(scene));
+      server_->publish_scene(view::encode_scene(scene, {.depth = depth}));
       status.parts = scene.parts.size();
     } catch (const std::exception& e) {
       status.ok = false;

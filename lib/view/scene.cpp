@@ -9,6 +9,7 @@ namespace {
 /// A part of `value` (a solid or a mesh), or nullopt for anything else.
 std::optional<ViewPart> part_of(const language::Value& value) {
   ViewPart part;
+  part.value = value;
   if (const auto* s = value.object<language::SolidValue>()) {
     part.solid = true;
     part.mesh = s->boundary();

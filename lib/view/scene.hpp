@@ -23,6 +23,8 @@ struct ViewPart {
   std::optional<double> volume;   ///< solids only, from the exact boundary
   double area = 0;
   Eigen::AlignedBox3d box;  ///< empty for an empty part
+  /// The script value shown (a solid or a mesh): the depth mode reads a solid's tree from it.
+  language::Value value{};
 };
 
 struct Scene {

@@ -1,5 +1,6 @@
 #include "view/scene_message.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -9,10 +10,14 @@
 #include <limits>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "base/errors.hpp"
+#include "language/solid_values.hpp"
 #include "mesh/edge_incidence.hpp"
 #include "mesh/mesh_io.hpp"
+#include "view/detail/cell_depths.hpp"
 #include "view/detail/feature_edges.hpp"
 
 namespace sculpt::view {
@@ -43,24 +48,33 @@ void append_vector(std::string& out, const Eigen::Vector3d& v) {
   out += ']';
 }
 
-/// The bytes of the float32 positions at the start of the BIN chunk of a GLB made by encode_mesh
-/// (mesh/formats/glb_writer.cpp: positions first, their count in the first accessor); empty for a
-/// GLB without triangles.
-std::string_view glb_positions(const std::string& glb) {
+/// The bytes of the float32 positions and of the uint32 indices in the BIN chunk of a GLB made by
+/// encode_mesh (mesh/formats/glb_writer.cpp: positions first, then indices, their counts in the
+/// first two accessors); empty for a GLB without triangles.
+struct GlbArrays {
+  std::string_view positions;  ///< 12 bytes a vertex
+  std::string_view indices;    ///< 12 bytes a triangle
+};
+
+GlbArrays glb_arrays(const std::string& glb) {
   if (glb.size() < 20) return {};
   std::uint32_t json_size;
   std::memcpy(&json_size, glb.data() + 12, 4);
   if (glb.size() < 28 + std::size_t(json_size)) return {};
   const std::string_view json(glb.data() + 20, json_size);
   const std::size_t accessors = json.find("\"accessors\":[{");
-  const std::size_t count = accessors == std::string_view::npos ? accessors : json.find("\"count\":", accessors);
-  if (count == std::string_view::npos) return {};
-  std::size_t vertices = 0;
-  const char* first = json.data() + count + 8;
-  if (std::from_chars(first, json.data() + json.size(), vertices).ec != std::errc()) return {};
+  if (accessors == std::string_view::npos) return {};
+  std::size_t counts[2] = {0, 0};
+  std::size_t at = accessors;
+  for (std::size_t& count : counts) {
+    at = json.find("\"count\":", at);
+    if (at == std::string_view::npos) return {};
+    at += 8;
+    if (std::from_chars(json.data() + at, json.data() + json.size(), count).ec != std::errc()) return {};
+  }
   const std::size_t bin = 28 + std::size_t(json_size);
-  if (vertices > (glb.size() - bin) / 12) return {};
-  return {glb.data() + bin, 12 * vertices};
+  if (counts[0] > (glb.size() - bin) / 12 || counts[1] > (glb.size() - bin - 12 * counts[0]) / 4) return {};
+  return {{glb.data() + bin, 12 * counts[0]}, {glb.data() + bin + 12 * counts[0], 4 * (counts[1] / 3 * 3)}};
 }
 
 struct FloatPoint {
@@ -86,19 +100,22 @@ FloatPoint float_point(const void* xyz) {
 /// sends its edge as 6 float32 ("loose"), as does every edge of a part without positions.
 struct EdgeData {
   std::string indexed;
-  std::size_t indexed_count = 0;
+  std::size_t indexed_count = 0, indexed_creases = 0;
   std::string loose;
-  std::size_t loose_count = 0;
+  std::size_t loose_count = 0, loose_creases = 0;
 };
 
 EdgeData edge_data(const PolygonMesh& mesh, const std::string& glb) {
-  const std::string_view positions = glb_positions(glb);  // 12 bytes a vertex
+  const std::string_view positions = glb_arrays(glb).positions;
   std::unordered_map<FloatPoint, std::uint32_t, FloatPointHash> index;
   index.reserve(positions.size() / 12);
   for (std::size_t v = 0; 12 * v < positions.size(); ++v)
     index.emplace(float_point(positions.data() + 12 * v), static_cast<std::uint32_t>(v));
   EdgeData data;
-  for (const auto& edge : detail::feature_edges(mesh)) {
+  const detail::ClassifiedEdges features = detail::classified_feature_edges(mesh);
+  for (std::size_t i = 0; i < features.edges.size(); ++i) {
+    const auto& edge = features.edges[i];
+    const bool crease = i < features.creases;
     float ends[6];
     for (int e = 0; e < 2; ++e)
       for (int k = 0; k < 3; ++k) ends[3 * e + k] = static_cast<float>(mesh.vertices[edge[e]][k]);
@@ -107,12 +124,42 @@ EdgeData edge_data(const PolygonMesh& mesh, const std::string& glb) {
       append_u32(data.indexed, a->second);
       append_u32(data.indexed, b->second);
       ++data.indexed_count;
+      data.indexed_creases += crease;
     } else {
       data.loose.append(reinterpret_cast<const char*>(ends), sizeof ends);
       ++data.loose_count;
+      data.loose_creases += crease;
     }
   }
   return data;
+}
+
+/// The cell depth behind each triangle of `glb` (detail/cell_depths.hpp) as uint16, padded to a
+/// multiple of 4 bytes; the count of triangles.
+std::pair<std::string, std::size_t> depth_data(const Solid& solid, const std::string& glb) {
+  const GlbArrays arrays = glb_arrays(glb);
+  std::vector<Eigen::Vector3d> points(arrays.positions.size() / 12);
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    float xyz[3];
+    std::memcpy(xyz, arrays.positions.data() + 12 * v, 12);
+    points[v] = {xyz[0], xyz[1], xyz[2]};
+  }
+  std::vector<std::array<std::uint32_t, 3>> triangles(arrays.indices.size() / 12);
+  if (!triangles.empty()) std::memcpy(triangles.data(), arrays.indices.data(), arrays.indices.size());
+  for (const auto& t : triangles)
+    for (const std::uint32_t v : t)
+      if (v >= points.size()) throw InvalidInput("view: a triangle's index is out of range");
+  const std::vector<int> depths = detail::cell_depths_behind(solid, points, triangles);
+  std::string out;
+  out.reserve(2 * depths.size() + 2);
+  for (const int d : depths) {
+    const auto x = static_cast<std::uint16_t>(std::min(d, 65535));
+    char b[2];
+    std::memcpy(b, &x, 2);
+    out.append(b, 2);
+  }
+  out.append((4 - out.size() % 4) % 4, '\0');
+  return {std::move(out), depths.size()};
 }
 
 }  // namespace
@@ -150,7 +197,7 @@ std::string json_string(const std::string& text) {
   return out + "\"";
 }
 
-std::string encode_scene(const Scene& scene) {
+std::string encode_scene(const Scene& scene, const SceneOptions& options) {
   std::string json = "{\"parts\":[";
   std::string data;
   for (std::size_t p = 0; p < scene.parts.size(); ++p) {
@@ -191,10 +238,22 @@ std::string encode_scene(const Scene& scene) {
     json += ",\"glb\":[" + std::to_string(data.size()) + "," + std::to_string(glb.size()) + "]";
     data += glb;
     data.append((4 - data.size() % 4) % 4, '\0');
-    json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edges.indexed_count) + "]";
+    json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edges.indexed_count) + "," +
+            std::to_string(edges.indexed_creases) + "]";
     data += edges.indexed;
-    json += ",\"loose\":[" + std::to_string(data.size()) + "," + std::to_string(edges.loose_count) + "]}";
+    json += ",\"loose\":[" + std::to_string(data.size()) + "," + std::to_string(edges.loose_count) + "," +
+            std::to_string(edges.loose_creases) + "]";
     data += edges.loose;
+    json += ",\"depth\":";
+    const auto* solid = part.value.object<language::SolidValue>();
+    if (options.depth && solid) {
+      auto [depths, count] = depth_data(solid->solid, glb);
+      json += '[';  // (not "[" + std::string: GCC 12 warns falsely about its memcpy)
+      json += std::to_string(data.size()) + "," + std::to_string(count) + "]}";
+      data += depths;
+    } else {
+      json += "null}";
+    }
   }
   json += "]}";
   json.append((4 - json.size() % 4) % 4, ' ');

@@ -6,17 +6,25 @@
 /// (padded with spaces to a multiple of 4), then the data. The JSON lists the parts:
 ///   {"parts": [{"name", "color": [r, g, b], "solid", "volume" (solids; else null), "area",
 ///               "box": [[x, y, z], [x, y, z]] (null if empty), "triangles",
-///               "glb": [offset, length], "edges": [offset, count], "loose": [offset, count]}, ...]}
+///               "glb": [offset, length], "edges": [offset, count, creases],
+///               "loose": [offset, count, creases], "depth": [offset, count] or null}, ...]}
 /// Offsets count from the start of the data and are multiples of 4. "glb" is the part as binary
 /// glTF (mesh/mesh_io.hpp's GLB writer: float32 positions, uint32 indices). The feature edges, the
 /// edges between faces of the exact boundary that are not coplanar (never a triangulation's
 /// diagonal), are "edges": `count` pairs of uint32 indices into the GLB's positions (8 bytes an
 /// edge), and "loose": `count` edges as 6 float32 (x, y, z of both ends) for the few whose ends
-/// the GLB's output rounding moved.
+/// the GLB's output rounding moved. In both the first `creases` edges are the creases
+/// (detail/feature_edges.hpp): the page splits smooth vertex normals there and draws only them
+/// when it shades smooth. "depth" (solids, and only when asked for: SceneOptions::depth) is one
+/// uint16 per GLB triangle, in the GLB's order: the depth of the tree's leaf cell behind the
+/// triangle (detail/cell_depths.hpp; 65535 at most), padded to 4 bytes.
 ///
 /// A status is one text message: {"type": "status", "ok": true|false, "run": n, "ms": t,
 /// "parts": p, "error": "file:line:col: error: ...\n<the line>\n<caret>"}; an error leaves the
 /// scene on the page as it was.
+///
+/// The page sends one kind of text message: "depth:1" when it enters the depth mode, "depth:0"
+/// when it leaves it (view_server.hpp: ViewServer::depth_wanted).
 
 #include <string>
 
@@ -24,9 +32,15 @@
 
 namespace sculpt::view {
 
+struct SceneOptions {
+  /// Send each solid's cell depths (the depth mode). Builds the trees of solids whose tree is
+  /// deferred (bsp/solid.hpp): ask only when a page shows them, on the thread that owns the values.
+  bool depth = false;
+};
+
 /// The binary scene message of `scene`.
 /// \throw InvalidInput if a part's mesh has a bad face index or a coordinate beyond float32.
-std::string encode_scene(const Scene& scene);
+std::string encode_scene(const Scene& scene, const SceneOptions& options = {});
 
 struct Status {
   bool ok = true;

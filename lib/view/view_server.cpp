@@ -100,4 +100,8 @@ void ViewServer::publish_status(std::string message) {
 
 int ViewServer::clients() const { return impl_->hub->clients.load(); }
 
+bool ViewServer::depth_wanted() const { return impl_->hub->depth_pages.load() > 0; }
+
+bool ViewServer::take_scene_request() { return impl_->hub->scene_request.exchange(false); }
+
 }  // namespace sculpt::view

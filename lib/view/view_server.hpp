@@ -48,6 +48,12 @@ class ViewServer {
   void publish_status(std::string message);
   /// The number of pages connected now.
   [[nodiscard]] int clients() const;
+  /// True while an open page is in the depth mode: scenes should then carry the cell depths
+  /// (encode_scene with SceneOptions::depth).
+  [[nodiscard]] bool depth_wanted() const;
+  /// True once after a page entered the depth mode (until the next call): the scene it has lacks
+  /// the depths, so the caller should publish the scene again, with them. Any thread.
+  [[nodiscard]] bool take_scene_request();
 
  private:
   struct Impl;

@@ -6,8 +6,10 @@ opens it, and the test reads the pixels the page drew.
 
 Checks: the page shows the model (pixels of each part's colour); editing the script updates the
 page (and how long that took); an error shows file:line:col with its caret and keeps the model;
-fixing it clears the error; hiding a part hides its pixels; Ctrl-C ends sculpt. Saves a screenshot
-as OUTDIR/view.png (docs/viewing.md's picture comes from here). Exit 77 (skipped) when Chromium,
+fixing it clears the error; hiding a part hides its pixels; smooth shading changes the picture;
+the section plane hides what lies beyond it; two clicks measure the distance between two corners;
+the depth mode colours the boundary; Ctrl-C ends sculpt. Saves screenshots as OUTDIR/view*.png
+(docs/viewing.md's pictures come from here). Exit 77 (skipped) when Chromium,
 chromedriver or Selenium is missing.
 """
 import os
@@ -126,6 +128,108 @@ def repl_view(driver, state, wait_for):
             pass
 
 
+def click_at(driver, xyz):
+    """Clicks the canvas where the world point xyz is drawn."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    at = driver.execute_script("return sculptView.project(%s)" % list(xyz))
+    canvas = driver.find_element(By.CSS_SELECTOR, "#canvas-box canvas")
+    # Selenium 4 offsets from the element's centre.
+    ActionChains(driver).move_to_element_with_offset(canvas, int(round(at["x"] - at["width"] / 2)),
+                                                     int(round(at["y"] - at["height"] / 2))).click().perform()
+
+
+def tools(driver, state, wait_for, total):
+    # The script is GOOD: the block [0, 2] x [0, 1] x [0, 1] notched above x = 1.5, z = 0.5, and
+    # the ball of radius 0.5 at (3, 0.5, 0.5). Show the ball again, look from the iso view.
+    driver.find_element(By.ID, "part-visible-1").click()
+    driver.find_element(By.ID, "view-iso").click()
+    driver.find_element(By.ID, "projection").click()  # back to perspective
+
+    # Smooth shading: the ball's facets give way to a smooth gradient (edges off, to see shading only).
+    driver.find_element(By.ID, "edges").click()
+    state("sculptView.grab()")
+    driver.find_element(By.ID, "smooth").click()
+    changed = state("sculptView.changed(12)")
+    blue = state("sculptView.pixels(%s)" % BLUE)["near"]
+    creases = state("sculptView.state.parts.map(p => p.info.edges[2] + p.info.loose[2])")
+    print("  smooth shading: %d pixels changed, in %.0f ms; creases %s" % (changed, state("sculptView.state.timings.shading"), creases))
+    check(changed > 300 and blue > 500, "the smooth toggle changes the shading (%d pixels) and keeps the ball" % changed)
+    check(creases[1] == 0 and creases[0] == 18, "the block's 18 edges are creases, the ball has none (got %s)" % creases)
+    driver.find_element(By.ID, "edges").click()
+    driver.save_screenshot(os.path.join(outdir, "view_smooth.png"))
+    state("sculptView.grab()")
+    driver.find_element(By.ID, "smooth").click()
+    check(state("sculptView.changed(12)") > 300, "flat shading comes back")
+
+    # The section plane: x <= 2.1 keeps the block and hides the ball (x in [2.5, 3.5]); flipped,
+    # the other way round.
+    red0 = state("sculptView.pixels(%s)" % RED)["near"]
+    blue0 = state("sculptView.pixels(%s)" % BLUE)["near"]
+    model0 = state("sculptView.pixels(null)")["model"]
+    driver.find_element(By.ID, "section").click()
+    driver.execute_script("const s = document.getElementById('section-offset'); s.value = 600;"
+                          "s.dispatchEvent(new Event('input'));")
+    value = state("sculptView.state.sectionValue")
+    red1 = state("sculptView.pixels(%s)" % RED)["near"]
+    blue1 = state("sculptView.pixels(%s)" % BLUE)["near"]
+    print("  section at x = %.3f: red %d -> %d, blue %d -> %d" % (value, red0, red1, blue0, blue1))
+    check(2.0 < value < 2.5 and blue1 < blue0 / 20 and red1 > red0 / 2,
+          "the section plane hides what lies beyond it (the ball), the block stays")
+    check("section: showing x <= " in driver.find_element(By.ID, "section-info").text, "the panel names the section")
+    driver.find_element(By.ID, "section-flip").click()
+    red2 = state("sculptView.pixels(%s)" % RED)["near"]
+    blue2 = state("sculptView.pixels(%s)" % BLUE)["near"]
+    check(red2 < red0 / 20 and blue2 > blue0 / 2, "flipped, it keeps the ball and hides the block (red %d, blue %d)" % (red2, blue2))
+    driver.execute_script("const s = document.getElementById('section-axis'); s.value = 'z';"
+                          "s.dispatchEvent(new Event('input'));")
+    driver.execute_script("const s = document.getElementById('section-offset'); s.value = 450;"
+                          "s.dispatchEvent(new Event('input'));")
+    driver.find_element(By.ID, "section-flip").click()
+    driver.save_screenshot(os.path.join(outdir, "view_section.png"))
+    red3 = state("sculptView.pixels(%s)" % RED)["near"]
+    model3 = state("sculptView.pixels(null)")["model"]
+    check(red3 > 0 and model3 < model0, "a z section at 0.45 cuts the block (model pixels %d -> %d)" % (model0, model3))
+    driver.find_element(By.ID, "section").click()
+    check(abs(state("sculptView.pixels(%s)" % RED)["near"] - red0) < red0 / 50, "unticked, the whole model is back")
+
+    # Measuring: two clicks near two corners of the block's front face (y = 0) snap to the
+    # corners (0, 0, 0) and (1.5, 0, 1): distance sqrt(1.5^2 + 1) exactly in float32 corners.
+    driver.find_element(By.ID, "measure").click()
+    click_at(driver, [0.03, 0, 0.03])
+    check(wait_for("sculptView.state.measure.points.length == 1", 3), "the first click picks a point")
+    cursor = driver.find_element(By.ID, "cursor").text
+    check(cursor.startswith("cursor: 0, 0, 0 (corner) on block"), "the panel shows the picked corner (got %r)" % cursor)
+    click_at(driver, [1.47, 0, 0.97])
+    check(wait_for("sculptView.state.measure.distance !== null", 3), "the second click gives a distance")
+    distance = state("sculptView.state.measure.distance")
+    expected = (1.5 ** 2 + 1) ** 0.5
+    text = driver.find_element(By.ID, "measurement").text
+    print("  measured %r (expected %r); panel %r" % (distance, expected, text))
+    check(distance is not None and abs(distance - expected) < 1e-6 and "distance 1.80278" in text,
+          "the distance between the corners (0, 0, 0) and (1.5, 0, 1) is %.6f" % expected)
+    driver.save_screenshot(os.path.join(outdir, "view_measure.png"))
+    driver.find_element(By.ID, "measure").click()
+
+    # The depth mode: sculpt sends the cell depths when asked, and the boundary takes their colours.
+    scenes = state("sculptView.state.scenes")
+    red0 = state("sculptView.pixels(%s)" % RED)["near"]
+    start = time.time()
+    driver.find_element(By.ID, "depth").click()
+    got = wait_for("sculptView.state.scenes > %d && sculptView.state.parts.every(p => p.depths)" % scenes, 5)
+    print("  depths arrived %.0f ms after the toggle (the script runs again)" % (1000 * (time.time() - start)))
+    check(got, "the page receives the depths after entering the depth mode")
+    depths = state("[...new Set(sculptView.state.parts[0].depths)].sort((a, b) => a - b)")
+    red1 = state("sculptView.pixels(%s)" % RED)["near"]
+    model = state("sculptView.pixels(null)")["model"]
+    legend = driver.find_element(By.ID, "depth-legend").text
+    print("  block's depths %s; red pixels %d -> %d; legend %r" % (depths, red0, red1, legend))
+    check(red1 < red0 / 10 and model > 0.02 * total, "the depth mode changes the colours (red %d -> %d)" % (red0, red1))
+    check(legend.startswith("cell depth") and str(depths[0]) in legend, "the legend shows the range of depths")
+    driver.save_screenshot(os.path.join(outdir, "view_depth.png"))
+    driver.find_element(By.ID, "depth").click()
+    check(state("sculptView.pixels(%s)" % RED)["near"] > red0 / 2, "leaving the depth mode gives the colours back")
+
+
 write(GOOD)
 process = subprocess.Popen([sculpt, "--view", "--port", "0", script], stdout=subprocess.PIPE,
                            stderr=subprocess.PIPE, text=True)
@@ -230,7 +334,10 @@ try:
     ortho = state("sculptView.pixels(null)")["model"]
     check(top > 0.02 * pixels["total"] and ortho > 0.02 * pixels["total"], "top view and orthographic show the model")
 
-    # 6. The REPL's :view follows the session: its last solid, then what it shows.
+    # 6. The tools: smooth shading, the section plane, measuring, the depth mode.
+    tools(driver, state, wait_for, pixels["total"])
+
+    # 7. The REPL's :view follows the session: its last solid, then what it shows.
     repl_view(driver, state, wait_for)
 finally:
     if driver:

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 
 #include "base/errors.hpp"
@@ -62,7 +64,9 @@ TEST(SceneMessage, HoldsEachPartAsGlbWithEdgesAndMeasures) {
   EXPECT_EQ(edges_count, 12u);  // each as two indices into the GLB's positions
   EXPECT_EQ(edges_offset % 4, 0u);
   EXPECT_EQ(number_after(json, "loose"), edges_offset + 8 * edges_count);
-  EXPECT_NE(json.find("\"loose\":[" + std::to_string(edges_offset + 8 * edges_count) + ",0]"), std::string::npos);
+  EXPECT_NE(json.find("\"loose\":[" + std::to_string(edges_offset + 8 * edges_count) + ",0,0]"), std::string::npos);
+  EXPECT_NE(json.find("\"edges\":[" + std::to_string(edges_offset) + ",12,12]"), std::string::npos) << "all creases";
+  EXPECT_NE(json.find("\"depth\":null"), std::string::npos) << "no depths unless asked for";
   EXPECT_EQ(data + edges_offset + edges_count * 8, message.size());
   // Every edge joins two corners of the box along one axis.
   const char* positions = message.data() + data + glb_offset + 28 + u32_at(message, data + glb_offset + 12);
@@ -76,6 +80,124 @@ TEST(SceneMessage, HoldsEachPartAsGlbWithEdgesAndMeasures) {
     int differing = 0;
     for (int k = 0; k < 3; ++k) differing += ends[0][k] != ends[1][k];
     EXPECT_EQ(differing, 1) << "edge " << e;
+  }
+}
+
+/// The offset and count of `"key":[offset,count,...]` in the JSON of `message`, and the JSON's end.
+struct Block {
+  std::size_t offset = 0, count = 0, third = 0;
+};
+Block block_of(const std::string& message, const std::string& key) {
+  const std::string json = message.substr(8, u32_at(message, 4));
+  std::size_t at = json.find("\"" + key + "\":[");
+  EXPECT_NE(at, std::string::npos) << key << " in " << json;
+  Block b;
+  char* end = nullptr;
+  const char* first = json.c_str() + at + key.size() + 4;
+  b.offset = std::strtoul(first, &end, 10);
+  b.count = std::strtoul(end + 1, &end, 10);
+  if (*end == ',') b.third = std::strtoul(end + 1, &end, 10);
+  b.offset += 8 + json.size();  // from the start of the message
+  return b;
+}
+
+TEST(SceneMessage, CreasesComeFirstAndCurvedSurfacesHaveNone) {
+  // A 32-segment cylinder: the two rims are creases (90 degrees), the 32 edges between side facets
+  // (11.25 degrees) are features but no creases.
+  const Scene can = scene_of({{"can", std::nullopt, language::solid_value(cylinder(1, 2))}}, std::nullopt);
+  const Block edges = block_of(encode_scene(can), "edges");
+  const Block loose = block_of(encode_scene(can), "loose");
+  EXPECT_EQ(edges.count + loose.count, 96u);
+  EXPECT_EQ(edges.third + loose.third, 64u);
+  // A ball: every facet is its own plane, nothing is a crease.
+  const Scene ball = scene_of({{"ball", std::nullopt, language::solid_value(sphere(1))}}, std::nullopt);
+  const std::string message = encode_scene(ball);
+  // 16 rings of 32 edges and 15 bands with 32 edges between them: all features.
+  EXPECT_EQ(block_of(message, "edges").count + block_of(message, "loose").count, 16u * 32 + 15 * 32);
+  EXPECT_EQ(block_of(message, "edges").third + block_of(message, "loose").third, 0u);
+}
+
+TEST(SceneMessage, DepthsOnlyWhenAskedOneAPerTriangle) {
+  const Scene scene =
+      scene_of({{"cube", std::nullopt, language::solid_value(box({0, 0, 0}, {1, 2, 3}))}}, std::nullopt);
+  const std::string message = encode_scene(scene, {.depth = true});
+  const Block depth = block_of(message, "depth");
+  ASSERT_EQ(depth.count, 12u);  // one a triangle
+  EXPECT_EQ(depth.offset % 4, 0u);
+  EXPECT_EQ(depth.offset + 24, message.size());  // 12 uint16, a multiple of 4 bytes
+  for (std::size_t k = 0; k < depth.count; ++k) {
+    std::uint16_t d;
+    std::memcpy(&d, message.data() + depth.offset + 2 * k, 2);
+    EXPECT_EQ(d, 6) << "the box's one in-cell is at depth 6";
+  }
+  // A mesh part has no tree: no depths.
+  PolygonMesh square;
+  square.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  square.faces = {{0, 1, 2, 3}};
+  const language::Value mesh(std::shared_ptr<const language::Object>(std::make_shared<language::MeshValue>(square)));
+  EXPECT_NE(
+      encode_scene(scene_of({{"sheet", std::nullopt, mesh}}, std::nullopt), {.depth = true}).find("\"depth\":null"),
+      std::string::npos);
+}
+
+/// Volume, area and bounding box of the sphere primitive's polyhedron (bsp/primitives.hpp, like
+/// OpenSCAD's): `rings` = (n + 1) / 2 rings of n vertices at polar angles pi (i + 1/2) / rings,
+/// azimuths 2 pi k / n, flat caps. Consecutive rings bound frusta of regular n-gon pyramids.
+struct SphereMeasures {
+  double volume = 0, area = 0, half_width = 0, half_height = 0;
+};
+SphereMeasures sphere_polyhedron(double r, int n) {
+  const int rings = (n + 1) / 2;
+  const double pi = std::acos(-1.0);
+  const auto radius = [&](int i) { return r * std::sin(pi * (i + 0.5) / rings); };
+  const auto height = [&](int i) { return r * std::cos(pi * (i + 0.5) / rings); };
+  const auto polygon_area = [&](double rho) { return 0.5 * n * rho * rho * std::sin(2 * pi / n); };
+  SphereMeasures m;
+  m.area = polygon_area(radius(0)) + polygon_area(radius(rings - 1));
+  for (int i = 0; i + 1 < rings; ++i) {
+    const double h = height(i) - height(i + 1), a1 = polygon_area(radius(i)), a2 = polygon_area(radius(i + 1));
+    m.volume += h / 3 * (a1 + a2 + std::sqrt(a1 * a2));
+    const double apothems = (radius(i) - radius(i + 1)) * std::cos(pi / n);
+    const double sides = 2 * (radius(i) + radius(i + 1)) * std::sin(pi / n);
+    m.area += n * sides / 2 * std::hypot(h, apothems);
+  }
+  for (int i = 0; i < rings; ++i) m.half_width = std::max(m.half_width, radius(i));
+  m.half_height = height(0);
+  return m;
+}
+
+TEST(SceneMessage, MeasuresOfABoxAndASphereAreTheAnalyticOnes) {
+  const Scene box_scene =
+      scene_of({{"b", std::nullopt, language::solid_value(box({-1, 0, 2}, {3, 0.5, 2.25}))}}, std::nullopt);
+  EXPECT_DOUBLE_EQ(*box_scene.parts[0].volume, 4 * 0.5 * 0.25);
+  EXPECT_DOUBLE_EQ(box_scene.parts[0].area, 2 * (4 * 0.5 + 4 * 0.25 + 0.5 * 0.25));
+  EXPECT_EQ(box_scene.parts[0].box.min(), Eigen::Vector3d(-1, 0, 2));
+  EXPECT_EQ(box_scene.parts[0].box.max(), Eigen::Vector3d(3, 0.5, 2.25));
+  const std::string box_message = encode_scene(box_scene);
+  EXPECT_NE(box_message.find("\"volume\":0.5,\"area\":6.25,\"box\":[[-1,0,2],[3,0.5,2.25]]"), std::string::npos);
+
+  for (const int n : {12, 32, 64}) {
+    const double r = 2;
+    const Scene scene =
+        scene_of({{"s", std::nullopt, language::solid_value(sphere(r, {.segments = n}))}}, std::nullopt);
+    const ViewPart& part = scene.parts[0];
+    const SphereMeasures exact = sphere_polyhedron(r, n);
+    // The vertices are on the sphere within the rounding of the planes' integer normals.
+    EXPECT_NEAR(*part.volume, exact.volume, 1e-5 * exact.volume) << n << " segments";
+    EXPECT_NEAR(part.area, exact.area, 1e-5 * exact.area) << n << " segments";
+    // The caps are at grid heights: within half a grid step (2^-16) in z.
+    for (int a = 0; a < 3; ++a) {
+      const double half = a == 2 ? exact.half_height : exact.half_width, tolerance = a == 2 ? 0x1p-16 : 1e-5;
+      EXPECT_NEAR(part.box.min()[a], -half, tolerance) << n << " segments, axis " << a;
+      EXPECT_NEAR(part.box.max()[a], half, tolerance) << n << " segments, axis " << a;
+    }
+    // And the round sphere's, as the segments grow.
+    const double pi = std::acos(-1.0), error = 2 * (1 - std::cos(pi / n));
+    EXPECT_NEAR(*part.volume, 4 * pi * r * r * r / 3, 2 * error * 4 * pi * r * r * r / 3) << n;
+    EXPECT_NEAR(part.area, 4 * pi * r * r, 2 * error * 4 * pi * r * r) << n;
+    // The message carries the same numbers.
+    const std::string message = encode_scene(scene);
+    EXPECT_DOUBLE_EQ(number_after(message.substr(8, u32_at(message, 4)), "volume"), *part.volume);
   }
 }
 

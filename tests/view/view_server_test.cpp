@@ -111,6 +111,38 @@ TEST(ViewServer, WebSocketGetsTheLatestSceneThenEveryNewOne) {
   EXPECT_EQ(server.clients(), 1);
 }
 
+/// Calls `condition()` until it holds, for up to 2 s; whether it did.
+template <typename Condition>
+bool eventually(Condition condition) {
+  for (int k = 0; k < 100; ++k) {
+    if (condition()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+TEST(ViewServer, PagesInTheDepthModeAskForTheDepths) {
+  ViewServer server({.port = 0});
+  EXPECT_FALSE(server.depth_wanted());
+  EXPECT_FALSE(server.take_scene_request());
+  Page a(server.port()), b(server.port());
+  a.ws.text(true);
+  a.ws.write(asio::buffer(std::string("depth:1")));
+  EXPECT_TRUE(eventually([&] { return server.depth_wanted(); }));
+  EXPECT_TRUE(server.take_scene_request());  // once: the scene sent lacks the depths
+  EXPECT_FALSE(server.take_scene_request());
+  b.ws.text(true);
+  b.ws.write(asio::buffer(std::string("something else")));  // ignored
+  b.ws.write(asio::buffer(std::string("depth:1")));
+  EXPECT_TRUE(eventually([&] { return server.take_scene_request(); }));
+  a.ws.write(asio::buffer(std::string("depth:0")));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_TRUE(server.depth_wanted()) << "page b still is in the depth mode";
+  beast::get_lowest_layer(b.ws).socket().close();  // a page that drops leaves the mode
+  EXPECT_TRUE(eventually([&] { return !server.depth_wanted(); }));
+  EXPECT_FALSE(server.take_scene_request());
+}
+
 TEST(ViewServer, WebSocketRefusesForeignHost) {
   ViewServer server({.port = 0});
   EXPECT_THROW(Page(server.port(), "evil.example:" + std::to_string(server.port())), boost::system::system_error);

@@ -1,6 +1,8 @@
 #include "view/detail/feature_edges.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 
 #include "mesh/edge_incidence.hpp"
 
@@ -20,26 +22,38 @@ Eigen::Vector3d unit_normal(const PolygonMesh& mesh, const std::vector<int>& fac
 
 }  // namespace
 
-std::vector<std::array<int, 2>> feature_edges(const PolygonMesh& mesh, const FeatureEdgeOptions& options) {
+ClassifiedEdges classified_feature_edges(const PolygonMesh& mesh, const FeatureEdgeOptions& options) {
   std::vector<Eigen::Vector3d> normals;
   normals.reserve(mesh.faces.size());
   for (const auto& face : mesh.faces) normals.push_back(unit_normal(mesh, face));
   const std::vector<HalfEdgeRecord> records = sorted_edge_records(mesh);
-  std::vector<std::array<int, 2>> edges;
+  const double crease_cosine = std::cos(options.crease_angle);
+  std::vector<std::array<int, 2>> creases, smooth;
   for (std::size_t begin = 0; begin < records.size();) {
     std::size_t end = begin + 1;
     while (end < records.size() && records[end].lo == records[begin].lo && records[end].hi == records[begin].hi) ++end;
-    bool feature = end - begin != 2;
-    if (!feature) {
+    const std::array<int, 2> edge{records[begin].lo, records[begin].hi};
+    if (end - begin != 2) {
+      creases.push_back(edge);  // a border or a non-manifold edge
+    } else {
       const Eigen::Vector3d& a = normals[records[begin].face];
       const Eigen::Vector3d& b = normals[records[begin + 1].face];
       // A face without area lies in any plane; else the two planes must agree in direction.
       const bool flat = a.isZero() || b.isZero() || (a.dot(b) > 0 && a.cross(b).norm() <= options.coplanar_tolerance);
-      feature = !flat;
+      if (!flat) (a.dot(b) < crease_cosine ? creases : smooth).push_back(edge);
     }
-    if (feature) edges.push_back({records[begin].lo, records[begin].hi});
     begin = end;
   }
+  ClassifiedEdges out;
+  out.creases = creases.size();
+  out.edges = std::move(creases);
+  out.edges.insert(out.edges.end(), smooth.begin(), smooth.end());
+  return out;
+}
+
+std::vector<std::array<int, 2>> feature_edges(const PolygonMesh& mesh, const FeatureEdgeOptions& options) {
+  std::vector<std::array<int, 2>> edges = classified_feature_edges(mesh, options).edges;
+  std::sort(edges.begin(), edges.end());
   return edges;
 }
 

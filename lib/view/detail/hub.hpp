@@ -1,7 +1,7 @@
 #pragma once
 /// \file hub.hpp
 /// The state the server's connections share (internal). Everything here is touched on the
-/// server's one I/O thread only, except `clients`, which tests read from outside.
+/// server's one I/O thread only, except the atomics, which the session's thread reads.
 
 #include <atomic>
 #include <memory>
@@ -20,7 +20,9 @@ struct Hub {
   std::shared_ptr<const std::string> scene;   ///< the latest scene message (binary), sent to new pages
   std::shared_ptr<const std::string> status;  ///< the latest status message (text)
   std::vector<std::weak_ptr<WebSocketSession>> sessions;
-  std::atomic<int> clients{0};  ///< open WebSocket connections
+  std::atomic<int> clients{0};             ///< open WebSocket connections
+  std::atomic<int> depth_pages{0};         ///< open pages in the depth mode
+  std::atomic<bool> scene_request{false};  ///< a page entered the depth mode since the last take
 
   /// Sends `message` to every open page and keeps it for pages that connect later.
   void publish(bool binary, std::shared_ptr<const std::string> message);

@@ -14,16 +14,18 @@ WebSocketSession::WebSocketSession(beast::tcp_stream stream, std::shared_ptr<Hub
 
 WebSocketSession::~WebSocketSession() {
   if (open_) --hub_->clients;
+  if (depth_) --hub_->depth_pages;
 }
 
 void WebSocketSession::run(beast::http::request<beast::http::string_body> request) {
-  // The page never sends: pings (answered by the browser itself) keep a quiet connection open, and
-  // a page that has gone without closing (a machine asleep, a cable out) is dropped after 30 s.
+  // The page sends only its mode: pings (answered by the browser itself) keep a quiet connection
+  // open, and a page that has gone without closing (a machine asleep, a cable out) is dropped
+  // after 30 s.
   auto timeout = websocket::stream_base::timeout::suggested(beast::role_type::server);
   timeout.idle_timeout = std::chrono::seconds(30);
   timeout.keep_alive_pings = true;
   ws_.set_option(timeout);
-  ws_.read_message_max(4096);  // the page sends nothing that matters; refuse anything large
+  ws_.read_message_max(4096);  // the page sends a few bytes; refuse anything large
   ws_.async_accept(request, [self = shared_from_this()](beast::error_code ec) { self->on_accept(ec); });
 }
 
@@ -40,9 +42,27 @@ void WebSocketSession::on_accept(beast::error_code ec) {
 void WebSocketSession::read() {
   ws_.async_read(incoming_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
     if (ec) return;  // closed or dropped: the pending operations end and the session with them
+    const auto data = self->incoming_.cdata();
+    if (self->ws_.got_text()) self->on_message(std::string_view(static_cast<const char*>(data.data()), data.size()));
     self->incoming_.consume(self->incoming_.size());
     self->read();
   });
+}
+
+void WebSocketSession::on_message(std::string_view text) {
+  if (text == "depth:1") set_depth(true);
+  if (text == "depth:0") set_depth(false);
+}
+
+void WebSocketSession::set_depth(bool wanted) {
+  if (wanted == depth_) return;
+  depth_ = wanted;
+  if (wanted) {
+    ++hub_->depth_pages;
+    hub_->scene_request = true;  // the scene on the page has no depths yet
+  } else {
+    --hub_->depth_pages;
+  }
 }
 
 void WebSocketSession::send(bool binary, std::shared_ptr<const std::string> message) {

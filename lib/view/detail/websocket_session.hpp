@@ -14,6 +14,7 @@
 #include <deque>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "view/detail/hub.hpp"
 
@@ -35,6 +36,9 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   };
   void on_accept(boost::beast::error_code ec);
   void read();
+  /// Acts on a message from the page ("depth:1", "depth:0"; anything else is ignored).
+  void on_message(std::string_view text);
+  void set_depth(bool wanted);
   void write_next();
 
   boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
@@ -43,6 +47,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   std::deque<Outgoing> queue_;
   bool writing_ = false;
   bool open_ = false;
+  bool depth_ = false;  ///< the page is in the depth mode
 };
 
 }  // namespace sculpt::view::detail
