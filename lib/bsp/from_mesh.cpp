@@ -11,6 +11,7 @@
 #include "bsp/local/deferred_build.hpp"
 #include "bsp/tree/autopartition.hpp"
 #include "bsp/tree/solid_access.hpp"
+#include "bsp/tree/triangle_fragment.hpp"
 #include "mesh/triangulate.hpp"
 
 namespace sculpt {
@@ -23,31 +24,6 @@ using kernel::Plane;
 namespace {
 
 GridPoint sub(const GridPoint& a, const GridPoint& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-
-// Convex plane-based polygon of the triangle a, b, c on plane `support` (index in `t`): each edge
-// plane contains the edge and a grid point off the support plane (transverse to it).
-ConvexPolygon triangle_polygon(kernel::PlaneTable& t, std::int32_t support, const GridPoint* v) {
-  const Plane s = t[support];
-  const std::int64_t n[3] = {std::abs(s.a), std::abs(s.b), std::abs(s.c)};
-  const int k = n[0] >= n[1] && n[0] >= n[2] ? 0 : (n[1] >= n[2] ? 1 : 2);
-  const GridPoint off{k == 0, k == 1, k == 2};
-  std::int32_t edge[3];
-  for (int i = 0; i < 3; ++i) {
-    const GridPoint& a = v[i];
-    const GridPoint& b = v[(i + 1) % 3];
-    const GridPoint lifted{a.x + off.x, a.y + off.y, a.z + off.z};
-    Plane e = kernel::plane_through(a, b, lifted);
-    if (kernel::orient(v[(i + 2) % 3], e) == kernel::Sign::Positive) e = e.opposite();
-    edge[i] = t.add(e);
-  }
-  ConvexPolygon poly;
-  poly.support = support;
-  for (int i = 0; i < 3; ++i) {
-    const std::int32_t prev = edge[(i + 2) % 3];
-    poly.corners.push_back({edge[i], prev, edge[i], kernel::approximate_vertex(s, t[prev], t[edge[i]])});
-  }
-  return poly;
-}
 
 std::string folded_message(std::size_t face, const Eigen::Vector3d& near, const kernel::Grid& grid) {
   std::ostringstream s;
@@ -138,7 +114,8 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
                                double(Int128(u.x) * w.y - Int128(u.y) * w.x));
       if (!(tn.dot(original) > 0))
         throw GeometryError(folded_message(fi, mesh.vertices[std::size_t(f[std::size_t(tri[0])])], grid));
-      polys.push_back(triangle_polygon(table, planar ? support : table.add(kernel::plane_through(v[0], v[1], v[2])), v));
+      polys.push_back(bsp::detail::triangle_polygon(
+          table, planar ? support : table.add(kernel::plane_through(v[0], v[1], v[2])), v));
       volume6 += Int128(v[0].x) * (Int128(v[1].y) * v[2].z - Int128(v[1].z) * v[2].y) -
                  Int128(v[0].y) * (Int128(v[1].x) * v[2].z - Int128(v[1].z) * v[2].x) +
                  Int128(v[0].z) * (Int128(v[1].x) * v[2].y - Int128(v[1].y) * v[2].x);
