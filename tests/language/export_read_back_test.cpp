@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "kernel/grid.hpp"
 #include "language/solid_values.hpp"
 #include "mesh/mesh_io.hpp"
@@ -83,7 +85,8 @@ void expect_reads_back(const Value& solid, const std::string& label, Tally& tall
   std::ostringstream out;
   Interpreter interpreter({.out = &out, .grid = sv->solid.grid()});  // imports at the solid's grid
   interpreter.define("s", solid);
-  const std::string dir = ::testing::TempDir() + "sculpt_read_back/";
+  // One folder per process: ctest runs the tests of this file side by side.
+  const std::string dir = ::testing::TempDir() + "sculpt_read_back_" + std::to_string(::getpid()) + "/";
   std::filesystem::create_directories(dir);
   for (const Format& f : kFormats) {
     SCOPED_TRACE(format_name(f));
