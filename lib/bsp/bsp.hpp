@@ -17,3 +17,4 @@
 #include "bsp/sweep.hpp"
 #include "bsp/transform.hpp"
 #include "bsp/tree_builder.hpp"
+#include "bsp/winding_solid.hpp"

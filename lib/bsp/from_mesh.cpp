@@ -16,6 +16,7 @@
 #include "bsp/local/deferred_build.hpp"
 #include "bsp/tree/autopartition.hpp"
 #include "bsp/tree/solid_access.hpp"
+#include "bsp/tree/triangle_fragment.hpp"
 #include "mesh/triangulate.hpp"
 
 namespace sculpt {
@@ -28,35 +29,6 @@ using kernel::Plane;
 namespace {
 
 GridPoint sub(const GridPoint& a, const GridPoint& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-
-// Convex plane-based polygon of the triangle a, b, c on plane `support` (index in `planes`): each
-// edge plane contains the edge and a grid point off the support plane (transverse to it).
-ConvexPolygon triangle_polygon(std::vector<Plane>& planes, std::int32_t support, const GridPoint* v) {
-  const Plane s = planes[std::size_t(support)];
-  const std::int64_t n[3] = {std::abs(s.a), std::abs(s.b), std::abs(s.c)};
-  const int k = n[0] >= n[1] && n[0] >= n[2] ? 0 : (n[1] >= n[2] ? 1 : 2);
-  const GridPoint off{k == 0, k == 1, k == 2};
-  std::int32_t edge[3];
-  Plane edge_plane[3];
-  for (int i = 0; i < 3; ++i) {
-    const GridPoint& a = v[i];
-    const GridPoint& b = v[(i + 1) % 3];
-    const GridPoint lifted{a.x + off.x, a.y + off.y, a.z + off.z};
-    Plane e = kernel::plane_through(a, b, lifted);
-    if (kernel::orient(v[(i + 2) % 3], e) == kernel::Sign::Positive) e = e.opposite();
-    edge[i] = std::int32_t(planes.size());
-    edge_plane[i] = e;
-    planes.push_back(e);
-  }
-  ConvexPolygon poly;
-  poly.support = support;
-  for (int i = 0; i < 3; ++i) {
-    const int prev = (i + 2) % 3;
-    poly.corners.push_back(
-        {edge[i], edge[prev], edge[i], kernel::approximate_vertex(s, edge_plane[prev], edge_plane[i])});
-  }
-  return poly;
-}
 
 std::string folded_message(std::size_t face, const Eigen::Vector3d& near, const kernel::Grid& grid) {
   std::ostringstream s;
@@ -208,7 +180,7 @@ FaceRun make_faces(const PolygonMesh& mesh, const std::vector<GridPoint>& g, con
         on = std::int32_t(run.planes.size());
         run.planes.push_back(kernel::plane_through(v[0], v[1], v[2]));
       }
-      run.polys.push_back(triangle_polygon(run.planes, on, v));
+      run.polys.push_back(bsp::detail::triangle_polygon(run.planes, on, v));
       run.volume6 += Int128(v[0].x) * (Int128(v[1].y) * v[2].z - Int128(v[1].z) * v[2].y) -
                      Int128(v[0].y) * (Int128(v[1].x) * v[2].z - Int128(v[1].z) * v[2].x) +
                      Int128(v[0].z) * (Int128(v[1].x) * v[2].y - Int128(v[1].y) * v[2].x);

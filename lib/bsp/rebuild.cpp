@@ -21,6 +21,25 @@ Solid rebuild_from_boundary(const Solid& solid) {
   return bsp::detail::SolidAccess::at_grid(bsp::detail::autopartition(arena, std::move(fragments)), solid.grid());
 }
 
+Solid rebuild_from_boundary(const Solid& solid, const FromMeshOptions& options) {
+  if (is_leaf(solid.root())) return solid;
+  Arena arena;
+  (void)arena.append(solid);
+  FragmentList fragments = arena.boundary_of(solid);
+  if (fragments.empty()) return solid;
+  const bsp::detail::AutopartitionOptions build{.candidates = options.candidates,
+                                                .sample = options.sample,
+                                                .split_weight = options.split_weight,
+                                                .score = bsp::detail::PartitionScore::ExpectedDepth,
+                                                .volume_samples = options.volume_samples,
+                                                .point_sample = options.point_sample,
+                                                .auxiliary_cost = options.auxiliary_cost,
+                                                .separating_planes = options.separating_planes,
+                                                .auxiliary_splits = options.auxiliary_planes};
+  return bsp::detail::SolidAccess::at_grid(bsp::detail::autopartition(arena, std::move(fragments), build),
+                                           solid.grid());
+}
+
 namespace {
 
 // Nodes of the subtree at `t`, counted up to limit + 1.

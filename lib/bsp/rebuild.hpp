@@ -8,12 +8,18 @@
 
 #include <Eigen/Geometry>
 
+#include "bsp/from_mesh.hpp"
 #include "bsp/solid.hpp"
 
 namespace sculpt {
 
 /// The solid with a tree built from its boundary fragments (carried, or extracted from the tree).
 Solid rebuild_from_boundary(const Solid& solid);
+/// The same with the planes chosen as from_mesh chooses them (the expected depth of a point query,
+/// `options`' candidates, samples and charges; its grid and snapping settings do not apply): the
+/// B-rep to BSP build of the solid's exact boundary, which needs no snapping, so it cannot fold
+/// or meet degenerate faces as a rebuild from the rounded mesh could (issue 35).
+Solid rebuild_from_boundary(const Solid& solid, const FromMeshOptions& options);
 
 /// Which subtrees rebuild_region() rebuilds.
 struct RegionRebuildOptions {

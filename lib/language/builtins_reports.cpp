@@ -6,10 +6,11 @@
 
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
+#include "bsp/from_mesh.hpp"
+#include "bsp/rebuild.hpp"
 #include "language/builtins.hpp"
 #include "language/solid_values.hpp"
 #include "reports/tree_report.hpp"
-#include "bsp/from_mesh.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -95,12 +96,13 @@ void register_reports(BuiltinTable& table) {
              }});
   table.add({.name = "rebuild",
              .signature = "rebuild(s)",
-             .doc = "The same solid with a new tree built from its boundary mesh (B-rep to BSP), for "
-                    "comparing trees built different ways with stats([s, rebuild(s)]).",
+             .doc = "The same solid with a new tree built from its boundary (B-rep to BSP, planes chosen as "
+                    "import chooses them), for comparing trees built different ways with stats([s, rebuild(s)]).",
              .params = {{"s"}},
              .run = [](const Arguments& args) -> Value {
-               const Solid& s = args.object<SolidValue>(0, "a solid").solid;
-               return solid_value(from_mesh(to_mesh(s), {.grid = s.grid()}));
+               // From the exact boundary, not the rounded mesh: snapping that mesh's vertices back
+               // to the grid could fold a face or leave one of zero area (issue 35).
+               return solid_value(rebuild_from_boundary(args.object<SolidValue>(0, "a solid").solid, {}));
              }});
 }
 

@@ -8,27 +8,28 @@
 
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
+#include "bsp/extrude.hpp"
+#include "bsp/from_mesh.hpp"
+#include "bsp/hull.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
+#include "bsp/sweep.hpp"
 #include "bsp/transform.hpp"
+#include "bsp/winding_solid.hpp"
+#include "curves/linearization.hpp"
+#include "curves/linearize.hpp"
+#include "kernel/grid.hpp"
 #include "language/builtins.hpp"
 #include "language/curve_values.hpp"
+#include "language/motion_values.hpp"
 #include "language/solid_values.hpp"
 #include "language/spline_values.hpp"
 #include "language/surface_values.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
-#include "kernel/grid.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "mesh/output_rounding.hpp"
 #include "mesh/self_intersection.hpp"
-#include "bsp/from_mesh.hpp"
-#include "bsp/extrude.hpp"
-#include "bsp/hull.hpp"
-#include "bsp/sweep.hpp"
-#include "language/motion_values.hpp"
-#include "curves/linearization.hpp"
-#include "curves/linearize.hpp"
 #include "splines/foot_point.hpp"
 
 namespace sculpt::language {
@@ -257,6 +258,67 @@ std::string latest_solid_global(const Interpreter& interpreter) {
   }
   return latest;
 }
+
+namespace {
+
+/// What snap rounding removed to make an imported mesh fit the grid ("2 short edges contracted, 1
+/// sliver flipped"), or "" when it did nothing but snap and triangulate.
+std::string removed_features(const OutputRoundingReport& r) {
+  std::string out;
+  auto add = [&](int n, const char* one, const char* many) {
+    if (n > 0) out += (out.empty() ? "" : ", ") + std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  add(r.collapsed_edges, "short edge contracted", "short edges contracted");
+  add(r.flipped_edges, "sliver flipped", "slivers flipped");
+  add(r.separated_vertices, "touching vertex moved apart", "touching vertices moved apart");
+  add(r.nudged_vertices, "corner moved off a crossing face", "corners moved off crossing faces");
+  return out;
+}
+
+/// What the winding-number import resolved, from the validation's defects: "12 face pairs
+/// intersect, 3 edges have more than two faces".
+std::string resolved_defects(const ValidationReport& report) {
+  std::string out;
+  auto add = [&](DefectKind kind, const char* what) {
+    const std::size_t n = report.count(kind);
+    if (n == 0) return;
+    out += (out.empty() ? "" : ", ") + std::to_string(n) +
+           (n >= ValidationOptions{}.max_defects_per_kind ? " or more " : " ") + what;
+  };
+  add(DefectKind::SelfIntersection, "face pairs intersect");
+  add(DefectKind::NonManifoldEdge, "edges have more than two faces");
+  add(DefectKind::NonManifoldVertex, "vertices join separate fans of faces");
+  add(DefectKind::InconsistentOrientation, "edges run the same way in both of their faces");
+  add(DefectKind::DegenerateFace, "faces have zero area");
+  add(DefectKind::NonPlanarFace, "faces are not planar");
+  add(DefectKind::SelfCrossingFace, "faces cross themselves");
+  return out;
+}
+
+/// import's solid of a closed mesh that is no clean 2-manifold: where its winding number is positive
+/// (bsp/winding_solid.hpp), with a line that says what was resolved. A mesh that turns out not to be
+/// closed after all is refused with `refusal` (or the library's message, which lists open edges).
+Value winding_import(const Arguments& args, const PolygonMesh& mesh, const std::string& path,
+                     const std::string& resolved, const std::string& refusal) {
+  WindingSolid w;
+  try {
+    w = positive_winding_solid(mesh, {.grid = args.grid()});
+  } catch (const GeometryError& e) {
+    args.fail(refusal.empty() ? path + ": " + e.what() : refusal);
+  }
+  args.out() << "import: " << path << ": " << resolved << ": imported the region of positive winding number";
+  if (w.multiple_cells > 0 || w.negative_cells > 0) {
+    args.out() << " (";
+    if (w.multiple_cells > 0) args.out() << "parts enclosed more than once count once";
+    if (w.multiple_cells > 0 && w.negative_cells > 0) args.out() << "; ";
+    if (w.negative_cells > 0) args.out() << "parts enclosed by inward-facing shells are left out";
+    args.out() << ")";
+  }
+  args.out() << "\n";
+  return solid_value(std::move(w.solid));
+}
+
+}  // namespace
 
 void register_solids(BuiltinTable& table) {
   table.add({.name = "grid",
@@ -537,21 +599,32 @@ void register_solids(BuiltinTable& table) {
                return {};
              }});
   table.add({.name = "import",
-             .signature = "import(\"file.off\")",
-             .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om, .3mf, .glb), checks that it is a closed, oriented, "
-                    "non-self-intersecting 2-manifold, and builds its BSP solid.",
-             .params = {{"file"}},
+             .signature = "import(\"file.off\", strict=false)",
+             .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om, .3mf, .glb) and builds its BSP solid. A closed, "
+                    "oriented 2-manifold that does not intersect itself bounds the solid; a closed mesh whose faces "
+                    "intersect or meet at non-manifold edges gives the region where its winding number is "
+                    "positive, and the import says what it resolved (strict=true refuses such a mesh instead).",
+             .params = {{"file"}, {"strict", false}},
              .run = [](const Arguments& args) -> Value {
                const std::string path = args.file_path(0);
+               const bool strict = args.has(1) && args.boolean(1);
                const PolygonMesh mesh = read_mesh(path);
                const ValidationReport report = check_closed_manifold(mesh);
-               // A shell turned the wrong way (all faces inwards, or a cavity facing outwards) is
-               // closed and manifold but bounds the wrong side: say so in those words.
-               if (!report.ok())
-                 args.fail(path + (report.count(DefectKind::MisorientedShell) == report.defects.size()
-                                       ? ": the faces of a shell are oriented the wrong way: "
-                                       : " is not a closed manifold: ") +
-                           report.summary(3));
+               if (!report.ok()) {
+                 // A shell turned the wrong way (all faces inwards, or a cavity facing outwards) is
+                 // closed and manifold but bounds the wrong side: say so in those words.
+                 const bool misoriented = report.count(DefectKind::MisorientedShell) == report.defects.size();
+                 const std::string refusal = path +
+                                             (misoriented ? ": the faces of a shell are oriented the wrong way: "
+                                                          : " is not a closed manifold: ") +
+                                             report.summary(3);
+                 // An open mesh (or one beyond reading) bounds nothing: refused with what is open.
+                 const bool closed = report.count(DefectKind::OpenEdge) == 0 &&
+                                     report.count(DefectKind::InvalidIndex) == 0 &&
+                                     report.count(DefectKind::NonFiniteCoordinate) == 0;
+                 if (strict || misoriented || !closed) args.fail(refusal);
+                 return winding_import(args, mesh, path, resolved_defects(report), refusal);
+               }
                // Snapping to the grid can make faces meet or fold where the mesh has features
                // below the grid step; such features are collapsed as transforms do (every vertex
                // within 4 grid steps of its place, docs/kernel.md, "What transforms do"), and the
@@ -568,10 +641,22 @@ void register_solids(BuiltinTable& table) {
                const PolygonMesh snapped = round_for_output(
                    mesh, {.precision = OutputPrecision::Grid, .max_feature = 4 * args.grid().step(), .triangles = true,
                           .grid_step = args.grid().step(), .keep_copies = true}, &rounding);
-               if (!rounding.clean) args.fail(path + ": " + snap_error);
-               args.out() << "import: warning: " << path << ": features below 4 grid steps were collapsed to fit the grid (step "
-                          << args.grid().name() << "); vertices moved by up to "
-                          << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";
+               if (!rounding.clean) {
+                 // The snapped mesh still encloses a well-defined region: where its winding number is positive.
+                 if (strict) args.fail(path + ": " + snap_error);
+                 return winding_import(args, mesh, path,
+                                       "features below the grid step (" + args.grid().name() +
+                                           ") meet when its vertices are snapped to the grid",
+                                       "");
+               }
+               // Only warn when a feature was removed: every import snaps each vertex to its grid
+               // point (up to 0.87 steps), and the faces may only have been split into triangles
+               // that fit the grid; that changes nothing the user made.
+               if (const std::string removed = removed_features(rounding); !removed.empty())
+                 args.out() << "import: warning: " << path
+                            << ": features below 4 grid steps were collapsed to fit the grid (step "
+                            << args.grid().name() << "): " << removed << "; vertices moved by up to "
+                            << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";
                return solid_value(from_mesh(snapped, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
              }});
 }
