@@ -887,7 +887,7 @@ TEST(Builtins, SplineErrorsAtTheCall) {
   EXPECT_EQ(first_error_line("s = fit([[0, 0], [1, 1, 0]], controls=4)"),
             "t.bsp:1:9: error: fit: point 2 has 3 coordinates, the first had 2 (all points must be 2D or all 3D)");
   EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, smoothing=-1)"),
-            "t.bsp:1:30: error: fit: argument 'smoothing' must be a finite number >= 0");
+            "t.bsp:1:30: error: fit: argument 'smoothing' must be a finite number >= 0, got -1");
   EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, start=bspline([[0, 0], [1, 1], [2, 0], [3, 1]], closed=true))")
                 .substr(0, 46),
             "t.bsp:1:5: error: fit: invalid input: the star");
