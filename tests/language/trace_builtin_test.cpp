@@ -189,7 +189,7 @@ TEST(TraceBuiltin, BadInputIsAnErrorAtTheArgument) {
             "t.bsp:7:51: error: trace: tol=1e-12 is below the floor of 1e-9 times the box diagonal "
             "(1.7320508075688772e-09 here)");
   EXPECT_EQ(call("ellipsoid, cyl, box=[[0, 0, 0], [1, 1, 1]], tol=-1"),
-            "t.bsp:7:51: error: trace: tol must be a finite number > 0");
+            "t.bsp:7:51: error: trace: argument 'tol' must be a finite number > 0, got -1");
   EXPECT_EQ(call("ellipsoid, cyl, box=[[0, 0, 0], [1, 1, 1]], tol=5"),
             "t.bsp:7:51: error: trace: tol=5 is larger than the box diagonal");
   EXPECT_EQ(call("ellipsoid, cyl, box=[[0, 0, 0], [1, 1, 1]], steps=0"),
