@@ -101,7 +101,8 @@ TEST(Session, Commands) {
   f.session.feed(":help sqtr");
   f.session.feed(":halp");
   EXPECT_EQ(f.out.str(),
-            "r : number = 2\nsqrt(x)\n  Square root of x >= 0.\nno built-in or keyword named 'sqtr'; did you mean 'sqrt'?\n");
+            "r : number = 2\nsqrt(x)\n  Square root of x >= 0.\n    x: a number\nno built-in or keyword named 'sqtr'; "
+            "did you mean 'sqrt'?\n");
   EXPECT_EQ(f.err.str(), "error: unknown command ':halp'; did you mean ':help'? (commands: :help, :load, :vars, :show, :quit)\n");
   EXPECT_FALSE(f.session.feed(":quit"));
 }
