@@ -225,76 +225,10 @@ const Value& Arguments::function(std::string_view name) const {
 
 void Arguments::fail(std::string_view name, const std::string& message) const { fail_at(index(name), message); }
 
-void Arguments::fail(const std::string& message) const {
-  throw ScriptError(call_, builtin_.name + ": " + message);
-}
+void Arguments::fail(const std::string& message) const { throw ScriptError(call_, builtin_.name + ": " + message); }
 
 void Arguments::fail_type(std::string_view name, const std::string& expected) const {
   fail(name, "argument '" + std::string(name) + "' must be " + expected + ", got " + type_name(value(name)));
-}
-
-std::string Arguments::file_path(std::string_view name) const { return file_path(index(name)); }
-
-// ---- positional readers (while the built-in files move to the named ones) ----
-
-const Value& Arguments::value(std::size_t i) const {
-  static const Value none;
-  return bound_[i] ? *bound_[i] : none;
-}
-
-void Arguments::fail(std::size_t i, const std::string& message) const { fail_at(i, message); }
-
-void Arguments::fail_type(std::size_t i, const char* expected) const {
-  fail(i, "argument '" + builtin_.params[i].name + "' must be " + expected + ", got " +
-              type_name(value(i)));
-}
-
-double Arguments::number(std::size_t i) const {
-  if (auto d = value(i).get<double>()) return *d;
-  fail_type(i, "a number");
-}
-
-long long Arguments::integer(std::size_t i, long long low, long long high) const {
-  const double d = number(i);
-  if (d != std::floor(d) || d < static_cast<double>(low) || d > static_cast<double>(high)) {
-    fail(i, "argument '" + builtin_.params[i].name + "' must be a whole number from " +
-                std::to_string(low) + " to " + std::to_string(high) + ", got " + format_number(d));
-  }
-  return static_cast<long long>(d);
-}
-
-bool Arguments::boolean(std::size_t i) const {
-  if (auto b = value(i).get<bool>()) return *b;
-  fail_type(i, "true or false");
-}
-
-const std::string& Arguments::string(std::size_t i) const {
-  if (auto s = value(i).get<std::string>()) return *s;
-  fail_type(i, "a string");
-}
-
-const List& Arguments::list(std::size_t i) const {
-  if (const List* l = value(i).list()) return *l;
-  fail_type(i, "a list");
-}
-
-std::vector<double> Arguments::vector(std::size_t i, std::size_t n) const {
-  const std::string expected = "a vector of " + std::to_string(n) + " numbers";
-  const List* l = value(i).list();
-  if (!l || l->size() != n) fail_type(i, expected.c_str());
-  std::vector<double> out;
-  for (const Value& v : *l) {
-    const double* d = v.get<double>();
-    if (!d) fail_type(i, expected.c_str());
-    out.push_back(*d);
-  }
-  return out;
-}
-
-const Value& Arguments::function(std::size_t i) const {
-  const Value& v = value(i);
-  if (!v.is<std::shared_ptr<const UserFunction>>() && !v.is<const Builtin*>()) fail_type(i, "a function");
-  return v;
 }
 
 Value Arguments::call(const Value& f, std::vector<Value> values) const {
@@ -324,10 +258,10 @@ void Arguments::set_grid(const kernel::Grid& grid) const {
   *settings_.grid = grid;
 }
 
-std::string Arguments::file_path(std::size_t i) const {
-  const std::string& path = string(i);
-  if (!settings_.allow_files) fail(i, "file access is disabled in this session");
-  if (path.empty()) fail(i, "empty file name");
+std::string Arguments::file_path(std::string_view name) const {
+  const std::string& path = string(name);
+  if (!settings_.allow_files) fail(name, "file access is disabled in this session");
+  if (path.empty()) fail(name, "empty file name");
   std::filesystem::path p(path);
   if (p.is_relative() && call_.source && !call_.source->directory.empty()) {
     p = std::filesystem::path(call_.source->directory) / p;

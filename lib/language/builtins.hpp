@@ -193,6 +193,9 @@ inline Param arg(std::string name) { return Param{.name = std::move(name)}; }
 /// Settings of a run that built-ins may consult.
 struct RunSettings {
   std::ostream* out = nullptr;   ///< where print() writes
+  /// Where built-ins write their summaries, notes and warnings (trace, implicit, stats, export):
+  /// standard error, so that standard output is the script's own prints. Null: `out`.
+  std::ostream* err = nullptr;
   /// What show() collected in this interpreter (the interpreter's list); null: show() only checks
   /// its arguments.
   std::vector<ShownPart>* shown = nullptr;
@@ -284,34 +287,13 @@ class Arguments {
   /// Sets it (the built-in grid()). \throw std::logic_error if the run has no grid setting.
   void set_grid(const kernel::Grid& grid) const;
 
+  /// print()'s stream (standard output).
   [[nodiscard]] std::ostream& out() const { return *settings_.out; }
+  /// The stream of summaries, notes and warnings (RunSettings::err).
+  [[nodiscard]] std::ostream& err() const { return settings_.err ? *settings_.err : *settings_.out; }
   /// The run's list of shown parts (RunSettings::shown), or null.
   [[nodiscard]] std::vector<ShownPart>* shown() const { return settings_.shown; }
   [[nodiscard]] const SourceRef& call() const { return call_; }
-
-  // Positional readers (parameter i of the declaration), used while the built-in files move to the
-  // named ones above.
-  [[nodiscard]] bool has(std::size_t i) const { return bound_[i] != nullptr; }
-  [[nodiscard]] const Value& value(std::size_t i) const;
-  [[nodiscard]] double number(std::size_t i) const;
-  [[nodiscard]] long long integer(std::size_t i, long long low, long long high) const;
-  [[nodiscard]] bool boolean(std::size_t i) const;
-  [[nodiscard]] const std::string& string(std::size_t i) const;
-  [[nodiscard]] const List& list(std::size_t i) const;
-  [[nodiscard]] std::vector<double> vector(std::size_t i, std::size_t n) const;
-  [[nodiscard]] const Value& function(std::size_t i) const;
-  template <typename T>
-  [[nodiscard]] const T& object(std::size_t i, const char* what) const {
-    if (const T* o = value(i).object<T>()) return *o;
-    fail_type(i, what);
-  }
-  template <typename T>
-  [[nodiscard]] T* sole_object(std::size_t i) const {
-    return has(i) ? dynamic_cast<T*>(value(i).sole_object()) : nullptr;
-  }
-  [[noreturn]] void fail(std::size_t i, const std::string& message) const;
-  [[noreturn]] void fail_type(std::size_t i, const char* expected) const;
-  [[nodiscard]] std::string file_path(std::size_t i) const;
 
  private:
   /// The position of parameter `name` in the declaration. \throw std::logic_error if none.

@@ -27,8 +27,9 @@ std::optional<curves::Method> method_named(std::string name) {
   return curves::method_from_name(name);
 }
 
-template <typename Key>
-curves::DigitizedCurve points_curve(const Arguments& args, Key i) {
+}  // namespace
+
+curves::DigitizedCurve curve_from_points(const Arguments& args, std::string_view i) {
   DigitizedCurve curve;
   curve.name = "list";
   const List& items = args.list(i);
@@ -53,14 +54,6 @@ curves::DigitizedCurve points_curve(const Arguments& args, Key i) {
   args.charge(curve.points.size());
   return curve;
 }
-
-}  // namespace
-
-curves::DigitizedCurve curve_from_points(const Arguments& args, std::string_view name) {
-  return points_curve(args, name);
-}
-
-curves::DigitizedCurve curve_from_points(const Arguments& args, std::size_t i) { return points_curve(args, i); }
 
 std::string CurveValue::repr() const {
   return "<curve " + (curve.name.empty() ? std::string() : curve.name + ": ") +

@@ -151,7 +151,7 @@ void print_summary(const Arguments& args, const implicit::TraceResult& r, long m
     s << "trace: warning: the step budget of " << max_steps
       << " ran out; the curves may be incomplete (give steps=n for more)\n";
   }
-  args.out() << s.str();
+  args.err() << s.str();
 }
 
 /// The mesher's default work budget (cells; about 10 s on this machine) and the most a script may give.
@@ -226,7 +226,7 @@ Value implicit_solid(const Arguments& args) {
       s << "implicit: warning: '" << function_arg(args, "f").name
         << "' is > 0 everywhere the mesher looked in the box: the solid is empty\n";
     }
-    args.out() << s.str();
+    args.err() << s.str();
   }
   if (r.mesh.faces.empty()) return solid_value(Solid::leaf(false, grid));
   // The mesher guarantees a closed, oriented manifold by construction (the same vertex indices

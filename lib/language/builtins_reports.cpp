@@ -86,7 +86,7 @@ void register_reports(BuiltinTable& table) {
                if (!args.string("file").empty())
                  write_text(args, "file", text);
                else
-                 args.out() << text;
+                 args.err() << text;
                return {};
              }});
   table.add({.name = "rebuild",

@@ -294,7 +294,7 @@ void register_solids(BuiltinTable& table) {
                if (grid != old) {
                  const auto [names, count] = solids_at_other_grids(args, grid, 5);
                  if (count > 0)
-                   args.out() << "note: grid(" << grid.name() << "): " << count << (count == 1 ? " solid" : " solids")
+                   args.err() << "note: grid(" << grid.name() << "): " << count << (count == 1 ? " solid" : " solids")
                               << " (" << names << (count > 5 ? ", ..." : "") << ") made at another grid cannot be "
                               << "combined with solids made from now on\n";
                }
@@ -541,7 +541,7 @@ void register_solids(BuiltinTable& table) {
          }
          const auto& s = args.object<SolidValue>("s");
          if (const std::string warning = export_solid(s, args.file_path("file"), binary); !warning.empty())
-           args.out() << "export: warning: " << warning << "\n";
+           args.err() << "export: warning: " << warning << "\n";
          return {};
        }});
   table.add({.name = "import",
@@ -576,9 +576,10 @@ void register_solids(BuiltinTable& table) {
                    mesh, {.precision = OutputPrecision::Grid, .max_feature = 4 * args.grid().step(), .triangles = true,
                           .grid_step = args.grid().step(), .keep_copies = true}, &rounding);
                if (!rounding.clean) args.fail(path + ": " + snap_error);
-               args.out() << "import: warning: " << path << ": features below 4 grid steps were collapsed to fit the grid (step "
-                          << args.grid().name() << "); vertices moved by up to "
-                          << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";
+               args.err() << "import: warning: " << path
+                          << ": features below 4 grid steps were collapsed to fit the grid (step " << args.grid().name()
+                          << "); vertices moved by up to " << format_number(rounding.max_move / args.grid().step())
+                          << " grid steps\n";
                return solid_value(from_mesh(snapped, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
              }});
 }

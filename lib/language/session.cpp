@@ -150,7 +150,7 @@ std::filesystem::path show_directory_default() {
 Session::Session(std::ostream& out, std::ostream& err, const std::atomic<bool>* interrupt)
     : out_(out),
       err_(err),
-      interpreter_(InterpreterOptions{.out = &out, .interrupt = interrupt}),
+      interpreter_(InterpreterOptions{.out = &out, .err = &err, .interrupt = interrupt}),
       show_dir_(show_directory_default()) {}
 
 bool Session::discard_pending() {
