@@ -4,8 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "curves/digitized_curve.hpp"
 #include "language/builtins.hpp"
@@ -54,6 +57,60 @@ Value point_value(const Eigen::Vector3d& p, int dimension) {
 
 /// The parameter of a spline argument named `name`.
 Param spline_param(std::string name) { return arg(std::move(name)).of<SplineValue>("a spline"); }
+
+/// The same curve run the other way: controls reversed, knots mirrored in the domain (open), or
+/// for a closed curve with uniform break points the controls reversed alone (its basis functions
+/// are translates of one another). Returns null for a closed curve with other break points.
+std::optional<BSpline> reversed(const BSpline& s) {
+  std::vector<Eigen::Vector3d> controls(s.controls().rbegin(), s.controls().rend());
+  const std::vector<double>& k = s.knots();
+  if (s.closed()) {
+    const double step = (k.back() - k.front()) / double(k.size() - 1);
+    for (std::size_t i = 0; i < k.size(); ++i)
+      if (std::abs(k[i] - (k.front() + double(i) * step)) > 1e-12 * std::max(1.0, std::abs(k.back())))
+        return std::nullopt;
+    return BSpline(s.degree(), k, std::move(controls), true, s.dimension());
+  }
+  std::vector<double> knots(k.size());
+  for (std::size_t i = 0; i < k.size(); ++i) knots[i] = k.front() + k.back() - k[k.size() - 1 - i];
+  return BSpline(s.degree(), std::move(knots), std::move(controls), false, s.dimension());
+}
+
+/// A fitted curve in the order of its data (issue 36: a fit ran from the last point to the
+/// first, which turned offset's side): open, it starts nearer the first point than the last;
+/// closed, it turns the way the points do (the sign of the polygon's area in its plane, 2D).
+BSpline in_data_order(BSpline s, const std::vector<Eigen::Vector3d>& points) {
+  if (points.size() < 2) return s;
+  bool backwards = false;
+  if (!s.closed()) {
+    const Eigen::Vector3d start = s.point(s.domain().first);
+    backwards = (start - points.back()).norm() < (start - points.front()).norm();
+  } else if (s.dimension() == 2) {
+    const auto area = [](const std::vector<Eigen::Vector3d>& p) {
+      double a = 0;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const Eigen::Vector3d& u = p[i];
+        const Eigen::Vector3d& v = p[(i + 1) % p.size()];
+        a += u.x() * v.y() - v.x() * u.y();
+      }
+      return a;
+    };
+    backwards = area(points) * area(splines::sample(s, 256)) < 0;
+  }
+  if (!backwards) return s;
+  std::optional<BSpline> r = reversed(s);
+  return r ? std::move(*r) : s;
+}
+
+/// The fit's stopping test, relative change of the mean squared distance below the tolerance,
+/// cannot hold once that distance is rounding noise: a fit of exact data to 3e-11 said "not
+/// converged" (issue 36). A largest distance below 1e-9 of the data's size counts as converged.
+bool at_rounding_floor(const splines::FitResult& r, const std::vector<Eigen::Vector3d>& points) {
+  if (r.history.empty() || points.empty()) return false;
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points) box.extend(p);
+  return r.history.back().max_distance <= 1e-9 * std::max(box.diagonal().norm(), 1e-300);
+}
 
 }  // namespace
 
@@ -142,7 +199,10 @@ void register_splines(BuiltinTable& table) {
          options.smoothing = args.number("smoothing");
          // Each step finds every data point's foot point on every span.
          args.charge(data.points.size() * static_cast<std::uint64_t>(options.iterations + 1));
-         return fitted_value(splines::fit_curve(data.points, options));
+         splines::FitResult r = splines::fit_curve(data.points, options);
+         if (!args.has("start")) r.curve = in_data_order(std::move(r.curve), data.points);
+         r.converged = r.converged || at_rounding_floor(r, data.points);
+         return fitted_value(std::move(r));
        }});
   table.add({.name = "fit_history",
              .doc = "The convergence of the fit (or degree reduction) that made spline s: one row "

@@ -908,5 +908,41 @@ TEST(Builtins, SplineErrorsAtTheCall) {
             "t.bsp:1:5: error: load_spline: /nonexistent/s.spline");
 }
 
+// fit keeps the order of its points (issue 36): an open fit starts at the first point (a clamped
+// spline's first control point is its start), also for the same points given the other way, and a
+// closed 2D fit turns the way its points do. The points of a half circle from (1, 0) to (-1, 0).
+TEST(Builtins, FitKeepsTheOrderOfItsPoints) {
+  const std::string half = "fn at(k) { return [cos(pi * k / 40), sin(pi * k / 40)] }\npts = map(at, range(0, 41))\n";
+  auto v = numbers(half + "c = control_points(fit(pts, controls=6))\nprint(c[0][0], c[0][1])");
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_NEAR(v[0], 1.0, 1e-3);
+  EXPECT_NEAR(v[1], 0.0, 1e-3);
+  v = numbers(half + "c = control_points(fit(reverse(pts), controls=6))\nprint(c[0][0], c[0][1])");
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_NEAR(v[0], -1.0, 1e-3);
+  EXPECT_NEAR(v[1], 0.0, 1e-3);
+  // A circle given clockwise: the closed fit's samples turn clockwise too (negative area).
+  const std::string circle =
+      "fn at(k) { return [cos(-2 * pi * k / 60), sin(-2 * pi * k / 60)] }\npts = map(at, range(0, 60))\n";
+  v = numbers(
+      circle +
+      "p = points(sample(fit(curve(pts, closed=true), controls=8), 100))\n"
+      "a = 0\nfor i in range(0, 100) { a = a + p[i][0] * p[(i + 1) % 100][1] - p[(i + 1) % 100][0] * p[i][1] }\n"
+      "print(a)");
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_LT(v[0], 0.0);
+}
+
+// fit says "converged" when it has fitted exact data: points of a cubic Bezier curve fitted with
+// four control points are matched to rounding, where the relative stopping test cannot hold.
+TEST(Builtins, FitOfExactDataConverges) {
+  const auto r = run_script(
+      "b = bezier([[0, 0], [1, 2], [3, 2], [4, 0]])\ns = fit(sample(b, 60), controls=4)\n"
+      "print(str(s))\nprint(distance(s, sample(b, 60))[0] < 1e-6)");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.out.find("not converged"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("true"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace sculpt::language
