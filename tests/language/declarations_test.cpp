@@ -10,6 +10,7 @@
 #include "implicit/trace.hpp"
 #include "language/builtins.hpp"
 #include "language/session.hpp"
+#include "language/suggest.hpp"
 #include "script_runner.hpp"
 #include "splines/fit.hpp"
 
@@ -126,6 +127,18 @@ TEST(Declarations, HelpListsWhatEachParameterTakes) {
   const std::string sphere = help_text("sphere");
   EXPECT_NE(sphere.find("\n    r: a finite number > 0\n"), std::string::npos) << sphere;
   EXPECT_NE(sphere.find("\n    segments: a whole number from 3 to 100000\n"), std::string::npos) << sphere;
+}
+
+TEST(Suggestions, SharedPrefixOrLettersInOrderRankAboveShortEditDistances) {
+  const std::vector<std::string> names = {"round", "bounds", "box", "cylinder", "cone", "sqrt", "linearize", "line_x"};
+  // Without bounds among the names, "bounds" is two edits from "round" but shares nothing else.
+  EXPECT_EQ(closest_name("bounds", {"round", "box", "sphere"}), std::nullopt);
+  EXPECT_EQ(closest_name("bound", names), "bounds");      // a prefix, though "round" is as near
+  EXPECT_EQ(closest_name("cylnder", names), "cylinder");  // a prefix of three letters
+  EXPECT_EQ(closest_name("linrz", names), "linearize");   // letters in order
+  EXPECT_EQ(closest_name("sqtr", names), "sqrt");         // one swap
+  EXPECT_EQ(closest_name("x", names), std::nullopt);
+  EXPECT_EQ(help_text("bounds").rfind("bounds(x)\n", 0), 0u);
 }
 
 }  // namespace
