@@ -11,6 +11,9 @@
 #include "base/cancel.hpp"
 #include "language/session.hpp"
 
+#include <sys/ioctl.h>
+#include <unistd.h>
+
 #ifdef SCULPT_HAVE_LIBEDIT
 #include <editline/readline.h>
 #include <poll.h>
@@ -21,6 +24,14 @@
 
 namespace sculpt::repl {
 namespace {
+
+/// The terminal's width in columns (`:help` wraps to it, read anew at each entry: the window may
+/// have been resized), or 0 when standard output is not a terminal.
+std::size_t terminal_width() {
+  winsize size{};
+  if (::isatty(STDOUT_FILENO) && ::ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0) return size.ws_col;
+  return 0;
+}
 
 constexpr const char* kPrompt = "sculpt> ";
 constexpr const char* kContinuation = "   ...> ";
@@ -158,6 +169,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup, co
       add_history(text.c_str());
       if (!history.empty()) write_history(history.c_str());
     }
+    session.set_width(terminal_width());
     if (!session.feed(text)) break;
     view.update(errors.take());
   }
@@ -178,6 +190,7 @@ int run_interactive(const std::function<void(language::Interpreter&)>& setup, co
       std::cout << "\n";
       break;
     }
+    session.set_width(terminal_width());
     if (!session.feed(text)) break;
     view.update(errors.take());
   }

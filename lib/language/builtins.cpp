@@ -1,86 +1,234 @@
 #include "language/builtins.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
 namespace sculpt::language {
+namespace {
+
+/// `name(p1, p2=default, ...)` from the declaration (`name` for a constant; a variadic built-in
+/// without parameters: `name(a, b, ...)`).
+std::string make_signature(const Builtin& b) {
+  if (b.constant) return b.name;
+  std::string text = b.name + "(";
+  for (std::size_t i = 0; i < b.params.size(); ++i) text += (i ? ", " : "") + b.params[i].signature();
+  if (b.variadic) text += b.params.empty() ? "a, b, ..." : ", ...";
+  return text + ")";
+}
+
+/// Whole numbers in full ("1000000000", not to_chars' shortest "1e+09"), others as format_number.
+/// Small ones as scientific without the exponent's zeros: tol=1e-3, not 0.001 or 1e-03.
+std::string shown_number(double x) {
+  if (x == std::floor(x) && std::abs(x) < 1e18) return std::to_string(static_cast<long long>(x));
+  if (std::abs(x) >= 0.01) return format_number(x);
+  char buffer[64];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::scientific).ptr;
+  std::string text(buffer, end);
+  const std::size_t e = text.find('e');
+  std::size_t digits = e + 2;  // after "e-"
+  while (digits + 1 < text.size() && text[digits] == '0') text.erase(digits, 1);
+  return text;
+}
+
+}  // namespace
+
+std::string Param::accepted() const {
+  const auto bound = shown_number;
+  switch (kind) {
+    case Kind::Any:
+      return what;
+    case Kind::Number: {
+      std::string text = finite ? "a finite number" : "a number";
+      if (nonzero) text += " other than 0";
+      const bool has_low = low > -std::numeric_limits<double>::infinity();
+      const bool has_high = high < std::numeric_limits<double>::infinity();
+      if (has_low && has_high) return text + " from " + bound(low) + " to " + bound(high);
+      if (has_low) return text + (low_open ? " > " : " >= ") + bound(low);
+      if (has_high) return text + " <= " + bound(high);
+      return text;
+    }
+    case Kind::Integer:
+      return "a whole number from " + bound(low) + " to " + bound(high);
+    case Kind::Bool:
+      return "true or false";
+    case Kind::String:
+      return "a string";
+    case Kind::Items:
+      return "a list";
+    case Kind::Vector:
+      return "a vector of " + std::to_string(length) + " numbers";
+    case Kind::Function:
+      return "a function";
+    case Kind::Object:
+      return what;
+  }
+  return what;
+}
+
+std::string Param::signature() const {
+  std::string text = shown.empty() ? name : shown;
+  if (!shown_default.empty()) return text + "=" + shown_default;
+  if (const double* d = fallback ? fallback->get<double>() : nullptr) return text + "=" + shown_number(*d);
+  if (fallback) return text + "=" + to_repr(*fallback);
+  return text;
+}
 
 Arguments::Arguments(const Builtin& builtin, SourceRef call, std::vector<const Value*> bound,
-                     std::vector<SourceRef> positions, std::vector<Value> rest,
-                     std::vector<SourceRef> rest_positions, const RunSettings& settings)
+                     std::vector<SourceRef> positions, std::vector<Value> rest, std::vector<SourceRef> rest_positions,
+                     const RunSettings& settings)
     : builtin_(builtin),
       call_(std::move(call)),
       bound_(std::move(bound)),
       positions_(std::move(positions)),
       rest_(std::move(rest)),
       rest_positions_(std::move(rest_positions)),
-      settings_(settings) {}
-
-const Value& Arguments::value(std::size_t i) const {
-  static const Value none;
-  return bound_[i] ? *bound_[i] : none;
+      settings_(settings) {
+  for (std::size_t i = 0; i < bound_.size(); ++i) {
+    if (bound_[i]) check(i);
+  }
 }
 
-void Arguments::fail(std::size_t i, const std::string& message) const {
+std::size_t Arguments::index(std::string_view name) const {
+  for (std::size_t i = 0; i < builtin_.params.size(); ++i) {
+    if (builtin_.params[i].name == name) return i;
+  }
+  throw std::logic_error("built-in '" + builtin_.name + "' has no parameter '" + std::string(name) + "'");
+}
+
+const Param& Arguments::param(std::string_view name) const { return builtin_.params[index(name)]; }
+
+void Arguments::check(std::size_t i) const {
+  const Param& p = builtin_.params[i];
+  const Value& v = *bound_[i];
+  const auto refuse = [&] {
+    std::string message = "argument '" + p.name + "' must be " + p.accepted() + ", got ";
+    const double* d = v.get<double>();
+    if (d && (p.kind == Kind::Number || p.kind == Kind::Integer)) {
+      message += format_number(*d);
+    } else {
+      message += type_name(v);
+    }
+    fail_at(i, message);
+  };
+  switch (p.kind) {
+    case Kind::Any:
+      return;
+    case Kind::Number: {
+      const double* d = v.get<double>();
+      if (!d || (p.finite && !std::isfinite(*d)) || (p.nonzero && *d == 0) || *d < p.low || *d > p.high ||
+          (p.low_open && *d == p.low))
+        refuse();
+      return;
+    }
+    case Kind::Integer: {
+      const double* d = v.get<double>();
+      if (!d || *d != std::floor(*d) || *d < p.low || *d > p.high) refuse();
+      return;
+    }
+    case Kind::Bool:
+      if (!v.is<bool>()) refuse();
+      return;
+    case Kind::String:
+      if (!v.is<std::string>()) refuse();
+      return;
+    case Kind::Items:
+      if (!v.list()) refuse();
+      return;
+    case Kind::Vector: {
+      const List* l = v.list();
+      if (!l || l->size() != p.length) refuse();
+      for (const Value& x : *l) {
+        if (!x.is<double>()) refuse();
+      }
+      return;
+    }
+    case Kind::Function:
+      if (!v.is<std::shared_ptr<const UserFunction>>() && !v.is<const Builtin*>()) refuse();
+      return;
+    case Kind::Object:
+      if (!p.accepts(v)) refuse();
+      return;
+  }
+}
+
+void Arguments::fail_at(std::size_t i, const std::string& message) const {
   throw ScriptError(bound_[i] ? positions_[i] : call_, builtin_.name + ": " + message);
 }
 
-void Arguments::fail(const std::string& message) const {
-  throw ScriptError(call_, builtin_.name + ": " + message);
+const Value& Arguments::value(std::string_view name) const {
+  static const Value none;
+  const std::size_t i = index(name);
+  if (bound_[i]) return *bound_[i];
+  const Param& p = builtin_.params[i];
+  return p.fallback ? *p.fallback : none;
 }
 
-void Arguments::fail_type(std::size_t i, const char* expected) const {
-  fail(i, "argument '" + builtin_.params[i].name + "' must be " + expected + ", got " +
-              type_name(value(i)));
+double Arguments::number(std::string_view name) const {
+  if (auto d = value(name).get<double>()) return *d;
+  fail_type(name, "a number");
 }
 
-double Arguments::number(std::size_t i) const {
-  if (auto d = value(i).get<double>()) return *d;
-  fail_type(i, "a number");
-}
-
-long long Arguments::integer(std::size_t i, long long low, long long high) const {
-  const double d = number(i);
-  if (d != std::floor(d) || d < static_cast<double>(low) || d > static_cast<double>(high)) {
-    fail(i, "argument '" + builtin_.params[i].name + "' must be a whole number from " +
-                std::to_string(low) + " to " + std::to_string(high) + ", got " + format_number(d));
+long long Arguments::integer(std::string_view name) const {
+  const Param& p = param(name);
+  const double d = number(name);
+  if (d != std::floor(d) || d < p.low || d > p.high) {
+    fail(name, "argument '" + p.name + "' must be " + p.accepted() + ", got " + format_number(d));
   }
   return static_cast<long long>(d);
 }
 
-bool Arguments::boolean(std::size_t i) const {
-  if (auto b = value(i).get<bool>()) return *b;
-  fail_type(i, "true or false");
+long long Arguments::integer(std::string_view name, long long low, long long high) const {
+  const double d = number(name);
+  if (d != std::floor(d) || d < static_cast<double>(low) || d > static_cast<double>(high)) {
+    fail(name, "argument '" + std::string(name) + "' must be a whole number from " + std::to_string(low) + " to " +
+                   std::to_string(high) + ", got " + format_number(d));
+  }
+  return static_cast<long long>(d);
 }
 
-const std::string& Arguments::string(std::size_t i) const {
-  if (auto s = value(i).get<std::string>()) return *s;
-  fail_type(i, "a string");
+bool Arguments::boolean(std::string_view name) const {
+  if (auto b = value(name).get<bool>()) return *b;
+  fail_type(name, "true or false");
 }
 
-const List& Arguments::list(std::size_t i) const {
-  if (const List* l = value(i).list()) return *l;
-  fail_type(i, "a list");
+const std::string& Arguments::string(std::string_view name) const {
+  if (auto s = value(name).get<std::string>()) return *s;
+  fail_type(name, "a string");
 }
 
-std::vector<double> Arguments::vector(std::size_t i, std::size_t n) const {
+const List& Arguments::list(std::string_view name) const {
+  if (const List* l = value(name).list()) return *l;
+  fail_type(name, "a list");
+}
+
+std::vector<double> Arguments::vector(std::string_view name, std::size_t n) const {
+  if (n == 0) n = param(name).length;
   const std::string expected = "a vector of " + std::to_string(n) + " numbers";
-  const List* l = value(i).list();
-  if (!l || l->size() != n) fail_type(i, expected.c_str());
+  const List* l = value(name).list();
+  if (!l || l->size() != n) fail_type(name, expected);
   std::vector<double> out;
   for (const Value& v : *l) {
     const double* d = v.get<double>();
-    if (!d) fail_type(i, expected.c_str());
+    if (!d) fail_type(name, expected);
     out.push_back(*d);
   }
   return out;
 }
 
-const Value& Arguments::function(std::size_t i) const {
-  const Value& v = value(i);
-  if (!v.is<std::shared_ptr<const UserFunction>>() && !v.is<const Builtin*>()) fail_type(i, "a function");
+const Value& Arguments::function(std::string_view name) const {
+  const Value& v = value(name);
+  if (!v.is<std::shared_ptr<const UserFunction>>() && !v.is<const Builtin*>()) fail_type(name, "a function");
   return v;
+}
+
+void Arguments::fail(std::string_view name, const std::string& message) const { fail_at(index(name), message); }
+
+void Arguments::fail(const std::string& message) const { throw ScriptError(call_, builtin_.name + ": " + message); }
+
+void Arguments::fail_type(std::string_view name, const std::string& expected) const {
+  fail(name, "argument '" + std::string(name) + "' must be " + expected + ", got " + type_name(value(name)));
 }
 
 Value Arguments::call(const Value& f, std::vector<Value> values) const {
@@ -110,10 +258,10 @@ void Arguments::set_grid(const kernel::Grid& grid) const {
   *settings_.grid = grid;
 }
 
-std::string Arguments::file_path(std::size_t i) const {
-  const std::string& path = string(i);
-  if (!settings_.allow_files) fail(i, "file access is disabled in this session");
-  if (path.empty()) fail(i, "empty file name");
+std::string Arguments::file_path(std::string_view name) const {
+  const std::string& path = string(name);
+  if (!settings_.allow_files) fail(name, "file access is disabled in this session");
+  if (path.empty()) fail(name, "empty file name");
   std::filesystem::path p(path);
   if (p.is_relative() && call_.source && !call_.source->directory.empty()) {
     p = std::filesystem::path(call_.source->directory) / p;
@@ -123,6 +271,7 @@ std::string Arguments::file_path(std::size_t i) const {
 
 void BuiltinTable::add(Builtin builtin) {
   builtin.area = area_;
+  if (builtin.signature.empty()) builtin.signature = make_signature(builtin);
   const std::string name = builtin.name;
   if (!entries_.emplace(name, std::move(builtin)).second) {
     throw std::logic_error("built-in '" + name + "' registered twice");

@@ -32,13 +32,13 @@ Value box_value(const Eigen::AlignedBox3d& box, int dimension) {
 }
 
 Value bounds(const Arguments& args) {
-  const Value& x = args.value(0);
+  const Value& x = args.value("x");
   if (const auto* s = x.object<SolidValue>()) {
-    if (s->solid.is_empty()) args.fail(0, "the solid is empty: it has no bounding box");
+    if (s->solid.is_empty()) args.fail("x", "the solid is empty: it has no bounding box");
     return box_value(bounding_box(s->solid), 3);
   }
   if (const auto* m = x.object<MeshValue>()) {
-    if (m->mesh.faces.empty()) args.fail(0, "the mesh has no faces: it has no bounding box");
+    if (m->mesh.faces.empty()) args.fail("x", "the mesh has no faces: it has no bounding box");
     return box_value(mesh_bounding_box(m->mesh), 3);
   }
   // A B-spline lies in the convex hull of its control points (a surface likewise).
@@ -50,26 +50,26 @@ Value bounds(const Arguments& args) {
   if (const auto* cv = x.object<CurveValue>()) {
     c = cv->curve;
   } else if (x.list()) {
-    c = curve_from_points(args, 0);
+    c = curve_from_points(args, "x");
   } else {
-    args.fail_type(0, "a solid, a mesh, a curve, a linearization, a spline, a surface or a list of points");
+    args.fail_type("x", "a solid, a mesh, a curve, a linearization, a spline, a surface or a list of points");
   }
-  if (c.points.empty()) args.fail(0, "no points: no bounding box");
+  if (c.points.empty()) args.fail("x", "no points: no bounding box");
   return box_value(box_of(c.points), c.dimension);
 }
 
 }  // namespace
 
 void register_bounds(BuiltinTable& table) {
-  table.add({.name = "bounds",
-             .signature = "bounds(x)",
-             .doc = "The axis-aligned bounding box [[xmin, ymin, zmin], [xmax, ymax, zmax]] of x: a solid (its "
-                    "boundary vertices), a mesh, a curve, a linearization, a list of points, a spline or a "
-                    "surface (the box of the control points, which contains the curve or surface). Plane (2D) "
-                    "curves, splines and point lists give [[xmin, ymin], [xmax, ymax]]. The empty solid, a mesh "
-                    "without faces and an empty list are errors.",
-             .params = {{"x"}},
-             .run = bounds});
+  table.add(
+      {.name = "bounds",
+       .doc = "The axis-aligned bounding box [[xmin, ymin, zmin], [xmax, ymax, zmax]] of x: a solid (its "
+              "boundary vertices), a mesh, a curve, a linearization, a list of points, a spline or a "
+              "surface (the box of the control points, which contains the curve or surface). Plane (2D) "
+              "curves, splines and point lists give [[xmin, ymin], [xmax, ymax]]. The empty solid, a mesh "
+              "without faces and an empty list are errors.",
+       .params = {arg("x").any("a solid, a mesh, a curve, a linearization, a spline, a surface or a list of points")},
+       .run = bounds});
 }
 
 }  // namespace sculpt::language

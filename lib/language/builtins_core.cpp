@@ -31,7 +31,6 @@ Value extreme(const Arguments& args, bool want_max) {
 
 void register_core(BuiltinTable& table) {
   table.add({.name = "print",
-             .signature = "print(a, b, ...)",
              .doc = "Writes its arguments separated by spaces and a newline to standard output. "
                     "Numbers print with enough digits to read back exactly.",
              .variadic = true,
@@ -42,34 +41,30 @@ void register_core(BuiltinTable& table) {
                return {};
              }});
   table.add({.name = "str",
-             .signature = "str(x)",
              .doc = "x as text, the way print shows it.",
-             .params = {{"x"}},
-             .run = [](const Arguments& args) -> Value { return to_display(args.value(0)); }});
+             .params = {arg("x")},
+             .run = [](const Arguments& args) -> Value { return to_display(args.value("x")); }});
   table.add({.name = "type",
-             .signature = "type(x)",
              .doc = "The type of x as a string: \"number\", \"string\", \"bool\", \"list\", \"function\", "
                     "\"none\", or a library type such as \"solid\" or \"curve\".",
-             .params = {{"x"}},
-             .run = [](const Arguments& args) -> Value { return type_name(args.value(0)); }});
+             .params = {arg("x")},
+             .run = [](const Arguments& args) -> Value { return type_name(args.value("x")); }});
   table.add({.name = "len",
-             .signature = "len(x)",
              .doc = "Number of items of a list or bytes of a string.",
-             .params = {{"x"}},
+             .params = {arg("x").any("a list or a string")},
              .run = [](const Arguments& args) -> Value {
-               if (auto s = args.value(0).get<std::string>()) return static_cast<double>(s->size());
-               return static_cast<double>(args.list(0).size());
+               if (auto s = args.value("x").get<std::string>()) return static_cast<double>(s->size());
+               return static_cast<double>(args.list("x").size());
              }});
   table.add({.name = "range",
-             .signature = "range(a, b, step=1)",
              .doc = "The list a, a+step, ... up to b excluded (down to b when step < 0). "
                     "At most 10^7 items.",
-             .params = {{"a"}, {"b"}, {"step", false}},
+             .params = {arg("a").number(), arg("b").number(), arg("step").number().defaults(1.0)},
              .run = [](const Arguments& args) -> Value {
-               const double a = args.number(0);
-               const double b = args.number(1);
-               const double step = args.has(2) ? args.number(2) : 1.0;
-               if (step == 0) args.fail(2, "step must not be 0");
+               const double a = args.number("a");
+               const double b = args.number("b");
+               const double step = args.number("step");
+               if (step == 0) args.fail("step", "step must not be 0");
                const double count = std::max(0.0, std::ceil((b - a) / step));
                if (!(count <= kMaxRangeItems)) args.fail("more than 10^7 items");
                args.charge(static_cast<std::uint64_t>(count));
@@ -81,93 +76,88 @@ void register_core(BuiltinTable& table) {
                return items;
              }});
   table.add({.name = "append",
-             .signature = "append(xs, x)",
              .doc = "A new list: the items of xs followed by x.",
-             .params = {{"xs"}, {"x"}},
+             .params = {arg("xs").list(), arg("x")},
              .run = [](const Arguments& args) -> Value {
-               args.charge(args.list(0).size());
-               List items = args.list(0);
-               items.push_back(args.value(1));
+               args.charge(args.list("xs").size());
+               List items = args.list("xs");
+               items.push_back(args.value("x"));
                return items;
              }});
   table.add({.name = "concat",
-             .signature = "concat(xs, ys)",
              .doc = "A new list: the items of xs followed by the items of ys.",
-             .params = {{"xs"}, {"ys"}},
+             .params = {arg("xs").list(), arg("ys").list()},
              .run = [](const Arguments& args) -> Value {
-               args.charge(args.list(0).size() + args.list(1).size());
-               List items = args.list(0);
-               const List& more = args.list(1);
+               args.charge(args.list("xs").size() + args.list("ys").size());
+               List items = args.list("xs");
+               const List& more = args.list("ys");
                items.insert(items.end(), more.begin(), more.end());
                return items;
              }});
   table.add({.name = "min",
-             .signature = "min(a, b, ...)",
              .doc = "The smallest of its numbers (or of the numbers of one list).",
              .variadic = true,
              .run = [](const Arguments& args) { return extreme(args, false); }});
   table.add({.name = "max",
-             .signature = "max(a, b, ...)",
              .doc = "The largest of its numbers (or of the numbers of one list).",
              .variadic = true,
              .run = [](const Arguments& args) { return extreme(args, true); }});
   for (const MathFunction& f : math_functions()) {
-    std::vector<Param> params{{f.params[0]}};
-    if (f.arity == 2) params.push_back({f.params[1]});
-    table.add({.name = f.name,
-               .signature = f.signature,
-               .doc = f.doc,
-               .params = std::move(params),
-               .run = [&f](const Arguments& args) -> Value {
-                 const double a = args.number(0);
-                 const double b = f.arity == 2 ? args.number(1) : 0.0;
+    std::vector<Param> params{arg(f.params[0]).number()};
+    if (f.arity == 2) params.push_back(arg(f.params[1]).number());
+    table.add({.name = f.name, .doc = f.doc, .params = std::move(params), .run = [&f](const Arguments& args) -> Value {
+                 const double a = args.number(f.params[0]);
+                 const double b = f.arity == 2 ? args.number(f.params[1]) : 0.0;
                  std::string error;
                  const double v = evaluate(f, a, b, error);
                  if (error.empty()) return v;
-                 if (f.arity == 1) args.fail(0, error);
+                 if (f.arity == 1) args.fail(f.params[0], error);
                  args.fail(error);
                }});
   }
-  table.add({.name = "pow", .signature = "pow(x, y)", .doc = "x to the power y (a finite result or an error).",
-             .params = {{"x"}, {"y"}},
+  table.add({.name = "pow",
+             .doc = "x to the power y (a finite result or an error).",
+             .params = {arg("x").number(), arg("y").number()},
              .run = [](const Arguments& args) -> Value {
-               const double r = std::pow(args.number(0), args.number(1));
+               const double r = std::pow(args.number("x"), args.number("y"));
                if (!std::isfinite(r)) args.fail("result is not a finite number");
                return r;
              }});
-  table.add({.name = "pi", .signature = "pi", .doc = "The constant 3.141592653589793.",
-             .constant = Value(3.14159265358979323846)});
-  table.add({.name = "dot", .signature = "dot(u, v)", .doc = "Dot product of two 3-vectors.",
-             .params = {{"u"}, {"v"}},
+  table.add({.name = "pi", .doc = "The constant 3.141592653589793.", .constant = Value(3.14159265358979323846)});
+  table.add({.name = "dot",
+             .doc = "Dot product of two 3-vectors.",
+             .params = {arg("u").vector(3), arg("v").vector(3)},
              .run = [](const Arguments& args) -> Value {
-               const auto u = args.vector(0, 3);
-               const auto v = args.vector(1, 3);
+               const auto u = args.vector("u");
+               const auto v = args.vector("v");
                return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
              }});
-  table.add({.name = "cross", .signature = "cross(u, v)", .doc = "Cross product of two 3-vectors.",
-             .params = {{"u"}, {"v"}},
+  table.add({.name = "cross",
+             .doc = "Cross product of two 3-vectors.",
+             .params = {arg("u").vector(3), arg("v").vector(3)},
              .run = [](const Arguments& args) -> Value {
-               const auto u = args.vector(0, 3);
-               const auto v = args.vector(1, 3);
+               const auto u = args.vector("u");
+               const auto v = args.vector("v");
                return List{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
              }});
-  table.add({.name = "norm", .signature = "norm(v)", .doc = "Euclidean length of a 3-vector.",
-             .params = {{"v"}},
+  table.add({.name = "norm",
+             .doc = "Euclidean length of a 3-vector.",
+             .params = {arg("v").vector(3)},
              .run = [](const Arguments& args) -> Value {
-               const auto v = args.vector(0, 3);
+               const auto v = args.vector("v");
                return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
              }});
-  table.add({.name = "clock", .signature = "clock()",
+  table.add({.name = "clock",
              .doc = "Seconds from a monotonic clock (only differences mean something), for timing inside scripts.",
              .run = [](const Arguments&) -> Value {
                using namespace std::chrono;
                return duration<double>(steady_clock::now().time_since_epoch()).count();
              }});
-  table.add({.name = "assert", .signature = "assert(condition, message=\"assertion failed\")",
+  table.add({.name = "assert",
              .doc = "Stops the script with an error at the call when condition is false.",
-             .params = {{"condition"}, {"message", false}},
+             .params = {arg("condition").boolean(), arg("message").string().defaults("assertion failed")},
              .run = [](const Arguments& args) -> Value {
-               if (!args.boolean(0)) args.fail(args.has(1) ? args.string(1) : std::string("assertion failed"));
+               if (!args.boolean("condition")) args.fail(args.string("message"));
                return {};
              }});
 }

@@ -29,7 +29,7 @@ std::optional<curves::Method> method_named(std::string name) {
 
 }  // namespace
 
-curves::DigitizedCurve curve_from_points(const Arguments& args, std::size_t i) {
+curves::DigitizedCurve curve_from_points(const Arguments& args, std::string_view i) {
   DigitizedCurve curve;
   curve.name = "list";
   const List& items = args.list(i);
@@ -68,101 +68,100 @@ std::string LinearizationValue::repr() const {
 
 void register_curves(BuiltinTable& table) {
   table.add({.name = "curve",
-             .signature = "curve(\"file\" or points, closed=false)",
              .doc = "A digitized curve: loaded from a file (one point per line, `x y` or `x y z`, "
                     "`#` comments; a relative path is relative to the script's folder), or made from "
                     "a list of [x, y] or [x, y, z] points (all of one kind). closed=true joins the "
                     "last point back to the first.",
-             .params = {{"source"}, {"closed", false}},
+             .params = {arg("source").any("a file name or a list of points").shown_as("\"file\" or points"),
+                        arg("closed").boolean().defaults(false)},
              .run = [](const Arguments& args) {
                DigitizedCurve curve;
-               if (args.value(0).get<std::string>()) {
-                 curve = curves::load_curve(args.file_path(0));
-               } else if (args.value(0).list()) {
-                 curve = curve_from_points(args, 0);
+               if (args.value("source").get<std::string>()) {
+                 curve = curves::load_curve(args.file_path("source"));
+               } else if (args.value("source").list()) {
+                 curve = curve_from_points(args, "source");
                } else {
-                 args.fail_type(0, "a file name or a list of points");
+                 args.fail_type("source", "a file name or a list of points");
                }
-               if (args.has(1)) curve.closed = args.boolean(1);
+               if (args.has("closed")) curve.closed = args.boolean("closed");
                return make_curve(std::move(curve));
              }});
 
   for (curves::AppendixBCurve which : curves::all_appendix_b_curves()) {
     const std::string name = curves::appendix_b_curve_name(which);
     table.add({.name = name,
-               .signature = name + "(points=" + std::to_string(curves::paper_point_count(which)) +
-                            ", noise=0, seed=1)",
-               .doc = "The '" + name + "' test curve of Appendix B sampled at `points` points "
+               .doc = "The '" + name +
+                      "' test curve of Appendix B sampled at `points` points "
                       "(default: the paper's count), with optional seeded Gaussian noise.",
-               .params = {{"points", false}, {"noise", false}, {"seed", false}},
+               .params = {arg("points").integer(2, 10'000'000).defaults(double(curves::paper_point_count(which))),
+                          arg("noise").number().defaults(curves::AppendixBCurveOptions{}.noise),
+                          arg("seed").integer(0, 0x1p53).defaults(double(curves::AppendixBCurveOptions{}.seed))},
                .run = [which](const Arguments& args) {
                  curves::AppendixBCurveOptions options;
-                 if (args.has(0)) options.points = static_cast<int>(args.integer(0, 2, 10'000'000));
-                 if (args.has(1)) options.noise = args.number(1);
-                 if (args.has(2)) options.seed = static_cast<std::uint64_t>(args.integer(2, 0, 1LL << 53));
+                 options.points = static_cast<int>(args.integer("points"));
+                 options.noise = args.number("noise");
+                 options.seed = static_cast<std::uint64_t>(args.integer("seed"));
                  return make_curve(curves::make_appendix_b_curve(which, options));
                }});
   }
 
   table.add({.name = "linearize",
-             .signature = "linearize(c, m, method=\"optimal\", alpha=0.5, tol=e)",
              .doc = "Piecewise linear approximation of curve c with exactly m segments (optimal, "
                     "i.e. least maximum error, by default), or with tol=e the fewest segments whose "
                     "error is at most e. method: \"optimal\", \"dynamic\", \"length\", \"image\", "
                     "\"init\", \"iter\", \"fast\", \"mincount\", \"center\", \"douglas_peucker\"; "
                     "alpha in [0, 1] weighs chord length against spherical image (init, iter).",
-             .params = {{"c"}, {"m", false}, {"method", false}, {"alpha", false}, {"tol", false}},
+             .params = {arg("c").of<CurveValue>("a curve"), arg("m").integer(1, 1'000'000'000).optional(),
+                        arg("method").string().optional("\"optimal\""),
+                        arg("alpha").between(0, 1).defaults(curves::LinearizeOptions{}.alpha),
+                        arg("tol").number().optional("e")},
              .run = [](const Arguments& args) -> Value {
-               const auto& c = args.object<CurveValue>(0, "a curve");
+               const auto& c = args.object<CurveValue>("c");
                curves::LinearizeOptions options;
-               if (args.has(1) == args.has(4)) args.fail("give either m (segments) or tol=, not both or neither");
-               if (args.has(1)) options.segments = static_cast<int>(args.integer(1, 1, 1'000'000'000));
-               if (args.has(4)) options.tolerance = args.number(4);
-               if (args.has(2)) {
-                 auto method = method_named(args.string(2));
-                 if (!method) args.fail(2, "unknown method \"" + args.string(2) + "\"");
+               if (args.has("m") == args.has("tol")) args.fail("give either m (segments) or tol=, not both or neither");
+               if (args.has("m")) options.segments = static_cast<int>(args.integer("m"));
+               if (args.has("tol")) options.tolerance = args.number("tol");
+               if (args.has("method")) {
+                 auto method = method_named(args.string("method"));
+                 if (!method) args.fail("method", "unknown method \"" + args.string("method") + "\"");
                  options.method = *method;
                }
-               if (args.has(3)) options.alpha = args.number(3);
+               options.alpha = args.number("alpha");
                auto value = std::make_shared<LinearizationValue>();
-               value->curve = std::static_pointer_cast<const CurveValue>(
-                   *args.value(0).get<std::shared_ptr<const Object>>());
+               value->curve =
+                   std::static_pointer_cast<const CurveValue>(*args.value("c").get<std::shared_ptr<const Object>>());
                value->result = curves::linearize(c.curve, options);
                return Value(std::shared_ptr<const Object>(std::move(value)));
              }});
 
   table.add({.name = "error",
-             .signature = "error(p)",
              .doc = "The maximum segment error of linearization p (L-infinity distance of the curve "
                     "points from their segments).",
-             .params = {{"p"}},
-             .run = [](const Arguments& args) -> Value {
-               return args.object<LinearizationValue>(0, "a linearization").result.error;
-             }});
+             .params = {arg("p").of<LinearizationValue>("a linearization")},
+             .run = [](const Arguments& args) -> Value { return args.object<LinearizationValue>("p").result.error; }});
   table.add({.name = "indices",
-             .signature = "indices(p)",
              .doc = "The indices of the curve points where linearization p's segments start and end "
                     "(for a closed curve the last index, the point count, stands for point 0).",
-             .params = {{"p"}},
+             .params = {arg("p").of<LinearizationValue>("a linearization")},
              .run = [](const Arguments& args) -> Value {
                List out;
-               for (int i : args.object<LinearizationValue>(0, "a linearization").result.indices) {
+               for (int i : args.object<LinearizationValue>("p").result.indices) {
                  out.emplace_back(static_cast<double>(i));
                }
                return out;
              }});
   table.add({.name = "points",
-             .signature = "points(x)",
              .doc = "The vertices of linearization x as a list of [x, y, z], or the points of curve x.",
-             .params = {{"x"}},
+             .params = {arg("x").any("a linearization or a curve")},
              .run = [](const Arguments& args) -> Value {
                List out;
-               if (const auto* c = args.value(0).object<CurveValue>()) {
+               if (const auto* c = args.value("x").object<CurveValue>()) {
                  for (const auto& p : c->curve.points) out.push_back(point_list(p));
                  return out;
                }
-               const auto& la = args.object<LinearizationValue>(0, "a linearization or a curve");
-               for (const auto& p : curves::linearization_points(la.curve->curve, la.result)) out.push_back(point_list(p));
+               const auto& la = args.object<LinearizationValue>("x");
+               for (const auto& p : curves::linearization_points(la.curve->curve, la.result))
+                 out.push_back(point_list(p));
                return out;
              }});
 }

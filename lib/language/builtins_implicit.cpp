@@ -29,23 +29,19 @@ namespace {
 constexpr double kMinRelativeTolerance = 1e-9;
 /// Largest step budget a script may give (about 150 s of tracing).
 constexpr long long kMaxSteps = 10'000'000;
-constexpr long kDefaultSteps = 200'000;
-
-// Parameter indices shared by trace and trace_info.
-enum : std::size_t { kF, kG, kBox, kTol, kSteps, kQuiet };
 
 std::string point_text(const Eigen::Vector3d& p) {
   return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) + ")";
 }
 
-const UserFunction& function_arg(const Arguments& args, std::size_t i) {
+const UserFunction& function_arg(const Arguments& args, std::string_view i) {
   if (const auto* f = args.value(i).get<std::shared_ptr<const UserFunction>>()) return **f;
   args.fail_type(i, "a function fn f(x, y, z) or fn f(p)");
 }
 
 /// The script function of argument i compiled into an expression; a construct outside the
 /// compiled subset is an error at the construct, with a note at this call.
-implicit::Expression compiled_arg(const Arguments& args, std::size_t i) {
+implicit::Expression compiled_arg(const Arguments& args, std::string_view i) {
   const UserFunction& f = function_arg(args, i);
   ImplicitCompileOptions options;
   options.global = [&args](const std::string& name) { return args.global(name); };
@@ -57,7 +53,7 @@ implicit::Expression compiled_arg(const Arguments& args, std::size_t i) {
   }
 }
 
-implicit::Box box_arg(const Arguments& args, std::size_t i) {
+implicit::Box box_arg(const Arguments& args, std::string_view i) {
   const List& corners = args.list(i);
   implicit::Box box;
   if (corners.size() != 2) args.fail(i, "box must be [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
@@ -81,38 +77,37 @@ implicit::Box box_arg(const Arguments& args, std::size_t i) {
 
 implicit::TraceOptions options_arg(const Arguments& args) {
   implicit::TraceOptions options;
-  if (!args.has(kBox)) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region to trace in");
-  options.box = box_arg(args, kBox);
+  if (!args.has("box")) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region to trace in");
+  options.box = box_arg(args, "box");
   const double diagonal = (options.box.hi - options.box.lo).norm();
-  if (args.has(kTol)) {
-    const double tol = args.number(kTol);
-    if (!(tol > 0) || !std::isfinite(tol)) args.fail(kTol, "tol must be a finite number > 0");
+  if (args.has("tol")) {
+    const double tol = args.number("tol");
     if (tol < kMinRelativeTolerance * diagonal) {
-      args.fail(kTol, "tol=" + format_number(tol) + " is below the floor of 1e-9 times the box diagonal (" +
-                          format_number(kMinRelativeTolerance * diagonal) + " here)");
+      args.fail("tol", "tol=" + format_number(tol) + " is below the floor of 1e-9 times the box diagonal (" +
+                           format_number(kMinRelativeTolerance * diagonal) + " here)");
     }
-    if (tol > diagonal) args.fail(kTol, "tol=" + format_number(tol) + " is larger than the box diagonal");
+    if (tol > diagonal) args.fail("tol", "tol=" + format_number(tol) + " is larger than the box diagonal");
     options.tolerance = tol;
   }
-  options.max_steps = args.has(kSteps) ? static_cast<long>(args.integer(kSteps, 1, kMaxSteps)) : kDefaultSteps;
+  options.max_steps = static_cast<long>(args.integer("steps"));
   return options;
 }
 
 /// Traces f = g = 0; a point where f or g is not finite is an error at that function's argument.
 implicit::TraceResult run_trace(const Arguments& args) {
-  const implicit::Expression f = compiled_arg(args, kF);
-  const implicit::Expression g = compiled_arg(args, kG);
+  const implicit::Expression f = compiled_arg(args, "f");
+  const implicit::Expression g = compiled_arg(args, "g");
   const implicit::TraceOptions options = options_arg(args);
   implicit::TraceResult result;
   try {
     result = implicit::trace(f, g, options);
   } catch (const implicit::NonFiniteValue& e) {
     // Which of the two: evaluate both where the tracer stopped.
-    std::size_t culprit = kG;
+    std::string_view culprit = "g";
     try {
       (void)f.value_gradient(e.point());
     } catch (const implicit::NonFiniteValue&) {
-      culprit = kF;
+      culprit = "f";
     }
     const std::string name = function_arg(args, culprit).name;
     args.fail(culprit, "'" + name + "' (or its gradient) is not finite at " + point_text(e.point()) +
@@ -156,11 +151,9 @@ void print_summary(const Arguments& args, const implicit::TraceResult& r, long m
     s << "trace: warning: the step budget of " << max_steps
       << " ran out; the curves may be incomplete (give steps=n for more)\n";
   }
-  args.out() << s.str();
+  args.err() << s.str();
 }
 
-// Parameters of implicit().
-enum : std::size_t { kSolidF, kSolidBox, kSolidTol, kSolidCells, kSolidQuiet };
 /// The mesher's default work budget (cells; about 10 s on this machine) and the most a script may give.
 constexpr long kDefaultCells = 2'000'000;
 constexpr long long kMaxCells = 50'000'000;
@@ -183,27 +176,27 @@ FromMeshOptions from_mesh_options(const kernel::Grid& grid) {
 /// implicit(f, box, tol): the solid {f <= 0} inside the box, meshed by implicit::polygonize and
 /// built into a BSP tree from its boundary.
 Value implicit_solid(const Arguments& args) {
-  const implicit::Expression f = compiled_arg(args, kSolidF);
-  if (!args.has(kSolidBox)) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region of the solid");
-  implicit::PolygonizeOptions options{.box = box_arg(args, kSolidBox)};
+  const implicit::Expression f = compiled_arg(args, "f");
+  if (!args.has("box")) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region of the solid");
+  implicit::PolygonizeOptions options{.box = box_arg(args, "box")};
   const double diagonal = (options.box.hi - options.box.lo).norm();
-  options.tolerance = args.has(kSolidTol) ? args.number(kSolidTol) : 1e-3;
-  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) args.fail(kSolidTol, "tol must be a finite number > 0");
+  options.tolerance = args.number("tol");
   const kernel::Grid grid = args.grid();
   const double floor = kMinToleranceSteps * grid.step();
   if (options.tolerance < floor) {
-    args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is below 4 steps of the exact kernel's grid (" +
-                             format_number(floor) + "): the solid's vertices are snapped to that grid");
+    args.fail("tol", "tol=" + format_number(options.tolerance) + " is below 4 steps of the exact kernel's grid (" +
+                         format_number(floor) + "): the solid's vertices are snapped to that grid");
   }
   const double longest = (options.box.hi - options.box.lo).maxCoeff();
   if (options.tolerance < 4e-6 * longest) {
-    args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is below 4e-6 of the box's longest side (" +
-                             format_number(4e-6 * longest) + "), the mesher's finest cells");
+    args.fail("tol", "tol=" + format_number(options.tolerance) + " is below 4e-6 of the box's longest side (" +
+                         format_number(4e-6 * longest) + "), the mesher's finest cells");
   }
-  if (options.tolerance > diagonal) args.fail(kSolidTol, "tol=" + format_number(options.tolerance) + " is larger than the box diagonal");
+  if (options.tolerance > diagonal)
+    args.fail("tol", "tol=" + format_number(options.tolerance) + " is larger than the box diagonal");
   // Slivers below a few grid steps could turn over when the vertices are snapped to the grid.
   options.min_height = kMinHeightSteps * grid.step();
-  options.max_cells = args.has(kSolidCells) ? static_cast<long>(args.integer(kSolidCells, 1, kMaxCells)) : kDefaultCells;
+  options.max_cells = static_cast<long>(args.integer("cells"));
   // The solid is cut from the mesh with its vertices snapped to the kernel's grid (from_mesh), so
   // that copy is what must not intersect itself: polygonize tests it instead of the simplified
   // mesh itself (one exact test instead of two), and keeps its marched mesh if it fails.
@@ -218,22 +211,22 @@ Value implicit_solid(const Arguments& args) {
   try {
     r = implicit::polygonize(f, options);
   } catch (const implicit::NonFiniteValue& e) {
-    args.fail(kSolidF, "'" + function_arg(args, kSolidF).name + "' is not finite at " + point_text(e.point()) +
-                           " (a division by zero, the square root of a negative number or an overflow); give a box "
-                           "where it is defined");
+    args.fail("f", "'" + function_arg(args, "f").name + "' is not finite at " + point_text(e.point()) +
+                       " (a division by zero, the square root of a negative number or an overflow); give a box "
+                       "where it is defined");
   } catch (const GeometryError& e) {
-    args.fail(std::string(e.what()) + (args.has(kSolidCells) ? "" : " (give cells=n)"));
+    args.fail(std::string(e.what()) + (args.has("cells") ? "" : " (give cells=n)"));
   }
   args.charge(static_cast<std::uint64_t>(r.cells + r.search_cells));
-  const bool quiet = args.has(kSolidQuiet) && args.boolean(kSolidQuiet);
+  const bool quiet = args.boolean("quiet");
   if (!quiet) {
     std::ostringstream s;
     s << "implicit: " << r.mesh.faces.size() << " triangles, " << r.leaves << " cells, depth " << r.max_level << "\n";
     if (r.mesh.faces.empty()) {
-      s << "implicit: warning: '" << function_arg(args, kSolidF).name
+      s << "implicit: warning: '" << function_arg(args, "f").name
         << "' is > 0 everywhere the mesher looked in the box: the solid is empty\n";
     }
-    args.out() << s.str();
+    args.err() << s.str();
   }
   if (r.mesh.faces.empty()) return solid_value(Solid::leaf(false, grid));
   // The mesher guarantees a closed, oriented manifold by construction (the same vertex indices
@@ -255,37 +248,31 @@ Value implicit_solid(const Arguments& args) {
   return Value(std::shared_ptr<const Object>(std::move(value)));
 }
 
-// Parameters of patch().
-enum : std::size_t { kPatchF, kPatchCorners, kPatchDepth, kPatchTol };
-
 /// patch(f, corners, depth): the paper's adaptive polygonization of a triangular patch of f = 0
 /// (sec. 5.2) as a mesh value.
 Value surface_patch(const Arguments& args) {
-  const implicit::Expression f = compiled_arg(args, kPatchF);
-  if (!args.has(kPatchCorners)) args.fail("give corners=[P0, P1, P2], three points on f = 0");
-  const List& corners = args.list(kPatchCorners);
-  if (corners.size() != 3) args.fail(kPatchCorners, "corners must be three points [P0, P1, P2]");
+  const implicit::Expression f = compiled_arg(args, "f");
+  if (!args.has("corners")) args.fail("give corners=[P0, P1, P2], three points on f = 0");
+  const List& corners = args.list("corners");
+  if (corners.size() != 3) args.fail("corners", "corners must be three points [P0, P1, P2]");
   implicit::PatchOptions options;
   for (std::size_t c = 0; c < 3; ++c) {
     const List* xyz = corners[c].list();
-    if (!xyz || xyz->size() != 3) args.fail(kPatchCorners, "corners must be three points [x, y, z]");
+    if (!xyz || xyz->size() != 3) args.fail("corners", "corners must be three points [x, y, z]");
     for (int a = 0; a < 3; ++a) {
       const double* v = (*xyz)[std::size_t(a)].get<double>();
-      if (!v || !std::isfinite(*v)) args.fail(kPatchCorners, "corners must be finite numbers");
+      if (!v || !std::isfinite(*v)) args.fail("corners", "corners must be finite numbers");
       options.corners[c][a] = *v;
     }
   }
-  options.depth = args.has(kPatchDepth) ? static_cast<int>(args.integer(kPatchDepth, 0, 8)) : 3;
-  if (args.has(kPatchTol)) {
-    options.tolerance = args.number(kPatchTol);
-    if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) args.fail(kPatchTol, "tol must be a finite number > 0");
-  }
+  options.depth = static_cast<int>(args.integer("depth"));
+  if (args.has("tol")) options.tolerance = args.number("tol");
   implicit::PatchResult r;
   try {
     r = implicit::patch(f, options);
   } catch (const implicit::NonFiniteValue& e) {
-    args.fail(kPatchF, "'" + function_arg(args, kPatchF).name + "' (or its gradient) is not finite at " +
-                           point_text(e.point()));
+    args.fail("f",
+              "'" + function_arg(args, "f").name + "' (or its gradient) is not finite at " + point_text(e.point()));
   } catch (const InvalidInput& e) {
     args.fail(e.what());
   } catch (const GeometryError& e) {
@@ -295,20 +282,25 @@ Value surface_patch(const Arguments& args) {
   return Value(std::shared_ptr<const Object>(std::make_shared<MeshValue>(std::move(r.mesh))));
 }
 
+/// A function parameter of the implicit area (compiled: a user fn only).
+Param function_param(std::string name) { return arg(std::move(name)).any("a function fn f(x, y, z) or fn f(p)"); }
+
+Param box_param() { return arg("box").list().optional("[lo, hi]"); }
+
 }  // namespace
 
 void register_implicit(BuiltinTable& table) {
   table.add({.name = "patch",
-             .signature = "patch(f, corners=[P0, P1, P2], depth=3, tol=0)",
              .doc = "The adaptive polygonization of the triangular patch of f = 0 with corners P0, P1, P2 on the "
                     "surface (Ihm & Naylor 1990, sec. 5.2): boundary curves traced on the planes through two "
                     "corners and the mean normal, split at the centres of their LAs of order 2^depth, four "
                     "triangles per level, depth 0..8: 4^depth triangles as a mesh value for export. tol is the "
                     "traced curves' chord height (0: 1e-3 of each curve's length).",
-             .params = {{"f"}, {"corners", false}, {"depth", false}, {"tol", false}},
+             .params = {function_param("f"), arg("corners").list().optional("[P0, P1, P2]"),
+                        arg("depth").integer(0, 8).defaults(double(implicit::PatchOptions{}.depth)),
+                        arg("tol").positive().optional(format_number(implicit::PatchOptions{}.tolerance))},
              .run = [](const Arguments& args) -> Value { return surface_patch(args); }});
   table.add({.name = "implicit",
-             .signature = "implicit(f, box=[lo, hi], tol=1e-3, cells=2000000, quiet=false)",
              .doc = "The solid f <= 0 inside the box, as a BSP solid for | & -, volume, export. f is a function "
                     "fn f(x, y, z) or fn f(p), compiled once. Its boundary is meshed by an adaptive octree (interval "
                     "bounds prove cells empty or full; small parts are searched for) and marching tetrahedra: "
@@ -316,13 +308,18 @@ void register_implicit(BuiltinTable& table) {
                     "it where the surface leaves the box. tol is at least 4 kernel grid steps (1.2e-4). Prints the "
                     "triangle and cell counts unless quiet=true; an f > 0 in the whole box gives the empty solid "
                     "with a warning; cells bounds the work (an error when it runs out).",
-             .params = {{"f"}, {"box", false}, {"tol", false}, {"cells", false}, {"quiet", false}},
+             .params = {function_param("f"), box_param(),
+                        arg("tol").positive().defaults(implicit::PolygonizeOptions{}.tolerance),
+                        arg("cells").integer(1, kMaxCells).defaults(double(kDefaultCells)),
+                        arg("quiet").boolean().defaults(false)},
              .run = [](const Arguments& args) -> Value { return implicit_solid(args); }});
-  const std::vector<Param> params = {{"f"}, {"g"}, {"box", false}, {"tol", false}, {"steps", false}};
+  const std::vector<Param> params = {
+      function_param("f"), function_param("g"), box_param(),
+      arg("tol").positive().defaults(implicit::TraceOptions{}.tolerance),
+      arg("steps").integer(1, kMaxSteps).defaults(double(implicit::TraceOptions{}.max_steps))};
   std::vector<Param> trace_params = params;
-  trace_params.push_back({"quiet", false});
+  trace_params.push_back(arg("quiet").boolean().defaults(false));
   table.add({.name = "trace",
-             .signature = "trace(f, g, box=[lo, hi], tol=1e-3, steps=200000, quiet=false)",
              .doc = "Every component of the space curve f = g = 0 inside the box, as a list of digitized curves "
                     "(closed loops marked closed; open pieces end on the box), for linearize, points, fit. f and g "
                     "are functions fn f(x, y, z) or fn f(p), compiled once (docs/language.md, \"Implicit "
@@ -333,14 +330,10 @@ void register_implicit(BuiltinTable& table) {
              .params = trace_params,
              .run = [](const Arguments& args) -> Value {
                const implicit::TraceResult r = run_trace(args);
-               if (!(args.has(kQuiet) && args.boolean(kQuiet))) {
-                 print_summary(args, r, args.has(kSteps) ? static_cast<long>(args.integer(kSteps, 1, kMaxSteps))
-                                                         : kDefaultSteps);
-               }
+               if (!args.boolean("quiet")) print_summary(args, r, static_cast<long>(args.integer("steps")));
                return curves_value(r);
              }});
   table.add({.name = "trace_info",
-             .signature = "trace_info(f, g, box=[lo, hi], tol=1e-3, steps=200000)",
              .doc = "trace() with everything it found, printing nothing: [curves, singular, steps, "
                     "exhausted], where singular lists [[x, y, z], passes, resolved] per singular point "
                     "(passes: how many traced branches go through it, 0 for an isolated point; resolved: "

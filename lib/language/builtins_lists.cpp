@@ -9,54 +9,50 @@ namespace sculpt::language {
 
 void register_lists(BuiltinTable& table) {
   table.add({.name = "reverse",
-             .signature = "reverse(xs)",
              .doc = "A new list: the items of xs in reverse order.",
-             .params = {{"xs"}},
+             .params = {arg("xs").list()},
              .run = [](const Arguments& args) -> Value {
-               List items = args.list(0);
+               List items = args.list("xs");
                args.charge(items.size());
                std::reverse(items.begin(), items.end());
                return items;
              }});
   table.add({.name = "map",
-             .signature = "map(f, xs)",
              .doc = "A new list: f(x) for each item x of xs. f is any function of one argument: a fn or a "
                     "built-in (map(sqrt, [1, 4]) is [1, 2]).",
-             .params = {{"f"}, {"xs"}},
+             .params = {arg("f").function(), arg("xs").list()},
              .run = [](const Arguments& args) -> Value {
-               const Value& f = args.function(0);
-               const List& items = args.list(1);
+               const Value& f = args.function("f");
+               const List& items = args.list("xs");
                List out;
                out.reserve(items.size());
                for (const Value& x : items) out.push_back(args.call(f, {x}));
                return out;
              }});
   table.add({.name = "filter",
-             .signature = "filter(f, xs)",
              .doc = "A new list: the items x of xs for which f(x) is true (f must give true or false).",
-             .params = {{"f"}, {"xs"}},
+             .params = {arg("f").function(), arg("xs").list()},
              .run = [](const Arguments& args) -> Value {
-               const Value& f = args.function(0);
-               const List& items = args.list(1);
+               const Value& f = args.function("f");
+               const List& items = args.list("xs");
                List out;
                for (std::size_t i = 0; i < items.size(); ++i) {
                  const Value keep = args.call(f, {items[i]});
                  const bool* b = keep.get<bool>();
                  if (!b) {
-                   args.fail(0, "f must give true or false, got " + type_name(keep) + " for item " + std::to_string(i) +
-                                    " (" + to_repr(items[i]) + ")");
+                   args.fail("f", "f must give true or false, got " + type_name(keep) + " for item " +
+                                      std::to_string(i) + " (" + to_repr(items[i]) + ")");
                  }
                  if (*b) out.push_back(items[i]);
                }
                return out;
              }});
   table.add({.name = "sum",
-             .signature = "sum(xs)",
              .doc = "The items of xs added with + from the first: numbers, vectors of one length (item by "
                     "item) or strings (joined). sum([]) is 0.",
-             .params = {{"xs"}},
+             .params = {arg("xs").list()},
              .run = [](const Arguments& args) -> Value {
-               const List& items = args.list(0);
+               const List& items = args.list("xs");
                if (items.empty()) return 0.0;
                args.charge(items.size());
                Value total = items[0];
@@ -64,19 +60,18 @@ void register_lists(BuiltinTable& table) {
                  try {
                    total = apply_binary(ast::Op::Add, std::move(total), items[i]);
                  } catch (const OperatorError& e) {
-                   args.fail(0, std::string(e.what()) + " (item " + std::to_string(i) + ")");
+                   args.fail("xs", std::string(e.what()) + " (item " + std::to_string(i) + ")");
                  }
                }
                return total;
              }});
   table.add({.name = "zip",
-             .signature = "zip(xs, ys)",
              .doc = "A new list of pairs [x, y] of the items of xs and ys at the same index, as long as the "
                     "shorter list.",
-             .params = {{"xs"}, {"ys"}},
+             .params = {arg("xs").list(), arg("ys").list()},
              .run = [](const Arguments& args) -> Value {
-               const List& xs = args.list(0);
-               const List& ys = args.list(1);
+               const List& xs = args.list("xs");
+               const List& ys = args.list("ys");
                const std::size_t n = std::min(xs.size(), ys.size());
                args.charge(n);
                List out;
@@ -85,11 +80,10 @@ void register_lists(BuiltinTable& table) {
                return out;
              }});
   table.add({.name = "enumerate",
-             .signature = "enumerate(xs)",
              .doc = "A new list of pairs [i, x]: each item x of xs with its index i, from 0.",
-             .params = {{"xs"}},
+             .params = {arg("xs").list()},
              .run = [](const Arguments& args) -> Value {
-               const List& xs = args.list(0);
+               const List& xs = args.list("xs");
                args.charge(xs.size());
                List out;
                out.reserve(xs.size());

@@ -24,7 +24,7 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-V vector3(const Arguments& args, std::size_t i) {
+V vector3(const Arguments& args, std::string_view i) {
   const auto v = args.vector(i, 3);
   return {v[0], v[1], v[2]};
 }
@@ -40,12 +40,6 @@ std::string point_text(const V& p) {
   return s;
 }
 
-double positive(const Arguments& args, std::size_t i, const char* name) {
-  const double x = args.number(i);
-  if (!(x > 0) || !std::isfinite(x)) args.fail(i, std::string("argument '") + name + "' must be a finite number > 0");
-  return x;
-}
-
 Value surface_value(splines::Surface s, std::string description) {
   return Value(std::shared_ptr<const Object>(std::make_shared<ConstraintSurfaceValue>(std::move(s), std::move(description))));
 }
@@ -55,7 +49,7 @@ Value spline_value(splines::BSpline s) {
 }
 
 /// The implicit surface f = 0 of a script function, compiled once (value and exact gradient).
-splines::Surface implicit_from_function(const Arguments& args, std::size_t i, double scale) {
+splines::Surface implicit_from_function(const Arguments& args, std::string_view i, double scale) {
   const auto* f = args.value(i).get<std::shared_ptr<const UserFunction>>();
   if (!f) args.fail_type(i, "a surface (sphere_surface, ..., a B-spline surface) or a function fn f(x, y, z)");
   ImplicitCompileOptions options;
@@ -73,13 +67,13 @@ splines::Surface implicit_from_function(const Arguments& args, std::size_t i, do
 }
 
 /// Argument i as a surface: a surface value, or a function whose zero set is the surface.
-splines::Surface surface_arg(const Arguments& args, std::size_t i, double scale) {
+splines::Surface surface_arg(const Arguments& args, std::string_view i, double scale) {
   if (const auto* s = args.value(i).object<ConstraintSurfaceValue>()) return s->surface;
   if (const auto* b = args.value(i).object<SurfaceValue>()) return splines::bspline_surface_constraint(b->surface);
   return implicit_from_function(args, i, scale);
 }
 
-std::vector<V> points_arg(const Arguments& args, std::size_t i) {
+std::vector<V> points_arg(const Arguments& args, std::string_view i) {
   std::vector<V> points;
   const List& l = args.list(i);
   for (std::size_t k = 0; k < l.size(); ++k) {
@@ -107,7 +101,7 @@ std::optional<std::vector<double>> numbers(const Value& v, std::size_t n) {
 
 /// Pose k of argument i: [position, rotation] with rotation [ax, ay, az, degrees] (axis and angle,
 /// right-handed, as rotate) or a 3 x 3 matrix [[r00, r01, r02], [r10, ...], [r20, ...]].
-splines::Pose pose_at(const Arguments& args, std::size_t i, const Value& item, std::size_t k) {
+splines::Pose pose_at(const Arguments& args, std::string_view i, const Value& item, std::size_t k) {
   const std::string what = "pose " + std::to_string(k + 1);
   const List* pair = item.list();
   if (!pair || pair->size() != 2) args.fail(i, what + " must be [position, rotation]");
@@ -131,7 +125,7 @@ splines::Pose pose_at(const Arguments& args, std::size_t i, const Value& item, s
   return pose;
 }
 
-const MotionValue& motion_arg(const Arguments& args, std::size_t i) { return args.object<MotionValue>(i, "a motion"); }
+const MotionValue& motion_arg(const Arguments& args, std::string_view i) { return args.object<MotionValue>(i); }
 
 }  // namespace
 
@@ -159,106 +153,106 @@ std::vector<Eigen::Isometry3d> motion_poses(const MotionValue& motion, const Sol
 
 void register_motions(BuiltinTable& table) {
   table.add({.name = "sphere_surface",
-             .signature = "sphere_surface(center, r)",
              .doc = "The sphere as a surface for geodesic and surface_spline.",
-             .params = {{"center"}, {"r"}},
+             .params = {arg("center").vector(3), arg("r").positive()},
              .run = [](const Arguments& args) -> Value {
-               const V c = vector3(args, 0);
-               const double r = positive(args, 1, "r");
+               const V c = vector3(args, "center");
+               const double r = args.number("r");
                return surface_value(splines::sphere_surface(c, r), "sphere centre " + point_text(c) + ", radius " + format_number(r));
              }});
-  table.add({.name = "cylinder_surface",
-             .signature = "cylinder_surface(point, axis, r)",
-             .doc = "The infinite circular cylinder of radius r around the line through `point` along `axis`, as a surface.",
-             .params = {{"point"}, {"axis"}, {"r"}},
-             .run = [](const Arguments& args) -> Value {
-               const V p = vector3(args, 0), a = vector3(args, 1);
-               if (a.norm() == 0.0) args.fail(1, "the axis must not be zero");
-               const double r = positive(args, 2, "r");
-               return surface_value(splines::cylinder_surface(p, a, r),
-                                    "cylinder through " + point_text(p) + " along " + point_text(a) + ", radius " + format_number(r));
-             }});
+  table.add(
+      {.name = "cylinder_surface",
+       .doc = "The infinite circular cylinder of radius r around the line through `point` along `axis`, as a surface.",
+       .params = {arg("point").vector(3), arg("axis").vector(3), arg("r").positive()},
+       .run = [](const Arguments& args) -> Value {
+         const V p = vector3(args, "point"), a = vector3(args, "axis");
+         if (a.norm() == 0.0) args.fail("axis", "the axis must not be zero");
+         const double r = args.number("r");
+         return surface_value(splines::cylinder_surface(p, a, r), "cylinder through " + point_text(p) + " along " +
+                                                                      point_text(a) + ", radius " + format_number(r));
+       }});
   table.add({.name = "torus_surface",
-             .signature = "torus_surface(center, axis, R, r)",
-             .doc = "The torus around `axis` through `center`: centre circle of radius R, tube of radius r (0 < r < R), as a surface.",
-             .params = {{"center"}, {"axis"}, {"R"}, {"r"}},
+             .doc = "The torus around `axis` through `center`: centre circle of radius R, tube of radius r (0 < r < "
+                    "R), as a surface.",
+             .params = {arg("center").vector(3), arg("axis").vector(3), arg("R").positive(), arg("r").positive()},
              .run = [](const Arguments& args) -> Value {
-               const V c = vector3(args, 0), a = vector3(args, 1);
-               if (a.norm() == 0.0) args.fail(1, "the axis must not be zero");
-               const double R = positive(args, 2, "R"), r = positive(args, 3, "r");
-               if (!(r < R)) args.fail(3, "the tube radius r must be below R");
+               const V c = vector3(args, "center"), a = vector3(args, "axis");
+               if (a.norm() == 0.0) args.fail("axis", "the axis must not be zero");
+               const double R = args.number("R"), r = args.number("r");
+               if (!(r < R)) args.fail("r", "the tube radius r must be below R");
                return surface_value(splines::torus_surface(c, a, R, r), "torus centre " + point_text(c) + ", axis " +
                                                                              point_text(a) + ", radii " + format_number(R) + ", " + format_number(r));
              }});
   table.add({.name = "geodesic",
-             .signature = "geodesic(surface, p, q, segments=64)",
              .doc = "A shortest path on `surface` (a surface value, or a function f whose zero set f = 0 is the "
                     "surface) from p to q (moved to their foot points): the discrete energy of a polygon of "
                     "`segments` edges minimized with its vertices on the surface, from the straight segment "
                     "(sec. 5.1); returned as the constant-speed cubic spline through the vertices (domain [0, 1]).",
-             .params = {{"surface"}, {"p"}, {"q"}, {"segments", false}},
+             .params = {arg("surface").any("a surface or a function"), arg("p").vector(3), arg("q").vector(3),
+                        arg("segments").integer(2, 100000).defaults(double(splines::GeodesicOptions{}.segments))},
              .run = [](const Arguments& args) -> Value {
-               const V p = vector3(args, 1), q = vector3(args, 2);
-               const splines::Surface s = surface_arg(args, 0, std::max(1.0, (p - q).norm()));
+               const V p = vector3(args, "p"), q = vector3(args, "q");
+               const splines::Surface s = surface_arg(args, "surface", std::max(1.0, (p - q).norm()));
                splines::GeodesicOptions options;
-               if (args.has(3)) options.segments = static_cast<int>(args.integer(3, 2, 100000));
+               options.segments = static_cast<int>(args.integer("segments"));
                args.charge(static_cast<std::uint64_t>(options.segments));
                return spline_value(splines::geodesic(s, p, q, options).curve);
              }});
   table.add({.name = "surface_spline",
-             .signature = "surface_spline(surface, points, splits=3, tol=1e-4)",
              .doc = "A cubic spline through `points` (moved to their foot points on `surface`) that stays close to "
                     "the surface and bends least (sec. 5.2, Fig. 14): the natural spline through them, each span "
                     "split into `splits` segments, moved as an active curve with the points kept exactly; splits "
                     "grow until the curve is within tol of the surface (or 24). Parameter: chord length.",
-             .params = {{"surface"}, {"points"}, {"splits", false}, {"tol", false}},
+             .params = {arg("surface").any("a surface or a function"), arg("points").list(),
+                        arg("splits")
+                            .integer(1, splines::SurfaceSplineOptions{}.max_splits)
+                            .defaults(double(splines::SurfaceSplineOptions{}.splits)),
+                        arg("tol").positive().defaults(1e-4)},
              .run = [](const Arguments& args) -> Value {
-               const std::vector<V> points = points_arg(args, 1);
+               const std::vector<V> points = points_arg(args, "points");
                double size = 0.0;
                for (std::size_t k = 1; k < points.size(); ++k) size = std::max(size, (points[k] - points[0]).norm());
-               const splines::Surface s = surface_arg(args, 0, std::max(1.0, size));
+               const splines::Surface s = surface_arg(args, "surface", std::max(1.0, size));
                splines::SurfaceSplineOptions options;
-               if (args.has(2)) options.splits = static_cast<int>(args.integer(2, 1, 24));
-               options.distance = args.has(3) ? positive(args, 3, "tol") : 1e-4;
+               options.splits = static_cast<int>(args.integer("splits"));
+               options.distance = args.number("tol");
                args.charge(points.size() * static_cast<std::uint64_t>(options.splits));
                return spline_value(splines::surface_spline(s, points, options).curve);
              }});
   table.add({.name = "motion",
-             .signature = "motion(poses, times=[0, 1, ...])",
              .doc = "A smooth rigid-body motion through `poses`, each [position, rotation] with rotation "
                     "[ax, ay, az, degrees] (axis and angle) or a 3 x 3 matrix, at `times` (sec. 5.3): a cubic "
                     "curve of affine maps through the poses, pulled onto the rigid motions by minimizing its "
                     "bending with the poses kept exactly; splits grow until |A^T A - I| <= 5e-5. sweep, carve "
                     "and add take it as the path; motion_path gives the origin's path, pose the map at a time.",
-             .params = {{"poses"}, {"times", false}},
+             .params = {arg("poses").list(), arg("times").list().optional("[0, 1, ...]")},
              .run = [](const Arguments& args) -> Value {
-               const List& l = args.list(0);
-               if (l.size() < 2) args.fail(0, "give at least two poses");
+               const List& l = args.list("poses");
+               if (l.size() < 2) args.fail("poses", "give at least two poses");
                std::vector<splines::Pose> poses;
-               for (std::size_t k = 0; k < l.size(); ++k) poses.push_back(pose_at(args, 0, l[k], k));
+               for (std::size_t k = 0; k < l.size(); ++k) poses.push_back(pose_at(args, "poses", l[k], k));
                splines::MotionOptions options;
-               if (args.has(1)) {
-                 const auto t = numbers(args.value(1), l.size());
-                 if (!t) args.fail(1, "times must be a list of one number per pose");
+               if (args.has("times")) {
+                 const auto t = numbers(args.value("times"), l.size());
+                 if (!t) args.fail("times", "times must be a list of one number per pose");
                  options.times = *t;
                }
                args.charge(poses.size() * 100);
                return Value(std::shared_ptr<const Object>(
                    std::make_shared<MotionValue>(splines::design_motion(poses, options))));
              }});
-  table.add({.name = "motion_path",
-             .signature = "motion_path(m)",
-             .doc = "The path of the moving body's origin under motion m, as a spline (for plot).",
-             .params = {{"m"}},
-             .run = [](const Arguments& args) -> Value { return spline_value(motion_arg(args, 0).result.motion.path()); }});
+  table.add(
+      {.name = "motion_path",
+       .doc = "The path of the moving body's origin under motion m, as a spline (for plot).",
+       .params = {arg("m").of<MotionValue>("a motion")},
+       .run = [](const Arguments& args) -> Value { return spline_value(motion_arg(args, "m").result.motion.path()); }});
   table.add({.name = "pose",
-             .signature = "pose(m, t)",
-             .doc = "The rigid map of motion m at time t (clamped to the motion's time span) as 3 rows [r0, r1, r2, tx] (for transform).",
-             .params = {{"m"}, {"t"}},
+             .doc = "The rigid map of motion m at time t (clamped to the motion's time span) as 3 rows [r0, r1, r2, "
+                    "tx] (for transform).",
+             .params = {arg("m").of<MotionValue>("a motion"), arg("t").finite_number()},
              .run = [](const Arguments& args) -> Value {
-               const double t = args.number(1);
-               if (!std::isfinite(t)) args.fail(1, "t must be finite");
-               const Eigen::Isometry3d p = motion_arg(args, 0).result.motion.rigid(t);
+               const double t = args.number("t");
+               const Eigen::Isometry3d p = motion_arg(args, "m").result.motion.rigid(t);
                List rows;
                for (int r = 0; r < 3; ++r)
                  rows.push_back(List{p.linear()(r, 0), p.linear()(r, 1), p.linear()(r, 2), p.translation()(r)});

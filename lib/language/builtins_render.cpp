@@ -21,7 +21,7 @@ namespace sculpt::language {
 namespace {
 
 /// The view argument: a name ("iso", "front", ...) or a direction [x, y, z].
-Eigen::Vector3d view_arg(const Arguments& args, std::size_t i) {
+Eigen::Vector3d view_arg(const Arguments& args, std::string_view i) {
   if (const std::string* name = args.value(i).get<std::string>()) {
     try {
       return render::view_direction(*name);
@@ -36,7 +36,8 @@ Eigen::Vector3d view_arg(const Arguments& args, std::size_t i) {
 }
 
 /// A list of [x, y] or [x, y, z] points as a polyline; fails at argument i with `what`.
-curves::DigitizedCurve polyline_of(const Arguments& args, std::size_t i, const List& points, const std::string& what) {
+curves::DigitizedCurve polyline_of(const Arguments& args, std::string_view i, const List& points,
+                                   const std::string& what) {
   curves::DigitizedCurve polyline;
   polyline.dimension = 2;
   for (std::size_t p = 0; p < points.size(); ++p) {
@@ -67,17 +68,18 @@ render::PictureItem picture_item(const Arguments& args, const Value& v, const st
   if (const auto* l = v.object<LinearizationValue>())
     return render::PictureCurve{.points = curves::linearization_points(l->curve->curve, l->result), .closed = false};
   if (const List* points = v.list(); points_alone(points))
-    return render::PictureCurve{.points = polyline_of(args, 0, *points, what).points, .closed = false};
+    return render::PictureCurve{.points = polyline_of(args, "x", *points, what).points, .closed = false};
   if (const auto* c = v.object<ConstraintSurfaceValue>())
-    args.fail(0, what + "cannot draw " + c->description + " (only B-spline surfaces are tessellated; draw the solid, "
-                        "e.g. sphere(r) translated, or a surface_mesh)");
-  args.fail(0, what + "must be a solid, mesh, surface, spline, curve, linearization, motion or list of points, not " +
-                   type_name(v));
+    args.fail("x", what + "cannot draw " + c->description +
+                       " (only B-spline surfaces are tessellated; draw the solid, "
+                       "e.g. sphere(r) translated, or a surface_mesh)");
+  args.fail("x", what + "must be a solid, mesh, surface, spline, curve, linearization, motion or list of points, not " +
+                     type_name(v));
 }
 
 /// The file of argument i, which must end in `extension` (".png": the picture is PNG whatever the
 /// name says, so render(b, "x.jpg") would write PNG data into a .jpg), with its folders created.
-std::filesystem::path output_path(const Arguments& args, std::size_t i, const std::string& extension,
+std::filesystem::path output_path(const Arguments& args, std::string_view i, const std::string& extension,
                                   const char* format) {
   const std::filesystem::path path = args.file_path(i);
   std::string ext = path.extension().string();
@@ -89,142 +91,129 @@ std::filesystem::path output_path(const Arguments& args, std::size_t i, const st
   return path;
 }
 
+/// The view parameter of render and plot.
+Param view_param() { return arg("view").any("a view name or a direction [x, y, z]").optional("\"iso\""); }
+
 }  // namespace
 
 void register_render(BuiltinTable& table) {
-  table.add({.name = "render",
-             .signature = "render(x, \"file.png\", view=\"iso\", size=[800, 600], scale=0, center=[0, 0, 0], "
-                          "edge_angle=30, edges=true, tol=0, width=0)",
-             .doc = "Writes a shaded picture (PNG) of x, or of a list of items each in its own colour, seen "
-                    "orthographically from direction `view` (a name: iso, front, back, left, right, top, bottom; "
-                    "or a vector pointing towards the viewer). Items: solids; surfaces and meshes (shaded on both "
-                    "sides; a surface is tessellated to chord error `tol`, 0: half a pixel); curves, splines "
-                    "(geodesics, splines on surfaces), linearizations, motions (the origin's path) and lists of "
-                    "points, drawn as lines `width` pixels wide (0: 3 per 600 pixels) where not hidden behind "
-                    "the shaded items. Hidden surfaces are removed per pixel; lines mark silhouettes and faces "
-                    "meeting at more than `edge_angle` degrees. `scale` in pixels per unit with `center` at the "
-                    "image centre; 0 frames the items. The file is replaced atomically; folders are created.",
-             .params = {{"x"},
-                        {"file"},
-                        {"view", false},
-                        {"size", false},
-                        {"scale", false},
-                        {"center", false},
-                        {"edge_angle", false},
-                        {"edges", false},
-                        {"tol", false},
-                        {"width", false}},
-             .run = [](const Arguments& args) -> Value {
-               (void)output_path(args, 1, ".png", "PNG");  // a wrong name is refused before the work
-               std::vector<render::PictureItem> items;
-               const List* list = args.value(0).list();
-               if (list && !points_alone(list)) {
-                 if (list->empty()) args.fail(0, "the list is empty");
-                 for (std::size_t k = 0; k < list->size(); ++k)
-                   items.push_back(picture_item(args, (*list)[k], "item " + std::to_string(k) + " "));
-               } else {
-                 items.push_back(picture_item(args, args.value(0), "x "));
-               }
-               render::PictureOptions options;
-               if (args.has(2)) options.view = view_arg(args, 2);
-               if (args.has(3)) {
-                 const std::vector<double> size = args.vector(3, 2);
-                 for (double s : size)
-                   if (!(s >= 1 && s <= render::kMaxImageSide) || s != std::floor(s))
-                     args.fail(3, "size must be [width, height], whole numbers from 1 to " +
-                                      std::to_string(render::kMaxImageSide));
-                 options.width = static_cast<int>(size[0]);
-                 options.height = static_cast<int>(size[1]);
-                 if (static_cast<long long>(options.width) * options.height > render::kMaxImagePixels)
-                   args.fail(3, "size: at most " + std::to_string(render::kMaxImagePixels) + " pixels");
-               }
-               if (args.has(4)) {
-                 options.scale = args.number(4);
-                 if (!(options.scale >= 0 && options.scale <= 1e6)) args.fail(4, "scale must be 0 to 10^6");
-               }
-               if (args.has(5)) {
-                 const std::vector<double> c = args.vector(5, 3);
-                 options.center = Eigen::Vector3d(c[0], c[1], c[2]);
-               }
-               if (args.has(6)) {
-                 options.edge_angle = args.number(6);
-                 if (!(options.edge_angle >= 0 && options.edge_angle <= 180))
-                   args.fail(6, "edge_angle must be 0 to 180");
-               }
-               if (args.has(7)) options.edges = args.boolean(7);
-               if (args.has(8)) {
-                 options.surface_tolerance = args.number(8);
-                 if (!(options.surface_tolerance >= 0) || !std::isfinite(options.surface_tolerance))
-                   args.fail(8, "tol must be a finite number >= 0 (0: half a pixel)");
-               }
-               if (args.has(9)) options.curve_width = static_cast<int>(args.integer(9, 0, 64));
-               args.charge(static_cast<std::uint64_t>(options.width) * static_cast<std::uint64_t>(options.height) / 1024);
-               const render::Image image = render::render_items(items, options);
-               render::write_png(image, output_path(args, 1, ".png", "PNG"));
-               return {};
-             }});
-  table.add({.name = "plot",
-             .signature = "plot(xs, \"file.svg\", view=\"iso\", size=480, title=\"\")",
-             .doc = "Writes an SVG figure of xs: a curve, linearization, spline, motion or list of points, or a "
-                    "list of them, each in its own colour: a curve as its points, a linearization as its polygon "
-                    "with the break points marked (and its curve's points), a spline (a geodesic, a spline on a "
-                    "surface) as the curve with its dashed control polygon, a motion as its origin's path, a list "
-                    "of points as a polyline. 2D data is drawn in its plane; when any "
-                    "item is 3D (or `view` is given) everything is projected along `view` (as in render). "
-                    "`size`: the figure's side. The file is replaced atomically; folders are created.",
-             .params = {{"xs"}, {"file"}, {"view", false}, {"size", false}, {"title", false}},
-             .run = [](const Arguments& args) -> Value {
-               // A single item, or a list of items (a list of points alone is one item).
-               std::vector<const Value*> items;
-               const List* list = args.value(0).list();
-               if (list && !points_alone(list)) {
-                 for (const Value& v : *list) items.push_back(&v);
-                 if (items.empty()) args.fail(0, "plot: the list is empty");
-               } else {
-                 items.push_back(&args.value(0));
-               }
-               render::PlotPanel panel;
-               if (args.has(4)) panel.title = args.string(4);
-               bool three_d = false;
-               for (std::size_t k = 0; k < items.size(); ++k) {
-                 const Value& v = *items[k];
-                 const std::string color = render::plot_color(k);
-                 const std::string what = items.size() > 1 ? "item " + std::to_string(k) + " " : "";
-                 if (const auto* c = v.object<CurveValue>()) {
-                   panel.layers.push_back(render::curve_layer(c->curve, color));
-                   three_d |= c->curve.dimension == 3;
-                 } else if (const auto* l = v.object<LinearizationValue>()) {
-                   panel.layers.push_back(render::curve_layer(l->curve->curve, "#9a9a9a"));
-                   for (auto& layer : render::linearization_layers(l->curve->curve, l->result, color))
-                     panel.layers.push_back(std::move(layer));
-                   three_d |= l->curve->curve.dimension == 3;
-                 } else if (const auto* s = v.object<SplineValue>()) {
-                   for (auto& layer : render::spline_layers(s->spline, color)) panel.layers.push_back(std::move(layer));
-                   three_d |= s->spline.dimension() == 3;
-                 } else if (const auto* m = v.object<MotionValue>()) {
-                   for (auto& layer : render::spline_layers(m->result.motion.path(), color)) panel.layers.push_back(std::move(layer));
-                   three_d = true;
-                 } else if (const List* points = v.list()) {
-                   const curves::DigitizedCurve polyline = polyline_of(args, 0, *points, what);
-                   three_d |= polyline.dimension == 3;
-                   panel.layers.push_back({.lines = {polyline.points}, .color = color, .width = 1.5});
-                 } else {
-                   args.fail(0, what + "must be a curve, linearization, spline, motion or list of points, not " + type_name(v));
-                 }
-               }
-               render::PlotOptions options;
-               if (three_d || args.has(2)) {
-                 options.projection = render::Projection::View;
-                 if (args.has(2)) options.view = view_arg(args, 2);
-               }
-               options.size = 480;
-               if (args.has(3)) {
-                 options.size = args.number(3);
-                 if (!(options.size >= 50 && options.size <= 10000)) args.fail(3, "size must be 50 to 10000");
-               }
-               write_file_atomically(output_path(args, 1, ".svg", "SVG"), render::svg_panels({panel}, options));
-               return {};
-             }});
+  const render::PictureOptions picture;  // the defaults
+  table.add(
+      {.name = "render",
+       .doc = "Writes a shaded picture (PNG) of x, or of a list of items each in its own colour, seen "
+              "orthographically from direction `view` (a name: iso, front, back, left, right, top, bottom; "
+              "or a vector pointing towards the viewer). Items: solids; surfaces and meshes (shaded on both "
+              "sides; a surface is tessellated to chord error `tol`, 0: half a pixel); curves, splines "
+              "(geodesics, splines on surfaces), linearizations, motions (the origin's path) and lists of "
+              "points, drawn as lines `width` pixels wide (0: 3 per 600 pixels) where not hidden behind "
+              "the shaded items. Hidden surfaces are removed per pixel; lines mark silhouettes and faces "
+              "meeting at more than `edge_angle` degrees. `scale` in pixels per unit with `center` at the "
+              "image centre; 0 frames the items. The file is replaced atomically; folders are created.",
+       .params = {arg("x").any("an item to draw or a list of them"), arg("file").string().shown_as("\"file.png\""),
+                  view_param(), arg("size").vector(2).defaults(List{double(picture.width), double(picture.height)}),
+                  arg("scale").between(0, 1e6).defaults(picture.scale),
+                  arg("center").vector(3).defaults(List{picture.center.x(), picture.center.y(), picture.center.z()}),
+                  arg("edge_angle").between(0, 180).defaults(picture.edge_angle),
+                  arg("edges").boolean().defaults(picture.edges),
+                  arg("tol").at_least(0).defaults(picture.surface_tolerance),
+                  arg("width").integer(0, 64).defaults(double(picture.curve_width))},
+       .run = [](const Arguments& args) -> Value {
+         (void)output_path(args, "file", ".png", "PNG");  // a wrong name is refused before the work
+         std::vector<render::PictureItem> items;
+         const List* list = args.value("x").list();
+         if (list && !points_alone(list)) {
+           if (list->empty()) args.fail("x", "the list is empty");
+           for (std::size_t k = 0; k < list->size(); ++k)
+             items.push_back(picture_item(args, (*list)[k], "item " + std::to_string(k) + " "));
+         } else {
+           items.push_back(picture_item(args, args.value("x"), "x "));
+         }
+         render::PictureOptions options;
+         if (args.has("view")) options.view = view_arg(args, "view");
+         if (args.has("size")) {
+           const std::vector<double> size = args.vector("size");
+           for (double s : size)
+             if (!(s >= 1 && s <= render::kMaxImageSide) || s != std::floor(s))
+               args.fail("size", "size must be [width, height], whole numbers from 1 to " +
+                                     std::to_string(render::kMaxImageSide));
+           options.width = static_cast<int>(size[0]);
+           options.height = static_cast<int>(size[1]);
+           if (static_cast<long long>(options.width) * options.height > render::kMaxImagePixels)
+             args.fail("size", "size: at most " + std::to_string(render::kMaxImagePixels) + " pixels");
+         }
+         options.scale = args.number("scale");
+         const std::vector<double> c = args.vector("center");
+         options.center = Eigen::Vector3d(c[0], c[1], c[2]);
+         options.edge_angle = args.number("edge_angle");
+         options.edges = args.boolean("edges");
+         options.surface_tolerance = args.number("tol");
+         options.curve_width = static_cast<int>(args.integer("width"));
+         args.charge(static_cast<std::uint64_t>(options.width) * static_cast<std::uint64_t>(options.height) / 1024);
+         const render::Image image = render::render_items(items, options);
+         render::write_png(image, output_path(args, "file", ".png", "PNG"));
+         return {};
+       }});
+  table.add(
+      {.name = "plot",
+       .doc = "Writes an SVG figure of xs: a curve, linearization, spline, motion or list of points, or a "
+              "list of them, each in its own colour: a curve as its points, a linearization as its polygon "
+              "with the break points marked (and its curve's points), a spline (a geodesic, a spline on a "
+              "surface) as the curve with its dashed control polygon, a motion as its origin's path, a list "
+              "of points as a polyline. 2D data is drawn in its plane; when any "
+              "item is 3D (or `view` is given) everything is projected along `view` (as in render). "
+              "`size`: the figure's side. The file is replaced atomically; folders are created.",
+       .params = {arg("xs").any("an item to plot or a list of them"), arg("file").string().shown_as("\"file.svg\""),
+                  view_param(), arg("size").between(50, 10000).defaults(480.0), arg("title").string().defaults("")},
+       .run = [](const Arguments& args) -> Value {
+         // A single item, or a list of items (a list of points alone is one item).
+         std::vector<const Value*> items;
+         const List* list = args.value("xs").list();
+         if (list && !points_alone(list)) {
+           for (const Value& v : *list) items.push_back(&v);
+           if (items.empty()) args.fail("xs", "plot: the list is empty");
+         } else {
+           items.push_back(&args.value("xs"));
+         }
+         render::PlotPanel panel;
+         panel.title = args.string("title");
+         bool three_d = false;
+         for (std::size_t k = 0; k < items.size(); ++k) {
+           const Value& v = *items[k];
+           const std::string color = render::plot_color(k);
+           const std::string what = items.size() > 1 ? "item " + std::to_string(k) + " " : "";
+           if (const auto* c = v.object<CurveValue>()) {
+             panel.layers.push_back(render::curve_layer(c->curve, color));
+             three_d |= c->curve.dimension == 3;
+           } else if (const auto* l = v.object<LinearizationValue>()) {
+             panel.layers.push_back(render::curve_layer(l->curve->curve, "#9a9a9a"));
+             for (auto& layer : render::linearization_layers(l->curve->curve, l->result, color))
+               panel.layers.push_back(std::move(layer));
+             three_d |= l->curve->curve.dimension == 3;
+           } else if (const auto* s = v.object<SplineValue>()) {
+             for (auto& layer : render::spline_layers(s->spline, color)) panel.layers.push_back(std::move(layer));
+             three_d |= s->spline.dimension() == 3;
+           } else if (const auto* m = v.object<MotionValue>()) {
+             for (auto& layer : render::spline_layers(m->result.motion.path(), color))
+               panel.layers.push_back(std::move(layer));
+             three_d = true;
+           } else if (const List* points = v.list()) {
+             const curves::DigitizedCurve polyline = polyline_of(args, "xs", *points, what);
+             three_d |= polyline.dimension == 3;
+             panel.layers.push_back({.lines = {polyline.points}, .color = color, .width = 1.5});
+           } else {
+             args.fail("xs",
+                       what + "must be a curve, linearization, spline, motion or list of points, not " + type_name(v));
+           }
+         }
+         render::PlotOptions options;
+         if (three_d || args.has("view")) {
+           options.projection = render::Projection::View;
+           if (args.has("view")) options.view = view_arg(args, "view");
+         }
+         options.size = args.number("size");
+         write_file_atomically(output_path(args, "file", ".svg", "SVG"), render::svg_panels({panel}, options));
+         return {};
+       }});
 }
 
 }  // namespace sculpt::language

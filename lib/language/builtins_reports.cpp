@@ -15,8 +15,8 @@
 namespace sculpt::language {
 namespace {
 
-void write_text(const Arguments& args, std::size_t i, const std::string& text) {
-  const std::filesystem::path path = args.file_path(i);
+void write_text(const Arguments& args, std::string_view param, const std::string& text) {
+  const std::filesystem::path path = args.file_path(param);
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
   std::ofstream out(path);
   out << text;
@@ -27,82 +27,77 @@ void write_text(const Arguments& args, std::size_t i, const std::string& text) {
 
 void register_reports(BuiltinTable& table) {
   table.add({.name = "stats",
-             .signature = "stats(s, format=\"text\", names=[], box=[min, max], samples=2000, seed=1, svg=\"\", file=\"\")",
              .doc = "Depth-cost report of solid s, or side by side of a list of solids (the same solid built "
                     "different ways) over one sample space: exact leaf-cell volumes, expected depth of point "
                     "classification sum p_C d_C, the entropy bound H and their ratio, node/leaf/in/out counts, "
                     "height, a depth histogram, and Monte Carlo costs of point, segment and box queries "
                     "(`samples` each, 95% intervals; 0 skips them). format: \"text\" or \"json\". Printed, or "
                     "written to `file`; `svg` also writes a chart of the depth distribution. Folders are created.",
-             .params = {{"s"},
-                        {"format", false},
-                        {"names", false},
-                        {"box", false},
-                        {"samples", false},
-                        {"seed", false},
-                        {"svg", false},
-                        {"file", false}},
+             .params = {arg("s").any("a solid or a list of solids"), arg("format").string().defaults("text"),
+                        arg("names").list().optional("[]"), arg("box").list().optional("[min, max]"),
+                        arg("samples").integer(0, 100'000'000).defaults(double(reports::ReportOptions{}.query_samples)),
+                        arg("seed").integer(0, 0x1p53).defaults(double(reports::ReportOptions{}.seed)),
+                        arg("svg").string().defaults(""), arg("file").string().defaults("")},
              .run = [](const Arguments& args) -> Value {
                std::vector<reports::NamedSolid> solids;
-               if (const List* list = args.value(0).list()) {
+               if (const List* list = args.value("s").list()) {
                  for (std::size_t k = 0; k < list->size(); ++k) {
                    const auto* s = (*list)[k].object<SolidValue>();
-                   if (!s) args.fail(0, "stats: item " + std::to_string(k) + " of the list is not a solid");
+                   if (!s) args.fail("s", "stats: item " + std::to_string(k) + " of the list is not a solid");
                    solids.push_back({"solid " + std::to_string(k + 1), s->solid});
                  }
-                 if (solids.empty()) args.fail(0, "stats: the list of solids is empty");
+                 if (solids.empty()) args.fail("s", "stats: the list of solids is empty");
                } else {
-                 solids.push_back({"solid", args.object<SolidValue>(0, "a solid or a list of solids").solid});
+                 solids.push_back({"solid", args.object<SolidValue>("s").solid});
                }
-               if (args.has(2)) {
-                 const List& names = args.list(2);
+               if (args.has("names")) {
+                 const List& names = args.list("names");
                  if (names.size() != solids.size())
-                   args.fail(2, "give one name per solid (" + std::to_string(solids.size()) + ")");
+                   args.fail("names", "give one name per solid (" + std::to_string(solids.size()) + ")");
                  for (std::size_t k = 0; k < names.size(); ++k) {
                    const std::string* n = names[k].get<std::string>();
-                   if (!n) args.fail(2, "names must be strings");
+                   if (!n) args.fail("names", "names must be strings");
                    solids[k].name = *n;
                  }
                }
                reports::ReportOptions options;
-               if (args.has(3)) {
-                 const List& box = args.list(3);
+               if (args.has("box")) {
+                 const List& box = args.list("box");
                  if (box.size() != 2 || !box[0].list() || !box[1].list() || box[0].list()->size() != 3 ||
                      box[1].list()->size() != 3)
-                   args.fail(3, "box must be [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
+                   args.fail("box", "box must be [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
                  Eigen::Vector3d lo, hi;
                  for (int a = 0; a < 3; ++a) {
                    const double* l = (*box[0].list())[a].get<double>();
                    const double* h = (*box[1].list())[a].get<double>();
-                   if (!l || !h) args.fail(3, "box corners must be numbers");
+                   if (!l || !h) args.fail("box", "box corners must be numbers");
                    lo[a] = *l;
                    hi[a] = *h;
                  }
                  options.sample_box = Eigen::AlignedBox3d(lo, hi);
                }
-               if (args.has(4)) options.query_samples = static_cast<int>(args.integer(4, 0, 100'000'000));
-               if (args.has(5)) options.seed = static_cast<std::uint64_t>(args.integer(5, 0, 1LL << 53));
-               const std::string format = args.has(1) ? args.string(1) : "text";
-               if (format != "text" && format != "json") args.fail(1, "format must be \"text\" or \"json\"");
+               options.query_samples = static_cast<int>(args.integer("samples"));
+               options.seed = static_cast<std::uint64_t>(args.integer("seed"));
+               const std::string& format = args.string("format");
+               if (format != "text" && format != "json") args.fail("format", "format must be \"text\" or \"json\"");
                args.charge(static_cast<std::uint64_t>(options.query_samples) * solids.size());
                const auto reports = reports::compare_trees(solids, options);
                const std::string text = format == "json" ? reports::report_json(reports) : reports::report_text(reports);
-               if (args.has(6) && !args.string(6).empty()) write_text(args, 6, reports::depth_chart_svg(reports));
-               if (args.has(7) && !args.string(7).empty())
-                 write_text(args, 7, text);
+               if (!args.string("svg").empty()) write_text(args, "svg", reports::depth_chart_svg(reports));
+               if (!args.string("file").empty())
+                 write_text(args, "file", text);
                else
-                 args.out() << text;
+                 args.err() << text;
                return {};
              }});
   table.add({.name = "rebuild",
-             .signature = "rebuild(s)",
              .doc = "The same solid with a new tree built from its boundary (B-rep to BSP, planes chosen as "
                     "import chooses them), for comparing trees built different ways with stats([s, rebuild(s)]).",
-             .params = {{"s"}},
+             .params = {arg("s").of<SolidValue>("a solid")},
              .run = [](const Arguments& args) -> Value {
                // From the exact boundary, not the rounded mesh: snapping that mesh's vertices back
                // to the grid could fold a face or leave one of zero area (issue 35).
-               return solid_value(rebuild_from_boundary(args.object<SolidValue>(0, "a solid").solid, {}));
+               return solid_value(rebuild_from_boundary(args.object<SolidValue>("s").solid, {}));
              }});
 }
 

@@ -26,10 +26,12 @@ struct PathValue final : Object {
 
 Value path_value(ConvexPath p) { return Value(std::shared_ptr<const Object>(std::make_shared<PathValue>(std::move(p)))); }
 
-int edge_count(const Arguments& args, std::size_t i) { return static_cast<int>(args.integer(i, 3, 100000)); }
+/// A path's edge count parameter.
+Param edges_param(std::string name) { return arg(std::move(name)).integer(3, 100000); }
+int edge_count(const Arguments& args, std::string_view i) { return static_cast<int>(args.integer(i, 3, 100000)); }
 
 /// A list of [x, y] (or [x, y, z], z ignored) pairs.
-std::vector<Eigen::Vector2d> point_pairs(const Arguments& args, std::size_t i, const char* what) {
+std::vector<Eigen::Vector2d> point_pairs(const Arguments& args, std::string_view i, const char* what) {
   std::vector<Eigen::Vector2d> out;
   for (const Value& item : args.list(i)) {
     const List* xy = item.list();
@@ -41,7 +43,7 @@ std::vector<Eigen::Vector2d> point_pairs(const Arguments& args, std::size_t i, c
 }
 
 /// The profile polyline of a curve (its points), a linearization (its vertices) or a list of [r, z].
-std::vector<Eigen::Vector2d> profile_arg(const Arguments& args, std::size_t i) {
+std::vector<Eigen::Vector2d> profile_arg(const Arguments& args, std::string_view i) {
   if (const auto* c = args.value(i).object<CurveValue>()) return curves::planar_points(c->curve.points);
   if (const auto* la = args.value(i).object<LinearizationValue>())
     return curves::planar_points(curves::linearization_points(la->curve->curve, la->result));
@@ -56,54 +58,56 @@ void register_revolution(BuiltinTable& table) {
              .signature = "circle(n) or circle(r, n)",
              .doc = "Path of revolution: the regular n-gon inscribed in the circle of radius r "
                     "(default 1) around the z axis, its first vertex on +x.",
-             .params = {{"a"}, {"b", false}},
+             .params = {arg("a").number(), arg("b").number().optional()},
              .run = [](const Arguments& args) {
-               if (!args.has(1)) return path_value(circular_path(edge_count(args, 0)));
-               return path_value(circular_path(edge_count(args, 1), args.number(0)));
+               if (!args.has("b")) return path_value(circular_path(edge_count(args, "a")));
+               return path_value(circular_path(edge_count(args, "b"), args.number("a")));
              }});
   table.add({.name = "ellipse",
-             .signature = "ellipse(a, b, n)",
              .doc = "Path of revolution: the n-gon inscribed in the ellipse with semi-axes a (x) and "
                     "b (y), vertex k at (a cos 2 pi k/n, b sin 2 pi k/n).",
-             .params = {{"a"}, {"b"}, {"n"}},
+             .params = {arg("a").positive(), arg("b").positive(), edges_param("n")},
              .run = [](const Arguments& args) {
-               return path_value(ellipse_path(args.number(0), args.number(1), edge_count(args, 2)));
+               return path_value(ellipse_path(args.number("a"), args.number("b"), edge_count(args, "n")));
              }});
   table.add({.name = "convex_path",
-             .signature = "convex_path(vertices)",
              .doc = "Path of revolution through the given [x, y] vertices, which must form a strictly "
                     "convex polygon (checked exactly; clockwise order is reversed).",
-             .params = {{"vertices"}},
+             .params = {arg("vertices").list()},
              .run = [](const Arguments& args) {
-               return path_value(polygon_path(point_pairs(args, 0, "the vertices")));
+               return path_value(polygon_path(point_pairs(args, "vertices", "the vertices")));
              }});
-  table.add({.name = "revolve",
-             .signature = "revolve(profile, path, face_only_below=6)",
-             .doc = "Solid of revolution: the profile (a curve, a linearization, or a list of [r, z] "
-                    "with r >= 0 and z monotone) revolved along the convex path; profile point (r, z) and "
-                    "path vertex (u, v) give (r u, r v, z); flat caps close it where the profile does not "
-                    "end on the axis. The BSP tree is section 6's: balanced horizontal planes, then per "
-                    "slab a nearly balanced tree of the path (face planes only below face_only_below edges).",
-             .params = {{"profile"}, {"path"}, {"face_only_below", false}},
-             .run = [](const Arguments& args) {
-               const auto profile = profile_arg(args, 0);
-               const auto& path = args.object<PathValue>(1, "a path (circle, ellipse, convex_path)").path;
-               revolution::RevolveOptions options{.grid = args.grid()};
-               if (args.has(2)) options.face_only_below = static_cast<int>(args.integer(2, 2, 1000000));
-               // About 1.4 nodes per profile segment and path edge (docs/revolution.md).
-               args.charge(static_cast<std::uint64_t>(profile.size()) * static_cast<std::uint64_t>(path.edges()));
-               return solid_value(revolution::revolve(profile, path, options));
-             }});
+  table.add(
+      {.name = "revolve",
+       .doc = "Solid of revolution: the profile (a curve, a linearization, or a list of [r, z] "
+              "with r >= 0 and z monotone) revolved along the convex path; profile point (r, z) and "
+              "path vertex (u, v) give (r u, r v, z); flat caps close it where the profile does not "
+              "end on the axis. The BSP tree is section 6's: balanced horizontal planes, then per "
+              "slab a nearly balanced tree of the path (face planes only below face_only_below edges).",
+       .params =
+           {arg("profile").any("a curve, a linearization or a list of [r, z] points"),
+            arg("path").of<PathValue>("a path (circle, ellipse, convex_path)"),
+            arg("face_only_below").integer(2, 1000000).defaults(double(revolution::RevolveOptions{}.face_only_below))},
+       .run = [](const Arguments& args) {
+         const auto profile = profile_arg(args, "profile");
+         const auto& path = args.object<PathValue>("path").path;
+         revolution::RevolveOptions options{.grid = args.grid()};
+         options.face_only_below = static_cast<int>(args.integer("face_only_below"));
+         // About 1.4 nodes per profile segment and path edge (docs/revolution.md).
+         args.charge(static_cast<std::uint64_t>(profile.size()) * static_cast<std::uint64_t>(path.edges()));
+         return solid_value(revolution::revolve(profile, path, options));
+       }});
   table.add({.name = "profile",
-             .signature = "profile(name, points=n, noise=0, seed=1)",
              .doc = "A profile model of Figure 5 as a 2D curve (x = r, y = z), sampled at `points` points "
                     "(default: the paper's 237 for the goblet, 169 for the human; 120 cavity, 101 ball) "
                     "equally spaced in arc length, disturbed by seeded uniform noise of amplitude `noise` "
                     "(z stays monotone). name: \"goblet\", \"cavity\" (the goblet's bowl), \"human\", "
                     "\"ball\" (radius 1.5 about z = 6.8). Our designs: Piegl's 1987 data is not available.",
-             .params = {{"name"}, {"points", false}, {"noise", false}, {"seed", false}},
+             .params = {arg("name").string(), arg("points").integer(2, 1'000'000).optional("n"),
+                        arg("noise").number().defaults(curves::SampleOptions{}.noise),
+                        arg("seed").integer(0, 0x1p53).defaults(double(curves::SampleOptions{}.seed))},
              .run = [](const Arguments& args) -> Value {
-               const std::string& name = args.string(0);
+               const std::string& name = args.string("name");
                curves::ProfileDesign design;
                curves::SampleOptions options;
                if (name == "goblet") {
@@ -119,12 +123,12 @@ void register_revolution(BuiltinTable& table) {
                  design = curves::ball_profile(1.5, 6.8);
                  options.points = 101;
                } else {
-                 args.fail(0, "unknown profile \"" + name + "\" (goblet, cavity, human, ball)");
+                 args.fail("name", "unknown profile \"" + name + "\" (goblet, cavity, human, ball)");
                }
-               if (args.has(1)) options.points = static_cast<int>(args.integer(1, 2, 1'000'000));
+               if (args.has("points")) options.points = static_cast<int>(args.integer("points"));
                args.charge(static_cast<std::uint64_t>(options.points));
-               if (args.has(2)) options.noise = args.number(2);
-               if (args.has(3)) options.seed = static_cast<std::uint64_t>(args.integer(3, 0, 1LL << 53));
+               options.noise = args.number("noise");
+               options.seed = static_cast<std::uint64_t>(args.integer("seed"));
                return Value(std::shared_ptr<const Object>(
                    std::make_shared<CurveValue>(curves::sample_profile(design, options))));
              }});

@@ -35,17 +35,26 @@
 namespace sculpt::language {
 namespace {
 
-Eigen::Vector3d vector3(const Arguments& args, std::size_t i) {
+Eigen::Vector3d vector3(const Arguments& args, std::string_view i) {
   const auto v = args.vector(i, 3);
   return {v[0], v[1], v[2]};
 }
 
-const Solid& solid_arg(const Arguments& args, std::size_t i) { return args.object<SolidValue>(i, "a solid").solid; }
+const Solid& solid_arg(const Arguments& args, std::string_view i) {
+  return args.object<SolidValue>(i, "a solid").solid;
+}
+
+/// The parameter of a solid argument named `name`.
+Param solid_param(std::string name) { return arg(std::move(name)).of<SolidValue>("a solid"); }
+
+/// The path of a stroke and its tol=e (path_arg, motion_tolerance).
+Param path_param() { return arg("path").any("a curve, a spline, a linearization, a motion or a list of points"); }
+Param stroke_tolerance_param() { return arg("tol").positive().optional("e"); }
 
 /// A stroke's path (argument i): a linearization's vertices, or a curve, a spline (sampled at 32
 /// points per control point) or a list of points, linearized with the fewest segments within
 /// tol=e (argument `tol`) when it is given, else taken as it is. A closed path returns to its start.
-std::vector<Eigen::Vector3d> path_arg(const Arguments& args, std::size_t i, std::size_t tol) {
+std::vector<Eigen::Vector3d> path_arg(const Arguments& args, std::string_view i, std::string_view tol) {
   if (const auto* la = args.value(i).object<LinearizationValue>())
     return curves::linearization_points(la->curve->curve, la->result);
   curves::DigitizedCurve c;
@@ -68,13 +77,8 @@ std::vector<Eigen::Vector3d> path_arg(const Arguments& args, std::size_t i, std:
   return path;
 }
 
-/// The tol=e of a stroke along a motion (argument i): 0 when not given (motion_poses' default).
-double motion_tolerance(const Arguments& args, std::size_t i) {
-  if (!args.has(i)) return 0.0;
-  const double t = args.number(i);
-  if (!(t > 0) || !std::isfinite(t)) args.fail(i, "tol must be a finite number > 0");
-  return t;
-}
+/// The tol=e of a stroke along a motion: 0 when not given (motion_poses' default).
+double motion_tolerance(const Arguments& args) { return args.has("tol") ? args.number("tol") : 0.0; }
 
 /// carve and add: the tool moved along a path (bsp/sweep.hpp). The workpiece is taken in place
 /// (the in-place set operations reuse its tree) when the call alone holds it: a temporary, or
@@ -84,63 +88,73 @@ void add_stroke(BuiltinTable& table, const char* name, const char* signature, co
   table.add({.name = name,
              .signature = signature,
              .doc = doc,
-             .params = {{"work"}, {"tool"}, {"path"}, {"tol", false}},
+             .params = {solid_param("work"), solid_param("tool"), path_param(), stroke_tolerance_param()},
              .takes_arguments = true,
              .run = [stroke](const Arguments& args) -> Value {
-               const Solid& work = solid_arg(args, 0);
-               const Solid& tool = solid_arg(args, 1);
+               const Solid& work = solid_arg(args, "work");
+               const Solid& tool = solid_arg(args, "tool");
                // Every argument is checked before the workpiece is taken (Arguments::sole_object).
                auto run = [&](const auto& path) {
-                 SolidValue* sole = args.sole_object<SolidValue>(0);
+                 SolidValue* sole = args.sole_object<SolidValue>("work");
                  return solid_value(sole ? stroke(sole->handed_over(), tool, path) : stroke(work, tool, path));
                };
-               if (const auto* m = args.value(2).object<MotionValue>()) {
-                 const auto poses = motion_poses(*m, tool, motion_tolerance(args, 3));
+               if (const auto* m = args.value("path").object<MotionValue>()) {
+                 const auto poses = motion_poses(*m, tool, motion_tolerance(args));
                  args.charge(poses.size());
                  return run(poses);
                }
-               const auto path = path_arg(args, 2, 3);
+               const auto path = path_arg(args, "path", "tol");
                args.charge(path.size());
                return run(path);
              }});
 }
 
-/// The segments (argument i) and center=true (argument `center`, if any) of a round primitive.
-CircularOptions circular(const Arguments& args, std::size_t i, std::optional<std::size_t> center = std::nullopt) {
+/// The parameters of a round primitive: r= or d=, `segments`, center= (with_center: cylinder, cone).
+std::vector<Param> circular_params(bool with_height, bool with_center) {
+  std::vector<Param> params{arg("r").positive().optional()};
+  if (with_height) params.push_back(arg("h").number());
+  params.push_back(arg("segments").integer(3, 100000).defaults(double(CircularOptions{}.segments)));
+  if (with_center) params.push_back(arg("center").boolean().defaults(CircularOptions{}.center));
+  params.push_back(arg("d").positive().optional("diameter"));
+  return params;
+}
+
+/// The segments and center=true (if declared) of a round primitive.
+CircularOptions circular(const Arguments& args, bool with_center) {
   CircularOptions options{.grid = args.grid()};
-  if (args.has(i)) options.segments = static_cast<int>(args.integer(i, 3, 100000));
-  if (center && args.has(*center)) options.center = args.boolean(*center);
+  options.segments = static_cast<int>(args.integer("segments"));
+  if (with_center) options.center = args.boolean("center");
   return options;
 }
 
-/// The radius given as r (argument r) or as the diameter d= (argument d): exactly one of them.
-double radius_arg(const Arguments& args, std::size_t r, std::size_t d) {
-  if (args.has(r) && args.has(d)) args.fail(d, "give the radius r or the diameter d=, not both");
-  if (args.has(r)) return args.number(r);
-  if (args.has(d)) return args.number(d) / 2;
+/// The radius given as r or as the diameter d=: exactly one of them.
+double radius_arg(const Arguments& args) {
+  if (args.has("r") && args.has("d")) args.fail("d", "give the radius r or the diameter d=, not both");
+  if (args.has("r")) return args.number("r");
+  if (args.has("d")) return args.number("d") / 2;
   args.fail("missing argument 'r' (or the diameter d=)");
 }
 
 /// box(min, max), box(size) or box(size=v), with center=true centring it on the origin; a size is
-/// [sx, sy, sz] or one number for a cube. Arguments: min 0, max 1, center 2, size 3.
+/// [sx, sy, sz] or one number for a cube.
 Solid box_arg(const Arguments& args) {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi;
-  const auto size = [&](std::size_t i) -> Eigen::Vector3d {
+  const auto size = [&](std::string_view i) -> Eigen::Vector3d {
     if (const double* s = args.value(i).get<double>()) return Eigen::Vector3d::Constant(*s);
     return vector3(args, i);
   };
-  if (args.has(3)) {
-    if (args.has(0) || args.has(1)) args.fail(3, "give size= or the corners min and max, not both");
-    hi = size(3);
-  } else if (args.has(0) && args.has(1)) {
-    lo = vector3(args, 0);
-    hi = vector3(args, 1);
-  } else if (args.has(0)) {
-    hi = size(0);
+  if (args.has("size")) {
+    if (args.has("min") || args.has("max")) args.fail("size", "give size= or the corners min and max, not both");
+    hi = size("size");
+  } else if (args.has("min") && args.has("max")) {
+    lo = vector3(args, "min");
+    hi = vector3(args, "max");
+  } else if (args.has("min")) {
+    hi = size("min");
   } else {
     args.fail("give the corners min and max, or a size");
   }
-  if (args.has(2) && args.boolean(2)) {
+  if (args.boolean("center")) {
     const Eigen::Vector3d middle = (lo + hi) / 2;
     lo -= middle;
     hi -= middle;
@@ -306,15 +320,15 @@ Value winding_import(const Arguments& args, const PolygonMesh& mesh, const std::
   } catch (const GeometryError& e) {
     args.fail(refusal.empty() ? path + ": " + e.what() : refusal);
   }
-  args.out() << "import: " << path << ": " << resolved << ": imported the region of positive winding number";
+  args.err() << "import: " << path << ": " << resolved << ": imported the region of positive winding number";
   if (w.multiple_cells > 0 || w.negative_cells > 0) {
-    args.out() << " (";
-    if (w.multiple_cells > 0) args.out() << "parts enclosed more than once count once";
-    if (w.multiple_cells > 0 && w.negative_cells > 0) args.out() << "; ";
-    if (w.negative_cells > 0) args.out() << "parts enclosed by inward-facing shells are left out";
-    args.out() << ")";
+    args.err() << " (";
+    if (w.multiple_cells > 0) args.err() << "parts enclosed more than once count once";
+    if (w.multiple_cells > 0 && w.negative_cells > 0) args.err() << "; ";
+    if (w.negative_cells > 0) args.err() << "parts enclosed by inward-facing shells are left out";
+    args.err() << ")";
   }
-  args.out() << "\n";
+  args.err() << "\n";
   return solid_value(std::move(w.solid));
 }
 
@@ -322,146 +336,144 @@ Value winding_import(const Arguments& args, const PolygonMesh& mesh, const std::
 
 void register_solids(BuiltinTable& table) {
   table.add({.name = "grid",
-             .signature = "grid(step)",
              .doc = "The world range (docs/kernel.md, \"World range\"): solids made after grid(step) snap their "
                     "coordinates to multiples of step, a power of two 2^-k with k in [-32, 64] (pow(2, -10)), and "
                     "hold coordinates up to 2^25 steps: the default 2^-15 gives [-1024, 1024], 2^-13 gives "
                     "[-4096, 4096]. Returns the step in effect (grid() only reads it). Call it before the first "
                     "solid: solids made at different grids cannot be combined (a later call says which solids "
                     "are at the old grid). `sculpt --grid STEP` sets it for a whole run.",
-             .params = {{"step", false}},
+             .params = {arg("step").number().optional()},
              .run = [](const Arguments& args) -> Value {
-               if (!args.has(0)) return args.grid().step();
+               if (!args.has("step")) return args.grid().step();
                kernel::Grid grid;
                try {
-                 grid = kernel::Grid::from_step(args.number(0));
+                 grid = kernel::Grid::from_step(args.number("step"));
                } catch (const InvalidInput& e) {
-                 args.fail(0, e.what());
+                 args.fail("step", e.what());
                }
                const kernel::Grid old = args.grid();
                args.set_grid(grid);
                if (grid != old) {
                  const auto [names, count] = solids_at_other_grids(args, grid, 5);
                  if (count > 0)
-                   args.out() << "note: grid(" << grid.name() << "): " << count << (count == 1 ? " solid" : " solids")
+                   args.err() << "note: grid(" << grid.name() << "): " << count << (count == 1 ? " solid" : " solids")
                               << " (" << names << (count > 5 ? ", ..." : "") << ") made at another grid cannot be "
                               << "combined with solids made from now on\n";
                }
                return grid.step();
              }});
   table.add({.name = "box",
-             .signature = "box(min, max, center=false, size=v)",
              .doc = "The axis-aligned box with corners min and max ([x, y, z] each, min < max); or, given one "
                     "vector (or size=), the box of that size ([sx, sy, sz], or one number for a cube) with a "
                     "corner at the origin. center=true centres the box on the origin.",
-             .params = {{"min", false}, {"max", false}, {"center", false}, {"size", false}},
+             .params = {arg("min").any("a vector [x, y, z] or a size").optional(), arg("max").vector(3).optional(),
+                        arg("center").boolean().defaults(false),
+                        arg("size").any("a vector [sx, sy, sz] or a number").optional("v")},
              .run = [](const Arguments& args) { return solid_value(box_arg(args)); }});
   table.add(
       {.name = "sphere",
-       .signature = "sphere(r, segments=32, d=diameter)",
        .doc = "Sphere of radius r (or diameter d) at the origin: a polyhedron with `segments` edges around "
               "the equator and (segments + 1) / 2 rings, its vertices on the sphere.",
-       .params = {{"r", false}, {"segments", false}, {"d", false}},
-       .run = [](const Arguments& args) { return solid_value(sphere(radius_arg(args, 0, 2), circular(args, 1))); }});
+       .params = circular_params(false, false),
+       .run = [](const Arguments& args) { return solid_value(sphere(radius_arg(args), circular(args, false))); }});
   table.add({.name = "cylinder",
-             .signature = "cylinder(r, h, segments=32, center=false, d=diameter)",
              .doc = "Cylinder of radius r (or diameter d) around the z axis from z = 0 to z = h, or from -h/2 "
                     "to h/2 with center=true (a prism over a regular polygon with `segments` vertices on the "
                     "circle).",
-             .params = {{"r", false}, {"h"}, {"segments", false}, {"center", false}, {"d", false}},
+             .params = circular_params(true, true),
              .run = [](const Arguments& args) {
-               return solid_value(cylinder(radius_arg(args, 0, 4), args.number(1), circular(args, 2, 3)));
+               return solid_value(cylinder(radius_arg(args), args.number("h"), circular(args, true)));
              }});
   table.add({.name = "cone",
-             .signature = "cone(r, h, segments=32, center=false, d=diameter)",
              .doc = "Cone around the z axis: base of radius r (or diameter d) at z = 0, apex at z = h; with "
                     "center=true the base is at z = -h/2 and the apex at h/2.",
-             .params = {{"r", false}, {"h"}, {"segments", false}, {"center", false}, {"d", false}},
+             .params = circular_params(true, true),
              .run = [](const Arguments& args) {
-               const CircularOptions c = circular(args, 2, 3);
-               return solid_value(cone(radius_arg(args, 0, 4), args.number(1),
+               const CircularOptions c = circular(args, true);
+               return solid_value(cone(radius_arg(args), args.number("h"),
                                        {.segments = c.segments, .center = c.center, .grid = c.grid}));
              }});
   table.add({.name = "union_all",
-             .signature = "union_all(solids)",
              .doc = "The union of a list of solids, computed at once: each solid's boundary is clipped "
                     "by the others and one tree is built from the union's boundary (much faster than "
                     "chaining | over many solids; the same set, exactly).",
-             .params = {{"solids"}},
+             .params = {arg("solids").list()},
              .run = [](const Arguments& args) {
-               const List& items = args.list(0);
+               const List& items = args.list("solids");
                args.charge(items.size());
                std::vector<Solid> solids;
                solids.reserve(items.size());
                for (std::size_t i = 0; i < items.size(); ++i) {
                  const SolidValue* s = items[i].object<SolidValue>();
-                 if (!s) args.fail(0, "item " + std::to_string(i + 1) + " is " + type_name(items[i]) + ", not a solid");
+                 if (!s)
+                   args.fail("solids",
+                             "item " + std::to_string(i + 1) + " is " + type_name(items[i]) + ", not a solid");
                  solids.push_back(s->solid);
                }
                return solid_value(unite_all(std::move(solids)));
              }});
   table.add({.name = "extrude",
-             .signature = "extrude(profile, height)",
              .doc = "The prism over a closed polygon in the xy-plane (a curve or a list of [x, y] or "
                     "[x, y, z] points with one z; convex or not, either orientation) from its plane up by "
                     "`height` (down if negative).",
-             .params = {{"profile"}, {"height"}},
+             .params = {arg("profile").any("a curve or a list of points"), arg("height").non_zero()},
              .run = [](const Arguments& args) -> Value {
                curves::DigitizedCurve c;
-               if (const auto* cv = args.value(0).object<CurveValue>()) c = cv->curve;
-               else if (args.value(0).list()) c = curve_from_points(args, 0);
-               else args.fail_type(0, "a curve or a list of points");
+               if (const auto* cv = args.value("profile").object<CurveValue>())
+                 c = cv->curve;
+               else if (args.value("profile").list())
+                 c = curve_from_points(args, "profile");
+               else
+                 args.fail_type("profile", "a curve or a list of points");
                std::vector<Eigen::Vector2d> polygon;
                for (const Eigen::Vector3d& p : c.points) {
                  if (p.z() != c.points.front().z())
-                   args.fail(0, "the profile is not in a plane z = constant (rotate the result instead)");
+                   args.fail("profile", "the profile is not in a plane z = constant (rotate the result instead)");
                  polygon.emplace_back(p.x(), p.y());
                }
                args.charge(polygon.size());
-               const double z = c.points.empty() ? 0.0 : c.points.front().z(), h = args.number(1);
-               if (!(h != 0) || !std::isfinite(h)) args.fail(1, "the height must be a non-zero finite number");
+               const double z = c.points.empty() ? 0.0 : c.points.front().z(), h = args.number("height");
                return solid_value(extrude(polygon, std::min(z, z + h), std::max(z, z + h), args.grid()));
              }});
   table.add({.name = "hull",
-             .signature = "hull(x)",
              .doc = "The convex hull of x: a list of points [x, y, z], a curve, a solid, or a list of "
                     "solids, as a convex solid with one plane per face (exact on the kernel grid).",
-             .params = {{"x"}},
+             .params = {arg("x").any("a list of points, a curve, a solid or a list of solids")},
              .run = [](const Arguments& args) -> Value {
-               const Value& x = args.value(0);
+               const Value& x = args.value("x");
                if (const auto* s = x.object<SolidValue>()) return solid_value(hull(std::span(&s->solid, 1)));
                if (const auto* c = x.object<CurveValue>()) return solid_value(hull(c->curve.points, args.grid()));
-               const List& items = args.list(0);
+               const List& items = args.list("x");
                if (!items.empty() && items.front().object<SolidValue>()) {
                  std::vector<Solid> solids;
                  for (std::size_t i = 0; i < items.size(); ++i) {
                    const SolidValue* s = items[i].object<SolidValue>();
-                   if (!s) args.fail(0, "item " + std::to_string(i + 1) + " is " + type_name(items[i]) + ", not a solid");
+                   if (!s)
+                     args.fail("x", "item " + std::to_string(i + 1) + " is " + type_name(items[i]) + ", not a solid");
                    solids.push_back(s->solid);
                  }
                  args.charge(solids.size());
                  return solid_value(hull(solids));
                }
-               return solid_value(hull(curve_from_points(args, 0).points, args.grid()));
+               return solid_value(hull(curve_from_points(args, "x").points, args.grid()));
              }});
   table.add({.name = "sweep",
-             .signature = "sweep(tool, path, tol=e)",
              .doc = "The volume swept by solid `tool` moved along `path` (a curve, a spline, a linearization "
                     "or a list of points; all but a linearization are first linearized with the fewest segments "
                     "within tol=e when tol is given): the union of the hulls of the tool's convex pieces at the "
                     "ends of each segment. `path` may be a motion (motion(...)): the tool, in body coordinates "
                     "(its origin follows the motion), is carried along it turning, sampled so that the result "
                     "is within tol (default 1 % of the tool's size) of the true swept volume (docs/motions.md).",
-             .params = {{"tool"}, {"path"}, {"tol", false}},
+             .params = {solid_param("tool"), path_param(), stroke_tolerance_param()},
              .run = [](const Arguments& args) -> Value {
-               if (const auto* m = args.value(1).object<MotionValue>()) {
-                 const auto poses = motion_poses(*m, solid_arg(args, 0), motion_tolerance(args, 2));
+               if (const auto* m = args.value("path").object<MotionValue>()) {
+                 const auto poses = motion_poses(*m, solid_arg(args, "tool"), motion_tolerance(args));
                  args.charge(poses.size());
-                 return solid_value(sweep(solid_arg(args, 0), poses));
+                 return solid_value(sweep(solid_arg(args, "tool"), poses));
                }
-               const auto path = path_arg(args, 1, 2);
+               const auto path = path_arg(args, "path", "tol");
                args.charge(path.size());
-               return solid_value(sweep(solid_arg(args, 0), path));
+               return solid_value(sweep(solid_arg(args, "tool"), path));
              }});
   add_stroke(table, "carve", "carve(work, tool, path, tol=e)",
              "Solid `work` minus `tool` swept along `path` (see sweep): a carving stroke. `w = carve(w, ...)` "
@@ -474,140 +486,135 @@ void register_solids(BuiltinTable& table) {
              "works in place like carve.",
              [](auto&& w, const Solid& t, const auto& p) { return add(std::forward<decltype(w)>(w), t, p); });
   table.add({.name = "transform",
-             .signature = "transform(s, matrix)",
              .doc = "Solid s mapped by the affine map given as 3 rows of 4 numbers [[a, b, c, tx], ...] "
                     "(x' = a x + b y + c z + tx); integer linear parts are exact, others move vertices to "
                     "the grid like rotate. A singular map is an error.",
-             .params = {{"s"}, {"matrix"}},
+             .params = {solid_param("s"), arg("matrix").list()},
              .run = [](const Arguments& args) -> Value {
-               const List& rows = args.list(1);
-               if (rows.size() != 3) args.fail(1, "the matrix must have 3 rows of 4 numbers");
+               const List& rows = args.list("matrix");
+               if (rows.size() != 3) args.fail("matrix", "the matrix must have 3 rows of 4 numbers");
                Eigen::Affine3d m = Eigen::Affine3d::Identity();
                for (int r = 0; r < 3; ++r) {
                  const List* row = rows[std::size_t(r)].list();
-                 if (!row || row->size() != 4) args.fail(1, "row " + std::to_string(r + 1) + " must have 4 numbers");
+                 if (!row || row->size() != 4)
+                   args.fail("matrix", "row " + std::to_string(r + 1) + " must have 4 numbers");
                  for (int c = 0; c < 4; ++c) {
                    const double* x = (*row)[std::size_t(c)].get<double>();
-                   if (!x || !std::isfinite(*x)) args.fail(1, "row " + std::to_string(r + 1) + " must have 4 finite numbers");
+                   if (!x || !std::isfinite(*x))
+                     args.fail("matrix", "row " + std::to_string(r + 1) + " must have 4 finite numbers");
                    m.matrix()(r, c) = *x;
                  }
                }
-               return solid_value(transform(solid_arg(args, 0), m));
+               return solid_value(transform(solid_arg(args, "s"), m));
              }});
-  table.add({.name = "translate",
-             .signature = "translate(s, v)",
-             .doc = "Solid s moved by the vector v (exact: v is snapped to the kernel grid).",
-             .params = {{"s"}, {"v"}},
-             .run = [](const Arguments& args) { return solid_value(translate(solid_arg(args, 0), vector3(args, 1))); }});
+  table.add(
+      {.name = "translate",
+       .doc = "Solid s moved by the vector v (exact: v is snapped to the kernel grid).",
+       .params = {solid_param("s"), arg("v").vector(3)},
+       .run = [](const Arguments& args) { return solid_value(translate(solid_arg(args, "s"), vector3(args, "v"))); }});
   table.add({.name = "mirror",
-             .signature = "mirror(s, normal)",
              .doc = "Solid s reflected in the plane through the origin with the given normal. Mirrors in "
                     "the coordinate planes are exact; others move vertices to the grid like rotate.",
-             .params = {{"s"}, {"normal"}},
+             .params = {solid_param("s"), arg("normal").vector(3)},
              .run = [](const Arguments& args) -> Value {
-               const Eigen::Vector3d n = vector3(args, 1);
-               if (!(n.squaredNorm() > 0) || !n.allFinite()) args.fail(1, "the normal must be a non-zero finite vector");
+               const Eigen::Vector3d n = vector3(args, "normal");
+               if (!(n.squaredNorm() > 0) || !n.allFinite())
+                 args.fail("normal", "the normal must be a non-zero finite vector");
                const int axis = n.x() != 0 ? (n.y() == 0 && n.z() == 0 ? 0 : -1)
                                            : (n.y() != 0 ? (n.z() == 0 ? 1 : -1) : 2);
                if (axis >= 0) {  // an integer map: exact
                  Eigen::Vector3d f = Eigen::Vector3d::Ones();
                  f[axis] = -1;
-                 return solid_value(scale(solid_arg(args, 0), f));
+                 return solid_value(scale(solid_arg(args, "s"), f));
                }
                const Eigen::Vector3d u = n.normalized();
                Eigen::Affine3d m = Eigen::Affine3d::Identity();
                m.linear() -= 2 * u * u.transpose();
-               return solid_value(transform(solid_arg(args, 0), m));
+               return solid_value(transform(solid_arg(args, "s"), m));
              }});
   table.add({.name = "rotate",
-             .signature = "rotate(s, axis, degrees)",
              .doc = "Solid s rotated by `degrees` about `axis` through the origin (right-handed). "
                     "Multiples of 90 degrees about a coordinate axis are exact.",
-             .params = {{"s"}, {"axis"}, {"degrees"}},
+             .params = {solid_param("s"), arg("axis").vector(3), arg("degrees").finite_number()},
              .run = [](const Arguments& args) {
-               return solid_value(rotate(solid_arg(args, 0), vector3(args, 1), args.number(2)));
+               return solid_value(rotate(solid_arg(args, "s"), vector3(args, "axis"), args.number("degrees")));
              }});
   table.add({.name = "scale",
-             .signature = "scale(s, v)",
              .doc = "Solid s scaled by the factors [sx, sy, sz] (or one number for all three); "
                     "non-zero, negative factors mirror. Whole factors are exact.",
-             .params = {{"s"}, {"v"}},
+             .params = {solid_param("s"), arg("v").any("a vector [sx, sy, sz] or a number")},
              .run = [](const Arguments& args) {
                Eigen::Vector3d factors;
-               if (const double* f = args.value(1).get<double>()) {
+               if (const double* f = args.value("v").get<double>()) {
                  factors = Eigen::Vector3d::Constant(*f);
                } else {
-                 factors = vector3(args, 1);
+                 factors = vector3(args, "v");
                }
-               return solid_value(scale(solid_arg(args, 0), factors));
+               return solid_value(scale(solid_arg(args, "s"), factors));
              }});
   table.add({.name = "classify",
-             .signature = "classify(s, p)",
              .doc = "Where the point p lies with respect to solid s: \"in\", \"out\" or \"on\" (the "
                     "boundary), decided exactly on the kernel grid.",
-             .params = {{"s"}, {"p"}},
+             .params = {solid_param("s"), arg("p").vector(3)},
              .run = [](const Arguments& args) -> Value {
-               switch (classify(solid_arg(args, 0), vector3(args, 1)).location) {
-                 case Location::Inside: return "in";
-                 case Location::Outside: return "out";
-                 case Location::Boundary: return "on";
+               switch (classify(solid_arg(args, "s"), vector3(args, "p")).location) {
+                 case Location::Inside:
+                   return "in";
+                 case Location::Outside:
+                   return "out";
+                 case Location::Boundary:
+                   return "on";
                }
                return "out";
              }});
   table.add({.name = "volume",
-             .signature = "volume(s)",
              .doc = "The volume of solid s (from its exact boundary).",
-             .params = {{"s"}},
-             .run = [](const Arguments& args) -> Value { return args.object<SolidValue>(0, "a solid").volume(); }});
+             .params = {solid_param("s")},
+             .run = [](const Arguments& args) -> Value { return args.object<SolidValue>("s").volume(); }});
   table.add({.name = "area",
-             .signature = "area(s)",
              .doc = "The surface area of solid s.",
-             .params = {{"s"}},
-             .run = [](const Arguments& args) -> Value { return args.object<SolidValue>(0, "a solid").area(); }});
-  table.add({.name = "export",
-             .signature = "export(s, \"file.off\", tol=1e-3, binary=false)",
-             .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is; or a "
-                    "surface's triangle mesh at chord tolerance `tol`, as surface_mesh); the format comes from "
-                    "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres), .glb (binary glTF). The file is "
-                    "replaced atomically; folders are created. binary=true writes binary STL or PLY (STL: "
-                    "float32, a fifth of ASCII's size).",
-             .params = {{"s"}, {"file"}, {"tol", false}, {"binary", false}},
-             .run = [](const Arguments& args) -> Value {
-               const bool binary = args.has(3) && args.boolean(3);
-               if (binary) {
-                 const MeshFormat format = mesh_format_from_path(args.file_path(1));
-                 if (format != MeshFormat::Stl && format != MeshFormat::Ply)
-                   args.fail(3, "binary=true applies to .stl and .ply (the other formats have one encoding)");
-               }
-               if (const auto* surface = args.value(0).object<SurfaceValue>()) {
-                 double tol = kDefaultSurfaceTolerance;
-                 if (args.has(2)) {
-                   tol = args.number(2);
-                   if (!(tol > 0) || !std::isfinite(tol)) args.fail(2, "tol must be a finite number > 0");
-                 }
-                 write_mesh_file(surface_triangle_mesh(args, surface->surface, tol), args.file_path(1), binary);
-                 return {};
-               }
-               if (args.has(2)) args.fail(2, "tol applies to surfaces only");
-               if (const auto* m = args.value(0).object<MeshValue>()) {
-                 write_mesh_file(m->mesh, args.file_path(1), binary);
-                 return {};
-               }
-               const auto& s = args.object<SolidValue>(0, "a solid, a mesh or a surface");
-               if (const std::string warning = export_solid(s, args.file_path(1), binary); !warning.empty())
-                 args.out() << "export: warning: " << warning << "\n";
-               return {};
-             }});
+             .params = {solid_param("s")},
+             .run = [](const Arguments& args) -> Value { return args.object<SolidValue>("s").area(); }});
+  table.add(
+      {.name = "export",
+       .doc = "Writes the boundary of solid s as a mesh (or a mesh value, such as a patch, as it is; or a "
+              "surface's triangle mesh at chord tolerance `tol`, as surface_mesh); the format comes from "
+              "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres), .glb (binary glTF). The file is "
+              "replaced atomically; folders are created. binary=true writes binary STL or PLY (STL: "
+              "float32, a fifth of ASCII's size).",
+       .params = {arg("s").any("a solid, a mesh or a surface"), arg("file").string().shown_as("\"file.off\""),
+                  arg("tol").positive().defaults(kDefaultSurfaceTolerance), arg("binary").boolean().defaults(false)},
+       .run = [](const Arguments& args) -> Value {
+         const bool binary = args.boolean("binary");
+         if (binary) {
+           const MeshFormat format = mesh_format_from_path(args.file_path("file"));
+           if (format != MeshFormat::Stl && format != MeshFormat::Ply)
+             args.fail("binary", "binary=true applies to .stl and .ply (the other formats have one encoding)");
+         }
+         if (const auto* surface = args.value("s").object<SurfaceValue>()) {
+           write_mesh_file(surface_triangle_mesh(args, surface->surface, args.number("tol")), args.file_path("file"),
+                           binary);
+           return {};
+         }
+         if (args.has("tol")) args.fail("tol", "tol applies to surfaces only");
+         if (const auto* m = args.value("s").object<MeshValue>()) {
+           write_mesh_file(m->mesh, args.file_path("file"), binary);
+           return {};
+         }
+         const auto& s = args.object<SolidValue>("s");
+         if (const std::string warning = export_solid(s, args.file_path("file"), binary); !warning.empty())
+           args.err() << "export: warning: " << warning << "\n";
+         return {};
+       }});
   table.add({.name = "import",
-             .signature = "import(\"file.off\", strict=false)",
              .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om, .3mf, .glb) and builds its BSP solid. A closed, "
                     "oriented 2-manifold that does not intersect itself bounds the solid; a closed mesh whose faces "
                     "intersect or meet at non-manifold edges gives the region where its winding number is "
                     "positive, and the import says what it resolved (strict=true refuses such a mesh instead).",
-             .params = {{"file"}, {"strict", false}},
+             .params = {arg("file").string().shown_as("\"file.off\""), arg("strict").boolean().defaults(false)},
              .run = [](const Arguments& args) -> Value {
-               const std::string path = args.file_path(0);
-               const bool strict = args.has(1) && args.boolean(1);
+               const std::string path = args.file_path("file");
+               const bool strict = args.boolean("strict");
                const PolygonMesh mesh = read_mesh(path);
                const ValidationReport report = check_closed_manifold(mesh);
                if (!report.ok()) {
@@ -653,7 +660,7 @@ void register_solids(BuiltinTable& table) {
                // point (up to 0.87 steps), and the faces may only have been split into triangles
                // that fit the grid; that changes nothing the user made.
                if (const std::string removed = removed_features(rounding); !removed.empty())
-                 args.out() << "import: warning: " << path
+                 args.err() << "import: warning: " << path
                             << ": features below 4 grid steps were collapsed to fit the grid (step "
                             << args.grid().name() << "): " << removed << "; vertices moved by up to "
                             << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";

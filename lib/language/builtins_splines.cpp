@@ -4,8 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "curves/digitized_curve.hpp"
 #include "language/builtins.hpp"
@@ -33,12 +36,12 @@ Value fitted_value(splines::FitResult r) {
   return Value(std::shared_ptr<const Object>(std::move(v)));
 }
 
-const SplineValue& spline_arg(const Arguments& args, std::size_t i) {
+const SplineValue& spline_arg(const Arguments& args, std::string_view i) {
   return args.object<SplineValue>(i, "a spline");
 }
 
 /// Points given as a digitized curve or as a (non-empty) list of [x, y] / [x, y, z], all of one kind.
-curves::DigitizedCurve points_arg(const Arguments& args, std::size_t i, const char* what) {
+curves::DigitizedCurve points_arg(const Arguments& args, std::string_view i, const char* what) {
   if (const auto* c = args.value(i).object<CurveValue>()) return c->curve;
   if (!args.value(i).list()) args.fail_type(i, what);
   curves::DigitizedCurve c = curve_from_points(args, i);
@@ -52,12 +55,61 @@ Value point_value(const Eigen::Vector3d& p, int dimension) {
   return List{p.x(), p.y(), p.z()};
 }
 
-int degree_arg(const Arguments& args, std::size_t i) { return static_cast<int>(args.integer(i, 1, kMaxDegree)); }
+/// The parameter of a spline argument named `name`.
+Param spline_param(std::string name) { return arg(std::move(name)).of<SplineValue>("a spline"); }
 
-double non_negative(const Arguments& args, std::size_t i, const char* name) {
-  const double x = args.number(i);
-  if (!(x >= 0) || !std::isfinite(x)) args.fail(i, std::string("argument '") + name + "' must be a finite number >= 0");
-  return x;
+/// The same curve run the other way: controls reversed, knots mirrored in the domain (open), or
+/// for a closed curve with uniform break points the controls reversed alone (its basis functions
+/// are translates of one another). Returns null for a closed curve with other break points.
+std::optional<BSpline> reversed(const BSpline& s) {
+  std::vector<Eigen::Vector3d> controls(s.controls().rbegin(), s.controls().rend());
+  const std::vector<double>& k = s.knots();
+  if (s.closed()) {
+    const double step = (k.back() - k.front()) / double(k.size() - 1);
+    for (std::size_t i = 0; i < k.size(); ++i)
+      if (std::abs(k[i] - (k.front() + double(i) * step)) > 1e-12 * std::max(1.0, std::abs(k.back())))
+        return std::nullopt;
+    return BSpline(s.degree(), k, std::move(controls), true, s.dimension());
+  }
+  std::vector<double> knots(k.size());
+  for (std::size_t i = 0; i < k.size(); ++i) knots[i] = k.front() + k.back() - k[k.size() - 1 - i];
+  return BSpline(s.degree(), std::move(knots), std::move(controls), false, s.dimension());
+}
+
+/// A fitted curve in the order of its data (issue 36: a fit ran from the last point to the
+/// first, which turned offset's side): open, it starts nearer the first point than the last;
+/// closed, it turns the way the points do (the sign of the polygon's area in its plane, 2D).
+BSpline in_data_order(BSpline s, const std::vector<Eigen::Vector3d>& points) {
+  if (points.size() < 2) return s;
+  bool backwards = false;
+  if (!s.closed()) {
+    const Eigen::Vector3d start = s.point(s.domain().first);
+    backwards = (start - points.back()).norm() < (start - points.front()).norm();
+  } else if (s.dimension() == 2) {
+    const auto area = [](const std::vector<Eigen::Vector3d>& p) {
+      double a = 0;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const Eigen::Vector3d& u = p[i];
+        const Eigen::Vector3d& v = p[(i + 1) % p.size()];
+        a += u.x() * v.y() - v.x() * u.y();
+      }
+      return a;
+    };
+    backwards = area(points) * area(splines::sample(s, 256)) < 0;
+  }
+  if (!backwards) return s;
+  std::optional<BSpline> r = reversed(s);
+  return r ? std::move(*r) : s;
+}
+
+/// The fit's stopping test, relative change of the mean squared distance below the tolerance,
+/// cannot hold once that distance is rounding noise: a fit of exact data to 3e-11 said "not
+/// converged" (issue 36). A largest distance below 1e-9 of the data's size counts as converged.
+bool at_rounding_floor(const splines::FitResult& r, const std::vector<Eigen::Vector3d>& points) {
+  if (r.history.empty() || points.empty()) return false;
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points) box.extend(p);
+  return r.history.back().max_distance <= 1e-9 * std::max(box.diagonal().norm(), 1e-300);
 }
 
 }  // namespace
@@ -75,84 +127,84 @@ std::string SplineValue::repr() const {
 
 void register_splines(BuiltinTable& table) {
   table.add({.name = "bspline",
-             .signature = "bspline(controls, degree=3, closed=false, knots=uniform)",
              .doc = "A B-spline curve from a list of [x, y] (a 2D spline) or [x, y, z] control points. Open: "
                     "clamped (through the first and last control point) with uniform knots on [0, 1], or the "
                     "given `knots` (n + degree + 1 non-decreasing values). closed=true: periodic, the control "
                     "polygon closes; uniform break points 0, 1, ..., n or the given n + 1 break points.",
-             .params = {{"controls"}, {"degree", false}, {"closed", false}, {"knots", false}},
+             .params = {arg("controls").list(), arg("degree").integer(1, kMaxDegree).defaults(3.0),
+                        arg("closed").boolean().defaults(false), arg("knots").list().optional("uniform")},
              .run = [](const Arguments& args) -> Value {
-               const curves::DigitizedCurve controls = points_arg(args, 0, "a list of points");
-               const int degree = args.has(1) ? degree_arg(args, 1) : 3;
-               const bool closed = args.has(2) && args.boolean(2);
-               if (!args.has(3)) {
+               const curves::DigitizedCurve controls = points_arg(args, "controls", "a list of points");
+               const int degree = static_cast<int>(args.integer("degree"));
+               const bool closed = args.boolean("closed");
+               if (!args.has("knots")) {
                  return spline_value(closed ? BSpline::periodic(degree, controls.points, controls.dimension)
                                             : BSpline::clamped(degree, controls.points, controls.dimension));
                }
                std::vector<double> knots;
-               for (const Value& k : args.list(3)) {
+               for (const Value& k : args.list("knots")) {
                  const double* x = k.get<double>();
-                 if (!x) args.fail(3, "knots must be numbers");
+                 if (!x) args.fail("knots", "knots must be numbers");
                  knots.push_back(*x);
                }
                return spline_value(BSpline(degree, std::move(knots), controls.points, closed, controls.dimension));
              }});
   table.add({.name = "bezier",
-             .signature = "bezier(controls)",
              .doc = "The Bezier curve of degree n - 1 over [0, 1] with the n control points [x, y] or [x, y, z].",
-             .params = {{"controls"}},
+             .params = {arg("controls").list()},
              .run = [](const Arguments& args) -> Value {
-               const curves::DigitizedCurve controls = points_arg(args, 0, "a list of points");
+               const curves::DigitizedCurve controls = points_arg(args, "controls", "a list of points");
                return spline_value(BSpline::bezier(controls.points, controls.dimension));
              }});
 
-  table.add({.name = "fit",
-             .signature = "fit(c, controls=n, degree=3, closed=auto, method=\"sdm\", iterations=50, smoothing=0.1, start=s)",
-             .doc = "A B-spline with `controls` control points fitted to curve c (its points) or a list of points, "
-                    "without given parameters: foot points, a local quadratic model of each squared distance, "
-                    "a linear solve, repeated (Wang, Pottmann & Liu 2006). method: \"sdm\" (curvature-based), "
-                    "\"pdm\" (point distance) or \"tdm\" (tangent distance); a closed \"sdm\" fit switches to Newton's "
-                    "model near the optimum (docs/splines.md). closed: true, false, or by default "
-                    "the curve's own flag (a list is open). smoothing: the weight of the bending term in the "
-                    "first step (halved each step). start: a spline to start from (default: an ellipse or a "
-                    "chord along the data's main axis); controls then defaults to its count. fit_history() "
-                    "gives the convergence figures.",
-             .params = {{"c"},
-                        {"controls", false},
-                        {"degree", false},
-                        {"closed", false},
-                        {"method", false},
-                        {"iterations", false},
-                        {"smoothing", false},
-                        {"start", false}},
-             .run = [](const Arguments& args) -> Value {
-               const curves::DigitizedCurve data = points_arg(args, 0, "a curve or a list of points");
-               splines::FitOptions options;
-               options.dimension = data.dimension;
-               options.closed = data.closed;
-               if (args.has(7)) {
-                 options.start = spline_arg(args, 7).spline;
-                 options.closed = options.start->closed();
-               }
-               if (args.has(1)) options.controls = static_cast<int>(args.integer(1, 1, 1'000'000));
-               if (!args.has(1) && !args.has(7)) args.fail("give controls=n (the number of control points) or start=s");
-               if (args.has(2)) options.degree = degree_arg(args, 2);
-               if (args.has(3)) {
-                 if (const std::string* mode = args.value(3).get<std::string>()) {
-                   if (*mode != "auto") args.fail(3, "closed must be true, false or \"auto\"");
-                 } else {
-                   options.closed = args.boolean(3);
-                 }
-               }
-               if (args.has(4)) options.method = splines::method_from_name(args.string(4));
-               if (args.has(5)) options.iterations = static_cast<int>(args.integer(5, 0, 100'000));
-               if (args.has(6)) options.smoothing = non_negative(args, 6, "smoothing");
-               // Each step finds every data point's foot point on every span.
-               args.charge(data.points.size() * static_cast<std::uint64_t>(options.iterations + 1));
-               return fitted_value(splines::fit_curve(data.points, options));
-             }});
+  table.add(
+      {.name = "fit",
+       .doc = "A B-spline with `controls` control points fitted to curve c (its points) or a list of points, "
+              "without given parameters: foot points, a local quadratic model of each squared distance, "
+              "a linear solve, repeated (Wang, Pottmann & Liu 2006). method: \"sdm\" (curvature-based), "
+              "\"pdm\" (point distance) or \"tdm\" (tangent distance); a closed \"sdm\" fit switches to Newton's "
+              "model near the optimum (docs/splines.md). closed: true, false, or by default "
+              "the curve's own flag (a list is open). smoothing: the weight of the bending term in the "
+              "first step (halved each step). start: a spline to start from (default: an ellipse or a "
+              "chord along the data's main axis); controls then defaults to its count. fit_history() "
+              "gives the convergence figures.",
+       .params = {arg("c").any("a curve or a list of points"), arg("controls").integer(1, 1'000'000).optional("n"),
+                  arg("degree").integer(1, kMaxDegree).defaults(double(splines::FitOptions{}.degree)),
+                  arg("closed").any("true, false or \"auto\"").optional("auto"), arg("method").string().defaults("sdm"),
+                  arg("iterations").integer(0, 100'000).defaults(double(splines::FitOptions{}.iterations)),
+                  arg("smoothing").at_least(0).defaults(splines::FitOptions{}.smoothing),
+                  spline_param("start").optional("s")},
+       .run = [](const Arguments& args) -> Value {
+         const curves::DigitizedCurve data = points_arg(args, "c", "a curve or a list of points");
+         splines::FitOptions options;
+         options.dimension = data.dimension;
+         options.closed = data.closed;
+         if (args.has("start")) {
+           options.start = spline_arg(args, "start").spline;
+           options.closed = options.start->closed();
+         }
+         if (args.has("controls")) options.controls = static_cast<int>(args.integer("controls"));
+         if (!args.has("controls") && !args.has("start"))
+           args.fail("give controls=n (the number of control points) or start=s");
+         options.degree = static_cast<int>(args.integer("degree"));
+         if (args.has("closed")) {
+           if (const std::string* mode = args.value("closed").get<std::string>()) {
+             if (*mode != "auto") args.fail("closed", "closed must be true, false or \"auto\"");
+           } else {
+             options.closed = args.boolean("closed");
+           }
+         }
+         options.method = splines::method_from_name(args.string("method"));
+         options.iterations = static_cast<int>(args.integer("iterations"));
+         options.smoothing = args.number("smoothing");
+         // Each step finds every data point's foot point on every span.
+         args.charge(data.points.size() * static_cast<std::uint64_t>(options.iterations + 1));
+         splines::FitResult r = splines::fit_curve(data.points, options);
+         if (!args.has("start")) r.curve = in_data_order(std::move(r.curve), data.points);
+         r.converged = r.converged || at_rounding_floor(r, data.points);
+         return fitted_value(std::move(r));
+       }});
   table.add({.name = "fit_history",
-             .signature = "fit_history(s)",
              .doc = "The convergence of the fit (or degree reduction) that made spline s: one row "
                     "[objective, max, rms] per step, row 0 for the start curve. For fit, objective is the mean "
                     "squared distance of the data to the curve, max and rms the largest and root-mean-square "
@@ -160,10 +212,10 @@ void register_splines(BuiltinTable& table) {
                     "curve against the other. len(fit_history(s)) - 1 is the number of steps taken. A closed fit of "
                     "many points (at least 4000 and 64 per control point) takes its first steps on a subset: "
                     "those rows describe the subset, the later ones all points.",
-             .params = {{"s"}},
+             .params = {spline_param("s")},
              .run = [](const Arguments& args) -> Value {
-               const SplineValue& s = spline_arg(args, 0);
-               if (s.history.empty()) args.fail(0, "this spline was not made by fit or reduce_degree");
+               const SplineValue& s = spline_arg(args, "s");
+               if (s.history.empty()) args.fail("s", "this spline was not made by fit or reduce_degree");
                List rows;
                for (const splines::FitIteration& row : s.history)
                  rows.emplace_back(List{row.objective, row.max_distance, row.rms_distance});
@@ -171,13 +223,12 @@ void register_splines(BuiltinTable& table) {
              }});
 
   table.add({.name = "sample",
-             .signature = "sample(s, n)",
              .doc = "A digitized curve of n points of spline s at uniform parameters (open: from its start to "
                     "its end; closed: once around, a closed curve), for linearize, revolve, points and fit.",
-             .params = {{"s"}, {"n"}},
+             .params = {spline_param("s"), arg("n").integer(1, 1'000'000)},
              .run = [](const Arguments& args) -> Value {
-               const BSpline& s = spline_arg(args, 0).spline;
-               const int n = static_cast<int>(args.integer(1, 1, 1'000'000));
+               const BSpline& s = spline_arg(args, "s").spline;
+               const int n = static_cast<int>(args.integer("n"));
                args.charge(static_cast<std::uint64_t>(n));
                curves::DigitizedCurve curve;
                curve.points = splines::sample(s, n);
@@ -187,95 +238,90 @@ void register_splines(BuiltinTable& table) {
                return Value(std::shared_ptr<const Object>(std::make_shared<CurveValue>(std::move(curve))));
              }});
   table.add({.name = "reduce_degree",
-             .signature = "reduce_degree(b, k, method=\"active\")",
              .doc = "Bezier curve b reduced to degree k < degree(b) with its end points kept. method \"active\": "
                     "the active-curve method (Pottmann, Leopoldseder & Hofer 2002, sec. 3.1), the curves come "
                     "close as point sets, and fit_history() gives the convergence; \"l2\": Eck's constrained "
                     "L2 reduction (the difference as functions of the parameter), for comparison.",
-             .params = {{"b"}, {"k"}, {"method", false}},
+             .params = {spline_param("b"), arg("k").integer(0, kMaxDegree), arg("method").string().defaults("active")},
              .run = [](const Arguments& args) -> Value {
-               const BSpline& b = spline_arg(args, 0).spline;
-               const int k = static_cast<int>(args.integer(1, 0, kMaxDegree));
-               const std::string method = args.has(2) ? args.string(2) : "active";
+               const BSpline& b = spline_arg(args, "b").spline;
+               const int k = static_cast<int>(args.integer("k"));
+               const std::string& method = args.string("method");
                if (method == "l2") return spline_value(splines::reduce_degree_l2(b, k));
-               if (method != "active") args.fail(2, "method must be \"active\" or \"l2\"");
+               if (method != "active") args.fail("method", "method must be \"active\" or \"l2\"");
                return fitted_value(splines::reduce_degree(b, k));
              }});
   table.add({.name = "distance",
-             .signature = "distance(s, c)",
              .doc = "[max, rms]: the largest and the root-mean-square distance from the points of curve c (or a "
                     "list of points) to spline s, with exact foot points.",
-             .params = {{"s"}, {"c"}},
+             .params = {spline_param("s"), arg("c").any("a curve or a list of points")},
              .run = [](const Arguments& args) -> Value {
-               const BSpline& s = spline_arg(args, 0).spline;
-               const curves::DigitizedCurve data = points_arg(args, 1, "a curve or a list of points");
+               const BSpline& s = spline_arg(args, "s").spline;
+               const curves::DigitizedCurve data = points_arg(args, "c", "a curve or a list of points");
                const splines::DistanceSummary d = splines::distance(s, data.points);
                return List{d.max, d.rms};
              }});
   table.add({.name = "control_points",
-             .signature = "control_points(s)",
              .doc = "The control points of spline s: [x, y] each for a 2D spline, [x, y, z] for a 3D one "
                     "(a closed spline's are not repeated).",
-             .params = {{"s"}},
+             .params = {spline_param("s")},
              .run = [](const Arguments& args) -> Value {
-               const BSpline& s = spline_arg(args, 0).spline;
+               const BSpline& s = spline_arg(args, "s").spline;
                List out;
                for (const auto& p : s.controls()) out.push_back(point_value(p, s.dimension()));
                return out;
              }});
   table.add({.name = "knots",
-             .signature = "knots(s)",
              .doc = "The knots of spline s: open, n + degree + 1 values; closed, the n + 1 break points of one "
                     "period (the form bspline(..., knots=) takes).",
-             .params = {{"s"}},
+             .params = {spline_param("s")},
              .run = [](const Arguments& args) -> Value {
                List out;
-               for (double k : spline_arg(args, 0).spline.knots()) out.emplace_back(k);
+               for (double k : spline_arg(args, "s").spline.knots()) out.emplace_back(k);
                return out;
              }});
   table.add({.name = "degree",
-             .signature = "degree(s)",
              .doc = "The degree of spline s.",
-             .params = {{"s"}},
-             .run = [](const Arguments& args) -> Value { return static_cast<double>(spline_arg(args, 0).spline.degree()); }});
+             .params = {spline_param("s")},
+             .run = [](const Arguments& args) -> Value {
+               return static_cast<double>(spline_arg(args, "s").spline.degree());
+             }});
 
   table.add({.name = "save_spline",
-             .signature = "save_spline(s, \"file\")",
              .doc = "Writes spline s in the text form of docs/splines.md (degree, closed, dimension, knots, "
                     "controls; full precision). The file is replaced atomically; folders are created.",
-             .params = {{"s"}, {"file"}},
+             .params = {spline_param("s"), arg("file").string().shown_as("\"file\"")},
              .run = [](const Arguments& args) -> Value {
-               const BSpline& s = spline_arg(args, 0).spline;
-               const std::filesystem::path path = args.file_path(1);
+               const BSpline& s = spline_arg(args, "s").spline;
+               const std::filesystem::path path = args.file_path("file");
                if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
                write_file_atomically(path, splines::format_spline(s));
                return {};
              }});
   table.add({.name = "load_spline",
-             .signature = "load_spline(\"file\")",
              .doc = "Reads a spline in the text form save_spline writes (hand-written files are fine: `#` comments, "
                     "knots may be left out for uniform ones). Errors name the file, line and column.",
-             .params = {{"file"}},
-             .run = [](const Arguments& args) -> Value { return spline_value(splines::load_spline(args.file_path(0))); }});
+             .params = {arg("file").string().shown_as("\"file\"")},
+             .run = [](const Arguments& args) -> Value {
+               return spline_value(splines::load_spline(args.file_path("file")));
+             }});
 
   table.add({.name = "offset",
-             .signature = "offset(s, d, controls=auto, tol=1e-3)",
              .doc = "The offset of planar spline s at signed distance d (positive: to the right of the direction "
                     "of travel, outwards for a counter-clockwise closed curve), approximated by an active curve "
                     "(Pottmann, Leopoldseder & Hofer 2002, sec. 3.2). Where the offset crosses the medial axis "
                     "its swallowtail is trimmed and the result gets a sharp corner (a knot of multiplicity = "
                     "degree). controls: the control-point count, by default the fewest (up to 64) within tol of "
                     "the exact offset. An offset that would vanish or split into several loops is an error.",
-             .params = {{"s"}, {"d"}, {"controls", false}, {"tol", false}},
+             .params = {spline_param("s"), arg("d").finite_number(),
+                        arg("controls").integer(1, 10'000).optional("auto"),
+                        arg("tol").positive().defaults(splines::OffsetOptions{}.tolerance)},
              .run = [](const Arguments& args) -> Value {
-               const BSpline& s = spline_arg(args, 0).spline;
-               const double d = args.number(1);
+               const BSpline& s = spline_arg(args, "s").spline;
+               const double d = args.number("d");
                splines::OffsetOptions options;
-               if (args.has(2)) options.controls = static_cast<int>(args.integer(2, 1, 10'000));
-               if (args.has(3)) {
-                 options.tolerance = non_negative(args, 3, "tol");
-                 if (!(options.tolerance > 0)) args.fail(3, "argument 'tol' must be > 0");
-               }
+               if (args.has("controls")) options.controls = static_cast<int>(args.integer("controls"));
+               options.tolerance = args.number("tol");
                splines::OffsetResult r = splines::offset_curve(s, d, options);
                return fitted_value({.curve = std::move(r.curve), .history = std::move(r.history),
                                     .iterations = int(r.history.size()) - 1, .converged = true});

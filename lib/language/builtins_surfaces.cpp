@@ -29,9 +29,11 @@ Value surface_value(BSplineSurface s) {
   return Value(std::shared_ptr<const Object>(std::make_shared<SurfaceValue>(std::move(s))));
 }
 
-const SurfaceValue& surface_arg(const Arguments& args, std::size_t i) { return args.object<SurfaceValue>(i, "a surface"); }
+const SurfaceValue& surface_arg(const Arguments& args, std::string_view i) {
+  return args.object<SurfaceValue>(i, "a surface");
+}
 
-Eigen::Vector3d point_of(const Arguments& args, std::size_t i, const Value& v) {
+Eigen::Vector3d point_of(const Arguments& args, std::string_view i, const Value& v) {
   const List* xyz = v.list();
   if (!xyz || xyz->size() != 3) args.fail(i, "points must be [x, y, z]");
   Eigen::Vector3d p;
@@ -43,7 +45,7 @@ Eigen::Vector3d point_of(const Arguments& args, std::size_t i, const Value& v) {
   return p;
 }
 
-std::vector<Eigen::Vector3d> points_arg(const Arguments& args, std::size_t i) {
+std::vector<Eigen::Vector3d> points_arg(const Arguments& args, std::string_view i) {
   std::vector<Eigen::Vector3d> out;
   for (const Value& v : args.list(i)) out.push_back(point_of(args, i, v));
   if (out.empty()) args.fail(i, "the list of points is empty");
@@ -51,9 +53,10 @@ std::vector<Eigen::Vector3d> points_arg(const Arguments& args, std::size_t i) {
 }
 
 /// [a, b] of integers in [low, high], or one integer for both.
-std::array<int, 2> pair_arg(const Arguments& args, std::size_t i, long long low, long long high, const char* name) {
+std::array<int, 2> pair_arg(const Arguments& args, std::string_view i, long long low, long long high,
+                            const char* name) {
   if (args.value(i).get<double>()) {
-    const int n = static_cast<int>(args.integer(i, low, high));
+    const int n = static_cast<int>(args.integer(i));
     return {n, n};
   }
   const List& l = args.list(i);
@@ -68,11 +71,19 @@ std::array<int, 2> pair_arg(const Arguments& args, std::size_t i, long long low,
   return out;
 }
 
-double tolerance_arg(const Arguments& args, std::size_t i) {
-  if (!args.has(i)) return kDefaultSurfaceTolerance;
-  const double t = args.number(i);
-  if (!(t > 0) || !std::isfinite(t)) args.fail(i, "tol must be a finite number > 0");
-  return t;
+/// The chord tolerance parameter of a surface's mesh.
+Param tolerance_param() { return arg("tol").positive().defaults(kDefaultSurfaceTolerance); }
+
+/// The parameter of a surface argument named `name`.
+Param surface_param(std::string name) { return arg(std::move(name)).of<SurfaceValue>("a surface"); }
+
+/// A parameter that takes a whole number in [low, high] for both directions or a pair [u, v] of them.
+Param pair_param(std::string name, double low, double high) {
+  Param p = arg(std::move(name)).integer(low, high);  // the bounds args.integer reads
+  p.kind = Kind::Any;                                 // a pair is checked by pair_arg
+  p.what = "a whole number from " + std::to_string(int(low)) + " to " + std::to_string(int(high)) +
+           " or a pair [u, v] of them";
+  return p;
 }
 
 splines::SurfaceTriangles triangles_of(const Arguments& args, const BSplineSurface& s, double tol) {
@@ -114,10 +125,9 @@ Value solid_from(const Arguments& args, const PolygonMesh& mesh, const std::stri
 /// thicken(s, t): the surface's mesh moved by +t/2 and -t/2 along the surface normal, joined
 /// along the boundary by walls of two triangles per boundary edge.
 Value thicken(const Arguments& args) {
-  const BSplineSurface& s = surface_arg(args, 0).surface;
-  const double t = args.number(1);
-  if (!(t > 0) || !std::isfinite(t)) args.fail(1, "the thickness must be a finite number > 0");
-  const splines::SurfaceTriangles m = triangles_of(args, s, tolerance_arg(args, 2));
+  const BSplineSurface& s = surface_arg(args, "s").surface;
+  const double t = args.number("t");
+  const splines::SurfaceTriangles m = triangles_of(args, s, args.number("tol"));
   const std::vector<Eigen::Vector3d> normals = vertex_normals(s, m);
   const int n = static_cast<int>(m.points.size());
   PolygonMesh mesh;
@@ -139,9 +149,9 @@ Value thicken(const Arguments& args) {
 }
 
 Value surface_solid(const Arguments& args) {
-  const BSplineSurface& s = surface_arg(args, 0).surface;
-  if (!s.closed(0) || !s.closed(1)) args.fail(0, "the surface must be closed in both directions (else use thicken)");
-  PolygonMesh mesh = mesh_of(triangles_of(args, s, tolerance_arg(args, 1)));
+  const BSplineSurface& s = surface_arg(args, "s").surface;
+  if (!s.closed(0) || !s.closed(1)) args.fail("s", "the surface must be closed in both directions (else use thicken)");
+  PolygonMesh mesh = mesh_of(triangles_of(args, s, args.number("tol")));
   double volume6 = 0;
   for (const auto& f : mesh.faces) volume6 += mesh.vertices[f[0]].dot(mesh.vertices[f[1]].cross(mesh.vertices[f[2]]));
   if (volume6 < 0)
@@ -150,17 +160,14 @@ Value surface_solid(const Arguments& args) {
 }
 
 Value fit_surface(const Arguments& args) {
-  const std::vector<Eigen::Vector3d> points = points_arg(args, 0);
+  const std::vector<Eigen::Vector3d> points = points_arg(args, "points");
   splines::FitSurfaceOptions options;
-  if (args.has(1)) options.controls = pair_arg(args, 1, 2, 1000, "controls");
-  if (args.has(2)) options.degree = pair_arg(args, 2, 1, splines::kMaxFastDegree, "degree");
-  if (args.has(3)) options.method = splines::method_from_name(args.string(3));
-  if (args.has(4)) options.iterations = static_cast<int>(args.integer(4, 0, 10'000));
-  if (args.has(5)) {
-    options.smoothing = args.number(5);
-    if (!(options.smoothing >= 0) || !std::isfinite(options.smoothing)) args.fail(5, "smoothing must be a finite number >= 0");
-  }
-  if (args.has(6)) options.start = surface_arg(args, 6).surface;
+  if (args.has("controls")) options.controls = pair_arg(args, "controls", 2, 1000, "controls");
+  if (args.has("degree")) options.degree = pair_arg(args, "degree", 1, splines::kMaxFastDegree, "degree");
+  options.method = splines::method_from_name(args.string("method"));
+  options.iterations = static_cast<int>(args.integer("iterations"));
+  options.smoothing = args.number("smoothing");
+  if (args.has("start")) options.start = surface_arg(args, "start").surface;
   args.charge(points.size() * static_cast<std::uint64_t>(options.iterations + 1));
   splines::FitSurfaceResult r = splines::fit_surface(points, options);
   auto v = std::make_shared<SurfaceValue>(std::move(r.surface));
@@ -187,106 +194,109 @@ std::string SurfaceValue::repr() const {
 
 void register_surfaces(BuiltinTable& table) {
   table.add({.name = "bspline_surface",
-             .signature = "bspline_surface(controls, degree=[3, 3], closed=[false, false])",
              .doc = "A tensor-product B-spline surface from a grid of control points: a list of rows (one per u "
                     "index) of [x, y, z]. Uniform knots over [0, 1] in both directions: clamped where open (the "
                     "corners are corner control points), periodic where closed (the grid wraps around). degree "
                     "and closed take a pair [u, v] or one value for both; degree at most 7.",
-             .params = {{"controls"}, {"degree", false}, {"closed", false}},
+             .params = {arg("controls").list(), pair_param("degree", 1, splines::kMaxFastDegree).optional("[3, 3]"),
+                        arg("closed").any("true, false or a pair [u, v] of them").optional("[false, false]")},
              .run = [](const Arguments& args) -> Value {
-               const List& rows = args.list(0);
-               if (rows.empty()) args.fail(0, "the control grid is empty");
+               const List& rows = args.list("controls");
+               if (rows.empty()) args.fail("controls", "the control grid is empty");
                std::vector<Eigen::Vector3d> P;
                std::size_t columns = 0;
                for (const Value& row : rows) {
                  const List* r = row.list();
-                 if (!r) args.fail(0, "controls must be a list of rows of [x, y, z]");
+                 if (!r) args.fail("controls", "controls must be a list of rows of [x, y, z]");
                  if (columns == 0) columns = r->size();
-                 if (r->size() != columns) args.fail(0, "every row of the control grid must have the same length");
-                 for (const Value& p : *r) P.push_back(point_of(args, 0, p));
+                 if (r->size() != columns)
+                   args.fail("controls", "every row of the control grid must have the same length");
+                 for (const Value& p : *r) P.push_back(point_of(args, "controls", p));
                }
-               const std::array<int, 2> degree = args.has(1) ? pair_arg(args, 1, 1, splines::kMaxFastDegree, "degree")
-                                                              : std::array<int, 2>{3, 3};
+               const std::array<int, 2> degree = args.has("degree")
+                                                     ? pair_arg(args, "degree", 1, splines::kMaxFastDegree, "degree")
+                                                     : std::array<int, 2>{3, 3};
                std::array<bool, 2> closed{false, false};
-               if (args.has(2)) {
-                 if (const List* l = args.value(2).list()) {
+               if (args.has("closed")) {
+                 if (const List* l = args.value("closed").list()) {
                    if (l->size() != 2 || !(*l)[0].get<bool>() || !(*l)[1].get<bool>())
-                     args.fail(2, "closed must be true, false or a pair [u, v] of them");
+                     args.fail("closed", "closed must be true, false or a pair [u, v] of them");
                    closed = {*(*l)[0].get<bool>(), *(*l)[1].get<bool>()};
                  } else {
-                   closed[0] = closed[1] = args.boolean(2);
+                   closed[0] = closed[1] = args.boolean("closed");
                  }
                }
                return surface_value(BSplineSurface::uniform(degree, static_cast<int>(rows.size()), static_cast<int>(columns),
                                                             std::move(P), closed));
              }});
   table.add({.name = "fit_surface",
-             .signature = "fit_surface(points, controls=[8, 8], degree=[3, 3], method=\"sdm\", iterations=20, smoothing=0.01, start=s)",
-             .doc = "An active B-spline surface with a controls[0] x controls[1] grid fitted to a list of points "
-                    "[x, y, z] (Pottmann, Leopoldseder & Hofer 2002, sec. 4): foot points, a local quadratic "
-                    "model of each squared distance, one sparse linear solve, repeated. method: \"sdm\" (the "
-                    "curvature-based model), \"pdm\" (point distance) or \"tdm\" (tangent plane). Starts from the "
-                    "bilinear patch through the data's four corners (extreme along the diagonals of the two "
-                    "main axes), which stay fixed, or from surface `start` (any closedness). smoothing: the "
-                    "thin-plate weight of the first step (a tenth of it each further step). surface_history() gives the "
-                    "convergence figures.",
-             .params = {{"points"}, {"controls", false}, {"degree", false}, {"method", false}, {"iterations", false},
-                        {"smoothing", false}, {"start", false}},
+             .doc =
+                 "An active B-spline surface with a controls[0] x controls[1] grid fitted to a list of points "
+                 "[x, y, z] (Pottmann, Leopoldseder & Hofer 2002, sec. 4): foot points, a local quadratic "
+                 "model of each squared distance, one sparse linear solve, repeated. method: \"sdm\" (the "
+                 "curvature-based model), \"pdm\" (point distance) or \"tdm\" (tangent plane). Starts from the "
+                 "bilinear patch through the data's four corners (extreme along the diagonals of the two "
+                 "main axes), which stay fixed, or from surface `start` (any closedness). smoothing: the "
+                 "thin-plate weight of the first step (a tenth of it each further step). surface_history() gives the "
+                 "convergence figures.",
+             .params = {arg("points").list(), pair_param("controls", 2, 1000).optional("[8, 8]"),
+                        pair_param("degree", 1, splines::kMaxFastDegree).optional("[3, 3]"),
+                        arg("method").string().defaults("sdm"),
+                        arg("iterations").integer(0, 10'000).defaults(double(splines::FitSurfaceOptions{}.iterations)),
+                        arg("smoothing").at_least(0).defaults(splines::FitSurfaceOptions{}.smoothing),
+                        surface_param("start").optional("s")},
              .run = [](const Arguments& args) -> Value { return fit_surface(args); }});
   table.add({.name = "surface_history",
-             .signature = "surface_history(s)",
              .doc = "The convergence of the fit that made surface s: one row [objective, max, rms] per step, row 0 "
                     "for the start (objective: mean squared distance; max, rms: exact foot points).",
-             .params = {{"s"}},
+             .params = {surface_param("s")},
              .run = [](const Arguments& args) -> Value {
-               const SurfaceValue& s = surface_arg(args, 0);
-               if (s.history.empty()) args.fail(0, "this surface was not made by fit_surface");
+               const SurfaceValue& s = surface_arg(args, "s");
+               if (s.history.empty()) args.fail("s", "this surface was not made by fit_surface");
                List rows;
-               for (const auto& row : s.history) rows.emplace_back(List{row.objective, row.max_distance, row.rms_distance});
+               for (const auto& row : s.history)
+                 rows.emplace_back(List{row.objective, row.max_distance, row.rms_distance});
                return rows;
              }});
-  table.add({.name = "surface_point",
-             .signature = "surface_point(s, u, v)",
-             .doc = "The point [x, y, z] of surface s at parameters u, v (open directions clamp to [0, 1], closed ones wrap).",
-             .params = {{"s"}, {"u"}, {"v"}},
-             .run = [](const Arguments& args) -> Value {
-               const Eigen::Vector3d p = surface_arg(args, 0).surface.point(args.number(1), args.number(2));
-               return List{p.x(), p.y(), p.z()};
-             }});
+  table.add(
+      {.name = "surface_point",
+       .doc =
+           "The point [x, y, z] of surface s at parameters u, v (open directions clamp to [0, 1], closed ones wrap).",
+       .params = {surface_param("s"), arg("u").finite_number(), arg("v").finite_number()},
+       .run = [](const Arguments& args) -> Value {
+         const Eigen::Vector3d p = surface_arg(args, "s").surface.point(args.number("u"), args.number("v"));
+         return List{p.x(), p.y(), p.z()};
+       }});
   table.add({.name = "surface_distance",
-             .signature = "surface_distance(s, points)",
              .doc = "[max, rms]: the largest and root-mean-square distance from a list of points [x, y, z] to "
                     "surface s, with exact foot points.",
-             .params = {{"s"}, {"points"}},
+             .params = {surface_param("s"), arg("points").list()},
              .run = [](const Arguments& args) -> Value {
-               const std::vector<Eigen::Vector3d> points = points_arg(args, 1);
+               const std::vector<Eigen::Vector3d> points = points_arg(args, "points");
                args.charge(points.size());
-               const splines::DistanceSummary d = splines::distance(surface_arg(args, 0).surface, points);
+               const splines::DistanceSummary d = splines::distance(surface_arg(args, "s").surface, points);
                return List{d.max, d.rms};
              }});
   table.add({.name = "surface_mesh",
-             .signature = "surface_mesh(s, tol=1e-3)",
              .doc = "Surface s as a triangle mesh value (for export) whose chord error is about tol: a uniform "
                     "grid per knot span sized by the second derivatives (docs/splines.md). Closed directions "
                     "share the seam's vertices.",
-             .params = {{"s"}, {"tol", false}},
+             .params = {surface_param("s"), tolerance_param()},
              .run = [](const Arguments& args) -> Value {
-               const BSplineSurface& s = surface_arg(args, 0).surface;
+               const BSplineSurface& s = surface_arg(args, "s").surface;
                return Value(std::shared_ptr<const Object>(
-                   std::make_shared<MeshValue>(mesh_of(triangles_of(args, s, tolerance_arg(args, 1))))));
+                   std::make_shared<MeshValue>(mesh_of(triangles_of(args, s, args.number("tol"))))));
              }});
   table.add({.name = "thicken",
-             .signature = "thicken(s, t, tol=1e-3)",
              .doc = "The solid of surface s thickened to t: its mesh (surface_mesh at tol) moved by t/2 both ways "
                     "along the surface normal and closed by walls along the boundary. A t beyond a curvature "
                     "radius makes the sheets cross: an error.",
-             .params = {{"s"}, {"t"}, {"tol", false}},
+             .params = {surface_param("s"), arg("t").positive(), tolerance_param()},
              .run = [](const Arguments& args) -> Value { return thicken(args); }});
   table.add({.name = "surface_solid",
-             .signature = "surface_solid(s, tol=1e-3)",
              .doc = "The solid bounded by surface s, which must be closed in both directions (a torus-like "
                     "surface), from its mesh at tol.",
-             .params = {{"s"}, {"tol", false}},
+             .params = {surface_param("s"), tolerance_param()},
              .run = [](const Arguments& args) -> Value { return surface_solid(args); }});
 }
 

@@ -37,7 +37,7 @@ int hex_digit(char c) {
 }
 
 /// The color argument: "#rrggbb", a name (red, green, ...) or [r, g, b] with each in [0, 1].
-std::array<double, 3> color_arg(const Arguments& args, std::size_t i) {
+std::array<double, 3> color_arg(const Arguments& args, std::string_view i) {
   if (const std::string* text = args.value(i).get<std::string>()) {
     if (text->size() == 7 && (*text)[0] == '#') {
       std::array<double, 3> rgb{};
@@ -64,23 +64,23 @@ std::array<double, 3> color_arg(const Arguments& args, std::size_t i) {
 bool viewable(const Value& v) { return v.object<SolidValue>() || v.object<MeshValue>(); }
 
 Value show(const Arguments& args) {
-  const Value& x = args.value(0);
+  const Value& x = args.value("x");
   std::vector<Value> items;
   if (viewable(x)) {
     items.push_back(x);
   } else if (const List* list = x.list(); list && !list->empty()) {
     for (const Value& item : *list) {
-      if (!viewable(item)) args.fail_type(0, "a solid, a mesh or a list of them");
+      if (!viewable(item)) args.fail_type("x", "a solid, a mesh or a list of them");
       items.push_back(item);
     }
   } else {
-    args.fail_type(0, "a solid, a mesh or a list of them");
+    args.fail_type("x", "a solid, a mesh or a list of them");
   }
   std::optional<std::array<double, 3>> color;
-  if (args.has(2)) color = color_arg(args, 2);
-  std::string name = args.has(1) ? args.string(1) : std::string();
-  if (args.has(1) && name.empty()) args.fail(1, "the name must not be empty");
-  if (name.size() > 200) args.fail(1, "the name is longer than 200 characters");
+  if (args.has("color")) color = color_arg(args, "color");
+  std::string name = args.has("name") ? args.string("name") : std::string();
+  if (args.has("name") && name.empty()) args.fail("name", "the name must not be empty");
+  if (name.size() > 200) args.fail("name", "the name is longer than 200 characters");
   std::vector<ShownPart>* shown = args.shown();
   if (!shown) return x;
   if (name.empty()) name = "part " + std::to_string(shown->size() + 1);
@@ -101,13 +101,13 @@ Value show(const Arguments& args) {
 
 void register_view(BuiltinTable& table) {
   table.add({.name = "show",
-             .signature = "show(x, name=\"part N\", color=none)",
              .doc = "Puts x (a solid, a mesh or a list of them) in the live view (sculpt --view FILE, :view in the "
                     "REPL; docs/viewing.md) as a part called name, in color (\"#rrggbb\", [r, g, b] with each "
                     "in [0, 1], or red, green, blue, yellow, orange, purple, cyan, magenta, grey, white, black, "
                     "brown, gold). Showing a name again replaces that part; a list gives parts \"name 1\", "
                     "\"name 2\", .... Without any show the view shows the last solid made. Returns x.",
-             .params = {{"x"}, {"name", false}, {"color", false}},
+             .params = {arg("x").any("a solid, a mesh or a list of them"), arg("name").string().optional("\"part N\""),
+                        arg("color").any("\"#rrggbb\", a color name or [r, g, b]").optional("none")},
              .run = show});
 }
 

@@ -27,8 +27,8 @@ struct LinearizationValue final : Object {
   [[nodiscard]] std::string repr() const override;
 };
 
-/// The open curve (named "list") of argument i, a list of [x, y] or [x, y, z] points with finite
+/// The open curve (named "list") of argument `name`, a list of [x, y] or [x, y, z] points with finite
 /// coordinates, all of one kind; errors at the argument. Also used by the splines area.
-[[nodiscard]] curves::DigitizedCurve curve_from_points(const Arguments& args, std::size_t i);
+[[nodiscard]] curves::DigitizedCurve curve_from_points(const Arguments& args, std::string_view name);
 
 }  // namespace sculpt::language

@@ -640,6 +640,7 @@ struct Interpreter::Impl {
 Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
   impl_->settings.out = options.out ? options.out : &std::cout;
+  impl_->settings.err = options.err ? options.err : &std::cerr;
   impl_->settings.allow_files = options.allow_files;
   impl_->settings.steps = &impl_->steps;
   impl_->settings.max_steps = options.max_steps;

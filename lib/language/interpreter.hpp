@@ -26,6 +26,8 @@ namespace sculpt::language {
 
 struct InterpreterOptions {
   std::ostream* out = nullptr;        ///< print() output; null = std::cout
+  /// Built-ins' summaries, notes and warnings (trace, implicit, stats, export); null = std::cerr.
+  std::ostream* err = nullptr;
   bool allow_files = true;            ///< false: include/curve/import/export raise errors
   std::uint64_t max_steps = 0;        ///< statements, calls and items made per run(); 0 = no limit
   std::size_t stack_budget = 2u << 20;  ///< bytes of C++ stack the evaluator may use

@@ -76,7 +76,33 @@ std::string first_word(std::string_view text) {
 
 }  // namespace
 
-std::string help_text(std::string_view name) {
+std::string wrap_text(std::string_view text, std::size_t width, std::size_t indent) {
+  const std::string margin(indent, ' ');
+  std::string out;
+  std::size_t column = 0;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find(' ', at), text.size());
+    const std::string_view word = text.substr(at, end - at);
+    at = end + 1;
+    if (word.empty()) continue;
+    if (column == 0) {
+      out += margin;
+      column = indent;
+    } else if (width > 0 && column + 1 + word.size() > width) {
+      out += "\n" + margin;
+      column = indent;
+    } else {
+      out += ' ';
+      ++column;
+    }
+    out += word;
+    column += word.size();
+  }
+  return out + "\n";
+}
+
+std::string help_text(std::string_view name, std::size_t width) {
   const BuiltinTable& table = builtins();
   if (name.empty()) {
     std::string out =
@@ -95,8 +121,16 @@ std::string help_text(std::string_view name) {
     return out;
   }
   const std::string key(name);
-  if (const Builtin* b = table.find(key)) return b->signature + "\n  " + b->doc + "\n";
-  if (auto it = keyword_help().find(key); it != keyword_help().end()) return it->second + "\n";
+  if (const Builtin* b = table.find(key)) {
+    // The doc, then what each declared parameter takes (Param::accepted).
+    std::string out = b->signature + "\n" + wrap_text(b->doc, width, 2);
+    for (const Param& p : b->params) {
+      if (const std::string accepted = p.accepted(); !accepted.empty())
+        out += wrap_text(p.name + ": " + accepted, width, 4);
+    }
+    return out;
+  }
+  if (auto it = keyword_help().find(key); it != keyword_help().end()) return wrap_text(it->second, width, 0);
   std::vector<std::string> candidates;
   for (const auto& [n, _] : table.entries()) candidates.push_back(n);
   for (const auto& [n, _] : keyword_help()) candidates.push_back(n);
@@ -116,7 +150,7 @@ std::filesystem::path show_directory_default() {
 Session::Session(std::ostream& out, std::ostream& err, const std::atomic<bool>* interrupt)
     : out_(out),
       err_(err),
-      interpreter_(InterpreterOptions{.out = &out, .interrupt = interrupt}),
+      interpreter_(InterpreterOptions{.out = &out, .err = &err, .interrupt = interrupt}),
       show_dir_(show_directory_default()) {}
 
 bool Session::discard_pending() {
@@ -180,7 +214,7 @@ void Session::command(const std::string& line) {
   argument.erase(0, argument.find_first_not_of(" \t"));
   argument.erase(argument.find_last_not_of(" \t\r") + 1);
   if (word == ":help" || word == ":h") {
-    out_ << help_text(argument);
+    out_ << help_text(argument, width_);
     if (argument.empty() && !extra_commands_.empty()) {
       out_ << "More commands:";
       for (const auto& [name, _] : extra_commands_) out_ << " " << name;

@@ -50,6 +50,8 @@ class Session {
   /// Where `:show` writes its pictures (created when needed). Default: show_directory_default().
   void set_show_directory(std::filesystem::path dir) { show_dir_ = std::move(dir); }
   [[nodiscard]] const std::filesystem::path& show_directory() const { return show_dir_; }
+  /// The terminal's width, to which `:help` wraps its lines (0: not wrapped; the REPL sets it).
+  void set_width(std::size_t columns) { width_ = columns; }
 
  private:
   void command(const std::string& line);
@@ -62,6 +64,7 @@ class Session {
   std::string pending_;
   int next_line_ = 1;
   std::filesystem::path show_dir_;
+  std::size_t width_ = 0;
   /// The latest entry value that was a solid, with the assignment serial at that time.
   std::optional<Value> last_value_;
   std::uint64_t last_value_serial_ = 0;
@@ -72,7 +75,12 @@ class Session {
 std::filesystem::path show_directory_default();
 
 /// `:help` text: an overview of commands, keywords and built-ins when `name` is empty, else
-/// the signature and description of one built-in or keyword.
-std::string help_text(std::string_view name);
+/// the signature and description of one built-in (and what each parameter takes) or keyword.
+/// Lines are wrapped to `width` columns (0: not wrapped).
+std::string help_text(std::string_view name, std::size_t width = 0);
+
+/// `text` in lines of at most `width` columns (0: one line), broken between words, each
+/// line indented by `indent` spaces; a word longer than a line stands alone. Ends in a newline.
+std::string wrap_text(std::string_view text, std::size_t width, std::size_t indent);
 
 }  // namespace sculpt::language

@@ -12,8 +12,10 @@ namespace sculpt::language {
 /// Edit distance: insertions, deletions, substitutions and swaps of adjacent letters cost 1.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
-/// The candidate closest to `name`, if it is close enough to be a plausible typo
-/// (distance at most 1 for short names, at most a third of the length for longer ones).
+/// The candidate closest to `name`, if it is close enough to be a plausible typo. Ranked: a
+/// shared prefix of three letters or more, then the name's letters in order in the candidate (same
+/// first letter), then an edit distance of 1, or up to a third of the length with the same first
+/// letter.
 std::optional<std::string> closest_name(std::string_view name, const std::vector<std::string>& candidates);
 
 }  // namespace sculpt::language

@@ -354,8 +354,10 @@ TEST(Builtins, ExportWarnsWhenTheMeshIsNotKnownToBeClean) {
   std::filesystem::remove(path);
   const auto r = run_script("export(cylinder(1, 1, segments=2100), \"" + path + "\")");
   EXPECT_EQ(r.error, "");
-  EXPECT_EQ(r.out.rfind("export: warning: " + path + ": the mesh is not known to be clean for other tools (", 0), 0u)
-      << r.out;
+  // The warning goes to standard error (issue 36: standard output is the script's prints).
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err.rfind("export: warning: " + path + ": the mesh is not known to be clean for other tools (", 0), 0u)
+      << r.err;
   EXPECT_TRUE(std::filesystem::exists(path));
 }
 
@@ -399,11 +401,9 @@ TEST(Builtins, ImportMovesApartFacesThatMeetOnceSnapped) {
   const std::string near = write_two_cubes("two_cubes_near.off", 1e-6);
   const auto moved = run_script("print(volume(import(\"" + near + "\")))");
   EXPECT_EQ(moved.error, "");
-  ASSERT_EQ(moved.out.rfind("import: warning: ", 0), 0u) << moved.out;  // the warning, then the volume
-  EXPECT_NE(moved.out.find("were collapsed to fit the grid"), std::string::npos) << moved.out;
-  const std::size_t last = moved.out.find('\n');
-  ASSERT_NE(last, std::string::npos);
-  EXPECT_NEAR(std::stod(moved.out.substr(last + 1)), 2.0, 12 * 4 * std::ldexp(1.0, -15));
+  ASSERT_EQ(moved.err.rfind("import: warning: ", 0), 0u) << moved.err;  // the warning on standard error
+  EXPECT_NE(moved.err.find("were collapsed to fit the grid"), std::string::npos) << moved.err;
+  EXPECT_NEAR(std::stod(moved.out), 2.0, 12 * 4 * std::ldexp(1.0, -15));  // the volume on standard output
 }
 
 // fuzz_geometry (tests/fuzz/regressions/import_inward_tetrahedron): a closed, consistently
@@ -581,9 +581,9 @@ TEST(Builtins, GridSetsTheWorldRangeOfSolidsMadeAfterIt) {
   EXPECT_EQ(run_script("print(box([0, 0, 0], [1, 1, 1]))").out, "<solid: 6 nodes, height 6>\n");
   EXPECT_EQ(run_script("grid(pow(2, -13))\nprint(box([0, 0, 0], [1, 1, 1]))").out, "<solid: 6 nodes, height 6, grid 2^-13>\n");
   // stats names a grid that is not the default.
-  const std::string report = run_script("grid(pow(2, -13))\nstats(box([0, 0, 0], [3000, 10, 10]), samples=0)").out;
+  const std::string report = run_script("grid(pow(2, -13))\nstats(box([0, 0, 0], [3000, 10, 10]), samples=0)").err;
   EXPECT_NE(report.find("grid step                               2^-13\n"), std::string::npos) << report;
-  EXPECT_EQ(run_script("stats(box([0, 0, 0], [3, 1, 1]), samples=0)").out.find("grid step"), std::string::npos);
+  EXPECT_EQ(run_script("stats(box([0, 0, 0], [3, 1, 1]), samples=0)").err.find("grid step"), std::string::npos);
   // revolve, cylinder, sphere and cone follow the grid too.
   const auto r = run_script("grid(pow(2, -13))\nprint(revolve([[0, 0], [2000, 0], [2000, 100], [0, 100]], circle(4)), "
                             "cylinder(2000, 10), sphere(2500), cone(2500, 3000))");
@@ -606,7 +606,7 @@ TEST(Builtins, GridErrorsSayWhatFits) {
                 .find("different grids"),
             std::string::npos);
   // A later grid() says which solids keep the old grid.
-  EXPECT_EQ(run_script("a = box([0, 0, 0], [1, 1, 1])\ngrid(pow(2, -13))").out,
+  EXPECT_EQ(run_script("a = box([0, 0, 0], [1, 1, 1])\ngrid(pow(2, -13))").err,
             "note: grid(2^-13): 1 solid (a) made at another grid cannot be combined with solids made from now on\n");
   EXPECT_EQ(run_script("grid(pow(2, -13))\na = box([0, 0, 0], [1, 1, 1])\ngrid(pow(2, -13))").out, "");
 }
@@ -887,7 +887,7 @@ TEST(Builtins, SplineErrorsAtTheCall) {
   EXPECT_EQ(first_error_line("s = fit([[0, 0], [1, 1, 0]], controls=4)"),
             "t.bsp:1:9: error: fit: point 2 has 3 coordinates, the first had 2 (all points must be 2D or all 3D)");
   EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, smoothing=-1)"),
-            "t.bsp:1:30: error: fit: argument 'smoothing' must be a finite number >= 0");
+            "t.bsp:1:30: error: fit: argument 'smoothing' must be a finite number >= 0, got -1");
   EXPECT_EQ(first_error_line("s = fit(cubic(), controls=8, start=bspline([[0, 0], [1, 1], [2, 0], [3, 1]], closed=true))")
                 .substr(0, 46),
             "t.bsp:1:5: error: fit: invalid input: the star");
@@ -906,6 +906,42 @@ TEST(Builtins, SplineErrorsAtTheCall) {
   EXPECT_EQ(first_error_line("d = degree(cubic())"), "t.bsp:1:12: error: degree: argument 's' must be a spline, got curve");
   EXPECT_EQ(first_error_line("s = load_spline(\"/nonexistent/s.spline\")").substr(0, 52),
             "t.bsp:1:5: error: load_spline: /nonexistent/s.spline");
+}
+
+// fit keeps the order of its points (issue 36): an open fit starts at the first point (a clamped
+// spline's first control point is its start), also for the same points given the other way, and a
+// closed 2D fit turns the way its points do. The points of a half circle from (1, 0) to (-1, 0).
+TEST(Builtins, FitKeepsTheOrderOfItsPoints) {
+  const std::string half = "fn at(k) { return [cos(pi * k / 40), sin(pi * k / 40)] }\npts = map(at, range(0, 41))\n";
+  auto v = numbers(half + "c = control_points(fit(pts, controls=6))\nprint(c[0][0], c[0][1])");
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_NEAR(v[0], 1.0, 1e-3);
+  EXPECT_NEAR(v[1], 0.0, 1e-3);
+  v = numbers(half + "c = control_points(fit(reverse(pts), controls=6))\nprint(c[0][0], c[0][1])");
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_NEAR(v[0], -1.0, 1e-3);
+  EXPECT_NEAR(v[1], 0.0, 1e-3);
+  // A circle given clockwise: the closed fit's samples turn clockwise too (negative area).
+  const std::string circle =
+      "fn at(k) { return [cos(-2 * pi * k / 60), sin(-2 * pi * k / 60)] }\npts = map(at, range(0, 60))\n";
+  v = numbers(
+      circle +
+      "p = points(sample(fit(curve(pts, closed=true), controls=8), 100))\n"
+      "a = 0\nfor i in range(0, 100) { a = a + p[i][0] * p[(i + 1) % 100][1] - p[(i + 1) % 100][0] * p[i][1] }\n"
+      "print(a)");
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_LT(v[0], 0.0);
+}
+
+// fit says "converged" when it has fitted exact data: points of a cubic Bezier curve fitted with
+// four control points are matched to rounding, where the relative stopping test cannot hold.
+TEST(Builtins, FitOfExactDataConverges) {
+  const auto r = run_script(
+      "b = bezier([[0, 0], [1, 2], [3, 2], [4, 0]])\ns = fit(sample(b, 60), controls=4)\n"
+      "print(str(s))\nprint(distance(s, sample(b, 60))[0] < 1e-6)");
+  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.out.find("not converged"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("true"), std::string::npos) << r.out;
 }
 
 }  // namespace

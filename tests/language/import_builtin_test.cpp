@@ -47,6 +47,7 @@ TEST(ImportBuiltin, ExportedMeshReadsBackWithoutAWarningWhenNothingWasCollapsed)
       path + "\")\ng = import(\"" + path + "\")\nprint(abs(volume(g) - volume(s)) < area(s) * pow(2, -15))\n");
   EXPECT_EQ(r.error, "");
   EXPECT_EQ(r.out, "true\n");
+  EXPECT_EQ(r.err, "");  // no warning (built-ins' warnings go to standard error)
 }
 
 TEST(ImportBuiltin, OverlappingBoxesInOneMeshImportAsTheirUnion) {
@@ -55,9 +56,10 @@ TEST(ImportBuiltin, OverlappingBoxesInOneMeshImportAsTheirUnion) {
               "overlapping_boxes.off");
   const auto r = run_script("print(volume(import(\"" + path + "\")))");
   EXPECT_EQ(r.error, "");
-  EXPECT_EQ(r.out, "import: " + path +
+  EXPECT_EQ(r.err, "import: " + path +
                        ": 6 face pairs intersect: imported the region of positive winding number (parts enclosed more "
-                       "than once count once)\n15\n");
+                       "than once count once)\n");
+  EXPECT_EQ(r.out, "15\n");
   const auto strict = run_script("s = import(\"" + path + "\", strict=true)");
   EXPECT_NE(strict.error.find("t.bsp:1:5: error: import: " + path + " is not a closed manifold: "), std::string::npos)
       << strict.error;
@@ -74,8 +76,8 @@ TEST(ImportBuiltin, BoxesSharingAnEdgeImportAsBoth) {
   const std::string path = written(mesh, "edge_boxes.off");
   const auto r = run_script("print(volume(import(\"" + path + "\")))");
   EXPECT_EQ(r.error, "");
-  EXPECT_NE(r.out.find(": imported the region of positive winding number"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out.substr(r.out.find('\n') + 1), "2\n");
+  EXPECT_NE(r.err.find(": imported the region of positive winding number"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "2\n");
 }
 
 TEST(ImportBuiltin, OpenMeshIsRefusedWithItsOpenEdges) {
@@ -98,7 +100,7 @@ TEST(ImportBuiltin, BunnyAndTurnedCopyInOneFileImportAsOneCleanSolid) {
   const PolygonMesh both = test_shapes::merged(bunny, copy);
   const std::string path = written(both, "two_bunnies.off");
   std::ostringstream out;
-  Interpreter interpreter({.out = &out});
+  Interpreter interpreter({.err = &out});
   const std::optional<Value> value = interpreter.run(testing::text_source("import(\"" + path + "\")"));
   ASSERT_TRUE(value.has_value());
   EXPECT_NE(out.str().find("face pairs intersect: imported the region of positive winding number"), std::string::npos)

@@ -72,7 +72,8 @@ TEST(MotionsBuiltin, BadInputIsAnErrorAtTheArgument) {
   EXPECT_NE(run_script("geodesic(sphere_surface([0, 0, 0], 1), [1, 0, 0], [2, 0, 0])").error.find("same point"),
             std::string::npos);
   EXPECT_NE(run_script("torus_surface([0, 0, 0], [0, 0, 1], 1, 2)").error.find("below R"), std::string::npos);
-  EXPECT_NE(run_script("sweep(box([0,0,0],[1,1,1]), motion([[[0,0,0],[0,0,1,0]],[[1,0,0],[0,0,1,0]]]), tol=-1)").error.find("tol must be"),
+  EXPECT_NE(run_script("sweep(box([0,0,0],[1,1,1]), motion([[[0,0,0],[0,0,1,0]],[[1,0,0],[0,0,1,0]]]), tol=-1)")
+                .error.find("argument 'tol' must be a finite number > 0, got -1"),
             std::string::npos);
 }
 

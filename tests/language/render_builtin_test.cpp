@@ -83,7 +83,9 @@ TEST(RenderBuiltin, ErrorsPointAtTheArgument) {
   EXPECT_NE(run_script("render([box([0,0,0],[1,1,1]), 2], " + f + ")").error.find("item 1 must be a solid, mesh, surface"),
             std::string::npos);
   EXPECT_NE(run_script("render(sphere_surface([0,0,0], 1), " + f + ")").error.find("cannot draw sphere"), std::string::npos);
-  EXPECT_NE(run_script("render(box([0,0,0],[1,1,1]), " + f + ", tol=-1)").error.find("tol must be"), std::string::npos);
+  EXPECT_NE(run_script("render(box([0,0,0],[1,1,1]), " + f + ", tol=-1)")
+                .error.find("argument 'tol' must be a finite number >= 0, got -1"),
+            std::string::npos);
   EXPECT_NE(run_script("render([], " + f + ")").error.find("the list is empty"), std::string::npos);
   EXPECT_NE(run_script("render(box([0,0,0],[1,1,1]), " + f + ", view=[0, 0, 0])").error.find("nonzero"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir.file("x.png")));
@@ -171,7 +173,8 @@ TEST(RenderBuiltin, ExportedSurfaceReadsBackAsItsTessellationBitExact) {
   EXPECT_EQ(read_mesh(dir.file("default.obj")).vertices.size(), splines::tessellate(surface, {.tolerance = 1e-3}).points.size());
   EXPECT_NE(run_script("export(box([0,0,0],[1,1,1]), \"" + dir.file("b.obj") + "\", tol=0.1)").error.find("tol applies to surfaces only"),
             std::string::npos);
-  EXPECT_NE(run_script("export(bspline_surface(" + rows + ", degree=2), \"" + dir.file("b.obj") + "\", tol=0)").error.find("tol must be"),
+  EXPECT_NE(run_script("export(bspline_surface(" + rows + ", degree=2), \"" + dir.file("b.obj") + "\", tol=0)")
+                .error.find("argument 'tol' must be a finite number > 0, got 0"),
             std::string::npos);
 }
 

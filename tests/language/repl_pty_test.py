@@ -1,12 +1,16 @@
 #!/usr/bin/env python3
 """Drives the sculpt REPL through a pseudo-terminal, as a user would: typed lines, an error,
 a multi-line function, tab completion, history recall with the up arrow (also across
-sessions through ~/.sculpt_history), Ctrl-C at a prompt, during a run and during a long built-in, :help and :quit. Reads what the terminal shows."""
+sessions through ~/.sculpt_history), Ctrl-C at a prompt, during a run and during a long built-in, :help (wrapped to
+the window's width) and :quit. Reads what the terminal shows."""
+import fcntl
 import os
 import pty
 import select
+import struct
 import sys
 import tempfile
+import termios
 import time
 
 SCULPT = sys.argv[1]
@@ -134,8 +138,13 @@ def main():
     assert "twice(x)" in history, history
     t = Terminal(home)
     t.read_until("sculpt> ")
+    # A 60-column window: :help wraps its lines to it (the width is read at each entry).
+    fcntl.ioctl(t.fd, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 60, 0, 0))
     t.mark(); t.type("\x1b[A\x1b[A\x1b[A\r")  # three entries back: ':help box' of the first session
-    t.read_until("centres the box on the origin.\r\nsculpt> ")  # the help text, then the next prompt
+    t.read_until("size: a vector [sx, sy, sz] or a number\r\nsculpt> ")  # the help text, then the next prompt
+    help_lines = t.screen.split("box(min, max, center=false, size=v)\r\n", 1)[1].split("\r\nsculpt> ")[0].split("\r\n")
+    assert len(help_lines) > 5 and all(len(line) <= 60 for line in help_lines), help_lines
+    assert "centres the box on the origin." in " ".join(line.strip() for line in help_lines), help_lines
     time.sleep(0.3)
     t.type("\x04")  # end of input leaves the session
     status = t.close()

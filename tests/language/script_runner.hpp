@@ -11,6 +11,7 @@ namespace sculpt::language::testing {
 struct RunResult {
   std::string out;
   std::string error;
+  std::string err;  ///< built-ins' summaries and warnings (standard error)
 };
 
 inline SourcePtr text_source(const std::string& text, const std::string& name = "t.bsp") {
@@ -21,8 +22,9 @@ inline SourcePtr text_source(const std::string& text, const std::string& name = 
 }
 
 inline RunResult run_script(const std::string& text, InterpreterOptions options = {}) {
-  std::ostringstream out;
+  std::ostringstream out, err;
   options.out = &out;
+  options.err = &err;
   Interpreter interpreter(options);
   RunResult result;
   try {
@@ -31,6 +33,7 @@ inline RunResult run_script(const std::string& text, InterpreterOptions options 
     result.error = format_error(e);
   }
   result.out = out.str();
+  result.err = err.str();
   return result;
 }
 

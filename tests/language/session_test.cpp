@@ -35,9 +35,11 @@ TEST(Session, ChangingTheGridLaterSaysWhichSolidsKeepTheOldOne) {
   f.session.feed("a = box([0, 0, 0], [1, 1, 1])");
   f.session.feed("b = a | box([0, 0, 0], [2, 1, 1])");
   f.session.feed("grid(pow(2, -13))");
-  EXPECT_EQ(f.out.str(),
-            "note: grid(2^-13): 2 solids (a, b) made at another grid cannot be combined with solids made from now on\n"
-            "0.0001220703125\n");
+  EXPECT_EQ(f.out.str(), "0.0001220703125\n");
+  EXPECT_EQ(
+      f.err.str(),
+      "note: grid(2^-13): 2 solids (a, b) made at another grid cannot be combined with solids made from now on\n");
+  f.err.str("");
   f.session.feed("c = box([0, 0, 0], [3000, 1, 1])");
   f.session.feed("d = a | c");
   EXPECT_NE(f.err.str().find("<stdin>:5:7: error: invalid input: solids made at different grids (step 2^-15 and step 2^-13)"),
@@ -101,7 +103,8 @@ TEST(Session, Commands) {
   f.session.feed(":help sqtr");
   f.session.feed(":halp");
   EXPECT_EQ(f.out.str(),
-            "r : number = 2\nsqrt(x)\n  Square root of x >= 0.\nno built-in or keyword named 'sqtr'; did you mean 'sqrt'?\n");
+            "r : number = 2\nsqrt(x)\n  Square root of x >= 0.\n    x: a number\nno built-in or keyword named 'sqtr'; "
+            "did you mean 'sqrt'?\n");
   EXPECT_EQ(f.err.str(), "error: unknown command ':halp'; did you mean ':help'? (commands: :help, :load, :vars, :show, :quit)\n");
   EXPECT_FALSE(f.session.feed(":quit"));
 }

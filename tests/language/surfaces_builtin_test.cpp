@@ -98,9 +98,10 @@ TEST(SurfacesBuiltin, BadInputIsAnErrorAtTheCall) {
   EXPECT_NE(run_script("s = bspline_surface([[[0, 0, 0], [0, 1, 0]], [[2, 0, 0], [2, 1, 0]]], degree=1)\nsurface_solid(s)")
                 .error.find("closed in both directions"),
             std::string::npos);
-  EXPECT_NE(run_script("s = bspline_surface([[[0, 0, 0], [0, 1, 0]], [[2, 0, 0], [2, 1, 0]]], degree=1)\nthicken(s, -1)")
-                .error.find("thickness"),
-            std::string::npos);
+  EXPECT_NE(
+      run_script("s = bspline_surface([[[0, 0, 0], [0, 1, 0]], [[2, 0, 0], [2, 1, 0]]], degree=1)\nthicken(s, -1)")
+          .error.find("argument 't' must be a finite number > 0, got -1"),
+      std::string::npos);
   EXPECT_NE(run_script("s = bspline_surface([[[0, 0, 0], [0, 1, 0]], [[2, 0, 0], [2, 1, 0]]], degree=1)\nsurface_history(s)")
                 .error.find("not made by fit_surface"),
             std::string::npos);

@@ -41,7 +41,7 @@ fn cyl(p) { p[0] * p[0] + p[1] * p[1] - 3.94 }
 /// Runs `script` and returns the curves in the global list `name`.
 std::vector<curves::DigitizedCurve> traced(const std::string& script, const std::string& name, std::string* out = nullptr) {
   std::ostringstream text;
-  Interpreter interpreter({.out = &text});
+  Interpreter interpreter({.out = &text, .err = &text});  // prints and the summary, in order
   interpreter.run(text_source(script));
   if (out) *out = text.str();
   std::vector<curves::DigitizedCurve> result;
@@ -137,7 +137,8 @@ cs = trace(ball, cyl, box=[[-0.5, -1.5, -2.5], [2.5, 1.5, 2.5]], tol=1e-4, quiet
 TEST(TraceBuiltin, ABoxWithoutTheCurveGivesAnEmptyList) {
   const auto r = run_script(std::string(kFig7) + "print(trace(ellipsoid, cyl, box=[[-1, -1, -1], [1, 1, 1]]))");
   EXPECT_EQ(r.error, "");
-  EXPECT_EQ(r.out, "trace: 0 curves, 0 points, 0 singular points, 0 steps\n[]\n");
+  EXPECT_EQ(r.err, "trace: 0 curves, 0 points, 0 singular points, 0 steps\n");  // the summary on standard error
+  EXPECT_EQ(r.out, "[]\n");
 }
 
 TEST(TraceBuiltin, DegeneratePairsGiveDocumentedResults) {
@@ -164,9 +165,9 @@ i = trace_info(ellipsoid, cyl, box=[[-2.5, -2.5, -5], [2.5, 2.5, 5]], tol=1e-4, 
 print(i[2] <= 51, i[3])
 )");
   EXPECT_EQ(r.error, "");
-  EXPECT_NE(r.out.find("trace: warning: the step budget of 50 ran out; the curves may be incomplete"),
+  EXPECT_NE(r.err.find("trace: warning: the step budget of 50 ran out; the curves may be incomplete"),
             std::string::npos)
-      << r.out;
+      << r.err;
   EXPECT_NE(r.out.find("true true\n"), std::string::npos) << r.out;
 }
 
@@ -189,7 +190,7 @@ TEST(TraceBuiltin, BadInputIsAnErrorAtTheArgument) {
             "t.bsp:7:51: error: trace: tol=1e-12 is below the floor of 1e-9 times the box diagonal "
             "(1.7320508075688772e-09 here)");
   EXPECT_EQ(call("ellipsoid, cyl, box=[[0, 0, 0], [1, 1, 1]], tol=-1"),
-            "t.bsp:7:51: error: trace: tol must be a finite number > 0");
+            "t.bsp:7:51: error: trace: argument 'tol' must be a finite number > 0, got -1");
   EXPECT_EQ(call("ellipsoid, cyl, box=[[0, 0, 0], [1, 1, 1]], tol=5"),
             "t.bsp:7:51: error: trace: tol=5 is larger than the box diagonal");
   EXPECT_EQ(call("ellipsoid, cyl, box=[[0, 0, 0], [1, 1, 1]], steps=0"),
