@@ -15,6 +15,7 @@
 #include "base/parallel.hpp"
 #include "bsp/local/deferred_build.hpp"
 #include "bsp/tree/autopartition.hpp"
+#include "bsp/tree/mesh_build_options.hpp"
 #include "bsp/tree/solid_access.hpp"
 #include "bsp/tree/triangle_fragment.hpp"
 #include "mesh/triangulate.hpp"
@@ -229,17 +230,8 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
   }
 
   // Thibault & Naylor 1987 (autopartition.hpp): each candidate scored against every polygon.
-  const bsp::detail::AutopartitionOptions build{.candidates = options.candidates,
-                                                .sample = options.sample,
-                                                .split_weight = options.split_weight,
-                                                .score = bsp::detail::PartitionScore::ExpectedDepth,
-                                                .volume_samples = options.volume_samples,
-                                                .point_sample = options.point_sample,
-                                                .auxiliary_cost = options.auxiliary_cost,
-                                                .separating_planes = options.separating_planes,
-                                                .carry_boundary = options.snapped_mesh_is_clean,
-                                                .auxiliary_splits = options.auxiliary_planes,
-                                                .approximate_scores = true};
+  bsp::detail::AutopartitionOptions build = bsp::detail::mesh_build_options(options);
+  build.carry_boundary = options.snapped_mesh_is_clean;
   if (options.snapped_mesh_is_clean && !fragments.empty()) {
     // A clean closed surface: the tree waits for its first use. Far from it the solid is out when
     // the surface's orientation is outward (positive volume), in when it is turned inside out.
@@ -256,4 +248,20 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
   return bsp::detail::SolidAccess::at_grid(std::move(solid), grid);
 }
 
+namespace bsp::detail {
+
+AutopartitionOptions mesh_build_options(const FromMeshOptions& options) {
+  return {.candidates = options.candidates,
+          .sample = options.sample,
+          .split_weight = options.split_weight,
+          .score = PartitionScore::ExpectedDepth,
+          .volume_samples = options.volume_samples,
+          .point_sample = options.point_sample,
+          .auxiliary_cost = options.auxiliary_cost,
+          .separating_planes = options.separating_planes,
+          .auxiliary_splits = options.auxiliary_planes,
+          .approximate_scores = true};
+}
+
+}  // namespace bsp::detail
 }  // namespace sculpt

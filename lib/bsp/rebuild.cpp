@@ -6,6 +6,7 @@
 #include "bsp/boundary.hpp"
 #include "bsp/tree/autopartition.hpp"
 #include "bsp/tree/boundary_fragments.hpp"
+#include "bsp/tree/mesh_build_options.hpp"
 #include "bsp/tree/solid_access.hpp"
 
 namespace sculpt {
@@ -27,15 +28,7 @@ Solid rebuild_from_boundary(const Solid& solid, const FromMeshOptions& options) 
   (void)arena.append(solid);
   FragmentList fragments = arena.boundary_of(solid);
   if (fragments.empty()) return solid;
-  const bsp::detail::AutopartitionOptions build{.candidates = options.candidates,
-                                                .sample = options.sample,
-                                                .split_weight = options.split_weight,
-                                                .score = bsp::detail::PartitionScore::ExpectedDepth,
-                                                .volume_samples = options.volume_samples,
-                                                .point_sample = options.point_sample,
-                                                .auxiliary_cost = options.auxiliary_cost,
-                                                .separating_planes = options.separating_planes,
-                                                .auxiliary_splits = options.auxiliary_planes};
+  const bsp::detail::AutopartitionOptions build = bsp::detail::mesh_build_options(options);
   return bsp::detail::SolidAccess::at_grid(bsp::detail::autopartition(arena, std::move(fragments), build),
                                            solid.grid());
 }
