@@ -25,7 +25,7 @@ constexpr int kMaxSplitDepth = 48;
 
 /// A cell of the splitting tree: an axis-aligned box [lo, hi] (grid units) and the hull's faces
 /// that reach into it; its subtree becomes child `side` of split `parent` (-1: the root).
-struct Cell {
+struct HullCell {
   std::array<std::int64_t, 3> lo, hi;
   std::vector<int> faces;
   int parent = -1;
@@ -53,14 +53,14 @@ class ConvexTree {
 
   Solid build() && {
     const std::int64_t w = kernel::PlaneTable::kWorld;
-    Cell root{{-w, -w, -w}, {w, w, w}, {}, -1, 0, 0};
+    HullCell root{{-w, -w, -w}, {w, w, w}, {}, -1, 0, 0};
     root.faces.resize(h_.triangles.size());
     for (std::size_t f = 0; f < root.faces.size(); ++f) root.faces[f] = static_cast<int>(f);
     TreeRef top = kOut;
-    std::vector<Cell> stack;
+    std::vector<HullCell> stack;
     stack.push_back(std::move(root));
     while (!stack.empty()) {
-      Cell cell = std::move(stack.back());
+      HullCell cell = std::move(stack.back());
       stack.pop_back();
       const TreeRef made = subtree(cell, stack);
       if (cell.parent < 0) top = made;
@@ -73,7 +73,7 @@ class ConvexTree {
  private:
   /// The subtree for `cell`: a leaf, a chain, or an opened split node whose two children go on
   /// the stack.
-  TreeRef subtree(Cell& cell, std::vector<Cell>& stack) {
+  TreeRef subtree(HullCell& cell, std::vector<HullCell>& stack) {
     if (cell.faces.empty()) return inside(cell) ? kIn : kOut;
     if (cell.faces.size() > kChainFaces && cell.depth < kMaxSplitDepth) {
       std::optional<Plane> plane;
@@ -89,7 +89,7 @@ class ConvexTree {
       }
       if (plane) {
         const int split_index = static_cast<int>(splits_.size());
-        Cell below{cell.lo, cell.hi, {}, split_index, 0, cell.depth + 1}, above = below;
+        HullCell below{cell.lo, cell.hi, {}, split_index, 0, cell.depth + 1}, above = below;
         if (axis >= 0) {
           below.hi[axis] = at;
           above.lo[axis] = at;
@@ -131,7 +131,7 @@ class ConvexTree {
   /// A plane through the apex: the coordinate planes for the first three levels (eight octant
   /// cones), then the plane that contains the cell's mean direction and halves its faces' directions
   /// across the widest spread (a sector tree around the apex, as for solids of revolution).
-  std::optional<Plane> cone_split(const Cell& cell) const {
+  std::optional<Plane> cone_split(const HullCell& cell) const {
     const GridPoint& c = *apex_;
     if (cell.depth < 3) {
       std::array<std::int64_t, 3> n{0, 0, 0};
@@ -179,7 +179,7 @@ class ConvexTree {
   }
 
   /// The median of the faces' first corners along the cell's longest side, strictly inside it.
-  std::optional<std::pair<int, std::int64_t>> choose_split(const Cell& cell) const {
+  std::optional<std::pair<int, std::int64_t>> choose_split(const HullCell& cell) const {
     std::array<std::int64_t, 3> lo{cell.hi}, hi{cell.lo};
     for (int f : cell.faces)
       for (int k = 0; k < 3; ++k)
@@ -205,7 +205,7 @@ class ConvexTree {
   }
 
   /// A cell that no face meets lies wholly inside or outside: test its centre (in half units).
-  bool inside(const Cell& cell) const {
+  bool inside(const HullCell& cell) const {
     const Int128 x = Int128(cell.lo[0]) + cell.hi[0], y = Int128(cell.lo[1]) + cell.hi[1], z = Int128(cell.lo[2]) + cell.hi[2];
     for (const Plane& p : planes_)
       if (p.a * x + p.b * y + p.c * z + 2 * p.d > 0) return false;

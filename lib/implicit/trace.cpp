@@ -34,7 +34,7 @@ void validate(const TraceOptions& o) {
   if (o.max_steps <= 0) throw InvalidInput("trace: max_steps must be > 0");
 }
 
-struct Cell {
+struct StartCell {
   Box box;
   int level = 0;  // 0 = the whole box; kLeafLevel = start-cell size; more = extra splits
 };
@@ -111,9 +111,9 @@ void Tracer::trace_from(const CurvePoint& seed) {
 
 TraceResult Tracer::run() {
   const double cover_radius = 2.0 * options_.tolerance;
-  std::vector<Cell> stack{{options_.box, 0}};  // explicit stack: no recursion
+  std::vector<StartCell> stack{{options_.box, 0}};  // explicit stack: no recursion
   while (!stack.empty() && !result_.budget_exhausted) {
-    const Cell cell = stack.back();
+    const StartCell cell = stack.back();
     stack.pop_back();
     if (!may_hold_curve(cell.box)) continue;
     const Vec centre = 0.5 * (cell.box.lo + cell.box.hi);
@@ -132,7 +132,7 @@ TraceResult Tracer::run() {
     }
     if (!split) continue;
     for (int octant = 7; octant >= 0; --octant) {
-      Cell child{cell.box, cell.level + 1};
+      StartCell child{cell.box, cell.level + 1};
       for (int axis = 0; axis < 3; ++axis) {
         if (octant & (1 << axis))
           child.box.lo[axis] = centre[axis];

@@ -217,6 +217,22 @@ std::vector<double> Arguments::vector(std::string_view name, std::size_t n) cons
   return out;
 }
 
+std::string format_point(const Eigen::Vector3d& p) {
+  std::string s = "(";  // appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on the chained +
+  s += format_number(p.x());
+  s += ", ";
+  s += format_number(p.y());
+  s += ", ";
+  s += format_number(p.z());
+  s += ")";
+  return s;
+}
+
+Eigen::Vector3d Arguments::point(std::string_view name) const {
+  const auto v = vector(name, 3);
+  return {v[0], v[1], v[2]};
+}
+
 const Value& Arguments::function(std::string_view name) const {
   const Value& v = value(name);
   if (!v.is<std::shared_ptr<const UserFunction>>() && !v.is<const Builtin*>()) fail_type(name, "a function");

@@ -241,6 +241,8 @@ class Arguments {
   [[nodiscard]] const List& list(std::string_view name) const;
   /// A list of the declared number of numbers (Param::vector), or of n when n > 0.
   [[nodiscard]] std::vector<double> vector(std::string_view name, std::size_t n = 0) const;
+  /// A list of three numbers as a point or direction.
+  [[nodiscard]] Eigen::Vector3d point(std::string_view name) const;
   /// A function (user-defined or built-in).
   [[nodiscard]] const Value& function(std::string_view name) const;
   /// Calls function value `f` with positional `values`; an error inside it gets a note at this call.
@@ -365,5 +367,8 @@ void register_view(BuiltinTable& table);  ///< show(x), in the view area (builti
 
 /// Names of the language's keywords (for completion and the docs check).
 std::span<const char* const> keywords();
+
+/// "(x, y, z)" with each coordinate as format_number writes it.
+std::string format_point(const Eigen::Vector3d& p);
 
 }  // namespace sculpt::language

@@ -30,10 +30,6 @@ constexpr double kMinRelativeTolerance = 1e-9;
 /// Largest step budget a script may give (about 150 s of tracing).
 constexpr long long kMaxSteps = 10'000'000;
 
-std::string point_text(const Eigen::Vector3d& p) {
-  return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) + ")";
-}
-
 const UserFunction& function_arg(const Arguments& args, std::string_view i) {
   if (const auto* f = args.value(i).get<std::shared_ptr<const UserFunction>>()) return **f;
   args.fail_type(i, "a function fn f(x, y, z) or fn f(p)");
@@ -53,7 +49,7 @@ implicit::Expression compiled_arg(const Arguments& args, std::string_view i) {
   }
 }
 
-implicit::Box box_arg(const Arguments& args, std::string_view i) {
+implicit::Box implicit_box_arg(const Arguments& args, std::string_view i) {
   const List& corners = args.list(i);
   implicit::Box box;
   if (corners.size() != 2) args.fail(i, "box must be [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
@@ -78,7 +74,7 @@ implicit::Box box_arg(const Arguments& args, std::string_view i) {
 implicit::TraceOptions options_arg(const Arguments& args) {
   implicit::TraceOptions options;
   if (!args.has("box")) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region to trace in");
-  options.box = box_arg(args, "box");
+  options.box = implicit_box_arg(args, "box");
   const double diagonal = (options.box.hi - options.box.lo).norm();
   if (args.has("tol")) {
     const double tol = args.number("tol");
@@ -110,7 +106,7 @@ implicit::TraceResult run_trace(const Arguments& args) {
       culprit = "f";
     }
     const std::string name = function_arg(args, culprit).name;
-    args.fail(culprit, "'" + name + "' (or its gradient) is not finite at " + point_text(e.point()) +
+    args.fail(culprit, "'" + name + "' (or its gradient) is not finite at " + format_point(e.point()) +
                            " (a division by zero, the square root of a negative number or an overflow); trace in a "
                            "box where it is defined");
   }
@@ -178,7 +174,7 @@ FromMeshOptions from_mesh_options(const kernel::Grid& grid) {
 Value implicit_solid(const Arguments& args) {
   const implicit::Expression f = compiled_arg(args, "f");
   if (!args.has("box")) args.fail("give box=[[xmin, ymin, zmin], [xmax, ymax, zmax]], the region of the solid");
-  implicit::PolygonizeOptions options{.box = box_arg(args, "box")};
+  implicit::PolygonizeOptions options{.box = implicit_box_arg(args, "box")};
   const double diagonal = (options.box.hi - options.box.lo).norm();
   options.tolerance = args.number("tol");
   const kernel::Grid grid = args.grid();
@@ -211,7 +207,7 @@ Value implicit_solid(const Arguments& args) {
   try {
     r = implicit::polygonize(f, options);
   } catch (const implicit::NonFiniteValue& e) {
-    args.fail("f", "'" + function_arg(args, "f").name + "' is not finite at " + point_text(e.point()) +
+    args.fail("f", "'" + function_arg(args, "f").name + "' is not finite at " + format_point(e.point()) +
                        " (a division by zero, the square root of a negative number or an overflow); give a box "
                        "where it is defined");
   } catch (const GeometryError& e) {
@@ -272,7 +268,7 @@ Value surface_patch(const Arguments& args) {
     r = implicit::patch(f, options);
   } catch (const implicit::NonFiniteValue& e) {
     args.fail("f",
-              "'" + function_arg(args, "f").name + "' (or its gradient) is not finite at " + point_text(e.point()));
+              "'" + function_arg(args, "f").name + "' (or its gradient) is not finite at " + format_point(e.point()));
   } catch (const InvalidInput& e) {
     args.fail(e.what());
   } catch (const GeometryError& e) {

@@ -24,28 +24,8 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-V vector3(const Arguments& args, std::string_view i) {
-  const auto v = args.vector(i, 3);
-  return {v[0], v[1], v[2]};
-}
-
-std::string point_text(const V& p) {
-  std::string s = "(";  // appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on the chained +
-  s += format_number(p.x());
-  s += ", ";
-  s += format_number(p.y());
-  s += ", ";
-  s += format_number(p.z());
-  s += ")";
-  return s;
-}
-
-Value surface_value(splines::Surface s, std::string description) {
+Value constraint_surface_value(splines::Surface s, std::string description) {
   return Value(std::shared_ptr<const Object>(std::make_shared<ConstraintSurfaceValue>(std::move(s), std::move(description))));
-}
-
-Value spline_value(splines::BSpline s) {
-  return Value(std::shared_ptr<const Object>(std::make_shared<SplineValue>(std::move(s))));
 }
 
 /// The implicit surface f = 0 of a script function, compiled once (value and exact gradient).
@@ -67,13 +47,13 @@ splines::Surface implicit_from_function(const Arguments& args, std::string_view 
 }
 
 /// Argument i as a surface: a surface value, or a function whose zero set is the surface.
-splines::Surface surface_arg(const Arguments& args, std::string_view i, double scale) {
+splines::Surface constraint_surface_arg(const Arguments& args, std::string_view i, double scale) {
   if (const auto* s = args.value(i).object<ConstraintSurfaceValue>()) return s->surface;
   if (const auto* b = args.value(i).object<SurfaceValue>()) return splines::bspline_surface_constraint(b->surface);
   return implicit_from_function(args, i, scale);
 }
 
-std::vector<V> points_arg(const Arguments& args, std::string_view i) {
+std::vector<V> motion_points_arg(const Arguments& args, std::string_view i) {
   std::vector<V> points;
   const List& l = args.list(i);
   for (std::size_t k = 0; k < l.size(); ++k) {
@@ -87,7 +67,7 @@ std::vector<V> points_arg(const Arguments& args, std::string_view i) {
 }
 
 /// A list of n finite numbers, or nullopt.
-std::optional<std::vector<double>> numbers(const Value& v, std::size_t n) {
+std::optional<std::vector<double>> finite_numbers(const Value& v, std::size_t n) {
   const List* l = v.list();
   if (!l || l->size() != n) return std::nullopt;
   std::vector<double> out;
@@ -105,11 +85,11 @@ splines::Pose pose_at(const Arguments& args, std::string_view i, const Value& it
   const std::string what = "pose " + std::to_string(k + 1);
   const List* pair = item.list();
   if (!pair || pair->size() != 2) args.fail(i, what + " must be [position, rotation]");
-  const auto position = numbers((*pair)[0], 3);
+  const auto position = finite_numbers((*pair)[0], 3);
   if (!position) args.fail(i, what + ": the position must be [x, y, z]");
   splines::Pose pose;
   pose.position = V((*position)[0], (*position)[1], (*position)[2]);
-  if (const auto axis_angle = numbers((*pair)[1], 4)) {
+  if (const auto axis_angle = finite_numbers((*pair)[1], 4)) {
     const V axis((*axis_angle)[0], (*axis_angle)[1], (*axis_angle)[2]);
     if (axis.norm() == 0.0) args.fail(i, what + ": the rotation axis must not be zero");
     pose.rotation = Eigen::AngleAxisd((*axis_angle)[3] * M_PI / 180.0, axis.normalized()).toRotationMatrix();
@@ -118,7 +98,7 @@ splines::Pose pose_at(const Arguments& args, std::string_view i, const Value& it
   const List* rows = (*pair)[1].list();
   if (!rows || rows->size() != 3) args.fail(i, what + ": the rotation must be [ax, ay, az, degrees] or a 3 x 3 matrix");
   for (int r = 0; r < 3; ++r) {
-    const auto row = numbers((*rows)[static_cast<std::size_t>(r)], 3);
+    const auto row = finite_numbers((*rows)[static_cast<std::size_t>(r)], 3);
     if (!row) args.fail(i, what + ": the rotation must be [ax, ay, az, degrees] or a 3 x 3 matrix");
     for (int c = 0; c < 3; ++c) pose.rotation(r, c) = (*row)[static_cast<std::size_t>(c)];
   }
@@ -156,32 +136,35 @@ void register_motions(BuiltinTable& table) {
              .doc = "The sphere as a surface for geodesic and surface_spline.",
              .params = {arg("center").vector(3), arg("r").positive()},
              .run = [](const Arguments& args) -> Value {
-               const V c = vector3(args, "center");
+               const V c = args.point("center");
                const double r = args.number("r");
-               return surface_value(splines::sphere_surface(c, r), "sphere centre " + point_text(c) + ", radius " + format_number(r));
+               return constraint_surface_value(splines::sphere_surface(c, r),
+                                               "sphere centre " + format_point(c) + ", radius " + format_number(r));
              }});
   table.add(
       {.name = "cylinder_surface",
        .doc = "The infinite circular cylinder of radius r around the line through `point` along `axis`, as a surface.",
        .params = {arg("point").vector(3), arg("axis").vector(3), arg("r").positive()},
        .run = [](const Arguments& args) -> Value {
-         const V p = vector3(args, "point"), a = vector3(args, "axis");
+         const V p = args.point("point"), a = args.point("axis");
          if (a.norm() == 0.0) args.fail("axis", "the axis must not be zero");
          const double r = args.number("r");
-         return surface_value(splines::cylinder_surface(p, a, r), "cylinder through " + point_text(p) + " along " +
-                                                                      point_text(a) + ", radius " + format_number(r));
+         return constraint_surface_value(
+             splines::cylinder_surface(p, a, r),
+             "cylinder through " + format_point(p) + " along " + format_point(a) + ", radius " + format_number(r));
        }});
   table.add({.name = "torus_surface",
              .doc = "The torus around `axis` through `center`: centre circle of radius R, tube of radius r (0 < r < "
                     "R), as a surface.",
              .params = {arg("center").vector(3), arg("axis").vector(3), arg("R").positive(), arg("r").positive()},
              .run = [](const Arguments& args) -> Value {
-               const V c = vector3(args, "center"), a = vector3(args, "axis");
+               const V c = args.point("center"), a = args.point("axis");
                if (a.norm() == 0.0) args.fail("axis", "the axis must not be zero");
                const double R = args.number("R"), r = args.number("r");
                if (!(r < R)) args.fail("r", "the tube radius r must be below R");
-               return surface_value(splines::torus_surface(c, a, R, r), "torus centre " + point_text(c) + ", axis " +
-                                                                             point_text(a) + ", radii " + format_number(R) + ", " + format_number(r));
+               return constraint_surface_value(splines::torus_surface(c, a, R, r),
+                                               "torus centre " + format_point(c) + ", axis " + format_point(a) +
+                                                   ", radii " + format_number(R) + ", " + format_number(r));
              }});
   table.add({.name = "geodesic",
              .doc = "A shortest path on `surface` (a surface value, or a function f whose zero set f = 0 is the "
@@ -191,8 +174,8 @@ void register_motions(BuiltinTable& table) {
              .params = {arg("surface").any("a surface or a function"), arg("p").vector(3), arg("q").vector(3),
                         arg("segments").integer(2, 100000).defaults(double(splines::GeodesicOptions{}.segments))},
              .run = [](const Arguments& args) -> Value {
-               const V p = vector3(args, "p"), q = vector3(args, "q");
-               const splines::Surface s = surface_arg(args, "surface", std::max(1.0, (p - q).norm()));
+               const V p = args.point("p"), q = args.point("q");
+               const splines::Surface s = constraint_surface_arg(args, "surface", std::max(1.0, (p - q).norm()));
                splines::GeodesicOptions options;
                options.segments = static_cast<int>(args.integer("segments"));
                args.charge(static_cast<std::uint64_t>(options.segments));
@@ -209,10 +192,10 @@ void register_motions(BuiltinTable& table) {
                             .defaults(double(splines::SurfaceSplineOptions{}.splits)),
                         arg("tol").positive().defaults(1e-4)},
              .run = [](const Arguments& args) -> Value {
-               const std::vector<V> points = points_arg(args, "points");
+               const std::vector<V> points = motion_points_arg(args, "points");
                double size = 0.0;
                for (std::size_t k = 1; k < points.size(); ++k) size = std::max(size, (points[k] - points[0]).norm());
-               const splines::Surface s = surface_arg(args, "surface", std::max(1.0, size));
+               const splines::Surface s = constraint_surface_arg(args, "surface", std::max(1.0, size));
                splines::SurfaceSplineOptions options;
                options.splits = static_cast<int>(args.integer("splits"));
                options.distance = args.number("tol");
@@ -233,7 +216,7 @@ void register_motions(BuiltinTable& table) {
                for (std::size_t k = 0; k < l.size(); ++k) poses.push_back(pose_at(args, "poses", l[k], k));
                splines::MotionOptions options;
                if (args.has("times")) {
-                 const auto t = numbers(args.value("times"), l.size());
+                 const auto t = finite_numbers(args.value("times"), l.size());
                  if (!t) args.fail("times", "times must be a list of one number per pose");
                  options.times = *t;
                }

@@ -35,11 +35,6 @@
 namespace sculpt::language {
 namespace {
 
-Eigen::Vector3d vector3(const Arguments& args, std::string_view i) {
-  const auto v = args.vector(i, 3);
-  return {v[0], v[1], v[2]};
-}
-
 const Solid& solid_arg(const Arguments& args, std::string_view i) {
   return args.object<SolidValue>(i, "a solid").solid;
 }
@@ -141,14 +136,14 @@ Solid box_arg(const Arguments& args) {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi;
   const auto size = [&](std::string_view i) -> Eigen::Vector3d {
     if (const double* s = args.value(i).get<double>()) return Eigen::Vector3d::Constant(*s);
-    return vector3(args, i);
+    return args.point(i);
   };
   if (args.has("size")) {
     if (args.has("min") || args.has("max")) args.fail("size", "give size= or the corners min and max, not both");
     hi = size("size");
   } else if (args.has("min") && args.has("max")) {
-    lo = vector3(args, "min");
-    hi = vector3(args, "max");
+    lo = args.point("min");
+    hi = args.point("max");
   } else if (args.has("min")) {
     hi = size("min");
   } else {
@@ -511,13 +506,13 @@ void register_solids(BuiltinTable& table) {
       {.name = "translate",
        .doc = "Solid s moved by the vector v (exact: v is snapped to the kernel grid).",
        .params = {solid_param("s"), arg("v").vector(3)},
-       .run = [](const Arguments& args) { return solid_value(translate(solid_arg(args, "s"), vector3(args, "v"))); }});
+       .run = [](const Arguments& args) { return solid_value(translate(solid_arg(args, "s"), args.point("v"))); }});
   table.add({.name = "mirror",
              .doc = "Solid s reflected in the plane through the origin with the given normal. Mirrors in "
                     "the coordinate planes are exact; others move vertices to the grid like rotate.",
              .params = {solid_param("s"), arg("normal").vector(3)},
              .run = [](const Arguments& args) -> Value {
-               const Eigen::Vector3d n = vector3(args, "normal");
+               const Eigen::Vector3d n = args.point("normal");
                if (!(n.squaredNorm() > 0) || !n.allFinite())
                  args.fail("normal", "the normal must be a non-zero finite vector");
                const int axis = n.x() != 0 ? (n.y() == 0 && n.z() == 0 ? 0 : -1)
@@ -537,7 +532,7 @@ void register_solids(BuiltinTable& table) {
                     "Multiples of 90 degrees about a coordinate axis are exact.",
              .params = {solid_param("s"), arg("axis").vector(3), arg("degrees").finite_number()},
              .run = [](const Arguments& args) {
-               return solid_value(rotate(solid_arg(args, "s"), vector3(args, "axis"), args.number("degrees")));
+               return solid_value(rotate(solid_arg(args, "s"), args.point("axis"), args.number("degrees")));
              }});
   table.add({.name = "scale",
              .doc = "Solid s scaled by the factors [sx, sy, sz] (or one number for all three); "
@@ -548,7 +543,7 @@ void register_solids(BuiltinTable& table) {
                if (const double* f = args.value("v").get<double>()) {
                  factors = Eigen::Vector3d::Constant(*f);
                } else {
-                 factors = vector3(args, "v");
+                 factors = args.point("v");
                }
                return solid_value(scale(solid_arg(args, "s"), factors));
              }});
@@ -557,7 +552,7 @@ void register_solids(BuiltinTable& table) {
                     "boundary), decided exactly on the kernel grid.",
              .params = {solid_param("s"), arg("p").vector(3)},
              .run = [](const Arguments& args) -> Value {
-               switch (classify(solid_arg(args, "s"), vector3(args, "p")).location) {
+               switch (classify(solid_arg(args, "s"), args.point("p")).location) {
                  case Location::Inside:
                    return "in";
                  case Location::Outside:

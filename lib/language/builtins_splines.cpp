@@ -25,10 +25,6 @@ using splines::BSpline;
 /// Largest degree a script may ask for (the basis work grows with the square of the degree).
 constexpr long long kMaxDegree = 50;
 
-Value spline_value(BSpline s) {
-  return Value(std::shared_ptr<const Object>(std::make_shared<SplineValue>(std::move(s))));
-}
-
 Value fitted_value(splines::FitResult r) {
   auto v = std::make_shared<SplineValue>(std::move(r.curve));
   v->history = std::move(r.history);
@@ -41,7 +37,7 @@ const SplineValue& spline_arg(const Arguments& args, std::string_view i) {
 }
 
 /// Points given as a digitized curve or as a (non-empty) list of [x, y] / [x, y, z], all of one kind.
-curves::DigitizedCurve points_arg(const Arguments& args, std::string_view i, const char* what) {
+curves::DigitizedCurve curve_points_arg(const Arguments& args, std::string_view i, const char* what) {
   if (const auto* c = args.value(i).object<CurveValue>()) return c->curve;
   if (!args.value(i).list()) args.fail_type(i, what);
   curves::DigitizedCurve c = curve_from_points(args, i);
@@ -134,7 +130,7 @@ void register_splines(BuiltinTable& table) {
              .params = {arg("controls").list(), arg("degree").integer(1, kMaxDegree).defaults(3.0),
                         arg("closed").boolean().defaults(false), arg("knots").list().optional("uniform")},
              .run = [](const Arguments& args) -> Value {
-               const curves::DigitizedCurve controls = points_arg(args, "controls", "a list of points");
+               const curves::DigitizedCurve controls = curve_points_arg(args, "controls", "a list of points");
                const int degree = static_cast<int>(args.integer("degree"));
                const bool closed = args.boolean("closed");
                if (!args.has("knots")) {
@@ -153,7 +149,7 @@ void register_splines(BuiltinTable& table) {
              .doc = "The Bezier curve of degree n - 1 over [0, 1] with the n control points [x, y] or [x, y, z].",
              .params = {arg("controls").list()},
              .run = [](const Arguments& args) -> Value {
-               const curves::DigitizedCurve controls = points_arg(args, "controls", "a list of points");
+               const curves::DigitizedCurve controls = curve_points_arg(args, "controls", "a list of points");
                return spline_value(BSpline::bezier(controls.points, controls.dimension));
              }});
 
@@ -175,7 +171,7 @@ void register_splines(BuiltinTable& table) {
                   arg("smoothing").at_least(0).defaults(splines::FitOptions{}.smoothing),
                   spline_param("start").optional("s")},
        .run = [](const Arguments& args) -> Value {
-         const curves::DigitizedCurve data = points_arg(args, "c", "a curve or a list of points");
+         const curves::DigitizedCurve data = curve_points_arg(args, "c", "a curve or a list of points");
          splines::FitOptions options;
          options.dimension = data.dimension;
          options.closed = data.closed;
@@ -257,7 +253,7 @@ void register_splines(BuiltinTable& table) {
              .params = {spline_param("s"), arg("c").any("a curve or a list of points")},
              .run = [](const Arguments& args) -> Value {
                const BSpline& s = spline_arg(args, "s").spline;
-               const curves::DigitizedCurve data = points_arg(args, "c", "a curve or a list of points");
+               const curves::DigitizedCurve data = curve_points_arg(args, "c", "a curve or a list of points");
                const splines::DistanceSummary d = splines::distance(s, data.points);
                return List{d.max, d.rms};
              }});

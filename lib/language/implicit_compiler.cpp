@@ -73,7 +73,7 @@ std::string describe(const Compiled& c) {
 }
 
 /// The bindings of one inlined call (the top-level function is the first).
-struct Frame {
+struct InlineFrame {
   const UserFunction* function = nullptr;
   std::map<std::string, Compiled> locals;
 };
@@ -112,7 +112,7 @@ class Compiler {
   std::size_t nodes_ = 0;
   std::size_t work_ = 0;
   SourcePtr source_;             ///< the script of the function being compiled (inlined calls swap it)
-  std::vector<Frame*> frames_;   ///< innermost inlined call last
+  std::vector<InlineFrame*> frames_;  ///< innermost inlined call last
   std::uintptr_t stack_base_ = 0;
 
   // ---- errors and guards ----
@@ -534,7 +534,7 @@ class Compiler {
   }
 
   Compiled call_user(const UserFunction& f, const ast::CallArguments& call_args, std::size_t where) {
-    for (const Frame* frame : frames_) {
+    for (const InlineFrame* frame : frames_) {
       if (frame->function == &f) {
         not_compiled(where, "recursive call of '" + f.name + "'", "inlining it would never end");
       }
@@ -580,7 +580,7 @@ class Compiler {
   /// The value of f's body with its parameters bound to `arguments`.
   Compiled inline_body(const UserFunction& f, std::vector<Compiled> arguments) {
     check_stack(f.where.offset);
-    Frame frame;
+    InlineFrame frame;
     frame.function = &f;
     for (std::size_t p = 0; p < arguments.size(); ++p) frame.locals[f.parameters[p]] = std::move(arguments[p]);
     struct Restore {

@@ -3,6 +3,7 @@
 /// Script values of the splines area (builtins_splines.cpp): a B-spline curve (type "spline"),
 /// with the convergence history of the fit that made it, if one did.
 
+#include <memory>
 #include <vector>
 
 #include "language/value.hpp"
@@ -22,5 +23,10 @@ struct SplineValue final : Object {
   /// "<spline: degree 3, open, 2D, 8 controls, domain [0, 1]>", plus "fitted in 6 steps" if fitted.
   [[nodiscard]] std::string repr() const override;
 };
+
+/// A spline as a script value (no fit history).
+inline Value spline_value(splines::BSpline s) {
+  return Value(std::shared_ptr<const Object>(std::make_shared<SplineValue>(std::move(s))));
+}
 
 }  // namespace sculpt::language

@@ -61,7 +61,7 @@ std::string quote(const std::string& text) {
 }
 
 /// Recursion bounded by kMaxListDepth.
-std::string show(const Value& value, bool repr, int depth) {
+std::string show_value(const Value& value, bool repr, int depth) {
   struct Visitor {
     bool repr;
     int depth;
@@ -74,7 +74,7 @@ std::string show(const Value& value, bool repr, int depth) {
       std::string out = "[";
       for (std::size_t i = 0; i < list->size(); ++i) {
         if (i > 0) out += ", ";
-        out += show((*list)[i], true, depth + 1);
+        out += show_value((*list)[i], true, depth + 1);
       }
       return out + "]";
     }
@@ -91,8 +91,8 @@ std::string show(const Value& value, bool repr, int depth) {
 
 }  // namespace
 
-std::string to_display(const Value& value) { return show(value, false, 0); }
-std::string to_repr(const Value& value) { return show(value, true, 0); }
+std::string to_display(const Value& value) { return show_value(value, false, 0); }
+std::string to_repr(const Value& value) { return show_value(value, true, 0); }
 
 bool equal(const Value& a, const Value& b) {
   if (a.data().index() != b.data().index()) return false;

@@ -12,9 +12,12 @@
 #include "bsp/set_operations.hpp"
 #include "kernel/predicates.hpp"
 #include "support/mesh_checks.hpp"
+#include "support/solid_checks.hpp"
 
 namespace sculpt {
 namespace {
+
+using checks::vol;
 
 using checks::EdgesManifoldAndOriented;
 
@@ -29,8 +32,6 @@ int nodes_on(const Solid& s, const kernel::Plane& p) {
   }
   return count;
 }
-
-double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s, {.clean = false}))); }
 
 TEST(AxisPlanes, CirclesSplitAtTheirVerticesOnTheAxes) {
   for (const int n : {8, 12, 30, 31, 32, 33, 64}) {

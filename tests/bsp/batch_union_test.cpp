@@ -8,22 +8,23 @@
 #include <Eigen/Geometry>
 
 #include "bench/peers/cases.hpp"
-#include "bsp/tree/solid_access.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
+#include "bsp/tree/solid_access.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/mesh_validity.hpp"
+#include "support/solid_checks.hpp"
 
 namespace sculpt {
 namespace {
 
+using checks::vol;
+
 using checks::EdgesManifoldAndOriented;
 using checks::GenusIs;
-
-double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s, {.clean = false}))); }
 
 Solid pairwise(const std::vector<Solid>& solids) {
   Solid acc;

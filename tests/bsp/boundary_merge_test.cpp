@@ -16,21 +16,18 @@
 #include "bsp/tree/fragment_boxes.hpp"
 #include "bsp/tree/solid_access.hpp"
 #include "support/mesh_checks.hpp"
+#include "support/solid_checks.hpp"
 
 namespace sculpt {
 namespace {
 
+using checks::cube;
+using checks::vol;
+using checks::without_boundary;
+
 using bsp::detail::FragmentBox;
 using bsp::detail::FragmentBoxes;
 using bsp::detail::fragment_box;
-
-Solid cube(double x, double y, double z, double s) { return box({x, y, z}, {x + s, y + s, z + s}); }
-
-// The same tree without its carried boundary: to_mesh extracts it from the tree.
-Solid without_boundary(const Solid& s) {
-  if (is_leaf(s.root())) return s;
-  return bsp::detail::SolidAccess::make(s.planes(), s.nodes(), s.polygons(), s.root());
-}
 
 // The carried boundary gives a closed, oriented mesh with the extracted one's volume, area,
 // Euler characteristic, component count and bounding box.
@@ -54,8 +51,6 @@ Solid without_boundary(const Solid& s) {
   if (!bounding_box(s).isApprox(bounding_box(e))) return ::testing::AssertionFailure() << "bounding box differs";
   return ::testing::AssertionSuccess();
 }
-
-double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s, {.clean = false}))); }
 
 TEST(BoundaryMerge, ResultsCarryTheirBoundary) {
   const Solid a = cube(0, 0, 0, 2), b = cube(1, 1, 1, 2);

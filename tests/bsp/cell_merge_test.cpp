@@ -17,9 +17,14 @@
 #include "bsp/tree/solid_access.hpp"
 #include "support/bench_solids.hpp"
 #include "support/mesh_checks.hpp"
+#include "support/solid_checks.hpp"
 
 namespace sculpt {
 namespace {
+
+using checks::cube;
+using checks::vol;
+using checks::without_boundary;
 
 constexpr bool kUnion[2][2] = {{false, true}, {true, true}};
 constexpr bool kIntersection[2][2] = {{false, false}, {false, true}};
@@ -27,21 +32,11 @@ constexpr bool kDifference[2][2] = {{false, false}, {true, false}};
 constexpr bool kReversed[2][2] = {{false, true}, {false, false}};  // b - a
 const bool (*const kOps[])[2] = {kUnion, kIntersection, kDifference, kReversed};
 
-Solid cube(double x, double y, double z, double s) { return box({x, y, z}, {x + s, y + s, z + s}); }
-
 // The classic result, whatever the threshold: the path by whole trees.
 Solid classic(const Solid& a, const Solid& b, const bool op[2][2]) {
   const bsp::detail::ScopedCellMergeThreshold classic(bsp::detail::kClassicMergeOnly);
   return op == kUnion ? (a | b) : op == kIntersection ? (a & b) : op == kDifference ? (a - b) : (b - a);
 }
-
-// The same tree without its carried boundary: to_mesh extracts it from the tree.
-Solid without_boundary(const Solid& s) {
-  if (is_leaf(s.root())) return s;
-  return bsp::detail::SolidAccess::make(s.planes(), s.nodes(), s.polygons(), s.root());
-}
-
-double vol(const PolygonMesh& m) { return double(checks::reference_signed_volume(m)); }
 
 ::testing::AssertionResult SameSolid(const Solid& a, const Solid& b, const bool op[2][2], std::size_t leaf_size) {
   const std::optional<Solid> got = bsp::detail::merge_by_cells(a, b, op, {.cells = {.leaf_size = leaf_size}});

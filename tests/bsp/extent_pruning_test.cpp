@@ -8,16 +8,19 @@
 #include <random>
 
 #include "bsp/boundary.hpp"
-#include "bsp/tree/fragment_boxes.hpp"
 #include "bsp/classify.hpp"
 #include "bsp/merge/extent_pruning.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
+#include "bsp/tree/fragment_boxes.hpp"
 #include "support/mesh_checks.hpp"
+#include "support/solid_checks.hpp"
 
 namespace sculpt {
 namespace {
+
+using checks::vol;
 
 using bsp::detail::FragmentBox;
 using bsp::detail::FragmentBoxes;
@@ -25,8 +28,6 @@ using bsp::detail::fragment_box;
 
 using checks::EdgesManifoldAndOriented;
 using kernel::Side;
-
-double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s, {.clean = false}))); }
 
 // A's sides of every plane of B (both in one arena, as a set operation has them).
 struct Sides {

@@ -45,7 +45,7 @@ TEST(RingBoundary, BatchApproximationsHaveTheKernelsBits) {
   const std::int32_t n0 = planes.add(Plane(big, 1, 0, 5)), n1 = planes.add(Plane(big + 1, 1, 0, -7)),
                      n2 = planes.add(Plane(0, 0, 1, 3));
   const std::int32_t d0 = planes.add(Plane(1, 2, 3, 0)), d1 = planes.add(Plane(2, 4, 6, 1));  // parallel
-  std::vector<bsp::detail::PlaneTriple> triples;
+  std::vector<bsp::detail::VertexPlanes> triples;
   const auto count = std::uint64_t(planes.size());
   for (int i = 0; i < 20001; ++i) {  // odd: the last one is computed alone
     triples.push_back({std::int32_t(rng() % count), std::int32_t(rng() % count), std::int32_t(rng() % count)});
@@ -57,7 +57,7 @@ TEST(RingBoundary, BatchApproximationsHaveTheKernelsBits) {
   ASSERT_EQ(batch.size(), triples.size());
   int nearly = 0, dependent = 0;
   for (std::size_t i = 0; i < triples.size(); ++i) {
-    const bsp::detail::PlaneTriple t = triples[i];
+    const bsp::detail::VertexPlanes t = triples[i];
     const ApproxPoint expected = kernel::approximate_vertex(planes[t.p], planes[t.q], planes[t.r]);
     ASSERT_TRUE(same_bits(batch[i], expected)) << i << ": " << batch[i].x << " " << expected.x;
     nearly += t.p == n0 || t.p == n2;

@@ -15,17 +15,17 @@
 #include "bsp/transform.hpp"
 #include "bsp/tree/boundary_fragments.hpp"
 #include "support/mesh_checks.hpp"
+#include "support/solid_checks.hpp"
 
 namespace sculpt {
 namespace {
 
+using checks::cube;
+using checks::vol;
+
 using checks::EdgesManifoldAndOriented;
 using checks::GenusIs;
 using checks::VolumeNear;
-
-Solid cube(double x, double y, double z, double s) { return box({x, y, z}, {x + s, y + s, z + s}); }
-
-double vol(const Solid& s) { return double(checks::reference_signed_volume(to_mesh(s, {.clean = false}))); }
 
 TEST(SetOperations, DisjointUnionHasTwoComponents) {
   const Solid u = cube(0, 0, 0, 1) | cube(2, 0, 0, 1);

@@ -19,6 +19,7 @@
 namespace sculpt::language {
 namespace {
 
+using testing::first_error_line;
 using testing::run_script;
 
 /// Runs `text` and returns the numbers it printed, one per print() argument.
@@ -29,11 +30,6 @@ std::vector<double> numbers(const std::string& text) {
   std::istringstream in(r.out);
   for (std::string word; in >> word;) out.push_back(std::stod(word));
   return out;
-}
-
-std::string first_error_line(const std::string& text) {
-  const auto r = run_script(text);
-  return r.error.substr(0, r.error.find('\n'));
 }
 
 TEST(Builtins, TableEntriesAreComplete) {

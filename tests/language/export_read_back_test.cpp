@@ -39,17 +39,18 @@
 namespace sculpt::language {
 namespace {
 
-struct Format {
+struct ReadBackFormat {
   const char* ext;
   bool binary;
   double relative;  // float rounding, relative to the largest coordinate
   double absolute;  // decimals the format cuts
 };
-const Format kFormats[] = {{"off", false, 0, 0},          {"obj", false, 0, 0}, {"ply", false, 0, 0},
-                           {"ply", true, 0, 0},           {"stl", false, 0, 0}, {"stl", true, 0x1p-24, 0},
-                           {"3mf", false, 0x1p-23, 1e-6}, {"om", false, 0, 0},  {"glb", false, 0x1p-24, 0}};
+const ReadBackFormat kReadBackFormats[] = {
+    {"off", false, 0, 0},          {"obj", false, 0, 0}, {"ply", false, 0, 0},
+    {"ply", true, 0, 0},           {"stl", false, 0, 0}, {"stl", true, 0x1p-24, 0},
+    {"3mf", false, 0x1p-23, 1e-6}, {"om", false, 0, 0},  {"glb", false, 0x1p-24, 0}};
 
-std::string format_name(const Format& f) { return std::string(f.binary ? "binary " : "") + f.ext; }
+std::string format_name(const ReadBackFormat& f) { return std::string(f.binary ? "binary " : "") + f.ext; }
 
 // Zero area, decided exactly on the doubles: the three corners are collinear exactly when every
 // projection on a coordinate plane is (the cross product is zero in each component).
@@ -88,7 +89,7 @@ void expect_reads_back(const Value& solid, const std::string& label, Tally& tall
   // One folder per process: ctest runs the tests of this file side by side.
   const std::string dir = ::testing::TempDir() + "sculpt_read_back_" + std::to_string(::getpid()) + "/";
   std::filesystem::create_directories(dir);
-  for (const Format& f : kFormats) {
+  for (const ReadBackFormat& f : kReadBackFormats) {
     SCOPED_TRACE(format_name(f));
     const std::string path = dir + "case" + (f.binary ? "_binary." : ".") + f.ext;
     ++tally.imports;

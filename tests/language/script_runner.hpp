@@ -37,4 +37,10 @@ inline RunResult run_script(const std::string& text, InterpreterOptions options 
   return result;
 }
 
+/// The first line of the error a script stops with (empty if it runs).
+inline std::string first_error_line(const std::string& text) {
+  const auto r = run_script(text);
+  return r.error.substr(0, r.error.find('\n'));
+}
+
 }  // namespace sculpt::language::testing

@@ -14,7 +14,7 @@ namespace {
 
 using testing::run_script;
 
-double number(const std::string& text) { return std::stod(text); }
+double number_of(const std::string& text) { return std::stod(text); }
 
 TEST(SurfacesBuiltin, FitOfAWaveGetsClose) {
   const auto r = run_script(R"(
@@ -54,9 +54,9 @@ print(volume(thicken(bspline_surface(rows), 0.5)))
   std::string line;
   const double step = std::ldexp(1.0, -15);
   std::getline(lines, line);
-  EXPECT_NEAR(number(line), 2 * 0.25, 2 * 2 * step);
+  EXPECT_NEAR(number_of(line), 2 * 0.25, 2 * 2 * step);
   std::getline(lines, line);
-  EXPECT_NEAR(number(line), 3 * 2 * 0.5, 6 * 2 * step);
+  EXPECT_NEAR(number_of(line), 3 * 2 * 0.5, 6 * 2 * step);
 }
 
 TEST(SurfacesBuiltin, TorusLikeSurfaceIsASolid) {
@@ -83,7 +83,7 @@ print(classify(t, [3, 0, 0]), classify(t, [0, 0, 0]), classify(t, [4.5, 0, 0]))
   std::istringstream lines(r.out);
   std::string line;
   std::getline(lines, line);
-  const double v = number(line), pi = std::numbers::pi;
+  const double v = number_of(line), pi = std::numbers::pi;
   EXPECT_GT(v, 2 * pi * pi * 3 * 0.6 * 0.6);
   EXPECT_LT(v, 2 * pi * pi * 3 * 1.0 * 1.0);
   std::getline(lines, line);

@@ -16,6 +16,7 @@
 namespace sculpt::language {
 namespace {
 
+using testing::first_error_line;
 using testing::run_script;
 using testing::text_source;
 using Vec = Eigen::Vector3d;
@@ -169,11 +170,6 @@ print(i[2] <= 51, i[3])
             std::string::npos)
       << r.err;
   EXPECT_NE(r.out.find("true true\n"), std::string::npos) << r.out;
-}
-
-std::string first_error_line(const std::string& text) {
-  const auto r = run_script(text);
-  return r.error.substr(0, r.error.find('\n'));
 }
 
 TEST(TraceBuiltin, BadInputIsAnErrorAtTheArgument) {

@@ -49,15 +49,15 @@ double om_volume(const OmMesh& m) {
   return v / 6;
 }
 
-struct Case {
+struct InteropCase {
   const char* ext;
   bool binary;
 };
 
-class OpenMeshReadsOurs : public ::testing::TestWithParam<Case> {};
+class OpenMeshReadsOurs : public ::testing::TestWithParam<InteropCase> {};
 
 TEST_P(OpenMeshReadsOurs, SameCountsAndVolume) {
-  const Case c = GetParam();
+  const InteropCase c = GetParam();
   const PolygonMesh m = test_shapes::box({-1, 0.5, 2}, {3, 1.75, 2.5});
   const auto path = test_dir() / (std::string("om_") + (c.binary ? "bin" : "txt") + c.ext);
   write_mesh(m, path, {.binary = c.binary});
@@ -71,16 +71,17 @@ TEST_P(OpenMeshReadsOurs, SameCountsAndVolume) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, OpenMeshReadsOurs,
-                         ::testing::Values(Case{".off", false}, Case{".obj", false}, Case{".ply", false},
-                                           Case{".ply", true}, Case{".stl", false}, Case{".stl", true}),
+                         ::testing::Values(InteropCase{".off", false}, InteropCase{".obj", false},
+                                           InteropCase{".ply", false}, InteropCase{".ply", true},
+                                           InteropCase{".stl", false}, InteropCase{".stl", true}),
                          [](const auto& param_info) {
                            return std::string(param_info.param.ext + 1) + (param_info.param.binary ? "_binary" : "_ascii");
                          });
 
-class WeReadOpenMesh : public ::testing::TestWithParam<Case> {};
+class WeReadOpenMesh : public ::testing::TestWithParam<InteropCase> {};
 
 TEST_P(WeReadOpenMesh, SameCountsAndVolume) {
-  const Case c = GetParam();
+  const InteropCase c = GetParam();
   OmMesh om;
   const PolygonMesh m = test_shapes::octahedron();
   std::vector<OmMesh::VertexHandle> vh;
@@ -97,8 +98,9 @@ TEST_P(WeReadOpenMesh, SameCountsAndVolume) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, WeReadOpenMesh,
-                         ::testing::Values(Case{".off", false}, Case{".obj", false}, Case{".ply", false},
-                                           Case{".ply", true}, Case{".stl", false}, Case{".stl", true}),
+                         ::testing::Values(InteropCase{".off", false}, InteropCase{".obj", false},
+                                           InteropCase{".ply", false}, InteropCase{".ply", true},
+                                           InteropCase{".stl", false}, InteropCase{".stl", true}),
                          [](const auto& param_info) {
                            return std::string(param_info.param.ext + 1) + (param_info.param.binary ? "_binary" : "_ascii");
                          });

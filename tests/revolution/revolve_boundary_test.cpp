@@ -12,7 +12,7 @@ using namespace sculpt;
 using namespace sculpt::revolution;
 
 namespace {
-std::vector<Eigen::Vector2d> sampled(const curves::ProfileDesign& d, int points) {
+std::vector<Eigen::Vector2d> noisy_samples(const curves::ProfileDesign& d, int points) {
   return curves::planar_points(curves::sample_profile(d, {.points = points, .noise = 0.003, .seed = 2}).points);
 }
 }  // namespace
@@ -32,8 +32,11 @@ TEST(RevolveBoundary, CylinderConeAndFrustumHaveTheirClosedFormVolumes) {
 
 TEST(RevolveBoundary, MeshesAreClosedSpheresWithTheAnalyticVolume) {
   const std::vector<std::vector<Eigen::Vector2d>> profiles{
-      sampled(curves::goblet_profile(), 21), sampled(curves::goblet_profile(), 237), sampled(curves::human_profile(), 33),
-      sampled(curves::goblet_cavity_profile(), 12), sampled(curves::ball_profile(1.5, 6.8), 17),
+      noisy_samples(curves::goblet_profile(), 21),
+      noisy_samples(curves::goblet_profile(), 237),
+      noisy_samples(curves::human_profile(), 33),
+      noisy_samples(curves::goblet_cavity_profile(), 12),
+      noisy_samples(curves::ball_profile(1.5, 6.8), 17),
       {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {1.5, 2}, {1.5, 3}, {0, 3.5}}};
   for (const auto& profile : profiles)
     for (const ConvexPath& path : {circular_path(32), ellipse_path(1.0, 0.6, 32), polygon_path({{0, -1}, {1, 1}, {-1, 0.5}})}) {
@@ -45,9 +48,9 @@ TEST(RevolveBoundary, MeshesAreClosedSpheresWithTheAnalyticVolume) {
 }
 
 TEST(RevolveBoundary, FaceCountIsPathEdgesTimesSlabsPlusCaps) {
-  const auto profile = sampled(curves::goblet_profile(), 21);  // neither end on the axis: two caps
+  const auto profile = noisy_samples(curves::goblet_profile(), 21);  // neither end on the axis: two caps
   const PolygonMesh m = revolve_boundary(profile, circular_path(32));
   EXPECT_EQ(m.faces.size(), 20u * 32u + 2u);
-  const auto face = sampled(curves::human_profile(), 33);  // ends on the axis at the top: one cap
+  const auto face = noisy_samples(curves::human_profile(), 33);  // ends on the axis at the top: one cap
   EXPECT_EQ(revolve_boundary(face, circular_path(32)).faces.size(), 32u * 32u + 1u);
 }

@@ -13,7 +13,7 @@ using kernel::CornerBox;
 
 namespace {
 
-struct Operand {
+struct UnionOperand {
   TreeRef root;
   FragmentList faces;
   CornerBox box;  // around its boundary; invalid: unbounded or unknown
@@ -23,7 +23,7 @@ struct Operand {
   [[nodiscard]] bool everywhere() const { return !box.valid || far_in; }
 };
 
-bool overlap(const CornerBox& a, const CornerBox& b) {
+bool may_overlap(const CornerBox& a, const CornerBox& b) {
   if (!a.valid || !b.valid) return true;
   for (int k = 0; k < 3; ++k)
     if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
@@ -34,7 +34,7 @@ bool overlap(const CornerBox& a, const CornerBox& b) {
 
 Solid unite_by_boundaries(std::vector<Solid> solids) {
   Arena arena;
-  std::vector<Operand> ops;
+  std::vector<UnionOperand> ops;
   std::size_t last = 0;  // an operand's index in `solids` (used when it is the only one)
   for (std::size_t i = 0; i < solids.size(); ++i) {
     const Solid& s = solids[i];
@@ -50,7 +50,7 @@ Solid unite_by_boundaries(std::vector<Solid> solids) {
   if (ops.size() == 1) return std::move(solids[last]);
 
   Clipper clip(arena);
-  for (Operand& o : ops) {
+  for (UnionOperand& o : ops) {
     o.box = bounds(o.faces);
     o.far_in = clip.far_status(o.root);
   }
@@ -65,7 +65,7 @@ Solid unite_by_boundaries(std::vector<Solid> solids) {
     const double hi = ops[i].everywhere() ? 1e300 : ops[i].box.hi[0];
     for (std::size_t y = x + 1; y < order.size() && lo(order[y]) <= hi; ++y) {
       const std::size_t j = order[y];
-      if (ops[i].everywhere() || ops[j].everywhere() || overlap(ops[i].box, ops[j].box))
+      if (ops[i].everywhere() || ops[j].everywhere() || may_overlap(ops[i].box, ops[j].box))
         near[i].push_back(j), near[j].push_back(i);
     }
   }
@@ -75,11 +75,11 @@ Solid unite_by_boundaries(std::vector<Solid> solids) {
     FragmentList& faces = ops[i].faces;
     std::sort(near[i].begin(), near[i].end());
     for (const std::size_t j : near[i]) {
-      const Operand& o = ops[j];
+      const UnionOperand& o = ops[j];
       const bool first = i < j;  // on a shared plane region with the same orientation: i keeps it
       kept.clear();
       for (BoundaryFragment& f : faces) {
-        if (o.box.valid && !overlap(kernel::corner_box(f.polygon), o.box)) {  // in o's far region
+        if (o.box.valid && !may_overlap(kernel::corner_box(f.polygon), o.box)) {  // in o's far region
           if (!o.far_in) kept.push_back(std::move(f));
           continue;
         }

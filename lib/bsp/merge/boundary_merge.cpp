@@ -19,7 +19,9 @@ namespace {
 
 // Keeps a piece whose two sides get `in_behind` / `in_front` in the result: -1 drop, 0 as is,
 // 1 reversed.
-int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDrop : (in_behind ? kKeep : kReverse); }
+int fragment_verdict(bool in_behind, bool in_front) {
+  return in_behind == in_front ? kDrop : (in_behind ? kKeep : kReverse);
+}
 
 // Fragments per parallel chunk, and the least work (fragments to push) worth the set-up of the
 // parallel path. Both are constants, so the path taken and the chunks never depend on the thread
@@ -75,7 +77,7 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
       c.push(
           a, f,
           [&](bool front_in, bool back_in, bool on_plane) {
-            return on_plane && front_in != back_in ? kDrop : verdict(op[back_in][1], op[front_in][0]);
+            return on_plane && front_in != back_in ? kDrop : fragment_verdict(op[back_in][1], op[front_in][0]);
           },
           [&](ConvexPolygon piece, int v) {
             out.push_back({std::move(piece), v == kKeep ? f.flip : !f.flip});
@@ -91,7 +93,7 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
   const bool uniform = is_leaf(b) || b_faces.empty();
   const CornerBox b_box = uniform ? CornerBox{} : bounds(b_faces);
   const bool far_in = is_leaf(b) ? b == kIn : (b_box.valid || uniform ? clip.far_status(b) : false);
-  const int far_verdict = verdict(op[1][far_in], op[0][far_in]);
+  const int far_verdict = fragment_verdict(op[1][far_in], op[0][far_in]);
   // Strictly apart, with a margin for the rounding of b_box to float (relative 2^-23).
   float below[3], above[3];
   for (int k = 0; k < 3; ++k) {
@@ -138,7 +140,7 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
       if (verdict_of(i) == kUndecided) {
         const BoundaryFragment& f = a_faces[i];
         c.push(
-            b, f, [&](bool front_in, bool back_in, bool) { return verdict(op[1][back_in], op[0][front_in]); },
+            b, f, [&](bool front_in, bool back_in, bool) { return fragment_verdict(op[1][back_in], op[0][front_in]); },
             [&](ConvexPolygon piece, int w) {
               out.push_back({std::move(piece), w == kKeep ? f.flip : !f.flip});
             });

@@ -26,13 +26,13 @@ class Approximator {
     for (std::int32_t i = 0; i < planes.size(); ++i) normal_[std::size_t(i)] = normal_of(planes[i]);
   }
 
-  void operator()(std::span<const PlaneTriple> triples, std::span<ApproxPoint> out) {
+  void operator()(std::span<const VertexPlanes> triples, std::span<ApproxPoint> out) {
     unusable_.clear();
     for (std::size_t first = 0; first < triples.size(); first += kBlock) {
       const std::size_t end = std::min(triples.size(), first + kBlock);
       std::size_t i = first;
       for (; i + 1 < end; i += 2) {
-        const PlaneTriple s = triples[i], t = triples[i + 1];
+        const VertexPlanes s = triples[i], t = triples[i + 1];
         const Approximation<Pair> a =
             approximate(pair_of(at(s.p), at(t.p)), pair_of(at(s.q), at(t.q)), pair_of(at(s.r), at(t.r)));
         out[i] = {a.x[0], a.y[0], a.z[0], 0.0};
@@ -43,7 +43,7 @@ class Approximator {
         if (!a.usable[1]) unusable_.push_back(i + 1);
       }
       if (i < end) {
-        const PlaneTriple t = triples[i];
+        const VertexPlanes t = triples[i];
         const Approximation<double> a = approximate(at(t.p), at(t.q), at(t.r));
         out[i] = {a.x, a.y, a.z, 0.0};
         bound_[i - first] = {a.eV, a.eW, a.aW};
@@ -56,7 +56,7 @@ class Approximator {
       }
     }
     for (const std::size_t k : unusable_) {
-      const PlaneTriple t = triples[k];
+      const VertexPlanes t = triples[k];
       out[k] = kernel::approximate_vertex(planes_[t.p], planes_[t.q], planes_[t.r]);
     }
   }
@@ -76,7 +76,7 @@ class Approximator {
 
 }  // namespace
 
-std::vector<ApproxPoint> approximate_vertices(const kernel::PlaneTable& planes, std::span<const PlaneTriple> triples) {
+std::vector<ApproxPoint> approximate_vertices(const kernel::PlaneTable& planes, std::span<const VertexPlanes> triples) {
   std::vector<ApproxPoint> out(triples.size());
   Approximator approximate(planes);
   approximate(triples, out);
@@ -95,7 +95,7 @@ FragmentList ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring
   // Band by band (and cap by cap): each corner's triple (support, previous edge, edge), their
   // approximations in one batch, then the band's fragments, each written once.
   Approximator approximate(planes);
-  std::vector<PlaneTriple> triples;
+  std::vector<VertexPlanes> triples;
   std::vector<ApproxPoint> at;
   FragmentList faces;
   faces.reserve((r - 1) * std::size_t(n) + 2);

@@ -15,13 +15,13 @@
 namespace sculpt::bsp::detail {
 
 /// A vertex as three plane indices: the point p ∩ q ∩ r.
-struct PlaneTriple {
+struct VertexPlanes {
   std::int32_t p, q, r;
 };
 
 /// approximate_vertex(planes[t.p], planes[t.q], planes[t.r]) for every triple, bit for bit.
 std::vector<kernel::ApproxPoint> approximate_vertices(const kernel::PlaneTable& planes,
-                                                      std::span<const PlaneTriple> triples);
+                                                      std::span<const VertexPlanes> triples);
 
 /// The boundary of a ring revolution: band k's face j is the quadrilateral between rings k and
 /// k + 1 under path edge j (a triangle at a ring of scale 0), and the end rings of positive scale

@@ -21,7 +21,7 @@ namespace {
 
 // A fragment's piece in the cell being partitioned, with its outward plane (its box is kept
 // apart, in an array of its own: scoring reads boxes far more often than polygons).
-struct Piece {
+struct PartitionPiece {
   ConvexPolygon polygon;
   std::int32_t outward;  // support, or its opposite for a flipped fragment
 };
@@ -40,7 +40,7 @@ struct PendingSide {
 
 // Side of a piece with respect to a plane given by value, for scoring only: the box, else the
 // signs of the plane at the corners' approximations (with a small relative tolerance).
-Side approximate_side(const Piece& p, const CornerBox& box, const kernel::Plane& e) {
+Side approximate_side(const PartitionPiece& p, const CornerBox& box, const kernel::Plane& e) {
   const Side quick = kernel::box_side(box, e);
   if (quick != Side::Both) return quick;
   const double a = double(e.a), b = double(e.b), c = double(e.c), d = e.d_nearest;
@@ -56,7 +56,7 @@ Side approximate_side(const Piece& p, const CornerBox& box, const kernel::Plane&
 
 // Side of a piece with respect to a plane, for scoring only (a heuristic: the split itself is
 // exact): the box first, else exactly, or (`approximate`) as approximate_side.
-Side side_of(const kernel::PlaneTable& planes, const Piece& p, const CornerBox& box, std::int32_t plane,
+Side side_of(const kernel::PlaneTable& planes, const PartitionPiece& p, const CornerBox& box, std::int32_t plane,
              bool approximate) {
   if (approximate) return approximate_side(p, box, planes[plane]);
   const Side quick = kernel::box_side(box, planes[plane]);
@@ -101,7 +101,7 @@ PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments,
   if (fragments.empty()) return tree;
   const kernel::PlaneTable& planes = arena.planes;
   // Pieces live in one pool (split parts are appended); frames hold indices into it.
-  std::vector<Piece> pool;
+  std::vector<PartitionPiece> pool;
   std::vector<CornerBox> boxes;
   pool.reserve(2 * fragments.size());
   boxes.reserve(2 * fragments.size());

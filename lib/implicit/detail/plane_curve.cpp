@@ -11,9 +11,9 @@ namespace {
 using Vec = Eigen::Vector3d;
 using Vec2 = Eigen::Vector2d;
 
-constexpr double kMaxTurn = 0.6;     // radians of tangent turn allowed across one chord (as march.cpp)
-constexpr double kAim = 0.9;         // aim at a chord height of 0.9 tol
-constexpr double kMidpointDip = 0.6; // in-plane |grad f| at a chord's midpoint below 0.6 of its ends' mean
+constexpr double kPlaneMaxTurn = 0.6;      // radians of tangent turn allowed across one chord (as march.cpp)
+constexpr double kPlaneAim = 0.9;          // aim at a chord height of 0.9 tol
+constexpr double kPlaneMidpointDip = 0.6;  // in-plane |grad f| at a chord's midpoint below 0.6 of its ends' mean
 
 Vec2 perp(const Vec2& g) { return {-g.y(), g.x()}; }
 
@@ -37,7 +37,7 @@ struct Sample {
 class PlaneWalker {
  public:
   PlaneWalker(const Expression& f, const PlaneFrame& plane, const PlaneCurveOptions& options)
-      : f_(f), plane_(plane), o_(options), cos_turn_(std::cos(kMaxTurn)) {}
+      : f_(f), plane_(plane), o_(options), cos_turn_(std::cos(kPlaneMaxTurn)) {}
 
   PlaneCurve run(const Vec& from, const Vec& to);
 
@@ -181,13 +181,13 @@ PlaneCurve PlaneWalker::run(const Vec& from, const Vec& to) {
       continue;
     }
     if (*s > tol) {
-      h *= std::clamp(std::sqrt(kAim * tol / *s), 0.2, 0.9);
+      h *= std::clamp(std::sqrt(kPlaneAim * tol / *s), 0.2, 0.9);
       if (h < h_min) return finish(PlaneCurveEnd::Stuck);
       continue;
     }
     // The in-plane gradient dipping at the midpoint: the chord spans a feature smaller than the
     // step (two branches nearly touching where the plane is nearly tangent to the surface).
-    if (last_midpoint_grad_ < kMidpointDip * 0.5 * (p.grad.norm() + q->grad.norm())) {
+    if (last_midpoint_grad_ < kPlaneMidpointDip * 0.5 * (p.grad.norm() + q->grad.norm())) {
       if (!shrink()) return finish(PlaneCurveEnd::Stuck);
       continue;
     }
@@ -211,7 +211,7 @@ PlaneCurve PlaneWalker::run(const Vec& from, const Vec& to) {
     p = *q;
     t = tq;
     out.points.push_back(p.p);
-    h = std::min(h_max, h * std::clamp(std::sqrt(kAim * tol / std::max(*s, 1e-300)), 0.3, 2.0));
+    h = std::min(h_max, h * std::clamp(std::sqrt(kPlaneAim * tol / std::max(*s, 1e-300)), 0.3, 2.0));
   }
 }
 

@@ -44,7 +44,7 @@ Contraction contraction(const CleanMesh& mesh, const std::set<int>& in, int targ
 
 /// The rewritten triangles form one fan round `target`: each edge target->w once and w->target
 /// once, and the rim a single cycle.
-bool one_fan(const std::vector<Tri>& afters, int target) {
+bool rewrite_is_one_fan(const std::vector<Tri>& afters, int target) {
   std::map<int, int> next;  // rim: w1 -> w2 for each rewritten triangle (target, w1, w2)
   for (const Tri& a : afters) {
     int k = 0;
@@ -81,7 +81,7 @@ bool collapse(CleanMesh& mesh, const std::vector<int>& cluster, int target, doub
     for (int t : c.removed) mesh.kill_triangle(t);
     return true;
   }
-  if (!one_fan(c.afters, target)) return false;
+  if (!rewrite_is_one_fan(c.afters, target)) return false;
   for (size_t i = 0; i < c.changed.size(); ++i) {
     // A triangle that was a sliver may become degenerate (a later flip removes it); others
     // must keep a positive area and their orientation.
