@@ -6,9 +6,10 @@
 #include <random>
 
 #include "curve_testing.hpp"
+#include "curves/appendix_b_curves.hpp"
 #include "curves/methods/dynamic_programming.hpp"
 #include "curves/methods/fast_linearization.hpp"
-#include "curves/appendix_b_curves.hpp"
+#include "support/sanitizer_share.hpp"
 
 using namespace sculpt::curves;
 using namespace sculpt::curves::detail;  // the internals under test
@@ -140,11 +141,12 @@ TEST(OptimalMinCount, AtTheOptimalErrorOfMNeedsAtMostM) {
 }
 
 TEST(FastLinearization, CoarseToFineStaysWithinFivePercentOfOptimum) {
-  // Force the coarse-to-fine path (exact_below = 0) on every test curve.
+  // Force the coarse-to-fine path (exact_below = 0) on every test curve (the sanitizer build:
+  // every other segment count).
   for (AppendixBCurve which : all_appendix_b_curves()) {
     const DigitizedCurve curve = make_appendix_b_curve(which, {.points = 1000});
     const std::vector<Vec> points = path_points(curve);
-    for (int m : {4, 8, 16, 32, 64}) {
+    for (int m = 4; m <= 64; m *= 2 * sculpt::checks::kSanitizerStride) {
       const Linearization optimal = optimal_min_error(points, m, Norm::LInf);
       const Linearization fast = fast_linearization(points, m, Norm::LInf, {.exact_below = 0});
       expect_valid(fast, points, m, Norm::LInf);
@@ -190,7 +192,8 @@ TEST(OptimalMinCount, AgreesWithDirectDynamicProgrammingOnLongSegments) {
   }
   curves.push_back(curve_testing::random_curve(rng, 400, 2).points);
   curves.push_back(curve_testing::random_curve(rng, 400, 3).points);
-  for (const auto& points : curves) {
+  for (std::size_t c = 0; c < curves.size(); c += sculpt::checks::kSanitizerStride) {  // sanitizers: every other
+    const std::vector<Vec>& points = curves[c];
     const int n = static_cast<int>(points.size());
     for (double fraction : {0.002, 0.01, 0.05}) {
       Eigen::Vector3d low = points[0], high = points[0];

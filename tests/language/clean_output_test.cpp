@@ -31,6 +31,7 @@
 #include "mesh/self_intersection.hpp"
 #include "script_runner.hpp"
 #include "support/cgal_mesh_check.hpp"
+#include "support/sanitizer_share.hpp"
 #include "support/source_paths.hpp"
 
 namespace sculpt::language {
@@ -139,7 +140,8 @@ std::pair<size_t, size_t> expect_exact_marks_sound(const Solid& solid) {
 // clean in every format is reported; every stored case must be (78 % before output rounding,
 // 99.2 % with it, all since session 11's shifted snaps and corner moves).
 // The cases run as kCaseSlices tests that ctest runs side by side: slice k takes cases k,
-// k + kCaseSlices, ... (the costly cases are spread over the file).
+// k + kCaseSlices, ... (the costly cases are spread over the file). The sanitizer build takes every
+// other one of them (checks::kSanitizerStride).
 constexpr int kCaseSlices = 8;
 class RandomSetOperationsOverTransformedPrimitives : public ::testing::TestWithParam<int> {};
 
@@ -151,7 +153,7 @@ TEST_P(RandomSetOperationsOverTransformedPrimitives, AreCleanInEveryFormat) {
   int checked = 0, empty = 0, clean = 0;
   size_t marked_vertices = 0, all_vertices = 0;  // marked exact by the assembly, for the record
   std::map<std::string, int> problems;  // first problem of each unclean case, by kind
-  for (size_t index = size_t(GetParam()); index < cases.size(); index += kCaseSlices) {
+  for (size_t index = size_t(GetParam()); index < cases.size(); index += kCaseSlices * checks::kSanitizerStride) {
     const Case& c = cases[index];
     SCOPED_TRACE(::testing::Message() << "case " << c.id << ": " << c.expr);
     const auto started = std::chrono::steady_clock::now();

@@ -34,6 +34,7 @@
 #include "mesh/mesh_measures.hpp"
 #include "mesh/predicates.hpp"
 #include "script_runner.hpp"
+#include "support/sanitizer_share.hpp"
 #include "support/source_paths.hpp"
 
 namespace sculpt::language {
@@ -148,7 +149,8 @@ std::optional<Value> run_file(Interpreter& interpreter, const std::string& path)
 }
 
 // The random cases: slice k of kSlices takes cases k, k + kSlices*kStride, ... (every kStride-th
-// case over all slices: a 25th of the 300 in the suite's time budget).
+// case over all slices: a 25th of the 300 in the suite's time budget; the sanitizer build takes
+// every other one of those, checks::kSanitizerStride).
 constexpr int kSlices = 2, kStride = 6;
 class EveryExportReadsBack : public ::testing::TestWithParam<int> {};
 
@@ -159,7 +161,8 @@ TEST_P(EveryExportReadsBack, RandomSetOperationsOverTransformedPrimitives) {
     if (line.rfind("case ", 0) == 0) cases.push_back(line.substr(line.find("expr=") + 5));
   ASSERT_GE(cases.size(), 100u);
   Tally tally;
-  for (std::size_t i = std::size_t(GetParam()) * kStride; i < cases.size(); i += kSlices * kStride) {
+  for (std::size_t i = std::size_t(GetParam()) * kStride; i < cases.size();
+       i += kSlices * kStride * checks::kSanitizerStride) {
     Interpreter interpreter;
     std::optional<Value> value;
     try {
