@@ -14,4 +14,16 @@ for a in "$@"; do
 done
 build=$("$root/scripts/setup.sh" "${setup_args[@]}" | tail -n 1)
 cd "$build"
-ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "${ctest_args[@]}"
+# ctest starts the slowest tests first from the times of earlier runs (CTestCostData.txt). A fresh
+# clone has none, so the times are also kept beside ccache's cache: only the order of the tests
+# depends on them, never what a test does or whether it passes.
+costs="${XDG_CACHE_HOME:-$HOME/.cache}/sculpt/ctest-costs-$(basename "$build").txt"
+if [ ! -s Testing/Temporary/CTestCostData.txt ] && [ -s "$costs" ]; then
+  mkdir -p Testing/Temporary && cp "$costs" Testing/Temporary/CTestCostData.txt
+fi
+status=0
+ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "${ctest_args[@]}" || status=$?
+if [ -s Testing/Temporary/CTestCostData.txt ] && mkdir -p "$(dirname "$costs")" 2> /dev/null; then
+  cp Testing/Temporary/CTestCostData.txt "$costs.tmp" && mv "$costs.tmp" "$costs"
+fi
+exit "$status"

@@ -64,28 +64,29 @@ Classification PointClassifier::classify(const Eigen::Vector3d& point) const {
 
 void PointClassifier::classify(std::span<const Eigen::Vector3d> points, std::span<Classification> out) const {
   constexpr std::size_t kLanes = 8;
-  constexpr TreeRef kUndecided = std::numeric_limits<TreeRef>::min();
+  constexpr TreeRef kNotYetReached = std::numeric_limits<TreeRef>::min();
   std::size_t i = 0;
   for (; i + kLanes <= points.size(); i += kLanes) {
     TreeRef k[kLanes];
     int visited[kLanes] = {};
     double g[kLanes][3];
     bool any = root_ >= 0;
-    for (std::size_t l = 0; l < kLanes; ++l) k[l] = to_grid(grid_, points[i + l], g[l]) ? root_ : kUndecided;
+    for (std::size_t l = 0; l < kLanes; ++l) k[l] = to_grid(grid_, points[i + l], g[l]) ? root_ : kNotYetReached;
     while (any) {
       any = false;
       for (std::size_t l = 0; l < kLanes; ++l) {
         if (k[l] < 0) continue;
         const Node& n = nodes_[std::size_t(k[l])];
         const double f = n.a * g[l][0] + n.b * g[l][1] + n.c * g[l][2] + n.d;
-        k[l] = std::fabs(f) > n.bound ? n.child[f > 0.0] : kUndecided;
+        k[l] = std::fabs(f) > n.bound ? n.child[f > 0.0] : kNotYetReached;
         ++visited[l];
         any |= k[l] >= 0;
       }
     }
     for (std::size_t l = 0; l < kLanes; ++l)
-      out[i + l] = k[l] == kUndecided ? exact(points[i + l])
-                                      : Classification{k[l] == kIn ? Location::Inside : Location::Outside, visited[l]};
+      out[i + l] = k[l] == kNotYetReached
+                       ? exact(points[i + l])
+                       : Classification{k[l] == kIn ? Location::Inside : Location::Outside, visited[l]};
   }
   for (; i < points.size(); ++i) out[i] = classify(points[i]);
 }
