@@ -7,6 +7,7 @@
 #include "base/errors.hpp"
 #include "language/builtins.hpp"
 #include "language/math_functions.hpp"
+#include "language/record.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -55,6 +56,14 @@ void register_core(BuiltinTable& table) {
              .run = [](const Arguments& args) -> Value {
                if (auto s = args.value("x").get<std::string>()) return static_cast<double>(s->size());
                return static_cast<double>(args.list("x").size());
+             }});
+  table.add({.name = "keys",
+             .doc = "The names of a record's fields, in order (read a field with r[\"name\"]).",
+             .params = {arg("r").of<Record>("a record")},
+             .run = [](const Arguments& args) -> Value {
+               List names;
+               for (const auto& [name, _] : args.object<Record>("r").fields()) names.emplace_back(name);
+               return names;
              }});
   table.add({.name = "range",
              .doc = "The list a, a+step, ... up to b excluded (down to b when step < 0). "

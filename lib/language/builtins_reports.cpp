@@ -9,6 +9,7 @@
 #include "bsp/from_mesh.hpp"
 #include "bsp/rebuild.hpp"
 #include "language/builtins.hpp"
+#include "language/record.hpp"
 #include "language/solid_values.hpp"
 #include "reports/tree_report.hpp"
 
@@ -23,6 +24,47 @@ void write_text(const Arguments& args, std::string_view param, const std::string
   if (!out) throw IoError(path.string(), "cannot write");
 }
 
+/// One solid's report as a record: the tree's sizes and the sec. 6 measures (expected depth of
+/// point classification against the entropy bound), the depth histogram, and the query costs.
+Value report_record(const reports::TreeReport& r) {
+  const reports::DepthCost& d = r.depth;
+  List histogram;
+  for (const reports::DepthBin& bin : d.histogram) {
+    histogram.push_back(record_value({{"depth", double(bin.depth)},
+                                      {"in_cells", double(bin.in_cells)},
+                                      {"out_cells", double(bin.out_cells)},
+                                      {"in_probability", bin.in_probability},
+                                      {"out_probability", bin.out_probability}}));
+  }
+  Record::Fields queries;
+  for (const reports::QueryCost& q : r.queries) {
+    queries.emplace_back(reports::query_shape_name(q.shape), record_value({{"size", q.size},
+                                                                           {"samples", double(q.samples)},
+                                                                           {"mean_nodes", q.mean_nodes},
+                                                                           {"ci_low", q.ci_low},
+                                                                           {"ci_high", q.ci_high},
+                                                                           {"mean_leaves", q.mean_leaves}}));
+  }
+  const Eigen::AlignedBox3d& box = d.sample_box;
+  const Value sample_box = List{Value(List{box.min().x(), box.min().y(), box.min().z()}),
+                                Value(List{box.max().x(), box.max().y(), box.max().z()})};
+  return record_value({{"name", r.name},
+                       {"nodes", double(d.nodes)},
+                       {"leaves", double(d.leaves)},
+                       {"in_leaves", double(d.in_leaves)},
+                       {"out_leaves", double(d.out_leaves)},
+                       {"height", double(d.height)},
+                       {"expected_depth", d.expected_depth},
+                       {"entropy_bound", d.entropy_bound},
+                       {"ratio", d.ratio},
+                       {"cells_in_box", double(d.cells_in_box)},
+                       {"in_volume", d.in_volume},
+                       {"sample_box", sample_box},
+                       {"sample_volume", d.sample_volume},
+                       {"histogram", Value(std::move(histogram))},
+                       {"queries", record_value(std::move(queries))}});
+}
+
 }  // namespace
 
 void register_reports(BuiltinTable& table) {
@@ -32,12 +74,16 @@ void register_reports(BuiltinTable& table) {
                     "classification sum p_C d_C, the entropy bound H and their ratio, node/leaf/in/out counts, "
                     "height, a depth histogram, and Monte Carlo costs of point, segment and box queries "
                     "(`samples` each, 95% intervals; 0 skips them). format: \"text\" or \"json\". Printed, or "
-                    "written to `file`; `svg` also writes a chart of the depth distribution. Folders are created.",
+                    "written to `file` (quiet=true: neither); `svg` also writes a chart of the depth distribution. "
+                    "Folders are created. Returns the report as a record (a list of records for a list): "
+                    "r[\"nodes\"], \"height\", \"expected_depth\", \"entropy_bound\", \"ratio\", \"histogram\", "
+                    "\"queries\" ... (keys(r) lists them).",
              .params = {arg("s").any("a solid or a list of solids"), arg("format").string().defaults("text"),
                         arg("names").list().optional("[]"), arg("box").list().optional("[min, max]"),
                         arg("samples").integer(0, 100'000'000).defaults(double(reports::ReportOptions{}.query_samples)),
                         arg("seed").integer(0, 0x1p53).defaults(double(reports::ReportOptions{}.seed)),
-                        arg("svg").string().defaults(""), arg("file").string().defaults("")},
+                        arg("svg").string().defaults(""), arg("file").string().defaults(""),
+                        arg("quiet").boolean().defaults(false)},
              .run = [](const Arguments& args) -> Value {
                std::vector<reports::NamedSolid> solids;
                if (const List* list = args.value("s").list()) {
@@ -86,9 +132,12 @@ void register_reports(BuiltinTable& table) {
                if (!args.string("svg").empty()) write_text(args, "svg", reports::depth_chart_svg(reports));
                if (!args.string("file").empty())
                  write_text(args, "file", text);
-               else
+               else if (!args.boolean("quiet"))
                  args.err() << text;
-               return {};
+               if (!args.value("s").list()) return report_record(reports.front());
+               List records;
+               for (const reports::TreeReport& r : reports) records.push_back(report_record(r));
+               return records;
              }});
   table.add({.name = "rebuild",
              .doc = "The same solid with a new tree built from its boundary (B-rep to BSP, planes chosen as "

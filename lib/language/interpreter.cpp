@@ -19,6 +19,7 @@
 #include "language/builtins.hpp"
 #include "language/operators.hpp"
 #include "language/parser.hpp"
+#include "language/record.hpp"
 #include "language/suggest.hpp"
 
 namespace sculpt::language {
@@ -362,8 +363,12 @@ struct Interpreter::Impl {
   Value subscript(const Value& value, const ast::Subscript& s) {
     if (s.slice) return slice(value, s);
     const Value index = eval(s.index);
+    if (const auto* record = value.object<Record>()) return field(*record, index, s);
     const List* list = value.list();
-    if (!list) throw ScriptError(at(s.where), "cannot index " + type_name(value) + ": only lists have items");
+    if (!list) {
+      throw ScriptError(at(s.where),
+                        "cannot index " + type_name(value) + ": only lists have items and records have fields");
+    }
     const double* d = index.get<double>();
     if (!d || *d != std::floor(*d)) {
       throw ScriptError(at(s.index.where), "a list index must be a whole number, got " +
@@ -376,6 +381,23 @@ struct Interpreter::Impl {
                                                std::to_string(list->size()) + " items");
     }
     return (*list)[static_cast<std::size_t>(i)];
+  }
+
+  /// `record["name"]`: the field, or an error listing the fields (and the closest name).
+  Value field(const Record& record, const Value& index, const ast::Subscript& s) const {
+    const std::string* name = index.get<std::string>();
+    if (!name) throw ScriptError(at(s.index.where), "a record's field is named by a string, got " + type_name(index));
+    if (const Value* v = record.field(*name)) return *v;
+    std::vector<std::string> names;
+    std::string listed;
+    for (const auto& [key, _] : record.fields()) {
+      names.push_back(key);
+      listed += (listed.empty() ? "" : ", ") + key;
+    }
+    const auto near = closest_name(*name, names);
+    throw ScriptError(at(s.index.where), "the record has no field \"" + *name + "\"" +
+                                             (near ? " (did you mean \"" + *near + "\"?)" : "") +
+                                             "; its fields: " + listed);
   }
 
   // ---- calls ----

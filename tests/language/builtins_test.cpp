@@ -587,6 +587,47 @@ TEST(Builtins, GridSetsTheWorldRangeOfSolidsMadeAfterIt) {
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '^'), 4) << r.out;
 }
 
+// stats returns what it prints as a record (issue 36). The unit cube sampled in itself is one
+// in-cell at the end of its chain of six planes: expected depth 6, entropy 0 (sec. 6's measures).
+TEST(Builtins, StatsReturnsARecord) {
+  EXPECT_EQ(numbers("r = stats(box([0, 0, 0], [1, 1, 1]), samples=0, quiet=true)\n"
+                    "print(r[\"nodes\"], r[\"leaves\"], r[\"in_leaves\"], r[\"out_leaves\"], r[\"height\"], "
+                    "r[\"expected_depth\"], r[\"entropy_bound\"], r[\"in_volume\"], r[\"sample_volume\"])"),
+            (std::vector<double>{6, 7, 1, 6, 6, 6, 0, 1, 1}));
+  // In a box of volume 27 around it: the cells' probabilities sum to 1, the in-cell's is 1/27, and
+  // no tree beats the entropy bound (Kraft's inequality).
+  const auto r = numbers(
+      "r = stats(box([0, 0, 0], [1, 1, 1]), box=[[-1, -1, -1], [2, 2, 2]], samples=0, quiet=true)\n"
+      "p = 0\nq = 0\nfor b in r[\"histogram\"] {\n  p = p + b[\"in_probability\"] + b[\"out_probability\"]\n"
+      "  q = q + b[\"in_probability\"]\n}\n"
+      "print(p, q, r[\"sample_volume\"], r[\"expected_depth\"] - r[\"entropy_bound\"], "
+      "r[\"ratio\"] * r[\"entropy_bound\"] - r[\"expected_depth\"])");
+  ASSERT_EQ(r.size(), 5u);
+  EXPECT_NEAR(r[0], 1.0, 1e-12);
+  EXPECT_NEAR(r[1], 1.0 / 27, 1e-12);
+  EXPECT_EQ(r[2], 27.0);
+  EXPECT_GE(r[3], 0.0);
+  EXPECT_NEAR(r[4], 0.0, 1e-12);
+  // A list gives a list of records, named; the query costs are records by shape.
+  EXPECT_EQ(
+      run_script("s = box([0, 0, 0], [1, 1, 1])\n"
+                 "l = stats([s, s], names=[\"a\", \"b\"], samples=20, quiet=true)\n"
+                 "print(len(l), l[1][\"name\"], l[0][\"queries\"][\"point\"][\"samples\"], keys(l[0][\"queries\"]))")
+          .out,
+      "2 b 20 [\"point\", \"segment\", \"box\"]\n");
+  // quiet=true prints nothing; without it the report still goes to standard error.
+  EXPECT_EQ(run_script("r = stats(box([0, 0, 0], [1, 1, 1]), samples=0, quiet=true)").err, "");
+  EXPECT_NE(run_script("r = stats(box([0, 0, 0], [1, 1, 1]), samples=0)").err.find("expected depth"),
+            std::string::npos);
+  // A misspelt field names the closest one and lists them all.
+  EXPECT_EQ(first_error_line("r = stats(box([0, 0, 0], [1, 1, 1]), samples=0, quiet=true)\nprint(r[\"hieght\"])"),
+            "t.bsp:2:9: error: the record has no field \"hieght\" (did you mean \"height\"?); its fields: name, nodes, "
+            "leaves, in_leaves, out_leaves, height, expected_depth, entropy_bound, ratio, cells_in_box, in_volume, "
+            "sample_box, sample_volume, histogram, queries");
+  EXPECT_NE(first_error_line("print(keys([1]))").find("keys: argument 'r' must be a record, got list"),
+            std::string::npos);
+}
+
 TEST(Builtins, GridErrorsSayWhatFits) {
   EXPECT_EQ(first_error_line("s = box([0, 0, 0], [3000, 1, 1])"),
             "t.bsp:1:5: error: box: out of range: coordinate 3000 is outside the exact kernel's range [-1024, 1024] world units "
