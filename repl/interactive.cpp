@@ -1,5 +1,6 @@
 #include "interactive.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -74,20 +75,24 @@ void cancel_entry(language::Session& session) {
 // libedit's completion callbacks are plain C functions: they reach the session through this
 // pointer, set for the duration of run_interactive() only.
 language::Session* completing_session = nullptr;
+std::string completing_before;  // the line before the word being completed
 
 char* completion_generator(const char* text, int state) {
   static std::vector<std::string> matches;
   static std::size_t next = 0;
   if (state == 0) {
-    matches = completing_session ? completing_session->complete(text) : std::vector<std::string>{};
+    matches = completing_session ? completing_session->complete(text, completing_before) : std::vector<std::string>{};
     next = 0;
   }
   if (next >= matches.size()) return nullptr;
   return strdup(matches[next++].c_str());
 }
 
-char** complete(const char* text, int /*start*/, int /*end*/) {
+char** complete(const char* text, int start, int /*end*/) {
   rl_attempted_completion_over = 1;  // no file-name completion
+  // Inside a call's parentheses the function's parameter names are offered (`segments=`).
+  completing_before.assign(rl_line_buffer ? rl_line_buffer : "", 0, static_cast<std::size_t>(std::max(start, 0)));
+  rl_completion_append_character = '\0';
   return rl_completion_matches(text, completion_generator);
 }
 

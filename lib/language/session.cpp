@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <map>
 
@@ -308,11 +309,69 @@ void Session::add_command(std::string name, std::function<void(const std::string
   extra_commands_[std::move(name)] = std::move(run);
 }
 
-std::vector<std::string> Session::complete(std::string_view text) const {
+namespace {
+
+/// The name of the call whose argument list `before` ends inside (`sphere(1, ` gives "sphere"),
+/// or "" when it ends outside every call. Brackets and strings are skipped.
+std::string open_call(std::string_view before) {
+  std::vector<std::size_t> opened;  // positions of the '(' and '[' not yet closed
+  bool in_string = false;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const char c = before[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '(' || c == '[') {
+      opened.push_back(i);
+    } else if ((c == ')' || c == ']') && !opened.empty()) {
+      opened.pop_back();
+    }
+  }
+  if (opened.empty() || before[opened.back()] != '(') return "";
+  std::size_t end = opened.back();
+  while (end > 0 && before[end - 1] == ' ') --end;
+  std::size_t start = end;
+  auto is_name = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  while (start > 0 && is_name(before[start - 1])) --start;
+  return std::string(before.substr(start, end - start));
+}
+
+/// `name=` for each parameter of the function `call` (a built-in or a script's fn) whose name
+/// starts with `text` and that the call does not name yet.
+std::vector<std::string> parameter_names(const Interpreter& interpreter, const std::string& call,
+                                         std::string_view before, std::string_view text) {
+  std::vector<std::string> parameters;
+  if (const Value* v = interpreter.global(call)) {
+    if (const auto* f = v->get<std::shared_ptr<const UserFunction>>()) parameters = (*f)->parameters;
+  } else if (const Builtin* b = builtins().find(call)) {
+    for (const Param& p : b->params) parameters.push_back(p.name);
+  }
+  const std::string_view arguments = before.substr(before.rfind('('));
+  std::vector<std::string> out;
+  for (const std::string& p : parameters) {
+    if (p.compare(0, text.size(), text) != 0) continue;
+    const std::size_t named = arguments.find(p + "=");
+    const bool given = named != std::string_view::npos &&
+                       (named == 0 || !std::isalnum(static_cast<unsigned char>(arguments[named - 1])));
+    if (!given) out.push_back(p + "=");
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> Session::complete(std::string_view text, std::string_view before) const {
   std::vector<std::string> names;
   auto consider = [&](const std::string& name) {
     if (name.compare(0, text.size(), text) == 0) names.push_back(name);
   };
+  if (const std::string call = open_call(before); !call.empty()) {
+    names = parameter_names(interpreter_, call, before, text);
+  }
   if (!text.empty() && text[0] == ':') {
     for (const char* c : kCommands) consider(c);
     for (const auto& [name, _] : extra_commands_) consider(name);

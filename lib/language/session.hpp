@@ -38,8 +38,9 @@ class Session {
   /// Drops the unfinished entry, if any (Ctrl-C at a prompt). Returns whether there was one.
   bool discard_pending();
   /// Names (keywords, built-ins, globals, and commands when `text` starts with ':') that
-  /// start with `text`, sorted.
-  [[nodiscard]] std::vector<std::string> complete(std::string_view text) const;
+  /// start with `text`, sorted. `before` is the line before `text`: when it ends inside a call's
+  /// parentheses, the function's parameter names not yet given are offered too, as `name=`.
+  [[nodiscard]] std::vector<std::string> complete(std::string_view text, std::string_view before = {}) const;
   [[nodiscard]] Interpreter& interpreter() { return interpreter_; }
   /// Adds a command such as `:view` that the session itself does not know (the sculpt executable
   /// adds it: the view is a layer above the language). `run` gets the rest of the line.

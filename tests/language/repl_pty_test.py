@@ -93,6 +93,9 @@ def main():
     # Tab completion of a built-in name: "cyli<TAB>" becomes "cylinder", whose value is echoed.
     t.mark(); t.type("cyli\t\r"); t.read_until("<built-in cylinder(r, h, segments=32, center=false, d=diameter)>")
 
+    # Inside a call, <TAB> completes a parameter name: "segm<TAB>" becomes "segments=".
+    t.mark(); t.type("sphere(1, segm\t8)\r"); t.read_until("<solid: ")
+
     # History recall: the up arrow brings back the last entry.
     t.mark(); t.type("print(\"again\", x)\r"); t.read_until("again 42")
     t.mark(); t.type("\x1b[A\r"); t.read_until("again 42")

@@ -122,6 +122,28 @@ TEST(Session, Completion) {
   EXPECT_EQ(f.session.complete(":l"), (std::vector<std::string>{":load"}));
 }
 
+// Inside a call's parentheses the parameters not yet given are offered as `name=` (issue 36),
+// beside the names a positional argument could use.
+TEST(Session, CompletionOffersParameterNamesInsideACall) {
+  Fixture f;
+  f.session.feed("fn plate(width, wall) { box([0, 0, 0], [width, width, wall]) }");
+  f.session.feed("seg = 5");
+  EXPECT_EQ(f.session.complete("seg", "s = sphere(1, "), (std::vector<std::string>{"seg", "segments="}));
+  const auto inside = f.session.complete("", "cylinder(1, 2, segments=8, ");
+  EXPECT_EQ(std::count(inside.begin(), inside.end(), "segments="), 0) << "already given";
+  EXPECT_EQ(std::count(inside.begin(), inside.end(), "center="), 1);
+  EXPECT_EQ(std::count(inside.begin(), inside.end(), "d="), 1);
+  // A script's own fn; a nested call completes the inner function; after the call closes, none.
+  EXPECT_EQ(f.session.complete("wi", "plate("), (std::vector<std::string>{"width="}));
+  EXPECT_EQ(f.session.complete("wa", "plate(3, "), (std::vector<std::string>{"wall="}));
+  EXPECT_EQ(f.session.complete("seg", "plate(width=norm([1, 2, 3]), wall=sphere(1, "),
+            (std::vector<std::string>{"seg", "segments="}));
+  EXPECT_EQ(f.session.complete("seg", "x = sphere(1, 2) | "), (std::vector<std::string>{"seg"}));
+  // Parentheses and brackets inside strings do not count.
+  EXPECT_EQ(f.session.complete("seg", "print(\"(\", sphere(1, \")\", "),
+            (std::vector<std::string>{"seg", "segments="}));
+}
+
 TEST(Session, LoadRunsAFile) {
   Fixture f;
   f.session.feed(":load /nonexistent/file.bsp");
