@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # run_golden.sh SCULPT scripts/case.bsp: runs the script from the repository root and compares
-# stdout+stderr with scripts/case.expect; the exit code must be 1 under scripts/errors/, else 0.
+# stdout+stderr with scripts/case.expect (options from scripts/case.args when it exists); the
+# exit code must be 1 under scripts/errors/, else 0.
 set -u
 sculpt=$1 script=$2
 expect=${script%.bsp}.expect
-actual=$("$sculpt" "$script" 2>&1)
+# scripts/case.args, if present, holds command-line options for the run (-D name=value ...).
+args=()
+if [ -f "${script%.bsp}.args" ]; then read -r -a args < "${script%.bsp}.args"; fi
+actual=$("$sculpt" "${args[@]}" "$script" 2>&1)
 status=$?
 want=0
 case $script in scripts/errors/*) want=1 ;; esac
