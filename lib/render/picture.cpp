@@ -50,6 +50,12 @@ int line_width(const Camera& camera, const PictureOptions& options) {
                                 : std::max(1, static_cast<int>(std::lround(std::min(camera.width, camera.height) / 600.0)));
 }
 
+/// Crease lines shorter than this many pixels that touch no outline are specks (edges.hpp):
+/// 2 % of the picture's smaller side, at least 6 (12 pixels in a 600-pixel picture).
+int least_crease_pixels(const Camera& camera) {
+  return std::max(6, static_cast<int>(std::lround(std::min(camera.width, camera.height) / 50.0)));
+}
+
 }  // namespace
 
 std::array<std::uint8_t, 3> solid_colour(std::size_t k) {
@@ -156,9 +162,12 @@ Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera, c
       polygon.dy = nu / (camera.scale * nz);
       polygon.d0 = unit.dot(p0 - camera.center) / nz - polygon.dx * 0.5 * camera.width - polygon.dy * 0.5 * camera.height;
       polygon.id = static_cast<int>(scene.faces.size());
-      FaceInfo info{.solid = m < ids.size() ? ids[m] : static_cast<int>(m), .face = static_cast<int>(f), .normal = unit, .vertices = face};
-      std::sort(info.vertices.begin(), info.vertices.end());
-      scene.faces.push_back(std::move(info));
+      scene.faces.push_back({.solid = m < ids.size() ? ids[m] : static_cast<int>(m),
+                             .face = static_cast<int>(f),
+                             .normal = unit,
+                             .dx = polygon.dx,
+                             .dy = polygon.dy,
+                             .d0 = polygon.d0});
       // The rasterizer takes convex polygons; a boundary face of a set operation's result is often
       // not convex (a face around a groove): it is drawn as the triangles of its exact ear
       // clipping, all with the face's id, which share their edges watertightly.
@@ -201,7 +210,8 @@ Image shade(const detail::Scene& scene, const Camera& camera, const PictureOptio
   }
   std::vector<bool> lines;
   if (options.edges)
-    lines = detail::edge_pixels(buffer, faces, std::cos(options.edge_angle * std::numbers::pi / 180));
+    lines = detail::edge_pixels(buffer, faces, std::cos(options.edge_angle * std::numbers::pi / 180), 1 / camera.scale,
+                                least_crease_pixels(camera));
   const int width = line_width(camera, options);
   if (!lines.empty() && width > 1) lines = detail::widen_lines(buffer, lines, width);
 

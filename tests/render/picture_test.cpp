@@ -192,6 +192,55 @@ TEST(Picture, EdgesMarkSilhouettesAndCreasesOnly) {
   EXPECT_EQ(covered(thick_lines), covered(plain));
 }
 
+/// Dark line pixels (the line colour) in the picture.
+long line_pixels(const Image& im, int margin = 0) {
+  long n = 0;
+  for (int y = margin; y < im.height - margin; ++y)
+    for (int x = margin; x < im.width - margin; ++x) n += im.pixel(x, y) == std::array<std::uint8_t, 3>{40, 40, 48};
+  return n;
+}
+
+TEST(Picture, CoplanarPiecesMeetingAtTJunctionsDrawNoLine) {
+  // The top of a carved block is made of many coplanar pieces whose corners do not match (a
+  // corner of one lies on an edge of another). Here: a 2 x 2 square in two rows of two bricks,
+  // the rows offset, so the pieces [0, 1.5] x [0, 1] and [0.5, 2] x [1, 2] are neighbours along
+  // y = 1 without a common vertex. Seen from the top, only the outline may have lines.
+  PolygonMesh top;
+  auto quad = [&](double x0, double y0, double x1, double y1) {
+    const int k = static_cast<int>(top.vertices.size());
+    top.vertices.insert(top.vertices.end(), {{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}});
+    top.faces.push_back({k, k + 1, k + 2, k + 3});
+  };
+  quad(0, 0, 1.5, 1);
+  quad(1.5, 0, 2, 1);
+  quad(0, 1, 0.5, 2);
+  quad(0.5, 1, 2, 2);
+  const Image image = render_meshes({top}, {.view = {0, 0, 1}, .width = 200, .height = 200});
+  EXPECT_GT(covered(image), 150 * 150);
+  EXPECT_EQ(line_pixels(image, 20), 0) << "lines inside the square";
+  EXPECT_GT(line_pixels(image), 0) << "the outline";
+}
+
+/// A flat square [-5, 5]^2 (normal +z) with a square pyramid of base half-width b and height b
+/// standing in its middle: four trapezoids around the base and the pyramid's four faces, whose
+/// creases with the flat part and each other are at 45 to 71 degrees.
+PolygonMesh square_with_pyramid(double b) {
+  PolygonMesh m;
+  m.vertices = {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0},  {-5, 5, 0}, {-b, -b, 0},
+                {b, -b, 0},  {b, b, 0},  {-b, b, 0}, {0, 0, b}};
+  m.faces = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 8}, {5, 6, 8}, {6, 7, 8}, {7, 4, 8}};
+  return m;
+}
+
+TEST(Picture, CreasesShorterThanAFewPixelsAreSpecksAndLongerOnesStay) {
+  // 20 pixels per unit: a pyramid 0.1 wide covers 2 pixels and its creases are a speck (a sliver
+  // of a fine mesh looks like this); one 4 wide shows its creases. Seen from the top the square's
+  // outline is the only other line.
+  const PictureOptions options{.view = {0, 0, 1}, .width = 200, .height = 200, .scale = 20};
+  EXPECT_EQ(line_pixels(render_meshes({square_with_pyramid(0.05)}, options), 10), 0);
+  EXPECT_GT(line_pixels(render_meshes({square_with_pyramid(2)}, options), 10), 4 * 40);
+}
+
 // ---- the z-buffer against independent references ----
 
 /// The nearest face hit by the ray through pixel (x, y)'s centre, by brute force over the
