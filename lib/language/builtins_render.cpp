@@ -8,6 +8,7 @@
 #include "language/builtins.hpp"
 #include "language/curve_values.hpp"
 #include "language/motion_values.hpp"
+#include "language/picture_items.hpp"
 #include "language/solid_values.hpp"
 #include "language/spline_values.hpp"
 #include "language/surface_values.hpp"
@@ -35,30 +36,13 @@ Eigen::Vector3d view_arg(const Arguments& args, std::string_view i) {
   return d;
 }
 
-/// A list of [x, y] or [x, y, z] points as a polyline; fails at argument i with `what`.
-curves::DigitizedCurve polyline_of(const Arguments& args, std::string_view i, const List& points,
-                                   const std::string& what) {
-  curves::DigitizedCurve polyline;
-  polyline.dimension = 2;
-  for (std::size_t p = 0; p < points.size(); ++p) {
-    const List* xyz = points[p].list();
-    const std::size_t n = xyz ? xyz->size() : 0;
-    bool ok = n == 2 || n == 3;
-    for (std::size_t a = 0; ok && a < n; ++a) ok = (*xyz)[a].get<double>() && std::isfinite(*(*xyz)[a].get<double>());
-    if (!ok) args.fail(i, what + "point " + std::to_string(p + 1) + " must be [x, y] or [x, y, z]");
-    polyline.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(), n == 3 ? *(*xyz)[2].get<double>() : 0.0);
-    if (n == 3) polyline.dimension = 3;
-  }
-  return polyline;
-}
+}  // namespace
 
-/// True for a list of points ([[x, y, z], ...]) as opposed to a list of items.
-bool points_alone(const List* list) {
+bool is_point_list(const List* list) {
   return list && !list->empty() && (*list)[0].list() && !(*list)[0].list()->empty() && (*list)[0].list()->front().get<double>();
 }
 
-/// One item of render: solids, meshes, surfaces; curves of every kind.
-render::PictureItem picture_item(const Arguments& args, const Value& v, const std::string& what) {
+std::variant<render::PictureItem, std::string> picture_item(const Value& v) {
   if (const auto* s = v.object<SolidValue>()) return render::PictureMesh{.mesh = s->boundary(), .two_sided = false};
   if (const auto* m = v.object<MeshValue>()) return render::PictureMesh{.mesh = m->mesh, .two_sided = true};
   if (const auto* b = v.object<SurfaceValue>()) return b->surface;
@@ -67,14 +51,57 @@ render::PictureItem picture_item(const Arguments& args, const Value& v, const st
   if (const auto* c = v.object<CurveValue>()) return render::PictureCurve{.points = c->curve.points, .closed = c->curve.closed};
   if (const auto* l = v.object<LinearizationValue>())
     return render::PictureCurve{.points = curves::linearization_points(l->curve->curve, l->result), .closed = false};
-  if (const List* points = v.list(); points_alone(points))
-    return render::PictureCurve{.points = polyline_of(args, "x", *points, what).points, .closed = false};
+  if (const List* points = v.list(); is_point_list(points)) {
+    render::PictureCurve polyline;
+    for (std::size_t p = 0; p < points->size(); ++p) {
+      const List* xyz = (*points)[p].list();
+      const std::size_t n = xyz ? xyz->size() : 0;
+      bool ok = n == 2 || n == 3;
+      for (std::size_t a = 0; ok && a < n; ++a) ok = (*xyz)[a].get<double>() && std::isfinite(*(*xyz)[a].get<double>());
+      if (!ok) return "point " + std::to_string(p + 1) + " must be [x, y] or [x, y, z]";
+      polyline.points.emplace_back(*(*xyz)[0].get<double>(), *(*xyz)[1].get<double>(),
+                                   n == 3 ? *(*xyz)[2].get<double>() : 0.0);
+    }
+    return polyline;
+  }
   if (const auto* c = v.object<ConstraintSurfaceValue>())
-    args.fail("x", what + "cannot draw " + c->description +
-                       " (only B-spline surfaces are tessellated; draw the solid, "
-                       "e.g. sphere(r) translated, or a surface_mesh)");
-  args.fail("x", what + "must be a solid, mesh, surface, spline, curve, linearization, motion or list of points, not " +
-                     type_name(v));
+    return "cannot draw " + c->description +
+           " (only B-spline surfaces are tessellated; draw the solid, e.g. sphere(r) translated, or a surface_mesh)";
+  return "must be a solid, mesh, surface, spline, curve, linearization, motion or list of points, not " + type_name(v);
+}
+
+std::variant<std::vector<render::PictureItem>, std::string> picture_items(const Value& x, const std::string& name) {
+  std::vector<render::PictureItem> items;
+  const List* list = x.list();
+  if (list && !is_point_list(list)) {
+    if (list->empty()) return std::string("the list is empty");
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      auto item = picture_item((*list)[k]);
+      if (const std::string* error = std::get_if<std::string>(&item)) return "item " + std::to_string(k) + " " + *error;
+      items.push_back(std::move(std::get<render::PictureItem>(item)));
+    }
+    return items;
+  }
+  auto item = picture_item(x);
+  if (const std::string* error = std::get_if<std::string>(&item)) return name + " " + *error;
+  items.push_back(std::move(std::get<render::PictureItem>(item)));
+  return items;
+}
+
+namespace {
+
+/// A list of [x, y] or [x, y, z] points as a polyline (2D unless a point has z); fails at
+/// argument i with `what`.
+curves::DigitizedCurve polyline_of(const Arguments& args, std::string_view i, const List& points,
+                                   const std::string& what) {
+  auto item = picture_item(Value(points));
+  if (const std::string* error = std::get_if<std::string>(&item)) args.fail(i, what + *error);
+  curves::DigitizedCurve polyline;
+  polyline.points = std::get<render::PictureCurve>(std::get<render::PictureItem>(item)).points;
+  polyline.dimension = 2;
+  for (const Value& p : points)
+    if (p.list() && p.list()->size() == 3) polyline.dimension = 3;
+  return polyline;
 }
 
 /// The file of argument i, which must end in `extension` (".png": the picture is PNG whatever the
@@ -119,15 +146,9 @@ void register_render(BuiltinTable& table) {
                   arg("width").integer(0, 64).defaults(double(picture.curve_width))},
        .run = [](const Arguments& args) -> Value {
          (void)output_path(args, "file", ".png", "PNG");  // a wrong name is refused before the work
-         std::vector<render::PictureItem> items;
-         const List* list = args.value("x").list();
-         if (list && !points_alone(list)) {
-           if (list->empty()) args.fail("x", "the list is empty");
-           for (std::size_t k = 0; k < list->size(); ++k)
-             items.push_back(picture_item(args, (*list)[k], "item " + std::to_string(k) + " "));
-         } else {
-           items.push_back(picture_item(args, args.value("x"), "x "));
-         }
+         auto drawn = picture_items(args.value("x"), "x");
+         if (const std::string* error = std::get_if<std::string>(&drawn)) args.fail("x", *error);
+         const std::vector<render::PictureItem>& items = std::get<std::vector<render::PictureItem>>(drawn);
          render::PictureOptions options;
          if (args.has("view")) options.view = view_arg(args, "view");
          if (args.has("size")) {
@@ -168,7 +189,7 @@ void register_render(BuiltinTable& table) {
          // A single item, or a list of items (a list of points alone is one item).
          std::vector<const Value*> items;
          const List* list = args.value("xs").list();
-         if (list && !points_alone(list)) {
+         if (list && !is_point_list(list)) {
            for (const Value& v : *list) items.push_back(&v);
            if (items.empty()) args.fail("xs", "plot: the list is empty");
          } else {

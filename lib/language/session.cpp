@@ -11,6 +11,7 @@
 #include "base/errors.hpp"
 #include "language/builtins.hpp"
 #include "language/parser.hpp"
+#include "language/picture_items.hpp"
 #include "language/solid_values.hpp"
 #include "language/suggest.hpp"
 #include "render/camera.hpp"
@@ -21,21 +22,6 @@ namespace sculpt::language {
 namespace {
 
 constexpr const char* kCommands[] = {":help", ":load", ":quit", ":show", ":vars"};
-
-/// The boundaries of a solid or of a list of solids; empty if the value is neither.
-std::vector<PolygonMesh> solid_meshes(const Value& value) {
-  std::vector<PolygonMesh> meshes;
-  if (const auto* s = value.object<SolidValue>()) {
-    meshes.push_back(s->boundary());
-  } else if (const List* list = value.list(); list && !list->empty()) {
-    for (const Value& item : *list) {
-      const auto* part = item.object<SolidValue>();
-      if (!part) return {};
-      meshes.push_back(part->boundary());
-    }
-  }
-  return meshes;
-}
 
 const std::map<std::string, std::string>& keyword_help() {
   static const std::map<std::string, std::string> help = {
@@ -280,9 +266,10 @@ void Session::show(const std::string& argument) {
     }
     if (last_value_ && last_value_serial_ >= best) file = "last";
   }
-  const std::vector<PolygonMesh> meshes = solid_meshes(*value);
-  if (meshes.empty()) {
-    err_ << "error: :show: '" << name << "' is a " << type_name(*value) << ", not a solid or a list of solids\n";
+  // What render draws (solids, meshes, surfaces, curves of every kind, lists of them).
+  auto items = picture_items(*value, "'" + file + "'");
+  if (const std::string* error = std::get_if<std::string>(&items)) {
+    err_ << "error: :show: " << *error << "\n";
     return;
   }
   try {
@@ -290,7 +277,8 @@ void Session::show(const std::string& argument) {
     if (!view.empty()) options.view = render::view_direction(view);
     std::filesystem::create_directories(show_dir_);
     const std::filesystem::path path = show_dir_ / (file + ".png");
-    render::write_png(render::render_meshes(meshes, options), path, {.fast = true});
+    render::write_png(render::render_items(std::get<std::vector<render::PictureItem>>(items), options), path,
+                      {.fast = true});
     out_ << path.string() << "\n";
   } catch (const std::exception& e) {
     err_ << "error: :show: " << e.what() << "\n";

@@ -228,7 +228,22 @@ TEST(RenderBuiltin, SessionShowRendersANamedOrTheLastSolid) {
   EXPECT_EQ(parts.width, 800);
   err.str("");
   session.feed(":show n");
-  EXPECT_NE(err.str().find("'n' is a number, not a solid"), std::string::npos) << err.str();
+  EXPECT_EQ(err.str(),
+            "error: :show: 'n' must be a solid, mesh, surface, spline, curve, linearization, motion or list "
+            "of points, not number\n");
+  // What render draws, :show draws: a spline and a list of points, and a list mixing kinds.
+  out.str("");
+  session.feed("s = bspline([[0, 0], [1, 2], [2, -1], [3, 0]])");
+  session.feed(":show s");
+  EXPECT_EQ(out.str(), (dir.path / "s.png").string() + "\n");
+  const render::Image spline = render::read_png(dir.path / "s.png");
+  long drawn = 0;
+  for (std::size_t i = 0; i < spline.rgb.size(); i += 3) drawn += spline.rgb[i] != 255 || spline.rgb[i + 1] != 255;
+  EXPECT_GT(drawn, 500) << "the curve is drawn";
+  out.str("");
+  session.feed("mixed = [a, [[0, 0, 2], [1, 1, 2]], s]");
+  session.feed(":show mixed");
+  EXPECT_EQ(out.str(), (dir.path / "mixed.png").string() + "\n");
   err.str("");
   session.feed(":show nothing");
   EXPECT_NE(err.str().find("no variable named 'nothing'"), std::string::npos);
