@@ -12,6 +12,10 @@
 
 namespace sculpt::language {
 
+/// Samples per pixel side of the pictures `render` and `:show` make unless told (antialiasing:
+/// edges and lines without stair steps, at four times the drawing work).
+inline constexpr int kPictureAntialias = 2;
+
 /// True for a list of points ([[x, y, z], ...]), which is one item, as opposed to a list of items.
 bool is_point_list(const List* list);
 

@@ -273,7 +273,7 @@ void Session::show(const std::string& argument) {
     return;
   }
   try {
-    render::PictureOptions options;
+    render::PictureOptions options{.antialias = kPictureAntialias};
     if (!view.empty()) options.view = render::view_direction(view);
     std::filesystem::create_directories(show_dir_);
     const std::filesystem::path path = show_dir_ / (file + ".png");

@@ -56,6 +56,47 @@ int least_crease_pixels(const Camera& camera) {
   return std::max(6, static_cast<int>(std::lround(std::min(camera.width, camera.height) / 50.0)));
 }
 
+/// The options of the supersampled picture behind an antialiased one of `final`'s size: every
+/// length in pixels times the factor (the framing scales with the size by itself).
+PictureOptions supersampled(const PictureOptions& options, const Camera& final) {
+  const int f = options.antialias;
+  PictureOptions big = options;
+  big.antialias = 1;
+  big.width = options.width * f;
+  big.height = options.height * f;
+  big.scale = options.scale * f;
+  big.line_width = line_width(final, options) * f;
+  big.curve_width = (options.curve_width > 0 ? options.curve_width : 3 * line_width(final, options)) * f;
+  return big;
+}
+
+/// Each factor x factor block of `big` averaged into one pixel.
+Image downsampled(const Image& big, int factor) {
+  Image image{.width = big.width / factor, .height = big.height / factor, .rgb = {}};
+  image.rgb.resize(3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+  const int n = factor * factor;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        int sum = 0;
+        for (int v = 0; v < factor; ++v)
+          for (int u = 0; u < factor; ++u)
+            sum += big.rgb[3 * (static_cast<std::size_t>(y * factor + v) * static_cast<std::size_t>(big.width) +
+                                static_cast<std::size_t>(x * factor + u)) +
+                           static_cast<std::size_t>(c)];
+        image.rgb[3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                       static_cast<std::size_t>(x)) +
+                  static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((sum + n / 2) / n);
+      }
+  return image;
+}
+
+void check_antialias(const PictureOptions& options) {
+  if (options.antialias < 1 || options.antialias > 4)
+    throw InvalidInput("render: antialias must be 1 to 4 samples per pixel side, got " +
+                       std::to_string(options.antialias));
+}
+
 }  // namespace
 
 std::array<std::uint8_t, 3> solid_colour(std::size_t k) {
@@ -228,7 +269,10 @@ Image shade(const detail::Scene& scene, const Camera& camera, const PictureOptio
 }  // namespace
 
 Image render_meshes(const std::vector<PolygonMesh>& meshes, const PictureOptions& options) {
+  check_antialias(options);
   const Camera camera = picture_camera(meshes, options);
+  if (options.antialias > 1)
+    return downsampled(render_meshes(meshes, supersampled(options, camera)), options.antialias);
   return shade(detail::draw_scene(meshes, camera), camera, options);
 }
 
@@ -375,6 +419,8 @@ Image render_items(const std::vector<PictureItem>& items, const PictureOptions& 
     }
   }
   const Camera camera = picture_camera_for_points(frame, options);
+  check_antialias(options);
+  if (options.antialias > 1) return downsampled(render_items(items, supersampled(options, camera)), options.antialias);
   const double tolerance = options.surface_tolerance > 0 ? options.surface_tolerance : 0.5 / camera.scale;
 
   std::vector<PolygonMesh> meshes;

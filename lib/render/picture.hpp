@@ -64,6 +64,10 @@ struct PictureOptions {
   double surface_tolerance = 0;
   /// render_items: width of curves in pixels; 0: three times the line width.
   int curve_width = 0;
+  /// Antialiasing: the picture is drawn at `antialias` times the size (every length in pixels
+  /// scaled alike) and each antialias x antialias block averaged into one pixel. 1: one sample
+  /// per pixel, at its centre (the exact pixel bounds the tests check); at most 4.
+  int antialias = 1;
 };
 
 /// The colour of solid k (a fixed palette, repeating after 8): blue, orange, green, ...

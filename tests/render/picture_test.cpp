@@ -241,6 +241,44 @@ TEST(Picture, CreasesShorterThanAFewPixelsAreSpecksAndLongerOnesStay) {
   EXPECT_GT(line_pixels(render_meshes({square_with_pyramid(2)}, options), 10), 4 * 40);
 }
 
+TEST(Picture, AntialiasingAveragesSamplesAndKeepsTheCoveredArea) {
+  // A 2 x 2 square seen from the top at 20.5 pixels per unit, its sides through pixel middles: with
+  // one sample per pixel each pixel is the square's colour or white; with 4 x 4 samples the
+  // pixels along the sides take colours between, and the covered area (the sum of each pixel's
+  // share of the square's colour) stays 2 * 2 * 20.5^2 pixels within the sides' pixels.
+  PolygonMesh square{.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}, .faces = {{0, 1, 2, 3}}};
+  PictureOptions options{
+      .view = {0, 0, 1}, .width = 64, .height = 64, .scale = 20.5, .center = {1, 1, 0}, .edges = false};
+  const Image sharp = render_meshes({square}, options);
+  options.antialias = 4;
+  const Image smooth = render_meshes({square}, options);
+  ASSERT_EQ(smooth.width, 64);
+  ASSERT_EQ(smooth.height, 64);
+  const auto face = sharp.pixel(32, 32);
+  ASSERT_NE(face[0], 255);
+  auto share = [&](const Image& im) {
+    double total = 0;
+    int between = 0;
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        const double s = (255.0 - im.pixel(x, y)[0]) / (255.0 - face[0]);
+        total += s;
+        between += s > 0.05 && s < 0.95;
+      }
+    return std::pair{total, between};
+  };
+  const auto [sharp_area, sharp_between] = share(sharp);
+  const auto [smooth_area, smooth_between] = share(smooth);
+  const double exact = 4 * 20.5 * 20.5;
+  EXPECT_EQ(sharp_between, 0);
+  EXPECT_GT(smooth_between, 4 * 38);  // the four sides
+  EXPECT_NEAR(sharp_area, exact, 4 * 41);
+  EXPECT_NEAR(smooth_area, exact, 0.1 * 4 * 41);  // within a tenth of the sides' pixels
+  EXPECT_EQ(smooth.pixel(32, 32), face);          // inside, the face's own colour
+  options.antialias = 5;
+  EXPECT_THROW(render_meshes({square}, options), InvalidInput);
+}
+
 // ---- the z-buffer against independent references ----
 
 /// The nearest face hit by the ray through pixel (x, y)'s centre, by brute force over the
