@@ -16,6 +16,7 @@
 
 #include "base/cancel.hpp"
 #include "base/errors.hpp"
+#include "base/memory_limit.hpp"
 #include "base/memory_policy.hpp"
 #include "base/parallel.hpp"
 #include "interactive.hpp"
@@ -48,6 +49,9 @@ constexpr const char* kUsage =
     "                  folders are created\n"
     "  --grid STEP     make solids at grid step STEP, a power of two written 2^-13 or 0.0001220703125:\n"
     "                  coordinates up to 2^25 steps (default 2^-15: [-1024, 1024]); see grid()\n"
+    "  --memory-limit SIZE  stop work that would need more memory than SIZE (2G, 500M; 'none')\n"
+    "                  with an error at its statement instead of being killed by the system;\n"
+    "                  the session goes on (default: 90% of the machine's memory)\n"
     "  --threads N     use at most N threads (default: every core, or SCULPT_THREADS); results\n"
     "                  are the same for every count\n"
     "  --view          show the script's parts (show(x), else its last solid) in a browser page\n"
@@ -167,6 +171,8 @@ int main(int argc, char** argv) {
   } catch (const sculpt::InvalidInput& e) {
     return usage_error(e.what());
   }
+  std::optional<std::uint64_t> memory_budget = sculpt::default_memory_limit();  // --memory-limit
+  bool memory_limit_given = false;
   std::string output;  // -o FILE
   bool view = false;   // --view
   sculpt::repl::ViewPort view_port;
@@ -204,6 +210,14 @@ int main(int argc, char** argv) {
       if (error != std::errc() || end != text.data() + text.size() || n < 1)
         return usage_error("--threads needs a positive integer, got '" + text + "'");
       threads = n;
+    } else if (arg == "--memory-limit" || arg.rfind("--memory-limit=", 0) == 0) {
+      const std::string text = arg.size() > 14 ? arg.substr(15) : (i + 1 < argc ? argv[++i] : "");
+      try {
+        memory_budget = sculpt::parse_memory_size(text);
+        memory_limit_given = true;
+      } catch (const sculpt::InvalidInput& e) {
+        return usage_error(std::string("--memory-limit: ") + e.what());
+      }
     } else if (arg == "--view") {
       view = true;
     } else if (arg == "--port" || arg.rfind("--port=", 0) == 0) {
@@ -230,6 +244,11 @@ int main(int argc, char** argv) {
     }
   }
 
+  // Work beyond the budget fails with an error at its statement instead of being killed by the
+  // system (base/memory_limit.hpp; not enforced in sanitizer builds).
+  if (memory_budget && *memory_budget > 0 && !sculpt::set_memory_limit(*memory_budget) && memory_limit_given)
+    std::cerr
+        << "sculpt: warning: --memory-limit is not enforced in this build (sanitizers reserve the address space)\n";
   std::optional<sculpt::ThreadLimit> thread_limit;
   if (threads) thread_limit.emplace(*threads);
 

@@ -16,6 +16,7 @@
 
 #include "base/cancel.hpp"
 #include "base/errors.hpp"
+#include "base/memory_limit.hpp"
 #include "language/builtins.hpp"
 #include "language/operators.hpp"
 #include "language/parser.hpp"
@@ -80,7 +81,13 @@ auto positioned(const SourceRef& at, const std::string& prefix, F&& f) -> declty
   } catch (const IoError& e) {
     throw ScriptError(at, prefix + e.what());
   } catch (const std::bad_alloc&) {
-    throw ScriptError(at, prefix + "out of memory");
+    // The memory budget (base/memory_limit.hpp) or the machine's memory ran out; what the failed
+    // work held is freed by now and the session goes on.
+    const std::optional<std::uint64_t> limit = memory_limit();
+    throw ScriptError(at, prefix + "out of memory" +
+                              (limit ? ": the work needs more than the memory limit of " + format_memory_size(*limit) +
+                                           " (sculpt --memory-limit)"
+                                     : std::string()));
   } catch (const std::exception& e) {
     throw ScriptError(at, prefix + without(prefix, e.what()));
   }

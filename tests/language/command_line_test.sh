@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The sculpt executable's command line: -e, -, -D, -o, --help, --version, files, exit codes 0/1/2,
-# Ctrl-C in a batch run (130).
+# Ctrl-C in a batch run (130), --memory-limit.
 set -u
 sculpt=$1
 failures=0
@@ -143,6 +143,19 @@ export(u, "u.off")' 2> interrupted.err &
 check interrupted 130 "error: interrupted
 0
 first.off written" interrupted
+
+# The memory budget: work that would need more stops with an error at its statement (exit 1), not
+# a kill by the system. Sanitizer builds cannot enforce it (they say so): skipped there.
+if "$sculpt" --memory-limit 512M -e 'x = 1' 2>&1 | grep -q "not enforced"; then
+  echo "memory limit: not enforced in this build, skipped"
+else
+  check memory_limit 1 "<command line>:1:5: error: sphere: out of memory: the work needs more than the memory limit of 512 MB (sculpt --memory-limit)" \
+    first_line "$sculpt" --memory-limit 512M -e 's = sphere(1, 2000)'
+  check memory_limit_units 0 "1" "$sculpt" --memory-limit=2G -e 'print(1)'
+fi
+check memory_limit_bad 2 "sculpt: --memory-limit: a memory size is a number with K, M, G or T (2G, 500M) or 'none', not '2X'; try 'sculpt --help'" \
+  "$sculpt" --memory-limit 2X -e 'print(1)'
+check memory_limit_none 0 "1" "$sculpt" --memory-limit none -e 'print(1)'
 
 if [ "$failures" != 0 ]; then
   echo "$failures command-line checks failed"

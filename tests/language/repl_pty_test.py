@@ -2,12 +2,13 @@
 """Drives the sculpt REPL through a pseudo-terminal, as a user would: typed lines, an error,
 a multi-line function, tab completion, history recall with the up arrow (also across
 sessions through ~/.sculpt_history), Ctrl-C at a prompt, during a run and during a long built-in, :help (wrapped to
-the window's width) and :quit. Reads what the terminal shows."""
+the window's width), :quit, and work stopped by the memory budget. Reads what the terminal shows."""
 import fcntl
 import os
 import pty
 import select
 import struct
+import subprocess
 import sys
 import tempfile
 import termios
@@ -17,13 +18,13 @@ SCULPT = sys.argv[1]
 
 
 class Terminal:
-    def __init__(self, home):
+    def __init__(self, home, args=()):
         self.pid, self.fd = pty.fork()
         if self.pid == 0:
             os.environ["HOME"] = home
             os.environ["TERM"] = "xterm"
             os.environ["SCULPT_SHOW_DIR"] = os.path.join(home, "show")
-            os.execv(SCULPT, [SCULPT])
+            os.execv(SCULPT, [SCULPT] + list(args))
         self.screen = ""
 
     def read_until(self, text, timeout=10.0):
@@ -152,7 +153,27 @@ def main():
     t.type("\x04")  # end of input leaves the session
     status = t.close()
     assert status == 0, "exit status %d" % status
+    memory_budget(home)
     print("REPL pseudo-terminal checks passed")
+
+
+def memory_budget(home):
+    """Work beyond --memory-limit stops with an error and the session goes on, its variables kept
+    (skipped where the build cannot enforce the limit: sanitizers)."""
+    probe = subprocess.run([SCULPT, "--memory-limit", "512M", "-e", "x = 1"], capture_output=True, text=True)
+    if "not enforced" in probe.stderr:
+        print("memory budget: not enforced in this build, skipped")
+        return
+    t = Terminal(home, ["--memory-limit", "512M"])
+    t.read_until("sculpt> ")
+    t.mark(); t.type("a = 6 * 7\r"); t.read_until("sculpt> ")
+    t.mark(); t.type("a = sphere(1, 2000)\r")
+    t.read_until("out of memory: the work needs more than the memory limit of 512 MB", timeout=60)
+    t.read_until("sculpt> ")
+    t.mark(); t.type("print(a + 1)\r"); t.read_until("43")
+    t.type(":quit\r")
+    status = t.close()
+    assert status == 0, "exit status %d" % status
 
 
 if __name__ == "__main__":
