@@ -70,6 +70,16 @@ TEST(Sphere, ThinnerThanAGridStepIsAClearError) {
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("thinner than one grid step"), std::string::npos) << e.what();
   }
+  // The message names a grid that works (issue 36): a sphere of radius 1e-5 at the default grid
+  // is told grid(pow(2, -24)), and there it is a sphere (volume within 1 % of 4/3 pi r^3).
+  try {
+    (void)sphere(1e-5, {.segments = 64});
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("needs a finer grid, e.g. grid(pow(2, -24))"), std::string::npos) << e.what();
+  }
+  const double v = volume(sphere(1e-5, {.segments = 64, .grid = kernel::Grid::from_shift(24)}));
+  EXPECT_NEAR(v / (4.0 / 3.0 * std::numbers::pi * 1e-15), 1.0, 0.01);
 }
 
 // Far below the direct boundary's bound (faces 0.006 grid units wide, 32768 of them), rounding

@@ -52,8 +52,17 @@ std::vector<Ring> merge_rings_on_grid(const std::vector<Ring>& rings, const kern
   for (std::size_t k = 1; k + 1 < merged.size(); ++k)
     if (merged[k].scale == 0) throw InvalidInput("only the first and the last ring may have scale 0");
   if (merged.size() < 2) {
+    // Name a grid that resolves it: 256 steps across its height, so that the snapped rings keep
+    // its shape to about 1 % (docs/language.md, "World range").
     std::ostringstream s;
-    s << "revolved solid is thinner than one grid step (" << grid.step() << ")";
+    s << "revolved solid is thinner than one grid step (" << grid.name() << " = " << grid.step() << ")";
+    const double height = rings.back().z - rings.front().z;
+    const int shift = static_cast<int>(std::ceil(std::log2(256 / height)));
+    if (height > 0 && shift > grid.shift() && shift <= kernel::Grid::kMaxShift) {
+      const kernel::Grid finer = kernel::Grid::from_shift(shift);
+      s << ": its height " << height << " needs a finer grid, e.g. grid(pow(2, " << -shift << ")) (step "
+        << finer.step() << ", coordinates up to " << finer.max_world() << ")";
+    }
     throw InvalidInput(s.str());
   }
   return merged;
