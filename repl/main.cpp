@@ -49,9 +49,9 @@ constexpr const char* kUsage =
     "                  folders are created\n"
     "  --grid STEP     make solids at grid step STEP, a power of two written 2^-13 or 0.0001220703125:\n"
     "                  coordinates up to 2^25 steps (default 2^-15: [-1024, 1024]); see grid()\n"
-    "  --memory-limit SIZE  stop work that would need more memory than SIZE (2G, 500M; 'none')\n"
-    "                  with an error at its statement instead of being killed by the system;\n"
-    "                  the session goes on (default: 90% of the machine's memory)\n"
+    "  --memory-limit SIZE  stop work that takes more memory than SIZE (2G, 500M; 'none') with\n"
+    "                  an error at its statement instead of being killed by the system; the\n"
+    "                  session goes on (default: 90% of the machine's memory)\n"
     "  --threads N     use at most N threads (default: every core, or SCULPT_THREADS); results\n"
     "                  are the same for every count\n"
     "  --view          show the script's parts (show(x), else its last solid) in a browser page\n"
@@ -244,11 +244,14 @@ int main(int argc, char** argv) {
     }
   }
 
-  // Work beyond the budget fails with an error at its statement instead of being killed by the
-  // system (base/memory_limit.hpp; not enforced in sanitizer builds).
-  if (memory_budget && *memory_budget > 0 && !sculpt::set_memory_limit(*memory_budget) && memory_limit_given)
-    std::cerr
-        << "sculpt: warning: --memory-limit is not enforced in this build (sanitizers reserve the address space)\n";
+  // Work beyond the budget stops with an error at its statement instead of being killed by the
+  // system (base/memory_limit.hpp).
+  std::optional<sculpt::MemoryWatch> memory_watch;
+  if (memory_budget && *memory_budget > 0) {
+    memory_watch.emplace(*memory_budget);
+    if (!memory_watch->enforced() && memory_limit_given)
+      std::cerr << "sculpt: warning: --memory-limit is not enforced here (/proc/self/statm cannot be read)\n";
+  }
   std::optional<sculpt::ThreadLimit> thread_limit;
   if (threads) thread_limit.emplace(*threads);
 
@@ -299,7 +302,7 @@ int main(int argc, char** argv) {
   } catch (const ScriptError& e) {
     std::cout.flush();
     std::cerr << format_error(e);
-    return sculpt::cancel_requested() ? kInterruptedStatus : 1;
+    return sculpt::cancel_requested() && sculpt::cancel_reason() == sculpt::CancelReason::User ? kInterruptedStatus : 1;
   } catch (const IoError& e) {
     std::cout.flush();
     std::cerr << "sculpt: " << e.what() << "\n";

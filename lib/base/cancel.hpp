@@ -25,18 +25,37 @@ class Cancelled : public std::runtime_error {
   Cancelled() : std::runtime_error("interrupted") {}
 };
 
+/// Why work was stopped: the user asked (Ctrl-C), or it went over the memory budget
+/// (base/memory_limit.hpp's MemoryWatch).
+enum class CancelReason { User, MemoryLimit };
+
 namespace detail {
 inline std::atomic<bool> cancel_flag{false};
+inline std::atomic<CancelReason> cancel_reason{CancelReason::User};
 inline std::atomic<int> cancel_shields{0};
 static_assert(std::atomic<bool>::is_always_lock_free, "request_cancel() is called from signal handlers");
+static_assert(std::atomic<CancelReason>::is_always_lock_free);
 /// Throws Cancelled unless a CancelShield lives (the flag was seen raised).
 void throw_cancelled();
 }  // namespace detail
 
 /// Asks every running check_cancel() to throw. Async-signal-safe (one lock-free atomic store).
 inline void request_cancel() noexcept { detail::cancel_flag.store(true, std::memory_order_relaxed); }
+/// Asks as request_cancel() does, for going over the memory budget (the reason is kept until
+/// clear_cancel(); a user's request made meanwhile stays a user's).
+inline void request_cancel_for_memory() noexcept {
+  if (!detail::cancel_flag.load(std::memory_order_relaxed)) {
+    detail::cancel_reason.store(CancelReason::MemoryLimit, std::memory_order_relaxed);
+    detail::cancel_flag.store(true, std::memory_order_relaxed);
+  }
+}
 /// Withdraws the request (before the next statement, the next test, ...).
-inline void clear_cancel() noexcept { detail::cancel_flag.store(false, std::memory_order_relaxed); }
+inline void clear_cancel() noexcept {
+  detail::cancel_flag.store(false, std::memory_order_relaxed);
+  detail::cancel_reason.store(CancelReason::User, std::memory_order_relaxed);
+}
+/// Why the pending request was made.
+inline CancelReason cancel_reason() noexcept { return detail::cancel_reason.load(std::memory_order_relaxed); }
 /// True while a request is pending.
 inline bool cancel_requested() noexcept { return detail::cancel_flag.load(std::memory_order_relaxed); }
 /// The request flag itself, for code that polls a flag of its own kind (the language's

@@ -1,29 +1,30 @@
 #include "base/memory_limit.hpp"
 
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>  // first: on glibc it defines __GLIBC__ (features.h), which the test below reads
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
+#include "base/cancel.hpp"
 #include "base/errors.hpp"
 
 namespace sculpt {
 namespace {
 
-constexpr bool kSanitized =
-#if defined(__SANITIZE_ADDRESS__)
-    true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-    true;
-#else
-    false;
+std::atomic<std::uint64_t> watched_limit{0};
+
+/// Hands the heap's free memory back to the system (glibc); the resident set shrinks by it.
+void return_free_memory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
 #endif
-#else
-    false;
-#endif
+}
 
 }  // namespace
 
@@ -33,19 +34,14 @@ std::uint64_t default_memory_limit() {
   return static_cast<std::uint64_t>(pages) / 10 * 9 * static_cast<std::uint64_t>(page);
 }
 
-bool set_memory_limit(std::uint64_t bytes) {
-  if (kSanitized) return false;
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) != 0) return false;
-  // Never above the hard limit the process was given.
-  limit.rlim_cur = limit.rlim_max == RLIM_INFINITY ? bytes : std::min<rlim_t>(bytes, limit.rlim_max);
-  return setrlimit(RLIMIT_AS, &limit) == 0;
-}
-
-std::optional<std::uint64_t> memory_limit() {
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return std::nullopt;
-  return static_cast<std::uint64_t>(limit.rlim_cur);
+std::optional<std::uint64_t> resident_bytes() {
+  std::FILE* file = std::fopen("/proc/self/statm", "r");
+  if (!file) return std::nullopt;
+  unsigned long long size = 0, resident = 0;
+  const int read = std::fscanf(file, "%llu %llu", &size, &resident);
+  std::fclose(file);
+  if (read != 2) return std::nullopt;
+  return static_cast<std::uint64_t>(resident) * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE));
 }
 
 std::optional<std::uint64_t> parse_memory_size(const std::string& text) {
@@ -76,6 +72,40 @@ std::string format_memory_size(std::uint64_t bytes) {
   else
     std::snprintf(text, sizeof text, "%.0f MB", static_cast<double>(bytes) / (1024.0 * 1024));
   return text;
+}
+
+MemoryWatch::MemoryWatch(std::uint64_t limit, int period_ms) : enforced_(resident_bytes().has_value()) {
+  if (!enforced_) return;
+  watched_limit.store(limit, std::memory_order_relaxed);
+  thread_ = std::thread([this, limit, period_ms] { run(limit, period_ms); });
+}
+
+MemoryWatch::~MemoryWatch() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  if (thread_.joinable()) thread_.join();
+  watched_limit.store(0, std::memory_order_relaxed);
+}
+
+void MemoryWatch::run(std::uint64_t limit, int period_ms) {
+  std::unique_lock lock(mutex_);
+  while (!wake_.wait_for(lock, std::chrono::milliseconds(period_ms), [this] { return stop_; })) {
+    std::optional<std::uint64_t> resident = resident_bytes();
+    if (!resident || *resident <= limit || cancel_requested()) continue;
+    // Memory freed and kept for reuse counts in the resident set (after a stopped statement, all
+    // it held): give it back first, and stop the work only if that is not enough.
+    return_free_memory();
+    resident = resident_bytes();
+    if (resident && *resident > limit) request_cancel_for_memory();
+  }
+}
+
+std::optional<std::uint64_t> watched_memory_limit() {
+  const std::uint64_t limit = watched_limit.load(std::memory_order_relaxed);
+  return limit > 0 ? std::optional(limit) : std::nullopt;
 }
 
 }  // namespace sculpt

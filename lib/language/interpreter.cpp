@@ -62,14 +62,23 @@ std::string without(const std::string& prefix, const char* message) {
   return !prefix.empty() && text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
 }
 
+/// The error of a statement stopped by a cancellation request: Ctrl-C, or the memory budget
+/// (base/memory_limit.hpp), whose limit it names.
+std::string stopped_message(const std::string& prefix) {
+  if (cancel_reason() != CancelReason::MemoryLimit) return "interrupted";
+  const std::optional<std::uint64_t> limit = watched_memory_limit();
+  return prefix + "out of memory: the work needed more than the memory limit" +
+         (limit ? " of " + format_memory_size(*limit) : std::string()) + " (sculpt --memory-limit)";
+}
+
 template <typename F>
 auto positioned(const SourceRef& at, const std::string& prefix, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const ScriptError&) {
     throw;
-  } catch (const Cancelled&) {  // Ctrl-C in library code (base/cancel.hpp)
-    throw ScriptError(at, "interrupted");
+  } catch (const Cancelled&) {  // Ctrl-C or the memory budget, in library code (base/cancel.hpp)
+    throw ScriptError(at, stopped_message(prefix));
   } catch (const OperatorError& e) {
     throw ScriptError(at, prefix + e.what());
   } catch (const InvalidInput& e) {
@@ -81,13 +90,7 @@ auto positioned(const SourceRef& at, const std::string& prefix, F&& f) -> declty
   } catch (const IoError& e) {
     throw ScriptError(at, prefix + e.what());
   } catch (const std::bad_alloc&) {
-    // The memory budget (base/memory_limit.hpp) or the machine's memory ran out; what the failed
-    // work held is freed by now and the session goes on.
-    const std::optional<std::uint64_t> limit = memory_limit();
-    throw ScriptError(at, prefix + "out of memory" +
-                              (limit ? ": the work needs more than the memory limit of " + format_memory_size(*limit) +
-                                           " (sculpt --memory-limit)"
-                                     : std::string()));
+    throw ScriptError(at, prefix + "out of memory");
   } catch (const std::exception& e) {
     throw ScriptError(at, prefix + without(prefix, e.what()));
   }
@@ -124,7 +127,8 @@ struct Interpreter::Impl {
   }
   void count_step(std::size_t where) { charge(1, where); }
   void charge(std::uint64_t n, std::size_t where) {
-    if (options.interrupt && options.interrupt->load(std::memory_order_relaxed)) throw ScriptError(at(where), "interrupted");
+    if (options.interrupt && options.interrupt->load(std::memory_order_relaxed))
+      throw ScriptError(at(where), stopped_message(""));
     if (options.max_steps != 0 && (steps += n) > options.max_steps) {
       throw ScriptError(at(where), "step limit of " + std::to_string(options.max_steps) + " exceeded");
     }

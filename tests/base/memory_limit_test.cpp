@@ -1,9 +1,16 @@
-// The memory budget's sizes (base/memory_limit.hpp). Enforcing the limit changes the whole test
-// process, so that is checked on the sculpt executable (command_line_test.sh, repl_pty_test.py).
+// The memory budget (base/memory_limit.hpp): its sizes, and the watch that stops work above it.
+// The language's message and the session going on are checked on the sculpt executable
+// (command_line_test.sh, repl_pty_test.py).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <chrono>
+#include <cstring>
+#include <memory>
+#include <thread>
+
+#include "base/cancel.hpp"
 #include "base/errors.hpp"
 #include "base/memory_limit.hpp"
 
@@ -29,6 +36,38 @@ TEST(MemoryLimit, SizesPrintInPowersOf1024) {
 TEST(MemoryLimit, DefaultIsNineTenthsOfPhysicalMemory) {
   const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
   EXPECT_NEAR(double(default_memory_limit()), 0.9 * physical, 0.001 * physical);
+}
+
+TEST(MemoryLimit, TheWatchStopsWorkAboveTheLimitAndNotBelow) {
+  const std::optional<std::uint64_t> before = resident_bytes();
+  if (!before) GTEST_SKIP() << "no /proc/self/statm";
+  clear_cancel();
+  const std::uint64_t limit = *before + (std::uint64_t(128) << 20);
+  MemoryWatch watch(limit, 5);
+  ASSERT_TRUE(watch.enforced());
+  EXPECT_EQ(watched_memory_limit(), limit);
+  // 64 MiB touched: below the limit, nothing happens.
+  auto touch = [](std::size_t bytes) {
+    std::unique_ptr<char[]> block(new char[bytes]);
+    std::memset(block.get(), 1, bytes);
+    return block;
+  };
+  auto small = touch(std::size_t(64) << 20);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_FALSE(cancel_requested());
+  // 256 MiB more: above it; the watch asks the work to stop, saying why.
+  auto large = touch(std::size_t(256) << 20);
+  for (int i = 0; i < 200 && !cancel_requested(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_TRUE(cancel_requested());
+  EXPECT_EQ(cancel_reason(), CancelReason::MemoryLimit);
+  clear_cancel();
+  EXPECT_EQ(cancel_reason(), CancelReason::User);
+  // Freed (and handed back to the system by the watch): the next work goes on.
+  large.reset();
+  small.reset();
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_FALSE(cancel_requested());
+  clear_cancel();
 }
 
 }  // namespace

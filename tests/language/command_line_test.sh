@@ -144,12 +144,12 @@ check interrupted 130 "error: interrupted
 0
 first.off written" interrupted
 
-# The memory budget: work that would need more stops with an error at its statement (exit 1), not
-# a kill by the system. Sanitizer builds cannot enforce it (they say so): skipped there.
+# The memory budget: work that takes more stops with an error at its statement (exit 1), not a
+# kill by the system. Where resident memory cannot be read it is not enforced (it says so).
 if "$sculpt" --memory-limit 512M -e 'x = 1' 2>&1 | grep -q "not enforced"; then
   echo "memory limit: not enforced in this build, skipped"
 else
-  check memory_limit 1 "<command line>:1:5: error: sphere: out of memory: the work needs more than the memory limit of 512 MB (sculpt --memory-limit)" \
+  check memory_limit 1 "<command line>:1:5: error: sphere: out of memory: the work needed more than the memory limit of 512 MB (sculpt --memory-limit)" \
     first_line "$sculpt" --memory-limit 512M -e 's = sphere(1, 2000)'
   check memory_limit_units 0 "1" "$sculpt" --memory-limit=2G -e 'print(1)'
 fi

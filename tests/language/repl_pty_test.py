@@ -159,7 +159,7 @@ def main():
 
 def memory_budget(home):
     """Work beyond --memory-limit stops with an error and the session goes on, its variables kept
-    (skipped where the build cannot enforce the limit: sanitizers)."""
+    (skipped where the limit is not enforced: no /proc/self/statm)."""
     probe = subprocess.run([SCULPT, "--memory-limit", "512M", "-e", "x = 1"], capture_output=True, text=True)
     if "not enforced" in probe.stderr:
         print("memory budget: not enforced in this build, skipped")
@@ -168,7 +168,7 @@ def memory_budget(home):
     t.read_until("sculpt> ")
     t.mark(); t.type("a = 6 * 7\r"); t.read_until("sculpt> ")
     t.mark(); t.type("a = sphere(1, 2000)\r")
-    t.read_until("out of memory: the work needs more than the memory limit of 512 MB", timeout=60)
+    t.read_until("out of memory: the work needed more than the memory limit of 512 MB", timeout=60)
     t.read_until("sculpt> ")
     t.mark(); t.type("print(a + 1)\r"); t.read_until("43")
     t.type(":quit\r")
