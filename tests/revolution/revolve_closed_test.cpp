@@ -14,6 +14,7 @@
 
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
+#include "bsp/classify.hpp"
 #include "bsp/set_operations.hpp"
 #include "curves/profiles.hpp"
 #include "revolution/revolve_boundary.hpp"
@@ -87,6 +88,13 @@ std::vector<Case> cases() {
     torus.emplace_back(std::round((2 + 0.5 * std::cos(t)) * 256) / 256,
                        std::round((0.5 + 0.5 * std::sin(t)) * 256) / 256);
   }
+  Polygon comb{{0, 0}, {10, 0}, {10, 1}};  // a disc on the axis with 20 concentric walls on it
+  for (int k = 19; k >= 0; --k) {
+    comb.emplace_back(0.5 * k + 0.25, 1);
+    comb.emplace_back(0.5 * k + 0.25, 2 + 0.125 * k);
+    comb.emplace_back(0.5 * k, 2 + 0.125 * k);
+    if (k > 0) comb.emplace_back(0.5 * k, 1);
+  }
   return {
       {"square torus", {{1, 0}, {2, 0}, {2, 1}, {1, 1}}, 1},
       {"polygonal torus", torus, 1},
@@ -95,6 +103,7 @@ std::vector<Case> cases() {
       {"curl open to the axis", {{1, 0}, {3, 0}, {3, 3}, {1, 3}, {1, 2.5}, {2.5, 2.5}, {2.5, 0.5}, {1, 0.5}}, 1},
       {"channel open upwards", {{1, 0}, {3, 0}, {3, 2}, {2.5, 2}, {2.5, 0.5}, {1.5, 0.5}, {1.5, 2}, {1, 2}}, 1},
       {"notch beside an edge on the axis", {{0, 0}, {2, 0}, {2, 2}, {1, 2}, {1, 1}, {0.5, 1}, {0.5, 3}, {0, 3}}, 0},
+      {"comb of 20 pieces", comb, 0},
       {"diamond touching the axis at a point", {{0, 1}, {1, 0}, {2, 1}, {1, 2}}, -1},
   };
 }
@@ -182,6 +191,27 @@ TEST(RevolveClosed, PartialRevolutionsCutAtExactPlanes) {
         EXPECT_NEAR(volume(s), angle / 360 * pappus(c.region, kOctagon), 1e-9 * expected);
       }
     }
+  }
+}
+
+TEST(RevolveClosed, TheWedgeRunsCounterClockwiseFromThePositiveXAxis) {
+  // Volumes cannot tell a wedge from its mirror image on a symmetric path: points can. The square
+  // torus's ring at r = 1.35 (between 1 P and 2 P along every direction of the octagon) is inside
+  // in the middle of the kept wedge and outside in the middle of the removed one.
+  const ConvexPath path = polygon_path(kOctagon);
+  const Polygon square{{1, 0}, {2, 0}, {2, 1}, {1, 1}};
+  auto at = [](double degrees) {
+    const double t = degrees * std::numbers::pi / 180;
+    return Eigen::Vector3d(1.35 * std::cos(t), 1.35 * std::sin(t), 0.5);
+  };
+  for (const double angle : {30.0, 90.0, 100.0, 180.0, 200.0, 270.0, 345.0}) {
+    SCOPED_TRACE(angle);
+    const Solid s = revolve(square, path, {.closed = true, .angle = angle});
+    EXPECT_EQ(classify(s, at(angle / 2)).location, Location::Inside);
+    EXPECT_EQ(classify(s, at((angle + 360) / 2)).location, Location::Outside);
+    EXPECT_EQ(classify(s, at(angle + 1)).location, Location::Outside);
+    EXPECT_EQ(classify(s, at(angle - 1)).location, Location::Inside);
+    EXPECT_EQ(classify(s, at(0)).location, Location::Boundary);
   }
 }
 
