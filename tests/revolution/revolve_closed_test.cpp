@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <string>
 
 #include "base/errors.hpp"
@@ -18,6 +19,7 @@
 #include "bsp/set_operations.hpp"
 #include "curves/profiles.hpp"
 #include "revolution/revolve_boundary.hpp"
+#include "revolution/trees/profile_pieces.hpp"
 #include "support/mesh_checks.hpp"
 
 using namespace sculpt;
@@ -157,6 +159,34 @@ TEST(RevolveClosed, AlongACircleTheVolumeIsPappusOfTheSnappedPath) {
     EXPECT_NEAR(v, expected, 1e-9 * expected);
     EXPECT_NEAR(v, 2 * inscribed * r_moment(c.region), 1e-5 * expected);
   }
+}
+
+// Random star-shaped polygons (simple by construction, dyadic points, often several pieces per
+// slab: overhangs and notches everywhere), full and quarter revolutions.
+TEST(RevolveClosed, RandomStarShapedProfilesFollowPappus) {
+  const ConvexPath path = polygon_path(kOctagon);
+  std::mt19937_64 rng(36);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t pieces = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const int n = 5 + int(unit(rng) * 26);
+    const Eigen::Vector2d centre(1.5 + 1.5 * unit(rng), 2 * unit(rng));
+    Polygon p;
+    for (int k = 0; k < n; ++k) {
+      const double t = 2 * std::numbers::pi * (k + 0.8 * unit(rng)) / n, radius = 0.2 + 1.2 * unit(rng);
+      const Eigen::Vector2d q = centre + radius * Eigen::Vector2d(std::cos(t), std::sin(t));
+      p.emplace_back(std::round(q.x() * 64) / 64, std::round(q.y() * 64) / 64);
+    }
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << n << " points");
+    pieces += revolution::detail::monotone_pieces(revolution::detail::closed_profile(p, {}), {}).size();
+    for (const double angle : {90.0, 360.0}) {
+      const double expected = pappus(p, kOctagon, angle);
+      const Solid s = revolve(p, path, {.closed = true, .angle = angle});
+      EXPECT_NEAR(volume(s), expected, 1e-9 * expected);
+      check_clean(s, angle == 360 ? 1 : 0, expected);
+    }
+  }
+  EXPECT_GT(pieces, 80u);  // most of them need several pieces
 }
 
 TEST(RevolveClosed, ARepeatedFirstPointClosesTheProfile) {
