@@ -44,6 +44,7 @@ std::string Param::accepted() const {
       if (nonzero) text += " other than 0";
       const bool has_low = low > -std::numeric_limits<double>::infinity();
       const bool has_high = high < std::numeric_limits<double>::infinity();
+      if (has_low && has_high && low_open) return text + " > " + bound(low) + " and <= " + bound(high);
       if (has_low && has_high) return text + " from " + bound(low) + " to " + bound(high);
       if (has_low) return text + (low_open ? " > " : " >= ") + bound(low);
       if (has_high) return text + " <= " + bound(high);

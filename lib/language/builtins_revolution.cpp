@@ -43,8 +43,12 @@ std::vector<Eigen::Vector2d> point_pairs(const Arguments& args, std::string_view
 }
 
 /// The profile polyline of a curve (its points), a linearization (its vertices) or a list of [r, z].
-std::vector<Eigen::Vector2d> profile_arg(const Arguments& args, std::string_view i) {
-  if (const auto* c = args.value(i).object<CurveValue>()) return curves::planar_points(c->curve.points);
+/// `closed` is set for a closed curve.
+std::vector<Eigen::Vector2d> profile_arg(const Arguments& args, std::string_view i, bool& closed) {
+  if (const auto* c = args.value(i).object<CurveValue>()) {
+    closed = closed || c->curve.closed;
+    return curves::planar_points(c->curve.points);
+  }
   if (const auto* la = args.value(i).object<LinearizationValue>())
     return curves::planar_points(curves::linearization_points(la->curve->curve, la->result));
   if (args.value(i).list()) return point_pairs(args, i, "a profile");
@@ -80,18 +84,31 @@ void register_revolution(BuiltinTable& table) {
   table.add(
       {.name = "revolve",
        .doc = "Solid of revolution: the profile (a curve, a linearization, or a list of [r, z] "
-              "with r >= 0 and z monotone) revolved along the convex path; profile point (r, z) and "
-              "path vertex (u, v) give (r u, r v, z); flat caps close it where the profile does not "
-              "end on the axis. The BSP tree is section 6's: balanced horizontal planes, then per "
-              "slab a nearly balanced tree of the path (face planes only below face_only_below edges).",
+              "with r >= 0) revolved along the convex path; profile point (r, z) and path vertex "
+              "(u, v) give (r u, r v, z). An open profile must be monotone in z; flat caps close it "
+              "where it does not end on the axis. A closed profile (closed=true, a closed curve, or "
+              "a list whose last point repeats its first) is a simple polygon: the region it "
+              "encloses is revolved (holes, overhangs, a hollow wall; a profile away from the axis "
+              "needs a path around the axis). angle: degrees, 0 < angle <= 360, from +x "
+              "counter-clockwise about z (OpenSCAD's rotate_extrude). The BSP tree is section 6's: "
+              "balanced horizontal planes, then per slab a nearly balanced tree of the path (face "
+              "planes only below face_only_below edges); a closed profile unites its z-monotone "
+              "pieces, each such a tree.",
        .params =
            {arg("profile").any("a curve, a linearization or a list of [r, z] points"),
             arg("path").of<PathValue>("a path (circle, ellipse, convex_path)"),
-            arg("face_only_below").integer(2, 1000000).defaults(double(revolution::RevolveOptions{}.face_only_below))},
+            arg("face_only_below").integer(2, 1000000).defaults(double(revolution::RevolveOptions{}.face_only_below)),
+            arg("closed").boolean().defaults(revolution::RevolveOptions{}.closed),
+            [] {
+              Param angle = arg("angle").between(0, 360).defaults(revolution::RevolveOptions{}.angle);
+              angle.low_open = true;
+              return angle;
+            }()},
        .run = [](const Arguments& args) {
-         const auto profile = profile_arg(args, "profile");
+         bool closed = args.boolean("closed");
+         const auto profile = profile_arg(args, "profile", closed);
          const auto& path = args.object<PathValue>("path").path;
-         revolution::RevolveOptions options{.grid = args.grid()};
+         revolution::RevolveOptions options{.grid = args.grid(), .closed = closed, .angle = args.number("angle")};
          options.face_only_below = static_cast<int>(args.integer("face_only_below"));
          // About 1.4 nodes per profile segment and path edge (docs/revolution.md).
          args.charge(static_cast<std::uint64_t>(profile.size()) * static_cast<std::uint64_t>(path.edges()));

@@ -3,6 +3,8 @@
 /// The boundary of a revolved solid built directly from profile and path (no BSP tree), and its
 /// analytic volume: the independent reference the revolution tree is checked against, and the
 /// input of a B-rep tree build for side-by-side depth-cost comparisons (docs/depth_cost.md).
+/// Open (monotone) profiles and full revolutions only; closed profiles and partial revolutions are
+/// checked against Pappus's theorem instead (tests/revolution/revolve_closed_test.cpp).
 
 #include <vector>
 

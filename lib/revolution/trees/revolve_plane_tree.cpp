@@ -9,16 +9,20 @@
 
 namespace sculpt::revolution::detail {
 
+void check_profile_point(std::size_t i, const Eigen::Vector2d& p) {
+  if (!p.allFinite()) throw InvalidInput("profile point " + std::to_string(i) + " is not finite");
+  if (p.x() < 0.0)
+    throw InvalidInput("profile point " + std::to_string(i) + " has r = " + std::to_string(p.x()) +
+                       " < 0 (profiles live in the half-plane r >= 0)");
+}
+
 std::vector<Eigen::Vector2d> monotone_profile(const std::vector<Eigen::Vector2d>& profile) {
   if (profile.size() < 2)
     throw InvalidInput("profile needs at least 2 points, got " + std::to_string(profile.size()));
   int direction = 0, turn = -1;
   for (std::size_t i = 0; i < profile.size(); ++i) {
     const auto& p = profile[i];
-    if (!p.allFinite()) throw InvalidInput("profile point " + std::to_string(i) + " is not finite");
-    if (p.x() < 0.0)
-      throw InvalidInput("profile point " + std::to_string(i) + " has r = " + std::to_string(p.x()) +
-                         " < 0 (profiles live in the half-plane r >= 0)");
+    check_profile_point(i, p);
     if (i == 0) continue;
     const int s = (p.y() > profile[i - 1].y()) - (p.y() < profile[i - 1].y());
     if (s == 0) continue;
@@ -29,8 +33,8 @@ std::vector<Eigen::Vector2d> monotone_profile(const std::vector<Eigen::Vector2d>
   if (turn >= 0)
     throw InvalidInput("profile is not monotone in z: it turns at point " + std::to_string(turn) +
                        " (z = " + std::to_string(profile[turn].y()) +
-                       "); split it there into monotone pieces, revolve each, and combine the solids "
-                       "with set operations (see docs/revolution.md)");
+                       "); to revolve the region a profile encloses, close it: end it with its first point, "
+                       "or pass closed=true (see docs/revolution.md)");
   std::vector<Eigen::Vector2d> out = profile;
   if (direction < 0) std::reverse(out.begin(), out.end());
   return out;
@@ -41,7 +45,7 @@ std::vector<RevolveSlab> revolve_slabs(const std::vector<Eigen::Vector2d>& profi
   // Within a run of equal z only the run's first and last radius matter (below / above it).
   for (std::size_t i = 0; i + 1 < profile.size(); ++i)
     if (profile[i + 1].y() > profile[i].y())
-      slabs.push_back({profile[i].y(), profile[i + 1].y(), profile[i].x(), profile[i + 1].x()});
+      slabs.push_back(segment_slab(profile[i].y(), profile[i + 1].y(), profile[i].x(), profile[i + 1].x()));
   return slabs;
 }
 
@@ -49,6 +53,13 @@ std::vector<double> revolve_levels(const std::vector<Eigen::Vector2d>& profile) 
   std::vector<double> levels;
   for (const auto& s : revolve_slabs(profile)) levels.push_back(s.z0);
   levels.push_back(profile.back().y());
+  return levels;
+}
+
+std::vector<double> slab_levels(const std::vector<RevolveSlab>& slabs) {
+  std::vector<double> levels;
+  for (const auto& s : slabs) levels.push_back(s.z0);
+  if (!slabs.empty()) levels.push_back(slabs.back().z1);
   return levels;
 }
 
@@ -62,16 +73,19 @@ Eigen::Vector4d lifted_plane(const ConvexPath& path, int from, int to, const Rev
   return plane / plane.head<3>().norm();
 }
 
-PlaneTree revolve_plane_tree(const std::vector<Eigen::Vector2d>& profile_in, const ConvexPath& path,
+PlaneTree revolve_plane_tree(const std::vector<Eigen::Vector2d>& profile, const ConvexPath& path,
                              const RevolveOptions& options) {
-  const std::vector<Eigen::Vector2d> profile = monotone_profile(profile_in);
-  const std::vector<RevolveSlab> slabs = revolve_slabs(profile);
+  return revolve_slab_tree(revolve_slabs(monotone_profile(profile)), path, options);
+}
+
+PlaneTree revolve_slab_tree(const std::vector<RevolveSlab>& slabs, const ConvexPath& path,
+                            const RevolveOptions& options) {
   const PathTree path_tree = build_path_tree(path, {.face_only_below = options.face_only_below});
 
   PlaneTree tree;
   // Levels z_0 < ... < z_K (K = slabs); interval 0 is below z_0, interval k + 1 is slab k,
   // interval K + 1 above z_K. Balanced: each range of planes splits at its median.
-  const std::vector<double> levels = revolve_levels(profile);
+  const std::vector<double> levels = slab_levels(slabs);
 
   struct Task {
     int lo, hi;       // planes lo..hi (may be empty: lo > hi), intervals lo..hi+1
