@@ -60,11 +60,11 @@ TEST(MemoryLimit, TheWatchStopsWorkAboveTheLimitAndNotBelow) {
   for (int i = 0; i < 200 && !cancel_requested(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   EXPECT_TRUE(cancel_requested());
   EXPECT_EQ(cancel_reason(), CancelReason::MemoryLimit);
-  clear_cancel();
-  EXPECT_EQ(cancel_reason(), CancelReason::User);
   // Freed (and handed back to the system by the watch): the next work goes on.
   large.reset();
   small.reset();
+  clear_cancel();
+  EXPECT_EQ(cancel_reason(), CancelReason::User);
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_FALSE(cancel_requested());
   clear_cancel();
