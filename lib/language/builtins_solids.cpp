@@ -244,13 +244,15 @@ Value solid_value(Solid solid) {
   return Value(std::shared_ptr<const Object>(std::make_shared<SolidValue>(std::move(solid))));
 }
 
-void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path, bool binary) {
-  (void)mesh_format_from_path(path);  // an unknown extension is refused before folders are made
+void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path, std::optional<bool> binary) {
+  const MeshFormat format = mesh_format_from_path(path);  // an unknown extension is refused before folders are made
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  write_mesh(mesh, path, {.binary = binary});
+  std::size_t triangles = 0;  // as the STL writer splits the faces
+  for (const auto& face : mesh.faces) triangles += face.size() >= 3 ? face.size() - 2 : 0;
+  write_mesh(mesh, path, {.binary = binary.value_or(format == MeshFormat::Stl && triangles > kAutoBinaryStlTriangles)});
 }
 
-std::string export_solid(const SolidValue& s, const std::filesystem::path& path, bool binary) {
+std::string export_solid(const SolidValue& s, const std::filesystem::path& path, std::optional<bool> binary) {
   write_mesh_file(s.boundary(), path, binary);
   // Written all the same (the exact solid is fine; other tools may stumble on it).
   if (s.boundary_problem().empty()) return "";
@@ -576,12 +578,13 @@ void register_solids(BuiltinTable& table) {
               "surface's triangle mesh at chord tolerance `tol`, as surface_mesh); the format comes from "
               "the extension: .off, .obj, .stl, .ply, .om, .3mf (millimetres), .glb (binary glTF). The file is "
               "replaced atomically; folders are created. binary=true writes binary STL or PLY (STL: "
-              "float32, a fifth of ASCII's size).",
+              "float32, a fifth of ASCII's size), binary=false ASCII; left out, an STL file of more than "
+              "100,000 triangles is binary and every other file ASCII.",
        .params = {arg("s").any("a solid, a mesh or a surface"), arg("file").string().shown_as("\"file.off\""),
-                  arg("tol").positive().defaults(kDefaultSurfaceTolerance), arg("binary").boolean().defaults(false)},
+                  arg("tol").positive().defaults(kDefaultSurfaceTolerance), arg("binary").boolean().optional("auto")},
        .run = [](const Arguments& args) -> Value {
-         const bool binary = args.boolean("binary");
-         if (binary) {
+         const std::optional<bool> binary = args.has("binary") ? std::optional(args.boolean("binary")) : std::nullopt;
+         if (binary == true) {
            const MeshFormat format = mesh_format_from_path(args.file_path("file"));
            if (format != MeshFormat::Stl && format != MeshFormat::Ply)
              args.fail("binary", "binary=true applies to .stl and .ply (the other formats have one encoding)");

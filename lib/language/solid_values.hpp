@@ -78,13 +78,20 @@ struct MeshValue final : Object {
 /// Wraps a solid as a script value.
 Value solid_value(Solid solid);
 
+/// STL files of more triangles than this are written binary unless told otherwise: ASCII STL
+/// takes about 250 bytes a triangle (25 MB here), binary 50.
+inline constexpr std::size_t kAutoBinaryStlTriangles = 100'000;
+
 /// Writes `mesh` to `path` (write_mesh: the format from the extension, atomically), creating
-/// missing folders first; `binary`: binary STL or PLY. \throw IoError, InvalidInput (write_mesh)
-void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path, bool binary = false);
+/// missing folders first; `binary`: binary STL or PLY; nullopt: binary for an STL file of more than
+/// kAutoBinaryStlTriangles triangles, else ASCII. \throw IoError, InvalidInput (write_mesh)
+void write_mesh_file(const PolygonMesh& mesh, const std::filesystem::path& path,
+                     std::optional<bool> binary = std::nullopt);
 
 /// Writes the boundary of solid `s` to `path` as write_mesh_file does (export, sculpt -o).
 /// Returns a warning when the mesh is not known to be clean for other tools, else "".
-std::string export_solid(const SolidValue& s, const std::filesystem::path& path, bool binary = false);
+std::string export_solid(const SolidValue& s, const std::filesystem::path& path,
+                         std::optional<bool> binary = std::nullopt);
 
 /// The name of the global most recently bound to a solid, or "" (:show, sculpt -o).
 std::string latest_solid_global(const Interpreter& interpreter);

@@ -277,6 +277,26 @@ TEST(Builtins, ExportWritesBinaryStlWhenAsked) {
                 .error.find("applies to .stl and .ply"),
             std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(off));
+  // Left out: ASCII up to 100,000 triangles (the box), binary above (a 360-segment sphere's
+  // 360 x 180 rings make 360 * 2 * 179 = 128,880 triangles); binary=false keeps ASCII.
+  const std::string small = (dir / "small.stl").string(), large = (dir / "large.stl").string();
+  const std::string ascii = (dir / "ascii.stl").string();
+  EXPECT_EQ(run_script("export(box([0, 0, 0], [1, 2, 3]), \"" + small + "\")\ns = sphere(1, 360)\nexport(s, \"" +
+                       large + "\")\nexport(s, \"" + ascii + "\", binary=false)")
+                .error,
+            "");
+  auto starts_with_solid = [](const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    char head[5] = {};
+    in.read(head, 5);
+    return std::string(head, 5) == "solid";
+  };
+  EXPECT_TRUE(starts_with_solid(small));
+  EXPECT_TRUE(starts_with_solid(ascii));
+  EXPECT_FALSE(starts_with_solid(large));
+  const auto triangles = (std::filesystem::file_size(large) - 84) / 50;
+  EXPECT_EQ(std::filesystem::file_size(large), 84 + 50 * triangles);
+  EXPECT_GT(triangles, 100'000u);
   std::filesystem::remove_all(dir);
 }
 
