@@ -585,6 +585,32 @@ TEST(Builtins, ExtrudeWithTwistAndScale) {
             std::string::npos);
 }
 
+TEST(Builtins, OffsetOfAPolygonThenExtruded) {
+  // A 2 x 2 square offset by 0.5: miter (a + 2r)^2 = 9; round a^2 + 4 a r + the 32-gon of radius
+  // r; inwards (a - 2r)^2 = 1. Extruded by 2: twice that. A curve comes back (closed, 2D).
+  const double a = 2, r = 0.5;
+  const double round = a * a + 4 * a * r + 16 * r * r * std::sin(2 * std::numbers::pi / 32);
+  const auto v = numbers(
+      "sq = [[0,0],[2,0],[2,2],[0,2]]\n"
+      "print(volume(extrude(offset(sq, 0.5, join=\"miter\"), 2)), volume(extrude(offset(sq, 0.5), 2)), "
+      "volume(extrude(offset(curve(sq, closed=true), -0.5), 2)), len(points(offset(sq, 0.5, segments=8))))");
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_NEAR(v[0], 2 * 9.0, 1e-6);
+  EXPECT_NEAR(v[1], 2 * round, 2e-4);  // vertices on the default grid (step 3e-5)
+  EXPECT_NEAR(v[2], 2 * 1.0, 1e-6);
+  EXPECT_EQ(v[3], 4 * 3);  // two edges a corner: three arc vertices each
+  EXPECT_NE(first_error_line("offset([[0,0],[2,0],[2,2],[0,2]], -1)").find("vanish"), std::string::npos);
+  EXPECT_NE(
+      first_error_line("offset([[0,0],[2,0],[2,0.75],[3,0.75],[3,0],[5,0],[5,2],[3,2],[3,1.25],[2,1.25],[2,2],[0,2]], "
+                       "-0.4)")
+          .find("2 polygons"),
+      std::string::npos);
+  EXPECT_NE(first_error_line("offset([[0,0],[2,0],[2,2]], 0.5, join=\"bevel\")").find("join"), std::string::npos);
+  EXPECT_NE(first_error_line("offset([[0,0],[2,0],[2,2]], 0.5, tol=0.1)").find("spline"), std::string::npos);
+  EXPECT_NE(first_error_line("offset(bspline([[0,0],[1,1],[2,0],[3,1]]), 0.1, join=\"miter\")").find("polygon"),
+            std::string::npos);
+}
+
 // ---- the world range: grid(step) (builtins_solids.cpp; docs/kernel.md, "World range") ----
 
 TEST(Builtins, GridSetsTheWorldRangeOfSolidsMadeAfterIt) {
