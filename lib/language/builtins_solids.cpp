@@ -409,29 +409,50 @@ void register_solids(BuiltinTable& table) {
                }
                return solid_value(unite_all(std::move(solids)));
              }});
-  table.add({.name = "extrude",
-             .doc = "The prism over a closed polygon in the xy-plane (a curve or a list of [x, y] or "
-                    "[x, y, z] points with one z; convex or not, either orientation) from its plane up by "
-                    "`height` (down if negative).",
-             .params = {arg("profile").any("a curve or a list of points"), arg("height").non_zero()},
-             .run = [](const Arguments& args) -> Value {
-               curves::DigitizedCurve c;
-               if (const auto* cv = args.value("profile").object<CurveValue>())
-                 c = cv->curve;
-               else if (args.value("profile").list())
-                 c = curve_from_points(args, "profile");
-               else
-                 args.fail_type("profile", "a curve or a list of points");
-               std::vector<Eigen::Vector2d> polygon;
-               for (const Eigen::Vector3d& p : c.points) {
-                 if (p.z() != c.points.front().z())
-                   args.fail("profile", "the profile is not in a plane z = constant (rotate the result instead)");
-                 polygon.emplace_back(p.x(), p.y());
-               }
-               args.charge(polygon.size());
-               const double z = c.points.empty() ? 0.0 : c.points.front().z(), h = args.number("height");
-               return solid_value(extrude(polygon, std::min(z, z + h), std::max(z, z + h), args.grid()));
-             }});
+  table.add(
+      {.name = "extrude",
+       .doc = "The prism over a closed polygon in the xy-plane (a curve or a list of [x, y] or "
+              "[x, y, z] points with one z; convex or not, either orientation) from its plane up by "
+              "`height` (down if negative). As OpenSCAD's linear_extrude, the far end may be turned by "
+              "`twist` degrees (clockwise seen from above for a positive twist, OpenSCAD's sign) and "
+              "scaled about the z axis by `scale` (a number or [sx, sy], >= 0; 0 gives an apex), "
+              "linearly over `slices` layers (default: 1 without twist, else one per 5 degrees).",
+       .params = {arg("profile").any("a curve or a list of points"), arg("height").non_zero(),
+                  arg("twist").finite_number().defaults(ExtrudeOptions{}.twist),
+                  arg("scale").any("a number >= 0 or [sx, sy]").defaults(1.0),
+                  arg("slices").integer(1, 100000).optional("auto")},
+       .run = [](const Arguments& args) -> Value {
+         curves::DigitizedCurve c;
+         if (const auto* cv = args.value("profile").object<CurveValue>())
+           c = cv->curve;
+         else if (args.value("profile").list())
+           c = curve_from_points(args, "profile");
+         else
+           args.fail_type("profile", "a curve or a list of points");
+         std::vector<Eigen::Vector2d> polygon;
+         for (const Eigen::Vector3d& p : c.points) {
+           if (p.z() != c.points.front().z())
+             args.fail("profile", "the profile is not in a plane z = constant (rotate the result instead)");
+           polygon.emplace_back(p.x(), p.y());
+         }
+         const double z = c.points.empty() ? 0.0 : c.points.front().z(), h = args.number("height");
+         ExtrudeOptions options{.twist = args.number("twist"), .grid = args.grid()};
+         if (args.value("scale").list()) {
+           const std::vector<double> v = args.vector("scale", 2);
+           options.scale = {v[0], v[1]};
+         } else {
+           options.scale.setConstant(args.number("scale"));
+         }
+         if (!std::isfinite(options.scale.x()) || !std::isfinite(options.scale.y()) || options.scale.minCoeff() < 0)
+           args.fail("scale", "the scale must be finite and >= 0");
+         if ((options.scale.x() == 0) != (options.scale.y() == 0))
+           args.fail("scale", "one zero factor alone would end in an edge: use 0 (or [0, 0]) for an apex");
+         options.slices = args.has("slices") ? static_cast<int>(args.integer("slices")) : default_slices(options.twist);
+         args.charge(polygon.size() * static_cast<std::size_t>(options.slices));
+         if (options.twist == 0 && options.scale == Eigen::Vector2d(1, 1) && options.slices == 1)
+           return solid_value(extrude(polygon, std::min(z, z + h), std::max(z, z + h), args.grid()));
+         return solid_value(extrude(polygon, z, z + h, options));
+       }});
   table.add({.name = "hull",
              .doc = "The convex hull of x: a list of points [x, y, z], a curve, a solid, or a list of "
                     "solids, as a convex solid with one plane per face (exact on the kernel grid).",

@@ -1,6 +1,7 @@
 // Built-ins of the splines area: B-spline curves, fitting without given parameters, degree
 // reduction, distances, sampling into digitized curves, and the spline text file (Pottmann,
 // Leopoldseder & Hofer 2002, sec. 1-3; Wang, Pottmann & Liu 2006; lib/splines). See docs/splines.md.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -10,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "bsp/polygon_offset.hpp"
 #include "curves/digitized_curve.hpp"
 #include "language/builtins.hpp"
 #include "language/curve_values.hpp"
@@ -106,6 +108,55 @@ bool at_rounding_floor(const splines::FitResult& r, const std::vector<Eigen::Vec
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : points) box.extend(p);
   return r.history.back().max_distance <= 1e-9 * std::max(box.diagonal().norm(), 1e-300);
+}
+
+/// offset(polygon, d, ...): the polygon's offset (bsp/polygon_offset.hpp) as a closed 2D curve (at
+/// the polygon's z when its points were [x, y, z] with one z).
+Value polygon_offset_value(const Arguments& args) {
+  for (const char* name : {"controls", "tol"})
+    if (args.has(name))
+      args.fail(name, std::string("'") + name + "' applies to the offset of a spline, not of a polygon");
+  curves::DigitizedCurve c;
+  if (const auto* cv = args.value("s").object<CurveValue>())
+    c = cv->curve;
+  else if (args.value("s").list())
+    c = curve_from_points(args, "s");
+  else
+    args.fail_type("s", "a spline, or a polygon (a curve or a list of points)");
+  std::vector<Eigen::Vector2d> polygon;
+  for (const Eigen::Vector3d& p : c.points) {
+    if (p.z() != c.points.front().z()) args.fail("s", "the polygon is not in a plane z = constant");
+    polygon.emplace_back(p.x(), p.y());
+  }
+  args.charge(polygon.size());
+  PolygonOffsetOptions options{.segments = static_cast<int>(args.integer("segments")),
+                               .miter_limit = args.number("miter_limit"),
+                               .grid = args.grid()};
+  const std::string& join = args.string("join");
+  if (join == "round")
+    options.join = OffsetJoin::Round;
+  else if (join == "miter")
+    options.join = OffsetJoin::Miter;
+  else
+    args.fail("join", "join must be \"round\" or \"miter\", not \"" + join + "\"");
+  const double d = args.number("d");
+  const auto loops = offset_polygon(polygon, d, options);
+  if (loops.empty()) args.fail("d", "the inward offset by " + format_number(d) + " makes the polygon vanish");
+  if (loops.size() > 1) {
+    const auto holes = std::count_if(loops.begin(), loops.end(), [](const auto& l) {
+      double a = 0;
+      for (std::size_t i = 0; i < l.size(); ++i)
+        a += l[i].x() * l[(i + 1) % l.size()].y() - l[(i + 1) % l.size()].x() * l[i].y();
+      return a < 0;
+    });
+    args.fail("d", "the offset by " + format_number(d) + " gives " + std::to_string(loops.size() - std::size_t(holes)) +
+                       " polygons and " + std::to_string(holes) + " holes; only a single polygon is supported");
+  }
+  curves::DigitizedCurve out{.points = {}, .dimension = 2, .closed = true, .name = "offset"};
+  const double z = c.points.empty() ? 0.0 : c.points.front().z();
+  for (const Eigen::Vector2d& p : loops.front()) out.points.emplace_back(p.x(), p.y(), z);
+  if (c.dimension == 3) out.dimension = 3;
+  return Value(std::shared_ptr<const Object>(std::make_shared<CurveValue>(std::move(out))));
 }
 
 }  // namespace
@@ -303,24 +354,43 @@ void register_splines(BuiltinTable& table) {
              }});
 
   table.add({.name = "offset",
+             .signature = "offset(s, d, controls=auto, tol=1e-3) or offset(polygon, d, join=\"round\", segments=32, "
+                          "miter_limit=2)",
              .doc = "The offset of planar spline s at signed distance d (positive: to the right of the direction "
                     "of travel, outwards for a counter-clockwise closed curve), approximated by an active curve "
                     "(Pottmann, Leopoldseder & Hofer 2002, sec. 3.2). Where the offset crosses the medial axis "
                     "its swallowtail is trimmed and the result gets a sharp corner (a knot of multiplicity = "
                     "degree). controls: the control-point count, by default the fewest (up to 64) within tol of "
-                    "the exact offset. An offset that would vanish or split into several loops is an error.",
-             .params = {spline_param("s"), arg("d").finite_number(),
+                    "the exact offset. An offset that would vanish or split into several loops is an error. "
+                    "Given a polygon instead (a curve or a list of [x, y] points, simple, either orientation), "
+                    "the polygon offset outwards by d > 0 or inwards by d < 0 (the points within d of it, or "
+                    "farther than |d| from its outside), as a closed 2D curve: join=\"round\" rounds opening corners "
+                    "with arcs of `segments` edges per "
+                    "turn, join=\"miter\" extends the edges until they meet, cut off at miter_limit * |d| from "
+                    "the vertex. Decided exactly; a result that vanishes, splits or has holes is an error.",
+             .params = {arg("s").any("a spline, or a polygon (a curve or a list of points)"), arg("d").finite_number(),
                         arg("controls").integer(1, 10'000).optional("auto"),
-                        arg("tol").positive().defaults(splines::OffsetOptions{}.tolerance)},
+                        arg("tol").positive().defaults(splines::OffsetOptions{}.tolerance),
+                        arg("join").string().defaults("round"),
+                        arg("segments").integer(3, 100000).defaults(double(PolygonOffsetOptions{}.segments)),
+                        arg("miter_limit").at_least(1).defaults(PolygonOffsetOptions{}.miter_limit)},
              .run = [](const Arguments& args) -> Value {
-               const BSpline& s = spline_arg(args, "s").spline;
-               const double d = args.number("d");
-               splines::OffsetOptions options;
-               if (args.has("controls")) options.controls = static_cast<int>(args.integer("controls"));
-               options.tolerance = args.number("tol");
-               splines::OffsetResult r = splines::offset_curve(s, d, options);
-               return fitted_value({.curve = std::move(r.curve), .history = std::move(r.history),
-                                    .iterations = int(r.history.size()) - 1, .converged = true});
+               if (const auto* sv = args.value("s").object<SplineValue>()) {
+                 for (const char* name : {"join", "segments", "miter_limit"})
+                   if (args.has(name))
+                     args.fail(name, std::string("'") + name + "' applies to the offset of a polygon, not of a spline");
+                 const BSpline& s = sv->spline;
+                 const double d = args.number("d");
+                 splines::OffsetOptions options;
+                 if (args.has("controls")) options.controls = static_cast<int>(args.integer("controls"));
+                 options.tolerance = args.number("tol");
+                 splines::OffsetResult r = splines::offset_curve(s, d, options);
+                 return fitted_value({.curve = std::move(r.curve),
+                                      .history = std::move(r.history),
+                                      .iterations = int(r.history.size()) - 1,
+                                      .converged = true});
+               }
+               return polygon_offset_value(args);
              }});
 }
 

@@ -581,6 +581,56 @@ TEST(Builtins, ExtrudeMirrorAndTransform) {
   EXPECT_NE(first_error_line("transform(box([0,0,0],[1,1,1]), [[1,0,0,0],[0,1,0,0],[0,0,0,0]])").find("error"), std::string::npos);
 }
 
+TEST(Builtins, ExtrudeWithTwistAndScale) {
+  // A 2 x 2 square (area 4) extruded by 3: frustum A h (1 + s + s^2) / 3 = 7 for scale 0.5, the
+  // rectangle sections' integral 4 h (1 + (a + b)/2 + ab/3) = 13 for [2, 0.5], the pyramid A h / 3
+  // = 4 for scale 0; twisted, a little above A h = 12 (the sides bulge out, extrude.hpp), within 3 %.
+  const auto v = numbers(
+      "sq = [[-1,-1],[1,-1],[1,1],[-1,1]]\n"
+      "print(volume(extrude(sq, 3, scale=0.5)), volume(extrude(sq, 3, scale=[2, 0.5])), "
+      "volume(extrude(sq, 3, scale=0)), volume(extrude(sq, 3, twist=90)), volume(extrude(sq, 3, twist=90, "
+      "slices=180)))");
+  ASSERT_EQ(v.size(), 5u);
+  EXPECT_NEAR(v[0], 7.0, 1e-9);
+  EXPECT_NEAR(v[1], 13.0, 1e-9);
+  EXPECT_NEAR(v[2], 4.0, 1e-9);
+  EXPECT_GT(v[3], 12.0);
+  EXPECT_LT(v[3], 12.0 * 1.03);
+  EXPECT_GT(v[4], 12.0);
+  EXPECT_LT(v[4] - 12.0, (v[3] - 12.0) / 5);  // converges with the slices
+  EXPECT_NE(first_error_line("extrude([[0,0],[1,0],[0,1]], 1, scale=-1)").find("scale"), std::string::npos);
+  EXPECT_NE(first_error_line("extrude([[0,0],[1,0],[0,1]], 1, scale=[1, 0])").find("apex"), std::string::npos);
+  EXPECT_NE(first_error_line("extrude([[0,0],[1,0],[0,1]], 1, slices=0)").find("slices"), std::string::npos);
+  EXPECT_NE(first_error_line("extrude([[-1,-1],[1,-1],[1,1],[-1,1]], 1, twist=180, slices=1)").find("more slices"),
+            std::string::npos);
+}
+
+TEST(Builtins, OffsetOfAPolygonThenExtruded) {
+  // A 2 x 2 square offset by 0.5: miter (a + 2r)^2 = 9; round a^2 + 4 a r + the 32-gon of radius
+  // r; inwards (a - 2r)^2 = 1. Extruded by 2: twice that. A curve comes back (closed, 2D).
+  const double a = 2, r = 0.5;
+  const double round = a * a + 4 * a * r + 16 * r * r * std::sin(2 * std::numbers::pi / 32);
+  const auto v = numbers(
+      "sq = [[0,0],[2,0],[2,2],[0,2]]\n"
+      "print(volume(extrude(offset(sq, 0.5, join=\"miter\"), 2)), volume(extrude(offset(sq, 0.5), 2)), "
+      "volume(extrude(offset(curve(sq, closed=true), -0.5), 2)), len(points(offset(sq, 0.5, segments=8))))");
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_NEAR(v[0], 2 * 9.0, 1e-6);
+  EXPECT_NEAR(v[1], 2 * round, 2e-4);  // vertices on the default grid (step 3e-5)
+  EXPECT_NEAR(v[2], 2 * 1.0, 1e-6);
+  EXPECT_EQ(v[3], 4 * 3);  // two edges a corner: three arc vertices each
+  EXPECT_NE(first_error_line("offset([[0,0],[2,0],[2,2],[0,2]], -1)").find("vanish"), std::string::npos);
+  EXPECT_NE(
+      first_error_line("offset([[0,0],[2,0],[2,0.75],[3,0.75],[3,0],[5,0],[5,2],[3,2],[3,1.25],[2,1.25],[2,2],[0,2]], "
+                       "-0.4)")
+          .find("2 polygons"),
+      std::string::npos);
+  EXPECT_NE(first_error_line("offset([[0,0],[2,0],[2,2]], 0.5, join=\"bevel\")").find("join"), std::string::npos);
+  EXPECT_NE(first_error_line("offset([[0,0],[2,0],[2,2]], 0.5, tol=0.1)").find("spline"), std::string::npos);
+  EXPECT_NE(first_error_line("offset(bspline([[0,0],[1,1],[2,0],[3,1]]), 0.1, join=\"miter\")").find("polygon"),
+            std::string::npos);
+}
+
 // ---- the world range: grid(step) (builtins_solids.cpp; docs/kernel.md, "World range") ----
 
 TEST(Builtins, GridSetsTheWorldRangeOfSolidsMadeAfterIt) {
