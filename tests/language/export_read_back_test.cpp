@@ -222,7 +222,8 @@ TEST(ExportReadBack, RegressionModelsAndIssueParts) {
 TEST(ExportReadBack, GoldenScriptSolids) {
   Tally tally;
   const std::string scripts = sculpt::test::source_dir() + "/scripts";
-  for (const char* name : {"first_box", "language_tour", "world_range", "implicit", "motions", "bracket", "plate", "vase"}) {
+  for (const char* name :
+       {"first_box", "language_tour", "world_range", "implicit", "motions", "bracket", "plate", "vase"}) {
     std::ostringstream out;
     Interpreter interpreter({.out = &out});
     run_file(interpreter, scripts + "/" + name + ".bsp");
