@@ -20,17 +20,8 @@ namespace sculpt::language {
 namespace {
 
 using testing::first_error_line;
+using testing::numbers;
 using testing::run_script;
-
-/// Runs `text` and returns the numbers it printed, one per print() argument.
-std::vector<double> numbers(const std::string& text) {
-  const auto r = run_script(text);
-  EXPECT_EQ(r.error, "") << text;
-  std::vector<double> out;
-  std::istringstream in(r.out);
-  for (std::string word; in >> word;) out.push_back(std::stod(word));
-  return out;
-}
 
 TEST(Builtins, TableEntriesAreComplete) {
   for (const auto& [name, b] : builtins().entries()) {

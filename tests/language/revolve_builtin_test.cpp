@@ -14,16 +14,8 @@ namespace sculpt::language {
 namespace {
 
 using testing::first_error_line;
+using testing::numbers;
 using testing::run_script;
-
-std::vector<double> numbers(const std::string& script) {
-  const auto r = run_script(script);
-  EXPECT_EQ(r.error, "");
-  std::istringstream in(r.out);
-  std::vector<double> out;
-  for (double v; in >> v;) out.push_back(v);
-  return out;
-}
 
 // A square path of dyadic vertices (area 2) and the square torus profile [1, 2] x [0, 1]:
 // ∫∫ r dr dz = 1.5, so V = 2 * 2 * 1.5 = 6.

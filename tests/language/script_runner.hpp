@@ -1,8 +1,11 @@
 #pragma once
 // Runs script text through the interpreter and returns what it printed and the formatted
 // error (empty if none), as the sculpt executable would show them.
+#include <gtest/gtest.h>
+
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "language/interpreter.hpp"
 
@@ -41,6 +44,16 @@ inline RunResult run_script(const std::string& text, InterpreterOptions options 
 inline std::string first_error_line(const std::string& text) {
   const auto r = run_script(text);
   return r.error.substr(0, r.error.find('\n'));
+}
+
+/// Runs `text`, expects no error, and returns the numbers it printed, one per print() argument.
+inline std::vector<double> numbers(const std::string& text) {
+  const auto r = run_script(text);
+  EXPECT_EQ(r.error, "") << text;
+  std::vector<double> out;
+  std::istringstream in(r.out);
+  for (std::string word; in >> word;) out.push_back(std::stod(word));
+  return out;
 }
 
 }  // namespace sculpt::language::testing
