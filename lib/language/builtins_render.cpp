@@ -136,7 +136,8 @@ void register_render(BuiltinTable& table) {
               "the shaded items. Hidden surfaces are removed per pixel; lines mark silhouettes and faces "
               "meeting at more than `edge_angle` degrees. `scale` in pixels per unit with `center` at the "
               "image centre; 0 frames the items. `antialias`: samples per pixel side (1: one at the pixel's "
-              "centre). The file is replaced atomically; folders are created.",
+              "centre). smooth=true shades curved surfaces as curved (normals interpolated across faces "
+              "meeting at no more than edge_angle). The file is replaced atomically; folders are created.",
        .params = {arg("x").any("an item to draw or a list of them"), arg("file").string().shown_as("\"file.png\""),
                   view_param(), arg("size").vector(2).defaults(List{double(picture.width), double(picture.height)}),
                   arg("scale").between(0, 1e6).defaults(picture.scale),
@@ -145,7 +146,8 @@ void register_render(BuiltinTable& table) {
                   arg("edges").boolean().defaults(picture.edges),
                   arg("tol").at_least(0).defaults(picture.surface_tolerance),
                   arg("width").integer(0, 64).defaults(double(picture.curve_width)),
-                  arg("antialias").integer(1, 4).defaults(double(kPictureAntialias))},
+                  arg("antialias").integer(1, 4).defaults(double(kPictureAntialias)),
+                  arg("smooth").boolean().defaults(picture.smooth)},
        .run = [](const Arguments& args) -> Value {
          (void)output_path(args, "file", ".png", "PNG");  // a wrong name is refused before the work
          auto drawn = picture_items(args.value("x"), "x");
@@ -172,6 +174,7 @@ void register_render(BuiltinTable& table) {
          options.surface_tolerance = args.number("tol");
          options.curve_width = static_cast<int>(args.integer("width"));
          options.antialias = static_cast<int>(args.integer("antialias"));
+         options.smooth = args.boolean("smooth");
          args.charge(static_cast<std::uint64_t>(options.width) * static_cast<std::uint64_t>(options.height) / 1024);
          const render::Image image = render::render_items(items, options);
          render::write_png(image, output_path(args, "file", ".png", "PNG"));

@@ -14,6 +14,7 @@
 #include "render/detail/edges.hpp"
 #include "render/detail/rasterizer.hpp"
 #include "render/detail/scene.hpp"
+#include "render/detail/smooth_normals.hpp"
 #include "splines/tessellate_surface.hpp"
 
 namespace sculpt::render {
@@ -169,7 +170,7 @@ bool convex_on_screen(const std::vector<Eigen::Vector3d>& screen, const std::vec
 }  // namespace
 
 Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera, const std::vector<bool>& two_sided,
-                 const std::vector<int>& ids) {
+                 const std::vector<int>& ids, double smooth_crease) {
   Scene scene{.buffer = DepthBuffer(camera.width, camera.height), .faces = {}};
   ScreenPolygon polygon;
   CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
@@ -177,6 +178,8 @@ Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera, c
     const PolygonMesh& mesh = meshes[m];
     std::vector<Eigen::Vector3d> screen(mesh.vertices.size());
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) screen[v] = camera.project(mesh.vertices[v]);
+    const auto normals =
+        smooth_crease >= 0 ? corner_normals(mesh, smooth_crease) : std::vector<std::vector<Eigen::Vector3d>>{};
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
       poll.tick();
       const auto& face = mesh.faces[f];
@@ -209,6 +212,13 @@ Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera, c
                              .dx = polygon.dx,
                              .dy = polygon.dy,
                              .d0 = polygon.d0});
+      if (!normals.empty()) {
+        FaceInfo& info = scene.faces.back();
+        for (std::size_t k = 0; k < face.size(); ++k) {
+          info.corners.emplace_back(screen[static_cast<std::size_t>(face[k])].head<2>());
+          info.corner_normals.push_back(flip ? -normals[f][k] : normals[f][k]);
+        }
+      }
       // The rasterizer takes convex polygons; a boundary face of a set operation's result is often
       // not convex (a face around a groove): it is drawn as the triangles of its exact ear
       // clipping, all with the face's id, which share their edges watertightly.
@@ -234,7 +244,17 @@ Scene draw_scene(const std::vector<PolygonMesh>& meshes, const Camera& camera, c
 
 namespace {
 
-/// The shaded picture of a drawn scene: flat shading per face in its solid's colour, lines.
+/// `base` lit by `light` on a surface of unit normal n: 0.3 ambient plus 0.7 diffuse.
+std::array<std::uint8_t, 3> lit(const std::array<std::uint8_t, 3>& base, const Eigen::Vector3d& n,
+                                const Eigen::Vector3d& light) {
+  const double intensity = 0.3 + 0.7 * std::max(0.0, n.dot(light));
+  std::array<std::uint8_t, 3> out{};
+  for (std::size_t c = 0; c < 3; ++c) out[c] = static_cast<std::uint8_t>(std::lround(base[c] * intensity));
+  return out;
+}
+
+/// The shaded picture of a drawn scene: flat shading per face in its solid's colour (or smooth,
+/// per pixel, where the faces carry corner normals), lines.
 Image shade(const detail::Scene& scene, const Camera& camera, const PictureOptions& options) {
   const DepthBuffer& buffer = scene.buffer;
   const std::vector<FaceInfo>& faces = scene.faces;
@@ -243,12 +263,8 @@ Image shade(const detail::Scene& scene, const Camera& camera, const PictureOptio
   // visible sides of a box seen from "iso" get about 0.87, 0.68 and 0.45 of the full colour).
   const Eigen::Vector3d light = (camera.toward + 0.4 * camera.up - 0.25 * camera.right).normalized();
   std::vector<std::array<std::uint8_t, 3>> shade(faces.size());
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    const double intensity = 0.3 + 0.7 * std::max(0.0, faces[f].normal.dot(light));
-    const auto base = solid_colour(static_cast<std::size_t>(faces[f].solid));
-    for (int c = 0; c < 3; ++c)
-      shade[f][static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround(base[static_cast<std::size_t>(c)] * intensity));
-  }
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    shade[f] = lit(solid_colour(static_cast<std::size_t>(faces[f].solid)), faces[f].normal, light);
   std::vector<bool> lines;
   if (options.edges)
     lines = detail::edge_pixels(buffer, faces, std::cos(options.edge_angle * std::numbers::pi / 180), 1 / camera.scale,
@@ -260,7 +276,17 @@ Image shade(const detail::Scene& scene, const Camera& camera, const PictureOptio
   image.rgb.resize(3 * buffer.face.size());
   for (std::size_t i = 0; i < buffer.face.size(); ++i) {
     const int f = buffer.face[i];
-    const auto& colour = f < 0 ? options.background : (!lines.empty() && lines[i]) ? kLine : shade[static_cast<std::size_t>(f)];
+    std::array<std::uint8_t, 3> colour = f < 0                          ? options.background
+                                         : (!lines.empty() && lines[i]) ? kLine
+                                                                        : shade[static_cast<std::size_t>(f)];
+    if (f >= 0 && (lines.empty() || !lines[i]) && !faces[static_cast<std::size_t>(f)].corner_normals.empty()) {
+      // Smooth shading: lit with the normal interpolated at the pixel's centre.
+      const FaceInfo& info = faces[static_cast<std::size_t>(f)];
+      const Eigen::Vector2d centre(static_cast<double>(i % static_cast<std::size_t>(buffer.width)) + 0.5,
+                                   static_cast<double>(i / static_cast<std::size_t>(buffer.width)) + 0.5);
+      const Eigen::Vector3d n = detail::interpolated_normal(info.corners, info.corner_normals, centre);
+      colour = lit(solid_colour(static_cast<std::size_t>(info.solid)), n, light);
+    }
     std::copy(colour.begin(), colour.end(), image.rgb.begin() + static_cast<std::ptrdiff_t>(3 * i));
   }
   return image;
@@ -273,7 +299,7 @@ Image render_meshes(const std::vector<PolygonMesh>& meshes, const PictureOptions
   const Camera camera = picture_camera(meshes, options);
   if (options.antialias > 1)
     return downsampled(render_meshes(meshes, supersampled(options, camera)), options.antialias);
-  return shade(detail::draw_scene(meshes, camera), camera, options);
+  return shade(detail::draw_scene(meshes, camera, {}, {}, options.smooth ? options.edge_angle : -1), camera, options);
 }
 
 namespace {
@@ -443,7 +469,8 @@ Image render_items(const std::vector<PictureItem>& items, const PictureOptions& 
       ids.push_back(static_cast<int>(k));
     }
   }
-  const detail::Scene scene = detail::draw_scene(meshes, camera, two_sided, ids);
+  const detail::Scene scene =
+      detail::draw_scene(meshes, camera, two_sided, ids, options.smooth ? options.edge_angle : -1);
   Image image = shade(scene, camera, options);
 
   const int width = options.curve_width > 0 ? options.curve_width : 3 * line_width(camera, options);

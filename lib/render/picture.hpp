@@ -64,6 +64,10 @@ struct PictureOptions {
   double surface_tolerance = 0;
   /// render_items: width of curves in pixels; 0: three times the line width.
   int curve_width = 0;
+  /// Smooth shading: curved surfaces made of flat faces shade as curved (each pixel lit with a
+  /// normal interpolated from the faces' corners, averaged over faces meeting at no more than
+  /// edge_angle); creases above edge_angle stay sharp. Flat shading per face otherwise.
+  bool smooth = false;
   /// Antialiasing: the picture is drawn at `antialias` times the size (every length in pixels
   /// scaled alike) and each antialias x antialias block averaged into one pixel. 1: one sample
   /// per pixel, at its centre (the exact pixel bounds the tests check); at most 4.

@@ -279,6 +279,42 @@ TEST(Picture, AntialiasingAveragesSamplesAndKeepsTheCoveredArea) {
   EXPECT_THROW(render_meshes({square}, options), InvalidInput);
 }
 
+TEST(Picture, SmoothShadingFollowsTheTrueSphere) {
+  // A 24-segment sphere seen along z at 100 pixels per unit, without lines. At each pixel well
+  // inside the outline the true unit sphere's normal is (x, y, sqrt(1 - x^2 - y^2)); lit as the
+  // pictures light (0.3 ambient + 0.7 diffuse, light (-0.25, 0.4, 1) normalized), it gives the
+  // colour an ideal sphere would have. Smooth shading comes much closer to it than flat shading.
+  const PolygonMesh ball = to_mesh(sphere(1.0, {.segments = 24}));
+  PictureOptions options{.view = {0, 0, 1}, .width = 240, .height = 240, .scale = 100, .edges = false};
+  const Image flat = render_meshes({ball}, options);
+  options.smooth = true;
+  const Image smooth = render_meshes({ball}, options);
+  const Eigen::Vector3d light = Eigen::Vector3d(-0.25, 0.4, 1).normalized();
+  const auto base = solid_colour(0);
+  double flat_error = 0, smooth_error = 0;
+  int n = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 240; ++x) {
+      const double wx = (x + 0.5 - 120) / 100, wy = -(y + 0.5 - 120) / 100;
+      if (wx * wx + wy * wy > 0.8) continue;
+      const Eigen::Vector3d normal(wx, wy, std::sqrt(1 - wx * wx - wy * wy));
+      const double ideal = base[2] * (0.3 + 0.7 * std::max(0.0, normal.dot(light)));
+      flat_error += std::abs(flat.pixel(x, y)[2] - ideal);
+      smooth_error += std::abs(smooth.pixel(x, y)[2] - ideal);
+      ++n;
+    }
+  flat_error /= n;
+  smooth_error /= n;
+  EXPECT_LT(smooth_error, 0.4 * flat_error) << "flat " << flat_error << ", smooth " << smooth_error;
+  EXPECT_LT(smooth_error, 2.0);
+  // A box stays flat: its faces meet at 90 degrees, above the crease angle.
+  const PolygonMesh cube = to_mesh(box({-1, -1, -1}, {1, 1, 1}));
+  PictureOptions iso{.width = 120, .height = 120, .edges = false};
+  const Image cube_flat = render_meshes({cube}, iso);
+  iso.smooth = true;
+  EXPECT_EQ(render_meshes({cube}, iso).rgb, cube_flat.rgb);
+}
+
 // ---- the z-buffer against independent references ----
 
 /// The nearest face hit by the ray through pixel (x, y)'s centre, by brute force over the

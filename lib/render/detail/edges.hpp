@@ -26,6 +26,9 @@ struct FaceInfo {
   Eigen::Vector3d normal;  ///< unit outward normal
   /// Its depth plane on screen, depth(x, y) = dx x + dy y + d0 (as ScreenPolygon's).
   double dx = 0, dy = 0, d0 = 0;
+  /// Smooth shading only (smooth_normals.hpp): its corners on screen and their normals.
+  std::vector<Eigen::Vector2d> corners{};
+  std::vector<Eigen::Vector3d> corner_normals{};
 };
 
 /// Per pixel: true where a line goes. `cos_threshold`: the cosine of the threshold angle;
