@@ -19,6 +19,7 @@
 #include "base/memory_limit.hpp"
 #include "base/memory_policy.hpp"
 #include "base/parallel.hpp"
+#include "bsp/set_operations.hpp"
 #include "interactive.hpp"
 #include "language/interpreter.hpp"
 #include "language/solid_values.hpp"
@@ -43,10 +44,10 @@ constexpr const char* kUsage =
     "                  sculpt list or string literal ([1, 2, 3], \"text\"); anything else is\n"
     "                  bound as a string. It overrides the scripts' own NAME = ... outside\n"
     "                  functions (as in OpenSCAD); in a session your entries may rebind it\n"
-    "  -o FILE         after the scripts, export their last solid (the last solid expression\n"
-    "                  statement or solid bound to a global outside functions, whichever came\n"
-    "                  later) to FILE, format by extension (.off .obj .stl .ply .om .3mf .glb);\n"
-    "                  folders are created\n"
+    "  -o FILE         after the scripts, export the union of the solids they show(), else\n"
+    "                  their last solid (the last solid expression statement or solid bound\n"
+    "                  to a global outside functions, whichever came later) to FILE, format\n"
+    "                  by extension (.off .obj .stl .ply .om .3mf .glb); folders are created\n"
     "  --grid STEP     make solids at grid step STEP, a power of two written 2^-13 or 0.0001220703125:\n"
     "                  coordinates up to 2^25 steps (default 2^-15: [-1024, 1024]); see grid()\n"
     "  --memory-limit SIZE  stop work that takes more memory than SIZE (2G, 500M; 'none') with\n"
@@ -138,15 +139,22 @@ Value definition_value(Interpreter& interpreter, const std::string& text) {
   return text;
 }
 
-/// sculpt -o FILE: exports the last solid. Returns the exit code.
-int export_result(const LastSolid& last, const std::string& path) {
+/// sculpt -o FILE: exports what the scripts show (the union of the solids they passed to show(),
+/// as the view shows them together), or else their last solid. Returns the exit code.
+int export_result(const LastSolid& last, const Interpreter& interpreter, const std::string& path) {
+  std::vector<sculpt::Solid> shown;
+  for (const sculpt::language::ShownPart& part : interpreter.shown())
+    if (const auto* s = part.value.object<SolidValue>()) shown.push_back(s->solid);
   const std::optional<Value> solid = last.get();
-  if (!solid) {
+  if (shown.empty() && !solid) {
     std::cerr << "sculpt: -o: the scripts made no solid to export\n";
     return 1;
   }
   try {
-    if (const std::string warning = export_solid(*solid->object<SolidValue>(), path); !warning.empty())
+    std::optional<SolidValue> combined;
+    if (!shown.empty()) combined.emplace(sculpt::unite_all(std::move(shown)));
+    const SolidValue& result = combined ? *combined : *solid->object<SolidValue>();
+    if (const std::string warning = export_solid(result, path); !warning.empty())
       std::cerr << "sculpt: -o: warning: " << warning << "\n";
   } catch (const sculpt::Cancelled&) {
     std::cerr << "sculpt: -o: interrupted (nothing written)\n";
@@ -308,5 +316,5 @@ int main(int argc, char** argv) {
     std::cerr << "sculpt: " << e.what() << "\n";
     return 1;
   }
-  return output.empty() ? 0 : export_result(last, output);
+  return output.empty() ? 0 : export_result(last, interpreter, output);
 }

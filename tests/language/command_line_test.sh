@@ -94,6 +94,10 @@ check output_global_later 0 "" "$sculpt" -o "$tmp/g.obj" -e 'box([0, 0, 0], [2, 
 check output_global_later_volume 0 "3" volume_of "$tmp/g.obj"
 check output_function_local_ignored 0 "" "$sculpt" -o "$tmp/f.ply" -e 'fn f() { inner = box([0, 0, 0], [4, 4, 4]); box([0, 0, 0], [1, 1, 1]) }' -e 'b = box([0, 0, 0], [1, 1, 5])' -e 'v = volume(f())'
 check output_function_local_volume 0 "5" volume_of "$tmp/f.ply"
+# With show(): the union of the shown solids (two unit cubes side by side, volume 2), not the last
+# solid made (a box of volume 30).
+check output_shown 0 "2" bash -c "'$sculpt' -o '$tmp/shown.off' -e 'show(box([0, 0, 0], [1, 1, 1]), name=\"a\")' \
+  -e 'show(box([1, 0, 0], [2, 1, 1]), name=\"b\")' -e 'c = box([0, 0, 0], [2, 3, 5])' && '$sculpt' -e 'print(volume(import(\"$tmp/shown.off\")))'"
 check output_no_solid 1 "sculpt: -o: the scripts made no solid to export" "$sculpt" -o "$tmp/none.stl" -e 'x = 1'
 check output_not_after_error 1 "<command line>:1:33: error: unknown name 'y'
 b = box([0, 0, 0], [1, 1, 1]) | y
