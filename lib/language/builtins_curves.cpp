@@ -55,6 +55,23 @@ curves::DigitizedCurve curve_from_points(const Arguments& args, std::string_view
   return curve;
 }
 
+PlanePolygon plane_polygon_arg(const Arguments& args, std::string_view name, const std::string& what,
+                               const std::string& not_plane) {
+  curves::DigitizedCurve c;
+  if (const auto* cv = args.value(name).object<CurveValue>())
+    c = cv->curve;
+  else if (args.value(name).list())
+    c = curve_from_points(args, name);
+  else
+    args.fail_type(name, what);
+  PlanePolygon polygon{.points = {}, .z = c.points.empty() ? 0.0 : c.points.front().z(), .dimension = c.dimension};
+  for (const Eigen::Vector3d& p : c.points) {
+    if (p.z() != polygon.z) args.fail(name, not_plane);
+    polygon.points.emplace_back(p.x(), p.y());
+  }
+  return polygon;
+}
+
 std::string CurveValue::repr() const {
   return "<curve " + (curve.name.empty() ? std::string() : curve.name + ": ") +
          std::to_string(curve.points.size()) + " points, " + std::to_string(curve.dimension) + "D" +

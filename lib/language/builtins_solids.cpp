@@ -422,20 +422,11 @@ void register_solids(BuiltinTable& table) {
                   arg("scale").any("a number >= 0 or [sx, sy]").defaults(1.0),
                   arg("slices").integer(1, 100000).optional("auto")},
        .run = [](const Arguments& args) -> Value {
-         curves::DigitizedCurve c;
-         if (const auto* cv = args.value("profile").object<CurveValue>())
-           c = cv->curve;
-         else if (args.value("profile").list())
-           c = curve_from_points(args, "profile");
-         else
-           args.fail_type("profile", "a curve or a list of points");
-         std::vector<Eigen::Vector2d> polygon;
-         for (const Eigen::Vector3d& p : c.points) {
-           if (p.z() != c.points.front().z())
-             args.fail("profile", "the profile is not in a plane z = constant (rotate the result instead)");
-           polygon.emplace_back(p.x(), p.y());
-         }
-         const double z = c.points.empty() ? 0.0 : c.points.front().z(), h = args.number("height");
+         const PlanePolygon profile =
+             plane_polygon_arg(args, "profile", "a curve or a list of points",
+                               "the profile is not in a plane z = constant (rotate the result instead)");
+         const std::vector<Eigen::Vector2d>& polygon = profile.points;
+         const double z = profile.z, h = args.number("height");
          ExtrudeOptions options{.twist = args.number("twist"), .grid = args.grid()};
          if (args.value("scale").list()) {
            const std::vector<double> v = args.vector("scale", 2);

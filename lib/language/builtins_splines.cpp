@@ -116,18 +116,9 @@ Value polygon_offset_value(const Arguments& args) {
   for (const char* name : {"controls", "tol"})
     if (args.has(name))
       args.fail(name, std::string("'") + name + "' applies to the offset of a spline, not of a polygon");
-  curves::DigitizedCurve c;
-  if (const auto* cv = args.value("s").object<CurveValue>())
-    c = cv->curve;
-  else if (args.value("s").list())
-    c = curve_from_points(args, "s");
-  else
-    args.fail_type("s", "a spline, or a polygon (a curve or a list of points)");
-  std::vector<Eigen::Vector2d> polygon;
-  for (const Eigen::Vector3d& p : c.points) {
-    if (p.z() != c.points.front().z()) args.fail("s", "the polygon is not in a plane z = constant");
-    polygon.emplace_back(p.x(), p.y());
-  }
+  const PlanePolygon plane = plane_polygon_arg(args, "s", "a spline, or a polygon (a curve or a list of points)",
+                                               "the polygon is not in a plane z = constant");
+  const std::vector<Eigen::Vector2d>& polygon = plane.points;
   args.charge(polygon.size());
   PolygonOffsetOptions options{.segments = static_cast<int>(args.integer("segments")),
                                .miter_limit = args.number("miter_limit"),
@@ -153,9 +144,8 @@ Value polygon_offset_value(const Arguments& args) {
                        " polygons and " + std::to_string(holes) + " holes; only a single polygon is supported");
   }
   curves::DigitizedCurve out{.points = {}, .dimension = 2, .closed = true, .name = "offset"};
-  const double z = c.points.empty() ? 0.0 : c.points.front().z();
-  for (const Eigen::Vector2d& p : loops.front()) out.points.emplace_back(p.x(), p.y(), z);
-  if (c.dimension == 3) out.dimension = 3;
+  for (const Eigen::Vector2d& p : loops.front()) out.points.emplace_back(p.x(), p.y(), plane.z);
+  if (plane.dimension == 3) out.dimension = 3;
   return Value(std::shared_ptr<const Object>(std::make_shared<CurveValue>(std::move(out))));
 }
 
