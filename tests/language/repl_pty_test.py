@@ -27,7 +27,7 @@ class Terminal:
             os.execv(SCULPT, [SCULPT] + list(args))
         self.screen = ""
 
-    def read_until(self, text, timeout=10.0):
+    def read_until(self, text, timeout=30.0):
         end = time.time() + timeout
         while text not in self.screen:
             remaining = end - time.time()
@@ -44,6 +44,24 @@ class Terminal:
                 self.screen += data.decode("utf-8", "replace")
         if text not in self.screen:
             raise AssertionError("missing %r; screen:\n%s" % (text, self.screen))
+
+    def wait_prompt(self, prompt="sculpt> ", timeout=60.0):
+        """Waits until `prompt` is the last thing shown and nothing more comes for 0.15 s: the line
+        editor is then waiting for keys. (Keys typed earlier, while the REPL is still busy, are
+        echoed by the terminal in cooked mode and read later, which would mix up what follows.)"""
+        self.read_until(prompt, timeout)
+        end = time.time() + timeout
+        while time.time() < end:
+            ready, _, _ = select.select([self.fd], [], [], 0.15)
+            if not ready:
+                if self.screen.endswith(prompt):
+                    return
+                continue
+            data = os.read(self.fd, 4096)
+            if not data:
+                break
+            self.screen += data.decode("utf-8", "replace")
+        raise AssertionError("no quiet prompt %r; screen:\n%s" % (prompt, self.screen))
 
     def type(self, keys):
         os.write(self.fd, keys.encode())
@@ -74,65 +92,67 @@ class Terminal:
 def main():
     home = tempfile.mkdtemp()
     t = Terminal(home)
-    t.read_until("sculpt> ")
+    t.wait_prompt()
 
-    t.mark(); t.type("x = 6 * 7\r"); t.read_until("sculpt> ")
-    t.mark(); t.type("x\r"); t.read_until("42")
+    t.mark(); t.type("x = 6 * 7\r"); t.wait_prompt()
+    t.mark(); t.type("x\r"); t.read_until("42"); t.wait_prompt()
 
     # An error: message, source line, caret; the session goes on with x intact.
     t.mark(); t.type("print(xx + 1)\r")
     t.read_until("<stdin>:3:7: error: unknown name 'xx'; did you mean 'x'?")
-    t.read_until("^")
-    t.mark(); t.type("x + 1\r"); t.read_until("43")
+    t.read_until("^"); t.wait_prompt()
+    t.mark(); t.type("x + 1\r"); t.read_until("43"); t.wait_prompt()
 
     # A multi-line function: continuation prompt until the brace closes.
-    t.mark(); t.type("fn twice(v) {\r"); t.read_until("...> ")
-    t.mark(); t.type("  2 * v\r"); t.read_until("...> ")
-    t.mark(); t.type("}\r"); t.read_until("sculpt> ")
-    t.mark(); t.type("twice(x)\r"); t.read_until("84")
+    t.mark(); t.type("fn twice(v) {\r"); t.wait_prompt("...> ")
+    t.mark(); t.type("  2 * v\r"); t.wait_prompt("...> ")
+    t.mark(); t.type("}\r"); t.wait_prompt()
+    t.mark(); t.type("twice(x)\r"); t.read_until("84"); t.wait_prompt()
 
     # Tab completion of a built-in name: "cyli<TAB>" becomes "cylinder", whose value is echoed.
     t.mark(); t.type("cyli\t\r"); t.read_until("<built-in cylinder(r, h, segments=32, center=false, d=diameter)>")
 
     # Inside a call, <TAB> completes a parameter name: "segm<TAB>" becomes "segments=".
-    t.mark(); t.type("sphere(1, segm\t8)\r"); t.read_until("<solid: ")
+    t.mark(); t.type("sphere(1, segm\t8)\r"); t.read_until("<solid: "); t.wait_prompt()
 
     # History recall: the up arrow brings back the last entry.
-    t.mark(); t.type("print(\"again\", x)\r"); t.read_until("again 42")
-    t.mark(); t.type("\x1b[A\r"); t.read_until("again 42")
+    t.mark(); t.type("print(\"again\", x)\r"); t.read_until("again 42"); t.wait_prompt()
+    t.mark(); t.type("\x1b[A\r"); t.read_until("again 42"); t.wait_prompt()
 
     # Ctrl-C at a continuation prompt drops the unfinished entry; the session goes on.
-    t.mark(); t.type("y = [1,\r"); t.read_until("...> ")
-    t.mark(); t.type("\x03"); t.read_until("entry cancelled"); t.read_until("sculpt> ")
-    t.mark(); t.type("y = 5\r"); t.read_until("sculpt> ")
-    t.mark(); t.type("y + x\r"); t.read_until("47")
+    t.mark(); t.type("y = [1,\r"); t.wait_prompt("...> ")
+    t.mark(); t.type("\x03"); t.read_until("entry cancelled"); t.wait_prompt()
+    t.mark(); t.type("y = 5\r"); t.wait_prompt()
+    t.mark(); t.type("y + x\r"); t.read_until("47"); t.wait_prompt()
     # Ctrl-C while an entry runs (10^8 loop steps) stops it with an error; bindings stay.
     t.mark(); t.type("for i in range(0, 10000) { for j in range(0, 10000) { z = j } }\r")
     time.sleep(0.5)
-    t.type("\x03"); t.read_until("error: interrupted"); t.read_until("sculpt> ")
-    t.mark(); t.type("x\r"); t.read_until("42"); t.read_until("sculpt> ")
+    t.type("\x03"); t.read_until("error: interrupted"); t.wait_prompt()
+    t.mark(); t.type("x\r"); t.read_until("42"); t.wait_prompt()
     # Ctrl-C during one long built-in (a union of two 500-segment spheres takes seconds): it stops
     # with "interrupted" (base/cancel.hpp), the variables are as they were, and the session goes on.
-    t.mark(); t.type("s = sphere(1, 500)\r"); t.read_until("sculpt> ", timeout=60)
+    t.wait_prompt()
+    t.mark(); t.type("s = sphere(1, 500)\r"); t.wait_prompt()
     t.mark(); t.type("u = s | translate(s, [0.5, 0, 0])\r")
+    t.read_until("0])\r\n")  # the line editor has read the entry: it runs now
     time.sleep(0.3)
     asked = time.time()
-    t.type("\x03"); t.read_until("error: interrupted", timeout=30); t.read_until("sculpt> ")
+    t.type("\x03"); t.read_until("error: interrupted", timeout=30); t.wait_prompt()
     print("Ctrl-C during a union answered in %.2f s" % (time.time() - asked))
-    t.mark(); t.type(":vars\r"); t.read_until("s : solid = <solid: "); t.read_until("sculpt> ")
+    t.mark(); t.type(":vars\r"); t.read_until("s : solid = <solid: "); t.wait_prompt()
     assert "u : " not in t.screen, t.screen
     # Printing a result whose tree is still to be merged does not merge it.
-    t.mark(); t.type("v = sphere(1, 24) | translate(sphere(1, 24), [0.5, 0, 0])\r"); t.read_until("sculpt> ")
-    t.mark(); t.type(":vars\r"); t.read_until("v : solid = <solid: tree pending>")
+    t.mark(); t.type("v = sphere(1, 24) | translate(sphere(1, 24), [0.5, 0, 0])\r"); t.wait_prompt()
+    t.mark(); t.type(":vars\r"); t.read_until("v : solid = <solid: tree pending>"); t.wait_prompt()
 
     # :show renders the solid and prints the picture's path.
-    t.mark(); t.type("b = box([0,0,0],[1,1,1])\r"); t.read_until("sculpt> ")
+    t.mark(); t.type("b = box([0,0,0],[1,1,1])\r"); t.wait_prompt()
     picture = os.path.join(home, "show", "b.png")
-    t.mark(); t.type(":show\r"); t.read_until(picture)
+    t.mark(); t.type(":show\r"); t.read_until(picture); t.wait_prompt()
     assert open(picture, "rb").read(8) == b"\x89PNG\r\n\x1a\n", "not a PNG"
 
     t.mark(); t.type(":help box\r"); t.read_until("box(min, max, center=false, size=v)")
-    t.mark(); t.type(":vars\r"); t.read_until("x : number = 42")
+    t.mark(); t.type(":vars\r"); t.read_until("x : number = 42"); t.wait_prompt()
     t.type(":quit\r")
     status = t.close()
     assert status == 0, "exit status %d" % status
@@ -141,7 +161,7 @@ def main():
     history = open(os.path.join(home, ".sculpt_history")).read()
     assert "twice(x)" in history, history
     t = Terminal(home)
-    t.read_until("sculpt> ")
+    t.wait_prompt()
     # A 60-column window: :help wraps its lines to it (the width is read at each entry).
     fcntl.ioctl(t.fd, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 60, 0, 0))
     t.mark(); t.type("\x1b[A\x1b[A\x1b[A\r")  # three entries back: ':help box' of the first session
@@ -165,11 +185,11 @@ def memory_budget(home):
         print("memory budget: not enforced in this build, skipped")
         return
     t = Terminal(home, ["--memory-limit", "512M"])
-    t.read_until("sculpt> ")
-    t.mark(); t.type("a = 6 * 7\r"); t.read_until("sculpt> ")
+    t.wait_prompt()
+    t.mark(); t.type("a = 6 * 7\r"); t.wait_prompt()
     t.mark(); t.type("a = sphere(1, 2000)\r")
     t.read_until("out of memory: the work needed more than the memory limit of 512 MB", timeout=60)
-    t.read_until("sculpt> ")
+    t.wait_prompt()
     t.mark(); t.type("print(a + 1)\r"); t.read_until("43")
     t.type(":quit\r")
     status = t.close()
