@@ -28,9 +28,20 @@ constexpr std::size_t kLeafChunk = 16;  // leaves per parallel chunk (fixed: res
 int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDrop : (in_behind ? kKeep : kReverse); }
 
 struct Operand {
-  const FragmentList* list = nullptr;  // the solid's own fragments, or null for `owned` (renumbered planes)
-  FragmentList owned;
-  [[nodiscard]] const FragmentList& faces() const { return list ? *list : owned; }
+  const FragmentList* list = nullptr;  // the solid's own fragments (read only, never copied whole)
+  std::int32_t shift = 0;              // its planes' offset in the arena (B's follow A's; not the world box's)
+  [[nodiscard]] const FragmentList& faces() const { return *list; }
+  // Fragment i on the arena's planes: the solid's own when its planes were not moved, else a copy
+  // renumbered in `buf`.
+  const BoundaryFragment& fragment(std::size_t i, BoundaryFragment& buf) const {
+    const BoundaryFragment& f = (*list)[i];
+    if (shift == 0) return f;
+    buf = f;
+    auto map = [this](std::int32_t p) { return p < kernel::kWorldPlanes ? p : p + shift; };
+    buf.polygon.support = map(buf.polygon.support);
+    for (auto& c : buf.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
+    return buf;
+  }
   std::vector<FragmentBox> boxes;
   CornerBox box;            // around the boundary; invalid when it reaches the world box
   std::optional<bool> far;  // status outside `box`
@@ -141,6 +152,7 @@ class CellMerge {
     pieces_.resize(leaf_count());
     parallel_chunks(leaf_count(), kLeafChunk, [&](std::size_t begin, std::size_t end) {
       ConvexPolygon piece, scratch;
+      BoundaryFragment renumbered;
       check_cancel();
       for (std::size_t l = begin; l < end; ++l) {
         const KdNode& n = cells_.nodes[std::size_t(node_of(l))];
@@ -148,7 +160,7 @@ class CellMerge {
         for (int x = 0; x < 2; ++x) {
           Pieces& p = pieces_[l][x];
           for (const std::uint32_t i : n.items[x]) {
-            const BoundaryFragment& f = ops_[x].faces()[i];
+            const BoundaryFragment& f = ops_[x].fragment(i, renumbered);
             const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
             if (c == CellClip::Outside) continue;
             if (keep) p.faces.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
@@ -165,8 +177,9 @@ class CellMerge {
     Pieces& p = pieces_[l][x];
     if (p.faces.size() == p.origin.size()) return p.faces;
     ConvexPolygon piece, scratch;
+    BoundaryFragment renumbered;
     for (const std::uint32_t i : p.origin) {
-      const BoundaryFragment& f = ops_[x].faces()[i];
+      const BoundaryFragment& f = ops_[x].fragment(i, renumbered);
       const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
       p.faces.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
     }
@@ -410,26 +423,31 @@ class CellMerge {
         for (std::size_t j = 0; j < pieces_[l][x].origin.size(); ++j)
           by_fragment_[x][at[pieces_[l][x].origin[j]]++] = {std::uint32_t(l), std::uint32_t(j)};
     }
-    // Both operands' fragments in chunks, each chunk's output placed at its offset in the result.
+    // Both operands' fragments in chunks, in waves of a few chunks per thread: a wave's chunks run
+    // side by side, then their output is appended to the result in order and their lists are
+    // cleared for the next wave (their storage is kept). So the result is written once and the
+    // scratch lists hold one wave, not a second copy of the whole result.
     constexpr std::size_t kFragmentChunk = 1024;
     const std::size_t na = ops_[0].faces().size(), n = na + ops_[1].faces().size();
-    std::vector<FragmentList> out((n + kFragmentChunk - 1) / kFragmentChunk);
-    parallel_chunks(n, kFragmentChunk, [&](std::size_t begin, std::size_t end) {
-      ConvexPolygon piece, scratch;
-      std::vector<RejoinFrame> stack;
-      for (std::size_t i = begin; i < end; ++i)
-        rejoin(i < na ? 0 : 1, i < na ? i : i - na, out[begin / kFragmentChunk], piece, scratch, stack);
-    });
-    std::vector<std::size_t> offset(out.size() + 1, 0);
-    for (std::size_t k = 0; k < out.size(); ++k) offset[k + 1] = offset[k] + out[k].size();
+    const std::size_t wave = kFragmentChunk * 4 * std::size_t(std::max(thread_count(), 1));
+    std::vector<FragmentList> out(wave / kFragmentChunk);
     FragmentList result;
-    result.resize(offset.back());
-    parallel_chunks(out.size(), 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        for (std::size_t j = 0; j < out[k].size(); ++j) result[offset[k] + j] = std::move(out[k][j]);
-        out[k] = FragmentList();
+    for (std::size_t start = 0; start < n; start += wave) {
+      const std::size_t stop = std::min(n, start + wave);
+      parallel_chunks(stop - start, kFragmentChunk, [&](std::size_t begin, std::size_t end) {
+        ConvexPolygon piece, scratch;
+        BoundaryFragment renumbered;
+        std::vector<RejoinFrame> stack;
+        FragmentList& mine = out[begin / kFragmentChunk];
+        for (std::size_t i = start + begin; i < start + end; ++i)
+          rejoin(i < na ? 0 : 1, i < na ? i : i - na, mine, piece, scratch, renumbered, stack);
+      });
+      check_cancel();
+      for (FragmentList& list : out) {
+        for (BoundaryFragment& f : list) result.emplace_back(std::move(f));
+        list.clear();
       }
-    });
+    }
     for (const int fb : first_behind)
       if (fb >= 0) {
         uniform = fb == 1;
@@ -442,10 +460,11 @@ class CellMerge {
   // its pieces lie under, from the root.
   using RejoinFrame = std::pair<std::int32_t, std::array<std::size_t, 2>>;  // kd node, pieces [a, b)
   void rejoin(int x, std::size_t i, FragmentList& out, ConvexPolygon& piece, ConvexPolygon& scratch,
-              std::vector<RejoinFrame>& stack) {
+              BoundaryFragment& renumbered, std::vector<RejoinFrame>& stack) {
     const std::span<const std::array<std::uint32_t, 2>> mine(by_fragment_[x].data() + by_fragment_first_[x][i],
                                                              by_fragment_first_[x][i + 1] - by_fragment_first_[x][i]);
-    const BoundaryFragment& f = ops_[x].faces()[i];
+    if (mine.empty()) return;
+    const BoundaryFragment& f = ops_[x].fragment(i, renumbered);
     stack.assign(1, {0, {0, mine.size()}});
     while (!stack.empty()) {
       const auto [id, range] = stack.back();
@@ -502,24 +521,15 @@ class CellMerge {
   std::array<std::vector<std::uint32_t>, 2> by_fragment_first_;
 };
 
-// Operand x's fragments on the arena's planes (B's planes appended after A's; the world box
-// planes are shared), with their boxes, bounds and far status. A's fragments are read in place.
+// Operand x on the arena's planes (B's planes appended after A's; the world box planes are
+// shared), with its fragments' boxes, their bounds and its far status. The fragments stay where
+// they are: B's are renumbered as they are read (Operand::fragment), not copied whole.
 Operand load(Arena& arena, const Solid& s) {
   const Solid::BoundaryView view = s.boundary_view();
   Operand o;
-  const std::int32_t shift = arena.planes.size() - kernel::kWorldPlanes;
+  o.shift = arena.planes.size() - kernel::kWorldPlanes;
   arena.planes.append(*view.planes, kernel::kWorldPlanes);
-  auto map = [shift](std::int32_t p) { return p < kernel::kWorldPlanes ? p : p + shift; };
-  if (shift == 0) {
-    o.list = view.fragments;
-  } else {
-    o.owned.reserve(view.fragments->size());
-    for (const BoundaryFragment& f : *view.fragments) {
-      BoundaryFragment& g = o.owned.emplace_back(f);
-      g.polygon.support = map(g.polygon.support);
-      for (auto& c : g.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
-    }
-  }
+  o.list = view.fragments;
   // Boxes, and their union as the operand's box (invalid if a fragment reaches the world box:
   // the operand is unbounded there, or if a box is unknown).
   o.boxes.reserve(o.faces().size());
