@@ -64,7 +64,7 @@ LeafCell to_leaf_cell(const Cell& cell, int depth, bool inside, const kernel::Gr
   for (const ConvexPolygon& f : cell) {
     std::vector<int> face;
     for (const auto& c : f.corners) {
-      const Eigen::Vector3d p = grid.to_world(Eigen::Vector3d(c.at.x, c.at.y, c.at.z));
+      const Eigen::Vector3d p = grid.to_world(Eigen::Vector3d(c.at().x, c.at().y, c.at().z));
       int id = -1;
       for (std::size_t v = 0; v < lc.vertices.size() && id < 0; ++v)
         if ((lc.vertices[v] - p).norm() <= 1e-12 * (grid.unit() + p.norm())) id = int(v);

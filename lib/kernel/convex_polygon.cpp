@@ -66,7 +66,7 @@ ConvexPolygon world_polygon(const PlaneTable& planes, std::int32_t support, cons
 void refresh_world_corners(const PlaneTable& planes, ConvexPolygon& poly) {
   for (Corner& c : poly.corners)
     if (c.p < kWorldPlanes && c.q < kWorldPlanes)
-      c.at = approximate_vertex(planes[poly.support], planes[c.p], planes[c.q]);
+      c.set_at(approximate_vertex(planes[poly.support], planes[c.p], planes[c.q]));
 }
 
 CornerBox corner_box(const ConvexPolygon& poly) {
@@ -74,11 +74,11 @@ CornerBox corner_box(const ConvexPolygon& poly) {
   if (poly.corners.empty()) return b;
   for (int i = 0; i < 3; ++i) b.lo[i] = 1e300, b.hi[i] = -1e300;
   for (const Corner& c : poly.corners) {
-    if (c.at.err < 0) return CornerBox{};  // unknown: use the predicates
-    const double v[3] = {c.at.x, c.at.y, c.at.z};
+    if (c.at().err < 0) return CornerBox{};  // unknown: use the predicates
+    const double v[3] = {c.at().x, c.at().y, c.at().z};
     for (int i = 0; i < 3; ++i) {
-      b.lo[i] = std::min(b.lo[i], v[i] - c.at.err);
-      b.hi[i] = std::max(b.hi[i], v[i] + c.at.err);
+      b.lo[i] = std::min(b.lo[i], v[i] - c.at().err);
+      b.hi[i] = std::max(b.hi[i], v[i] + c.at().err);
     }
   }
   b.valid = true;
@@ -95,12 +95,12 @@ void signs_of(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t 
   const Plane cut = planes[plane];  // a copy: f's stores may alias a reference
   std::uint64_t decided = 0;  // filter decisions inline (orient's own filter, counted at the end)
   for (const Corner& c : poly.corners) {
-    const Sign quick = filtered_orient(c.at, cut);
+    const Sign quick = filtered_orient(c.at(), cut);
     if (quick != Sign::Zero) {
       ++decided;
       f(quick);
     } else {
-      f(orient(s, planes[c.p], planes[c.q], c.at, cut));
+      f(orient(s, planes[c.p], planes[c.q], c.at(), cut));
     }
   }
   predicate_counters().filtered += decided;
@@ -143,9 +143,9 @@ Side split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut
     const Corner& c = poly.corners[i];
     const Sign si = s[i], sj = s[(i + 1) % k];
     if (si != Sign::Positive)  // corner kept in the negative part
-      negative.corners.push_back(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, c.p, c.q, c.at} : c);
+      negative.corners.push_back(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, c.p, c.q, c.at()} : c);
     if (si != Sign::Negative)
-      positive.corners.push_back(si == Sign::Zero && sj == Sign::Negative ? Corner{cut_opposite, c.p, c.q, c.at} : c);
+      positive.corners.push_back(si == Sign::Zero && sj == Sign::Negative ? Corner{cut_opposite, c.p, c.q, c.at()} : c);
     const bool crosses = (si == Sign::Negative && sj == Sign::Positive) ||
                          (si == Sign::Positive && sj == Sign::Negative);
     if (!crosses) continue;
@@ -190,11 +190,11 @@ Side clip_to_negative_exact(const PlaneTable& planes, const ConvexPolygon& in, C
   const Plane& support = planes[in.support];
   for (std::size_t i = 0; i < k; ++i) {
     const Corner& corner = in.corners[i];
-    Sign g = filtered_orient(corner.at, c);
+    Sign g = filtered_orient(corner.at(), c);
     if (g != Sign::Zero)
       ++decided;
     else
-      g = orient(support, planes[corner.p], planes[corner.q], corner.at, c);
+      g = orient(support, planes[corner.p], planes[corner.q], corner.at(), c);
     s[i] = g;
     neg |= g == Sign::Negative;
     pos |= g == Sign::Positive;
@@ -210,16 +210,16 @@ Side clip_to_negative_exact(const PlaneTable& planes, const ConvexPolygon& in, C
   bool valid = true;
   auto push = [&](const Corner& corner) {
     out.corners.push_back(corner);
-    if (corner.at.err < 0)
+    if (corner.at().err < 0)
       valid = false;
     else
-      extend(b, corner.at);
+      extend(b, corner.at());
   };
   for (std::size_t i = 0; i < k; ++i) {
     const Corner& corner = in.corners[i];
     const Sign si = s[i], sj = s[i + 1 == k ? 0 : i + 1];
     if (si != Sign::Positive)
-      push(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, corner.p, corner.q, corner.at} : corner);
+      push(si == Sign::Zero && sj == Sign::Positive ? Corner{cut, corner.p, corner.q, corner.at()} : corner);
     if (si == Sign::Negative ? sj == Sign::Positive : (si == Sign::Positive && sj == Sign::Negative)) {
       const ApproxPoint at = approximate_vertex(support, planes[corner.edge], c);
       push(si == Sign::Negative ? Corner{cut, corner.edge, cut, at} : Corner{corner.edge, corner.edge, cut, at});
@@ -233,7 +233,7 @@ Side clip_to_negative_exact(const PlaneTable& planes, const ConvexPolygon& in, C
 std::vector<Eigen::Vector3d> approximate_corners(const ConvexPolygon& poly) {
   std::vector<Eigen::Vector3d> out;
   out.reserve(poly.corners.size());
-  for (const Corner& c : poly.corners) out.emplace_back(c.at.x, c.at.y, c.at.z);
+  for (const Corner& c : poly.corners) out.emplace_back(c.at().x, c.at().y, c.at().z);
   return out;
 }
 

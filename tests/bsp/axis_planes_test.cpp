@@ -47,12 +47,12 @@ TEST(AxisPlanes, CirclesSplitAtTheirVerticesOnTheAxes) {
       for (const kernel::Corner& c : f.polygon.corners) {
         const kernel::Plane& sp = s.planes()[f.polygon.support];
         for (const kernel::Plane* axis : {&kY0, &kX0}) {
-          const double value = axis == &kY0 ? c.at.y : c.at.x;
+          const double value = axis == &kY0 ? c.at().y : c.at().x;
           if (std::abs(value) > 1.0) continue;  // grid units: other corners are far from the plane
-          const kernel::Sign g = kernel::orient(sp, s.planes()[c.p], s.planes()[c.q], c.at, *axis);
+          const kernel::Sign g = kernel::orient(sp, s.planes()[c.p], s.planes()[c.q], c.at(), *axis);
           const bool split = axis == &kY0 ? n % 2 == 0 : n % 4 == 0;
           if (split) {
-            EXPECT_EQ(g, kernel::Sign::Zero) << c.at.x << " " << c.at.y;
+            EXPECT_EQ(g, kernel::Sign::Zero) << c.at().x << " " << c.at().y;
           }
         }
       }

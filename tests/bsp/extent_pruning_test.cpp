@@ -221,8 +221,8 @@ TEST(ExtentPruning, SidesOfManyPlanesMatchEveryCornerExactly) {
         bool neg = false, pos = false;
         for (const BoundaryFragment& f : fa)
           for (const kernel::Corner& c : f.polygon.corners) {
-            const kernel::Sign g = kernel::orient(s.arena.planes[f.polygon.support], s.arena.planes[c.p],
-                                                  s.arena.planes[c.q], c.at, h);
+            const kernel::Sign g =
+                kernel::orient(s.arena.planes[f.polygon.support], s.arena.planes[c.p], s.arena.planes[c.q], c.at(), h);
             neg |= g == kernel::Sign::Negative;
             pos |= g == kernel::Sign::Positive;
           }

@@ -89,9 +89,13 @@ TEST(RingBoundary, CarriedCornersAreTheKernelsApproximations) {
       for (std::size_t i = 0; i < c.size(); ++i) {
         EXPECT_EQ(c[i].edge, c[i].q);
         EXPECT_EQ(c[i].q, c[(i + 1) % c.size()].p);
+        // As a corner keeps it: the kernel's approximation, its error bound a float rounded up.
         const ApproxPoint expected =
-            kernel::approximate_vertex(solid.planes()[f.polygon.support], solid.planes()[c[i].p], solid.planes()[c[i].q]);
-        ASSERT_TRUE(same_bits(c[i].at, expected)) << s << " corner " << i;
+            kernel::Corner(0, 0, 0,
+                           kernel::approximate_vertex(solid.planes()[f.polygon.support], solid.planes()[c[i].p],
+                                                      solid.planes()[c[i].q]))
+                .at();
+        ASSERT_TRUE(same_bits(c[i].at(), expected)) << s << " corner " << i;
         ++corners;
       }
     }

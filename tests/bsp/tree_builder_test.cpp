@@ -218,8 +218,8 @@ int expect_same_tree(const Built& ref, const Solid& solid) {
         EXPECT_EQ(ref.planes[ca.edge], s.planes[cb.edge]);
         EXPECT_EQ(ref.planes[ca.p], s.planes[cb.p]);
         EXPECT_EQ(ref.planes[ca.q], s.planes[cb.q]);
-        EXPECT_TRUE(same_bits(ca.at.x, cb.at.x) && same_bits(ca.at.y, cb.at.y) && same_bits(ca.at.z, cb.at.z) &&
-                    same_bits(ca.at.err, cb.at.err));
+        EXPECT_TRUE(same_bits(ca.at().x, cb.at().x) && same_bits(ca.at().y, cb.at().y) &&
+                    same_bits(ca.at().z, cb.at().z) && same_bits(ca.at().err, cb.at().err));
       }
     }
     if (::testing::Test::HasFailure()) return compared;  // one report, not thousands

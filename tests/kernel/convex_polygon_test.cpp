@@ -41,10 +41,8 @@ TEST(ConvexPolygon, SplitIsExactAndPartsAddUp) {
   ASSERT_EQ(r.side, Side::Both);
   EXPECT_NEAR(area(r.negative) + area(r.positive), area(p), 1e-6 * area(p));
   // Every corner of the parts lies on the right side (or on the cut), decided exactly.
-  for (const auto& c : r.negative.corners)
-    EXPECT_NE(orient(t[s], t[c.p], t[c.q], c.at, t[cut]), Sign::Positive);
-  for (const auto& c : r.positive.corners)
-    EXPECT_NE(orient(t[s], t[c.p], t[c.q], c.at, t[cut]), Sign::Negative);
+  for (const auto& c : r.negative.corners) EXPECT_NE(orient(t[s], t[c.p], t[c.q], c.at(), t[cut]), Sign::Positive);
+  for (const auto& c : r.positive.corners) EXPECT_NE(orient(t[s], t[c.p], t[c.q], c.at(), t[cut]), Sign::Negative);
   // Splitting again by the same plane puts each part on one side; by the support: On.
   EXPECT_EQ(classify(t, r.negative, cut), Side::Negative);
   EXPECT_EQ(classify(t, r.positive, cut), Side::Positive);
@@ -63,12 +61,29 @@ TEST(ConvexPolygon, CutThroughTwoCornersMakesTwoTriangles) {
   EXPECT_DOUBLE_EQ(area(r.negative), area(r.positive));
 }
 
+// A corner keeps its approximation's error bound as a float no smaller than the double one
+// (and at most one float step above it), and the coordinates as they were.
+TEST(Corner, KeepsItsErrorBoundRoundedUp) {
+  for (const double err : {0.0, 1e-300, 3.0e-12, 0.1, 1.0 / 3.0, 12345.678, 1e30}) {
+    const Corner c(1, 2, 3, ApproxPoint{1.0 / 3.0, -2.5, 1e9 + 0.25, err});
+    const ApproxPoint at = c.at();
+    EXPECT_GE(at.err, err) << err;
+    EXPECT_LE(at.err, err == 0 ? 0.0 : std::max(err * (1 + std::ldexp(1.0, -22)), 1.5e-45)) << err;
+    EXPECT_EQ(at.x, 1.0 / 3.0);
+    EXPECT_EQ(at.y, -2.5);
+    EXPECT_EQ(at.z, 1e9 + 0.25);
+  }
+  EXPECT_LT(Corner(0, 0, 0, ApproxPoint{0, 0, 0, -1}).at().err, 0);  // no approximation stays so
+  EXPECT_EQ(Corner(0, 0, 0, ApproxPoint{0, 0, 0, 1e300}).at().err, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(sizeof(Corner), 40u);
+}
 
 bool same_corners(const ConvexPolygon& a, const ConvexPolygon& b) {
   if (a.support != b.support || a.corners.size() != b.corners.size()) return false;
   for (std::size_t i = 0; i < a.corners.size(); ++i) {
     const Corner &x = a.corners[i], &y = b.corners[i];
-    if (x.edge != y.edge || x.p != y.p || x.q != y.q || std::memcmp(&x.at, &y.at, sizeof x.at) != 0) return false;
+    const ApproxPoint u = x.at(), v = y.at();
+    if (x.edge != y.edge || x.p != y.p || x.q != y.q || std::memcmp(&u, &v, sizeof u) != 0) return false;
   }
   return true;
 }
@@ -138,14 +153,14 @@ TEST(ConvexPolygon, QuickWorldCornersBoundTheExactVertex) {
       const HomogeneousPoint h = exact_vertex(t[s], t[c.p], t[c.q]);
       // Exact rational comparison: |X / W - x| <= err for each coordinate.
       using boost::multiprecision::cpp_rational;
-      const double xs[3] = {c.at.x, c.at.y, c.at.z};
+      const double xs[3] = {c.at().x, c.at().y, c.at().z};
       const Int256* X[3] = {&h.x, &h.y, &h.z};
       for (int i = 0; i < 3; ++i) {
         const cpp_rational exact(cpp_rational(boost::multiprecision::cpp_int(*X[i])) /
                                  cpp_rational(boost::multiprecision::cpp_int(h.w)));
-        EXPECT_LE(abs(exact - cpp_rational(xs[i])), cpp_rational(c.at.err)) << "corner off its bound";
+        EXPECT_LE(abs(exact - cpp_rational(xs[i])), cpp_rational(c.at().err)) << "corner off its bound";
       }
-      EXPECT_GE(c.at.err, 0);
+      EXPECT_GE(c.at().err, 0);
     }
     refresh_world_corners(t, quick);
     EXPECT_TRUE(same_corners(quick, usual));

@@ -96,7 +96,7 @@ class CornerMerger {
     p.out = out;
     p.support = support;
     p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
-    const ApproxPoint& a = c.at;
+    const ApproxPoint a = c.at();
     constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
     constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
     std::int64_t lo[3], hi[3];
@@ -201,7 +201,7 @@ class CornerMerger {
   }
 
   int new_vertex(std::int32_t support, const kernel::Corner& c) {
-    v_.at.push_back(c.at);
+    v_.at.push_back(c.at());
     v_.triple.push_back({support, c.p, c.q});
     vertex_ids_.push_back({key_of(support), key_of(c.p), key_of(c.q)});
     v_.first_class.push_back(-1);
@@ -225,7 +225,7 @@ class CornerMerger {
   // of vertex u's triple (planes shared with the corner need no test; the others by the exact
   // zero test of vertex_equality.hpp). Disjoint error boxes are different points (a filter only).
   bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, int u) const {
-    const ApproxPoint& pa = c.at;
+    const ApproxPoint pa = c.at();
     const ApproxPoint& pb = v_.at[std::size_t(u)];
     if (pa.err >= 0 && pb.err >= 0) {
       const double tol = pa.err + pb.err;

@@ -99,7 +99,7 @@ bool inside_capsule(const kernel::ApproxPoint& at, const Polytope& q) {
 bool inside_capsule(const ConvexPolygon& piece, const Polytope& q) {
   if (q.radius <= 0) return false;
   for (const kernel::Corner& corner : piece.corners)
-    if (!inside_capsule(corner.at, q)) return false;
+    if (!inside_capsule(corner.at(), q)) return false;
   return true;
 }
 
@@ -329,8 +329,8 @@ Side exact_side(const kernel::PlaneTable& planes, const ConvexPolygon& poly, std
   const Plane& cut = planes[plane];
   bool neg = false, pos = false;
   for (const kernel::Corner& c : poly.corners) {
-    kernel::Sign g = kernel::filtered_orient(c.at, cut);
-    if (g == kernel::Sign::Zero) g = kernel::orient(s, planes[c.p], planes[c.q], c.at, cut);
+    kernel::Sign g = kernel::filtered_orient(c.at(), cut);
+    if (g == kernel::Sign::Zero) g = kernel::orient(s, planes[c.p], planes[c.q], c.at(), cut);
     neg |= g == kernel::Sign::Negative;
     pos |= g == kernel::Sign::Positive;
     if (neg && pos) return Side::Both;

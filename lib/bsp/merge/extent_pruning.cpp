@@ -107,8 +107,8 @@ void add_corner_signs(const kernel::PlaneTable& planes, const BoundaryFragment& 
   const kernel::ConvexPolygon& poly = fragment.polygon;
   const kernel::Plane& support = planes[poly.support];
   for (const kernel::Corner& c : poly.corners) {
-    Sign g = kernel::filtered_orient(c.at, h);
-    if (g == Sign::Zero) g = kernel::orient(support, planes[c.p], planes[c.q], c.at, h);
+    Sign g = kernel::filtered_orient(c.at(), h);
+    if (g == Sign::Zero) g = kernel::orient(support, planes[c.p], planes[c.q], c.at(), h);
     seen.add(g == Sign::Negative ? Side::Negative : (g == Sign::Positive ? Side::Positive : Side::On));
     if (seen.both()) return;
   }
@@ -190,11 +190,11 @@ std::vector<kernel::ApproxPoint> witnesses(const FragmentList& faces, const Frag
     for (const std::size_t i : {lo[k], hi[k]}) {
       const kernel::Corner* best = nullptr;  // the fragment's corner furthest along the axis
       for (const kernel::Corner& c : faces[i].polygon.corners) {
-        const double v = k == 0 ? c.at.x : (k == 1 ? c.at.y : c.at.z);
-        const double b = best == nullptr ? 0 : (k == 0 ? best->at.x : (k == 1 ? best->at.y : best->at.z));
+        const double v = k == 0 ? c.at().x : (k == 1 ? c.at().y : c.at().z);
+        const double b = best == nullptr ? 0 : (k == 0 ? best->at().x : (k == 1 ? best->at().y : best->at().z));
         if (best == nullptr || (i == hi[k] ? v > b : v < b)) best = &c;
       }
-      if (best != nullptr && best->at.err >= 0) w.push_back(best->at);
+      if (best != nullptr && best->at().err >= 0) w.push_back(best->at());
     }
   return w;
 }

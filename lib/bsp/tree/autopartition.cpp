@@ -47,7 +47,7 @@ Side approximate_side(const PartitionPiece& p, const CornerBox& box, const kerne
   const double tolerance = 1e-9 * (std::fabs(a) + std::fabs(b) + std::fabs(c)) * (1.0 + std::fabs(box.lo[0]) + std::fabs(box.hi[0]));
   bool neg = false, pos = false;
   for (const kernel::Corner& k : p.polygon.corners) {
-    const double v = a * k.at.x + b * k.at.y + c * k.at.z + d;
+    const double v = a * k.at().x + b * k.at().y + c * k.at().z + d;
     neg |= v < -tolerance;
     pos |= v > tolerance;
   }
@@ -265,8 +265,8 @@ PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments,
         double vmin = 1e300, vmax = -1e300, err = 0;
         for (const std::int32_t id : pieces)
           for (const kernel::Corner& corner : pool[std::size_t(id)].polygon.corners) {
-            const double v = a * corner.at.x + b * corner.at.y + c * corner.at.z;
-            vmin = std::min(vmin, v), vmax = std::max(vmax, v), err = std::max(err, corner.at.err);
+            const double v = a * corner.at().x + b * corner.at().y + c * corner.at().z;
+            vmin = std::min(vmin, v), vmax = std::max(vmax, v), err = std::max(err, corner.at().err);
           }
         const double margin = (std::fabs(a) + std::fabs(b) + std::fabs(c)) * (1.0 + err) + 1e-12 * std::max(std::fabs(vmin), std::fabs(vmax));
         for (const double offset : {std::floor(vmin - margin), std::ceil(vmax + margin)}) {

@@ -75,7 +75,7 @@ std::uint64_t boundary_hash(const Solid& s) {
     h = mix(mix(mix(h, std::uint64_t(f.polygon.support)), f.flip ? 1 : 0), f.polygon.corners.size());
     for (const kernel::Corner& c : f.polygon.corners) {
       h = mix(mix(mix(h, std::uint64_t(c.edge)), std::uint64_t(c.p)), std::uint64_t(c.q));
-      for (const double v : {c.at.x, c.at.y, c.at.z, c.at.err}) h = mix(h, std::bit_cast<std::uint64_t>(v));
+      for (const double v : {c.at().x, c.at().y, c.at().z, c.at().err}) h = mix(h, std::bit_cast<std::uint64_t>(v));
     }
   }
   return h;
