@@ -37,9 +37,50 @@ PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
                           options.report);
 }
 
-// Measures of the assembled mesh: one implementation (compensated sums) for meshes and solids.
-double volume(const Solid& solid) { return mesh_volume(to_mesh(solid, {.clean = false})); }
-double surface_area(const Solid& solid) { return mesh_surface_area(to_mesh(solid, {.clean = false})); }
+namespace {
+
+// The solid's boundary fragments as polygons in world units, not assembled into a mesh (no
+// vertex merging, no T-junction or coplanar-face work: the measures need only a tiling of the
+// boundary, which the fragments are; solid.hpp). Corners are the exact vertices rounded as the
+// output rounds them (kernel::rounded_vertex), in reverse order on fragments that face their
+// plane's negative side. An import whose tree waits measures the triangles it was made from.
+PolygonSoup boundary_soup(const Solid& solid) {
+  PolygonSoup soup;
+  const Solid::BoundaryView view = solid.boundary_view();
+  const bool carried = view.fragments != nullptr && !view.fragments->empty();
+  if (!carried && is_leaf(solid.root())) return soup;
+  std::optional<bsp::detail::Fragments> extracted;
+  if (!carried) extracted = bsp::detail::boundary_fragments(solid);
+  const FragmentList& fragments = carried ? *view.fragments : extracted->fragments;
+  const kernel::PlaneTable& planes = carried ? *view.planes : extracted->planes;
+  soup.offsets.reserve(fragments.size() + 1);
+  soup.points.reserve(4 * fragments.size());
+  const kernel::Grid& grid = solid.grid();
+  for (const BoundaryFragment& f : fragments) {
+    const auto& corners = f.polygon.corners;
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const kernel::Corner& c = corners[f.flip ? corners.size() - 1 - k : k];
+      soup.points.push_back(
+          grid.to_world(kernel::rounded_vertex(planes[f.polygon.support], planes[c.p], planes[c.q], c.at())));
+    }
+    soup.offsets.push_back(soup.points.size());
+  }
+  return soup;
+}
+
+}  // namespace
+
+// Measures from the boundary fragments (one implementation, compensated sums, for meshes and
+// solids: mesh/mesh_measures.hpp), without assembling the output mesh.
+double volume(const Solid& solid) {
+  if (const PolygonMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid)) return mesh_volume(*source);
+  return soup_volume(boundary_soup(solid));
+}
+double surface_area(const Solid& solid) {
+  if (const PolygonMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid))
+    return mesh_surface_area(*source);
+  return soup_surface_area(boundary_soup(solid));
+}
 Eigen::AlignedBox3d bounding_box(const Solid& solid) { return mesh_bounding_box(to_mesh(solid, {.clean = false})); }
 
 }  // namespace sculpt

@@ -36,35 +36,74 @@ struct UnionFind {
 
 }  // namespace
 
-double mesh_volume(const PolygonMesh& mesh) {
-  check_face_indices(mesh, "mesh_volume");
-  const Eigen::AlignedBox3d box = mesh_bounding_box(mesh);
+namespace {
+
+// The faces of a mesh, or of a soup, as point cycles: face(i) calls f(point k) for k < size(i).
+struct MeshFaces {
+  const PolygonMesh& mesh;
+  [[nodiscard]] std::size_t count() const { return mesh.faces.size(); }
+  [[nodiscard]] std::size_t size(std::size_t i) const { return mesh.faces[i].size(); }
+  [[nodiscard]] const Eigen::Vector3d& point(std::size_t i, std::size_t k) const {
+    return mesh.vertices[std::size_t(mesh.faces[i][k])];
+  }
+};
+struct SoupFaces {
+  const PolygonSoup& soup;
+  [[nodiscard]] std::size_t count() const { return soup.offsets.size() - 1; }
+  [[nodiscard]] std::size_t size(std::size_t i) const { return soup.offsets[i + 1] - soup.offsets[i]; }
+  [[nodiscard]] const Eigen::Vector3d& point(std::size_t i, std::size_t k) const {
+    return soup.points[soup.offsets[i] + k];
+  }
+};
+
+// Fan tetrahedra (v0, vi, vi+1) against the box centre (reduces cancellation far from the origin).
+template <class Faces>
+double volume_of(const Faces& faces) {
+  Eigen::AlignedBox3d box;
+  for (std::size_t i = 0; i < faces.count(); ++i)
+    for (std::size_t k = 0; k < faces.size(i); ++k) box.extend(faces.point(i, k));
   if (box.isEmpty()) return 0;
-  const Eigen::Vector3d ref = box.center();  // reduces cancellation far from the origin
+  const Eigen::Vector3d ref = box.center();
   Sum sum;
-  for (const auto& f : mesh.faces) {
-    const Eigen::Vector3d a = mesh.vertices[f[0]] - ref;
-    for (size_t i = 1; i + 1 < f.size(); ++i) {
-      const Eigen::Vector3d b = mesh.vertices[f[i]] - ref;
-      const Eigen::Vector3d c = mesh.vertices[f[i + 1]] - ref;
+  for (std::size_t i = 0; i < faces.count(); ++i) {
+    const Eigen::Vector3d a = faces.point(i, 0) - ref;
+    for (std::size_t k = 1; k + 1 < faces.size(i); ++k) {
+      const Eigen::Vector3d b = faces.point(i, k) - ref;
+      const Eigen::Vector3d c = faces.point(i, k + 1) - ref;
       sum.add(a.dot(b.cross(c)));
     }
   }
   return sum.value() / 6.0;
 }
 
-double mesh_surface_area(const PolygonMesh& mesh) {
-  check_face_indices(mesh, "mesh_surface_area");
+// Half the norm of each face's fan normal.
+template <class Faces>
+double area_of(const Faces& faces) {
   Sum sum;
-  for (const auto& f : mesh.faces) {
-    const Eigen::Vector3d o = mesh.vertices[f[0]];
+  for (std::size_t i = 0; i < faces.count(); ++i) {
+    if (faces.size(i) == 0) continue;
+    const Eigen::Vector3d o = faces.point(i, 0);
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
-    for (size_t i = 1; i + 1 < f.size(); ++i)
-      n += (mesh.vertices[f[i]] - o).cross(mesh.vertices[f[i + 1]] - o);
+    for (std::size_t k = 1; k + 1 < faces.size(i); ++k) n += (faces.point(i, k) - o).cross(faces.point(i, k + 1) - o);
     sum.add(0.5 * n.norm());
   }
   return sum.value();
 }
+
+}  // namespace
+
+double mesh_volume(const PolygonMesh& mesh) {
+  check_face_indices(mesh, "mesh_volume");
+  return volume_of(MeshFaces{mesh});
+}
+
+double mesh_surface_area(const PolygonMesh& mesh) {
+  check_face_indices(mesh, "mesh_surface_area");
+  return area_of(MeshFaces{mesh});
+}
+
+double soup_volume(const PolygonSoup& soup) { return volume_of(SoupFaces{soup}); }
+double soup_surface_area(const PolygonSoup& soup) { return area_of(SoupFaces{soup}); }
 
 Eigen::AlignedBox3d mesh_bounding_box(const PolygonMesh& mesh) {
   check_face_indices(mesh, "mesh_bounding_box");

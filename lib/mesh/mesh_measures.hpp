@@ -18,6 +18,18 @@ double mesh_volume(const PolygonMesh& mesh);
 /// Sum of face areas (half the norm of each face's Newell normal; exact for planar faces).
 double mesh_surface_area(const PolygonMesh& mesh);
 
+/// Polygons given by their points, each its own (no vertex shared): polygon i is points
+/// [offsets[i], offsets[i + 1]). For measures of a surface that is tiled but not assembled (a
+/// solid's boundary fragments: bsp/boundary.hpp).
+struct PolygonSoup {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::size_t> offsets{0};
+};
+/// mesh_volume and mesh_surface_area of the mesh whose faces are the soup's polygons: the
+/// divergence theorem needs only a tiling of the closed surface, not shared vertices.
+double soup_volume(const PolygonSoup& soup);
+double soup_surface_area(const PolygonSoup& soup);
+
 /// Axis-aligned bounding box of the vertices referenced by faces (empty box if none).
 Eigen::AlignedBox3d mesh_bounding_box(const PolygonMesh& mesh);
 
