@@ -15,6 +15,7 @@
 #include "bsp/transform.hpp"
 #include "bsp/tree/fragment_boxes.hpp"
 #include "bsp/tree/solid_access.hpp"
+#include "mesh/mesh_measures.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/solid_checks.hpp"
 
@@ -301,6 +302,12 @@ TEST(BoundaryMerge, RandomChainsOfMixedSolids) {
     }
     SCOPED_TRACE(testing::Message() << "trial " << trial);
     EXPECT_TRUE(CarriedMatchesExtracted(acc));
+    // volume and surface_area sum over the fragments; the assembled mesh is another tiling of the
+    // same surface with the same rounded vertices (measured by the tests' own reference sums).
+    const PolygonMesh assembled = to_mesh(acc, {.clean = false});
+    const double v = double(checks::reference_signed_volume(assembled));
+    EXPECT_NEAR(volume(acc), v, 1e-12 * std::max(1.0, std::fabs(v)));
+    EXPECT_NEAR(surface_area(acc), mesh_surface_area(assembled), 1e-12 * std::max(1.0, mesh_surface_area(assembled)));
   }
 }
 
