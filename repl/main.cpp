@@ -62,6 +62,8 @@ constexpr const char* kUsage =
     "                  8418 to 8426; 0: any free port); :view in a session uses it too\n"
     "  --help          show this help\n"
     "  --version       show the version\n"
+    "Environment: SCULPT_THREADS as --threads; SCULPT_HUGE_PAGES=0 keeps the heap on 4 KiB\n"
+    "pages (by default it uses transparent huge pages where the system offers them).\n"
     "Exit status: 0 on success, 1 on a script error, 2 on a usage error, 130 when Ctrl-C\n"
     "stopped the scripts (the statement running stops within a fraction of a second; a\n"
     "second Ctrl-C ends the process at once).\n";
@@ -169,6 +171,7 @@ int export_result(const LastSolid& last, const Interpreter& interpreter, const s
 }  // namespace
 
 int main(int argc, char** argv) {
+  sculpt::use_huge_pages(argv);  // first: it may start the process again (base/memory_policy.hpp)
   sculpt::keep_freed_memory();  // strokes reuse what the previous one freed (base/memory_policy.hpp)
   std::vector<Job> jobs;
   std::vector<std::pair<std::string, std::string>> definitions;

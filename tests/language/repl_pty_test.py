@@ -174,7 +174,29 @@ def main():
     status = t.close()
     assert status == 0, "exit status %d" % status
     memory_budget(home)
+    huge_pages(home)
     print("REPL pseudo-terminal checks passed")
+
+
+def huge_pages(home):
+    """The executable backs its heap with transparent huge pages where the system offers them: it
+    runs itself again with glibc.malloc.hugetlb=1 (base/memory_policy.hpp), keeping its process
+    id; SCULPT_HUGE_PAGES=0 keeps ordinary pages. Not where THP is off or in the sanitizer build."""
+    try:
+        mode = open("/sys/kernel/mm/transparent_hugepage/enabled").read()
+    except OSError:
+        mode = "[never]"
+    sanitized = "asan" in subprocess.run(["ldd", SCULPT], capture_output=True, text=True).stdout
+    for setting, expected in ((None, "[never]" not in mode and not sanitized), ("0", False)):
+        if setting is not None:
+            os.environ["SCULPT_HUGE_PAGES"] = setting
+        t = Terminal(home)
+        t.wait_prompt()
+        environment = open("/proc/%d/environ" % t.pid, "rb").read().decode("utf-8", "replace")
+        assert ("glibc.malloc.hugetlb=1" in environment) == expected, (setting, mode, sanitized, environment)
+        t.type(":quit\r")
+        assert t.close() == 0
+        os.environ.pop("SCULPT_HUGE_PAGES", None)
 
 
 def memory_budget(home):

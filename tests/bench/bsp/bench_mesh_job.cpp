@@ -65,7 +65,8 @@ int main(int argc, char** argv) {
       return usage();
   }
   if (file.empty() == (n == 0)) return usage();
-  keep_freed_memory();  // as the sculpt executable does (base/memory_policy.hpp)
+  use_huge_pages(argv);  // as the sculpt executable does (base/memory_policy.hpp); may restart
+  keep_freed_memory();
   std::optional<ThreadLimit> limit;
   if (threads > 0) limit.emplace(threads);
   const int used = thread_count();
