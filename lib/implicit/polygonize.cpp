@@ -193,6 +193,19 @@ class Polygonizer {
     return locked;
   }
 
+  /// For each mesh vertex, the box sides it lies on (detail::SimplifyOptions::box_sides).
+  std::vector<std::uint8_t> box_sides() const {
+    std::vector<std::uint8_t> sides(result_.mesh.vertices.size(), 0);
+    for (std::size_t v = 0; v < sides.size(); ++v) {
+      const Vec& p = result_.mesh.vertices[v];
+      for (int a = 0; a < 3; ++a) {
+        if (p[a] == o_.box.lo[a]) sides[v] |= std::uint8_t(1 << (2 * a));
+        if (p[a] == o_.box.hi[a]) sides[v] |= std::uint8_t(1 << (2 * a + 1));
+      }
+    }
+    return sides;
+  }
+
   // ---- geometry of the lattice -------------------------------------------------------------
   [[nodiscard]] std::int64_t step(int level) const { return std::int64_t(1) << (lmax_ + 1 - level); }
   [[nodiscard]] Vec world(std::int64_t x, std::int64_t y, std::int64_t z) const {
@@ -460,7 +473,8 @@ class Polygonizer {
   void simplify() {
     const std::vector<bool> locked = locked_vertices();
     detail::SimplifyResult s = detail::simplify(
-        result_.mesh, locked, f_, {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height});
+        result_.mesh, locked, f_,
+        {.tolerance = kSimplifyFraction * o_.tolerance, .min_height = o_.min_height, .box_sides = box_sides()});
     const bool accept = o_.accept_simplified ? o_.accept_simplified(s.mesh)
                                              : find_self_intersections(s.mesh, {.max_pairs = 1}).empty();
     if (accept) {
@@ -545,8 +559,10 @@ class Polygonizer {
       }
       if (ft == 0.0) break;
     }
-    // Keep the vertex off the lattice point (a vertex there would be shared by several edges).
-    const double t = std::clamp(0.5 * (ta + tb), 1e-7, 1.0 - 1e-7);
+    // Keep the vertex off the lattice point (a vertex there would be shared by several edges),
+    // and at least min_root_gap from it where the edge allows (at most a quarter of the edge).
+    const double gap = std::min(std::max(1e-7, o_.min_root_gap / (b - a).norm()), 0.25);
+    const double t = std::clamp(0.5 * (ta + tb), gap, 1.0 - gap);
     const int id = static_cast<int>(result_.mesh.vertices.size());
     result_.mesh.vertices.push_back(a + t * (b - a));
     *roots_.try_emplace(edge).first = id;

@@ -53,6 +53,12 @@ struct PolygonizeOptions {
   /// away where the checks allow (marching tetrahedra makes slivers where the surface passes
   /// near a lattice point; snapping the vertices to a grid could turn them over).
   double min_height = 0.0;
+  /// A vertex on a lattice edge is kept at least this far from the edge's ends (at most a quarter
+  /// of the edge): where the surface passes within it of a lattice point, the vertex moves along
+  /// the edge by up to this much. A caller that snaps the vertices to a grid gives a few grid
+  /// steps, so that no vertex snaps onto a lattice point (a box corner of the closing faces, or
+  /// the vertex on another edge from that point). 0: 1e-7 of the edge.
+  double min_root_gap = 0.0;
   /// With simplify: the test a simplified mesh must pass to be kept, instead of the exact test for
   /// self-intersections (a simplified mesh that fails it is dropped, as one that intersects itself
   /// would be). For a caller that builds its solid from a changed copy of the mesh and must test

@@ -156,6 +156,9 @@ constexpr long long kMaxCells = 50'000'000;
 /// tol must be at least this many grid steps of the exact kernel: snapping moves each vertex by
 /// up to half a step's diagonal (0.87 steps).
 constexpr double kMinToleranceSteps = 4.0;
+/// Mesh vertices stay this many grid steps from the lattice points of the mesher's cells, so that
+/// snapping cannot put one on a lattice point (a closing face's corner) or on its neighbour.
+constexpr double kMinRootGapSteps = 2.0;
 /// Triangles less high than this many grid steps are collapsed away by the mesher where it can.
 constexpr double kMinHeightSteps = 8.0;
 
@@ -167,6 +170,21 @@ constexpr double kMinHeightSteps = 8.0;
 /// at 15-20 % more nodes. Zero-area triangles after snapping are left out (they bound nothing).
 FromMeshOptions from_mesh_options(const kernel::Grid& grid) {
   return {.candidates = 3, .sample = 24, .auxiliary_cost = 0.2, .skip_degenerate_faces = true, .grid = grid};
+}
+
+/// What helps when the snapped mesh's faces meet: vertices moved less, by a finer grid, where the
+/// box fits one (a larger or smaller tol only moves the mesh's vertices elsewhere).
+std::string snapping_advice(const implicit::Box& box, const kernel::Grid& grid) {
+  const double extent = std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff());
+  const std::optional<kernel::Grid> finest = kernel::Grid::fitting(extent);
+  if (!finest || finest->shift() <= grid.shift()) {
+    return "the box needs the whole range of this grid, so no finer grid holds it: a smaller box, or a function "
+           "without features that small";
+  }
+  const int shift = std::min(finest->shift(), grid.shift() + 8);  // 256 times finer at most
+  return "a finer grid moves the vertices less: grid(pow(2, -" + std::to_string(shift) +
+         ")) before implicit (its range, " +
+         format_number(kernel::Grid::from_step(std::ldexp(1.0, -shift)).max_world()) + ", holds the box)";
 }
 
 /// implicit(f, box, tol): the solid {f <= 0} inside the box, meshed by implicit::polygonize and
@@ -192,6 +210,7 @@ Value implicit_solid(const Arguments& args) {
     args.fail("tol", "tol=" + format_number(options.tolerance) + " is larger than the box diagonal");
   // Slivers below a few grid steps could turn over when the vertices are snapped to the grid.
   options.min_height = kMinHeightSteps * grid.step();
+  options.min_root_gap = kMinRootGapSteps * grid.step();
   options.max_cells = static_cast<long>(args.integer("cells"));
   // The solid is cut from the mesh with its vertices snapped to the kernel's grid (from_mesh), so
   // that copy is what must not intersect itself: polygonize tests it instead of the simplified
@@ -232,7 +251,7 @@ Value implicit_solid(const Arguments& args) {
   if (!r.accepted || !snapped) {
     snapped = std::make_shared<PolygonMesh>(snapped_to_grid(r.mesh, grid));
     if (const std::string e = snapped_self_intersection(r.mesh, *snapped, grid); !e.empty()) {
-      args.fail("the solid's mesh: " + e + "; raise tol");
+      args.fail("the solid's mesh: " + e + "; " + snapping_advice(options.box, grid));
     }
   }
   // from_mesh is given the mesh before snapping: it snaps it the same way and checks that no

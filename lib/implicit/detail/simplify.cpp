@@ -149,6 +149,14 @@ class Simplifier {
   /// collapse keeps it one) a vertex has as many neighbours as triangles around it.
   [[nodiscard]] int degree(int u) const { return int(incident_[u].size()); }
 
+  /// A new edge (a, b) would lie in a face of the box (SimplifyOptions::box_sides). The mesh's
+  /// edges there are the surface's trace on the box, which bounds the closing triangles; a new
+  /// one would cut across them (and a triangle with three vertices on one side would lie on them).
+  [[nodiscard]] bool on_one_box_side(int a, int b) const {
+    const auto& sides = o_.box_sides;
+    return !sides.empty() && (sides[std::size_t(a)] & sides[std::size_t(b)]) != 0;
+  }
+
   [[nodiscard]] Vec normal(const std::array<Vec, 3>& p) const { return (p[1] - p[0]).cross(p[2] - p[0]); }
 
   /// First-order distance of p from f = 0; infinite where it cannot be told.
@@ -205,6 +213,7 @@ class Simplifier {
     if (std::find(nc.begin(), nc.end(), d) != nc.end()) return false;  // edge cd exists already
     if (neighbours(a).size() <= 3 || neighbours(b).size() <= 3) return false;
     const std::array<std::array<int, 3>, 2> fresh = {{{c, a, d}, {d, b, c}}};
+    if (on_one_box_side(c, d)) return false;
     const double before = std::min(height(t), height(n));
     std::array<Vec, 2> normals;
     for (int k = 0; k < 2; ++k) {
@@ -269,6 +278,9 @@ class Simplifier {
       if (t == shared[0] || t == shared[1]) continue;
       const auto& ft = faces_[t];
       const int k = ft[0] == u ? 0 : ft[1] == u ? 1 : 2;  // u's corner; the others stay
+      // new edges from v (those to the opposite vertices exist already)
+      for (const int w : {ft[(k + 1) % 3], ft[(k + 2) % 3]})
+        if (w != opposite[0] && w != opposite[1] && on_one_box_side(v, w)) return false;
       const Vec& b = m_.vertices[ft[(k + 1) % 3]];
       const Vec& c = m_.vertices[ft[(k + 2) % 3]];
       const Vec n0 = (b - pu).cross(c - pu), n1 = (b - pv).cross(c - pv);

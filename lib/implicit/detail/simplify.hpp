@@ -8,6 +8,7 @@
 /// the midpoints of its new edges) and passes within it of the removed vertex. Vertices on the
 /// box (`locked`) are kept.
 
+#include <cstdint>
 #include <vector>
 
 #include "implicit/expression.hpp"
@@ -27,6 +28,10 @@ struct SimplifyOptions {
   /// try had failed on the topological checks (link condition, degrees), which skips only tries
   /// that would fail again; the result is the same (tests compare both), the work less.
   bool retry_all = false;
+  /// For each vertex, the sides of the box it lies on (bit 2 axis + (0: lo, 1: hi)). A triangle
+  /// made by a collapse or a flip whose three vertices share a side would lie in that face of the
+  /// box, over the triangles that close the solid there: such a change is refused. Empty: none.
+  std::vector<std::uint8_t> box_sides = {};
 };
 
 struct SimplifyResult {
