@@ -22,7 +22,11 @@
 //             along circle(n), circle(r, n) or ellipse(a, b, n), n in 3 .. 24
 //   import    of an earlier value exported to .off/.obj/.ply/.stl (export then import), or of a
 //             small closed mesh the harness writes: a tetrahedron or an octahedron with perturbed
-//             vertices (dyadic or not)
+//             vertices (dyadic or not), or of two such meshes in one file, the second possibly
+//             inside out: they may cross, and import takes where the winding number is positive
+//   touching  an earlier value | a box on the outside of its bounding box: the faces coplanar,
+//             or touching along an edge or at a corner (on the snapped extreme vertices, so a
+//             cylinder's or cone's vertex can lie on the box's face)
 //
 // Invariants (each solid; docs/kernel.md for the bounds):
 //   - to_mesh is closed and consistently oriented: every edge once in each direction, every vertex
@@ -40,6 +44,9 @@
 //     snapped profile and path (exact polytope, 1e-9)
 //   - import of an exported solid: volume within area x grid step (non-grid vertices snap);
 //     import of a harness mesh: the signed volume of its snapped vertices (1e-9)
+//   - import of two crossing shells a, b in one file: the volume of a | b (b inside out: a - b)
+//     made from the shells imported one by one (1e-9; winding numbers add)
+//   - a box touching a solid's bounding box from outside: V(a | box) = V(a) + V(box) (1e-9)
 // Errors: a ScriptError carrying a typed library error (invalid input, geometry error, out of
 // range) is an expected outcome; any other error text (a std::logic_error, say) is a finding, as
 // is an export/import round trip refused as "not a closed manifold".
@@ -458,13 +465,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ++known.programs;
   for (int op = 0; op < kMaxOps && !in.done(); ++op) {
     const std::string name = "v" + std::to_string(op);
-    const int code = in.u8() % 12;
+    const int code = in.u8() % 14;
     const int count = static_cast<int>(prog.names.size());
     auto pick = [&]() { return static_cast<int>(in.u8() % std::max(count, 1)); };
     std::string expr;
     std::function<void(const Facts&)> check_op = [](const Facts&) {};
     // Operations on earlier values fall back to a box when there is none yet.
-    const bool needs_operand = (code >= 3 && code <= 8) || code == 10;
+    const bool needs_operand = (code >= 3 && code <= 8) || code == 10 || code == 13;
     const int kind = needs_operand && count == 0 ? 0 : code;
     switch (kind) {
       case 0: {  // box
@@ -646,6 +653,89 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         check_op = [&prog, &fa, name](const Facts& f) {
           check_near(prog.script, name + ": volume after export and import", f.volume, fa.volume,
                      2 * fa.area * kStep + 1e-9 * fa.volume);
+        };
+        break;
+      }
+      case 12: {  // import two small closed meshes in one file: they may cross (winding import)
+        PolygonMesh a = small_mesh(in), b = small_mesh(in);
+        const bool inverted = in.u8() % 2 == 1;  // b's faces turned inside out
+        if (inverted)
+          for (auto& face : b.faces) std::reverse(face.begin(), face.end());
+        PolygonMesh both = a;
+        const int offset = static_cast<int>(a.vertices.size());
+        both.vertices.insert(both.vertices.end(), b.vertices.begin(), b.vertices.end());
+        for (auto face : b.faces) {
+          for (int& v : face) v += offset;
+          both.faces.push_back(face);
+        }
+        for (const auto& [file, mesh] : {std::pair{"a.off", &a}, std::pair{"b.off", &b}, std::pair{"ab.off", &both}}) {
+          write_off(*mesh, prog.dir + "/" + file);
+          std::ostringstream text;
+          text.precision(17);
+          text << "# " << file << ":";
+          for (const Vector3d& v : mesh->vertices) text << " [" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+          prog.script += text.str() + "\n";
+        }
+        // The reference, from the two shells imported one by one (b as written: inverted, it is
+        // refused, so it is read the right way round): the winding number of the pair is
+        // w_a + w_b (or w_a - w_b), positive exactly on a | b (or a - b).
+        if (inverted)
+          for (auto& face : b.faces) std::reverse(face.begin(), face.end());
+        write_off(b, prog.dir + "/b.off");
+        std::optional<std::string> error = prog.run("wa = import(\"" + prog.dir + "/a.off\", strict=true)");
+        if (!error) error = prog.run("wb = import(\"" + prog.dir + "/b.off\", strict=true)");
+        if (!error) error = prog.run(std::string("wr = wa ") + (inverted ? "-" : "|") + " wb");
+        if (error) {
+          check_error(prog, *error);
+          break;
+        }
+        const double expected = volume(*prog.solid("wr"));
+        expr = "import(\"" + prog.dir + "/ab.off\")";
+        check_op = [&prog, expected, name](const Facts& f) {
+          check_near(prog.script, name + ": winding import vs the shells' set operation", f.volume, expected,
+                     1e-9 * std::abs(expected) + 1e-12);
+        };
+        break;
+      }
+      case 13: {  // a box touching an earlier value's bounding box from outside: volumes add
+        const int a = pick();
+        const Facts& fa = facts[a];
+        if (fa.mesh.vertices.empty()) break;
+        Vector3d lo = fa.mesh.vertices[0], hi = lo;
+        for (const Vector3d& v : fa.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        const int axis = in.u8() % 3;
+        const bool upper = in.u8() % 2 == 1;
+        Vector3d blo, bhi;
+        for (int k = 0; k < 3; ++k) {
+          if (k == axis) {
+            const double e = extent(in);
+            blo[k] = upper ? hi[k] : lo[k] - e;
+            bhi[k] = upper ? hi[k] + e : lo[k];
+            continue;
+          }
+          // across the other axes: the same span (faces coplanar), half of it, or beyond a side
+          // (touching along an edge or at a corner)
+          switch (in.u8() % 4) {
+            case 0:
+              blo[k] = lo[k], bhi[k] = hi[k];
+              break;
+            case 1:
+              blo[k] = lo[k], bhi[k] = 0.5 * (lo[k] + hi[k]);
+              break;
+            case 2:
+              blo[k] = hi[k], bhi[k] = hi[k] + extent(in);
+              break;
+            default:
+              blo[k] = lo[k] - extent(in), bhi[k] = 0.5 * (lo[k] + hi[k]);
+              break;
+          }
+          if (!(bhi[k] > blo[k])) bhi[k] = blo[k] + 1.0 / 16;
+        }
+        const double box_volume = (bhi - blo).prod();
+        expr = prog.names[a] + " | box(" + vec(blo) + ", " + vec(bhi) + ")";
+        check_op = [&prog, &fa, box_volume, name](const Facts& f) {
+          check_near(prog.script, name + ": a box touching from outside adds its volume", f.volume,
+                     fa.volume + box_volume, 1e-9 * (fa.volume + box_volume));
         };
         break;
       }

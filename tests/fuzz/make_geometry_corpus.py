@@ -85,6 +85,25 @@ def small_mesh(kind, size, centre, offsets):
     return b + CLASSIFY
 
 
+def mesh_bytes(kind, size, centre, offsets):
+    b = bytes([kind, size]) + point(*centre)
+    for o in offsets:
+        b += b"".join(s8(c) for c in o)
+    return b
+
+
+def crossing_shells(a, b, inverted):  # two small meshes in one file (winding import)
+    return bytes([12]) + mesh_bytes(*a) + mesh_bytes(*b) + bytes([1 if inverted else 0]) + CLASSIFY
+
+
+def touching_box(a, axis, upper, spans):  # spans: for the two other axes, (mode, extent byte or None)
+    b = bytes([13, a, axis, 1 if upper else 0, 15])
+    for mode, ext in spans:
+        b += bytes([mode]) + (bytes([ext]) if ext is not None else b"")
+    return b + CLASSIFY
+
+
+OCTAHEDRON = [(0, 0, 0)] * 6
 SEEDS = {
     "boxes_union": box((0, 0, 0), [15, 15, 15]) + box((8, 8, 8), [15, 15, 15]) + setop(0, 1, 0),
     "boxes_shared_face": box((0, 0, 0), [15, 15, 15]) + box((16, 0, 0), [15, 15, 15]) + setop(0, 1, 0)
@@ -104,6 +123,10 @@ SEEDS = {
     "fine_features": bytes([0]) + coord(0, 3) + coord(0) + coord(0, -5) + bytes([15, 240, 15]) + CLASSIFY
     + box((0, 0, 0), [15, 15, 15]) + setop(0, 1, 1) + rotate(2, (3, -1, 2), 4, 100)
     + rotate(3, (0, 0, 1), 2, 1),
+    "crossing_shells": crossing_shells((1, 20, (0, 0, 0), OCTAHEDRON), (1, 20, (8, 4, 0), OCTAHEDRON), False)
+    + crossing_shells((3, 30, (0, 0, 0), OCTAHEDRON), (1, 10, (2, 0, 0), [(3, 1, -2)] * 6), True),
+    "touching_box_and_cylinder": cylinder(10, 20, 8) + touching_box(0, 0, True, [(0, None), (2, 15)])
+    + box((0, 0, 0), [15, 15, 15]) + touching_box(2, 2, False, [(3, 7), (1, None)]) + setop(1, 3, 0),
 }
 
 os.makedirs(OUT, exist_ok=True)
