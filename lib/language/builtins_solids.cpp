@@ -652,6 +652,10 @@ void register_solids(BuiltinTable& table) {
                    return solid_value(from_mesh(mesh, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
                  } catch (const GeometryError& e) {
                    snap_error = e.what();
+                 } catch (const InvalidInput& e) {
+                   // A face whose corners snap onto one line (two corners closer than a grid step,
+                   // as an exact solid's export can have): the collapse below removes it.
+                   snap_error = e.what();
                  }
                }
                OutputRoundingReport rounding;
