@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "base/cancel.hpp"
 #include "base/errors.hpp"
 #include "bsp/tree/tree_arena.hpp"
 
@@ -118,7 +119,9 @@ std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& 
   };
   std::vector<Frame> stack;
   stack.push_back({solid.root(), std::move(start), 0});
+  CancelPoll poll;
   while (!stack.empty()) {
+    poll.tick();  // Ctrl-C (base/cancel.hpp)
     Frame f = std::move(stack.back());
     stack.pop_back();
     if (is_leaf(f.t)) {

@@ -436,6 +436,7 @@ class Polygonizer {
       if (kind != Kind::Split) queue.push_back(cell_of(key));
     });
     while (!queue.empty()) {
+      poll_.tick();  // Ctrl-C (base/cancel.hpp)
       const Cell c = queue.back();
       queue.pop_back();
       if (c.level < 1 || !is_leaf(cell_key(c.level, c.i, c.j, c.k))) continue;
@@ -689,7 +690,10 @@ class Polygonizer {
       return std::tie(a.first.level, a.first.i, a.first.j, a.first.k) < std::tie(b.first.level, b.first.i, b.first.j, b.first.k);
     });
     std::vector<Triangle> faces;
-    for (const auto& [c, kind] : cells) {
+    for (const auto& entry : cells) {
+      poll_.tick();                 // Ctrl-C (base/cancel.hpp)
+      const Cell& c = entry.first;  // not a structured binding: lambdas below capture it (clang 14)
+      const Kind kind = entry.second;
       const std::int64_t s = step(c.level);
       // the faces' triangles: all six for the tetrahedra of a mixed leaf, else only those on the box
       auto on_box = [&](int f) {

@@ -1,8 +1,10 @@
 #include "mesh/output_rounding.hpp"
 #include "base/cancel.hpp"
+#include "base/dispose.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -127,6 +129,52 @@ OutputVerdict judge(const PolygonMesh& mesh, const OutputRoundingOptions& option
   return {};
 }
 
+/// The sweeps of round_for_output on its cleaner, at growing feature sizes from `smallest` to
+/// `max_feature`, until the mesh is clean or max_feature is reached; the result mesh.
+PolygonMesh sweep_until_clean(mesh::detail::CleanMesh& cleaner, const OutputRoundingOptions& options, double smallest,
+                              double max_feature, OutputRoundingReport& r) {
+  PolygonMesh result = cleaner.mesh();
+  if (options.triangles && output_problem(result, options).empty()) {
+    r.changed = false;
+    return result;
+  }
+  const double growth = options.precision == OutputPrecision::Grid ? 2 : 16;
+  // The mesh is judged again only after a sweep changed it (an unchanged mesh keeps its problem):
+  // first by the cleaner's own crossings (only what changed is searched again), and only when no
+  // triangles cross by the rest of the verdict (that search is not repeated), and at the end.
+  bool judged = false, full = false;
+  for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
+    bool changed = false;
+    // Contractions and flips until nothing changes (at most 20 passes), then corner moves; again
+    // while corner moves made a difference (at most 4 times).
+    for (int alternation = 0; alternation < 4; ++alternation) {
+      check_cancel();  // Ctrl-C (base/cancel.hpp): a sweep over a large mesh takes a while
+      for (int pass = 0; pass < 20 && mesh::detail::sweep(cleaner, delta, r); ++pass) changed = true;
+      if (!mesh::detail::nudge_crossings(cleaner, delta, r)) break;
+      changed = true;
+    }
+    r.feature = delta;
+    if (changed || !judged) {
+      judged = true;
+      full = mesh::detail::crossings(cleaner).empty();
+      if (full) {
+        result = cleaner.mesh();
+        r.problem = judge(result, options, {.crossings_searched = true}).problem;
+        if (r.problem.empty()) r.problem = inverted_shell(result);
+      }
+    }
+    if ((full && r.problem.empty()) || delta >= max_feature) break;
+  }
+  if (!full) {
+    result = cleaner.mesh();
+    r.problem = output_problem(result, options);
+    if (r.problem.empty()) r.problem = inverted_shell(result);
+  }
+  r.clean = r.problem.empty();
+  r.max_move = cleaner.max_move();
+  return result;
+}
+
 }  // namespace
 
 std::string output_problem(const PolygonMesh& mesh, const OutputRoundingOptions& options) {
@@ -186,47 +234,16 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
   }
   max_feature = std::max(max_feature, options.precision == OutputPrecision::Grid ? smallest : 256 * resolution);
 
-  mesh::detail::CleanMesh cleaner(mesh, round, {.max_feature = max_feature, .keep_copies = options.keep_copies});
-  PolygonMesh result = cleaner.mesh();
-  if (options.triangles && output_problem(result, options).empty()) {
-    r.changed = false;
-    return result;
+  // The cleaner holds millions of small blocks on large meshes: stopped by Ctrl-C, it is freed
+  // on another thread (base/dispose.hpp) so that the stop answers at once.
+  auto cleaner = std::make_unique<mesh::detail::CleanMesh>(
+      mesh, round, mesh::detail::CleanLimits{.max_feature = max_feature, .keep_copies = options.keep_copies});
+  try {
+    return sweep_until_clean(*cleaner, options, smallest, max_feature, r);
+  } catch (const Cancelled&) {
+    dispose_in_background(std::move(cleaner));
+    throw;
   }
-  const double growth = options.precision == OutputPrecision::Grid ? 2 : 16;
-  // The mesh is judged again only after a sweep changed it (an unchanged mesh keeps its problem):
-  // first by the cleaner's own crossings (only what changed is searched again), and only when no
-  // triangles cross by the rest of the verdict (that search is not repeated), and at the end.
-  bool judged = false, full = false;
-  for (double delta = smallest;; delta = std::min(growth * delta, max_feature)) {
-    bool changed = false;
-    // Contractions and flips until nothing changes (at most 20 passes), then corner moves; again
-    // while corner moves made a difference (at most 4 times).
-    for (int alternation = 0; alternation < 4; ++alternation) {
-      check_cancel();  // Ctrl-C (base/cancel.hpp): a sweep over a large mesh takes a while
-      for (int pass = 0; pass < 20 && mesh::detail::sweep(cleaner, delta, r); ++pass) changed = true;
-      if (!mesh::detail::nudge_crossings(cleaner, delta, r)) break;
-      changed = true;
-    }
-    r.feature = delta;
-    if (changed || !judged) {
-      judged = true;
-      full = mesh::detail::crossings(cleaner).empty();
-      if (full) {
-        result = cleaner.mesh();
-        r.problem = judge(result, options, {.crossings_searched = true}).problem;
-        if (r.problem.empty()) r.problem = inverted_shell(result);
-      }
-    }
-    if ((full && r.problem.empty()) || delta >= max_feature) break;
-  }
-  if (!full) {
-    result = cleaner.mesh();
-    r.problem = output_problem(result, options);
-    if (r.problem.empty()) r.problem = inverted_shell(result);
-  }
-  r.clean = r.problem.empty();
-  r.max_move = cleaner.max_move();
-  return result;
 }
 
 }  // namespace sculpt

@@ -76,7 +76,8 @@ Image downsampled(const Image& big, int factor) {
   Image image{.width = big.width / factor, .height = big.height / factor, .rgb = {}};
   image.rgb.resize(3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
   const int n = factor * factor;
-  for (int y = 0; y < image.height; ++y)
+  for (int y = 0; y < image.height; ++y) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp), once a row
     for (int x = 0; x < image.width; ++x)
       for (int c = 0; c < 3; ++c) {
         int sum = 0;
@@ -89,6 +90,7 @@ Image downsampled(const Image& big, int factor) {
                        static_cast<std::size_t>(x)) +
                   static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((sum + n / 2) / n);
       }
+  }
   return image;
 }
 
@@ -274,7 +276,9 @@ Image shade(const detail::Scene& scene, const Camera& camera, const PictureOptio
 
   Image image{.width = camera.width, .height = camera.height, .rgb = {}};
   image.rgb.resize(3 * buffer.face.size());
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp): tens of millions of pixels when antialiased
   for (std::size_t i = 0; i < buffer.face.size(); ++i) {
+    poll.tick();
     const int f = buffer.face[i];
     std::array<std::uint8_t, 3> colour = f < 0                          ? options.background
                                          : (!lines.empty() && lines[i]) ? kLine

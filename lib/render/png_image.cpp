@@ -1,6 +1,7 @@
 #include "render/png_image.hpp"
 
 #include <png.h>
+#include "base/cancel.hpp"
 
 #include <fstream>
 #include <sstream>
@@ -17,6 +18,7 @@ std::string encode_png(const Image& image, const PngOptions& options) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
     throw InvalidInput("encode_png: the picture's size does not match its pixels");
+  check_cancel();  // Ctrl-C (base/cancel.hpp): the encoding itself cannot be stopped
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
   png.width = static_cast<png_uint_32>(image.width);

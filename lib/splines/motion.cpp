@@ -199,7 +199,8 @@ MotionResult design_motion(const std::vector<Pose>& poses, const MotionOptions& 
 }
 
 double rigid_energy(const Motion& motion, double scale, int steps) {
-  const auto [a, b] = motion.domain();
+  // Not a structured binding: the lambda below captures a and b (clang 14 cannot capture bindings).
+  const double a = motion.domain().first, b = motion.domain().second;
   steps += steps % 2;
   const double h = 1e-4 * (b - a);
   auto accel = [&](double t) {

@@ -6,8 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
+#include <thread>
+#include <utility>
 
+#include "base/dispose.hpp"
 #include "base/parallel.hpp"
 
 namespace sculpt {
@@ -74,6 +78,31 @@ TEST_F(Cancel, ThrownInAParallelTaskReachesTheCaller) {
   EXPECT_LT(done.load(), std::size_t(1) << 16);  // stopped early
   clear_cancel();
   EXPECT_NO_THROW(parallel_invoke([] { check_cancel(); }, [] { check_cancel(); }));
+}
+
+// dispose_in_background (base/dispose.hpp): the value is destroyed on another thread, once, and
+// the caller does not wait for it.
+TEST(DisposeInBackground, DestroysTheValueOnceOnAnotherThread) {
+  struct Probe {
+    std::atomic<int>* destroyed;
+    std::atomic<bool>* other_thread;
+    std::thread::id caller;
+    Probe(std::atomic<int>* d, std::atomic<bool>* o)
+        : destroyed(d), other_thread(o), caller(std::this_thread::get_id()) {}
+    Probe(Probe&& p) noexcept
+        : destroyed(std::exchange(p.destroyed, nullptr)), other_thread(p.other_thread), caller(p.caller) {}
+    ~Probe() {
+      if (destroyed == nullptr) return;  // moved from
+      other_thread->store(std::this_thread::get_id() != caller);
+      destroyed->fetch_add(1);
+    }
+  };
+  std::atomic<int> destroyed{0};
+  std::atomic<bool> other_thread{false};
+  dispose_in_background(Probe(&destroyed, &other_thread));
+  for (int i = 0; i < 500 && destroyed.load() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(destroyed.load(), 1);
+  EXPECT_TRUE(other_thread.load());
 }
 
 }  // namespace

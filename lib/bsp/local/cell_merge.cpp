@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <memory>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
 #include "base/assert.hpp"
 #include "base/cancel.hpp"
+#include "base/dispose.hpp"
 #include "base/parallel.hpp"
 #include "bsp/local/deferred_build.hpp"
 #include "bsp/tree/autopartition.hpp"
@@ -535,7 +538,9 @@ Operand load(Arena& arena, const Solid& s) {
   o.boxes.reserve(o.faces().size());
   o.box.valid = true;
   for (int k = 0; k < 3; ++k) o.box.lo[k] = 1e300, o.box.hi[k] = -1e300;
+  CancelPoll poll;
   for (const BoundaryFragment& f : o.faces()) {
+    poll.tick();  // Ctrl-C (base/cancel.hpp)
     const FragmentBox& b = o.boxes.emplace_back(fragment_box(f.polygon));
     bool world = f.polygon.support < kernel::kWorldPlanes;
     for (const auto& c : f.polygon.corners)
@@ -590,13 +595,24 @@ std::optional<Solid> merge_by_cells(const Solid& a, const Solid& b, const bool o
     if (!v.fragments || v.fragments->empty()) return std::nullopt;
   }
   // The planes of both, the walls and the opposites the local trees need, in one allocation.
-  Arena arena;
+  auto owned_arena = std::make_unique<Arena>();
+  Arena& arena = *owned_arena;
   const std::size_t pa = std::size_t(a.boundary_view().planes->size()),
                     pb = std::size_t(b.boundary_view().planes->size());
   arena.planes.reserve(pa + pb + (pa + pb) / 4 + 4096);
   std::array<Operand, 2> ops{load(arena, a), load(arena, b)};
   std::optional<bool> uniform;
-  FragmentList result = CellMerge(arena, ops, op, options.cells).run(uniform);
+  auto merge = std::make_unique<CellMerge>(arena, ops, op, options.cells);
+  FragmentList result;
+  try {
+    result = merge->run(uniform);
+  } catch (const Cancelled&) {
+    // Stopped by Ctrl-C: gigabytes of pieces and local trees are freed on another thread
+    // (base/dispose.hpp), so that the stop answers at once. Their destructors read nothing else.
+    dispose_in_background(std::make_tuple(std::move(merge), std::move(owned_arena), std::move(ops)));
+    throw;
+  }
+  merge.reset();
   std::optional<bool> far;
   if (ops[0].far && ops[1].far) far = op[*ops[0].far][*ops[1].far];
   if (result.empty()) far = uniform;

@@ -1,4 +1,5 @@
 #include "bsp/local/kd_cells.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -97,6 +98,7 @@ KdCells subdivide(const std::array<std::span<const FragmentBox>, 2>& boxes, cons
   cells.nodes.push_back(std::move(root));
   std::vector<std::pair<std::int32_t, int>> stack{{0, 0}};  // node, depth
   while (!stack.empty()) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp): a node near the root sorts millions of boxes
     const auto [id, depth] = stack.back();
     stack.pop_back();
     KdNode& n = cells.nodes[std::size_t(id)];

@@ -1,4 +1,5 @@
 #include "bsp/merge/extent_pruning.hpp"
+#include "base/cancel.hpp"
 
 #include <boost/container/small_vector.hpp>
 #include <optional>
@@ -268,6 +269,7 @@ ExtentSides extent_sides(Arena& arena, TreeRef a, const FragmentList& a_faces,
   std::optional<FragmentHierarchy> hierarchy;
   if (open.size() * a_boxes.blocks.size() > 8 * a_faces.size()) hierarchy = fragment_hierarchy(a_boxes);
   for (const std::size_t i : open) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp): a plane's scan can visit many fragments
     sides.side_[i] = side_of_corners(arena.planes, a_faces, a_boxes, hierarchy ? &*hierarchy : nullptr, arena.planes[planes[i]]);
     if (sides.side_[i] != Side::Both) ++sides.one_sided_;
   }

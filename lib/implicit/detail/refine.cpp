@@ -1,5 +1,6 @@
 // Edge splits towards f = 0 (refine.hpp).
 #include "implicit/detail/refine.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -51,7 +52,9 @@ class Refiner {
     if (!closed_) return r;
     std::vector<int> stack(faces_.size());
     for (int t = 0; t < int(faces_.size()); ++t) stack[std::size_t(t)] = int(faces_.size()) - 1 - t;
+    CancelPoll poll;
     while (!stack.empty()) {
+      poll.tick();  // Ctrl-C (base/cancel.hpp)
       const int t = stack.back();
       stack.pop_back();
       if (within(t, o_.tolerance)) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include "base/cancel.hpp"
 
 #include "mesh/predicates.hpp"
 #include "mesh/triangulate.hpp"
@@ -47,7 +48,9 @@ CleanMesh::CleanMesh(const PolygonMesh& mesh, const Rounder& rounder, CleanLimit
   // hole bridged to its rim then no longer simple; the given face is, and what rounding folds of
   // its triangles the sweeps repair); else a fan (a face of zero area keeps its edges; its
   // zero-area triangles are removed by the sweeps).
+  CancelPoll poll;
   for (const auto& f : mesh.faces) {
+    poll.tick();  // Ctrl-C (base/cancel.hpp)
     std::vector<IndexTriangle> face_tris = triangulate_polygon(p, f);
     if (face_tris.size() + 2 != f.size()) face_tris = triangulate_polygon(mesh.vertices, f);
     if (face_tris.size() + 2 != f.size()) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <span>
+#include "base/cancel.hpp"
 
 #include "mesh/detail/box_grid.hpp"
 #include "mesh/self_intersection.hpp"
@@ -49,7 +50,9 @@ std::vector<std::pair<int, int>> full_crossings(const CleanMesh& mesh) {
   } else {
     const BoxGrid grid(boxes);
     std::vector<Eigen::AlignedBox3d> local;  // a cell's boxes, gathered
+    CancelPoll poll;
     for (size_t k = 0; k < grid.cells(); ++k) {
+      poll.tick();  // Ctrl-C (base/cancel.hpp)
       const std::span<const int> here = grid.cell(k);
       const std::span<const unsigned char> first = grid.first_cell_masks(k);
       local.clear();

@@ -164,11 +164,21 @@ bool flip(CleanMesh& mesh, int t, int k) {
 bool separate_copies(CleanMesh& mesh, double delta, OutputRoundingReport& report) {
   if (mesh.limits.keep_copies) return false;
   bool changed = false;
-  std::map<std::array<double, 3>, std::vector<int>> at;
+  // The live vertices by position, then index: each run of equal positions is one point's copies
+  // (sorted once instead of a map of every vertex, which took seconds on millions).
+  std::vector<std::pair<std::array<double, 3>, int>> at;
+  at.reserve(mesh.p.size());
   for (size_t v = 0; v < mesh.p.size(); ++v)
-    if (mesh.vertex_alive(static_cast<int>(v)))
-      at[{mesh.p[v].x(), mesh.p[v].y(), mesh.p[v].z()}].push_back(static_cast<int>(v));
-  for (auto& [point, copies] : at)
+    if (mesh.vertex_alive(static_cast<int>(v))) at.push_back({{mesh.p[v].x(), mesh.p[v].y(), mesh.p[v].z()}, int(v)});
+  std::sort(at.begin(), at.end());
+  CancelPoll poll;
+  std::vector<int> copies;
+  for (size_t run = 0, next = 0; run < at.size(); run = next) {
+    poll.tick();  // Ctrl-C (base/cancel.hpp)
+    for (next = run + 1; next < at.size() && at[next].first == at[run].first;) ++next;
+    if (next - run < 2) continue;
+    copies.clear();
+    for (size_t k = run; k < next; ++k) copies.push_back(at[k].second);
     for (size_t i = 1; i < copies.size(); ++i) {
       const std::set<int> n = mesh.neighbours(copies[i]);
       if (std::any_of(copies.begin(), copies.end(), [&](int c) { return n.count(c) != 0; }))
@@ -178,6 +188,7 @@ bool separate_copies(CleanMesh& mesh, double delta, OutputRoundingReport& report
         changed = true;
       }
     }
+  }
   return changed;
 }
 
@@ -190,7 +201,9 @@ bool collapse_short_edges(CleanMesh& mesh, double delta, OutputRoundingReport& r
     return v;
   };
   bool short_edges = false;
+  CancelPoll poll;
   for (size_t t = 0; t < mesh.tris.size(); ++t) {
+    poll.tick();  // Ctrl-C (base/cancel.hpp)
     if (!mesh.alive[t]) continue;
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.tris[t][k], b = mesh.tris[t][(k + 1) % 3];
@@ -217,7 +230,9 @@ bool collapse_short_edges(CleanMesh& mesh, double delta, OutputRoundingReport& r
 /// Slivers without a short edge (a corner close to the opposite edge): that edge flipped.
 bool flip_slivers(CleanMesh& mesh, double delta, OutputRoundingReport& report) {
   bool changed = false;
+  CancelPoll poll;
   for (size_t t = 0, count = mesh.tris.size(); t < count; ++t) {
+    poll.tick();  // Ctrl-C (base/cancel.hpp)
     if (!mesh.alive[t]) continue;
     const Tri& tri = mesh.tris[t];
     int longest = 0;

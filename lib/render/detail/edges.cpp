@@ -1,4 +1,5 @@
 #include "render/detail/edges.hpp"
+#include "base/cancel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -73,11 +74,13 @@ std::vector<bool> edge_pixels(const DepthBuffer& buffer, const std::vector<FaceI
     else if (fa.normal.dot(fb.normal) < cos_threshold)
       crease[nearer] = true;
   };
-  for (int y = 0; y < buffer.height; ++y)
+  for (int y = 0; y < buffer.height; ++y) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp), once a row
     for (int x = 0; x < buffer.width; ++x) {
       if (x + 1 < buffer.width) consider(x, y, true);
       if (y + 1 < buffer.height) consider(x, y, false);
     }
+  }
   if (least_crease > 1) drop_specks(buffer, crease, line, least_crease);
   for (std::size_t p = 0; p < line.size(); ++p) line[p] = line[p] || crease[p];
   return line;
@@ -86,13 +89,15 @@ std::vector<bool> edge_pixels(const DepthBuffer& buffer, const std::vector<FaceI
 std::vector<bool> widen_lines(const DepthBuffer& buffer, const std::vector<bool>& lines, int width) {
   std::vector<bool> wide(lines.size(), false);
   const int lo = -(width - 1) / 2, hi = width / 2;
-  for (int y = 0; y < buffer.height; ++y)
+  for (int y = 0; y < buffer.height; ++y) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp), once a row
     for (int x = 0; x < buffer.width; ++x) {
       if (!lines[buffer.index(x, y)]) continue;
       for (int v = std::max(0, y + lo); v <= std::min(buffer.height - 1, y + hi); ++v)
         for (int u = std::max(0, x + lo); u <= std::min(buffer.width - 1, x + hi); ++u)
           if (buffer.face[buffer.index(u, v)] >= 0) wide[buffer.index(u, v)] = true;
     }
+  }
   return wide;
 }
 
