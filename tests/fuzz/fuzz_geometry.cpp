@@ -109,13 +109,15 @@ const bool kStrict = env_flag("FUZZ_GEOMETRY_STRICT");
 
 // Counts of what docs/kernel.md lists as not yet solved, printed at exit.
 struct Known {
-  long programs = 0, solids = 0, errors = 0, duplicate_vertices = 0, zero_area_faces = 0;
+  long programs = 0, solids = 0, errors = 0, duplicate_vertices = 0, zero_area_faces = 0, unsplit_contacts = 0;
   std::map<std::string, long> error_kinds;
   ~Known() {
-    std::fprintf(stderr,
-                 "fuzz_geometry: %ld programs, %ld solids checked, %ld typed errors; meshes with distinct vertices at "
-                 "the same point (not pinches) %ld, with zero-area faces %ld\n",
-                 programs, solids, errors, duplicate_vertices, zero_area_faces);
+    std::fprintf(
+        stderr,
+        "fuzz_geometry: %ld programs, %ld solids checked, %ld typed errors; meshes with distinct vertices at "
+        "the same point (not pinches) %ld, with zero-area faces %ld; exports with a contact on an edge not split "
+        "(read back without strict) %ld\n",
+        programs, solids, errors, duplicate_vertices, zero_area_faces, unsplit_contacts);
     for (const auto& [k, n] : error_kinds) std::fprintf(stderr, "fuzz_geometry:   %6ld x %s\n", n, k.c_str());
   }
 } known;
@@ -713,20 +715,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             bhi[k] = upper ? hi[k] + e : lo[k];
             continue;
           }
-          // across the other axes: the same span (faces coplanar), half of it, or beyond a side
-          // (touching along an edge or at a corner)
+          // across the other axes: the same span (faces coplanar), about half of it, or beyond a
+          // side (touching along an edge or at a corner). The middle is rounded down to the 1/16
+          // grid: a half grid step would be snapped by box() and the volumes would not add.
+          double mid = std::floor(8 * (lo[k] + hi[k])) / 16;
+          if (!(mid > lo[k])) mid = hi[k];
           switch (in.u8() % 4) {
             case 0:
               blo[k] = lo[k], bhi[k] = hi[k];
               break;
             case 1:
-              blo[k] = lo[k], bhi[k] = 0.5 * (lo[k] + hi[k]);
+              blo[k] = lo[k], bhi[k] = mid;
               break;
             case 2:
               blo[k] = hi[k], bhi[k] = hi[k] + extent(in);
               break;
             default:
-              blo[k] = lo[k] - extent(in), bhi[k] = 0.5 * (lo[k] + hi[k]);
+              blo[k] = lo[k] - extent(in), bhi[k] = mid;
               break;
           }
           if (!(bhi[k] > blo[k])) bhi[k] = blo[k] + 1.0 / 16;
@@ -762,7 +767,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
     }
     if (expr.empty()) continue;
-    if (auto error = prog.run(name + " = " + expr)) {
+    std::optional<std::string> error = prog.run(name + " = " + expr);
+    if (error && kind == 10 && error->find("self-intersection") != std::string::npos) {
+      // Not yet solved (docs/kernel.md, "Clean output"): where a vertex of one part touches
+      // another part's edge (a cone's base vertex on a box's edge), the export does not split
+      // that edge, so the strict import sees faces meeting; the default import must read it back.
+      ++known.unsplit_contacts;
+      if (kStrict) finding(prog.script, "an exported to_mesh is refused on strict import: " + *error);
+      const std::string lenient = expr.substr(0, expr.find(", strict=true")) + ")";
+      error = prog.run(name + " = " + lenient);
+    }
+    if (error) {
       // Text formats and binary PLY carry doubles exactly; binary STL rounds to float32 (lossy).
       if (kind == 10 && expr.find(".stl") == std::string::npos &&
           error->find("not a closed manifold") != std::string::npos)
