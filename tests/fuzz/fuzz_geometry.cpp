@@ -736,6 +736,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           }
           if (!(bhi[k] > blo[k])) bhi[k] = blo[k] + 1.0 / 16;
         }
+        // On the kernel grid, as box() puts them (a sphere's extreme vertices are not grid points):
+        // the touching side rounded away from the solid, so the box touches it or stays a
+        // fraction of a step clear, and the volumes still add.
+        for (int k = 0; k < 3; ++k) {
+          const bool away_up = k == axis && upper, away_down = k == axis && !upper;
+          const double lo_steps = blo[k] / kStep, hi_steps = bhi[k] / kStep;
+          blo[k] = (away_up ? std::ceil(lo_steps) : std::round(lo_steps)) * kStep;
+          bhi[k] = (away_down ? std::floor(hi_steps) : std::round(hi_steps)) * kStep;
+          if (!(bhi[k] > blo[k])) bhi[k] = blo[k] + 1.0 / 16;
+        }
         const double box_volume = (bhi - blo).prod();
         expr = prog.names[a] + " | box(" + vec(blo) + ", " + vec(bhi) + ")";
         check_op = [&prog, &fa, box_volume, name](const Facts& f) {
