@@ -241,7 +241,8 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
   try {
     return sweep_until_clean(*cleaner, options, smallest, max_feature, r);
   } catch (const Cancelled&) {
-    dispose_in_background(std::move(cleaner));
+    // The given mesh too (the caller's, moved in): millions of face vectors.
+    dispose_in_background(std::make_pair(std::move(cleaner), std::move(mesh)));
     throw;
   }
 }
