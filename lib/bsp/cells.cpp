@@ -95,7 +95,7 @@ std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& 
   const kernel::GridPoint lo = solid.grid().snap(box.min()), hi = solid.grid().snap(box.max());
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) throw InvalidInput("leaf_cells: sample box thinner than the grid step");
   bsp::detail::Arena a;
-  a.planes = solid.planes();
+  a.copy_planes(solid.planes());
   using kernel::Int128;
   const std::int32_t box_planes[6] = {
       a.planes.add(kernel::make_plane(1, 0, 0, -Int128(hi.x))), a.planes.add(kernel::make_plane(-1, 0, 0, Int128(lo.x))),

@@ -4,6 +4,7 @@
 #include <string>
 #include <tuple>
 
+#include "base/checked_growth.hpp"
 #include "base/errors.hpp"
 
 namespace sculpt {
@@ -28,16 +29,23 @@ std::vector<HalfEdgeRecord> sorted_edge_records(const PolygonMesh& mesh) {
     });
     return records;
   }
-  std::vector<size_t> start(size_t(top + 2), 0);
-  for (const auto& f : mesh.faces)
+  // Sized and filled with Ctrl-C checks (base/checked_growth.hpp): hundreds of MB on a large mesh.
+  CancelPoll poll;
+  std::vector<size_t> start;
+  resize_checked(start, size_t(top + 2));
+  for (const auto& f : mesh.faces) {
+    poll.tick();
     for (size_t k = 0; k < f.size(); ++k) {
       const int a = f[k], b = f[(k + 1) % f.size()];
       if (a != b) ++start[size_t(std::min(a, b)) + 1];
     }
+  }
   for (size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
-  std::vector<HalfEdgeRecord> records(start.back());
+  std::vector<HalfEdgeRecord> records;
+  resize_checked(records, start.back());
   std::vector<size_t> next(start.begin(), start.end() - 1);
   for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+    poll.tick();
     const auto& f = mesh.faces[fi];
     for (size_t k = 0; k < f.size(); ++k) {
       const int a = f[k], b = f[(k + 1) % f.size()];
@@ -50,6 +58,7 @@ std::vector<HalfEdgeRecord> sorted_edge_records(const PolygonMesh& mesh) {
     return std::tie(x.hi, x.face, x.corner) < std::tie(y.hi, y.face, y.corner);
   };
   for (size_t v = 0; v + 1 < start.size(); ++v) {
+    poll.tick();
     const auto first = records.begin() + std::ptrdiff_t(start[v]), last = records.begin() + std::ptrdiff_t(start[v + 1]);
     if (last - first <= 16) {  // insertion sort: a vertex has a few sides
       for (auto i = first + (first != last ? 1 : 0); i < last; ++i)

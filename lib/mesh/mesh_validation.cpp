@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "base/checked_growth.hpp"
 #include "base/errors.hpp"
 #include "mesh/edge_incidence.hpp"
 #include "mesh/predicates.hpp"
@@ -153,10 +154,14 @@ class Validator {
 
   void check_edges_and_vertices() {
     const auto records = sorted_edge_records(m_);
-    // Corner ids for the vertex fans: offset[f] + k is corner k of face f.
-    std::vector<size_t> offset(m_.faces.size() + 1, 0);
+    // Corner ids for the vertex fans: offset[f] + k is corner k of face f. Sized and filled with
+    // Ctrl-C checks (base/checked_growth.hpp): hundreds of MB on a large mesh.
+    CancelPoll poll;
+    std::vector<size_t> offset;
+    resize_checked(offset, m_.faces.size() + 1);
     for (size_t f = 0; f < m_.faces.size(); ++f) offset[f + 1] = offset[f] + m_.faces[f].size();
-    std::vector<size_t> parent(offset.back());
+    std::vector<size_t> parent;
+    resize_checked(parent, offset.back());
     std::iota(parent.begin(), parent.end(), size_t{0});
     auto find = [&](size_t x) {
       while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -169,6 +174,7 @@ class Validator {
     };
 
     for (size_t i = 0; i < records.size();) {
+      poll.tick();
       size_t j = i;
       while (j < records.size() && records[j].lo == records[i].lo && records[j].hi == records[i].hi)
         ++j;
@@ -198,9 +204,11 @@ class Validator {
     }
 
     // A manifold vertex has one fan of corners connected through its edges.
-    std::vector<long long> root_of_vertex(m_.vertices.size(), -1);
+    std::vector<long long> root_of_vertex;
+    resize_checked(root_of_vertex, m_.vertices.size(), -1LL);
     std::vector<char> reported(m_.vertices.size(), 0);
-    for (size_t f = 0; f < m_.faces.size(); ++f)
+    for (size_t f = 0; f < m_.faces.size(); ++f) {
+      poll.tick();
       for (size_t k = 0; k < m_.faces[f].size(); ++k) {
         const int v = m_.faces[f][k];
         const auto root = static_cast<long long>(find(offset[f] + k));
@@ -212,6 +220,7 @@ class Validator {
               "non-manifold " + vertex(m_, v) + ": its faces form more than one fan");
         }
       }
+    }
   }
 
   void check_self_intersections() {

@@ -261,7 +261,9 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   size_t moved = 0;  // triangles of faces with a corner not marked exact
   PolygonTriangulator triangulator;
   std::vector<IndexTriangle> face_tris;
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp): a second or more on millions of triangles
   for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+    poll.tick();
     const bool exact = exact_face(mesh.faces[fi]);
     face_tris.clear();
     triangulator.append(mesh.vertices, mesh.faces[fi], face_tris, EarOrder::Spread);

@@ -63,6 +63,10 @@ class Terminal:
             self.screen += data.decode("utf-8", "replace")
         return time.time()
 
+    def drain(self):
+        while select.select([self.fd], [], [], 0)[0]:
+            self.screen += os.read(self.fd, 65536).decode("utf-8", "replace")
+
     def quiet_prompt(self, timeout=600.0):
         self.read_until("sculpt> ", timeout)
         while True:
@@ -100,6 +104,10 @@ def measure(sculpt, name, delays, workdir):
         os.write(t.fd, (statement.replace("{dir}", workdir) + "\r").encode())
         t.read_until("\n")  # the line was read
         time.sleep(delay)
+        t.drain()
+        if t.screen.endswith("sculpt> "):  # finished sooner than its measured run: nothing to stop
+            t.close()
+            return latencies + ["finished"]
         pressed = time.time()
         os.write(t.fd, b"\x03")
         try:
@@ -153,11 +161,17 @@ def main():
             values = []
             for _ in range(args.runs):
                 values += measure(args.sculpt, name, [delay], workdir)
+            finished = values.count("finished")  # the statement ended before Ctrl-C: not counted
+            values = [v for v in values if v != "finished"]
             done = [v for v in values if v is not None]
+            if not values:
+                print("| %s | %.2f s | %.2f s | — | — | 0 (%d ended first) |" % (name, whole, delay, finished), flush=True)
+                continue
             worst = max(done) if len(done) == len(values) else float("inf")
             missed = missed or worst > TARGET
             median = statistics.median(done) if done else float("inf")
-            print("| %s | %.2f s | %.2f s | %.3f s | %.3f s | %d |" % (name, whole, delay, median, worst, len(values)),
+            print("| %s | %.2f s | %.2f s | %.3f s | %.3f s | %d%s |" %
+                  (name, whole, delay, median, worst, len(values), " (%d ended first)" % finished if finished else ""),
                   flush=True)
     return 1 if missed else 0
 

@@ -1,5 +1,6 @@
 #include "bsp/tree/boundary_fragments.hpp"
 #include "base/cancel.hpp"
+#include "base/dispose.hpp"
 
 #include <algorithm>
 #include <array>
@@ -22,10 +23,16 @@ struct BreadthFirst {
   std::vector<std::array<std::size_t, 2>> children;  // [negative, positive]
 };
 
-BreadthFirst breadth_first(std::span<const BspNode> nodes, TreeRef root) {
+// `expected`: room made at once (a whole tree: tens of MB that would otherwise be moved while
+// they double, between two Ctrl-C checks).
+BreadthFirst breadth_first(std::span<const BspNode> nodes, TreeRef root, std::size_t expected = 0) {
   BreadthFirst b;
+  b.order.reserve(expected);
+  b.children.reserve(expected);
+  CancelPoll poll;
   if (!is_leaf(root)) b.order.push_back(root);
   for (std::size_t j = 0; j < b.order.size(); ++j) {
+    poll.tick();
     const BspNode& m = nodes[std::size_t(b.order[j])];
     std::array<std::size_t, 2> at{0, 0};
     for (int side = 0; side < 2; ++side) {
@@ -137,18 +144,25 @@ class Extractor {
 
 Fragments boundary_fragments(const Solid& solid) {
   // Nodes reachable from the root (storage may hold unreachable nodes, see Solid).
-  const BreadthFirst tree = breadth_first(solid.nodes(), solid.root());
+  const BreadthFirst tree = breadth_first(solid.nodes(), solid.root(), solid.nodes().size());
   Arena arena;
   const PolygonStore* polygons = &solid.polygons();
   if (std::any_of(solid.polygons().begin(), solid.polygons().end(), pending)) {
     arena = with_node_polygons(solid);  // its plane table extends the solid's
     polygons = &arena.polygons;
   } else {
-    arena.planes = solid.planes();
+    arena.copy_planes(solid.planes());
   }
   Fragments result;
-  Extractor(solid.nodes(), arena).collect(tree, [&](std::size_t j) { return (*polygons)[std::size_t(tree.order[j])]; },
-                                          result.fragments);
+  try {
+    Extractor(solid.nodes(), arena)
+        .collect(
+            tree, [&](std::size_t j) { return (*polygons)[std::size_t(tree.order[j])]; }, result.fragments);
+  } catch (const Cancelled&) {
+    // Stopped by Ctrl-C: millions of polygons are freed on another thread (base/dispose.hpp).
+    dispose_in_background(std::make_pair(std::move(arena), std::move(result)));
+    throw;
+  }
   result.planes = std::move(arena.planes);
   return result;
 }

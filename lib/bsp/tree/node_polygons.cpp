@@ -1,5 +1,6 @@
 #include "bsp/tree/node_polygons.hpp"
 #include "base/cancel.hpp"
+#include "base/dispose.hpp"
 
 #include <stdexcept>
 
@@ -65,10 +66,21 @@ void fill_node_polygons(Arena& arena, TreeRef root) {
 
 Arena with_node_polygons(const Solid& solid) {
   Arena arena;
-  arena.planes = solid.planes();
-  arena.nodes = solid.nodes();
-  arena.polygons = solid.polygons();
-  fill_node_polygons(arena, solid.root());
+  try {
+    arena.copy_planes(solid.planes());
+    arena.nodes = solid.nodes();
+    // Copied one by one with Ctrl-C checks: hundreds of MB on a large tree.
+    CancelPoll poll;
+    arena.polygons.reserve(solid.polygons().size());
+    for (const ConvexPolygon& p : solid.polygons()) {
+      poll.tick();
+      arena.polygons.push_back(p);
+    }
+    fill_node_polygons(arena, solid.root());
+  } catch (const Cancelled&) {
+    dispose_in_background(std::move(arena));  // freed on another thread (base/dispose.hpp)
+    throw;
+  }
   return arena;
 }
 

@@ -29,6 +29,18 @@ std::int32_t Arena::opposite(std::int32_t i) {
   return opposite_of[i];
 }
 
+void Arena::copy_planes(const kernel::PlaneTable& from) {
+  planes = kernel::PlaneTable();
+  planes.reserve(2 * std::size_t(from.size()) + 64);
+  // One at a time, with Ctrl-C checks: the first touch of a few hundred MB takes the system a
+  // third of a second here. Both tables start with the world box's planes.
+  CancelPoll poll;
+  for (std::int32_t i = planes.size(); i < from.size(); ++i) {
+    poll.tick();
+    planes.add(from[i], from.auxiliary(i));
+  }
+}
+
 TreeRef Arena::append(const Solid& solid) {
   if (is_leaf(solid.root())) return solid.root();
   const auto& src = solid.planes().planes();

@@ -17,6 +17,10 @@ struct Arena {
 
   /// Index of the plane opposite to plane i (added on first use).
   std::int32_t opposite(std::int32_t i);
+  /// Sets `planes` to a copy of `from` with room for as many planes again (the opposites made
+  /// while splitting), so that the table never grows in one step later: growing millions of planes
+  /// copies hundreds of MB between two Ctrl-C checks (issue 35).
+  void copy_planes(const kernel::PlaneTable& from);
   /// Appends a solid's tree; returns its root in the arena. Plane indices are shifted.
   TreeRef append(const Solid& solid);
   /// Takes over the storage of a solid (the arena must be empty); returns its root. Its carried

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include "base/cancel.hpp"
 
 namespace sculpt::mesh::detail {
 
@@ -50,7 +51,9 @@ BoxGrid::BoxGrid(std::span<const Eigen::AlignedBox3d> boxes) {
   const double dense_cells = double(dims_[0]) * double(dims_[1]) * double(dims_[2]);
   dense_ = dense_cells <= double(4 * count + 4096);
   auto list = [&](auto&& emit) {
+    CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
     for (size_t i = 0; i < range_.size(); ++i) {
+      poll.tick();
       const auto& r = range_[i];
       for (std::int64_t x = r[0]; x <= r[3]; ++x)
         for (std::int64_t y = r[1]; y <= r[4]; ++y)

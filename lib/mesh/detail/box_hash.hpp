@@ -17,6 +17,7 @@
 /// faster at 65k: the first, full search uses BoxGrid, the later ones this index.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -32,6 +33,12 @@ class BoxHash {
 
   /// Keeps id (>= 0, not kept) under `box`.
   void insert(int id, const Eigen::AlignedBox3d& box);
+  /// Makes room for ids below n at once: growing the table of millions of cells later rehashes
+  /// all of them between two Ctrl-C checks.
+  void reserve(std::size_t n) {
+    cells_.reserve(n);
+    level_.reserve(n);
+  }
   /// Drops id, kept under `box` (the box it was inserted with).
   void erase(int id, const Eigen::AlignedBox3d& box);
   /// The kept ids whose boxes may meet `box`, each once.

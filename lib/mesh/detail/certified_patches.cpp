@@ -5,6 +5,7 @@
 #include <span>
 #include <tuple>
 #include <utility>
+#include "base/cancel.hpp"
 
 namespace sculpt::mesh::detail {
 namespace {
@@ -54,7 +55,9 @@ std::vector<int> component_roots(const Fans& fans, size_t nv) {
     while (parent[size_t(x)] != x) x = parent[size_t(x)] = parent[size_t(parent[size_t(x)])];
     return x;
   };
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   for (size_t v = 0; v < nv; ++v) {
+    poll.tick();
     const std::span<const Link> f = fans.fan(v);
     if (fans.whole(v)) {
       for (const Link& l : f) parent[size_t(find(l.t))] = find(f.front().t);
@@ -115,7 +118,9 @@ bool one_fan(std::span<const std::pair<int, Link>> group, int& first) {
 std::vector<Edge> boundary_edges(const Fans& fans, const std::vector<int>& root, size_t nv, std::vector<char>& failed) {
   std::vector<Edge> edges;
   std::vector<std::pair<int, Link>> group;
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   for (size_t v = 0; v < nv; ++v) {
+    poll.tick();
     // A certified star in one patch: one closed fan, nothing more to check (the usual case).
     if (fans.whole(v)) {
       const int r = root[size_t(fans.fan(v).front().t)];

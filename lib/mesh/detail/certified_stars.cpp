@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <span>
 #include <utility>
+#include "base/cancel.hpp"
 
 namespace sculpt::mesh::detail {
 namespace {
@@ -108,7 +109,9 @@ CertifiedStars certified_stars(const std::vector<StarTriangle>& tris, const std:
   }
   result.certified.assign(n, 0);
   std::vector<int> from, to;
+  CancelPoll poll;  // Ctrl-C (base/cancel.hpp)
   for (size_t v = 0; v < n; ++v) {
+    poll.tick();
     if (failed[v] || upward[v] != 1 || start[v + 1] - start[v] < 3) continue;
     if (one_cycle({link.data() + start[v], link.data() + start[v + 1]}, from, to))
       result.certified[v] = static_cast<signed char>(1 + 2 * axis[v] + (orientation[v] > 0 ? 1 : 0));

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include "base/cancel.hpp"
+#include "base/dispose.hpp"
 
 #include "mesh/predicates.hpp"
 #include "mesh/triangulate.hpp"
@@ -43,21 +45,39 @@ CleanMesh::CleanMesh(const PolygonMesh& mesh, const Rounder& rounder, CleanLimit
     members[i].push_back(mesh.vertices[i]);
   }
   incident.resize(p.size());
+  // Room for every triangle and some edits at once: a vector of millions of prepared triangles
+  // that doubles copies a gigabyte between two Ctrl-C checks (issue 35).
+  std::size_t count = 0;
+  for (const auto& f : mesh.faces) count += f.size() >= 2 ? f.size() - 2 : 0;
+  count += count / 16 + 64;
+  tris.reserve(count);
+  alive.reserve(count);
+  boxes.reserve(count);
+  prepared.reserve(count);
+  index.reserve(count);
   // Every face as n - 2 triangles: ear clipping of the rounded corners where it covers the face;
   // else of the given corners (rounding can make two corners one point, and a polygon with a
   // hole bridged to its rim then no longer simple; the given face is, and what rounding folds of
   // its triangles the sweeps repair); else a fan (a face of zero area keeps its edges; its
   // zero-area triangles are removed by the sweeps).
   CancelPoll poll;
-  for (const auto& f : mesh.faces) {
-    poll.tick();  // Ctrl-C (base/cancel.hpp)
-    std::vector<IndexTriangle> face_tris = triangulate_polygon(p, f);
-    if (face_tris.size() + 2 != f.size()) face_tris = triangulate_polygon(mesh.vertices, f);
-    if (face_tris.size() + 2 != f.size()) {
-      face_tris.clear();
-      for (size_t k = 1; k + 1 < f.size(); ++k) face_tris.push_back({f[0], f[k], f[k + 1]});
+  try {
+    for (const auto& f : mesh.faces) {
+      poll.tick();  // Ctrl-C (base/cancel.hpp)
+      std::vector<IndexTriangle> face_tris = triangulate_polygon(p, f);
+      if (face_tris.size() + 2 != f.size()) face_tris = triangulate_polygon(mesh.vertices, f);
+      if (face_tris.size() + 2 != f.size()) {
+        face_tris.clear();
+        for (size_t k = 1; k + 1 < f.size(); ++k) face_tris.push_back({f[0], f[k], f[k + 1]});
+      }
+      for (const IndexTriangle& t : face_tris) add_triangle(t);
     }
-    for (const IndexTriangle& t : face_tris) add_triangle(t);
+  } catch (const Cancelled&) {
+    // Millions of small blocks (the index's cells, the incidences) freed on another thread
+    // (base/dispose.hpp), so that the stop answers at once.
+    dispose_in_background(std::make_tuple(std::move(index), std::move(incident), std::move(members), std::move(tris),
+                                          std::move(prepared), std::move(boxes)));
+    throw;
   }
   settled = true;
 }
