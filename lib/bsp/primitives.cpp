@@ -136,11 +136,15 @@ Solid sphere(double radius, const CircularOptions& options) {
   check_positive(radius, "sphere radius");
   check_segments(options.segments);
   const int rings = (options.segments + 1) / 2;
-  std::vector<Ring> r;
+  // OpenSCAD's rings, and a vertex at each pole (issue 35: a sphere of radius r standing on a plane
+  // at distance r touches it). Near the poles of a fine sphere the last ring and the pole snap to
+  // one grid height; they merge into a flat cap at the pole's height (revolve_rings).
+  std::vector<Ring> r{{-radius, 0}};
   for (int k = rings - 1; k >= 0; --k) {  // bottom to top
     const double phi = (k + 0.5) * std::numbers::pi / rings;
     r.push_back({radius * std::cos(phi), radius * std::sin(phi)});
   }
+  r.push_back({radius, 0});
   return bsp::detail::revolve_rings(circle_points(options.segments), r, options.grid);
 }
 

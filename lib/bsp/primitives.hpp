@@ -50,8 +50,9 @@ struct ConeOptions {
 /// smaller ring is that polygon scaled (its vertices need not be grid points).
 Solid cone(double radius, double height, const ConeOptions& options = {});
 /// Sphere of radius r centred at the origin: segments edges around the equator,
-/// (segments + 1) / 2 rings like OpenSCAD, flat polar caps at grid heights; vertices on the sphere
-/// within the rounding of the planes' integer normals (not snapped to grid points).
+/// (segments + 1) / 2 rings like OpenSCAD, and a vertex at each pole, (0, 0, ±r) snapped to the
+/// grid; the ring vertices on the sphere within the rounding of the planes' integer normals (not
+/// grid points). Where a ring and a pole snap to one height, a flat cap at the pole's height.
 Solid sphere(double radius, const CircularOptions& options = {});
 
 }  // namespace sculpt

@@ -370,7 +370,8 @@ void register_solids(BuiltinTable& table) {
   table.add(
       {.name = "sphere",
        .doc = "Sphere of radius r (or diameter d) at the origin: a polyhedron with `segments` edges around "
-              "the equator and (segments + 1) / 2 rings, its vertices on the sphere.",
+              "the equator, (segments + 1) / 2 rings as OpenSCAD's and a vertex at each pole, its vertices on "
+              "the sphere.",
        .params = circular_params(false, false),
        .run = [](const Arguments& args) { return solid_value(sphere(radius_arg(args), circular(args, false))); }});
   table.add({.name = "cylinder",

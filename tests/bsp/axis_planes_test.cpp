@@ -37,11 +37,12 @@ TEST(AxisPlanes, CirclesSplitAtTheirVerticesOnTheAxes) {
   for (const int n : {8, 12, 30, 31, 32, 33, 64}) {
     SCOPED_TRACE(testing::Message() << "segments " << n);
     const Solid s = sphere(1.0, {.segments = n});
-    const int bands = (n + 1) / 2 - 1;
+    const int bands = (n + 1) / 2 + 1;  // between the rings, and a fan at each pole
     // Vertices at angles 0 and pi for even n, also at pi / 2 and 3 pi / 2 for n divisible by 4:
     // y = 0 splits every band, x = 0 each half of it.
     EXPECT_EQ(nodes_on(s, kY0), n % 2 == 0 ? bands : 0);
-    EXPECT_EQ(nodes_on(s, kX0), n % 4 == 0 ? 2 * bands : 0);
+    // The poles lie on x = 0 as well: for even n it splits each pole's fan there too.
+    EXPECT_EQ(nodes_on(s, kX0), n % 4 == 0 ? 2 * bands : (n % 2 == 0 ? 2 : 0));
     // The boundary's corners near those planes lie exactly on them (the splits are at vertices).
     for (const BoundaryFragment& f : s.boundary())
       for (const kernel::Corner& c : f.polygon.corners) {

@@ -154,14 +154,15 @@ TEST(BatchUnion, CurvedAndTiltedSolidsMatchThePairwiseUnion) {
 }
 
 TEST(BatchUnion, ConvexOperandsGiveShallowTrees) {
-  // Four overlapping spheres of 1,104 faces each: autopartition alone chains their faces (each
+  // Four overlapping spheres of 1,200 faces each: autopartition alone chains their faces (each
   // sees all others behind it); planes through the median keep the tree shallower (height 102
-  // with them, 244 without, when this test was written).
+  // with them, 244 without, when this test was written with flat polar caps; 152 since each pole
+  // is a vertex, a fan of 48 faces: the fans still chain).
   std::vector<Solid> all;
   for (int i = 0; i < 4; ++i) all.push_back(translate(sphere(1.0, {.segments = 48}), {0.7 * i, 0.3 * (i % 2), 0.0}));
   const Solid u = unite_all(all);
   const Solid p = pairwise(all);
-  EXPECT_LT(tree_stats(u).height, 120);
+  EXPECT_LT(tree_stats(u).height, 170);
   EXPECT_TRUE(EdgesManifoldAndOriented(to_mesh(u)));
   EXPECT_NEAR(vol(u), vol(p), 1e-12 * vol(p));
   EXPECT_NEAR(vol(tree_only(u)), vol(p), 1e-12 * vol(p));

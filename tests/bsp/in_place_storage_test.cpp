@@ -116,7 +116,7 @@ void run_operations(Solid work, int count) {
     const Solid swept = sweep(ball, path);
     const double c = 0.3 * std::sin(1.3 * k);
     const Solid cutter = box({c - 0.15, -0.9, -0.3}, {c + 0.15, 0.9, 0.2});
-    const Solid lump = sphere(0.25, {.segments = 12});
+    const Solid lump = sphere(0.25, {.segments = 10});
     const Solid lump_at = translate(lump, {0.5 * std::cos(0.9 * k), 0.5 * std::sin(0.9 * k), -0.1});
     // The operation k does, copying and in place.
     auto copying = [&](const Solid& w) {

@@ -104,20 +104,51 @@ TEST(PrimitiveVertices, ConeVertexOnABoxFaceStaysFlush) {
   expect_reads_back(to_mesh(d), volume(d), 1e-12, "box minus cone");
 }
 
-TEST(PrimitiveVertices, SpherePoleCapOnAPlaneStaysFlush) {
-  // sphere(1, 16): 8 rings at polar angles (k + 0.5) pi / 8; the top cap is flat at the grid
-  // height nearest to cos(pi / 16). A box standing on it touches it exactly.
-  const Solid s = sphere(1, {.segments = 16});
-  const double top = snapped(std::cos(std::numbers::pi / 16));
-  double highest = -1;
-  for (const Eigen::Vector3d& v : to_mesh(s, {.clean = false}).vertices) highest = std::max(highest, v.z());
-  EXPECT_EQ(highest, top);
-  const Solid u = unite(s, box({-0.1, -0.1, top}, {0.1, 0.1, top + 0.5}));
-  const double side = 2 * snapped(0.1), height = snapped(top + 0.5) - top;
-  EXPECT_NEAR(volume(u), volume(s) + side * side * height, 1e-12);
-  // The sphere's other vertices are not grid points: from_mesh snaps them, which moves the surface
-  // by at most sqrt(3)/2 steps (area about 4 pi).
-  expect_reads_back(to_mesh(u), volume(u), 4 * std::numbers::pi * 1.0 / kUnit, "sphere and box on its cap");
+// The volume of sphere(r, n) by its definition (primitives.hpp): OpenSCAD's rings of regular
+// n-gons at polar angles (k + 0.5) pi / rings, at the grid heights nearest, a vertex at each pole;
+// frusta between the rings and a pyramid at each end.
+double sphere_polyhedron_volume(double r, int n) {
+  const int rings = (n + 1) / 2;
+  const double gon = 0.5 * n * std::sin(2 * std::numbers::pi / n);  // area of the n-gon of circumradius 1
+  std::vector<std::pair<double, double>> z_area{{-r, 0.0}};
+  for (int k = rings - 1; k >= 0; --k) {
+    const double phi = (k + 0.5) * std::numbers::pi / rings;
+    z_area.emplace_back(snapped(r * std::cos(phi)), gon * std::pow(r * std::sin(phi), 2));
+  }
+  z_area.emplace_back(r, 0.0);
+  double v = 0;
+  for (std::size_t k = 0; k + 1 < z_area.size(); ++k) {
+    const auto [z0, a0] = z_area[k];
+    const auto [z1, a1] = z_area[k + 1];
+    v += (z1 - z0) / 3 * (a0 + a1 + std::sqrt(a0 * a1));
+  }
+  return v;
+}
+
+TEST(PrimitiveVertices, SpherePoleOnAPlaneStaysFlush) {
+  for (const int n : {8, 16, 33}) {
+    const Solid s = sphere(1, {.segments = n});
+    // Its volume by definition (ring vertices within about 2^-24 of the ideal polygons').
+    EXPECT_NEAR(volume(s), sphere_polyhedron_volume(1, n), 1e-6) << n;
+    // One vertex at each pole, exactly.
+    int top = 0, bottom = 0;
+    for (const Eigen::Vector3d& v : to_mesh(s).vertices) {
+      EXPECT_LE(std::fabs(v.z()), 1.0);
+      top += v == Eigen::Vector3d(0, 0, 1);
+      bottom += v == Eigen::Vector3d(0, 0, -1);
+    }
+    EXPECT_EQ(top, 1) << n;
+    EXPECT_EQ(bottom, 1) << n;
+    // Centred r above a plate's top face, it touches the face: sunk by one grid step it overlaps
+    // the plate, raised by one step it does not (OpenSCAD's flat caps left a gap of r (1 - cos(pi /
+    // (2 rings))), 0.02 at n = 16).
+    const Solid plate = box({-2, -2, -1}, {2, 2, 0});
+    const double step = 1 / kUnit;
+    EXPECT_GT(volume(plate & translate(s, {0, 0, 1 - step})), 0.0) << n;
+    EXPECT_EQ(volume(plate & translate(s, {0, 0, 1})), 0.0) << n;
+    // A ball standing on the plate: the volumes add.
+    EXPECT_NEAR(volume(unite(plate, translate(s, {0, 0, 1}))), volume(plate) + volume(s), 1e-12) << n;
+  }
 }
 
 }  // namespace

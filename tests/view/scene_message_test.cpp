@@ -112,8 +112,9 @@ TEST(SceneMessage, CreasesComeFirstAndCurvedSurfacesHaveNone) {
   // A ball: every facet is its own plane, nothing is a crease.
   const Scene ball = scene_of({{"ball", std::nullopt, language::solid_value(sphere(1))}}, std::nullopt);
   const std::string message = encode_scene(ball);
-  // 16 rings of 32 edges and 15 bands with 32 edges between them: all features.
-  EXPECT_EQ(block_of(message, "edges").count + block_of(message, "loose").count, 16u * 32 + 15 * 32);
+  // 16 rings of 32 edges, 15 bands between them and a fan at each pole with 32 edges each: all
+  // features.
+  EXPECT_EQ(block_of(message, "edges").count + block_of(message, "loose").count, 16u * 32 + 17 * 32);
   EXPECT_EQ(block_of(message, "edges").third + block_of(message, "loose").third, 0u);
 }
 
@@ -141,8 +142,9 @@ TEST(SceneMessage, DepthsOnlyWhenAskedOneAPerTriangle) {
 }
 
 /// Volume, area and bounding box of the sphere primitive's polyhedron (bsp/primitives.hpp, like
-/// OpenSCAD's): `rings` = (n + 1) / 2 rings of n vertices at polar angles pi (i + 1/2) / rings,
-/// azimuths 2 pi k / n, flat caps. Consecutive rings bound frusta of regular n-gon pyramids.
+/// OpenSCAD's rings): `rings` = (n + 1) / 2 rings of n vertices at polar angles pi (i + 1/2) / rings,
+/// azimuths 2 pi k / n, and a vertex at each pole. Consecutive rings bound frusta of regular n-gon
+/// pyramids, the outer rings and the poles two pyramids.
 struct SphereMeasures {
   double volume = 0, area = 0, half_width = 0, half_height = 0;
 };
@@ -153,7 +155,10 @@ SphereMeasures sphere_polyhedron(double r, int n) {
   const auto height = [&](int i) { return r * std::cos(pi * (i + 0.5) / rings); };
   const auto polygon_area = [&](double rho) { return 0.5 * n * rho * rho * std::sin(2 * pi / n); };
   SphereMeasures m;
-  m.area = polygon_area(radius(0)) + polygon_area(radius(rings - 1));
+  // The pyramids at the poles (the outer rings are congruent).
+  const double cap = r - height(0), apothem = radius(0) * std::cos(pi / n), side = 2 * radius(0) * std::sin(pi / n);
+  m.volume = 2 * cap / 3 * polygon_area(radius(0));
+  m.area = 2 * n * side / 2 * std::hypot(cap, apothem);
   for (int i = 0; i + 1 < rings; ++i) {
     const double h = height(i) - height(i + 1), a1 = polygon_area(radius(i)), a2 = polygon_area(radius(i + 1));
     m.volume += h / 3 * (a1 + a2 + std::sqrt(a1 * a2));
@@ -162,7 +167,7 @@ SphereMeasures sphere_polyhedron(double r, int n) {
     m.area += n * sides / 2 * std::hypot(h, apothems);
   }
   for (int i = 0; i < rings; ++i) m.half_width = std::max(m.half_width, radius(i));
-  m.half_height = height(0);
+  m.half_height = r;
   return m;
 }
 
@@ -185,7 +190,7 @@ TEST(SceneMessage, MeasuresOfABoxAndASphereAreTheAnalyticOnes) {
     // The vertices are on the sphere within the rounding of the planes' integer normals.
     EXPECT_NEAR(*part.volume, exact.volume, 1e-5 * exact.volume) << n << " segments";
     EXPECT_NEAR(part.area, exact.area, 1e-5 * exact.area) << n << " segments";
-    // The caps are at grid heights: within half a grid step (2^-16) in z.
+    // The poles are at grid heights (r = 2 is one): within half a grid step (2^-16) in z.
     for (int a = 0; a < 3; ++a) {
       const double half = a == 2 ? exact.half_height : exact.half_width, tolerance = a == 2 ? 0x1p-16 : 1e-5;
       EXPECT_NEAR(part.box.min()[a], -half, tolerance) << n << " segments, axis " << a;

@@ -67,6 +67,7 @@ function primitive() {
         const phi = ((k + 0.5) * Math.PI) / rings;
         for (const [x, y] of ngon(r * Math.sin(phi), n)) pts.push([x, y, r * Math.cos(phi)]);
       }
+      pts.push([0, 0, -r], [0, 0, r]);  // the poles
       return { text: `sphere(${num(r)}, segments=${n})`, pts };
     }
   }
