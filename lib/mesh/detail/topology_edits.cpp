@@ -183,6 +183,8 @@ bool separate_copies(CleanMesh& mesh, double delta, OutputRoundingReport& report
       const std::set<int> n = mesh.neighbours(copies[i]);
       if (std::any_of(copies.begin(), copies.end(), [&](int c) { return n.count(c) != 0; }))
         continue;  // a zero-length edge
+      // Ctrl-C (base/cancel.hpp): separating runs exact meeting tests, milliseconds each.
+      check_cancel();
       if (separate(mesh, copies[i], delta)) {
         ++report.separated_vertices;
         changed = true;
@@ -214,11 +216,25 @@ bool collapse_short_edges(CleanMesh& mesh, double delta, OutputRoundingReport& r
     }
   }
   if (!short_edges) return false;
-  bool changed = false;
-  std::map<int, std::vector<int>> clusters;
+  // The clusters of two or more vertices, by root, each in vertex order: (root, vertex) pairs
+  // sorted (a std::map of every vertex took seconds on millions of vertices).
+  // Only vertices alive now are members (a cluster one of whose members a collapse before it
+  // removes is skipped below).
+  std::vector<std::pair<int, int>> member;
   for (size_t v = 0; v < parent.size(); ++v)
-    if (mesh.vertex_alive(static_cast<int>(v))) clusters[find(static_cast<int>(v))].push_back(static_cast<int>(v));
-  for (const auto& [root, cluster] : clusters) {
+    if (const int r = find(static_cast<int>(v)); r != static_cast<int>(v) && mesh.vertex_alive(static_cast<int>(v)))
+      member.emplace_back(r, static_cast<int>(v));
+  for (size_t i = 0, joined = member.size(); i < joined; ++i)
+    if (mesh.vertex_alive(member[i].first)) member.emplace_back(member[i].first, member[i].first);
+  std::sort(member.begin(), member.end());
+  member.erase(std::unique(member.begin(), member.end()), member.end());
+  bool changed = false;
+  std::vector<int> cluster;
+  for (size_t i = 0, next = 0; i < member.size(); i = next) {
+    check_cancel();  // Ctrl-C: a collapse runs exact meeting tests, milliseconds each
+    cluster.clear();
+    for (next = i; next < member.size() && member[next].first == member[i].first; ++next)
+      cluster.push_back(member[next].second);
     if (cluster.size() < 2) continue;
     bool alive = true;
     for (int v : cluster) alive = alive && mesh.vertex_alive(v);

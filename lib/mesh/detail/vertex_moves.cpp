@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/cancel.hpp"
 #include "mesh/detail/crossing_search.hpp"
 
 namespace sculpt::mesh::detail {
@@ -93,7 +94,8 @@ bool nudge_crossings(CleanMesh& mesh, double delta, OutputRoundingReport& report
   const std::vector<std::pair<int, int>> pairs = crossings(mesh);
   if (pairs.size() > std::max(kMaxNudgedPairs, mesh.live_triangles() / kTrianglesPerNudgedPair)) return false;
   bool changed = false;
-  for (const auto& [t, u] : pairs)
+  for (const auto& [t, u] : pairs) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp): each nudge runs exact meeting tests, milliseconds
     for (const auto& [mine, other] : {std::pair{t, u}, std::pair{u, t}}) {
       if (!mesh.alive[size_t(mine)] || !mesh.alive[size_t(other)]) continue;
       const Vector3d n = mesh.normal(mesh.tris[size_t(other)]);
@@ -107,6 +109,7 @@ bool nudge_crossings(CleanMesh& mesh, double delta, OutputRoundingReport& report
         break;
       }
     }
+  }
   return changed;
 }
 
