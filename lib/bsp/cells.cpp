@@ -90,7 +90,8 @@ LeafCell to_leaf_cell(const Cell& cell, int depth, bool inside, const kernel::Gr
 
 }  // namespace
 
-std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& box) {
+void for_each_leaf_cell(const Solid& solid, const Eigen::AlignedBox3d& box,
+                        const std::function<void(LeafCell)>& visit) {
   if (box.isEmpty()) throw InvalidInput("leaf_cells: empty sample box");
   const kernel::GridPoint lo = solid.grid().snap(box.min()), hi = solid.grid().snap(box.max());
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) throw InvalidInput("leaf_cells: sample box thinner than the grid step");
@@ -111,7 +112,6 @@ std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& 
     }
     start.push_back(std::move(f));
   }
-  std::vector<LeafCell> out;
   struct Frame {
     TreeRef t;
     Cell cell;
@@ -125,7 +125,7 @@ std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& 
     Frame f = std::move(stack.back());
     stack.pop_back();
     if (is_leaf(f.t)) {
-      out.push_back(to_leaf_cell(f.cell, f.depth, f.t == kIn, solid.grid()));
+      visit(to_leaf_cell(f.cell, f.depth, f.t == kIn, solid.grid()));
       continue;
     }
     const BspNode& n = solid.nodes()[std::size_t(f.t)];
@@ -134,6 +134,11 @@ std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& 
     if (!neg.empty()) stack.push_back({n.negative, std::move(neg), f.depth + 1});
     if (!pos.empty()) stack.push_back({n.positive, std::move(pos), f.depth + 1});
   }
+}
+
+std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& box) {
+  std::vector<LeafCell> out;
+  for_each_leaf_cell(solid, box, [&](LeafCell cell) { out.push_back(std::move(cell)); });
   return out;
 }
 

@@ -5,6 +5,7 @@
 /// tree is clipped to an axis-aligned sample box and returned as a convex polytope.
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <vector>
 
 #include "bsp/solid.hpp"
@@ -19,8 +20,13 @@ struct LeafCell {
   bool inside = false;                     ///< in-cell or out-cell
 };
 
-/// Every leaf cell ∩ box with positive volume (cells not meeting the box are skipped).
-/// The volumes add up to the box volume.
+/// Calls `visit` with every leaf cell ∩ box (cells not meeting the box are skipped), one at a
+/// time, depth first: a caller that only sums (depth_cost) keeps no list of the millions of cells
+/// a large tree has. The volumes add up to the box volume. Checks for Ctrl-C (base/cancel.hpp).
+/// \throw InvalidInput for an empty box or one thinner than the grid step; Cancelled
+void for_each_leaf_cell(const Solid& solid, const Eigen::AlignedBox3d& box, const std::function<void(LeafCell)>& visit);
+
+/// The cells of for_each_leaf_cell as a list.
 std::vector<LeafCell> leaf_cells(const Solid& solid, const Eigen::AlignedBox3d& box);
 
 }  // namespace sculpt

@@ -39,8 +39,10 @@ DepthCost depth_cost(const Solid& solid, const DepthCostOptions& options) {
 
   std::map<int, DepthBin> bins;
   out.cell_volumes = "exact (bsp/cells.hpp)";
-  for (const LeafCell& cell : leaf_cells(solid, out.sample_box)) {
-    if (!(cell.volume > 0.0)) continue;
+  // One cell at a time: a large tree has millions, and a list of them would take gigabytes and
+  // a second to free when Ctrl-C stops the walk.
+  for_each_leaf_cell(solid, out.sample_box, [&](const LeafCell& cell) {
+    if (!(cell.volume > 0.0)) return;
     const double p = cell.volume / out.sample_volume;
     ++out.cells_in_box;
     out.cell_volume_sum += cell.volume;
@@ -56,7 +58,7 @@ DepthCost depth_cost(const Solid& solid, const DepthCostOptions& options) {
       ++bin.out_cells;
       bin.out_probability += p;
     }
-  }
+  });
   out.ratio = out.entropy_bound > 0.0 ? out.expected_depth / out.entropy_bound : 0.0;
   for (auto& [depth, bin] : bins) out.histogram.push_back(bin);
   return out;

@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "base/cancel.hpp"
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
 #include "reports/range_query_tree.hpp"
@@ -86,6 +87,7 @@ QueryCost query_cost(const Solid& solid, const QueryCostOptions& options) {
   std::vector<std::int32_t> stack;
   double sum = 0, sum_sq = 0, leaf_sum = 0;
   const double half = 0.5 * out.size;
+  CancelPoll poll;
   for (int i = 0; i < options.samples; ++i) {
     Eigen::Vector3d centre;
     for (int a = 0; a < 3; ++a) centre[a] = box.min()[a] + unit(rng) * box.sizes()[a];
@@ -106,6 +108,8 @@ QueryCost query_cost(const Solid& solid, const QueryCostOptions& options) {
                      stack);
         break;
     }
+    poll.tick(static_cast<std::uint32_t>(cost.first) +
+              1);  // Ctrl-C, by nodes visited: a box query can visit most of the tree
     sum += cost.first;
     sum_sq += double(cost.first) * cost.first;
     leaf_sum += cost.second;

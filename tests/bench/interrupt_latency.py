@@ -51,9 +51,10 @@ class Terminal:
             os.execv(sculpt, [sculpt])
         self.screen = ""
 
-    def read_until(self, text, timeout=600.0):
+    def read_until(self, text, timeout=600.0, also=None):
+        """Reads until `text` (or `also`, when given) shows; returns the time it showed."""
         end = time.time() + timeout
-        while text not in self.screen:
+        while text not in self.screen and (also is None or also not in self.screen):
             ready, _, _ = select.select([self.fd], [], [], max(0.0, end - time.time()))
             if not ready:
                 raise AssertionError("timed out waiting for %r:\n%s" % (text, self.screen[-2000:]))
@@ -111,10 +112,15 @@ def measure(sculpt, name, delays, workdir):
         pressed = time.time()
         os.write(t.fd, b"\x03")
         try:
-            shown = t.read_until("interrupted", timeout=120)
+            # "entry cancelled": the key reached an idle prompt, the statement had ended first
+            shown = t.read_until("interrupted", timeout=120, also="entry cancelled")
         except AssertionError:
             shown = None
+        ended_first = "entry cancelled" in t.screen and "interrupted" not in t.screen
         t.quiet_prompt()
+        if ended_first:
+            latencies.append("finished")
+            continue
         latencies.append(None if shown is None else shown - pressed)
         if name == "export" and os.path.exists(os.path.join(workdir, "out.stl")):
             raise AssertionError("export: an interrupted export left its file")
