@@ -94,6 +94,9 @@ int run_script_view(const ScriptViewOptions& options) {
   for (long long run = 1; !stop_requested.load(); ++run) {
     std::vector<std::string> watched = {options.script};
     std::vector<Stamp> stamps = {stamp_of(options.script)};
+    // Files built-ins read (import, curve(source=), load_spline), stamped when the run ends: a
+    // script that exports a file and reads it back does not set itself off again.
+    std::vector<std::string> data_files;
     const auto start = std::chrono::steady_clock::now();
     view::Status status{.run = run};
     {
@@ -105,6 +108,7 @@ int run_script_view(const ScriptViewOptions& options) {
         watched.push_back(path);
         stamps.push_back(stamp_of(path));
       };
+      interpreter_options.file_read = [&](const std::string& path) { data_files.push_back(path); };
       language::Interpreter interpreter(interpreter_options);
       last.interpreter = &interpreter;
       try {
@@ -122,6 +126,10 @@ int run_script_view(const ScriptViewOptions& options) {
       }
     }
     if (stop_requested.load()) break;
+    for (const std::string& path : data_files) {
+      watched.push_back(path);
+      stamps.push_back(stamp_of(path));
+    }
     status.milliseconds = milliseconds_since(start);
     server->publish_status(view::encode_status(status));
     std::cout.flush();

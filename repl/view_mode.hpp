@@ -1,7 +1,7 @@
 #pragma once
 /// \file view_mode.hpp
-/// sculpt --view: the live view of a script (runs it again whenever it or a file it includes
-/// changes) and of the interactive session (:view). docs/viewing.md.
+/// sculpt --view: the live view of a script (runs it again whenever it, a file it includes or a
+/// file a built-in of it reads changes) and of the interactive session (:view). docs/viewing.md.
 
 #include <functional>
 #include <iosfwd>

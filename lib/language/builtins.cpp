@@ -286,6 +286,12 @@ std::string Arguments::file_path(std::string_view name) const {
   return p.string();
 }
 
+std::string Arguments::input_path(std::string_view name) const {
+  std::string path = file_path(name);
+  if (settings_.file_read) settings_.file_read(path);
+  return path;
+}
+
 void BuiltinTable::add(Builtin builtin) {
   builtin.area = area_;
   if (builtin.signature.empty()) builtin.signature = make_signature(builtin);

@@ -211,6 +211,8 @@ struct RunSettings {
   /// Calls a function value (a user function or a built-in) with positional arguments, as a call
   /// at `at` would (map, filter); set by the interpreter.
   std::function<Value(const Value& f, std::vector<Value> values, const SourceRef& at)> call{};
+  /// Called with the path of each file a built-in reads (InterpreterOptions::file_read).
+  std::function<void(const std::string& path)> file_read{};
 };
 
 /// The arguments of one call, bound to the built-in's parameters, with their script positions
@@ -278,6 +280,9 @@ class Arguments {
   /// Refuses when files are disabled; else the path argument resolved against the calling
   /// script's folder.
   [[nodiscard]] std::string file_path(std::string_view name) const;
+  /// file_path for a file the built-in reads: also reported to RunSettings::file_read (the live
+  /// view runs the script again when it changes).
+  [[nodiscard]] std::string input_path(std::string_view name) const;
 
   /// The global variable `name` of the run, or null.
   [[nodiscard]] const Value* global(const std::string& name) const;

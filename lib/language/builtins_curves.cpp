@@ -94,7 +94,7 @@ void register_curves(BuiltinTable& table) {
              .run = [](const Arguments& args) {
                DigitizedCurve curve;
                if (args.value("source").get<std::string>()) {
-                 curve = curves::load_curve(args.file_path("source"));
+                 curve = curves::load_curve(args.input_path("source"));
                } else if (args.value("source").list()) {
                  curve = curve_from_points(args, "source");
                } else {

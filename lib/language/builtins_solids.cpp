@@ -624,7 +624,7 @@ void register_solids(BuiltinTable& table) {
                     "positive, and the import says what it resolved (strict=true refuses such a mesh instead).",
              .params = {arg("file").string().shown_as("\"file.off\""), arg("strict").boolean().defaults(false)},
              .run = [](const Arguments& args) -> Value {
-               const std::string path = args.file_path("file");
+               const std::string path = args.input_path("file");
                const bool strict = args.boolean("strict");
                const PolygonMesh mesh = read_mesh(path);
                const ValidationReport report = check_closed_manifold(mesh);

@@ -340,7 +340,7 @@ void register_splines(BuiltinTable& table) {
                     "knots may be left out for uniform ones). Errors name the file, line and column.",
              .params = {arg("file").string().shown_as("\"file\"")},
              .run = [](const Arguments& args) -> Value {
-               return spline_value(splines::load_spline(args.file_path("file")));
+               return spline_value(splines::load_spline(args.input_path("file")));
              }});
 
   table.add({.name = "offset",

@@ -675,6 +675,7 @@ Interpreter::Interpreter(InterpreterOptions options) : impl_(std::make_unique<Im
   impl_->settings.out = options.out ? options.out : &std::cout;
   impl_->settings.err = options.err ? options.err : &std::cerr;
   impl_->settings.allow_files = options.allow_files;
+  impl_->settings.file_read = options.file_read;
   impl_->settings.steps = &impl_->steps;
   impl_->settings.max_steps = options.max_steps;
   impl_->settings.globals = &impl_->globals;

@@ -44,6 +44,9 @@ struct InterpreterOptions {
   std::function<void(const Value&)> top_level_value{};
   /// Called with the path of each file an `include` reads (sculpt --view watches them).
   std::function<void(const std::string& path)> included{};
+  /// Called with the path of each file a built-in reads: import, curve(source=), load_spline
+  /// (sculpt --view watches them too).
+  std::function<void(const std::string& path)> file_read{};
 };
 
 class Interpreter {

@@ -70,6 +70,32 @@ check view_port_in_use 1 "sculpt: --view: port $view_port on 127.0.0.1 is in use
 kill -INT "$view_pid"
 wait "$view_pid"
 check view_ends_on_interrupt 0 "view: stopped" tail -n 1 "$tmp/view.out"
+# Files followed: an included script and a mesh import() reads each run the script again when they
+# change; a file the script writes and reads back (export, then import) does not.
+mkdir -p "$tmp/follow"
+printf 'size = 1\n' > "$tmp/follow/part.bsp"
+"$sculpt" -e 'export(box([0, 0, 0], [1, 1, 1]), "'"$tmp"'/follow/tool.off")'
+printf 'include "part.bsp"\nexport(box([0, 0, 0], [size, 1, 1]), "own.off")\nb = import("own.off")\nt = import("tool.off")\nprint(volume(b | t))\n' > "$tmp/follow/main.bsp"
+"$sculpt" --view --port 0 "$tmp/follow/main.bsp" > "$tmp/follow.out" 2>&1 &
+view_pid=$!
+runs_seen() { grep -c "^view: run " "$tmp/follow.out"; }
+wait_runs() { for _ in $(seq 100); do [ "$(runs_seen)" -ge "$1" ] && break; sleep 0.1; done; }
+wait_runs 1
+sleep 1.2  # ten polls: the script's own export must not run it again
+check view_own_export_not_followed 0 "1" runs_seen
+sleep 1.1  # a time stamp one second later whatever the file system's resolution
+printf 'size = 3\n' > "$tmp/follow/part.bsp"
+wait_runs 2
+check view_follows_include 0 "2" runs_seen
+sleep 1.1
+"$sculpt" -e 'export(box([0, 0, 0], [2, 2, 2]), "'"$tmp"'/follow/tool.off")'
+wait_runs 3
+check view_follows_import 0 "3" runs_seen
+kill -INT "$view_pid"
+wait "$view_pid"
+check view_follow_volumes 0 "1
+3
+9" grep -E '^[0-9]+$' "$tmp/follow.out"
 check grid_outside 2 "sculpt: grid step 2^-70 is outside the supported steps 2^-64 .. 2^32; try 'sculpt --help'" "$sculpt" --grid 2^-70
 
 # -D overrides the script's own assignments outside functions (OpenSCAD's rule), not a
