@@ -1,4 +1,4 @@
-// show(x, name=, color=): puts solids and meshes in the live view (sculpt --view, the REPL's
+// show(x, name=, color=): puts solids, meshes, surfaces and curves in the live view (sculpt --view, the REPL's
 // :view; lib/view, docs/viewing.md). The interpreter keeps the list (Interpreter::shown()); the
 // view reads it after each run or entry.
 #include <array>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "language/builtins.hpp"
+#include "language/picture_items.hpp"
 #include "language/solid_values.hpp"
 
 namespace sculpt::language {
@@ -61,20 +62,29 @@ std::array<double, 3> color_arg(const Arguments& args, std::string_view i) {
   return {v[0], v[1], v[2]};
 }
 
-bool viewable(const Value& v) { return v.object<SolidValue>() || v.object<MeshValue>(); }
+/// Why v cannot be a part of the view (empty: it can): what render draws, checked without making
+/// a solid's boundary (the view makes it once, when it sends the scene).
+std::string unviewable(const Value& v) {
+  if (v.object<SolidValue>() || v.object<MeshValue>()) return {};
+  auto item = picture_item(v);
+  const std::string* error = std::get_if<std::string>(&item);
+  return error ? *error : std::string();
+}
 
 Value show(const Arguments& args) {
   const Value& x = args.value("x");
   std::vector<Value> items;
-  if (viewable(x)) {
-    items.push_back(x);
-  } else if (const List* list = x.list(); list && !list->empty()) {
-    for (const Value& item : *list) {
-      if (!viewable(item)) args.fail_type("x", "a solid, a mesh or a list of them");
-      items.push_back(item);
+  const List* list = x.list();
+  if (list && !is_point_list(list)) {  // a list of parts (a list of points is one curve)
+    if (list->empty()) args.fail("x", "the list is empty");
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      if (const std::string error = unviewable((*list)[k]); !error.empty())
+        args.fail("x", "item " + std::to_string(k + 1) + " " + error);
+      items.push_back((*list)[k]);
     }
   } else {
-    args.fail_type("x", "a solid, a mesh or a list of them");
+    if (const std::string error = unviewable(x); !error.empty()) args.fail("x", "x " + error);
+    items.push_back(x);
   }
   std::optional<std::array<double, 3>> color;
   if (args.has("color")) color = color_arg(args, "color");
@@ -100,15 +110,17 @@ Value show(const Arguments& args) {
 }  // namespace
 
 void register_view(BuiltinTable& table) {
-  table.add({.name = "show",
-             .doc = "Puts x (a solid, a mesh or a list of them) in the live view (sculpt --view FILE, :view in the "
-                    "REPL; docs/viewing.md) as a part called name, in color (\"#rrggbb\", [r, g, b] with each "
-                    "in [0, 1], or red, green, blue, yellow, orange, purple, cyan, magenta, grey, white, black, "
-                    "brown, gold). Showing a name again replaces that part; a list gives parts \"name 1\", "
-                    "\"name 2\", .... Without any show the view shows the last solid made. Returns x.",
-             .params = {arg("x").any("a solid, a mesh or a list of them"), arg("name").string().optional("\"part N\""),
-                        arg("color").any("\"#rrggbb\", a color name or [r, g, b]").optional("none")},
-             .run = show});
+  table.add(
+      {.name = "show",
+       .doc = "Puts x (a solid, mesh, B-spline surface, spline, curve, linearization, motion (its path), list "
+              "of points, or a list of them) in the live view (sculpt --view FILE, :view in the "
+              "REPL; docs/viewing.md) as a part called name, in color (\"#rrggbb\", [r, g, b] with each "
+              "in [0, 1], or red, green, blue, yellow, orange, purple, cyan, magenta, grey, white, black, "
+              "brown, gold). Showing a name again replaces that part; a list gives parts \"name 1\", "
+              "\"name 2\", .... Without any show the view shows the last solid made. Returns x.",
+       .params = {arg("x").any("what render draws, or a list of them"), arg("name").string().optional("\"part N\""),
+                  arg("color").any("\"#rrggbb\", a color name or [r, g, b]").optional("none")},
+       .run = show});
 }
 
 }  // namespace sculpt::language

@@ -15,7 +15,7 @@ namespace sculpt::language {
 struct ShownPart {
   std::string name;
   std::optional<std::array<double, 3>> color;  ///< red, green, blue in [0, 1]; none: the view picks one
-  Value value;                                 ///< a solid or a mesh
+  Value value;  ///< what render draws (language/picture_items.hpp): a solid, a mesh, a surface, a curve...
 };
 
 }  // namespace sculpt::language

@@ -162,6 +162,19 @@ std::pair<std::string, std::size_t> depth_data(const Solid& solid, const std::st
   return {std::move(out), depths.size()};
 }
 
+/// A curve's points as float32 (12 bytes a point).
+std::string curve_data(const std::vector<Eigen::Vector3d>& points) {
+  std::string out;
+  out.reserve(12 * points.size());
+  for (const Eigen::Vector3d& p : points) {
+    if (!(p.cwiseAbs().maxCoeff() <= std::numeric_limits<float>::max()))
+      throw InvalidInput("view: a curve point is not finite or beyond float32");
+    const float xyz[3] = {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())};
+    out.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string json_string(const std::string& text) {
@@ -249,11 +262,22 @@ std::string encode_scene(const Scene& scene, const SceneOptions& options) {
     if (options.depth && solid) {
       auto [depths, count] = depth_data(solid->solid, glb);
       json += '[';  // (not "[" + std::string: GCC 12 warns falsely about its memcpy)
-      json += std::to_string(data.size()) + "," + std::to_string(count) + "]}";
+      json += std::to_string(data.size()) + "," + std::to_string(count) + "]";
       data += depths;
     } else {
-      json += "null}";
+      json += "null";
     }
+    json += ",\"curve\":";
+    if (!part.curve.empty()) {
+      json += '[';
+      json += std::to_string(data.size()) + "," + std::to_string(part.curve.size()) + "]";
+      data += curve_data(part.curve);
+    } else {
+      json += "null";
+    }
+    json += ",\"length\":";
+    append_number(json, part.length);
+    json += '}';
   }
   json += "]}";
   json.append((4 - json.size() % 4) % 4, ' ');

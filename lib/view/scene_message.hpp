@@ -7,7 +7,8 @@
 ///   {"parts": [{"name", "color": [r, g, b], "solid", "volume" (solids; else null), "area",
 ///               "box": [[x, y, z], [x, y, z]] (null if empty), "triangles",
 ///               "glb": [offset, length], "edges": [offset, count, creases],
-///               "loose": [offset, count, creases], "depth": [offset, count] or null}, ...]}
+///               "loose": [offset, count, creases], "depth": [offset, count] or null,
+///               "curve": [offset, count] or null, "length"}, ...]}
 /// Offsets count from the start of the data and are multiples of 4. "glb" is the part as binary
 /// glTF (mesh/mesh_io.hpp's GLB writer: float32 positions, uint32 indices). The feature edges, the
 /// edges between faces of the exact boundary that are not coplanar (never a triangulation's
@@ -17,7 +18,10 @@
 /// (detail/feature_edges.hpp): the page splits smooth vertex normals there and draws only them
 /// when it shades smooth. "depth" (solids, and only when asked for: SceneOptions::depth) is one
 /// uint16 per GLB triangle, in the GLB's order: the depth of the tree's leaf cell behind the
-/// triangle (detail/cell_depths.hpp; 65535 at most), padded to 4 bytes.
+/// triangle (detail/cell_depths.hpp; 65535 at most), padded to 4 bytes. "curve" (curves,
+/// splines, linearizations, motion paths, lists of points) is `count` points as 3 float32 each, a
+/// polyline drawn in the part's colour (a closed curve's last point is its first); such a part
+/// has an empty GLB and its "length" is the polyline's.
 ///
 /// A status is one text message: {"type": "status", "ok": true|false, "run": n, "ms": t,
 /// "parts": p, "error": "file:line:col: error: ...\n<the line>\n<caret>"}; an error leaves the

@@ -8,7 +8,8 @@ Checks: the page shows the model (pixels of each part's colour); editing the scr
 page (and how long that took); an error shows file:line:col with its caret and keeps the model;
 fixing it clears the error; hiding a part hides its pixels; smooth shading changes the picture;
 the section plane hides what lies beyond it; two clicks measure the distance between two corners;
-the depth mode colours the boundary; Ctrl-C ends sculpt. Saves screenshots as OUTDIR/view*.png
+the depth mode colours the boundary; a spline and a surface are parts drawn in their colours;
+Ctrl-C ends sculpt. Saves screenshots as OUTDIR/view*.png
 (docs/viewing.md's pictures come from here). Exit 77 (skipped) when Chromium,
 chromedriver or Selenium is missing.
 """
@@ -49,12 +50,18 @@ def check(condition, message):
 
 RED = [0.85, 0.2, 0.2]  # show(..., color="red") (lib/language/builtins_view.cpp)
 BLUE = [0.25, 0.45, 0.85]  # color="blue"
+GREEN = [0.25, 0.7, 0.3]  # color="green"
+SHEET = [0.4, 0.2, 0.35]  # dark enough that lighting from the front does not saturate it
 script = os.path.join(outdir, "model.bsp")
 GOOD = """block = box([0, 0, 0], [2, 1, 1]) - box([1.5, -1, 0.5], [3, 2, 2])
 show(block, name="block", color="red")
 show(translate(sphere(0.5, segments=24), [3, 0.5, 0.5]), name="ball", color="blue")
 """
 EDITED = GOOD.replace("[2, 1, 1]", "[2, 1, 1.5]")
+# Curves and surfaces as parts: a closed spline around the block, a flat sheet under it.
+CURVES = GOOD + """show(bspline([[-1, -1, 0.5], [3, -1, 0.5], [3, 2, 0.5], [-1, 2, 0.5]], closed=true), name="loop", color="green")
+show(bspline_surface([[[-1, -1, -0.2], [-1, 2, -0.2]], [[4, -1, -0.2], [4, 2, -0.2]]], degree=1), name="sheet", color=[0.4, 0.2, 0.35])
+"""
 BROKEN = EDITED + "oops = box([0, 0, 0], [1, 1)\n"
 
 
@@ -230,6 +237,27 @@ def tools(driver, state, wait_for, total):
     check(state("sculptView.pixels(%s)" % RED)["near"] > red0 / 2, "leaving the depth mode gives the colours back")
 
 
+def curves(driver, state, wait_for):
+    scenes = state("sculptView.state.scenes")
+    write(CURVES)
+    check(wait_for("sculptView.state.scenes > %d && sculptView.state.parts.length == 4" % scenes, 5),
+          "the page gets the curve and the surface")
+    driver.find_element(By.ID, "view-top").click()
+    green = state("sculptView.pixels(%s)" % GREEN)["near"]
+    sheet = state("sculptView.pixels(%s)" % SHEET)["near"]
+    measures = driver.find_element(By.ID, "parts").text
+    print("  curve pixels %d, sheet pixels %d" % (green, sheet))
+    check(green > 200, "the closed spline is drawn as a line in its colour (%d pixels)" % green)
+    check(sheet > 2000, "the surface is drawn in its colour (%d pixels)" % sheet)
+    check("curve, length" in measures and "area 15" in measures,
+          "the curve's length and the sheet's area (5 x 3) are listed (got %r)" % measures)
+    driver.find_element(By.ID, "part-visible-2").click()
+    hidden = state("sculptView.pixels(%s)" % GREEN)["near"]
+    check(hidden < green / 20, "unticking the curve hides it (%d -> %d pixels)" % (green, hidden))
+    driver.save_screenshot(os.path.join(outdir, "view_curves.png"))
+    driver.find_element(By.ID, "view-iso").click()
+
+
 write(GOOD)
 process = subprocess.Popen([sculpt, "--view", "--port", "0", script], stdout=subprocess.PIPE,
                            stderr=subprocess.PIPE, text=True)
@@ -337,7 +365,11 @@ try:
     # 6. The tools: smooth shading, the section plane, measuring, the depth mode.
     tools(driver, state, wait_for, pixels["total"])
 
-    # 7. The REPL's :view follows the session: its last solid, then what it shows.
+    # 7. Curves and surfaces are parts: drawn in their colours, listed with their measures, hidden
+    # by their checkboxes.
+    curves(driver, state, wait_for)
+
+    # 8. The REPL's :view follows the session: its last solid, then what it shows.
     repl_view(driver, state, wait_for)
 finally:
     if driver:

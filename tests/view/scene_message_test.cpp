@@ -4,14 +4,19 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <sstream>
+#include <vector>
 
 #include "base/errors.hpp"
 #include "bsp/primitives.hpp"
+#include "language/interpreter.hpp"
 #include "language/solid_values.hpp"
+#include "language/source.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
 
@@ -239,6 +244,106 @@ TEST(SceneMessage, OpenMeshHasNoVolume) {
   square.faces = {{0, 1, 7}};
   const language::Value bad(std::shared_ptr<const language::Object>(std::make_shared<language::MeshValue>(square)));
   EXPECT_THROW(encode_scene(scene_of({{"bad", std::nullopt, bad}}, std::nullopt)), InvalidInput);
+}
+
+/// The parts a script shows.
+Scene shown_scene(const std::string& text) {
+  auto source = std::make_shared<language::SourceFile>();
+  source->name = "test.bsp";
+  source->text = text;
+  std::ostringstream out;
+  language::Interpreter interpreter({.out = &out, .err = &out});
+  interpreter.run(source);
+  return scene_of(interpreter.shown(), std::nullopt);
+}
+
+/// The float32 points of the part's "curve" in `message` (the part's JSON starts at `from`).
+std::vector<Eigen::Vector3f> curve_points(const std::string& message, std::size_t from) {
+  const std::uint32_t json_size = u32_at(message, 4);
+  const std::string json = message.substr(8, json_size);
+  const std::size_t key = json.find("\"curve\":[", from);
+  EXPECT_NE(key, std::string::npos) << json;
+  if (key == std::string::npos) return {};
+  const auto offset = static_cast<std::size_t>(number_after(json, "curve", from));
+  const std::size_t count = std::stoul(json.substr(json.find(',', key) + 1));
+  EXPECT_EQ(offset % 4, 0u);
+  EXPECT_LE(8 + json_size + offset + 12 * count, message.size());
+  std::vector<Eigen::Vector3f> points(count);
+  std::memcpy(points.data(), message.data() + 8 + json_size + offset, 12 * count);
+  return points;
+}
+
+/// Distance from p to the polyline through `corners`.
+double distance_to_polyline(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& corners) {
+  double best = INFINITY;
+  for (std::size_t k = 0; k + 1 < corners.size(); ++k) {
+    const Eigen::Vector3d a = corners[k], d = corners[k + 1] - a;
+    const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (a + t * d - p).norm());
+  }
+  return best;
+}
+
+TEST(SceneMessage, CurvesAreShownAsPolylinesInTheirColour) {
+  // A degree-1 spline is its control polygon: the points lie on it and the length is exact (3 + 4).
+  // A closed degree-1 spline through a square's corners ends where it starts (length 4). A list of
+  // points is one curve, not three parts.
+  const Scene scene = shown_scene(
+      "show(bspline([[0, 0, 0], [3, 0, 0], [3, 4, 0]], degree=1), name=\"path\", color=\"red\")\n"
+      "show(bspline([[0, 0], [1, 0], [1, 1], [0, 1]], degree=1, closed=true), name=\"loop\")\n"
+      "show([[0, 0, 1], [1, 0, 1], [1, 1, 1]], name=\"points\")\n");
+  ASSERT_EQ(scene.parts.size(), 3u);
+  const ViewPart& path = scene.parts[0];
+  EXPECT_TRUE(path.mesh.faces.empty());
+  EXPECT_FALSE(path.solid);
+  EXPECT_NEAR(path.length, 7.0, 1e-12);
+  EXPECT_GT(path.curve.size(), 2u);
+  for (const Eigen::Vector3d& p : path.curve)
+    EXPECT_LT(distance_to_polyline(p, {{0, 0, 0}, {3, 0, 0}, {3, 4, 0}}), 1e-12);
+  EXPECT_TRUE(path.box.isApprox(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(3, 4, 0))));
+  const ViewPart& loop = scene.parts[1];
+  EXPECT_NEAR(loop.length, 4.0, 1e-12);
+  EXPECT_EQ(loop.curve.front(), loop.curve.back());
+  EXPECT_NEAR(scene.parts[2].length, 2.0, 1e-15);
+  EXPECT_EQ(scene.parts[2].curve.size(), 3u);
+
+  const std::string message = encode_scene(scene);
+  const std::string json = message.substr(8, u32_at(message, 4));
+  EXPECT_NE(json.find("\"name\":\"path\",\"color\":[0.85,0.2,0.2],\"solid\":false,\"volume\":null,\"area\":0"),
+            std::string::npos)
+      << json;
+  EXPECT_NE(json.find("\"triangles\":0"), std::string::npos);
+  EXPECT_DOUBLE_EQ(number_after(json, "length"), 7.0);
+  const std::vector<Eigen::Vector3f> sent = curve_points(message, 0);
+  ASSERT_EQ(sent.size(), path.curve.size());
+  for (std::size_t k = 0; k < sent.size(); ++k) EXPECT_EQ(sent[k], path.curve[k].cast<float>());
+  const std::vector<Eigen::Vector3f> third = curve_points(message, json.find("\"name\":\"points\""));
+  ASSERT_EQ(third.size(), 3u);
+  EXPECT_EQ(third[2], Eigen::Vector3f(1, 1, 1));
+}
+
+TEST(SceneMessage, SurfacesAreShownAsOpenTriangleMeshes) {
+  // A bilinear patch is flat: its triangles cover it exactly (area 3 x 2). A curved one: every
+  // triangle corner lies on it, and its top within the chord error (1e-3 of its size).
+  const Scene scene = shown_scene(
+      "show(bspline_surface([[[0, 0, 0], [0, 2, 0]], [[3, 0, 0], [3, 2, 0]]], degree=1), name=\"sheet\")\n"
+      "show(bspline_surface([[[0, 0, 0], [0, 1, 0], [0, 2, 0]], [[1, 0, 1], [1, 1, 1], [1, 2, 1]],"
+      " [[2, 0, 0], [2, 1, 0], [2, 2, 0]]], degree=2), name=\"arch\")\n");
+  ASSERT_EQ(scene.parts.size(), 2u);
+  const ViewPart& sheet = scene.parts[0];
+  EXPECT_FALSE(sheet.solid);
+  EXPECT_TRUE(sheet.curve.empty());
+  EXPECT_FALSE(sheet.mesh.faces.empty());
+  EXPECT_NEAR(sheet.area, 6.0, 1e-12);
+  EXPECT_TRUE(sheet.box.isApprox(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(3, 2, 0))));
+  // The arch x in [0, 2], z = x (2 - x) / 2 (a degree-2 Bezier in u with controls 0, 1, 0),
+  // extruded along y: every triangle corner on it.
+  const ViewPart& arch = scene.parts[1];
+  for (const Eigen::Vector3d& p : arch.mesh.vertices) EXPECT_NEAR(p.z(), p.x() * (2 - p.x()) / 2, 1e-12);
+  EXPECT_NEAR(arch.box.max().z(), 0.5, 5e-3);
+  const std::string message = encode_scene(scene);
+  EXPECT_NE(message.find("\"name\":\"sheet\",\"color\""), std::string::npos);
+  EXPECT_NE(message.find("\"curve\":null"), std::string::npos);
 }
 
 TEST(StatusMessage, CarriesTheErrorTextEscaped) {

@@ -39,10 +39,29 @@ TEST(ShowBuiltin, CollectsNamedColouredParts) {
   EXPECT_FALSE(interpreter.shown()[0].color);
 }
 
+TEST(ShowBuiltin, TakesWhatRenderDraws) {
+  std::ostringstream out;
+  Interpreter interpreter({.out = &out, .err = &out});
+  interpreter.run(
+      code("c = bspline([[0, 0], [1, 1], [2, 0]], degree=2)\n"
+           "show(c, name=\"spline\")\n"
+           "show([[0, 0], [1, 0], [1, 1]], name=\"points\")\n"
+           "show([c, [[0, 0, 0], [0, 0, 1]]], name=\"two\")\n"
+           "show(bspline_surface([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 0]]], degree=1))\n"));
+  const auto& shown = interpreter.shown();
+  ASSERT_EQ(shown.size(), 5u);
+  EXPECT_EQ(shown[1].name, "points");  // a list of points is one part
+  EXPECT_EQ(shown[2].name, "two 1");
+  EXPECT_EQ(shown[3].name, "two 2");
+  EXPECT_EQ(type_name(shown[4].value), "surface");
+}
+
 TEST(ShowBuiltin, RefusesWhatItCannotShow) {
   std::ostringstream out;
   Interpreter interpreter({.out = &out});
   const char* bad[] = {"show(1)",
+                       "show([[0, 0], [1, \"a\"]])",
+                       "show([box([0, 0, 0], [1, 1, 1]), [1, 2]])",
                        "show([])",
                        "show([box([0, 0, 0], [1, 1, 1]), 2])",
                        "show(box([0, 0, 0], [1, 1, 1]), color=\"mauve\")",
