@@ -16,6 +16,7 @@
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/mesh_validation.hpp"
 
 namespace sculpt {
 namespace {
@@ -98,7 +99,11 @@ TEST(PrimitiveVertices, ConeVertexOnABoxFaceStaysFlush) {
   const Solid c = translate(cone(3, 2, {.segments = 6}), {1, 0, 0});
   const Solid u = unite(box({4, -1, 0}, {6, 1, 1}), c);
   const PolygonMesh mesh = to_mesh(u);
-  for (const Eigen::Vector3d& v : mesh.vertices) EXPECT_FALSE(v.x() > 4 && v.x() < 4.001) << v.transpose();
+  // No sliver beside the face. The cone's vertex touches the box's face: the face has a copy of it
+  // as a corner, which the clean output moves into the box by the smallest step that keeps the
+  // copies apart (docs/kernel.md, "Clean output"): a unit in the last place, not a sliver.
+  for (const Eigen::Vector3d& v : mesh.vertices)
+    EXPECT_FALSE(v.x() > std::nextafter(4.0, 5.0) && v.x() < 4.001) << v.transpose();
   expect_reads_back(mesh, volume(u), 1e-12, "cone and box");
   const Solid d = box({-3, -3, 0}, {4, 3, 2}) - c;
   expect_reads_back(to_mesh(d), volume(d), 1e-12, "box minus cone");
@@ -148,6 +153,35 @@ TEST(PrimitiveVertices, SpherePoleOnAPlaneStaysFlush) {
     EXPECT_EQ(volume(plate & translate(s, {0, 0, 1})), 0.0) << n;
     // A ball standing on the plate: the volumes add.
     EXPECT_NEAR(volume(unite(plate, translate(s, {0, 0, 1}))), volume(plate) + volume(s), 1e-12) << n;
+  }
+}
+
+// Parts touching at one point inside a face or an edge of the other (docs/kernel.md, "Clean
+// output"; mesh/touching_vertices.hpp): the exported mesh has the point as a corner of both, so it
+// passes the closed-manifold check with its self-intersection search (what import(strict=true)
+// asks) and reads back from every format as the same solid. (A sphere's ring vertices are not grid
+// points, so reading a ball back snaps them: the ball on the plate must read back as the plate
+// plus the ball read back alone, which it does only if the touching point stays where it is.)
+TEST(PrimitiveVertices, PartsTouchingAtAPointShareItInTheMesh) {
+  const Solid plate = box({-2, -2, -1}, {2, 2, 0});
+  for (const bool triangulate : {false, true}) {
+    // A ball standing on the plate: its pole inside the plate's top face.
+    const Solid ball = translate(sphere(1, {.segments = 16}), {0, 0, 1});
+    const Solid standing = unite(plate, ball);
+    const PolygonMesh ball_on_plate = to_mesh(standing, {.triangulate = triangulate});
+    const ValidationReport report = check_closed_manifold(ball_on_plate);
+    EXPECT_TRUE(report.ok()) << report.summary();
+    const double ball_back = volume(from_mesh(to_mesh(ball)));
+    EXPECT_GT(std::fabs(ball_back - volume(ball)), 1e-7) << "the ring vertices are snapped";
+    expect_reads_back(ball_on_plate, volume(plate) + ball_back, 1e-12, "ball on a plate");
+    // The fuzzer's case (tests/fuzz/regressions/cone_vertex_on_box_edge): the cone's base vertex
+    // (-2.6875, 0, 0) inside the box's edge x = -2.6875, y = 0.
+    const Solid cone_and_box =
+        unite(cone(2.6875, 2.6875, {.segments = 22}), box({-4.6875, -4.66015625, -2}, {-2.6875, 0, 1.34375}));
+    const PolygonMesh edge_contact = to_mesh(cone_and_box, {.triangulate = triangulate});
+    const ValidationReport edge_report = check_closed_manifold(edge_contact);
+    EXPECT_TRUE(edge_report.ok()) << edge_report.summary();
+    expect_reads_back(edge_contact, volume(cone_and_box), 1e-12, "cone on a box's edge");
   }
 }
 

@@ -109,15 +109,13 @@ const bool kStrict = env_flag("FUZZ_GEOMETRY_STRICT");
 
 // Counts of what docs/kernel.md lists as not yet solved, printed at exit.
 struct Known {
-  long programs = 0, solids = 0, errors = 0, duplicate_vertices = 0, zero_area_faces = 0, unsplit_contacts = 0;
+  long programs = 0, solids = 0, errors = 0, duplicate_vertices = 0, zero_area_faces = 0;
   std::map<std::string, long> error_kinds;
   ~Known() {
-    std::fprintf(
-        stderr,
-        "fuzz_geometry: %ld programs, %ld solids checked, %ld typed errors; meshes with distinct vertices at "
-        "the same point (not pinches) %ld, with zero-area faces %ld; exports with a contact on an edge not split "
-        "(read back without strict) %ld\n",
-        programs, solids, errors, duplicate_vertices, zero_area_faces, unsplit_contacts);
+    std::fprintf(stderr,
+                 "fuzz_geometry: %ld programs, %ld solids checked, %ld typed errors; meshes with distinct vertices at "
+                 "the same point (not pinches) %ld, with zero-area faces %ld\n",
+                 programs, solids, errors, duplicate_vertices, zero_area_faces);
     for (const auto& [k, n] : error_kinds) std::fprintf(stderr, "fuzz_geometry:   %6ld x %s\n", n, k.c_str());
   }
 } known;
@@ -778,15 +776,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     if (expr.empty()) continue;
     std::optional<std::string> error = prog.run(name + " = " + expr);
-    if (error && kind == 10 && error->find("self-intersection") != std::string::npos) {
-      // Not yet solved (docs/kernel.md, "Clean output"): where a vertex of one part touches
-      // another part's edge (a cone's base vertex on a box's edge), the export does not split
-      // that edge, so the strict import sees faces meeting; the default import must read it back.
-      ++known.unsplit_contacts;
-      if (kStrict) finding(prog.script, "an exported to_mesh is refused on strict import: " + *error);
-      const std::string lenient = expr.substr(0, expr.find(", strict=true")) + ")";
-      error = prog.run(name + " = " + lenient);
-    }
+    // A vertex of one part touching another part's face or edge is a corner of both in the export
+    // (mesh/touching_vertices.hpp), so the strict import never sees faces meeting.
+    if (error && kind == 10 && error->find("self-intersection") != std::string::npos)
+      finding(prog.script, "an exported to_mesh is refused on strict import: " + *error);
     if (error) {
       // Text formats and binary PLY carry doubles exactly; binary STL rounds to float32 (lossy).
       if (kind == 10 && expr.find(".stl") == std::string::npos &&

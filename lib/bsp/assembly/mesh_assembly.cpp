@@ -8,6 +8,7 @@
 #include "bsp/assembly/sheets.hpp"
 #include "bsp/assembly/vertex_merge.hpp"
 #include "mesh/edge_incidence.hpp"
+#include "mesh/touching_vertices.hpp"
 
 #include <utility>
 
@@ -16,7 +17,8 @@ namespace sculpt::bsp::detail {
 // The stages, each in its own file: exact vertex merging and the fragments as faces on the
 // merged vertices (vertex_merge), T-junction removal (junction_removal), coplanar merging and
 // straight vertices (assembly_coplanar), one vertex copy per sheet and output
-// (assembly_sheets); shared data in assembly_faces.
+// (assembly_sheets), vertices touching another part's face or edge made corners there
+// (mesh/touching_vertices); shared data in assembly_faces.
 PolygonMesh assemble_mesh(FragmentsView fragments, const AssemblyOptions& options) {
   // Ctrl-C (base/cancel.hpp) is checked between the steps (each linear in the fragments).
   MergedFragments merged = merge_vertices(fragments);
@@ -30,8 +32,13 @@ PolygonMesh assemble_mesh(FragmentsView fragments, const AssemblyOptions& option
   faces = remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
   const Sheets sheets = split_non_manifold(std::move(faces), merged.vertices, fragments.planes);
   check_cancel();
-  PolygonMesh mesh =
-      output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate, options.grid, options.exact_vertices);
+  std::vector<char> own_flags;
+  std::vector<char>& exact = options.exact_vertices != nullptr ? *options.exact_vertices : own_flags;
+  PolygonMesh mesh = output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate, options.grid, &exact);
+  check_cancel();
+  // Where parts touch at an isolated point inside another part's face or edge, the point becomes
+  // a corner there too (mesh/touching_vertices.hpp; docs/kernel.md, "Clean output").
+  insert_touching_vertices(mesh, exact, options.triangulate);
   SCULPT_ASSERT(edges_paired(mesh), "assemble_mesh: the output uses an edge other than once in each direction");
   return mesh;
 }
