@@ -83,22 +83,36 @@ Where locate(const PolygonMesh& m, const std::vector<int>& f, const Projection& 
   return star ? Where::Inside : Where::InsideNotStar;
 }
 
-/// Where vertex v touches face f, if it does.
-std::optional<Contact> contact(const PolygonMesh& m, int f, int v, int& left) {
+/// What the tests against one face need: its projection and three corners whose projections are
+/// not collinear (so the projection is one to one on the plane they span, which is the face's:
+/// exact faces are planar); `third` is 0 for a degenerate face.
+struct FacePlane {
+  Projection projection;
+  size_t third = 0;
+};
+
+FacePlane face_plane(const PolygonMesh& m, const std::vector<int>& face) {
+  FacePlane fp{projection_of(m, face), 2};
+  const Projection& pr = fp.projection;
+  const V2 a = pr.of(m.vertices[size_t(face[0])]), b = pr.of(m.vertices[size_t(face[1])]);
+  while (fp.third < face.size() && orient2d(a, b, pr.of(m.vertices[size_t(face[fp.third])])) == 0) ++fp.third;
+  if (fp.third == face.size()) fp.third = 0;  // degenerate (cannot happen for an exact boundary)
+  return fp;
+}
+
+/// Where vertex v touches face f, if it does. The plane test first (constant time; almost every
+/// pair ends there), then the corners, then the position in the face.
+std::optional<Contact> contact(const PolygonMesh& m, int f, const FacePlane& fp, int v, int& left) {
+  if (fp.third == 0) return std::nullopt;
   const std::vector<int>& face = m.faces[size_t(f)];
   const V3& x = m.vertices[size_t(v)];
-  for (const int c : face)
-    if (c == v || m.vertices[size_t(c)] == x) return std::nullopt;  // a corner, or a copy of one
-  const Projection pr = projection_of(m, face);
-  // Three corners whose projections are not collinear: the projection is one to one on the
-  // plane they span, which is the face's (exact faces are planar).
-  const V2 a = pr.of(m.vertices[size_t(face[0])]), b = pr.of(m.vertices[size_t(face[1])]);
-  size_t third = 2;
-  while (third < face.size() && orient2d(a, b, pr.of(m.vertices[size_t(face[third])])) == 0) ++third;
-  if (third == face.size()) return std::nullopt;  // degenerate (cannot happen for an exact boundary)
-  const V3 &pa = m.vertices[size_t(face[0])], &pb = m.vertices[size_t(face[1])], &pc = m.vertices[size_t(face[third])];
+  const V3 &pa = m.vertices[size_t(face[0])], &pb = m.vertices[size_t(face[1])],
+           &pc = m.vertices[size_t(face[fp.third])];
   const int side = orient3d_filtered(pa, pb, pc, x);
   if (side != kUndecided || orient3d(pa, pb, pc, x) != 0) return std::nullopt;  // off the plane
+  for (const int c : face)
+    if (c == v || m.vertices[size_t(c)] == x) return std::nullopt;  // a corner, or a copy of one
+  const Projection& pr = fp.projection;
   int edge = -1;
   switch (locate(m, face, pr, pr.of(x), edge)) {
     case Where::Outside:
@@ -142,6 +156,9 @@ std::vector<Contact> find_contacts(const PolygonMesh& m, const std::vector<char>
   for (const int v : vertices) boxes.emplace_back(m.vertices[size_t(v)], m.vertices[size_t(v)]);
   const mesh::detail::BoxGrid grid(boxes);
   const int nf = int(faces.size());
+  std::vector<FacePlane> planes;
+  planes.reserve(faces.size());
+  for (const int f : faces) planes.push_back(face_plane(m, m.faces[size_t(f)]));
   std::vector<Contact> out;
   CancelPoll poll;
   for (size_t k = 0; k < grid.cells(); ++k) {
@@ -152,7 +169,8 @@ std::vector<Contact> find_contacts(const PolygonMesh& m, const std::vector<char>
         poll.tick();
         const int v = vertices[size_t(*vi - nf)];
         if (!boxes[size_t(*fj)].contains(m.vertices[size_t(v)]) || !grid.owns(k, *fj, *vi)) continue;
-        if (const std::optional<Contact> c = contact(m, faces[size_t(*fj)], v, left)) out.push_back(*c);
+        if (const std::optional<Contact> c = contact(m, faces[size_t(*fj)], planes[size_t(*fj)], v, left))
+          out.push_back(*c);
       }
   }
   return out;
