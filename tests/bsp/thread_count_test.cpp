@@ -3,8 +3,11 @@
 // the same mesh, vertex for vertex and face for face, on one thread and on every core.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <optional>
+#include <vector>
 
 #include "base/parallel.hpp"
 #include "bsp/boundary.hpp"
@@ -53,6 +56,27 @@ TEST(ThreadCount, SetOperationsGiveTheSameMeshOnOneThreadAndOnEvery) {
     for (std::size_t i = 0; i < serial.faces.size(); ++i)
       ASSERT_EQ(serial.faces[i], parallel.faces[i]) << k << " face " << i;
   }
+}
+
+TEST(ThreadCount, BoundaryExtractionGivesTheSameMeshOnOneThreadAndOnEvery) {
+  // A 2000-sided prism carries no boundary: to_mesh pushes its 2002 node polygons down the tree in
+  // chunks of 512 nodes (bsp/tree/boundary_fragments.cpp), in parallel.
+  std::vector<Eigen::Vector2d> polygon;
+  for (int k = 0; k < 2000; ++k) {  // radius 500: each edge bulges out ~20 grid steps (stays convex)
+    const double t = 2 * std::numbers::pi * k / 2000;
+    polygon.emplace_back(500 * std::cos(t), 500 * std::sin(t));
+  }
+  const Solid p = prism(polygon, 0, 1);
+  PolygonMesh serial;
+  {
+    ThreadLimit one(1);
+    serial = to_mesh(p, {.clean = false});
+  }
+  const PolygonMesh parallel = to_mesh(p, {.clean = false});
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(parallel));
+  EXPECT_EQ(parallel.faces.size(), 2002u);
+  EXPECT_EQ(serial.vertices, parallel.vertices);
+  EXPECT_EQ(serial.faces, parallel.faces);
 }
 
 }  // namespace

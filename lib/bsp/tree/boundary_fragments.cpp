@@ -1,10 +1,13 @@
 #include "bsp/tree/boundary_fragments.hpp"
 #include "base/cancel.hpp"
 #include "base/dispose.hpp"
+#include "base/parallel.hpp"
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <span>
+#include <tuple>
 #include <utility>
 
 #include "bsp/tree/node_polygons.hpp"
@@ -49,7 +52,7 @@ BreadthFirst breadth_first(std::span<const BspNode> nodes, TreeRef root, std::si
 // Pushes node polygons down a tree (nodes `nodes`, planes and their opposites in `arena`).
 class Extractor {
  public:
-  Extractor(std::span<const BspNode> nodes, Arena& arena) : nodes_(nodes), arena_(arena) {}
+  Extractor(std::span<const BspNode> nodes, const Arena& arena) : nodes_(nodes), arena_(arena) {}
 
   // Pushes `poly` down the subtree `t` and calls out(piece, in) for every leaf reached.
   template <typename Out>
@@ -74,7 +77,7 @@ class Extractor {
         top.at = quick == Side::Negative ? n.negative : n.positive;
         continue;
       }
-      const std::int32_t opp = arena_.opposite(n.plane);
+      const std::int32_t opp = arena_.opposite_of[std::size_t(n.plane)];  // made beforehand
       kernel::PolygonSplit s = kernel::split(arena_.planes, top.polygon, n.plane, opp);
       switch (s.side) {
         case Side::Negative: top.at = n.negative; break;
@@ -96,22 +99,19 @@ class Extractor {
     }
   }
 
-  // The boundary pieces on the planes of the subtree's nodes, polygon(j) giving node
-  // tree.order[j]'s sub-hyperplane: each polygon is pushed down both subtrees and the pieces with
-  // an in-cell on exactly one side are kept.
+  // The boundary pieces on the planes of nodes tree.order[begin, end), polygon(j) giving node
+  // tree.order[j]'s sub-hyperplane and size[j] its subtree's node count: each polygon is pushed
+  // down both subtrees and the pieces with an in-cell on exactly one side are kept. Every node's
+  // opposite plane must be in the arena already (opposites_of_nodes): several extractors then
+  // read the arena at once.
   template <typename Polygon>
-  void collect(const BreadthFirst& tree, Polygon&& polygon, FragmentList& out) {
-    const std::vector<TreeRef>& order = tree.order;
-    // Subtree sizes (children come after parents): the polygon goes first into the smaller
-    // subtree, so fewer pieces travel through the larger one.
-    std::vector<std::int32_t> size(order.size(), 1);
-    for (std::size_t j = order.size(); j-- > 0;)
-      for (const std::size_t c : tree.children[j])
-        if (c) size[j] += size[c];
+  void collect(const BreadthFirst& tree, std::span<const std::int32_t> size, std::size_t begin, std::size_t end,
+               Polygon&& polygon, FragmentList& out) {
+    // The polygon goes first into the smaller subtree, so fewer pieces travel through the larger.
     auto size_of = [&](std::size_t c) { return c ? size[c] : 0; };
     std::vector<std::pair<ConvexPolygon, bool>> negative_pieces;
-    for (std::size_t j = 0; j < order.size(); ++j) {
-      const BspNode& n = nodes_[std::size_t(order[j])];
+    for (std::size_t j = begin; j < end; ++j) {
+      const BspNode& n = nodes_[std::size_t(tree.order[j])];
       // An auxiliary plane carries no face of any operand, hence no boundary (the boundary of
       // a regularized set operation lies on its operands' boundaries).
       if (arena_.planes.auxiliary(n.plane)) continue;
@@ -130,7 +130,7 @@ class Extractor {
 
  private:
   std::span<const BspNode> nodes_;
-  Arena& arena_;
+  const Arena& arena_;
   CancelPoll poll_;
   struct Piece {
     TreeRef at;
@@ -139,6 +139,50 @@ class Extractor {
   };
   std::vector<Piece> stack_;
 };
+
+// Node counts of the subtrees of `tree` (children come after parents).
+std::vector<std::int32_t> subtree_sizes(const BreadthFirst& tree) {
+  std::vector<std::int32_t> size(tree.order.size(), 1);
+  for (std::size_t j = tree.order.size(); j-- > 0;)
+    for (const std::size_t c : tree.children[j])
+      if (c) size[j] += size[c];
+  return size;
+}
+
+// Adds the opposite of every node's plane to the arena, in the order of `tree`, so that the
+// extraction only reads the plane table (and the table's indices do not depend on threads).
+void opposites_of_nodes(Arena& arena, std::span<const BspNode> nodes, const BreadthFirst& tree) {
+  CancelPoll poll;
+  for (const TreeRef t : tree.order) {
+    poll.tick();
+    (void)arena.opposite(nodes[std::size_t(t)].plane);
+  }
+}
+
+// Nodes whose polygons one task pushes down (docs/bsp.md, "What runs in parallel"): chunks of
+// the breadth-first order; the output is joined in chunk order, the same for any thread count.
+constexpr std::size_t kNodesPerChunk = 512;
+
+// The boundary pieces of every node of `tree` (Extractor::collect), the nodes in chunks run in
+// parallel; each chunk's pieces go to chunks[k], joined into `out` in order at the end.
+template <typename Polygon>
+void collect_in_parallel(std::span<const BspNode> nodes, Arena& arena, const BreadthFirst& tree, Polygon&& polygon,
+                         std::vector<FragmentList>& chunks, FragmentList& out) {
+  opposites_of_nodes(arena, nodes, tree);
+  const std::vector<std::int32_t> size = subtree_sizes(tree);
+  const std::size_t n = tree.order.size();
+  chunks.resize((n + kNodesPerChunk - 1) / kNodesPerChunk);
+  parallel_chunks(n, kNodesPerChunk, [&](std::size_t begin, std::size_t end) {
+    Extractor(nodes, arena).collect(tree, size, begin, end, polygon, chunks[begin / kNodesPerChunk]);
+  });
+  std::size_t total = out.size();
+  for (const FragmentList& c : chunks) total += c.size();
+  out.reserve(total);
+  for (FragmentList& c : chunks) {
+    std::move(c.begin(), c.end(), std::back_inserter(out));
+    FragmentList().swap(c);
+  }
+}
 
 }  // namespace
 
@@ -154,13 +198,14 @@ Fragments boundary_fragments(const Solid& solid) {
     arena.copy_planes(solid.planes());
   }
   Fragments result;
+  std::vector<FragmentList> chunks;
   try {
-    Extractor(solid.nodes(), arena)
-        .collect(
-            tree, [&](std::size_t j) { return (*polygons)[std::size_t(tree.order[j])]; }, result.fragments);
+    collect_in_parallel(
+        solid.nodes(), arena, tree, [&](std::size_t j) { return (*polygons)[std::size_t(tree.order[j])]; }, chunks,
+        result.fragments);
   } catch (const Cancelled&) {
     // Stopped by Ctrl-C: millions of polygons are freed on another thread (base/dispose.hpp).
-    dispose_in_background(std::make_pair(std::move(arena), std::move(result)));
+    dispose_in_background(std::make_tuple(std::move(arena), std::move(result), std::move(chunks)));
     throw;
   }
   result.planes = std::move(arena.planes);
@@ -196,7 +241,9 @@ FragmentList subtree_boundary(Arena& arena, TreeRef root, std::span<const std::i
     if (negative) stack.push_back({negative, cell.size(), n.plane});
   }
   // arena.nodes does not change while pieces are pushed (only planes are added).
-  Extractor(arena.nodes, arena).collect(tree, [&](std::size_t j) { return std::move(polygons[j]); }, out);
+  std::vector<FragmentList> chunks;
+  collect_in_parallel(
+      arena.nodes, arena, tree, [&](std::size_t j) { return std::move(polygons[j]); }, chunks, out);
   return out;
 }
 
