@@ -114,6 +114,9 @@ int run_script_view(const ScriptViewOptions& options) {
       try {
         if (options.setup) options.setup(interpreter);
         interpreter.run(language::load_source(options.script));
+        status.script_milliseconds = milliseconds_since(start);
+        status.script_end =
+            std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
         const view::Scene scene = view::scene_of(interpreter.shown(), last.get());
         server->publish_scene(view::encode_scene(scene, {.depth = server->depth_wanted()}));
         status.parts = scene.parts.size();
@@ -135,7 +138,8 @@ int run_script_view(const ScriptViewOptions& options) {
     std::cout.flush();
     if (status.ok) {
       std::cout << "view: run " << run << ": " << status.parts << (status.parts == 1 ? " part" : " parts") << " in "
-                << static_cast<long long>(status.milliseconds) << " ms" << std::endl;
+                << static_cast<long long>(status.milliseconds) << " ms (the script "
+                << static_cast<long long>(status.script_milliseconds) << " ms)" << std::endl;
     } else {
       std::cerr << status.error << std::flush;
     }

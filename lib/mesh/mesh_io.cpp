@@ -145,6 +145,11 @@ std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary)
   throw InvalidInput("encode_mesh: the format must be given (not Auto)");
 }
 
+std::string encode_glb_for_display(const PolygonMesh& mesh) {
+  check_writable(mesh, MeshFormat::Glb, false);
+  return mesh::detail::encode_glb_unrounded(mesh);
+}
+
 PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::string& name) {
   switch (format) {
     case MeshFormat::Off: return mesh::detail::decode_off(data, name);

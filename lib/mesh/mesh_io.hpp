@@ -52,6 +52,13 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view d
 /// The bytes write_mesh would write (format must not be Auto).
 std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary = false);
 
+/// The bytes of a GLB of `mesh` for a screen (the live view), not for a file: each vertex is
+/// converted to float32 as it is, in the mesh's order (the GLB's vertex i is mesh vertex i), and
+/// each face triangulated, without the output rounding that keeps a written GLB clean (docs/kernel.md,
+/// "Clean output"): a picture does not need it, and for a million faces it takes seconds.
+/// \throw InvalidInput as encode_mesh.
+std::string encode_glb_for_display(const PolygonMesh& mesh);
+
 /// Parses bytes as read_mesh would; `name` stands for the path in error messages.
 PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::string& name);
 

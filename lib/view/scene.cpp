@@ -46,9 +46,11 @@ std::optional<ViewPart> part_of(const language::Value& value) {
   part.value = value;
   if (const auto* s = value.object<language::SolidValue>()) {
     part.solid = true;
-    part.mesh = s->boundary();
-    part.volume = s->volume();
-    part.area = s->area();
+    // The exact boundary, once: for a screen the output rounding that makes files clean is not
+    // needed, and the measures come from the same faces (a million faces: seconds saved).
+    part.mesh = s->display_boundary();
+    part.volume = s->exact_boundary ? s->volume() : mesh_volume(part.mesh);
+    part.area = s->exact_boundary ? s->area() : mesh_surface_area(part.mesh);
   } else if (const auto* m = value.object<language::MeshValue>()) {
     part.mesh = m->mesh;
     part.area = mesh_surface_area(part.mesh);

@@ -9,7 +9,6 @@
 #include <cstring>
 #include <limits>
 #include <string_view>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -77,60 +76,24 @@ GlbArrays glb_arrays(const std::string& glb) {
   return {{glb.data() + bin, 12 * counts[0]}, {glb.data() + bin + 12 * counts[0], 4 * (counts[1] / 3 * 3)}};
 }
 
-struct FloatPoint {
-  std::array<std::uint32_t, 3> bits;
-  bool operator==(const FloatPoint&) const = default;
-};
-
-struct FloatPointHash {
-  std::size_t operator()(const FloatPoint& p) const {
-    return (std::size_t(p.bits[0]) * 0x9E3779B97F4A7C15ull) ^ (std::size_t(p.bits[1]) * 0xC2B2AE3D27D4EB4Full) ^
-           std::size_t(p.bits[2]);
-  }
-};
-
-FloatPoint float_point(const void* xyz) {
-  FloatPoint p;
-  std::memcpy(p.bits.data(), xyz, 12);
-  return p;
-}
-
-/// The feature edges of a part: as pairs of indices (uint32) into its GLB's positions, 8 bytes an
-/// edge; an end the GLB does not hold at the same float32 point (output rounding moved it)
-/// sends its edge as 6 float32 ("loose"), as does every edge of a part without positions.
+/// The feature edges of a part as pairs of uint32 indices into its GLB's positions, which are
+/// the mesh's vertices in order (encode_glb_for_display), 8 bytes an edge, creases first.
 struct EdgeData {
   std::string indexed;
-  std::size_t indexed_count = 0, indexed_creases = 0;
-  std::string loose;
-  std::size_t loose_count = 0, loose_creases = 0;
+  std::size_t count = 0, creases = 0;
 };
 
-EdgeData edge_data(const PolygonMesh& mesh, const std::string& glb) {
-  const std::string_view positions = glb_arrays(glb).positions;
-  std::unordered_map<FloatPoint, std::uint32_t, FloatPointHash> index;
-  index.reserve(positions.size() / 12);
-  for (std::size_t v = 0; 12 * v < positions.size(); ++v)
-    index.emplace(float_point(positions.data() + 12 * v), static_cast<std::uint32_t>(v));
-  EdgeData data;
+EdgeData edge_data(const PolygonMesh& mesh) {
   const detail::ClassifiedEdges features = detail::classified_feature_edges(mesh);
+  EdgeData data;
+  data.indexed.resize(8 * features.edges.size());
   for (std::size_t i = 0; i < features.edges.size(); ++i) {
-    const auto& edge = features.edges[i];
-    const bool crease = i < features.creases;
-    float ends[6];
-    for (int e = 0; e < 2; ++e)
-      for (int k = 0; k < 3; ++k) ends[3 * e + k] = static_cast<float>(mesh.vertices[edge[e]][k]);
-    const auto a = index.find(float_point(ends)), b = index.find(float_point(ends + 3));
-    if (a != index.end() && b != index.end()) {
-      append_u32(data.indexed, a->second);
-      append_u32(data.indexed, b->second);
-      ++data.indexed_count;
-      data.indexed_creases += crease;
-    } else {
-      data.loose.append(reinterpret_cast<const char*>(ends), sizeof ends);
-      ++data.loose_count;
-      data.loose_creases += crease;
-    }
+    const std::uint32_t ends[2] = {static_cast<std::uint32_t>(features.edges[i][0]),
+                                   static_cast<std::uint32_t>(features.edges[i][1])};
+    std::memcpy(data.indexed.data() + 8 * i, ends, 8);  // little endian (glb_container.hpp checks it)
   }
+  data.count = features.edges.size();
+  data.creases = features.creases;
   return data;
 }
 
@@ -216,8 +179,8 @@ std::string encode_scene(const Scene& scene, const SceneOptions& options) {
   for (std::size_t p = 0; p < scene.parts.size(); ++p) {
     const ViewPart& part = scene.parts[p];
     check_face_indices(part.mesh, "view");
-    const std::string glb = encode_mesh(part.mesh, MeshFormat::Glb);
-    const EdgeData edges = edge_data(part.mesh, glb);
+    const std::string glb = encode_glb_for_display(part.mesh);
+    const EdgeData edges = edge_data(part.mesh);
     std::size_t triangles = 0;
     for (const auto& face : part.mesh.faces) triangles += face.size() - 2;
     if (p) json += ',';
@@ -251,12 +214,9 @@ std::string encode_scene(const Scene& scene, const SceneOptions& options) {
     json += ",\"glb\":[" + std::to_string(data.size()) + "," + std::to_string(glb.size()) + "]";
     data += glb;
     data.append((4 - data.size() % 4) % 4, '\0');
-    json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edges.indexed_count) + "," +
-            std::to_string(edges.indexed_creases) + "]";
+    json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edges.count) + "," +
+            std::to_string(edges.creases) + "]";
     data += edges.indexed;
-    json += ",\"loose\":[" + std::to_string(data.size()) + "," + std::to_string(edges.loose_count) + "," +
-            std::to_string(edges.loose_creases) + "]";
-    data += edges.loose;
     json += ",\"depth\":";
     const auto* solid = part.value.object<language::SolidValue>();
     if (options.depth && solid) {
@@ -295,6 +255,10 @@ std::string encode_status(const Status& status) {
   out += status.ok ? "true" : "false";
   out += ",\"run\":" + std::to_string(status.run) + ",\"ms\":";
   append_number(out, status.milliseconds);
+  out += ",\"script_ms\":";
+  append_number(out, status.script_milliseconds);
+  out += ",\"script_end\":";
+  append_number(out, status.script_end);
   out += ",\"parts\":" + std::to_string(status.parts);
   out += ",\"error\":" + json_string(status.ok ? std::string() : status.error) + "}";
   return out;

@@ -7,14 +7,14 @@
 ///   {"parts": [{"name", "color": [r, g, b], "solid", "volume" (solids; else null), "area",
 ///               "box": [[x, y, z], [x, y, z]] (null if empty), "triangles",
 ///               "glb": [offset, length], "edges": [offset, count, creases],
-///               "loose": [offset, count, creases], "depth": [offset, count] or null,
+///               "depth": [offset, count] or null,
 ///               "curve": [offset, count] or null, "length"}, ...]}
 /// Offsets count from the start of the data and are multiples of 4. "glb" is the part as binary
-/// glTF (mesh/mesh_io.hpp's GLB writer: float32 positions, uint32 indices). The feature edges, the
-/// edges between faces of the exact boundary that are not coplanar (never a triangulation's
-/// diagonal), are "edges": `count` pairs of uint32 indices into the GLB's positions (8 bytes an
-/// edge), and "loose": `count` edges as 6 float32 (x, y, z of both ends) for the few whose ends
-/// the GLB's output rounding moved. In both the first `creases` edges are the creases
+/// glTF (mesh/mesh_io.hpp's encode_glb_for_display: the part's vertices as float32 in order,
+/// uint32 indices). A solid's part is its exact boundary (to_mesh without output rounding). The
+/// feature edges, the edges between faces of that boundary that are not coplanar (never a
+/// triangulation's diagonal), are "edges": `count` pairs of uint32 indices into the GLB's
+/// positions (8 bytes an edge). The first `creases` edges are the creases
 /// (detail/feature_edges.hpp): the page splits smooth vertex normals there and draws only them
 /// when it shades smooth. "depth" (solids, and only when asked for: SceneOptions::depth) is one
 /// uint16 per GLB triangle, in the GLB's order: the depth of the tree's leaf cell behind the
@@ -24,8 +24,8 @@
 /// has an empty GLB and its "length" is the polyline's.
 ///
 /// A status is one text message: {"type": "status", "ok": true|false, "run": n, "ms": t,
-/// "parts": p, "error": "file:line:col: error: ...\n<the line>\n<caret>"}; an error leaves the
-/// scene on the page as it was.
+/// "script_ms": s, "script_end": e, "parts": p, "error": "file:line:col: error: ...\n<the line>\n<caret>"}; an error
+/// leaves the scene on the page as it was.
 ///
 /// The page sends one kind of text message: "depth:1" when it enters the depth mode, "depth:0"
 /// when it leaves it (view_server.hpp: ViewServer::depth_wanted).
@@ -51,7 +51,12 @@ struct Status {
   std::string error{};      ///< the formatted error when !ok
   long long run = 0;        ///< the number of the run (1 for the first)
   double milliseconds = 0;  ///< how long the run took
-  std::size_t parts = 0;    ///< parts in the scene sent with it
+  /// How much of it the script itself took (the rest made and sent the scene); 0 in the REPL.
+  double script_milliseconds = 0;
+  /// When the script ended, in milliseconds since the Unix epoch (the system clock), so that a
+  /// page or a test on the same machine can tell how long after it the scene arrived; 0 unknown.
+  double script_end = 0;
+  std::size_t parts = 0;  ///< parts in the scene sent with it
 };
 
 /// The text status message of `status`.

@@ -155,6 +155,32 @@ TEST(GlbFormat, TheContainerIsLaidOutAsTheSpecSays) {
   EXPECT_EQ(g.substr(bin_at + 8), expected);
 }
 
+TEST(GlbFormat, ForDisplayEveryVertexIsKeptInOrderAsItsFloat32) {
+  // Two vertices 1e-12 apart (one float32 point) and a sliver: output rounding for a file merges
+  // or moves them; the display GLB keeps every vertex, in order, converted to float32 alone.
+  PolygonMesh m = test_shapes::uv_sphere(12, 1.3);
+  m.vertices[5] += Eigen::Vector3d(1e-12, 0, 0);
+  m.vertices.push_back(m.vertices[5] + Eigen::Vector3d(1e-12, 1e-12, 0));  // unused: still sent
+  const std::string g = encode_glb_for_display(m);
+  const std::size_t bin = 20 + u32_at(g, 12);  // the BIN chunk: positions, then indices
+  const PolygonMesh triangles = triangulate(m);
+  ASSERT_EQ(u32_at(g, bin), 12 * m.vertices.size() + 12 * triangles.faces.size());
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    float xyz[3];
+    std::memcpy(xyz, g.data() + bin + 8 + 12 * i, 12);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(xyz[k], static_cast<float>(m.vertices[i][k])) << "vertex " << i;
+  }
+  for (std::size_t t = 0; t < triangles.faces.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(u32_at(g, bin + 8 + 12 * m.vertices.size() + 12 * t + 4 * k), std::uint32_t(triangles.faces[t][k]));
+  // A reader gets the same triangles (equal positions merged, as for every GLB).
+  EXPECT_EQ(decode_mesh(g, MeshFormat::Glb, "display").faces.size(), triangles.faces.size());
+  EXPECT_THROW((void)encode_glb_for_display(PolygonMesh{{Eigen::Vector3d(1e300, 0, 0)}, {}}), InvalidInput);
+  PolygonMesh bad = test_shapes::unit_cube();
+  bad.faces[0][0] = 99;
+  EXPECT_THROW((void)encode_glb_for_display(bad), InvalidInput);
+}
+
 TEST(GlbFormat, AnEmptyMeshIsAnEmptyScene) {
   const std::string g = encode_mesh(PolygonMesh{}, MeshFormat::Glb);
   EXPECT_EQ(u32_at(g, 8), g.size());

@@ -1,5 +1,5 @@
 // The scene and status messages (lib/view/scene_message.hpp): layout, measures, the GLB inside
-// decoded by the mesh layer's own reader, feature edges as float32 segments, JSON escaping.
+// decoded by the mesh layer's own reader, feature edges as index pairs, JSON escaping.
 #include "view/scene_message.hpp"
 
 #include <gtest/gtest.h>
@@ -13,7 +13,10 @@
 #include <vector>
 
 #include "base/errors.hpp"
+#include "bsp/boundary.hpp"
 #include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
 #include "language/interpreter.hpp"
 #include "language/solid_values.hpp"
 #include "language/source.hpp"
@@ -68,8 +71,7 @@ TEST(SceneMessage, HoldsEachPartAsGlbWithEdgesAndMeasures) {
   const std::size_t edges_count = std::stoul(json.substr(json.find(',', json.find("\"edges\":")) + 1));
   EXPECT_EQ(edges_count, 12u);  // each as two indices into the GLB's positions
   EXPECT_EQ(edges_offset % 4, 0u);
-  EXPECT_EQ(number_after(json, "loose"), edges_offset + 8 * edges_count);
-  EXPECT_NE(json.find("\"loose\":[" + std::to_string(edges_offset + 8 * edges_count) + ",0,0]"), std::string::npos);
+  EXPECT_EQ(json.find("\"loose\""), std::string::npos) << "every edge indexes the positions";
   EXPECT_NE(json.find("\"edges\":[" + std::to_string(edges_offset) + ",12,12]"), std::string::npos) << "all creases";
   EXPECT_NE(json.find("\"depth\":null"), std::string::npos) << "no depths unless asked for";
   EXPECT_EQ(data + edges_offset + edges_count * 8, message.size());
@@ -111,16 +113,15 @@ TEST(SceneMessage, CreasesComeFirstAndCurvedSurfacesHaveNone) {
   // (11.25 degrees) are features but no creases.
   const Scene can = scene_of({{"can", std::nullopt, language::solid_value(cylinder(1, 2))}}, std::nullopt);
   const Block edges = block_of(encode_scene(can), "edges");
-  const Block loose = block_of(encode_scene(can), "loose");
-  EXPECT_EQ(edges.count + loose.count, 96u);
-  EXPECT_EQ(edges.third + loose.third, 64u);
+  EXPECT_EQ(edges.count, 96u);
+  EXPECT_EQ(edges.third, 64u);
   // A ball: every facet is its own plane, nothing is a crease.
   const Scene ball = scene_of({{"ball", std::nullopt, language::solid_value(sphere(1))}}, std::nullopt);
   const std::string message = encode_scene(ball);
   // 16 rings of 32 edges, 15 bands between them and a fan at each pole with 32 edges each: all
   // features.
-  EXPECT_EQ(block_of(message, "edges").count + block_of(message, "loose").count, 16u * 32 + 17 * 32);
-  EXPECT_EQ(block_of(message, "edges").third + block_of(message, "loose").third, 0u);
+  EXPECT_EQ(block_of(message, "edges").count, 16u * 32 + 17 * 32);
+  EXPECT_EQ(block_of(message, "edges").third, 0u);
 }
 
 TEST(SceneMessage, DepthsOnlyWhenAskedOneAPerTriangle) {
@@ -344,6 +345,38 @@ TEST(SceneMessage, SurfacesAreShownAsOpenTriangleMeshes) {
   const std::string message = encode_scene(scene);
   EXPECT_NE(message.find("\"name\":\"sheet\",\"color\""), std::string::npos);
   EXPECT_NE(message.find("\"curve\":null"), std::string::npos);
+}
+
+TEST(SceneMessage, ASolidIsSentAsItsExactBoundaryVertexForVertex) {
+  // A set operation's result (vertices that are rounded, not grid points): the part is to_mesh
+  // without output rounding, the GLB's positions are its vertices in order as float32, and the
+  // edges index them; the measures are the exact boundary's.
+  const Solid ball = sphere(1, {.segments = 24}) - translate(box({0, 0, 0}, {1, 1, 1}), {0.3, 0.2, 0.1});
+  const Scene scene = scene_of({{"ball", std::nullopt, language::solid_value(ball)}}, std::nullopt);
+  const PolygonMesh exact = to_mesh(ball, {.clean = false});
+  ASSERT_EQ(scene.parts.size(), 1u);
+  EXPECT_EQ(scene.parts[0].mesh.vertices, exact.vertices);
+  EXPECT_EQ(scene.parts[0].mesh.faces, exact.faces);
+  EXPECT_NEAR(*scene.parts[0].volume, volume(ball), 1e-12);
+  EXPECT_NEAR(scene.parts[0].area, surface_area(ball), 1e-12);
+  const std::string message = encode_scene(scene);
+  const Block glb = block_of(message, "glb");
+  const std::size_t bin = glb.offset + 20 + u32_at(message, glb.offset + 12) + 8;
+  for (std::size_t i = 0; i < exact.vertices.size(); ++i) {
+    float xyz[3];
+    std::memcpy(xyz, message.data() + bin + 12 * i, 12);
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(xyz[k], static_cast<float>(exact.vertices[i][k])) << i;
+  }
+  const Block edges = block_of(message, "edges");
+  EXPECT_GT(edges.count, exact.faces.size() / 2);
+  for (std::size_t e = 0; e < 2 * edges.count; ++e)
+    EXPECT_LT(u32_at(message, edges.offset + 4 * e), exact.vertices.size());
+}
+
+TEST(StatusMessage, TellsTheScriptsShareAndItsEnd) {
+  const std::string text =
+      encode_status({.run = 2, .milliseconds = 30, .script_milliseconds = 20.5, .script_end = 1795000000123.5});
+  EXPECT_NE(text.find("\"ms\":30,\"script_ms\":20.5,\"script_end\":1795000000123.5,"), std::string::npos) << text;
 }
 
 TEST(StatusMessage, CarriesTheErrorTextEscaped) {

@@ -77,11 +77,8 @@ void append_chunk(std::string& out, std::uint32_t type, const std::string& data,
   out.append(padded - data.size(), pad);
 }
 
-}  // namespace
-
-std::string encode_glb(const PolygonMesh& given) {
-  // glTF positions are float32: round as for binary STL so the file is clean as written.
-  const PolygonMesh mesh = round_for_output(given, {.precision = OutputPrecision::Float32, .triangles = true});
+/// The GLB of `mesh` as it is: each vertex converted to float32, each face triangulated.
+std::string pack_glb(const PolygonMesh& mesh) {
   std::vector<float> positions(3 * mesh.vertices.size());
   float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
@@ -124,5 +121,14 @@ std::string encode_glb(const PolygonMesh& given) {
   std::memcpy(out.data() + 8, &length, 4);
   return out;
 }
+
+}  // namespace
+
+std::string encode_glb(const PolygonMesh& mesh) {
+  // glTF positions are float32: round as for binary STL so the file is clean as written.
+  return pack_glb(round_for_output(mesh, {.precision = OutputPrecision::Float32, .triangles = true}));
+}
+
+std::string encode_glb_unrounded(const PolygonMesh& mesh) { return pack_glb(mesh); }
 
 }  // namespace sculpt::mesh::detail

@@ -27,6 +27,9 @@ double lib3mf_kept(double x);
 /// round_for_output (OutputPrecision::Float32, as binary STL), UNSIGNED_INT indices; one world unit
 /// is one glTF unit (no scale node). \throw InvalidInput beyond float32 or 4 GiB.
 std::string encode_glb(const PolygonMesh& mesh);
+/// The same container for display (encode_glb_for_display in mesh_io.hpp): the vertices converted
+/// to float32 one by one, in their order, without output rounding.
+std::string encode_glb_unrounded(const PolygonMesh& mesh);
 
 PolygonMesh decode_off(std::string_view data, const std::string& name);
 PolygonMesh decode_obj(std::string_view data, const std::string& name);
