@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <boost/multiprecision/cpp_int.hpp>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <random>
@@ -293,6 +294,51 @@ TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
       EXPECT_EQ(next, merged.vertices.size());
     }
   }
+}
+
+TEST(MeshAssembly, LooseCornersAtAFineSpheresCapsMergeByExactEquality) {
+  // sphere(1, 512): the last rings snap to the poles' heights and become caps, whose corners meet
+  // the almost flat fans in nearly dependent planes; their approximations are loose (an error
+  // bound of a grid unit or more), and the merge resolves them from the exact vertex rounded
+  // (vertex_merge.cpp, tight_approximation). Checked near the caps (|z| > 0.99) against Cramer's
+  // rule: the corners of a vertex are one point, and vertices closer than 1e-9 are different
+  // points.
+  const Solid ball = sphere(1.0, {.segments = 512});
+  ASSERT_TRUE(ball.has_boundary());
+  const bsp::detail::Fragments f = fragments_of(ball, true);
+  const bsp::detail::MergedFragments merged = bsp::detail::merge_vertices(f);
+  std::map<int, Homogeneous> point_of_vertex;
+  int loose = 0, corners = 0;
+  for (std::size_t k = 0; k < f.fragments.size(); ++k) {
+    const auto& fr = f.fragments[k];
+    const int m = int(fr.polygon.corners.size());
+    for (int j = 0; j < m; ++j) {
+      const auto& c = fr.polygon.corners[std::size_t(j)];
+      if (!(std::fabs(c.at().z) * kernel::kGridStep > 0.99)) continue;
+      ++corners;
+      loose += c.at().err >= 0.25;
+      const Homogeneous h = cramer(f.planes[fr.polygon.support], f.planes[c.p], f.planes[c.q]);
+      const int v = merged.faces.vertex[std::size_t(merged.faces.begin(int(k)) + (fr.flip ? m - 1 - j : j))];
+      const auto [at, added] = point_of_vertex.emplace(v, h);
+      if (!added) {
+        ASSERT_TRUE(at->second == h) << "a vertex's corners are one point: vertex " << v;
+      }
+    }
+  }
+  ASSERT_GE(loose, 512) << "no loose corners: the case is not exercised";
+  std::vector<std::pair<Eigen::Vector3d, int>> vertices;
+  for (const auto& [v, h] : point_of_vertex) vertices.emplace_back(h.world(), v);
+  std::sort(vertices.begin(), vertices.end(), [](const auto& a, const auto& b) { return a.first.x() < b.first.x(); });
+  int close_pairs = 0;
+  for (std::size_t a = 0; a < vertices.size(); ++a)
+    for (std::size_t b = a + 1; b < vertices.size() && vertices[b].first.x() - vertices[a].first.x() < 1e-9; ++b)
+      if ((vertices[b].first - vertices[a].first).norm() < 1e-9) {
+        ++close_pairs;
+        EXPECT_FALSE(point_of_vertex.at(vertices[a].second) == point_of_vertex.at(vertices[b].second))
+            << "vertices " << vertices[a].second << " and " << vertices[b].second << " are one point";
+      }
+  std::printf("%d corners near the caps (%d loose), %zu vertices, %d pairs closer than 1e-9\n", corners, loose,
+              vertices.size(), close_pairs);
 }
 
 TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {

@@ -79,6 +79,7 @@ class CornerMerger {
   };
   struct Pending {
     const kernel::Corner* corner;
+    ApproxPoint at;   // the corner's approximation, tightened when it was loose (tight_approximation)
     std::size_t out;  // position in the output
     std::int32_t support;
     IdTriple key;
@@ -91,12 +92,28 @@ class CornerMerger {
     return double(t) > x ? t - 1 : t;
   }
 
+  // The corner's approximation, or, when its error bound is a quarter grid unit or more (nearly
+  // dependent planes: where a fine sphere's cap meets its almost flat fan, up to 3.9 grid units at
+  // 512 segments), the exact vertex correctly rounded (kernel::rounded_vertex) with a bound of one
+  // unit in the last place. A loose corner has no cells and takes the wide path, which compares
+  // every later class with it: 1024 of them took a third of `sphere(1, 512) - moved copy`.
+  ApproxPoint tight_approximation(std::int32_t support, const kernel::Corner& c) const {
+    const ApproxPoint a = c.at();
+    if (!(a.err >= 0.25) || !std::isfinite(a.err)) return a;
+    const double largest = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
+    if (a.err <= std::ldexp(largest, -50)) return a;  // rounded_vertex would return it as it is
+    const Eigen::Vector3d r = kernel::rounded_vertex(planes_[support], planes_[c.p], planes_[c.q], a);
+    const double rounded_largest = r.cwiseAbs().maxCoeff();
+    return {r.x(), r.y(), r.z(), std::ldexp(rounded_largest, -52)};
+  }
+
   void prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out, Pending& p) {
     p.corner = &c;
     p.out = out;
     p.support = support;
     p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
-    const ApproxPoint a = c.at();
+    const ApproxPoint a = tight_approximation(support, c);
+    p.at = a;
     constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
     constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
     std::int64_t lo[3], hi[3];
@@ -127,7 +144,7 @@ class CornerMerger {
     const IdTriple& key = p.key;
     const kernel::Corner& c = *p.corner;
     if (p.cells < 0) {
-      out_[p.out] = wide_vertex(key, p.support, c);
+      out_[p.out] = wide_vertex(key, p.support, c, p.at);
       return;
     }
     if (2 * (cells_used_ + 8) > slots_.size()) grow();
@@ -150,12 +167,12 @@ class CornerMerger {
     for (int i = 0; i < n && v < 0; ++i)
       for (int e = slots_[cells[i]].head; e >= 0 && v < 0; e = entries_[std::size_t(e)].next) {
         const int u = entries_[std::size_t(e)].vertex;
-        if (u != last && same_point(key, p.support, c, u)) v = u;
+        if (u != last && same_point(key, p.support, c, p.at, u)) v = u;
         last = u;
       }
     for (std::size_t i = 0; i < wide_classes_.size() && v < 0; ++i) {
       const int u = class_vertex_[std::size_t(wide_classes_[i])];
-      if (same_point(key, p.support, c, u)) v = u;
+      if (same_point(key, p.support, c, p.at, u)) v = u;
     }
     if (v < 0) v = new_vertex(p.support, c);
     new_class(key, v);
@@ -210,12 +227,12 @@ class CornerMerger {
 
   // A corner without cells (large or no error bound: nearly dependent planes): its class by
   // key, else exact comparison with every vertex.
-  int wide_vertex(const IdTriple& key, std::int32_t support, const kernel::Corner& c) {
+  int wide_vertex(const IdTriple& key, std::int32_t support, const kernel::Corner& c, const ApproxPoint& at) {
     for (std::size_t i = 0; i < v_.class_planes.size(); ++i)
       if (same_key(v_.class_planes[i], key)) return class_vertex_[i];
     int v = -1;
     for (int u = 0; u < v_.size() && v < 0; ++u)
-      if (same_point(key, support, c, u)) v = u;
+      if (same_point(key, support, c, at, u)) v = u;
     if (v < 0) v = new_vertex(support, c);
     wide_classes_.push_back(new_class(key, v));
     return v;
@@ -224,8 +241,8 @@ class CornerMerger {
   // Exact: the corner's point (support ∩ p ∩ q, canonical ids `key`) lies on the three planes
   // of vertex u's triple (planes shared with the corner need no test; the others by the exact
   // zero test of vertex_equality.hpp). Disjoint error boxes are different points (a filter only).
-  bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, int u) const {
-    const ApproxPoint pa = c.at();
+  bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, const ApproxPoint& pa,
+                  int u) const {
     const ApproxPoint& pb = v_.at[std::size_t(u)];
     if (pa.err >= 0 && pb.err >= 0) {
       const double tol = pa.err + pb.err;
