@@ -1,5 +1,7 @@
 #include "bsp/rings/ring_boundary.hpp"
 
+#include "base/cancel.hpp"
+
 #include "kernel/vertex_approximation.hpp"
 
 #include <algorithm>
@@ -113,7 +115,9 @@ FragmentList ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring
         poly.push_back({triples[c].r, triples[c].q, triples[c].r, at[c]});  // edge, p, q, approximation
     }
   };
+  CancelPoll poll;  // Ctrl-C and the memory limit (base/cancel.hpp): a fine revolution's bands are many
   for (std::size_t k = 0; k + 1 < r; ++k) {
+    poll.tick(std::uint32_t(n));
     const std::vector<std::int32_t>& ids = face[k];
     triples.clear();
     for (int j = 0; j < n; ++j) {

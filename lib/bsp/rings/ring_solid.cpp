@@ -1,5 +1,7 @@
 #include "bsp/rings/ring_solid.hpp"
 
+#include "base/cancel.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -211,30 +213,34 @@ std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& given_path,
   }
 
   // The direct boundary needs every path edge on every ring of positive scale. Rounding moves an
-  // edge's line by at most delta grid units, which moves its ends by at most 2 delta / sin(exterior
-  // angle): edges much longer than that survive.
+  // edge's line by at most delta_k grid units at ring k, which moves its ends by at most
+  // 2 delta_k / sin(exterior angle): edges much longer than that survive.
   std::vector<double> scale(r);
-  double shortest = std::numeric_limits<double>::infinity(), largest = 0, min_sin = 1, far = 0;
-  for (std::size_t k = 0; k < r; ++k) {
-    scale[k] = rings[k].scale;
-    largest = std::max(largest, scale[k]);
-    if (scale[k] > 0) shortest = std::min(shortest, grid.to_grid(scale[k] * min_edge));
-  }
+  for (std::size_t k = 0; k < r; ++k) scale[k] = rings[k].scale;
+  double min_sin = 1, far = 0;
   for (int j = 0; j < n; ++j) {
     const Eigen::Vector2d& a = normal[std::size_t(j)];
     const Eigen::Vector2d& c = normal[std::size_t((j + 1) % n)];
     min_sin = std::min(min_sin, std::fabs(a.x() * c.y() - a.y() * c.x()));
     far = std::max(far, path[std::size_t(j)].norm());
   }
-  // Normals rounded to 2^-26 turn a line by 2^-26 (moving it by R 2^-26 at radius R); offsets are
-  // rounded to 2^-27 grid units: delta below (R + 1) 2^-25, taken with a margin of 2. Two lines
-  // moved by delta at exterior angle t meet at most 2 delta / sin t away, so an edge of length L
-  // survives if L sin t > 4 delta; 8 delta leaves another factor of 2.
+  // Normals rounded to 2^-26 turn a line by 2^-26, moving it by R_k 2^-26 within ring k's radius
+  // R_k (every ring shares the normals: a ring is the rounded polygon scaled); offsets are rounded
+  // to 2^-27 grid units: delta_k below (R_k + 1) 2^-25, taken with a margin of 2. Two lines moved
+  // by delta_k at exterior angle t meet at most 2 delta_k / sin t away, so an edge of length L_k
+  // survives if L_k sin t > 4 delta_k; 8 delta_k leaves another factor of 2. Checked ring by ring:
+  // with the largest ring's delta for all, a fine sphere's rings near its poles (edges under a
+  // grid unit, but moved as little) failed, and its boundary came from the tree (1.2 s at 1000
+  // segments).
   // With the snapped reference ring, normals are exact and the other rings' offsets are rounded to
   // integers: a line moves by at most 1 / (2 |n|) grid units (|n| >= 2^25); the bound holds too.
-  const double delta = (grid.to_grid(largest * far) + 1) * std::ldexp(1.0, -24);
   const bool degenerate = r == 2 && !(scale[0] > 0) && !(scale[1] > 0);
-  const bool direct = !degenerate && shortest * min_sin > 8 * delta;
+  bool direct = !degenerate;
+  for (std::size_t k = 0; k < r && direct; ++k) {
+    if (!(scale[k] > 0)) continue;
+    const double delta = (grid.to_grid(scale[k] * far) + 1) * std::ldexp(1.0, -24);
+    direct = grid.to_grid(scale[k] * min_edge) * min_sin > 8 * delta;
+  }
   if (boundary_only && !direct) return std::nullopt;
 
   TreeBuilder b;
@@ -293,7 +299,11 @@ std::optional<Solid> build_rings(const std::vector<Eigen::Vector2d>& given_path,
   };
   if (boundary_only) {
     // The face planes of every band, then the boundary on them; the tree when first used.
-    for (std::size_t k = 0; k + 1 < r; ++k) band(k);
+    CancelPoll poll;  // Ctrl-C and the memory limit (base/cancel.hpp)
+    for (std::size_t k = 0; k + 1 < r; ++k) {
+      poll.tick(std::uint32_t(n));
+      band(k);
+    }
     FragmentList boundary = ring_boundary(b, ring_plane, face_index, scale);
     return SolidAccess::at_grid(solid_with_tree_later(b.planes(), std::move(boundary), false,
                                                       [given_path, given_rings, grid, snap_reference] {
