@@ -164,7 +164,7 @@ TEST(SurfaceSpline, SphereSplineInterpolatesStaysCloseAndBendsLessThanTheProject
   // Bending of the radially projected natural spline by central differences and Simpson's rule.
   auto projected = [&](double t) -> V { return center + r * (res.start.point(t) - center).normalized(); };
   auto ours = [&](double t) -> V { return res.curve.point(t); };
-  auto bending = [&](auto f) {
+  auto bending = [&, a = a, b = b](auto f) {  // (clang 14 cannot capture structured bindings)
     const int n = 4000;
     const double h = 1e-4;
     double e = 0.0;
