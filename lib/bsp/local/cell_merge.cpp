@@ -97,9 +97,11 @@ class CellMerge {
     count_pieces();
     build_mixed_trees();
     check_cancel();
+    build_status_trees();
+    check_cancel();
     for (std::size_t l = 0; l < leaf_count(); ++l)
       for (int x = 0; x < 2; ++x)
-        if (pieces_[l][x].origin.empty() && !pieces_[l][1 - x].origin.empty()) status(node_of(l), x);
+        if (needs_status(l, x)) status(node_of(l), x);
     check_cancel();
     for (const BspNode& n : arena_.nodes) arena_.opposite(n.plane);  // the pushes then only read the arena
     return emit(uniform);
@@ -110,6 +112,10 @@ class CellMerge {
   [[nodiscard]] std::int32_t node_of(std::size_t leaf) const { return cells_.leaves[leaf]; }
   [[nodiscard]] bool mixed(std::size_t l) const {
     return !pieces_[l][0].origin.empty() && !pieces_[l][1].origin.empty();
+  }
+  // Leaf l holds pieces of the other operand but none of x: x's status there is needed (step 4).
+  [[nodiscard]] bool needs_status(std::size_t l, int x) const {
+    return pieces_[l][x].origin.empty() && !pieces_[l][1 - x].origin.empty();
   }
 
   // The walls of every kd node as arena planes (upper then lower per axis), each plane made once;
@@ -244,6 +250,79 @@ class CellMerge {
       for (int x = 0; x < 2; ++x) trees_[mixed_leaves[k]][x] = append_tree(built[k][x]);
   }
 
+  // The local trees step 4 reads, made ahead on every core as build_mixed_trees makes the mixed
+  // leaves' ones: the leaves status() will read are found by its walk on the kd-tree alone
+  // (across()), then their trees are built in parallel and appended in leaf order. Building them
+  // one by one as status() first asked took 2.3 s of `sphere(1, 1024) - moved copy`'s 4 on one core.
+  void build_status_trees() {
+    std::vector<std::array<char, 2>> seen(cells_.nodes.size(), {0, 0});
+    std::vector<std::array<char, 2>> wanted(leaf_count(), {0, 0});
+    for (std::size_t l = 0; l < leaf_count(); ++l)
+      for (int x = 0; x < 2; ++x) {
+        if (!needs_status(l, x)) continue;
+        // status()'s recursion as a loop: it goes on where the leaf found holds none of x either.
+        for (std::int32_t id = node_of(l); !seen[std::size_t(id)][x] && !outside_box(id, x);) {
+          seen[std::size_t(id)][x] = 1;
+          const Across a = across(id, x);
+          seen[std::size_t(a.top)][x] = 1;
+          if (count_[std::size_t(a.m)][x] > 0) {
+            wanted[std::size_t(leaf_index_[std::size_t(a.m)])][x] = 1;
+            break;
+          }
+          id = a.m;
+        }
+      }
+    std::vector<std::pair<std::size_t, int>> todo;
+    for (std::size_t l = 0; l < leaf_count(); ++l)
+      for (int x = 0; x < 2; ++x)
+        if (wanted[l][x] && trees_[l][x] == kUnbuilt) todo.emplace_back(l, x);
+    // The pieces' polygons (each task writes its own leaf's), then their planes' opposites.
+    parallel_chunks(todo.size(), kLeafChunk, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) pieces_of(todo[k].first, todo[k].second);
+    });
+    for (const auto& [l, x] : todo)
+      for (const BoundaryFragment& f : pieces_[l][x].faces) arena_.opposite(f.polygon.support);
+    std::vector<PartitionTree> built(todo.size());
+    parallel_chunks(todo.size(), 4, [&](std::size_t begin, std::size_t end) {
+      check_cancel();
+      for (std::size_t k = begin; k < end; ++k) {
+        const auto [l, x] = todo[k];
+        built[k] = partition_fragments(arena_, pieces_[l][x].faces, kLocal, walls_[std::size_t(node_of(l))]);
+      }
+    });
+    for (std::size_t k = 0; k < todo.size(); ++k) trees_[todo[k].first][todo[k].second] = append_tree(built[k]);
+  }
+
+  // Where status(id, x) reads operand x's status, on the kd-tree alone: the largest node `top`
+  // around `id` that holds none of x's pieces shares a wall with its sibling; `m` is a leaf of
+  // the sibling on that wall (where the sibling splits across the wall, the side with fewer of
+  // x's pieces, but some: a small local tree to build).
+  struct Across {
+    std::int32_t top, m;
+    int axis;
+    std::int64_t split;
+    bool above;  // m lies above the wall
+  };
+  [[nodiscard]] Across across(std::int32_t id, int x) const {
+    std::int32_t top = id;
+    while (cells_.nodes[std::size_t(top)].parent >= 0 &&
+           count_[std::size_t(cells_.nodes[std::size_t(top)].parent)][x] == 0)
+      top = cells_.nodes[std::size_t(top)].parent;
+    const KdNode& up = cells_.nodes[std::size_t(cells_.nodes[std::size_t(top)].parent)];
+    const int side = up.child[0] == top ? 1 : 0;  // the sibling's side of the wall
+    std::int32_t m = up.child[side];
+    while (cells_.nodes[std::size_t(m)].axis >= 0) {
+      const KdNode& n = cells_.nodes[std::size_t(m)];
+      if (n.axis == up.axis) {
+        m = n.child[1 - side];  // towards the wall
+      } else {
+        const std::size_t c0 = count_[std::size_t(n.child[0])][x], c1 = count_[std::size_t(n.child[1])][x];
+        m = c0 > 0 && (c1 == 0 || c0 <= c1) ? n.child[0] : n.child[1];
+      }
+    }
+    return {top, m, up.axis, up.split, side == 1};
+  }
+
   // Step 4: operand x's status in kd node `id`, which holds none of x's pieces. The largest such
   // node around it shares a wall with its sibling, where x's pieces are; a leaf of the sibling on
   // that wall tells the status by the wall's polygon pushed down its local tree of x (or, if that
@@ -256,25 +335,9 @@ class CellMerge {
     if (outside_box(id, x)) {
       s = *ops_[x].far;
     } else {
-      std::int32_t top = id;
-      while (cells_.nodes[std::size_t(top)].parent >= 0 &&
-             count_[std::size_t(cells_.nodes[std::size_t(top)].parent)][x] == 0)
-        top = cells_.nodes[std::size_t(top)].parent;
-      const KdNode& up = cells_.nodes[std::size_t(cells_.nodes[std::size_t(top)].parent)];
-      const int side = up.child[0] == top ? 1 : 0;  // the sibling's side of the wall
-      std::int32_t m = up.child[side];
-      while (cells_.nodes[std::size_t(m)].axis >= 0) {
-        const KdNode& n = cells_.nodes[std::size_t(m)];
-        if (n.axis == up.axis) {
-          m = n.child[1 - side];  // towards the wall
-        } else {
-          // The child with fewer of x's pieces, but some (a small local tree to build).
-          const std::size_t c0 = count_[std::size_t(n.child[0])][x], c1 = count_[std::size_t(n.child[1])][x];
-          m = c0 > 0 && (c1 == 0 || c0 <= c1) ? n.child[0] : n.child[1];
-        }
-      }
-      s = count_[std::size_t(m)][x] == 0 ? status(m, x) : status_across(m, up.axis, up.split, side == 1, x);
-      status_[std::size_t(top)][x] = s ? 1 : 0;
+      const Across a = across(id, x);
+      s = count_[std::size_t(a.m)][x] == 0 ? status(a.m, x) : status_across(a.m, a.axis, a.split, a.above, x);
+      status_[std::size_t(a.top)][x] = s ? 1 : 0;
     }
     status_[std::size_t(id)][x] = s ? 1 : 0;
     return s;
