@@ -100,6 +100,16 @@ TEST(CellMerge, CurvedSolidsWithManyCells) {
   check_all_ops(rotate(cube(-0.6, -0.6, -0.6, 1.2), {1, 1, 0}, 33), s);
 }
 
+// Leaves holding one operand's pieces only, 64 or more of them: their trees, read for statuses
+// only, take the balancing auxiliary planes (cell_merge.cpp, build_status_trees): the 96-segment
+// spheres' caps far from the other sphere, at the default leaf size.
+TEST(CellMerge, LargeLeavesOfOneOperandGiveTheirStatusesByBalancedTrees) {
+  const Solid s = sphere(1.0, {.segments = 96});
+  const Solid moved = translate(s, {0.3, 0.2, 0.1});
+  for (int k = 0; k < 4; ++k)
+    EXPECT_TRUE(SameSolid(s, moved, kOps[k], bsp::detail::KdOptions{}.leaf_size)) << "op " << k;
+}
+
 TEST(CellMerge, AnUnboundedOperand) {
   const Solid a = cube(0, 0, 0, 2);
   check_all_ops(a, complement(cube(1, 1, 1, 2)));

@@ -212,6 +212,14 @@ class CellMerge {
   // pieces next to its edges into slivers, and a leaf's few pieces need no balancing. Their nodes
   // go to the arena (no node polygons: nothing here reads them).
   static constexpr AutopartitionOptions kLocal{.auxiliary_splits = false};
+  // A leaf holding one operand's pieces only needs its tree for statuses (step 4): nothing is
+  // pushed down it, so it may take the balancing auxiliary planes. A convex piece of surface on
+  // face planes alone is a chain, one node per piece, quadratic to build: at 2048 segments a
+  // sphere's leaves held enough pieces for 85 s. Auxiliary planes are added to the arena, only
+  // where a node holds at least kAuxiliaryFrom pieces (autopartition.cpp): those trees are built
+  // on one thread.
+  static constexpr AutopartitionOptions kStatusOnly{};
+  static constexpr std::size_t kAuxiliaryFrom = 64;
   TreeRef append_tree(const PartitionTree& tree) {
     if (is_leaf(tree.root)) return tree.root;
     const auto first = TreeRef(arena_.nodes.size());
@@ -223,7 +231,8 @@ class CellMerge {
   TreeRef local_tree(std::size_t l, int x) {
     TreeRef& t = trees_[l][x];
     if (t == kUnbuilt)
-      t = append_tree(partition_fragments(arena_, pieces_of(l, x), kLocal, walls_[std::size_t(node_of(l))]));
+      t = append_tree(partition_fragments(arena_, pieces_of(l, x), mixed(l) ? kLocal : kStatusOnly,
+                                          walls_[std::size_t(node_of(l))]));
     return t;
   }
   // Both local trees of every mixed leaf, on every core: the opposites of the pieces' planes are
@@ -283,13 +292,18 @@ class CellMerge {
     for (const auto& [l, x] : todo)
       for (const BoundaryFragment& f : pieces_[l][x].faces) arena_.opposite(f.polygon.support);
     std::vector<PartitionTree> built(todo.size());
+    auto build = [&](std::size_t k) {
+      const auto [l, x] = todo[k];
+      built[k] = partition_fragments(arena_, pieces_[l][x].faces, kStatusOnly, walls_[std::size_t(node_of(l))]);
+    };
+    auto large = [&](std::size_t k) { return pieces_[todo[k].first][todo[k].second].faces.size() >= kAuxiliaryFrom; };
     parallel_chunks(todo.size(), 4, [&](std::size_t begin, std::size_t end) {
       check_cancel();
-      for (std::size_t k = begin; k < end; ++k) {
-        const auto [l, x] = todo[k];
-        built[k] = partition_fragments(arena_, pieces_[l][x].faces, kLocal, walls_[std::size_t(node_of(l))]);
-      }
+      for (std::size_t k = begin; k < end; ++k)
+        if (!large(k)) build(k);
     });
+    for (std::size_t k = 0; k < todo.size(); ++k)
+      if (large(k)) check_cancel(), build(k);
     for (std::size_t k = 0; k < todo.size(); ++k) trees_[todo[k].first][todo[k].second] = append_tree(built[k]);
   }
 
