@@ -1,6 +1,6 @@
 // ChunkedVector (base/chunked_vector.hpp): the same sequence as a std::vector under random
-// operations, elements that never move while it grows, copies that are deep, and the chunks
-// freed by shrink_to_fit.
+// operations, elements that never move while it grows, copies that are deep, the chunks freed by
+// shrink_to_fit, and long lists that leave at most one chunk (4096 elements) unused.
 #include "base/chunked_vector.hpp"
 
 #include <gtest/gtest.h>
@@ -61,6 +61,22 @@ TEST(ChunkedVector, ElementsStayWhereTheyAreWhileItGrows) {
   for (int i = 0; i < 100000; ++i) {
     ASSERT_EQ(at[std::size_t(i)], &c[std::size_t(i)]);
     ASSERT_EQ(c[std::size_t(i)], i);
+  }
+}
+
+TEST(ChunkedVector, LongListsLeaveAtMostOneChunkUnused) {
+  // Sizes around the end of the doubling chunks (4080 elements) and far past it.
+  for (const std::size_t n : {std::size_t(4079), std::size_t(4080), std::size_t(4081), std::size_t(8176),
+                              std::size_t(8177), std::size_t(100000), std::size_t(250001)}) {
+    ChunkedVector<std::size_t> c;
+    for (std::size_t i = 0; i < n; ++i) c.push_back(i * 7 + 1);
+    ASSERT_GE(c.capacity(), n);
+    EXPECT_LT(c.capacity() - n, 4096u) << n;
+    for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(c[i], i * 7 + 1) << n;
+    c.resize(n / 3);
+    c.shrink_to_fit();
+    EXPECT_LT(c.capacity() - c.size(), 4096u) << n;
+    for (std::size_t i = 0; i < n / 3; ++i) ASSERT_EQ(c[i], i * 7 + 1) << n;
   }
 }
 
