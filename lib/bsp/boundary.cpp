@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "base/parallel.hpp"
 #include "bsp/assembly/mesh_assembly.hpp"
 #include "bsp/tree/boundary_fragments.hpp"
 #include "bsp/tree/solid_access.hpp"
@@ -54,17 +55,23 @@ PolygonSoup boundary_soup(const Solid& solid) {
   const FragmentList& fragments = carried ? *view.fragments : extracted->fragments;
   const kernel::PlaneTable& planes = carried ? *view.planes : extracted->planes;
   soup.offsets.reserve(fragments.size() + 1);
-  soup.points.reserve(4 * fragments.size());
+  for (const BoundaryFragment& f : fragments) soup.offsets.push_back(soup.offsets.back() + f.polygon.corners.size());
+  soup.points.resize(soup.offsets.back());
   const kernel::Grid& grid = solid.grid();
-  for (const BoundaryFragment& f : fragments) {
-    const auto& corners = f.polygon.corners;
-    for (std::size_t k = 0; k < corners.size(); ++k) {
-      const kernel::Corner& c = corners[f.flip ? corners.size() - 1 - k : k];
-      soup.points.push_back(
-          grid.to_world(kernel::rounded_vertex(planes[f.polygon.support], planes[c.p], planes[c.q], c.at())));
+  // Each fragment writes its own points (rounding is most of the work): the same soup for any
+  // thread count.
+  constexpr std::size_t kChunk = 2048;
+  parallel_chunks(fragments.size(), kChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const BoundaryFragment& f = fragments[i];
+      const auto& corners = f.polygon.corners;
+      Eigen::Vector3d* out = soup.points.data() + soup.offsets[i];
+      for (std::size_t k = 0; k < corners.size(); ++k) {
+        const kernel::Corner& c = corners[f.flip ? corners.size() - 1 - k : k];
+        out[k] = grid.to_world(kernel::rounded_vertex(planes[f.polygon.support], planes[c.p], planes[c.q], c.at()));
+      }
     }
-    soup.offsets.push_back(soup.points.size());
-  }
+  });
   return soup;
 }
 

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <numeric>
 #include <set>
@@ -85,6 +86,73 @@ struct Slot {
   std::array<int, 3> star{};
   int patch = 0;  // certified_patches
 };
+
+/// What the search reads per triangle, for a run of faces: the exact tests' data, its box, what
+/// the stars' certification reads, its class for certified_patches and what the scan reads; and
+/// how many of them belong to faces with a corner not marked exact.
+struct PreparedFaces {
+  std::vector<PreparedTriangle> tris;
+  std::vector<Eigen::AlignedBox3d> boxes;
+  std::vector<mesh::detail::StarTriangle> stars;
+  std::vector<signed char> cls;
+  std::vector<Slot> slots;
+  size_t moved = 0;
+
+  void reserve(size_t n) { tris.reserve(n), boxes.reserve(n), stars.reserve(n), cls.reserve(n), slots.reserve(n); }
+  void append(const PreparedFaces& o) {
+    tris.insert(tris.end(), o.tris.begin(), o.tris.end());
+    boxes.insert(boxes.end(), o.boxes.begin(), o.boxes.end());
+    stars.insert(stars.end(), o.stars.begin(), o.stars.end());
+    cls.insert(cls.end(), o.cls.begin(), o.cls.end());
+    slots.insert(slots.end(), o.slots.begin(), o.slots.end());
+    moved += o.moved;
+  }
+  void clear() {  // keeps the storage for the next wave
+    tris.clear(), boxes.clear(), stars.clear(), cls.clear(), slots.clear();
+    moved = 0;
+  }
+};
+
+/// Faces [begin, end) of `mesh` triangulated and prepared into `out` (appended, in face order).
+/// \throw InvalidInput as triangulate_polygon.
+template <typename ExactFace>
+void prepare_faces(const PolygonMesh& mesh, const std::vector<int>& canon, const ExactFace& exact_face, size_t begin,
+                   size_t end, PreparedFaces& out) {
+  PolygonTriangulator triangulator;
+  std::vector<IndexTriangle> face_tris;
+  CancelPoll poll;
+  for (size_t fi = begin; fi < end; ++fi) {
+    poll.tick();
+    const bool exact = exact_face(mesh.faces[fi]);
+    face_tris.clear();
+    triangulator.append(mesh.vertices, mesh.faces[fi], face_tris, EarOrder::Spread);
+    for (const IndexTriangle& it : face_tris) {
+      const PreparedTriangle t =
+          mesh::detail::prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
+                                         {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
+      if (t.axis < 0) continue;  // collinear corners: degenerate, reported elsewhere
+      Eigen::AlignedBox3d box;
+      for (int k = 0; k < 3; ++k) box.extend(t.p[k]);
+      Slot slot;
+      for (int k = 0; k < 3; ++k) {
+        slot.box[size_t(k)] = as_float(box.min()[k]);
+        slot.box[size_t(k) + 3] = as_float(box.max()[k]);
+      }
+      slot.face = static_cast<int>(fi);
+      slot.exact = exact;
+      slot.star = t.ids;
+      out.tris.push_back(t);
+      out.boxes.push_back(box);
+      out.stars.push_back(mesh::detail::star_triangle(t));
+      // Its class for certified_patches: its axis and the sign of its projection there, or -1
+      // where the filter leaves that sign open.
+      const int sign = out.stars.back().sign[size_t(t.axis)];
+      out.cls.push_back(static_cast<signed char>(sign == 1 || sign == -1 ? 2 * t.axis + (sign > 0 ? 1 : 0) : -1));
+      out.slots.push_back(slot);
+      out.moved += exact ? 0 : 1;
+    }
+  }
+}
 
 /// Cells per parallel run: about this many cell entries (a run of the scan costs about 10 us per entry).
 constexpr size_t kMembersPerRun = 4096;
@@ -197,8 +265,8 @@ CellScan scan_cells(const ScanInput& in, size_t first, size_t last) {
 
 }  // namespace
 
-bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Vector3d, 3>& a,
-                    const std::array<int, 3>& ids_b, const std::array<Vector3d, 3>& b) {
+bool triangles_meet(const std::array<int, 3>& ids_a, const std::array<Vector3d, 3>& a, const std::array<int, 3>& ids_b,
+                    const std::array<Vector3d, 3>& b) {
   PreparedTriangle s = mesh::detail::prepare_triangle(ids_a, a), t = mesh::detail::prepare_triangle(ids_b, b);
   s.axis = std::max(s.axis, 0);  // degenerate (excluded by the precondition): axis 0, as before
   t.axis = std::max(t.axis, 0);
@@ -233,7 +301,8 @@ std::vector<FacePair> find_self_intersections(const PolygonMesh& mesh, SelfInter
 SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIntersectionOptions options) {
   SelfIntersectionSearch result;
   const size_t nv = mesh.vertices.size();
-  const std::vector<int> canon = options.distinct_vertices ? identity_ids(nv) : mesh::detail::first_copies(mesh.vertices);
+  const std::vector<int> canon =
+      options.distinct_vertices ? identity_ids(nv) : mesh::detail::first_copies(mesh.vertices);
 
   // Faces with every corner marked exact (the flags are used only when there is one per vertex):
   // pairs of their triangles are not examined (see SelfIntersectionOptions::exact_vertices).
@@ -242,57 +311,45 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     return marked && std::all_of(f.begin(), f.end(), [&](int v) { return options.exact_vertices[size_t(v)] != 0; });
   };
   if (marked && std::all_of(mesh.faces.begin(), mesh.faces.end(), exact_face)) return result;
-  // Per triangle: what the exact tests read, its box, what the stars' certification reads, and
-  // what the scan reads (Slot).
-  std::vector<PreparedTriangle> tris;
-  std::vector<Eigen::AlignedBox3d> boxes;
-  std::vector<mesh::detail::StarTriangle> stars;
-  std::vector<signed char> cls;
-  std::vector<Slot> slots;
+  // Per triangle: what the exact tests read, its box, what the stars' certification reads, its
+  // class and what the scan reads (Slot).
+  PreparedFaces all;
   {
     size_t corners = 0;
     for (const auto& f : mesh.faces) corners += f.size() >= 2 ? f.size() - 2 : 0;
-    tris.reserve(corners);
-    boxes.reserve(corners);
-    stars.reserve(corners);
-    cls.reserve(corners);
-    slots.reserve(corners);
+    all.reserve(corners);
   }
-  size_t moved = 0;  // triangles of faces with a corner not marked exact
-  PolygonTriangulator triangulator;
-  std::vector<IndexTriangle> face_tris;
-  CancelPoll poll;  // Ctrl-C (base/cancel.hpp): a second or more on millions of triangles
-  for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
-    poll.tick();
-    const bool exact = exact_face(mesh.faces[fi]);
-    face_tris.clear();
-    triangulator.append(mesh.vertices, mesh.faces[fi], face_tris, EarOrder::Spread);
-    for (const IndexTriangle& it : face_tris) {
-      const PreparedTriangle t =
-          mesh::detail::prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
-                                         {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
-      if (t.axis < 0) continue;  // collinear corners: degenerate, reported elsewhere
-      Eigen::AlignedBox3d box;
-      for (int k = 0; k < 3; ++k) box.extend(t.p[k]);
-      Slot slot;
-      for (int k = 0; k < 3; ++k) {
-        slot.box[size_t(k)] = as_float(box.min()[k]);
-        slot.box[size_t(k) + 3] = as_float(box.max()[k]);
+  // Faces in chunks on every core, in waves of a few chunks per thread: each wave's chunks are
+  // appended in order, so the lists are those of one pass in face order (the same for any thread
+  // count) and the scratch holds one wave. A face that cannot be triangulated throws as that pass
+  // would: the first such face's error, in face order.
+  constexpr size_t kFaceChunk = 2048;
+  const size_t wave = kFaceChunk * 4 * size_t(std::max(thread_count(), 1));
+  std::vector<PreparedFaces> parts(wave / kFaceChunk);
+  std::vector<std::exception_ptr> errors(parts.size());
+  for (size_t start = 0; start < mesh.faces.size(); start += wave) {
+    const size_t stop = std::min(mesh.faces.size(), start + wave);
+    parallel_chunks(stop - start, kFaceChunk, [&](size_t begin, size_t end) {
+      const size_t part = begin / kFaceChunk;
+      try {
+        prepare_faces(mesh, canon, exact_face, start + begin, start + end, parts[part]);
+      } catch (...) {
+        errors[part] = std::current_exception();
       }
-      slot.face = static_cast<int>(fi);
-      slot.exact = exact;
-      slot.star = t.ids;
-      tris.push_back(t);
-      boxes.push_back(box);
-      stars.push_back(mesh::detail::star_triangle(t));
-      // Its class for certified_patches: its axis and the sign of its projection there, or -1
-      // where the filter leaves that sign open.
-      const int sign = stars.back().sign[size_t(t.axis)];
-      cls.push_back(static_cast<signed char>(sign == 1 || sign == -1 ? 2 * t.axis + (sign > 0 ? 1 : 0) : -1));
-      slots.push_back(slot);
-      moved += exact ? 0 : 1;
+    });
+    check_cancel();  // Ctrl-C (base/cancel.hpp): a second or more on millions of triangles
+    for (size_t k = 0; k < parts.size(); ++k) {
+      if (errors[k]) std::rethrow_exception(errors[k]);
+      all.append(parts[k]);
+      parts[k].clear();
     }
   }
+  const std::vector<PreparedTriangle>& tris = all.tris;
+  const std::vector<Eigen::AlignedBox3d>& boxes = all.boxes;
+  const std::vector<mesh::detail::StarTriangle>& stars = all.stars;
+  const std::vector<signed char>& cls = all.cls;
+  std::vector<Slot>& slots = all.slots;
+  const size_t moved = all.moved;
   if (moved == 0) return result;
   // Pairs that share a vertex whose star is certified are not examined (certified_stars), nor
   // pairs of one certified patch (certified_patches).

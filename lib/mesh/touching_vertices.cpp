@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "base/cancel.hpp"
+#include "base/parallel.hpp"
 #include "mesh/detail/box_grid.hpp"
 #include "mesh/predicates.hpp"
 #include "mesh/triangulate.hpp"
@@ -156,22 +157,37 @@ std::vector<Contact> find_contacts(const PolygonMesh& m, const std::vector<char>
   for (const int v : vertices) boxes.emplace_back(m.vertices[size_t(v)], m.vertices[size_t(v)]);
   const mesh::detail::BoxGrid grid(boxes);
   const int nf = int(faces.size());
-  std::vector<FacePlane> planes;
-  planes.reserve(faces.size());
-  for (const int f : faces) planes.push_back(face_plane(m, m.faces[size_t(f)]));
+  std::vector<FacePlane> planes(faces.size());
+  constexpr size_t kFaceChunk = 4096, kCellChunk = 1024;
+  parallel_chunks(faces.size(), kFaceChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) planes[i] = face_plane(m, m.faces[size_t(faces[i])]);
+  });
+  // The cells in chunks on every core, each chunk's contacts and count kept apart and joined in
+  // cell order: the same contacts, in the same order, for any thread count.
+  const size_t chunks = (grid.cells() + kCellChunk - 1) / kCellChunk;
+  std::vector<std::vector<Contact>> found(chunks);
+  std::vector<int> lefts(chunks, 0);
+  parallel_chunks(grid.cells(), kCellChunk, [&](size_t begin, size_t end) {
+    std::vector<Contact>& out = found[begin / kCellChunk];
+    int& mine = lefts[begin / kCellChunk];
+    CancelPoll poll;
+    for (size_t k = begin; k < end; ++k) {
+      const std::span<const int> members = grid.cell(k);  // ascending: faces first, then vertices
+      const auto split = std::lower_bound(members.begin(), members.end(), nf);
+      for (auto vi = split; vi != members.end(); ++vi)
+        for (auto fj = members.begin(); fj != split; ++fj) {
+          poll.tick();
+          const int v = vertices[size_t(*vi - nf)];
+          if (!boxes[size_t(*fj)].contains(m.vertices[size_t(v)]) || !grid.owns(k, *fj, *vi)) continue;
+          if (const std::optional<Contact> c = contact(m, faces[size_t(*fj)], planes[size_t(*fj)], v, mine))
+            out.push_back(*c);
+        }
+    }
+  });
   std::vector<Contact> out;
-  CancelPoll poll;
-  for (size_t k = 0; k < grid.cells(); ++k) {
-    const std::span<const int> members = grid.cell(k);  // ascending: faces first, then vertices
-    const auto split = std::lower_bound(members.begin(), members.end(), nf);
-    for (auto vi = split; vi != members.end(); ++vi)
-      for (auto fj = members.begin(); fj != split; ++fj) {
-        poll.tick();
-        const int v = vertices[size_t(*vi - nf)];
-        if (!boxes[size_t(*fj)].contains(m.vertices[size_t(v)]) || !grid.owns(k, *fj, *vi)) continue;
-        if (const std::optional<Contact> c = contact(m, faces[size_t(*fj)], planes[size_t(*fj)], v, left))
-          out.push_back(*c);
-      }
+  for (size_t c = 0; c < chunks; ++c) {
+    out.insert(out.end(), found[c].begin(), found[c].end());
+    left += lefts[c];
   }
   return out;
 }

@@ -612,19 +612,33 @@ Operand load(Arena& arena, const Solid& s) {
   o.list = view.fragments;
   // Boxes, and their union as the operand's box (invalid if a fragment reaches the world box:
   // the operand is unbounded there, or if a box is unknown).
-  o.boxes.reserve(o.faces().size());
+  // In chunks on every core; each chunk's union of boxes, joined in order (min and max are exact).
+  constexpr std::size_t kChunk = 4096;
+  const std::size_t n = o.faces().size();
+  o.boxes.resize(n);
+  std::vector<CornerBox> chunk_box((n + kChunk - 1) / kChunk);
+  parallel_chunks(n, kChunk, [&](std::size_t begin, std::size_t end) {
+    check_cancel();  // Ctrl-C (base/cancel.hpp)
+    CornerBox& box = chunk_box[begin / kChunk];
+    box.valid = true;
+    for (int k = 0; k < 3; ++k) box.lo[k] = 1e300, box.hi[k] = -1e300;
+    for (std::size_t i = begin; i < end; ++i) {
+      const BoundaryFragment& f = o.faces()[i];
+      const FragmentBox& b = o.boxes[i] = fragment_box(f.polygon);
+      bool world = f.polygon.support < kernel::kWorldPlanes;
+      for (const auto& c : f.polygon.corners)
+        world |= c.edge < kernel::kWorldPlanes || c.p < kernel::kWorldPlanes || c.q < kernel::kWorldPlanes;
+      box.valid = box.valid && b.valid && !world;
+      for (int k = 0; k < 3; ++k)
+        box.lo[k] = std::min(box.lo[k], double(b.lo[k])), box.hi[k] = std::max(box.hi[k], double(b.hi[k]));
+    }
+  });
   o.box.valid = true;
   for (int k = 0; k < 3; ++k) o.box.lo[k] = 1e300, o.box.hi[k] = -1e300;
-  CancelPoll poll;
-  for (const BoundaryFragment& f : o.faces()) {
-    poll.tick();  // Ctrl-C (base/cancel.hpp)
-    const FragmentBox& b = o.boxes.emplace_back(fragment_box(f.polygon));
-    bool world = f.polygon.support < kernel::kWorldPlanes;
-    for (const auto& c : f.polygon.corners)
-      world |= c.edge < kernel::kWorldPlanes || c.p < kernel::kWorldPlanes || c.q < kernel::kWorldPlanes;
-    o.box.valid = o.box.valid && b.valid && !world;
+  for (const CornerBox& box : chunk_box) {
+    o.box.valid = o.box.valid && box.valid;
     for (int k = 0; k < 3; ++k)
-      o.box.lo[k] = std::min(o.box.lo[k], double(b.lo[k])), o.box.hi[k] = std::max(o.box.hi[k], double(b.hi[k]));
+      o.box.lo[k] = std::min(o.box.lo[k], box.lo[k]), o.box.hi[k] = std::max(o.box.hi[k], box.hi[k]);
   }
   o.far = far_status(s);
   return o;
