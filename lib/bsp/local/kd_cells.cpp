@@ -1,5 +1,6 @@
 #include "bsp/local/kd_cells.hpp"
 #include "base/cancel.hpp"
+#include "base/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -85,6 +86,114 @@ Choice choose_split(const KdNode& n, const std::array<std::span<const FragmentBo
   return {axis, s};
 }
 
+// Where node n's fragments go if it is split (parts[side][operand]), or axis -1 when it stays a
+// leaf: the split of choose_split, at its middle if the gap makes no progress (neither side may
+// keep every fragment).
+Choice split_items(const KdNode& n, int depth, const std::array<std::span<const FragmentBox>, 2>& boxes,
+                   const KdOptions& options, std::array<std::array<std::vector<std::uint32_t>, 2>, 2>& parts) {
+  const std::size_t total = n.items[0].size() + n.items[1].size();
+  const bool split_worthwhile =
+      !n.items[0].empty() && !n.items[1].empty() && total > options.leaf_size && depth < options.max_depth;
+  Choice c;
+  for (int attempt = 0; split_worthwhile && attempt < 2; ++attempt) {
+    c = choose_split(n, boxes, attempt);
+    if (c.axis < 0) break;
+    const double wall = 0.5 * double(c.split);
+    for (int side = 0; side < 2; ++side)
+      for (int op = 0; op < 2; ++op) parts[side][op].clear();
+    for (int op = 0; op < 2; ++op)
+      for (const std::uint32_t i : n.items[op]) {
+        const FragmentBox& b = boxes[op][i];
+        if (lo_of(b, c.axis) <= wall) parts[0][op].push_back(i);
+        if (hi_of(b, c.axis) >= wall) parts[1][op].push_back(i);
+      }
+    const bool progress =
+        parts[0][0].size() + parts[0][1].size() < total && parts[1][0].size() + parts[1][1].size() < total;
+    if (progress) return c;
+    c.axis = -1;
+  }
+  return {};
+}
+
+// Subtrees with at least this many fragments, within kSpawnLevels levels of parallel splits from
+// the root, are built side by side (tbb tasks); the rest depth first on one thread.
+constexpr std::size_t kParallelItems = 8192;
+constexpr int kSpawnLevels = 4;
+
+struct Grow {
+  const std::array<std::span<const FragmentBox>, 2>& boxes;
+  const KdOptions& options;
+
+  // Splits node `top` of `cells` (at `top_depth`) and all below it, depth first: the node ids are
+  // given as one pass with an explicit stack gives them (a node's children when it is split, then
+  // the lower child's subtree, then the upper's), and leaves come below before above. Where both
+  // children are large, their subtrees are grown apart in parallel and appended in that order.
+  void operator()(KdCells& cells, std::int32_t top, int top_depth, int level) const {
+    std::vector<std::pair<std::int32_t, int>> stack{{top, top_depth}};  // node, depth
+    std::array<std::array<std::vector<std::uint32_t>, 2>, 2> parts;     // [side][operand]
+    while (!stack.empty()) {
+      check_cancel();  // Ctrl-C (base/cancel.hpp): a node near the root sorts millions of boxes
+      const auto [id, depth] = stack.back();
+      stack.pop_back();
+      const Choice c = split_items(cells.nodes[std::size_t(id)], depth, boxes, options, parts);
+      if (c.axis < 0) {
+        cells.leaves.push_back(id);
+        continue;
+      }
+      KdNode& n = cells.nodes[std::size_t(id)];
+      n.axis = c.axis;
+      n.split = c.split;
+      n.items[0] = {};
+      n.items[1] = {};
+      const CellBounds bounds = n.bounds;
+      std::size_t sizes[2];
+      for (int side = 0; side < 2; ++side) {
+        KdNode child;
+        child.bounds = bounds;
+        (side == 0 ? child.bounds.hi : child.bounds.lo)[c.axis] = c.split;
+        child.parent = id;
+        child.items[0] = std::move(parts[side][0]);
+        child.items[1] = std::move(parts[side][1]);
+        sizes[side] = child.items[0].size() + child.items[1].size();
+        cells.nodes[std::size_t(id)].child[side] = std::int32_t(cells.nodes.size());
+        cells.nodes.push_back(std::move(child));  // invalidates n
+      }
+      const std::int32_t child[2] = {cells.nodes[std::size_t(id)].child[0], cells.nodes[std::size_t(id)].child[1]};
+      if (level < kSpawnLevels && sizes[0] >= kParallelItems && sizes[1] >= kParallelItems) {
+        KdCells sub[2];
+        for (int side = 0; side < 2; ++side)
+          sub[side].nodes.push_back(std::move(cells.nodes[std::size_t(child[side])]));
+        parallel_invoke([&] { (*this)(sub[0], 0, depth + 1, level + 1); },
+                        [&] { (*this)(sub[1], 0, depth + 1, level + 1); });
+        append(cells, child, sub);
+        continue;
+      }
+      // The lower child is visited first: leaves come in depth-first order, below before above.
+      stack.push_back({child[1], depth + 1});
+      stack.push_back({child[0], depth + 1});
+    }
+  }
+
+  // The two subtrees grown apart (each with its root at 0) put back: each root where its child
+  // was, then the lower one's other nodes, then the upper one's, with their references renumbered.
+  static void append(KdCells& cells, const std::int32_t child[2], KdCells sub[2]) {
+    const auto base0 = std::int32_t(cells.nodes.size());
+    const std::int32_t first[2] = {base0, base0 + std::int32_t(sub[0].nodes.size()) - 1};
+    for (int side = 0; side < 2; ++side) {
+      auto global = [&](std::int32_t local) { return local == 0 ? child[side] : first[side] + local - 1; };
+      for (std::size_t k = 0; k < sub[side].nodes.size(); ++k) {
+        KdNode& node = sub[side].nodes[k];
+        for (std::int32_t& c : node.child)
+          if (c >= 0) c = global(c);
+        if (k > 0) node.parent = global(node.parent);
+      }
+      cells.nodes[std::size_t(child[side])] = std::move(sub[side].nodes[0]);
+      for (std::size_t k = 1; k < sub[side].nodes.size(); ++k) cells.nodes.push_back(std::move(sub[side].nodes[k]));
+      for (const std::int32_t l : sub[side].leaves) cells.leaves.push_back(global(l));
+    }
+  }
+};
+
 }  // namespace
 
 KdCells subdivide(const std::array<std::span<const FragmentBox>, 2>& boxes, const KdOptions& options) {
@@ -96,58 +205,7 @@ KdCells subdivide(const std::array<std::span<const FragmentBox>, 2>& boxes, cons
     for (std::uint32_t i = 0; i < boxes[op].size(); ++i) root.items[op][i] = i;
   }
   cells.nodes.push_back(std::move(root));
-  std::vector<std::pair<std::int32_t, int>> stack{{0, 0}};  // node, depth
-  while (!stack.empty()) {
-    check_cancel();  // Ctrl-C (base/cancel.hpp): a node near the root sorts millions of boxes
-    const auto [id, depth] = stack.back();
-    stack.pop_back();
-    KdNode& n = cells.nodes[std::size_t(id)];
-    const std::size_t total = n.items[0].size() + n.items[1].size();
-    const bool split_worthwhile =
-        !n.items[0].empty() && !n.items[1].empty() && total > options.leaf_size && depth < options.max_depth;
-    std::array<std::array<std::vector<std::uint32_t>, 2>, 2> parts;  // [side][operand]
-    Choice c;
-    for (int attempt = 0; split_worthwhile && attempt < 2; ++attempt) {
-      c = choose_split(n, boxes, attempt);
-      if (c.axis < 0) break;
-      const double wall = 0.5 * double(c.split);
-      for (int side = 0; side < 2; ++side)
-        for (int op = 0; op < 2; ++op) parts[side][op].clear();
-      for (int op = 0; op < 2; ++op)
-        for (const std::uint32_t i : n.items[op]) {
-          const FragmentBox& b = boxes[op][i];
-          if (lo_of(b, c.axis) <= wall) parts[0][op].push_back(i);
-          if (hi_of(b, c.axis) >= wall) parts[1][op].push_back(i);
-        }
-      // Progress: neither side keeps every fragment.
-      const bool progress =
-          parts[0][0].size() + parts[0][1].size() < total && parts[1][0].size() + parts[1][1].size() < total;
-      if (progress) break;
-      c.axis = -1;
-    }
-    if (c.axis < 0) {
-      cells.leaves.push_back(id);
-      continue;
-    }
-    n.axis = c.axis;
-    n.split = c.split;
-    n.items[0] = {};
-    n.items[1] = {};
-    const CellBounds bounds = n.bounds;
-    for (int side = 0; side < 2; ++side) {
-      KdNode child;
-      child.bounds = bounds;
-      (side == 0 ? child.bounds.hi : child.bounds.lo)[c.axis] = c.split;
-      child.parent = id;
-      child.items[0] = std::move(parts[side][0]);
-      child.items[1] = std::move(parts[side][1]);
-      cells.nodes[std::size_t(id)].child[side] = std::int32_t(cells.nodes.size());
-      cells.nodes.push_back(std::move(child));  // invalidates n
-    }
-    // The lower child is visited first: leaves come in depth-first order, below before above.
-    stack.push_back({cells.nodes[std::size_t(id)].child[1], depth + 1});
-    stack.push_back({cells.nodes[std::size_t(id)].child[0], depth + 1});
-  }
+  Grow{boxes, options}(cells, 0, 0, 0);
   return cells;
 }
 

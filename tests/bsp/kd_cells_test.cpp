@@ -1,0 +1,126 @@
+// The cell merge's kd subdivision (bsp/local/kd_cells.hpp) checked by brute force: each leaf holds
+// exactly the fragments whose boxes meet its closed cell, the cells tile the root box, links and
+// the leaf order are consistent; and the subdivision is the same on one thread and on every core
+// (its large subtrees are grown side by side and appended).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "base/parallel.hpp"
+#include "bsp/local/kd_cells.hpp"
+
+namespace sculpt {
+namespace {
+
+using bsp::detail::CellBounds;
+using bsp::detail::FragmentBox;
+using bsp::detail::KdCells;
+
+// An operand's boxes as a surface's fragments give them: small boxes on a sphere of radius 1000
+// around `centre`, some long thin ones across many cells, and one invalid one (unknown: in
+// every cell).
+std::vector<FragmentBox> boxes(std::mt19937& rng, int n, double centre) {
+  std::normal_distribution<double> dir;
+  std::uniform_real_distribution<double> size(0, 12);
+  std::vector<FragmentBox> out;
+  for (int i = 0; i < n; ++i) {
+    double d[3] = {dir(rng), dir(rng), dir(rng)};
+    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + 1e-12;
+    FragmentBox b{};
+    for (int k = 0; k < 3; ++k) {
+      const double lo = centre + 1000 * d[k] / r;
+      b.lo[k] = float(lo);
+      b.hi[k] = float(lo + (i % 997 == 0 ? 300 : size(rng)));
+    }
+    b.valid = i != 5;
+    out.push_back(b);
+  }
+  return out;
+}
+
+// The closed cell [lo/2, hi/2] meets the box (an invalid box meets every cell).
+bool meets(const CellBounds& c, const FragmentBox& b) {
+  if (!b.valid) return true;
+  for (int k = 0; k < 3; ++k)
+    if (double(b.hi[k]) < 0.5 * double(c.lo[k]) || double(b.lo[k]) > 0.5 * double(c.hi[k])) return false;
+  return true;
+}
+
+KdCells subdivided(const std::vector<FragmentBox> (&b)[2], std::size_t leaf_size) {
+  return bsp::detail::subdivide({std::span<const FragmentBox>(b[0]), std::span<const FragmentBox>(b[1])},
+                                {.leaf_size = leaf_size});
+}
+
+TEST(KdCells, LeavesHoldExactlyTheBoxesThatMeetThemAndTileTheRoot) {
+  std::mt19937 rng(11);
+  const std::vector<FragmentBox> b[2] = {boxes(rng, 12000, 0), boxes(rng, 9000, 300)};
+  const KdCells cells = subdivided(b, 32);
+  ASSERT_GT(cells.leaves.size(), 100u);
+  // Links: every child's parent is its node, children split the parent's cell at its wall.
+  for (std::size_t i = 0; i < cells.nodes.size(); ++i) {
+    const auto& n = cells.nodes[i];
+    if (n.axis < 0) continue;
+    for (int side = 0; side < 2; ++side) {
+      const auto& c = cells.nodes[std::size_t(n.child[side])];
+      ASSERT_EQ(c.parent, std::int32_t(i));
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(c.bounds.lo[k], k == n.axis && side == 1 ? n.split : n.bounds.lo[k]);
+        EXPECT_EQ(c.bounds.hi[k], k == n.axis && side == 0 ? n.split : n.bounds.hi[k]);
+      }
+    }
+  }
+  // Leaves in depth-first order, below before above: the order of a walk with an explicit stack.
+  std::vector<std::int32_t> walk, stack{0};
+  while (!stack.empty()) {
+    const std::int32_t id = stack.back();
+    stack.pop_back();
+    const auto& n = cells.nodes[std::size_t(id)];
+    if (n.axis < 0) {
+      walk.push_back(id);
+      continue;
+    }
+    stack.push_back(n.child[1]);
+    stack.push_back(n.child[0]);
+  }
+  EXPECT_EQ(walk, cells.leaves);
+  // Brute force: a leaf lists (ascending) every box that meets its closed cell, and no other.
+  for (const std::int32_t id : cells.leaves) {
+    const auto& leaf = cells.nodes[std::size_t(id)];
+    for (int op = 0; op < 2; ++op) {
+      std::vector<std::uint32_t> expected;
+      for (std::uint32_t i = 0; i < b[op].size(); ++i)
+        if (meets(leaf.bounds, b[op][i])) expected.push_back(i);
+      ASSERT_EQ(leaf.items[std::size_t(op)], expected) << "leaf " << id << " operand " << op;
+    }
+  }
+}
+
+TEST(KdCells, OneThreadAndEveryCoreGiveTheSameSubdivision) {
+  std::mt19937 rng(3);
+  // Large enough that the first splits leave subtrees of over 8192 fragments (grown side by side).
+  const std::vector<FragmentBox> b[2] = {boxes(rng, 40000, 0), boxes(rng, 40000, 300)};
+  for (const std::size_t leaf_size : {std::size_t(8), std::size_t(32)}) {
+    KdCells one;
+    {
+      const ThreadLimit limit(1);
+      one = subdivided(b, leaf_size);
+    }
+    const KdCells every = subdivided(b, leaf_size);
+    ASSERT_EQ(one.nodes.size(), every.nodes.size());
+    EXPECT_EQ(one.leaves, every.leaves);
+    for (std::size_t i = 0; i < one.nodes.size(); ++i) {
+      const auto &x = one.nodes[i], &y = every.nodes[i];
+      ASSERT_EQ(x.axis, y.axis) << i;
+      ASSERT_EQ(x.split, y.split) << i;
+      ASSERT_EQ(x.child[0], y.child[0]) << i;
+      ASSERT_EQ(x.child[1], y.child[1]) << i;
+      ASSERT_EQ(x.parent, y.parent) << i;
+      ASSERT_EQ(x.items, y.items) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sculpt
