@@ -2,7 +2,9 @@
 # Side by side with native Manifold (../shared/peers: C++, its oneTBB backend) in one run: the
 # real-mesh job of issue 33 (import, a general turn, the union with the turned copy, the difference
 # with a sphere; tests/bench/bsp/bench_mesh_job.cpp) and sphere(1, N) - moved copy.
-#   tests/bench/native_compare.sh [--runs R] [--threads "1 2"] [--mesh FILE.off]... [--sphere N]...
+#   tests/bench/native_compare.sh [--runs R] [--threads "1 2"] [--mesh FILE.off]... [--real-meshes] [--sphere N]...
+# --real-meshes adds eight real closed meshes of 5k-89k triangles (CGAL's data set, downloaded once
+# into build/meshes/cgal by tests/bench/meshes/cgal_meshes.sh).
 # Defaults: 5 runs, threads 1 and 2, models/bunny.off, spheres 128 256 512. Each run is its own
 # process (peak memory from /usr/bin/time); rounds are interleaved (ours, then the peer, case by
 # case) so a change in the machine's speed falls on both. Prints a Markdown table of medians.
@@ -19,6 +21,10 @@ while (($#)); do
     --threads) threads="$2"; shift 2 ;;
     --mesh) meshes+=("$2"); shift 2 ;;
     --sphere) spheres+=("$2"); shift 2 ;;
+    --real-meshes)
+      mapfile -t found < <(bash "$root/tests/bench/meshes/cgal_meshes.sh" "$root/build/meshes/cgal")
+      meshes+=("${found[@]}")
+      shift ;;
     *) echo "native_compare: unknown option $1" >&2; exit 2 ;;
   esac
 done

@@ -1,7 +1,8 @@
 // One run of the real-mesh job of issue 33 with native Manifold (the peer; ours is
 // tests/bench/bsp/bench_mesh_job.cpp, which describes the job and the printed line). Manifold
 // evaluates its CSG lazily: `difference` holds the evaluation of the whole tree, forced by
-// Volume(); only `total` compares with ours phase for phase.
+// GetMeshGL64() (the result as a mesh, as ours ends with to_mesh) and Volume(); only `total`
+// compares with ours phase for phase.
 //   manifold_job [--threads T] (--mesh FILE.off | --sphere N)
 // Built by tests/bench/native_compare.sh against ../shared/peers' library.
 #include <chrono>
@@ -107,13 +108,15 @@ int main(int argc, char** argv) {
     t_import = since(t);
     result = a - b;
   }
+  // The result as a mesh, as our side's to_mesh gives it (what an export or a viewer needs).
   const auto t = Clock::now();
+  const MeshGL64 out = result.GetMeshGL64();
   const double v = result.Volume();
   t_difference += since(t);
   std::printf(
       "bench case=%s n=%zu threads=%d import=%.4f turn=%.4f union=%.4f difference=%.4f total=%.4f volume=%.10g "
       "triangles_out=%zu\n",
       name.c_str(), file.empty() ? std::size_t(n) : in_triangles, used, t_import, t_turn, t_union, t_difference,
-      since(start), v, result.NumTri());
+      since(start), v, out.NumTri());
   return 0;
 }
