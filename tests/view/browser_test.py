@@ -196,7 +196,23 @@ def tools(driver, state, wait_for, total):
     red3 = state("sculptView.pixels(%s)" % RED)["near"]
     model3 = state("sculptView.pixels(null)")["model"]
     check(red3 > 0 and model3 < model0, "a z section at 0.45 cuts the block (model pixels %d -> %d)" % (model0, model3))
+    # The cap: seen from above, the block's cut face (z = the section's value) is drawn in its
+    # colour darkened and unlit, so every pixel of it is that one colour; without a cap the inside
+    # of the block's bottom would show there, lit.
+    z = state("sculptView.state.sectionValue")
+    shade = state("sculptView.capShade")
+    cap = [shade * c for c in RED]
+    at = state("sculptView.colorAt(%s, %s)" % ([1.0, 0.5, z], cap))
+    want = [round(255 * c) for c in cap]
+    print("  cap at z = %.3f: %s where the block is cut (cap colour %s), %d pixels of it" % (z, at["rgb"], want, at["exact"]))
+    check(all(abs(a - b) <= 2 for a, b in zip(at["rgb"], want)) and at["exact"] > 500,
+          "the section draws the block's cut face as a cap (%s at its middle, %d pixels)" % (at["rgb"], at["exact"]))
+    driver.find_element(By.ID, "part-visible-0").click()
+    hidden = state("sculptView.colorAt(%s, %s)" % ([1.0, 0.5, z], cap))["exact"]
+    check(hidden == 0, "a hidden part's cap is hidden too (%d cap pixels)" % hidden)
+    driver.find_element(By.ID, "part-visible-0").click()
     driver.find_element(By.ID, "section").click()
+    check(state("sculptView.colorAt(%s, %s)" % ([1.0, 0.5, z], cap))["exact"] == 0, "unticked, no cap is drawn")
     check(abs(state("sculptView.pixels(%s)" % RED)["near"] - red0) < red0 / 50, "unticked, the whole model is back")
 
     # Measuring: two clicks near two corners of the block's front face (y = 0) snap to the
