@@ -87,31 +87,32 @@ struct Slot {
   int patch = 0;  // certified_patches
 };
 
-/// What the search reads per triangle, for a run of faces: the exact tests' data, its box, what
-/// the stars' certification reads, its class for certified_patches and what the scan reads; and
-/// how many of them belong to faces with a corner not marked exact.
+/// What the search keeps per triangle, for a run of faces: the exact tests' data and what the
+/// scan reads; and how many of them belong to faces with a corner not marked exact. (What the
+/// stars' certification and the grid read is made from these when needed, and freed after: on
+/// a million triangles each is about 50 MB.)
 struct PreparedFaces {
   std::vector<PreparedTriangle> tris;
-  std::vector<Eigen::AlignedBox3d> boxes;
-  std::vector<mesh::detail::StarTriangle> stars;
-  std::vector<signed char> cls;
   std::vector<Slot> slots;
   size_t moved = 0;
 
-  void reserve(size_t n) { tris.reserve(n), boxes.reserve(n), stars.reserve(n), cls.reserve(n), slots.reserve(n); }
+  void reserve(size_t n) { tris.reserve(n), slots.reserve(n); }
   void append(const PreparedFaces& o) {
     tris.insert(tris.end(), o.tris.begin(), o.tris.end());
-    boxes.insert(boxes.end(), o.boxes.begin(), o.boxes.end());
-    stars.insert(stars.end(), o.stars.begin(), o.stars.end());
-    cls.insert(cls.end(), o.cls.begin(), o.cls.end());
     slots.insert(slots.end(), o.slots.begin(), o.slots.end());
     moved += o.moved;
   }
   void clear() {  // keeps the storage for the next wave
-    tris.clear(), boxes.clear(), stars.clear(), cls.clear(), slots.clear();
+    tris.clear(), slots.clear();
     moved = 0;
   }
 };
+
+Eigen::AlignedBox3d box_of(const PreparedTriangle& t) {
+  Eigen::AlignedBox3d box;
+  for (int k = 0; k < 3; ++k) box.extend(t.p[size_t(k)]);
+  return box;
+}
 
 /// Faces [begin, end) of `mesh` triangulated and prepared into `out` (appended, in face order).
 /// \throw InvalidInput as triangulate_polygon.
@@ -131,8 +132,7 @@ void prepare_faces(const PolygonMesh& mesh, const std::vector<int>& canon, const
           mesh::detail::prepare_triangle({canon[it[0]], canon[it[1]], canon[it[2]]},
                                          {mesh.vertices[it[0]], mesh.vertices[it[1]], mesh.vertices[it[2]]});
       if (t.axis < 0) continue;  // collinear corners: degenerate, reported elsewhere
-      Eigen::AlignedBox3d box;
-      for (int k = 0; k < 3; ++k) box.extend(t.p[k]);
+      const Eigen::AlignedBox3d box = box_of(t);
       Slot slot;
       for (int k = 0; k < 3; ++k) {
         slot.box[size_t(k)] = as_float(box.min()[k]);
@@ -142,12 +142,6 @@ void prepare_faces(const PolygonMesh& mesh, const std::vector<int>& canon, const
       slot.exact = exact;
       slot.star = t.ids;
       out.tris.push_back(t);
-      out.boxes.push_back(box);
-      out.stars.push_back(mesh::detail::star_triangle(t));
-      // Its class for certified_patches: its axis and the sign of its projection there, or -1
-      // where the filter leaves that sign open.
-      const int sign = out.stars.back().sign[size_t(t.axis)];
-      out.cls.push_back(static_cast<signed char>(sign == 1 || sign == -1 ? 2 * t.axis + (sign > 0 ? 1 : 0) : -1));
       out.slots.push_back(slot);
       out.moved += exact ? 0 : 1;
     }
@@ -345,15 +339,24 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     }
   }
   const std::vector<PreparedTriangle>& tris = all.tris;
-  const std::vector<Eigen::AlignedBox3d>& boxes = all.boxes;
-  const std::vector<mesh::detail::StarTriangle>& stars = all.stars;
-  const std::vector<signed char>& cls = all.cls;
   std::vector<Slot>& slots = all.slots;
   const size_t moved = all.moved;
   if (moved == 0) return result;
+  constexpr size_t kChunk = 8192;
   // Pairs that share a vertex whose star is certified are not examined (certified_stars), nor
   // pairs of one certified patch (certified_patches).
   {
+    // Per triangle what the certification reads, and its class for certified_patches: its axis
+    // and the sign of its projection there, or -1 where the filter leaves that sign open.
+    std::vector<mesh::detail::StarTriangle> stars(tris.size());
+    std::vector<signed char> cls(tris.size());
+    parallel_chunks(tris.size(), kChunk, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        stars[i] = mesh::detail::star_triangle(tris[i]);
+        const int sign = stars[i].sign[size_t(tris[i].axis)];
+        cls[i] = static_cast<signed char>(sign == 1 || sign == -1 ? 2 * tris[i].axis + (sign > 0 ? 1 : 0) : -1);
+      }
+    });
     const mesh::detail::CertifiedStars star_verdicts = mesh::detail::certified_stars(stars, mesh.vertices);
     const std::vector<signed char>& certified = star_verdicts.certified;
     const std::vector<int> patch = mesh::detail::certified_patches(cls, star_verdicts, mesh.vertices);
@@ -365,7 +368,13 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
   // whose boxes overlap is examined in the one cell that owns it, so once. The scan compares the
   // boxes rounded to floats: they overlap where the boxes do, and a pair that overlaps only after
   // rounding has triangles that do not meet, so the cell that examines it does not matter.
-  const mesh::detail::BoxGrid grid(boxes);
+  const mesh::detail::BoxGrid grid = [&] {
+    std::vector<Eigen::AlignedBox3d> boxes(tris.size());  // (the scan reads the slots' float boxes)
+    parallel_chunks(tris.size(), kChunk, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) boxes[i] = box_of(tris[i]);
+    });
+    return mesh::detail::BoxGrid(boxes);
+  }();
   // The cells in runs of about kMembersPerRun entries, scanned in parallel (base/parallel.hpp).
   // A run's bounds depend on the grid only, and the runs' findings are joined in run order, so the
   // pairs and the verdict are the same for every thread count.

@@ -30,8 +30,8 @@ BoxGrid::BoxGrid(std::span<const Eigen::AlignedBox3d> boxes) {
     for (size_t i = 0; i < boxes.size(); ++i) {
       size_t n = 1;
       for (int axis = 0; axis < 3; ++axis) {
-        range_[i][size_t(axis)] = cell_of(boxes[i].min()[axis], axis);
-        range_[i][size_t(axis) + 3] = cell_of(boxes[i].max()[axis], axis);
+        range_[i][size_t(axis)] = static_cast<std::int32_t>(cell_of(boxes[i].min()[axis], axis));
+        range_[i][size_t(axis) + 3] = static_cast<std::int32_t>(cell_of(boxes[i].max()[axis], axis));
         n *= static_cast<size_t>(range_[i][size_t(axis) + 3] - range_[i][size_t(axis)] + 1);
       }
       entries += n;

@@ -48,7 +48,9 @@ class BoxGrid {
     return dense_ ? (x * dims_[1] + y) * dims_[2] + z : (x << 42) | (y << 21) | z;
   }
 
-  std::vector<std::array<std::int64_t, 6>> range_;  ///< per box: first cells (x, y, z), last cells
+  /// Per box: first cells (x, y, z), last cells (below 2^20 + 1 along every axis: 32 bits, half
+  /// the memory of 64, which matters on millions of boxes).
+  std::vector<std::array<std::int32_t, 6>> range_;
   std::array<std::int64_t, 3> dims_{};
   bool dense_ = false;  ///< keys number the cells densely (counting sort), else 21 bits per axis
   std::vector<std::int64_t> keys_;  ///< per non-empty cell

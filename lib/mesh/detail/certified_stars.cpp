@@ -65,10 +65,11 @@ bool one_cycle(std::span<const StarLinks::Link> edges, std::vector<int>& from, s
 StarTriangle star_triangle(const PreparedTriangle& t) {
   StarTriangle r;
   r.ids = t.ids;
+  const Orient3dPlane plane = plane_of(t);
   for (int k = 0; k < 3; ++k) {
-    const double m = t.plane.minor[k];
+    const double m = plane.minor[k];
     r.normal[size_t(k)] = m;
-    r.sign[size_t(k)] = static_cast<signed char>(certified_minor(t.plane, k) ? (m > 0 ? 1 : -1) : kUndecided);
+    r.sign[size_t(k)] = static_cast<signed char>(certified_minor(plane, k) ? (m > 0 ? 1 : -1) : kUndecided);
   }
   return r;
 }

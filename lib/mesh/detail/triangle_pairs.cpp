@@ -65,18 +65,18 @@ bool coplanar_triangles_meet(const PreparedTriangle& x, const PreparedTriangle& 
   return !projections_separated(x, y, axis);
 }
 
-/// orient3d(t.p[0], t.p[1], t.p[2], q): t's plane filter first, the exact predicate where it is
-/// undecided.
-int side(const PreparedTriangle& t, const Vector3d& q) {
-  const int f = orient3d_filtered(t.plane, q);
+/// orient3d(t.p[0], t.p[1], t.p[2], q): t's plane filter first (tp = plane_of(t)), the exact
+/// predicate where it is undecided.
+int side(const PreparedTriangle& t, const Orient3dPlane& tp, const Vector3d& q) {
+  const int f = orient3d_filtered(tp, q);
   return f != kUndecided ? f : orient3d(t.p[0], t.p[1], t.p[2], q);
 }
 
-/// Any edge of `x` (among those listed) meets triangle `y`.
-bool edges_meet(const PreparedTriangle& x, std::initializer_list<std::pair<int, int>> edges,
-                const PreparedTriangle& y) {
+/// Any edge of `x` (among those listed) meets triangle `y` (yp = plane_of(y)).
+bool edges_meet(const PreparedTriangle& x, std::initializer_list<std::pair<int, int>> edges, const PreparedTriangle& y,
+                const Orient3dPlane& yp) {
   for (auto [i, j] : edges)
-    if (segment_meets_triangle(x.p[i], x.p[j], side(y, x.p[i]), side(y, x.p[j]), y)) return true;
+    if (segment_meets_triangle(x.p[i], x.p[j], side(y, yp, x.p[i]), side(y, yp, x.p[j]), y)) return true;
   return false;
 }
 
@@ -128,14 +128,14 @@ PreparedTriangle prepare_triangle(const std::array<int, 3>& ids, const std::arra
   PreparedTriangle t;
   t.ids = ids;
   t.p = p;
-  t.plane = orient3d_plane(p[0], p[1], p[2]);
+  const Orient3dPlane plane = plane_of(t);
   // The projection along axis k has the signed area plane.minor[k] (certified_minor): the axis
   // of the largest certified area, else the first whose exact orient2d is non-zero.
   t.axis = -1;
   double best = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    const double area = std::abs(t.plane.minor[axis]);
-    if (certified_minor(t.plane, axis) && area > best) t.axis = axis, best = area;
+    const double area = std::abs(plane.minor[axis]);
+    if (certified_minor(plane, axis) && area > best) t.axis = axis, best = area;
   }
   for (int axis = 0; axis < 3 && t.axis < 0; ++axis)
     if (orient2d(drop(p[0], axis), drop(p[1], axis), drop(p[2], axis)) != 0) t.axis = axis;
@@ -160,9 +160,10 @@ bool triangles_meet(const PreparedTriangle& s, const PreparedTriangle& t) {
   if (shared == 0) {
     // One triangle strictly on one side of the other's plane: they cannot meet (the same
     // decisions as the edge tests below, with fewer predicates).
-    const int f0 = orient3d_filtered(t.plane, s.p[0]);
-    const int f1 = orient3d_filtered(t.plane, s.p[1]);
-    const int f2 = orient3d_filtered(t.plane, s.p[2]);
+    const Orient3dPlane tp = plane_of(t);
+    const int f0 = orient3d_filtered(tp, s.p[0]);
+    const int f1 = orient3d_filtered(tp, s.p[1]);
+    const int f2 = orient3d_filtered(tp, s.p[2]);
     const bool undecided = f0 == kUndecided || f1 == kUndecided || f2 == kUndecided;
     if (!undecided && ((f0 > 0 && f1 > 0 && f2 > 0) || (f0 < 0 && f1 < 0 && f2 < 0))) return false;
     if (undecided && projections_separated(s, t, t.axis)) return false;
@@ -170,7 +171,8 @@ bool triangles_meet(const PreparedTriangle& s, const PreparedTriangle& t) {
     const int s2 = decided(f2, t.p[0], t.p[1], t.p[2], s.p[2]);
     if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0)) return false;
     if (s0 == 0 && s1 == 0 && s2 == 0) return coplanar_triangles_meet(s, t, t.axis);
-    const int t0 = side(s, t.p[0]), t1 = side(s, t.p[1]), t2 = side(s, t.p[2]);
+    const Orient3dPlane sp = plane_of(s);
+    const int t0 = side(s, sp, t.p[0]), t1 = side(s, sp, t.p[1]), t2 = side(s, sp, t.p[2]);
     if ((t0 > 0 && t1 > 0 && t2 > 0) || (t0 < 0 && t1 < 0 && t2 < 0)) return false;
     return all_edges_meet(s, {s0, s1, s2}, t) || all_edges_meet(t, {t0, t1, t2}, s);
   }
@@ -181,16 +183,17 @@ bool triangles_meet(const PreparedTriangle& s, const PreparedTriangle& t) {
     // only at p: no other test is needed.
     const int i = s_shared[0], j = t_of[i];
     const Vector3d &s1 = s.p[(i + 1) % 3], &s2 = s.p[(i + 2) % 3];
-    const int f1 = orient3d_filtered(t.plane, s1), f2 = orient3d_filtered(t.plane, s2);
+    const Orient3dPlane tp = plane_of(t), sp = plane_of(s);
+    const int f1 = orient3d_filtered(tp, s1), f2 = orient3d_filtered(tp, s2);
     const bool undecided = f1 == kUndecided || f2 == kUndecided;
     if (!undecided && f1 * f2 > 0) return false;
     // The same with the roles exchanged: t meets s's plane only at p.
-    const int g1 = orient3d_filtered(s.plane, t.p[(j + 1) % 3]), g2 = orient3d_filtered(s.plane, t.p[(j + 2) % 3]);
+    const int g1 = orient3d_filtered(sp, t.p[(j + 1) % 3]), g2 = orient3d_filtered(sp, t.p[(j + 2) % 3]);
     if (g1 != kUndecided && g2 != kUndecided && g1 * g2 > 0) return false;
     if (undecided && wedges_separated(s, i, t, j)) return false;
     const int o1 = decided(f1, t.p[0], t.p[1], t.p[2], s1), o2 = decided(f2, t.p[0], t.p[1], t.p[2], s2);
     if (o1 * o2 > 0) return false;
-    return segment_meets_triangle(s1, s2, o1, o2, t) || edges_meet(t, {{(j + 1) % 3, (j + 2) % 3}}, s);
+    return segment_meets_triangle(s1, s2, o1, o2, t) || edges_meet(t, {{(j + 1) % 3, (j + 2) % 3}}, s, sp);
   }
   if (shared == 2) {
     // Shared edge pq: conflict only if coplanar with the third corners on the same side (the
@@ -202,7 +205,7 @@ bool triangles_meet(const PreparedTriangle& s, const PreparedTriangle& t) {
     for (int j = 0; j < 3; ++j)
       if (j != t_of[i0] && j != t_of[i1]) jb = j;
     const Vector3d &p = s.p[i0], &q = s.p[i1], &a = s.p[ia], &b = t.p[jb];
-    const int fb = orient3d_filtered(s.plane, b);
+    const int fb = orient3d_filtered(plane_of(s), b);
     if (fb != kUndecided) return false;  // not coplanar (the filter decides no zero)
     const int sa = orient2d(drop(p, s.axis), drop(q, s.axis), drop(a, s.axis));
     const int sb = orient2d(drop(p, s.axis), drop(q, s.axis), drop(b, s.axis));

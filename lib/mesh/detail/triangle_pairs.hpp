@@ -33,15 +33,18 @@ inline bool certified_minor(const Orient3dPlane& plane, int axis) {
          std::isfinite(m);
 }
 
-/// A triangle as triangles_meet reads it: corner ids, corners, a coordinate axis along which it
-/// projects without degeneracy (-1: its corners are collinear), and the plane part of orient3d's
-/// filter for its plane (the sides of the other triangle's corners are read from it).
+/// A triangle as triangles_meet reads it: corner ids, corners, and a coordinate axis along which
+/// it projects without degeneracy (-1: its corners are collinear). The plane part of orient3d's
+/// filter for its plane (plane_of) is made where a test needs it rather than kept: on a million
+/// triangles it would be 72 MB at the peak of the output check, for a few dozen flops per pair.
 struct PreparedTriangle {
   std::array<int, 3> ids{};
   std::array<Eigen::Vector3d, 3> p;
   int axis = 0;
-  Orient3dPlane plane;  ///< orient3d_plane(p[0], p[1], p[2])
 };
+
+/// orient3d_plane(t.p[0], t.p[1], t.p[2]): the same values every time (no contraction).
+inline Orient3dPlane plane_of(const PreparedTriangle& t) { return orient3d_plane(t.p[0], t.p[1], t.p[2]); }
 
 /// The triangle with these ids and corners, its plane filter computed and its axis found: that of
 /// the largest projected area when the filter certifies it non-zero, else the first along which an
