@@ -154,14 +154,20 @@ check deep_nesting 1 "$tmp/deep.bsp:1:69: error: brackets nested deeper than 64 
 
 # Ctrl-C (SIGINT) stops a batch run: the message at the running statement, exit status 130, and no
 # export left behind (half-written or temporary); the first statements' export is complete.
-interrupted() {  # runs a script that exports a cube, then a long union; SIGINT after 1 s
+interrupted() {  # exports a cube, then unions for far longer than the test; SIGINT once it runs
   cd "$tmp" || return 99
   "$sculpt" -e 'export(box([0, 0, 0], [1, 1, 1]), "first.off")
-s = sphere(1, 500)
-u = s | translate(s, [0.5, 0, 0])
+s = sphere(1, 300)
+for i in range(0, 100000) { u = s | translate(s, [0.5 + i / 100000, 0, 0]) }
 export(u, "u.off")' 2> interrupted.err &
   local pid=$!
-  sleep 1
+  # The signal goes after the first export is complete, however fast or slow the machine is.
+  local waited=0
+  while [ ! -s "$tmp/first.off" ] && [ "$waited" -lt 300 ]; do
+    sleep 0.1
+    waited=$((waited + 1))
+  done
+  sleep 0.5
   kill -INT $pid
   wait $pid
   local status=$?
