@@ -6,18 +6,6 @@
 
 namespace sculpt::kernel {
 
-PlaneTable::PlaneTable() {
-  const Int128 k = kWorld;
-  planes_ = {{1, 0, 0, -k}, {-1, 0, 0, -k}, {0, 1, 0, -k}, {0, -1, 0, -k}, {0, 0, 1, -k}, {0, 0, -1, -k}};
-  auxiliary_.assign(planes_.size(), false);
-}
-
-std::int32_t PlaneTable::add(const Plane& p, bool auxiliary) {
-  planes_.push_back(p);
-  auxiliary_.push_back(auxiliary);
-  return std::int32_t(planes_.size() - 1);
-}
-
 namespace {
 
 constexpr double kUnit = 1.1102230246251565e-16;  // 2^-53

@@ -3,7 +3,8 @@
 /// Plane-based convex polygons (Bernstein & Fussell 2009, sec. 3; Naylor et al. 1990 "sub-
 /// hyperplanes"): a support plane and a cycle of edge planes, no coordinates. Splitting by a
 /// plane creates no new numbers, only new plane triples, so it is exact and never cracks.
-/// Planes are referred to by index into a PlaneTable shared by all polygons of one tree.
+/// Planes are referred to by index into a PlaneTable (kernel/plane_table.hpp) shared by all
+/// polygons of one tree.
 
 #include <algorithm>
 #include <boost/container/small_vector.hpp>
@@ -13,60 +14,10 @@
 #include <vector>
 
 #include "base/assert.hpp"
+#include "kernel/plane_table.hpp"
 #include "kernel/predicates.hpp"
 
 namespace sculpt::kernel {
-
-/// Planes of one tree (or one operation); indices are stable. Indices 0..5 are the world box.
-/// A plane may be marked *auxiliary*: a splitting plane that carries no face of the solid
-/// (the axial and inner ring planes of a solid of revolution). The boundary of a regularized
-/// set operation lies on its operands' boundaries, so boundary extraction skips such planes;
-/// tree algorithms clear the mark when a face plane of another tree turns out to coincide.
-class PlaneTable {
- public:
-  PlaneTable();
-  [[nodiscard]] const Plane& operator[](std::int32_t i) const {
-    SCULPT_ASSERT(i >= 0 && i < size(), "PlaneTable: plane index outside the table");
-    return planes_[std::size_t(i)];
-  }
-  [[nodiscard]] std::int32_t size() const { return std::int32_t(planes_.size()); }
-  std::int32_t add(const Plane& p, bool auxiliary = false);
-  /// Appends `from`'s planes from index `first` on, with their auxiliary flags, at once (as
-  /// add() one by one); returns the index the first of them gets.
-  std::int32_t append(const PlaneTable& from, std::int32_t first) {
-    const auto at = std::int32_t(planes_.size());
-    if (first >= from.size()) return at;
-    planes_.insert(planes_.end(), from.planes_.begin() + first, from.planes_.end());
-    auxiliary_.insert(auxiliary_.end(), from.auxiliary_.begin() + first, from.auxiliary_.end());
-    return at;
-  }
-  [[nodiscard]] const std::vector<Plane>& planes() const { return planes_; }
-  [[nodiscard]] bool auxiliary(std::int32_t i) const { return auxiliary_[std::size_t(i)]; }
-  void set_auxiliary(std::int32_t i, bool auxiliary) { auxiliary_[std::size_t(i)] = auxiliary; }
-  void reserve(std::size_t n) {
-    planes_.reserve(n);
-    auxiliary_.reserve(n);
-  }
-  /// Drops the planes at indices >= n (n >= 6: the world box stays), and puts plane p at index
-  /// i < size() in place of the one there: for tree algorithms that renumber the planes they
-  /// added and reuse the slots of planes nothing refers to any more (bsp/tree/tree_arena.hpp,
-  /// reclaim_added). The caller rewrites the references.
-  void truncate(std::int32_t n) {
-    planes_.resize(std::size_t(std::max(n, std::int32_t(6))));
-    auxiliary_.resize(planes_.size());
-  }
-  void replace(std::int32_t i, const Plane& p, bool auxiliary) {
-    planes_[std::size_t(i)] = p;
-    auxiliary_[std::size_t(i)] = auxiliary;
-  }
-
-  /// Half-size of the world box in grid units: 4 * kMaxCoord.
-  static constexpr std::int64_t kWorld = 4 * kMaxCoord;
-
- private:
-  std::vector<Plane> planes_;
-  std::vector<bool> auxiliary_;
-};
 
 /// An error bound as a float no smaller than `err` (a larger bound is still a bound); negative
 /// (no approximation) stays negative.

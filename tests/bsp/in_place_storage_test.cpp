@@ -138,7 +138,7 @@ void run_operations(Solid work, int count) {
     };
     ASSERT_GT(work.nodes().size(), 3 * (swept.nodes().size() + lump.nodes().size()));
     const Solid copied = copying(work);
-    const std::vector<kernel::Plane> planes_before = work.planes().planes();
+    const std::vector<kernel::Plane> planes_before = work.planes().to_vector();
     const std::vector<BspNode> nodes_before = work.nodes();
     const References before = references(work);
     work = in_place(std::move(work));
@@ -274,7 +274,7 @@ Solid grown_workpiece(int strokes) {
 void expect_region_rebuilt(Solid work, const Eigen::AlignedBox3d& region, const RegionRebuildOptions& options,
                            bool expect_change) {
   const Solid copy = work;
-  const std::vector<kernel::Plane> planes_before = work.planes().planes();
+  const std::vector<kernel::Plane> planes_before = work.planes().to_vector();
   const std::vector<BspNode> nodes_before = work.nodes();
   const References before = references(work);
   RegionRebuildStats stats;

@@ -32,7 +32,7 @@ int verdict(bool in_behind, bool in_front) { return in_behind == in_front ? kDro
 
 struct Operand {
   const FragmentList* list = nullptr;  // the solid's own fragments (read only, never copied whole)
-  std::int32_t shift = 0;              // its planes' offset in the arena (B's follow A's; not the world box's)
+  std::int32_t shift = 0;              // its planes' offset in the arena (the smaller operand's follow the larger's)
   [[nodiscard]] const FragmentList& faces() const { return *list; }
   // Fragment i on the arena's planes: the solid's own when its planes were not moved, else a copy
   // renumbered in `buf`.
@@ -95,8 +95,7 @@ class CellMerge {
     clip_leaves();
     check_cancel();
     count_pieces();
-    build_mixed_trees();
-    check_cancel();
+    make_mixed_opposites();
     build_status_trees();
     check_cancel();
     for (std::size_t l = 0; l < leaf_count(); ++l)
@@ -154,9 +153,10 @@ class CellMerge {
     }
   }
 
-  // Step 2: every fragment clipped to each leaf its box meets (reads the arena only). The pieces'
-  // polygons are kept where both operands have boxes (the others are needed only where a status
-  // is read from a leaf: pieces_of() makes them then).
+  // Step 2: every fragment clipped to each leaf its box meets (reads the arena only). Only which
+  // fragments reach the leaf is kept: the pieces' polygons are made again where they are used
+  // (a mixed leaf's in emit, a status leaf's in pieces_of), one leaf at a time, so they are never
+  // all held at once (a fifth of a real-mesh union's peak memory).
   void clip_leaves() {
     pieces_.resize(leaf_count());
     parallel_chunks(leaf_count(), kLeafChunk, [&](std::size_t begin, std::size_t end) {
@@ -165,15 +165,13 @@ class CellMerge {
       check_cancel();
       for (std::size_t l = begin; l < end; ++l) {
         const KdNode& n = cells_.nodes[std::size_t(node_of(l))];
-        const bool keep = !n.items[0].empty() && !n.items[1].empty();
         for (int x = 0; x < 2; ++x) {
           Pieces& p = pieces_[l][x];
           for (const std::uint32_t i : n.items[x]) {
             const BoundaryFragment& f = ops_[x].fragment(i, renumbered);
-            const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
-            if (c == CellClip::Outside) continue;
-            if (keep) p.faces.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
-            p.origin.push_back(i);
+            if (clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch) !=
+                CellClip::Outside)
+              p.origin.push_back(i);
           }
         }
       }
@@ -181,17 +179,21 @@ class CellMerge {
     for (KdNode& n : cells_.nodes) n.items = {};
   }
 
-  // Operand x's pieces in leaf l, their polygons made if clip_leaves() did not keep them.
-  const FragmentList& pieces_of(std::size_t l, int x) {
-    Pieces& p = pieces_[l][x];
-    if (p.faces.size() == p.origin.size()) return p.faces;
+  // Operand x's pieces in leaf l (its fragments that reach the leaf, clipped to it), appended to
+  // `out` in the order of their origins.
+  void make_pieces(std::size_t l, int x, FragmentList& out) const {
     ConvexPolygon piece, scratch;
     BoundaryFragment renumbered;
-    for (const std::uint32_t i : p.origin) {
+    for (const std::uint32_t i : pieces_[l][x].origin) {
       const BoundaryFragment& f = ops_[x].fragment(i, renumbered);
       const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
-      p.faces.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
+      out.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
     }
+  }
+  // Operand x's pieces in leaf l, kept for the status trees (step 4).
+  const FragmentList& pieces_of(std::size_t l, int x) {
+    Pieces& p = pieces_[l][x];
+    if (p.faces.size() != p.origin.size()) make_pieces(l, x, p.faces);
     return p.faces;
   }
 
@@ -209,8 +211,10 @@ class CellMerge {
 
   // Step 3: local trees (Thibault & Naylor's autopartition over one leaf's pieces), with face
   // planes only: an auxiliary plane (half a grid step off the grid) would cut the other operand's
-  // pieces next to its edges into slivers, and a leaf's few pieces need no balancing. Their nodes
-  // go to the arena (no node polygons: nothing here reads them).
+  // pieces next to its edges into slivers, and a leaf's few pieces need no balancing. A mixed
+  // leaf's trees are built in emit by the task that pushes its pieces (face planes only, so the
+  // builds only read the arena); those status() reads go to the arena's nodes (no node polygons:
+  // nothing here reads them).
   static constexpr AutopartitionOptions kLocal{.auxiliary_splits = false};
   // A leaf holding one operand's pieces only needs its tree for statuses (step 4): nothing is
   // pushed down it, so it may take the balancing auxiliary planes. A convex piece of surface on
@@ -228,6 +232,8 @@ class CellMerge {
     return slot(tree.root);
   }
   // Operand x's local tree in leaf l, built on first use (serial: it may add arena planes).
+  // A mixed leaf's trees are also read by emit (pieces pushed down them), so they take face
+  // planes only (kLocal) wherever they are built.
   TreeRef local_tree(std::size_t l, int x) {
     TreeRef& t = trees_[l][x];
     if (t == kUnbuilt)
@@ -235,34 +241,22 @@ class CellMerge {
                                           walls_[std::size_t(node_of(l))]));
     return t;
   }
-  // Both local trees of every mixed leaf, on every core: the opposites of the pieces' planes are
-  // made first, so that the builds only read the arena; the trees are appended in leaf order.
-  void build_mixed_trees() {
+  // The opposites of the planes of the mixed leaves' pieces, in leaf order: their local trees
+  // (face planes only) are built in emit on every core, and then only read the arena.
+  void make_mixed_opposites() {
     trees_.assign(leaf_count(), {kUnbuilt, kUnbuilt});
-    std::vector<std::size_t> mixed_leaves;
+    BoundaryFragment renumbered;
     for (std::size_t l = 0; l < leaf_count(); ++l)
-      if (mixed(l)) {
-        mixed_leaves.push_back(l);
+      if (mixed(l))
         for (int x = 0; x < 2; ++x)
-          for (const BoundaryFragment& f : pieces_[l][x].faces) arena_.opposite(f.polygon.support);
-      }
-    std::vector<std::array<PartitionTree, 2>> built(mixed_leaves.size());
-    parallel_chunks(mixed_leaves.size(), 4, [&](std::size_t begin, std::size_t end) {
-      check_cancel();
-      for (std::size_t k = begin; k < end; ++k)
-        for (int x = 0; x < 2; ++x) {
-          const std::size_t l = mixed_leaves[k];
-          built[k][x] = partition_fragments(arena_, pieces_[l][x].faces, kLocal, walls_[std::size_t(node_of(l))]);
-        }
-    });
-    for (std::size_t k = 0; k < mixed_leaves.size(); ++k)
-      for (int x = 0; x < 2; ++x) trees_[mixed_leaves[k]][x] = append_tree(built[k][x]);
+          for (const std::uint32_t i : pieces_[l][x].origin)
+            arena_.opposite(ops_[x].fragment(i, renumbered).polygon.support);
   }
 
-  // The local trees step 4 reads, made ahead on every core as build_mixed_trees makes the mixed
-  // leaves' ones: the leaves status() will read are found by its walk on the kd-tree alone
-  // (across()), then their trees are built in parallel and appended in leaf order. Building them
-  // one by one as status() first asked took 2.3 s of `sphere(1, 1024) - moved copy`'s 4 on one core.
+  // The local trees step 4 reads, made ahead on every core: the leaves status() will read are
+  // found by its walk on the kd-tree alone (across()), then their trees are built in parallel and
+  // appended in leaf order. Building them one by one as status() first asked took 2.3 s of
+  // `sphere(1, 1024) - moved copy`'s 4 on one core.
   void build_status_trees() {
     std::vector<std::array<char, 2>> seen(cells_.nodes.size(), {0, 0});
     std::vector<std::array<char, 2>> wanted(leaf_count(), {0, 0});
@@ -294,9 +288,13 @@ class CellMerge {
     std::vector<PartitionTree> built(todo.size());
     auto build = [&](std::size_t k) {
       const auto [l, x] = todo[k];
-      built[k] = partition_fragments(arena_, pieces_[l][x].faces, kStatusOnly, walls_[std::size_t(node_of(l))]);
+      built[k] = partition_fragments(arena_, pieces_[l][x].faces, mixed(l) ? kLocal : kStatusOnly,
+                                     walls_[std::size_t(node_of(l))]);
     };
-    auto large = [&](std::size_t k) { return pieces_[todo[k].first][todo[k].second].faces.size() >= kAuxiliaryFrom; };
+    auto large = [&](std::size_t k) {
+      const auto [l, x] = todo[k];
+      return !mixed(l) && pieces_[l][x].faces.size() >= kAuxiliaryFrom;
+    };
     parallel_chunks(todo.size(), 4, [&](std::size_t begin, std::size_t end) {
       check_cancel();
       for (std::size_t k = begin; k < end; ++k)
@@ -444,7 +442,9 @@ class CellMerge {
   bool behind_status(int x, bool other) const { return x == 0 ? op_[1][other] : op_[other][1]; }
 
   // Steps 3 and 4's decisions. Each piece's fate: a mixed leaf's pieces pushed down the other
-  // operand's local tree, the others by status (in chunks of leaves, reading the arena only).
+  // operand's local tree, the others by status (in chunks of leaves, reading the arena only). A
+  // mixed leaf's pieces and trees are made by its task and dropped after it (MixedLeaf), so the
+  // merge holds one leaf's per thread, not every leaf's.
   // Then each fragment is put back together where the walls cut it needlessly: below the highest
   // kd nodes where all its pieces had one fate, it is emitted as one polygon (the fragment
   // clipped to that node's cell: the fragment itself at the root), so cell walls leave no seams
@@ -458,24 +458,29 @@ class CellMerge {
       int& fb = first_behind[begin / kLeafChunk];
       check_cancel();
       Clipper clip(arena_);
-      for (std::size_t l = begin; l < end; ++l)
+      MixedLeaf leaf;
+      for (std::size_t l = begin; l < end; ++l) {
+        const bool mix = mixed(l);
+        if (mix) prepare(l, leaf);
         for (int x = 0; x < 2; ++x) {
           const Pieces& p = pieces_[l][x];
           std::vector<std::int8_t>& whole = whole_[l][x];
           whole.assign(p.origin.size(), std::int8_t(kDrop));
           if (p.origin.empty()) continue;
-          if (!mixed(l)) {
+          if (!mix) {
             const bool s = status_[std::size_t(node_of(l))][1 - x] == 1;
             if (fb < 0) fb = behind_status(x, s) ? 1 : 0;
             whole.assign(p.origin.size(), std::int8_t(fate(x, s, s, false)));
             continue;
           }
           FragmentList& parts = parts_[l][x];
-          for (std::size_t j = 0; j < p.faces.size(); ++j) {
-            const BoundaryFragment& f = p.faces[j];
+          const FragmentList& faces = *leaf.faces[x];
+          clip.read_nodes(*leaf.nodes[1 - x]);
+          for (std::size_t j = 0; j < faces.size(); ++j) {
+            const BoundaryFragment& f = faces[j];
             const std::size_t before = parts.size();
             const int w = clip.push(
-                trees_[l][1 - x], f,
+                leaf.tree[1 - x], f,
                 [&](bool front_in, bool back_in, bool on) {
                   if (fb < 0) fb = behind_status(x, back_in) ? 1 : 0;
                   return fate(x, front_in, back_in, on);
@@ -489,6 +494,7 @@ class CellMerge {
               mixed_parts_[l][x].push_back({std::uint32_t(j), std::uint32_t(before), std::uint32_t(parts.size())});
           }
         }
+      }
     });
     // The pieces' polygons are not read again (rejoining reads the fragments, the fates and the
     // split parts): freed before the result is written, so the two are never held at once
@@ -542,6 +548,38 @@ class CellMerge {
         break;
       }
     return result;
+  }
+
+  // A mixed leaf's pieces and local trees of both operands, made for emit by one task: the pieces
+  // status() kept and the trees it built where it did, else the task's own.
+  struct MixedLeaf {
+    std::array<FragmentList, 2> own_faces;
+    std::array<std::vector<BspNode>, 2> own_nodes;
+    std::array<const FragmentList*, 2> faces{};
+    std::array<const std::vector<BspNode>*, 2> nodes{};
+    std::array<TreeRef, 2> tree{};
+  };
+  void prepare(std::size_t l, MixedLeaf& leaf) const {
+    for (int x = 0; x < 2; ++x) {
+      const Pieces& p = pieces_[l][x];
+      leaf.own_faces[x].clear();
+      if (p.faces.size() == p.origin.size()) {
+        leaf.faces[x] = &p.faces;
+      } else {
+        make_pieces(l, x, leaf.own_faces[x]);
+        leaf.faces[x] = &leaf.own_faces[x];
+      }
+      if (trees_[l][x] != kUnbuilt) {
+        leaf.tree[x] = trees_[l][x];
+        leaf.nodes[x] = &arena_.nodes;
+        continue;
+      }
+      const PartitionTree t = partition_fragments(arena_, *leaf.faces[x], kLocal, walls_[std::size_t(node_of(l))]);
+      leaf.own_nodes[x].clear();
+      for (const PartitionNode& n : t.nodes) leaf.own_nodes[x].push_back({n.plane, n.negative, n.positive});
+      leaf.tree[x] = t.root;
+      leaf.nodes[x] = &leaf.own_nodes[x];
+    }
   }
 
   // Fragment i of operand x put back together (see emit): an explicit stack over the kd nodes
@@ -609,14 +647,13 @@ class CellMerge {
   std::array<std::vector<std::uint32_t>, 2> by_fragment_first_;
 };
 
-// Operand x on the arena's planes (B's planes appended after A's; the world box planes are
-// shared), with its fragments' boxes, their bounds and its far status. The fragments stay where
-// they are: B's are renumbered as they are read (Operand::fragment), not copied whole.
-Operand load(Arena& arena, const Solid& s) {
+// Operand s with its fragments' boxes, their bounds and its far status, on the arena's planes
+// at `shift` (see merge_by_cells). The fragments stay where they are: a shifted operand's are
+// renumbered as they are read (Operand::fragment), not copied whole.
+Operand load(const Solid& s, std::int32_t shift) {
   const Solid::BoundaryView view = s.boundary_view();
   Operand o;
-  o.shift = arena.planes.size() - kernel::kWorldPlanes;
-  arena.planes.append(*view.planes, kernel::kWorldPlanes);
+  o.shift = shift;
   o.list = view.fragments;
   // Boxes, and their union as the operand's box (invalid if a fragment reaches the world box:
   // the operand is unbounded there, or if a box is unknown).
@@ -659,12 +696,15 @@ void for_each_plane(BoundaryFragment& g, F&& f) {
   for (auto& c : g.polygon.corners) f(c.edge), f(c.p), f(c.q);
 }
 
-// The planes `fragments` use, in a table of their own (the world box first), and the fragments
-// renumbered to it: a result does not keep its operands' unused planes. Planes are numbered in
-// the order of their first use, as one pass over the fragments would number them, but in chunks
-// on every core: each plane is numbered by the first chunk that uses it, after the planes of the
-// chunks before it (the same table for any thread count).
-kernel::PlaneTable compact_planes(const kernel::PlaneTable& planes, FragmentList& fragments) {
+// The result's plane table. When `fragments` use at least half of the arena's planes, the arena's
+// table itself: its blocks stay shared with the larger operand's table, so no plane is copied
+// (kernel/plane_table.hpp). Otherwise the planes they use, in a table of their own (the world box
+// first), and the fragments renumbered to it: a result does not keep many unused planes (so a
+// chain of operations does not pile up its operands' planes). Planes are then numbered in the
+// order of their first use, as one pass over the fragments would number them, but in chunks on
+// every core: each plane is numbered by the first chunk that uses it, after the planes of the
+// chunks before it. Either way the same table for any thread count.
+kernel::PlaneTable result_planes(kernel::PlaneTable&& planes, FragmentList& fragments) {
   constexpr std::size_t kChunk = 4096;
   constexpr std::uint32_t kUnused = ~std::uint32_t(0);
   const std::size_t n = fragments.size(), chunks = (n + kChunk - 1) / kChunk;
@@ -682,6 +722,9 @@ kernel::PlaneTable compact_planes(const kernel::PlaneTable& planes, FragmentList
         while (chunk < now && !at.compare_exchange_weak(now, chunk, std::memory_order_relaxed)) {}
       });
   });
+  std::size_t used = 0;
+  for (const auto& x : first) used += x.load(std::memory_order_relaxed) != kUnused;
+  if (2 * used >= std::size_t(planes.size() - world)) return std::move(planes);
   // Each chunk numbers the planes it uses first, in the order it meets them (only that chunk
   // writes their entries of `local`).
   std::vector<std::int32_t> local(std::size_t(planes.size()), -1);
@@ -738,13 +781,17 @@ std::optional<Solid> merge_by_cells(const Solid& a, const Solid& b, const bool o
     const Solid::BoundaryView v = s->boundary_view();
     if (!v.fragments || v.fragments->empty()) return std::nullopt;
   }
-  // The planes of both, the walls and the opposites the local trees need, in one allocation.
+  // The planes of both, the walls and the opposites the local trees need, in one table: the
+  // larger operand's table shared (no plane copied), the other's appended after it (the world
+  // box planes are common).
   auto owned_arena = std::make_unique<Arena>();
   Arena& arena = *owned_arena;
-  const std::size_t pa = std::size_t(a.boundary_view().planes->size()),
-                    pb = std::size_t(b.boundary_view().planes->size());
-  arena.planes.reserve(pa + pb + (pa + pb) / 4 + 4096);
-  std::array<Operand, 2> ops{load(arena, a), load(arena, b)};
+  const kernel::PlaneTable &pa = *a.boundary_view().planes, &pb = *b.boundary_view().planes;
+  const bool a_base = pa.size() >= pb.size();
+  arena.planes = a_base ? pa : pb;
+  const std::int32_t shift = arena.planes.size() - kernel::kWorldPlanes;
+  arena.planes.append(a_base ? pb : pa, kernel::kWorldPlanes);
+  std::array<Operand, 2> ops{load(a, a_base ? 0 : shift), load(b, a_base ? shift : 0)};
   std::optional<bool> uniform;
   auto merge = std::make_unique<CellMerge>(arena, ops, op, options.cells);
   for (Operand& o : ops) o.boxes = std::vector<FragmentBox>();  // read by the subdivision only (freed)
@@ -761,7 +808,7 @@ std::optional<Solid> merge_by_cells(const Solid& a, const Solid& b, const bool o
   std::optional<bool> far;
   if (ops[0].far && ops[1].far) far = op[*ops[0].far][*ops[1].far];
   if (result.empty()) far = uniform;
-  kernel::PlaneTable planes = compact_planes(arena.planes, result);
+  kernel::PlaneTable planes = result_planes(std::move(arena.planes), result);
   return solid_from_boundary(std::move(planes), std::move(result), far);
 }
 

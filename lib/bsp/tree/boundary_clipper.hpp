@@ -26,7 +26,10 @@ constexpr int kUndecided = -2, kDrop = -1, kKeep = 0, kReverse = 1, kMixed = 2, 
 
 class Clipper {
  public:
-  explicit Clipper(Arena& arena) : a_(arena) {}
+  explicit Clipper(Arena& arena) : a_(arena), nodes_(&arena.nodes) {}
+  /// The nodes the trees pushed down are read from: the arena's (the default), or a task's own
+  /// on the arena's planes (the cell merge's local trees). The list must outlive the pushes.
+  void read_nodes(const std::vector<BspNode>& nodes) { nodes_ = &nodes; }
 
   // Pushes fragment `f` down the subtree `t`. Each piece that reaches its cell(s) gets
   // fate(front_in, back_in, on_plane): the tree's status in front of the piece (the side its
@@ -59,7 +62,7 @@ class Clipper {
         report(parent, which, v, std::move(poly), emit);
         continue;
       }
-      const BspNode& n = a_.nodes[std::size_t(top.at)];
+      const BspNode& n = (*nodes_)[std::size_t(top.at)];
       const kernel::Side quick = kernel::box_side(top.box, a_.planes[n.plane]);
       if (quick == kernel::Side::Negative || quick == kernel::Side::Positive) {
         top.at = quick == kernel::Side::Negative ? n.negative : n.positive;
@@ -110,7 +113,7 @@ class Clipper {
   bool far_status(TreeRef t) {
     kernel::ConvexPolygon poly = kernel::world_polygon(a_.planes, 0);
     while (!is_leaf(t)) {
-      const BspNode& n = a_.nodes[std::size_t(t)];
+      const BspNode& n = (*nodes_)[std::size_t(t)];
       kernel::PolygonSplit s = kernel::split(a_.planes, poly, n.plane, a_.opposite(n.plane));
       if (s.side == kernel::Side::Both) {
         poly = std::move(s.negative);
@@ -175,6 +178,7 @@ class Clipper {
   }
 
   Arena& a_;
+  const std::vector<BspNode>* nodes_;
   int whole_ = kPending;  // the fate of the fragment being pushed as a whole
   CancelPoll poll_;       // Ctrl-C (base/cancel.hpp): a boundary merge may run for minutes
   std::vector<Item> stack_;

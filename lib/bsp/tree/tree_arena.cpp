@@ -30,27 +30,18 @@ std::int32_t Arena::opposite(std::int32_t i) {
 }
 
 void Arena::copy_planes(const kernel::PlaneTable& from) {
-  planes = kernel::PlaneTable();
-  planes.reserve(2 * std::size_t(from.size()) + 64);
-  // One at a time, with Ctrl-C checks: the first touch of a few hundred MB takes the system a
-  // third of a second here. Both tables start with the world box's planes.
-  CancelPoll poll;
-  for (std::int32_t i = planes.size(); i < from.size(); ++i) {
-    poll.tick();
-    planes.add(from[i], from.auxiliary(i));
-  }
+  planes = from;  // shares the planes' blocks; the ones the arena writes into are copied then
 }
 
 TreeRef Arena::append(const Solid& solid) {
   if (is_leaf(solid.root())) return solid.root();
-  const auto& src = solid.planes().planes();
   const std::int32_t shift = planes.size() - 6;  // the world box planes 0..5 are shared
   last_shift_ = shift;
   auto map = [shift](std::int32_t p) { return p < 6 ? p : p + shift; };
-  // Geometric growth: an exact reserve would copy the whole table on every in-place operation.
-  const std::size_t need = std::size_t(planes.size()) + src.size();
-  if (need > planes.planes().capacity()) planes.reserve(std::max(need, 2 * planes.planes().capacity()));
-  planes.append(solid.planes(), 6);
+  if (planes.size() == 6)
+    planes = solid.planes();  // the first solid: its blocks shared (kernel/plane_table.hpp), none copied
+  else
+    planes.append(solid.planes(), 6);  // block by block: the table is never copied whole to grow
   const auto node_shift = std::int32_t(nodes.size());
   for (const BspNode& n : solid.nodes())
     nodes.push_back({map(n.plane), is_leaf(n.negative) ? n.negative : n.negative + node_shift,

@@ -17,9 +17,9 @@ struct Arena {
 
   /// Index of the plane opposite to plane i (added on first use).
   std::int32_t opposite(std::int32_t i);
-  /// Sets `planes` to a copy of `from` with room for as many planes again (the opposites made
-  /// while splitting), so that the table never grows in one step later: growing millions of planes
-  /// copies hundreds of MB between two Ctrl-C checks (issue 35).
+  /// Sets `planes` to a copy of `from`: its blocks are shared, none is copied until the arena
+  /// writes into it (kernel/plane_table.hpp), and the table never grows by copying itself whole
+  /// (growing millions of planes once copied hundreds of MB between two Ctrl-C checks, issue 35).
   void copy_planes(const kernel::PlaneTable& from);
   /// Appends a solid's tree; returns its root in the arena. Plane indices are shifted.
   TreeRef append(const Solid& solid);
