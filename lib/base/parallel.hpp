@@ -6,10 +6,13 @@
 /// bounds depend only on the input size and a grain, each chunk writes only its own output, and
 /// outputs are combined in chunk order.
 
+#include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -64,6 +67,36 @@ void parallel_chunks(std::size_t n, std::size_t grain, Chunk&& chunk) {
         for (std::size_t p = r.begin(); p != r.end(); ++p) chunk(p * grain, std::min(n, (p + 1) * grain));
       },
       tbb::simple_partitioner());
+}
+
+/// parallel_chunks() for work whose outputs are joined in order and should not all be held at
+/// once: the pieces run in waves of a few per thread; after each wave, join(out) is called for
+/// the wave's outputs in piece order (it takes what it needs and leaves `out` empty, storage kept,
+/// for the next wave). So the joined result is that of one pass in order, the same for any thread
+/// count, and the scratch holds one wave. chunk(begin, end, out) fills piece [begin, end)'s output;
+/// an exception it throws is rethrown when the join reaches that piece (the first in piece
+/// order), after the pieces before it were joined.
+template <typename Out, typename Chunk, typename Join>
+void parallel_waves(std::size_t n, std::size_t grain, Chunk&& chunk, Join&& join) {
+  if (grain == 0) grain = 1;
+  const std::size_t per_wave = 4 * std::size_t(std::max(thread_count(), 1)), wave = grain * per_wave;
+  std::vector<Out> outs(per_wave);
+  std::vector<std::exception_ptr> errors(per_wave);
+  for (std::size_t start = 0; start < n; start += wave) {
+    const std::size_t stop = std::min(n, start + wave);
+    parallel_chunks(stop - start, grain, [&](std::size_t begin, std::size_t end) {
+      const std::size_t k = begin / grain;
+      try {
+        chunk(start + begin, start + end, outs[k]);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    });
+    for (std::size_t k = 0; k * grain < stop - start; ++k) {
+      if (errors[k]) std::rethrow_exception(errors[k]);
+      join(outs[k]);
+    }
+  }
 }
 
 /// Runs f and g, in parallel when a second thread is free.

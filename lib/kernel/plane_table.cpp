@@ -87,6 +87,17 @@ std::int32_t PlaneTable::append(const PlaneTable& from, std::int32_t first) {
   return at;
 }
 
+std::int32_t PlaneTable::append_shared(const PlaneTable& from) {
+  const Plane pad = (*this)[0];
+  while ((size_ & (kBlock - 1)) != 0) add(pad);
+  const std::int32_t at = size_;
+  storage_.insert(storage_.end(), from.storage_.begin(), from.storage_.end());
+  blocks_.insert(blocks_.end(), from.blocks_.begin(), from.blocks_.end());
+  size_ += from.size_;
+  auxiliary_.insert(auxiliary_.end(), from.auxiliary_.begin(), from.auxiliary_.end());
+  return at;
+}
+
 void PlaneTable::reserve(std::size_t n) {
   auxiliary_.reserve(n);
   blocks_.reserve((n + std::size_t(kBlock) - 1) >> kBlockBits);

@@ -42,6 +42,11 @@ class PlaneTable {
   /// Appends `from`'s planes from index `first` on, with their auxiliary flags (copies, as add()
   /// one by one would make); returns the index the first of them gets.
   std::int32_t append(const PlaneTable& from, std::int32_t first);
+  /// Appends all of `from`'s planes, world box included, sharing its blocks (no plane copied):
+  /// the table is first padded to a whole number of blocks with copies of plane 0 that nothing
+  /// refers to. Returns the index plane 0 of `from` gets (its plane i is at that index + i). For
+  /// large tables: the padding is up to kBlock - 1 planes.
+  std::int32_t append_shared(const PlaneTable& from);
   [[nodiscard]] bool auxiliary(std::int32_t i) const { return auxiliary_[std::size_t(i)]; }
   void set_auxiliary(std::int32_t i, bool auxiliary) { auxiliary_[std::size_t(i)] = auxiliary; }
   /// Room for n planes' bookkeeping (flags and block list; blocks are made as they fill).

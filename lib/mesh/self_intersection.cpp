@@ -7,7 +7,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <limits>
 #include <numeric>
 #include <set>
@@ -313,31 +312,20 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     for (const auto& f : mesh.faces) corners += f.size() >= 2 ? f.size() - 2 : 0;
     all.reserve(corners);
   }
-  // Faces in chunks on every core, in waves of a few chunks per thread: each wave's chunks are
-  // appended in order, so the lists are those of one pass in face order (the same for any thread
-  // count) and the scratch holds one wave. A face that cannot be triangulated throws as that pass
-  // would: the first such face's error, in face order.
+  // Faces in chunks on every core, in waves (parallel_waves): the lists are those of one pass in
+  // face order (the same for any thread count) and the scratch holds one wave. A face that cannot
+  // be triangulated throws as that pass would: the first such face's error, in face order.
   constexpr size_t kFaceChunk = 2048;
-  const size_t wave = kFaceChunk * 4 * size_t(std::max(thread_count(), 1));
-  std::vector<PreparedFaces> parts(wave / kFaceChunk);
-  std::vector<std::exception_ptr> errors(parts.size());
-  for (size_t start = 0; start < mesh.faces.size(); start += wave) {
-    const size_t stop = std::min(mesh.faces.size(), start + wave);
-    parallel_chunks(stop - start, kFaceChunk, [&](size_t begin, size_t end) {
-      const size_t part = begin / kFaceChunk;
-      try {
-        prepare_faces(mesh, canon, exact_face, start + begin, start + end, parts[part]);
-      } catch (...) {
-        errors[part] = std::current_exception();
-      }
-    });
-    check_cancel();  // Ctrl-C (base/cancel.hpp): a second or more on millions of triangles
-    for (size_t k = 0; k < parts.size(); ++k) {
-      if (errors[k]) std::rethrow_exception(errors[k]);
-      all.append(parts[k]);
-      parts[k].clear();
-    }
-  }
+  parallel_waves<PreparedFaces>(
+      mesh.faces.size(), kFaceChunk,
+      [&](size_t begin, size_t end, PreparedFaces& part) {
+        check_cancel();  // Ctrl-C (base/cancel.hpp): a second or more on millions of triangles
+        prepare_faces(mesh, canon, exact_face, begin, end, part);
+      },
+      [&](PreparedFaces& part) {
+        all.append(part);
+        part.clear();
+      });
   const std::vector<PreparedTriangle>& tris = all.tris;
   std::vector<Slot>& slots = all.slots;
   const size_t moved = all.moved;

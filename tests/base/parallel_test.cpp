@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
@@ -26,6 +27,53 @@ std::set<std::pair<std::size_t, std::size_t>> chunks_of(std::size_t n, std::size
     seen.emplace(begin, end);
   });
   return seen;
+}
+
+// parallel_waves joins in index order whatever the thread count, holds at most one wave of
+// outputs, and rethrows the first failing piece's exception after joining the pieces before it.
+TEST(ParallelWaves, JoinInIndexOrderAndRethrowTheFirstFailureInOrder) {
+  for (const int threads : {1, 2, 8}) {
+    ThreadLimit limit(threads);
+    for (const std::size_t n : {0u, 1u, 63u, 64u, 1000u, 5000u}) {
+      std::vector<std::size_t> joined;
+      std::size_t most = 0, held = 0;
+      std::mutex m;
+      parallel_waves<std::vector<std::size_t>>(
+          n, 7,
+          [&](std::size_t begin, std::size_t end, std::vector<std::size_t>& out) {
+            EXPECT_TRUE(out.empty());
+            for (std::size_t i = begin; i < end; ++i) out.push_back(i);
+            std::lock_guard lock(m);
+            most = std::max(most, held += end - begin);
+          },
+          [&](std::vector<std::size_t>& out) {
+            joined.insert(joined.end(), out.begin(), out.end());
+            held -= out.size();
+            out.clear();
+          });
+      ASSERT_EQ(joined.size(), n);
+      for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(joined[i], i);
+      EXPECT_LE(most, 7 * 4 * std::size_t(thread_count()));  // one wave: 4 pieces per thread
+    }
+    // Pieces 3 and 5 throw: pieces 0-2 are joined, then 3's error comes out.
+    std::vector<std::size_t> joined;
+    try {
+      parallel_waves<std::vector<std::size_t>>(
+          100, 10,
+          [&](std::size_t begin, std::size_t end, std::vector<std::size_t>& out) {
+            if (begin == 30 || begin == 50) throw std::runtime_error("piece " + std::to_string(begin / 10));
+            for (std::size_t i = begin; i < end; ++i) out.push_back(i);
+          },
+          [&](std::vector<std::size_t>& out) {
+            joined.insert(joined.end(), out.begin(), out.end());
+            out.clear();
+          });
+      ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "piece 3");
+    }
+    EXPECT_EQ(joined.size(), 30u);
+  }
 }
 
 TEST(ParallelChunks, CoverEveryIndexOnceInFixedPieces) {

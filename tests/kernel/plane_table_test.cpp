@@ -90,5 +90,32 @@ TEST(PlaneTable, AppendCopiesFromAnyIndexOverBlockBoundaries) {
   }
 }
 
+TEST(PlaneTable, AppendSharedPadsToABlockAndSharesTheOtherTablesBlocks) {
+  for (const int na : {0, 5, PlaneTable::kBlock - 6, PlaneTable::kBlock + 1}) {
+    PlaneTable a, b;
+    std::vector<Plane> wa = world(), wb = world();
+    std::vector<bool> xa(6, false), xb(6, false);
+    for (int i = 0; i < na; ++i) a.add(plane(i)), wa.push_back(plane(i)), xa.push_back(false);
+    for (int i = 0; i < PlaneTable::kBlock + 30; ++i)
+      b.add(plane(-i), i % 2 == 0), wb.push_back(plane(-i)), xb.push_back(i % 2 == 0);
+    const std::int32_t at = a.append_shared(b);
+    EXPECT_EQ(at % PlaneTable::kBlock, 0);
+    EXPECT_GE(at, std::int32_t(wa.size()));
+    EXPECT_LT(at, std::int32_t(wa.size()) + PlaneTable::kBlock);
+    while (std::int32_t(wa.size()) < at) wa.push_back(wa[0]), xa.push_back(false);  // the padding: plane 0
+    wa.insert(wa.end(), wb.begin(), wb.end());
+    xa.insert(xa.end(), xb.begin(), xb.end());
+    expect_same(a, wa, xa);
+    EXPECT_TRUE(a.shares_storage_with(b));
+    // Writes on either side after the sharing stay on that side.
+    a.add(plane(1000)), wa.push_back(plane(1000)), xa.push_back(false);
+    a.replace(at + 7, plane(1001), true), wa[std::size_t(at + 7)] = plane(1001), xa[std::size_t(at + 7)] = true;
+    b.add(plane(1002)), wb.push_back(plane(1002)), xb.push_back(false);
+    b.replace(9, plane(1003), false), wb[9] = plane(1003), xb[9] = false;
+    expect_same(a, wa, xa);
+    expect_same(b, wb, xb);
+  }
+}
+
 }  // namespace
 }  // namespace sculpt::kernel

@@ -517,31 +517,25 @@ class CellMerge {
         for (std::size_t j = 0; j < pieces_[l][x].origin.size(); ++j)
           by_fragment_[x][at[pieces_[l][x].origin[j]]++] = {std::uint32_t(l), std::uint32_t(j)};
     }
-    // Both operands' fragments in chunks, in waves of a few chunks per thread: a wave's chunks run
-    // side by side, then their output is appended to the result in order and their lists are
-    // cleared for the next wave (their storage is kept). So the result is written once and the
-    // scratch lists hold one wave, not a second copy of the whole result.
+    // Both operands' fragments in chunks, in waves (parallel_waves): the result is written once,
+    // in fragment order, and the scratch lists hold one wave, not a second copy of the whole result.
     constexpr std::size_t kFragmentChunk = 1024;
     const std::size_t na = ops_[0].faces().size(), n = na + ops_[1].faces().size();
-    const std::size_t wave = kFragmentChunk * 4 * std::size_t(std::max(thread_count(), 1));
-    std::vector<FragmentList> out(wave / kFragmentChunk);
     FragmentList result;
-    for (std::size_t start = 0; start < n; start += wave) {
-      const std::size_t stop = std::min(n, start + wave);
-      parallel_chunks(stop - start, kFragmentChunk, [&](std::size_t begin, std::size_t end) {
-        ConvexPolygon piece, scratch;
-        BoundaryFragment renumbered;
-        std::vector<RejoinFrame> stack;
-        FragmentList& mine = out[begin / kFragmentChunk];
-        for (std::size_t i = start + begin; i < start + end; ++i)
-          rejoin(i < na ? 0 : 1, i < na ? i : i - na, mine, piece, scratch, renumbered, stack);
-      });
-      check_cancel();
-      for (FragmentList& list : out) {
-        for (BoundaryFragment& f : list) result.emplace_back(std::move(f));
-        list.clear();
-      }
-    }
+    parallel_waves<FragmentList>(
+        n, kFragmentChunk,
+        [&](std::size_t begin, std::size_t end, FragmentList& mine) {
+          check_cancel();
+          ConvexPolygon piece, scratch;
+          BoundaryFragment renumbered;
+          std::vector<RejoinFrame> stack;
+          for (std::size_t i = begin; i < end; ++i)
+            rejoin(i < na ? 0 : 1, i < na ? i : i - na, mine, piece, scratch, renumbered, stack);
+        },
+        [&](FragmentList& mine) {
+          for (BoundaryFragment& f : mine) result.emplace_back(std::move(f));
+          mine.clear();
+        });
     for (const int fb : first_behind)
       if (fb >= 0) {
         uniform = fb == 1;
@@ -782,15 +776,18 @@ std::optional<Solid> merge_by_cells(const Solid& a, const Solid& b, const bool o
     if (!v.fragments || v.fragments->empty()) return std::nullopt;
   }
   // The planes of both, the walls and the opposites the local trees need, in one table: the
-  // larger operand's table shared (no plane copied), the other's appended after it (the world
-  // box planes are common).
+  // larger operand's table shared (no plane copied), the other's after it, its blocks shared too
+  // when it fills one at least (kernel/plane_table.hpp), else copied (the world box planes are
+  // common).
   auto owned_arena = std::make_unique<Arena>();
   Arena& arena = *owned_arena;
   const kernel::PlaneTable &pa = *a.boundary_view().planes, &pb = *b.boundary_view().planes;
   const bool a_base = pa.size() >= pb.size();
+  const kernel::PlaneTable& other = a_base ? pb : pa;
   arena.planes = a_base ? pa : pb;
-  const std::int32_t shift = arena.planes.size() - kernel::kWorldPlanes;
-  arena.planes.append(a_base ? pb : pa, kernel::kWorldPlanes);
+  const std::int32_t shift = other.size() >= kernel::PlaneTable::kBlock
+                                 ? arena.planes.append_shared(other)
+                                 : arena.planes.append(other, kernel::kWorldPlanes) - kernel::kWorldPlanes;
   std::array<Operand, 2> ops{load(a, a_base ? 0 : shift), load(b, a_base ? shift : 0)};
   std::optional<bool> uniform;
   auto merge = std::make_unique<CellMerge>(arena, ops, op, options.cells);
