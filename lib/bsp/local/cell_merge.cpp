@@ -220,10 +220,9 @@ class CellMerge {
   // pushed down it, so it may take the balancing auxiliary planes. A convex piece of surface on
   // face planes alone is a chain, one node per piece, quadratic to build: at 2048 segments a
   // sphere's leaves held enough pieces for 85 s. Auxiliary planes are added to the arena, only
-  // where a node holds at least kAuxiliaryFrom pieces (autopartition.cpp): those trees are built
+  // where a node holds at least kAuxiliarySplitFrom pieces (autopartition.hpp): those trees are built
   // on one thread.
   static constexpr AutopartitionOptions kStatusOnly{};
-  static constexpr std::size_t kAuxiliaryFrom = 64;
   TreeRef append_tree(const PartitionTree& tree) {
     if (is_leaf(tree.root)) return tree.root;
     const auto first = TreeRef(arena_.nodes.size());
@@ -293,7 +292,7 @@ class CellMerge {
     };
     auto large = [&](std::size_t k) {
       const auto [l, x] = todo[k];
-      return !mixed(l) && pieces_[l][x].faces.size() >= kAuxiliaryFrom;
+      return !mixed(l) && pieces_[l][x].faces.size() >= kAuxiliarySplitFrom;
     };
     parallel_chunks(todo.size(), 4, [&](std::size_t begin, std::size_t end) {
       check_cancel();

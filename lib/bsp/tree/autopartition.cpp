@@ -319,7 +319,7 @@ PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments,
       // Where every candidate leaves nearly all pieces on one side (a convex part: its faces see
       // each other from behind), a plane x, y or z = median of the pieces' box centres + 1/2 grid
       // step, which carries no piece, may balance better (kd-tree style; Naylor 1990's balance).
-      if (options.auxiliary_splits && n >= 64 && best_larger * 10 > int(m) * 9) {
+      if (options.auxiliary_splits && n >= kAuxiliarySplitFrom && best_larger * 10 > int(m) * 9) {
         std::vector<double> centre(m);
         for (int axis = 0; axis < 3; ++axis) {
           for (std::size_t j = 0; j < m; ++j) {

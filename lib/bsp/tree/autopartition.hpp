@@ -31,6 +31,7 @@
 ///   the splits and the cut test are exact. Optionally (`separating_planes`), the scored face planes
 ///   moved past all of the cell's fragments compete as well.
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -75,6 +76,10 @@ struct AutopartitionOptions {
 };
 
 /// A node of the tree partition_fragments() grows (children: indices into its node list, or leaves).
+/// The fewest fragments a node holds where partition_fragments() considers an auxiliary plane
+/// (AutopartitionOptions::auxiliary_splits): so a tree of fewer fragments adds no plane.
+inline constexpr std::size_t kAuxiliarySplitFrom = 64;
+
 struct PartitionNode {
   std::int32_t plane;
   TreeRef negative = kOut, positive = kOut;
