@@ -7,7 +7,8 @@
 # into build/meshes/cgal by tests/bench/meshes/cgal_meshes.sh).
 # Defaults: 5 runs, threads 1 and 2, models/bunny.off, spheres 128 256 512. Each run is its own
 # process (peak memory from /usr/bin/time); rounds are interleaved (ours, then the peer, case by
-# case) so a change in the machine's speed falls on both. Prints a Markdown table of medians.
+# case) so a change in the machine's speed falls on both. Prints a Markdown table of medians, with
+# each side's peak memory per triangle of its output mesh.
 # Needs the benchmark build (scripts/bench.sh); builds Manifold into build/peers/manifold once.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
@@ -66,18 +67,22 @@ for line in open(sys.argv[1]):
     kv = dict(x.split('=', 1) for x in line.split() if '=' in x)
     rows[(kv['case'], int(kv['n']), int(kv['threads']), kv['side'])].append(kv)
 def med(rs, k): return statistics.median(float(r[k]) for r in rs)
-print('| case | n | threads | sculpt import / turn / union / difference (s) | sculpt total (s) | Manifold total (s) | time sculpt/Manifold | peak MB sculpt / Manifold | memory sculpt/Manifold | volumes |')
-print('|---|---|---|---|---|---|---|---|---|---|')
+print('| case | n | threads | sculpt import / turn / union / difference (s) | sculpt total (s) | Manifold total (s) | time sculpt/Manifold | peak MB sculpt / Manifold | memory sculpt/Manifold | peak bytes per output triangle sculpt / Manifold | volumes |')
+print('|---|---|---|---|---|---|---|---|---|---|---|')
+# The process's peak divided by the triangles of the result's mesh (each side's own count).
+def per_triangle(rs): return med(rs, 'peak_kb') * 1024 / max(1.0, med(rs, 'triangles_out'))
 for (case, n, t, side) in sorted(k for k in rows if k[3] == 'ours'):
     o, p = rows[(case, n, t, 'ours')], rows.get((case, n, t, 'peer'), [])
     phases = ' / '.join('%.3f' % med(o, k) for k in ('import', 'turn', 'union', 'difference'))
     ot, om = med(o, 'total'), med(o, 'peak_kb') / 1024
     if p:
         pt, pm = med(p, 'total'), med(p, 'peak_kb') / 1024
-        print('| %s | %d | %d | %s | %.3f | %.3f | %.1fx | %.0f / %.0f | %.1fx | %s / %s |' % (
-            case, n, t, phases, ot, pt, ot / pt, om, pm, om / pm, o[0]['volume'], p[0]['volume']))
+        print('| %s | %d | %d | %s | %.3f | %.3f | %.1fx | %.0f / %.0f | %.1fx | %.0f / %.0f | %s / %s |' % (
+            case, n, t, phases, ot, pt, ot / pt, om, pm, om / pm, per_triangle(o), per_triangle(p),
+            o[0]['volume'], p[0]['volume']))
     else:
-        print('| %s | %d | %d | %s | %.3f | failed | | %.0f / - | | %s |' % (case, n, t, phases, ot, om, o[0]['volume']))
+        print('| %s | %d | %d | %s | %.3f | failed | | %.0f / - | | %.0f / - | %s |' % (
+            case, n, t, phases, ot, om, per_triangle(o), o[0]['volume']))
 print()
 print('%d runs each, medians; times are wall clock of the whole job in one process.' % len(next(iter(rows.values()))))
 PY
