@@ -45,6 +45,11 @@ struct Operand {
     for (auto& c : buf.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
     return buf;
   }
+  // Fragment i's support plane on the arena's planes (without copying the fragment).
+  [[nodiscard]] std::int32_t support(std::size_t i) const {
+    const std::int32_t p = (*list)[i].polygon.support;
+    return p < kernel::kWorldPlanes ? p : p + shift;
+  }
   std::vector<FragmentBox> boxes;
   CornerBox box;            // around the boundary; invalid when it reaches the world box
   std::optional<bool> far;  // status outside `box`
@@ -244,12 +249,10 @@ class CellMerge {
   // (face planes only) are built in emit on every core, and then only read the arena.
   void make_mixed_opposites() {
     trees_.assign(leaf_count(), {kUnbuilt, kUnbuilt});
-    BoundaryFragment renumbered;
     for (std::size_t l = 0; l < leaf_count(); ++l)
       if (mixed(l))
         for (int x = 0; x < 2; ++x)
-          for (const std::uint32_t i : pieces_[l][x].origin)
-            arena_.opposite(ops_[x].fragment(i, renumbered).polygon.support);
+          for (const std::uint32_t i : pieces_[l][x].origin) arena_.opposite(ops_[x].support(i));
   }
 
   // The local trees step 4 reads, made ahead on every core: the leaves status() will read are
