@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include "base/parallel.hpp"
 #include "mesh/triangulate.hpp"
 
 namespace sculpt::bsp::detail {
@@ -200,19 +201,30 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
   const FaceList& faces = sheets.faces;
   PolygonMesh mesh;
   if (exact != nullptr) exact->clear();
-  std::vector<int> index(sheets.original.size(), -1);  // only referenced vertices are written
-  mesh.vertices.reserve(sheets.original.size());
+  // Only referenced vertices are written, numbered in the order of their first corner.
+  std::vector<int> index(sheets.original.size(), -1);
+  std::vector<int> written;  // output vertex -> sheet vertex
+  written.reserve(sheets.original.size());
   for (const int v : faces.vertex)
     if (index[std::size_t(v)] < 0) {
-      index[std::size_t(v)] = int(mesh.vertices.size());
-      const std::size_t o = std::size_t(sheets.original[std::size_t(v)]);
+      index[std::size_t(v)] = int(written.size());
+      written.push_back(v);
+    }
+  // Each vertex correctly rounded, independently of the others: in parallel, the same values for
+  // any thread count.
+  mesh.vertices.resize(written.size());
+  if (exact != nullptr) exact->assign(written.size(), 0);
+  parallel_chunks(written.size(), 8192, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t o = std::size_t(sheets.original[std::size_t(written[i])]);
       const PlaneTriple& t = vertices.triple[o];
       const Eigen::Vector3d at = kernel::rounded_vertex(planes[t.s], planes[t.p], planes[t.q], vertices.at[o]);
       // World units = grid units times a power of two: exact (the grid's range is far from
       // overflow and underflow), so a vertex exact in grid units is exact in world units.
-      mesh.vertices.push_back(grid.to_world(at));
-      if (exact != nullptr) exact->push_back(exactly_represented(planes[t.s], planes[t.p], planes[t.q], at) ? 1 : 0);
+      mesh.vertices[i] = grid.to_world(at);
+      if (exact != nullptr) (*exact)[i] = exactly_represented(planes[t.s], planes[t.p], planes[t.q], at) ? 1 : 0;
     }
+  });
   mesh.faces.reserve(std::size_t(faces.size()));
   std::vector<int> face;
   for (int f = 0; f < faces.size(); ++f) {

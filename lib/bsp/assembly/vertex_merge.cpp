@@ -1,5 +1,6 @@
 #include "bsp/assembly/vertex_merge.hpp"
 
+#include "base/parallel.hpp"
 #include "bsp/assembly/vertex_equality.hpp"
 
 #include <algorithm>
@@ -50,22 +51,35 @@ class CornerMerger {
     vertex_ids_.reserve(corners / 3 + 16);
   }
 
-  // Queues corner `c` of a fragment on plane `support` (canonical id s); its vertex is written
-  // to out[position] once resolved (a few corners later, so that its cells can be prefetched: the table
-  // is larger than the caches and the probes are random). Corners are resolved in order.
-  void add(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out) {
-    if (queued_ == kAhead) resolve(queue_[next_]), --queued_;
-    Pending& p = queue_[(next_ + queued_) % kAhead];
-    prepare(support, s, c, out, p);
-    ++queued_;
-  }
-  void flush() {
-    for (; queued_ > 0; --queued_) resolve(queue_[next_]);
+  // What resolving a corner needs that depends on the corner alone: its class key, its
+  // approximation and its cells (prepare(), safe to call from several threads at once).
+  struct Pending {
+    const kernel::Corner* corner;
+    ApproxPoint at;   // the corner's approximation, tightened when it was loose (tight_approximation)
+    std::size_t out;  // position in the output
+    std::int32_t support;
+    IdTriple key;
+    int cells;  // -1: wide (no cells)
+    std::uint32_t cell[8];
+  };
+
+  // Corner `c` of a fragment on plane `support` (canonical id s), whose vertex goes to out[position].
+  void prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out, Pending& p) const;
+
+  // Resolves prepared corners in order (one thread): each joins its class, or a vertex it equals,
+  // or makes a new one. The cells of a corner a few ahead are prefetched: the table is larger
+  // than the caches and the probes are random.
+  void resolve_all(std::vector<Pending>& corners) {
+    constexpr std::size_t kAhead = 8;
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      if (i + kAhead < corners.size() && corners[i + kAhead].cells > 0)
+        __builtin_prefetch(&slots_[corners[i + kAhead].cell[0] >> shift_]);
+      resolve(corners[i]);
+    }
   }
 
  private:
   static constexpr int kEmpty = -1, kNoEntry = -2;
-  static constexpr int kAhead = 8;
   // Cells are identified by 32 bits of a hash of their coordinates (21 bits of each, folded):
   // cells that collide share a chain and are told apart by the approximations. The slot of a
   // hash is its top bits, so the table can grow without the coordinates.
@@ -77,16 +91,6 @@ class CornerMerger {
     IdTriple key;
     int vertex, next;
   };
-  struct Pending {
-    const kernel::Corner* corner;
-    ApproxPoint at;   // the corner's approximation, tightened when it was loose (tight_approximation)
-    std::size_t out;  // position in the output
-    std::int32_t support;
-    IdTriple key;
-    int cells;  // -1: wide (no cells)
-    std::uint32_t cell[8];
-  };
-
   static std::int64_t floor_of(double x) {  // |x| < 2^61
     const auto t = std::int64_t(x);
     return double(t) > x ? t - 1 : t;
@@ -107,40 +111,7 @@ class CornerMerger {
     return {r.x(), r.y(), r.z(), std::ldexp(rounded_largest, -52)};
   }
 
-  void prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out, Pending& p) {
-    p.corner = &c;
-    p.out = out;
-    p.support = support;
-    p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
-    const ApproxPoint a = tight_approximation(support, c);
-    p.at = a;
-    constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
-    constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
-    std::int64_t lo[3], hi[3];
-    bool wide = !(a.err >= 0 && a.err < 0.25);
-    const double coord[3] = {a.x, a.y, a.z};
-    for (int k = 0; k < 3 && !wide; ++k) {
-      wide = !(std::fabs(coord[k]) < kFar);
-      lo[k] = floor_of(coord[k] - a.err + kShift);
-      hi[k] = floor_of(coord[k] + a.err + kShift);
-    }
-    p.cells = -1;
-    if (wide) return;
-    // The cells of the error box (at most two per axis).
-    constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
-    int n = 0;
-    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-          const std::uint64_t k = (std::uint64_t(x) & kMask) << 42 | (std::uint64_t(y) & kMask) << 21 | (std::uint64_t(z) & kMask);
-          p.cell[n++] = std::uint32_t((k * 0x9E3779B97F4A7C15ull) >> 32);
-        }
-    p.cells = n;
-    __builtin_prefetch(&slots_[p.cell[0] >> shift_]);
-  }
-
   void resolve(Pending& p) {
-    next_ = (next_ + 1) % kAhead;
     const IdTriple& key = p.key;
     const kernel::Corner& c = *p.corner;
     if (p.cells < 0) {
@@ -276,52 +247,87 @@ class CornerMerger {
   std::vector<int> class_vertex_;  // class -> vertex (keys in v_.class_planes)
   std::vector<int> wide_classes_;
   std::vector<IdTriple> vertex_ids_;  // vertex -> canonical ids of its triple, in triple order
-  Pending queue_[kAhead];
-  int next_ = 0, queued_ = 0;  // the oldest queued corner, and how many are queued
 };
+
+void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out,
+                           Pending& p) const {
+  p.corner = &c;
+  p.out = out;
+  p.support = support;
+  p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
+  const ApproxPoint a = tight_approximation(support, c);
+  p.at = a;
+  constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
+  constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
+  std::int64_t lo[3], hi[3];
+  bool wide = !(a.err >= 0 && a.err < 0.25);
+  const double coord[3] = {a.x, a.y, a.z};
+  for (int k = 0; k < 3 && !wide; ++k) {
+    wide = !(std::fabs(coord[k]) < kFar);
+    lo[k] = floor_of(coord[k] - a.err + kShift);
+    hi[k] = floor_of(coord[k] + a.err + kShift);
+  }
+  p.cells = -1;
+  if (wide) return;
+  // The cells of the error box (at most two per axis).
+  constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
+  int n = 0;
+  for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+        const std::uint64_t k =
+            (std::uint64_t(x) & kMask) << 42 | (std::uint64_t(y) & kMask) << 21 | (std::uint64_t(z) & kMask);
+        p.cell[n++] = std::uint32_t((k * 0x9E3779B97F4A7C15ull) >> 32);
+      }
+  p.cells = n;
+}
 
 }  // namespace
 
 MergedFragments merge_vertices(FragmentsView fragments) {
-  // (No counting pass over the fragments first: it would read them twice.)
-  const std::size_t nf = fragments.fragments.size();
-  const std::size_t expected = 4 * nf + 16;  // corners, mostly quadrilaterals
+  const FragmentList& list = fragments.fragments;
+  const std::size_t nf = list.size();
+  constexpr std::size_t kGrain = 1024;  // fragments a piece
   MergedFragments r;
   r.ids = canonical_plane_ids(fragments.planes);
   FaceList& faces = r.faces;
-  CornerMerger merger(fragments.planes, r.ids, r.vertices, faces.vertex, expected);
   faces.start.resize(nf + 1);
   faces.support.resize(nf);
   faces.flip.resize(nf);
-  // Sized once (room for a fifth corner per fragment; the sphere's carried fragments average
-  // 4.03 corners), doubled if ever short, cut to size at the end: no resize per fragment.
-  faces.vertex.resize(expected + nf);
-  faces.line.resize(expected + nf);
-  std::size_t base = 0;
-  for (std::size_t f = 0; f < nf; ++f) {
-    const Fragment& fr = fragments.fragments[f];
-    const auto& cs = fr.polygon.corners;
-    const std::size_t m = cs.size();
-    const std::uint32_t s = r.ids.id[std::size_t(fr.polygon.support)];
-    faces.start[f] = int(base);
-    faces.support[f] = fr.polygon.support;
-    faces.flip[f] = fr.flip ? 1 : 0;
-    if (base + m > faces.line.size()) {
-      faces.vertex.resize(2 * (base + m));
-      faces.line.resize(2 * (base + m));
+  parallel_chunks(nf, kGrain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f < end; ++f) {
+      faces.start[f + 1] = int(list[f].polygon.corners.size());
+      faces.support[f] = list[f].polygon.support;
+      faces.flip[f] = list[f].flip ? 1 : 0;
     }
-    // A flipped fragment's corners reversed: corner j goes to position m-1-j, and its edge
-    // (to corner j+1) becomes the edge leaving position m-1-(j+1).
-    for (std::size_t j = 0; j < m; ++j) {
-      merger.add(fr.polygon.support, s, cs[j], base + (fr.flip ? m - 1 - j : j));
-      faces.line[base + (fr.flip ? m - 1 - (j + 1 == m ? 0 : j + 1) : j)] = cs[j].edge;
-    }
-    base += m;
-  }
-  faces.start[nf] = int(base);
-  merger.flush();
-  faces.vertex.resize(base);
-  faces.line.resize(base);
+  });
+  faces.start[0] = 0;
+  for (std::size_t f = 0; f < nf; ++f) faces.start[f + 1] += faces.start[f];
+  const std::size_t corners = std::size_t(faces.start[nf]);
+  faces.vertex.resize(corners);
+  faces.line.resize(corners);
+  CornerMerger merger(fragments.planes, r.ids, r.vertices, faces.vertex, corners);
+  // Corners are prepared in parallel, a wave of pieces at a time, and resolved in order.
+  using Pending = CornerMerger::Pending;
+  parallel_waves<std::vector<Pending>>(
+      nf, kGrain,
+      [&](std::size_t begin, std::size_t end, std::vector<Pending>& out) {
+        out.resize(std::size_t(faces.start[end] - faces.start[begin]));
+        std::size_t k = 0;
+        for (std::size_t f = begin; f < end; ++f) {
+          const Fragment& fr = list[f];
+          const auto& cs = fr.polygon.corners;
+          const std::size_t m = cs.size(), base = std::size_t(faces.start[f]);
+          const std::uint32_t s = r.ids.id[std::size_t(fr.polygon.support)];
+          // A flipped fragment's corners reversed: corner j goes to position m-1-j, and its edge
+          // (to corner j+1) becomes the edge leaving position m-1-(j+1).
+          for (std::size_t j = 0; j < m; ++j) {
+            merger.prepare(fr.polygon.support, s, cs[j], base + (fr.flip ? m - 1 - j : j), out[k++]);
+            faces.line[base + (fr.flip ? m - 1 - (j + 1 == m ? 0 : j + 1) : j)] = cs[j].edge;
+          }
+        }
+      },
+      [&](std::vector<Pending>& out) { merger.resolve_all(out); });
   return r;
 }
 
