@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "base/errors.hpp"
+#include "base/parallel.hpp"
 #include "language/solid_values.hpp"
 #include "mesh/edge_incidence.hpp"
 #include "mesh/mesh_io.hpp"
@@ -77,23 +78,26 @@ GlbArrays glb_arrays(const std::string& glb) {
 }
 
 /// The feature edges of a part as pairs of uint32 indices into its GLB's positions, which are
-/// the mesh's vertices in order (encode_glb_for_display), 8 bytes an edge, creases first.
+/// the mesh's vertices in order (encode_glb_for_display), 8 bytes an edge, creases first. A part
+/// with more than kDenseFeatureEdges features that are not creases sends its creases only: the
+/// page would draw no other (`features` still counts them all).
 struct EdgeData {
   std::string indexed;
-  std::size_t count = 0, creases = 0;
+  std::size_t count = 0, creases = 0, features = 0;
 };
 
 EdgeData edge_data(const PolygonMesh& mesh) {
-  const detail::ClassifiedEdges features = detail::classified_feature_edges(mesh);
+  const detail::ClassifiedEdges classified = detail::classified_feature_edges(mesh);
   EdgeData data;
-  data.indexed.resize(8 * features.edges.size());
-  for (std::size_t i = 0; i < features.edges.size(); ++i) {
-    const std::uint32_t ends[2] = {static_cast<std::uint32_t>(features.edges[i][0]),
-                                   static_cast<std::uint32_t>(features.edges[i][1])};
+  data.features = classified.edges.size();
+  data.creases = classified.creases;
+  data.count = data.features - data.creases > kDenseFeatureEdges ? data.creases : data.features;
+  data.indexed.resize(8 * data.count);
+  for (std::size_t i = 0; i < data.count; ++i) {
+    const std::uint32_t ends[2] = {static_cast<std::uint32_t>(classified.edges[i][0]),
+                                   static_cast<std::uint32_t>(classified.edges[i][1])};
     std::memcpy(data.indexed.data() + 8 * i, ends, 8);  // little endian (glb_container.hpp checks it)
   }
-  data.count = features.edges.size();
-  data.creases = features.creases;
   return data;
 }
 
@@ -179,8 +183,9 @@ std::string encode_scene(const Scene& scene, const SceneOptions& options) {
   for (std::size_t p = 0; p < scene.parts.size(); ++p) {
     const ViewPart& part = scene.parts[p];
     check_face_indices(part.mesh, "view");
-    const std::string glb = encode_glb_for_display(part.mesh);
-    const EdgeData edges = edge_data(part.mesh);
+    std::string glb;
+    EdgeData edges;
+    parallel_invoke([&] { glb = encode_glb_for_display(part.mesh); }, [&] { edges = edge_data(part.mesh); });
     std::size_t triangles = 0;
     for (const auto& face : part.mesh.faces) triangles += face.size() - 2;
     if (p) json += ',';
@@ -215,7 +220,7 @@ std::string encode_scene(const Scene& scene, const SceneOptions& options) {
     data += glb;
     data.append((4 - data.size() % 4) % 4, '\0');
     json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edges.count) + "," +
-            std::to_string(edges.creases) + "]";
+            std::to_string(edges.creases) + "],\"features\":" + std::to_string(edges.features);
     data += edges.indexed;
     json += ",\"depth\":";
     const auto* solid = part.value.object<language::SolidValue>();

@@ -6,7 +6,7 @@
 /// (padded with spaces to a multiple of 4), then the data. The JSON lists the parts:
 ///   {"parts": [{"name", "color": [r, g, b], "solid", "volume" (solids; else null), "area",
 ///               "box": [[x, y, z], [x, y, z]] (null if empty), "triangles",
-///               "glb": [offset, length], "edges": [offset, count, creases],
+///               "glb": [offset, length], "edges": [offset, count, creases], "features",
 ///               "depth": [offset, count] or null,
 ///               "curve": [offset, count] or null, "length"}, ...]}
 /// Offsets count from the start of the data and are multiples of 4. "glb" is the part as binary
@@ -16,12 +16,13 @@
 /// triangulation's diagonal), are "edges": `count` pairs of uint32 indices into the GLB's
 /// positions (8 bytes an edge). The first `creases` edges are the creases
 /// (detail/feature_edges.hpp): the page splits smooth vertex normals there and draws only them
-/// when it shades smooth. "depth" (solids, and only when asked for: SceneOptions::depth) is one
-/// uint16 per GLB triangle, in the GLB's order: the depth of the tree's leaf cell behind the
-/// triangle (detail/cell_depths.hpp; 65535 at most), padded to 4 bytes. "curve" (curves,
-/// splines, linearizations, motion paths, lists of points) is `count` points as 3 float32 each, a
-/// polyline drawn in the part's colour (a closed curve's last point is its first); such a part
-/// has an empty GLB and its "length" is the polyline's.
+/// when it shades smooth. "features" counts all feature edges: a part with more than
+/// kDenseFeatureEdges that are not creases (a finely faceted curved surface, whose facets' edges
+/// would cover it in black) is sent with its creases only (`count` = `creases`). "depth" (solids, and only when asked
+/// for: SceneOptions::depth) is one uint16 per GLB triangle, in the GLB's order: the depth of the tree's leaf cell
+/// behind the triangle (detail/cell_depths.hpp; 65535 at most), padded to 4 bytes. "curve" (curves, splines,
+/// linearizations, motion paths, lists of points) is `count` points as 3 float32 each, a polyline drawn in the part's
+/// colour (a closed curve's last point is its first); such a part has an empty GLB and its "length" is the polyline's.
 ///
 /// A status is one text message: {"type": "status", "ok": true|false, "run": n, "ms": t,
 /// "script_ms": s, "script_end": e, "parts": p, "error": "file:line:col: error: ...\n<the line>\n<caret>"}; an error
@@ -35,6 +36,9 @@
 #include "view/scene.hpp"
 
 namespace sculpt::view {
+
+/// Feature edges that are not creases beyond which a part's are not sent (see above).
+inline constexpr std::size_t kDenseFeatureEdges = 200000;
 
 struct SceneOptions {
   /// Send each solid's cell depths (the depth mode). Builds the trees of solids whose tree is

@@ -104,12 +104,14 @@ def main():
             arrived = state("sculptView.state.receivedAt") - status["script_end"]
             handled = state("sculptView.state.timings.scene")
             raster = state("sculptView.state.timings.raster")
+            render = state("sculptView.state.timings.render")
             lags.append(lag)
             scripts.append(status["script_ms"])
             totals.append(status["ms"])
             print("run %d: script %.0f ms, run %.0f ms; after the script's end: the scene message arrived "
-                  "at %.0f ms, was handled in %.0f ms, on screen at %.0f ms (its first frame rasterized in %.0f ms)"
-                  % (status["run"], status["script_ms"], status["ms"], arrived, handled, lag, raster))
+                  "at %.0f ms, was handled in %.0f ms, on screen at %.0f ms (its first frame: render() %.0f ms, "
+                  "then rasterized in %.0f ms)"
+                  % (status["run"], status["script_ms"], status["ms"], arrived, handled, lag, render, raster))
         print("median: script %.0f ms, on screen %.0f ms after the script's end (min %.0f, max %.0f)"
               % (statistics.median(scripts), statistics.median(lags), min(lags), max(lags)))
         return 0

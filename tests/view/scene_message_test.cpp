@@ -124,6 +124,30 @@ TEST(SceneMessage, CreasesComeFirstAndCurvedSurfacesHaveNone) {
   EXPECT_EQ(block_of(message, "edges").third, 0u);
 }
 
+TEST(SceneMessage, AFinelyFacetedPartSendsItsCreasesOnly) {
+  // A sphere of n segments has n^2 + n feature edges and no crease (see above): 194,040 at 440
+  // segments, all sent; 211,600 at 460, more than kDenseFeatureEdges, so none is sent and
+  // "features" still counts them. A box beside it keeps its 12 edges (all creases).
+  for (const int n : {440, 460}) {
+    const Scene scene = scene_of({{"ball", std::nullopt, language::solid_value(sphere(1, {.segments = n}))},
+                                  {"box", std::nullopt, language::solid_value(box({2, 0, 0}, {3, 1, 1}))}},
+                                 std::nullopt);
+    const std::string message = encode_scene(scene);
+    const std::size_t features = std::size_t(n) * std::size_t(n) + std::size_t(n);
+    const std::size_t ball_json = message.find("\"name\":\"ball\""), box_json = message.find("\"name\":\"box\"");
+    ASSERT_NE(ball_json, std::string::npos);
+    ASSERT_NE(box_json, std::string::npos);
+    EXPECT_EQ(std::size_t(number_after(message, "features", ball_json)), features);
+    const std::size_t sent = n == 440 ? features : 0;
+    EXPECT_NE(message.find(",\"edges\":[", ball_json), std::string::npos);
+    const std::size_t edges_at = message.find("\"edges\":[", ball_json) + 9;
+    EXPECT_EQ(std::strtoul(message.c_str() + message.find(',', edges_at) + 1, nullptr, 10), sent) << n;
+    EXPECT_EQ(std::size_t(number_after(message, "features", box_json)), 12u);
+    const std::size_t box_edges = message.find("\"edges\":[", box_json) + 9;
+    EXPECT_EQ(std::strtoul(message.c_str() + message.find(',', box_edges) + 1, nullptr, 10), 12u);
+  }
+}
+
 TEST(SceneMessage, DepthsOnlyWhenAskedOneAPerTriangle) {
   const Scene scene =
       scene_of({{"cube", std::nullopt, language::solid_value(box({0, 0, 0}, {1, 2, 3}))}}, std::nullopt);
