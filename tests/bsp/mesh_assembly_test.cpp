@@ -14,14 +14,16 @@
 #include <set>
 
 #include "bsp/assembly/faces.hpp"
-#include "bsp/boundary.hpp"
-#include "bsp/tree/boundary_fragments.hpp"
 #include "bsp/assembly/junction_removal.hpp"
 #include "bsp/assembly/sheets.hpp"
-#include "bsp/primitives.hpp"
-#include "bsp/set_operations.hpp"
 #include "bsp/assembly/vertex_equality.hpp"
 #include "bsp/assembly/vertex_merge.hpp"
+#include "bsp/boundary.hpp"
+#include "bsp/from_mesh.hpp"
+#include "bsp/primitives.hpp"
+#include "bsp/set_operations.hpp"
+#include "bsp/transform.hpp"
+#include "bsp/tree/boundary_fragments.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
@@ -260,6 +262,26 @@ TEST(MeshAssembly, VertexMergeMatchesPairwiseExactEquality) {
       for (int sy = -1; sy <= 1; sy += 2)
         for (int sz = -1; sz <= 1; sz += 2) hs.push_back({Eigen::Vector3d(sx, sy, sz), -1.0});
     solids.push_back(convex_polytope(hs) - box({0, 0, 0}, {1, 1, 1}));
+  }
+  {
+    // An imported icosahedron (its vertices snap to grid points, five faces at each) united with
+    // a turned copy: corners at grid points merged by their integers, the seams' corners exactly.
+    const double t = (1 + std::sqrt(5.0)) / 2;
+    PolygonMesh ico;
+    ico.vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    ico.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    const Solid m = from_mesh(ico);
+    // A corner of a box (a grid point) and the apex of a tetrahedron 0.006 grid units beyond
+    // it (not a grid point): two vertices in one cell of the merge.
+    const double e = 1e-7;
+    solids.push_back(box({0, 0, 0}, {1, 1, 1}) | convex_polytope({{Eigen::Vector3d(-1, 0, 0), 1 + e},
+                                                                  {Eigen::Vector3d(0, -1, 0), 1 + e},
+                                                                  {Eigen::Vector3d(0, 0, -1), 1 + e},
+                                                                  {Eigen::Vector3d(1, 1, 1), -3.5}}));
+    solids.push_back(m | transform(m, Eigen::Affine3d(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()))));
   }
   for (std::size_t i = 0; i < solids.size(); ++i) {
     SCOPED_TRACE(i);

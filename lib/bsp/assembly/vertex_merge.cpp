@@ -32,6 +32,13 @@ IdTriple sorted(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
 // cells and joins the one it equals, else it starts a new vertex. Equal points have overlapping
 // error boxes, so they share the cell of the exact point: no equal pair is missed, and a new
 // class equals at most one vertex (two equal vertices would have been merged).
+//
+// Grid points: where two points would be compared exactly, each whose approximation is within a
+// quarter unit is first found to be a grid point or not (the nearest integers on its three
+// planes: Int128 arithmetic, once per corner and vertex). A grid point equals another point
+// exactly when that is the same grid point: most vertices of imported and transformed meshes are
+// grid points (they are snapped), and they are merged by comparing integers instead of by the
+// exact tests. Two points that are not grid points are tested exactly.
 class CornerMerger {
  public:
   CornerMerger(const kernel::PlaneTable& planes, const PlaneIds& ids, AssemblyVertices& vertices,
@@ -49,7 +56,17 @@ class CornerMerger {
     v_.triple.reserve(corners / 3 + 16);
     v_.first_class.reserve(corners / 3 + 16);
     vertex_ids_.reserve(corners / 3 + 16);
+    vertex_grid_.reserve(corners / 3 + 16);
   }
+
+  // Whether a point is a grid point: not yet looked at, no, yes, or not known (no usable
+  // approximation).
+  enum class GridStatus : std::uint8_t { Unchecked, No, Yes, Unknown };
+
+  struct GridPoint {
+    GridStatus status = GridStatus::Unchecked;
+    kernel::GridPoint at;  // when status is Yes
+  };
 
   // What resolving a corner needs that depends on the corner alone: its class key, its
   // approximation and its cells (prepare(), safe to call from several threads at once).
@@ -61,6 +78,7 @@ class CornerMerger {
     IdTriple key;
     int cells;  // -1: wide (no cells)
     std::uint32_t cell[8];
+    GridPoint grid;  // whether the point is a grid point, found when first needed
   };
 
   // Corner `c` of a fragment on plane `support` (canonical id s), whose vertex goes to out[position].
@@ -138,14 +156,14 @@ class CornerMerger {
     for (int i = 0; i < n && v < 0; ++i)
       for (int e = slots_[cells[i]].head; e >= 0 && v < 0; e = entries_[std::size_t(e)].next) {
         const int u = entries_[std::size_t(e)].vertex;
-        if (u != last && same_point(key, p.support, c, p.at, u)) v = u;
+        if (u != last && same_point(key, p.support, c, p.at, p.grid, u)) v = u;
         last = u;
       }
     for (std::size_t i = 0; i < wide_classes_.size() && v < 0; ++i) {
       const int u = class_vertex_[std::size_t(wide_classes_[i])];
-      if (same_point(key, p.support, c, p.at, u)) v = u;
+      if (same_point(key, p.support, c, p.at, p.grid, u)) v = u;
     }
-    if (v < 0) v = new_vertex(p.support, c);
+    if (v < 0) v = new_vertex(p.support, c, p.grid);
     new_class(key, v);
     for (int i = 0; i < n; ++i) {
       entries_.push_back({key, v, slots_[cells[i]].head});
@@ -178,6 +196,22 @@ class CornerMerger {
 
   std::uint32_t key_of(std::int32_t plane) const { return ids_.id[std::size_t(plane)]; }
 
+  // Whether the point s ∩ p ∩ q with approximation `a` is a grid point: the nearest integers are
+  // the only candidates when the error bound is under a quarter unit, and one is when it lies on
+  // the three planes exactly. Unknown for a looser bound, or beyond 2^40 units (there the Int128
+  // values could overflow: |a x| <= 2^53 * 2^40, three of them, and |d| <= 2^80).
+  GridPoint grid_point(std::int32_t s, std::int32_t p, std::int32_t q, const ApproxPoint& a) const {
+    constexpr double kLimit = 0x1p40;
+    if (!(a.err >= 0 && a.err < 0.25) ||
+        !(std::fabs(a.x) < kLimit && std::fabs(a.y) < kLimit && std::fabs(a.z) < kLimit))
+      return {GridStatus::Unknown, {}};
+    const kernel::GridPoint g{std::llround(a.x), std::llround(a.y), std::llround(a.z)};
+    const bool yes = std::fabs(a.x - double(g.x)) <= a.err && std::fabs(a.y - double(g.y)) <= a.err &&
+                     std::fabs(a.z - double(g.z)) <= a.err && planes_[s].eval(g) == 0 && planes_[p].eval(g) == 0 &&
+                     planes_[q].eval(g) == 0;
+    return {yes ? GridStatus::Yes : GridStatus::No, g};
+  }
+
   // A class joins its vertex's list (the vertex's known planes) and the class table (the wide path).
   int new_class(const IdTriple& key, int vertex) {
     const int k = int(v_.class_planes.size());
@@ -188,7 +222,8 @@ class CornerMerger {
     return k;
   }
 
-  int new_vertex(std::int32_t support, const kernel::Corner& c) {
+  int new_vertex(std::int32_t support, const kernel::Corner& c, const GridPoint& grid) {
+    vertex_grid_.push_back(grid);
     v_.at.push_back(c.at());
     v_.triple.push_back({support, c.p, c.q});
     vertex_ids_.push_back({key_of(support), key_of(c.p), key_of(c.q)});
@@ -202,9 +237,10 @@ class CornerMerger {
     for (std::size_t i = 0; i < v_.class_planes.size(); ++i)
       if (same_key(v_.class_planes[i], key)) return class_vertex_[i];
     int v = -1;
+    GridPoint grid;
     for (int u = 0; u < v_.size() && v < 0; ++u)
-      if (same_point(key, support, c, at, u)) v = u;
-    if (v < 0) v = new_vertex(support, c);
+      if (same_point(key, support, c, at, grid, u)) v = u;
+    if (v < 0) v = new_vertex(support, c, grid);
     wide_classes_.push_back(new_class(key, v));
     return v;
   }
@@ -213,13 +249,19 @@ class CornerMerger {
   // of vertex u's triple (planes shared with the corner need no test; the others by the exact
   // zero test of vertex_equality.hpp). Disjoint error boxes are different points (a filter only).
   bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, const ApproxPoint& pa,
-                  int u) const {
+                  GridPoint& grid, int u) {
     const ApproxPoint& pb = v_.at[std::size_t(u)];
     if (pa.err >= 0 && pb.err >= 0) {
       const double tol = pa.err + pb.err;
       if (std::fabs(pb.x - pa.x) > tol || std::fabs(pb.y - pa.y) > tol || std::fabs(pb.z - pa.z) > tol) return false;
     }
     const PlaneTriple& t = v_.triple[std::size_t(u)];
+    if (grid.status == GridStatus::Unchecked) grid = grid_point(support, c.p, c.q, pa);
+    GridPoint& vertex_grid = vertex_grid_[std::size_t(u)];
+    if (vertex_grid.status == GridStatus::Unchecked) vertex_grid = grid_point(t.s, t.p, t.q, pb);
+    const bool known = grid.status != GridStatus::Unknown && vertex_grid.status != GridStatus::Unknown;
+    if (known && (grid.status == GridStatus::Yes || vertex_grid.status == GridStatus::Yes))
+      return grid.status == vertex_grid.status && grid.at == vertex_grid.at;
     const IdTriple& ids = vertex_ids_[std::size_t(u)];
     const std::int32_t planes[3] = {t.s, t.p, t.q};
     std::int32_t tested[3];
@@ -247,6 +289,7 @@ class CornerMerger {
   std::vector<int> class_vertex_;  // class -> vertex (keys in v_.class_planes)
   std::vector<int> wide_classes_;
   std::vector<IdTriple> vertex_ids_;  // vertex -> canonical ids of its triple, in triple order
+  std::vector<GridPoint> vertex_grid_;  // vertex -> whether it is a grid point, and which
 };
 
 void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out,
@@ -268,6 +311,7 @@ void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::
     hi[k] = floor_of(coord[k] + a.err + kShift);
   }
   p.cells = -1;
+  p.grid = {};
   if (wide) return;
   // The cells of the error box (at most two per axis).
   constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
