@@ -627,7 +627,15 @@ void register_solids(BuiltinTable& table) {
                const std::string path = args.input_path("file");
                const bool strict = args.boolean("strict");
                const PolygonMesh mesh = read_mesh(path);
-               const ValidationReport report = check_closed_manifold(mesh);
+               // The topology first. The faces are searched for crossings once, in the mesh
+               // snapped to the grid (what the solid is built from); the mesh as read only when
+               // that finds one, to tell its own crossings from those snapping made. (A crossing
+               // below the grid step that snapping undoes is not reported.)
+               ValidationReport report = check_closed_manifold(mesh, {.check_self_intersections = false});
+               const PolygonMesh snapped = report.ok() ? snapped_to_grid(mesh, args.grid()) : PolygonMesh{};
+               const bool snapped_crosses =
+                   report.ok() && !find_self_intersections(snapped, {.max_pairs = 1}).empty();
+               if (!report.ok() || snapped_crosses) report = check_closed_manifold(mesh);
                if (!report.ok()) {
                  // A shell turned the wrong way (all faces inwards, or a cavity facing outwards) is
                  // closed and manifold but bounds the wrong side: say so in those words.
@@ -647,7 +655,7 @@ void register_solids(BuiltinTable& table) {
                // below the grid step; such features are collapsed as transforms do (every vertex
                // within 4 grid steps of its place, docs/kernel.md, "What transforms do"), and the
                // import fails only if that does not suffice.
-               std::string snap_error = snapped_self_intersection(mesh, args.grid());
+               std::string snap_error = snapped_crosses ? snapped_self_intersection(mesh, snapped, args.grid()) : "";
                if (snap_error.empty()) {
                  try {  // checked before and after snapping: the faces are the boundary (from_mesh.hpp)
                    return solid_value(from_mesh(mesh, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
@@ -660,7 +668,7 @@ void register_solids(BuiltinTable& table) {
                  }
                }
                OutputRoundingReport rounding;
-               const PolygonMesh snapped = round_for_output(
+               const PolygonMesh collapsed = round_for_output(
                    mesh, {.precision = OutputPrecision::Grid, .max_feature = 4 * args.grid().step(), .triangles = true,
                           .grid_step = args.grid().step(), .keep_copies = true}, &rounding);
                if (!rounding.clean) {
@@ -679,7 +687,7 @@ void register_solids(BuiltinTable& table) {
                             << ": features below 4 grid steps were collapsed to fit the grid (step "
                             << args.grid().name() << "): " << removed << "; vertices moved by up to "
                             << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";
-               return solid_value(from_mesh(snapped, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
+               return solid_value(from_mesh(collapsed, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
              }});
 }
 
