@@ -633,8 +633,7 @@ void register_solids(BuiltinTable& table) {
                // below the grid step that snapping undoes is not reported.)
                ValidationReport report = check_closed_manifold(mesh, {.check_self_intersections = false});
                const PolygonMesh snapped = report.ok() ? snapped_to_grid(mesh, args.grid()) : PolygonMesh{};
-               const bool snapped_crosses =
-                   report.ok() && !find_self_intersections(snapped, {.max_pairs = 1}).empty();
+               const bool snapped_crosses = report.ok() && !find_self_intersections(snapped, {.max_pairs = 1}).empty();
                if (!report.ok() || snapped_crosses) report = check_closed_manifold(mesh);
                if (!report.ok()) {
                  // A shell turned the wrong way (all faces inwards, or a cavity facing outwards) is
@@ -668,9 +667,13 @@ void register_solids(BuiltinTable& table) {
                  }
                }
                OutputRoundingReport rounding;
-               const PolygonMesh collapsed = round_for_output(
-                   mesh, {.precision = OutputPrecision::Grid, .max_feature = 4 * args.grid().step(), .triangles = true,
-                          .grid_step = args.grid().step(), .keep_copies = true}, &rounding);
+               const PolygonMesh collapsed = round_for_output(mesh,
+                                                              {.precision = OutputPrecision::Grid,
+                                                               .max_feature = 4 * args.grid().step(),
+                                                               .triangles = true,
+                                                               .grid_step = args.grid().step(),
+                                                               .keep_copies = true},
+                                                              &rounding);
                if (!rounding.clean) {
                  // The snapped mesh still encloses a well-defined region: where its winding number is positive.
                  if (strict) args.fail(path + ": " + snap_error);
