@@ -63,11 +63,6 @@ class CornerMerger {
   // approximation).
   enum class GridStatus : std::uint8_t { Unchecked, No, Yes, Unknown };
 
-  struct GridPoint {
-    GridStatus status = GridStatus::Unchecked;
-    kernel::GridPoint at;  // when status is Yes
-  };
-
   // What resolving a corner needs that depends on the corner alone: its class key, its
   // approximation and its cells (prepare(), safe to call from several threads at once).
   struct Pending {
@@ -78,7 +73,8 @@ class CornerMerger {
     IdTriple key;
     int cells;  // -1: wide (no cells)
     std::uint32_t cell[8];
-    GridPoint grid;  // whether the point is a grid point, found when first needed
+    GridStatus grid;  // whether the point is a grid point, found when first needed
+    bool tightened;   // `at` is not the corner's own approximation (tight_approximation)
   };
 
   // Corner `c` of a fragment on plane `support` (canonical id s), whose vertex goes to out[position].
@@ -163,7 +159,9 @@ class CornerMerger {
       const int u = class_vertex_[std::size_t(wide_classes_[i])];
       if (same_point(key, p.support, c, p.at, p.grid, u)) v = u;
     }
-    if (v < 0) v = new_vertex(p.support, c, p.grid);
+    // The vertex keeps its first corner's approximation, so it inherits what was found from
+    // that one only.
+    if (v < 0) v = new_vertex(p.support, c, p.tightened ? GridStatus::Unchecked : p.grid);
     new_class(key, v);
     for (int i = 0; i < n; ++i) {
       entries_.push_back({key, v, slots_[cells[i]].head});
@@ -200,16 +198,28 @@ class CornerMerger {
   // the only candidates when the error bound is under a quarter unit, and one is when it lies on
   // the three planes exactly. Unknown for a looser bound, or beyond 2^40 units (there the Int128
   // values could overflow: |a x| <= 2^53 * 2^40, three of them, and |d| <= 2^80).
-  GridPoint grid_point(std::int32_t s, std::int32_t p, std::int32_t q, const ApproxPoint& a) const {
+  GridStatus grid_point(std::int32_t s, std::int32_t p, std::int32_t q, const ApproxPoint& a) const {
     constexpr double kLimit = 0x1p40;
     if (!(a.err >= 0 && a.err < 0.25) ||
         !(std::fabs(a.x) < kLimit && std::fabs(a.y) < kLimit && std::fabs(a.z) < kLimit))
-      return {GridStatus::Unknown, {}};
-    const kernel::GridPoint g{std::llround(a.x), std::llround(a.y), std::llround(a.z)};
-    const bool yes = std::fabs(a.x - double(g.x)) <= a.err && std::fabs(a.y - double(g.y)) <= a.err &&
-                     std::fabs(a.z - double(g.z)) <= a.err && planes_[s].eval(g) == 0 && planes_[p].eval(g) == 0 &&
-                     planes_[q].eval(g) == 0;
-    return {yes ? GridStatus::Yes : GridStatus::No, g};
+      return GridStatus::Unknown;
+    // Most points off the grid end at the first coordinate, without a call or a plane read.
+    if (!(std::fabs(a.x - nearest_integer(a.x)) <= a.err && std::fabs(a.y - nearest_integer(a.y)) <= a.err &&
+          std::fabs(a.z - nearest_integer(a.z)) <= a.err))
+      return GridStatus::No;
+    const kernel::GridPoint g = nearest_grid_point(a);
+    const bool yes = planes_[s].eval(g) == 0 && planes_[p].eval(g) == 0 && planes_[q].eval(g) == 0;
+    return yes ? GridStatus::Yes : GridStatus::No;
+  }
+  // The integer nearest to x, |x| < 2^51 (adding and subtracting 1.5 * 2^52 rounds to an integer
+  // in double arithmetic, ties to even).
+  static double nearest_integer(double x) {
+    constexpr double kRound = 0x1.8p52;
+    return (x + kRound) - kRound;
+  }
+  // The grid point of an approximation found to be one (Yes: within a quarter unit of it).
+  static kernel::GridPoint nearest_grid_point(const ApproxPoint& a) {
+    return {std::int64_t(nearest_integer(a.x)), std::int64_t(nearest_integer(a.y)), std::int64_t(nearest_integer(a.z))};
   }
 
   // A class joins its vertex's list (the vertex's known planes) and the class table (the wide path).
@@ -222,7 +232,7 @@ class CornerMerger {
     return k;
   }
 
-  int new_vertex(std::int32_t support, const kernel::Corner& c, const GridPoint& grid) {
+  int new_vertex(std::int32_t support, const kernel::Corner& c, GridStatus grid) {
     vertex_grid_.push_back(grid);
     v_.at.push_back(c.at());
     v_.triple.push_back({support, c.p, c.q});
@@ -237,7 +247,7 @@ class CornerMerger {
     for (std::size_t i = 0; i < v_.class_planes.size(); ++i)
       if (same_key(v_.class_planes[i], key)) return class_vertex_[i];
     int v = -1;
-    GridPoint grid;
+    GridStatus grid = GridStatus::Unchecked;
     for (int u = 0; u < v_.size() && v < 0; ++u)
       if (same_point(key, support, c, at, grid, u)) v = u;
     if (v < 0) v = new_vertex(support, c, grid);
@@ -249,19 +259,19 @@ class CornerMerger {
   // of vertex u's triple (planes shared with the corner need no test; the others by the exact
   // zero test of vertex_equality.hpp). Disjoint error boxes are different points (a filter only).
   bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, const ApproxPoint& pa,
-                  GridPoint& grid, int u) {
+                  GridStatus& grid, int u) {
     const ApproxPoint& pb = v_.at[std::size_t(u)];
     if (pa.err >= 0 && pb.err >= 0) {
       const double tol = pa.err + pb.err;
       if (std::fabs(pb.x - pa.x) > tol || std::fabs(pb.y - pa.y) > tol || std::fabs(pb.z - pa.z) > tol) return false;
     }
     const PlaneTriple& t = v_.triple[std::size_t(u)];
-    if (grid.status == GridStatus::Unchecked) grid = grid_point(support, c.p, c.q, pa);
-    GridPoint& vertex_grid = vertex_grid_[std::size_t(u)];
-    if (vertex_grid.status == GridStatus::Unchecked) vertex_grid = grid_point(t.s, t.p, t.q, pb);
-    const bool known = grid.status != GridStatus::Unknown && vertex_grid.status != GridStatus::Unknown;
-    if (known && (grid.status == GridStatus::Yes || vertex_grid.status == GridStatus::Yes))
-      return grid.status == vertex_grid.status && grid.at == vertex_grid.at;
+    if (grid == GridStatus::Unchecked) grid = grid_point(support, c.p, c.q, pa);
+    GridStatus& vertex_grid = vertex_grid_[std::size_t(u)];
+    if (vertex_grid == GridStatus::Unchecked) vertex_grid = grid_point(t.s, t.p, t.q, pb);
+    const bool known = grid != GridStatus::Unknown && vertex_grid != GridStatus::Unknown;
+    if (known && (grid == GridStatus::Yes || vertex_grid == GridStatus::Yes))
+      return grid == vertex_grid && nearest_grid_point(pa) == nearest_grid_point(pb);
     const IdTriple& ids = vertex_ids_[std::size_t(u)];
     const std::int32_t planes[3] = {t.s, t.p, t.q};
     std::int32_t tested[3];
@@ -289,7 +299,7 @@ class CornerMerger {
   std::vector<int> class_vertex_;  // class -> vertex (keys in v_.class_planes)
   std::vector<int> wide_classes_;
   std::vector<IdTriple> vertex_ids_;  // vertex -> canonical ids of its triple, in triple order
-  std::vector<GridPoint> vertex_grid_;  // vertex -> whether it is a grid point, and which
+  std::vector<GridStatus> vertex_grid_;  // vertex -> whether it is a grid point
 };
 
 void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out,
@@ -300,6 +310,7 @@ void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::
   p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
   const ApproxPoint a = tight_approximation(support, c);
   p.at = a;
+  p.tightened = a.err != c.at().err;
   constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
   constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
   std::int64_t lo[3], hi[3];
@@ -311,7 +322,7 @@ void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::
     hi[k] = floor_of(coord[k] + a.err + kShift);
   }
   p.cells = -1;
-  p.grid = {};
+  p.grid = GridStatus::Unchecked;
   if (wide) return;
   // The cells of the error box (at most two per axis).
   constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
