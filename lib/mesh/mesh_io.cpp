@@ -145,10 +145,14 @@ std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary)
   throw InvalidInput("encode_mesh: the format must be given (not Auto)");
 }
 
-std::string encode_glb_for_display(const PolygonMesh& mesh) {
+DisplayArrays display_arrays(const PolygonMesh& mesh) {
   check_writable(mesh, MeshFormat::Glb, false);
-  return mesh::detail::encode_glb_unrounded(mesh);
+  return mesh::detail::triangle_arrays(mesh);
 }
+
+std::string encode_glb_for_display(const DisplayArrays& arrays) { return mesh::detail::encode_display_glb(arrays); }
+
+std::string encode_glb_for_display(const PolygonMesh& mesh) { return encode_glb_for_display(display_arrays(mesh)); }
 
 PolygonMesh decode_mesh(std::string_view data, MeshFormat format, const std::string& name) {
   switch (format) {

@@ -9,9 +9,11 @@
 /// data goes to a temporary file in the target directory that is renamed over the target
 /// only when complete. Nothing is printed. Precision per format: docs/mesh_io.md.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "mesh/polygon_mesh.hpp"
 
@@ -52,11 +54,24 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view d
 /// The bytes write_mesh would write (format must not be Auto).
 std::string encode_mesh(const PolygonMesh& mesh, MeshFormat format, bool binary = false);
 
-/// The bytes of a GLB of `mesh` for a screen (the live view), not for a file: each vertex is
-/// converted to float32 as it is, in the mesh's order (the GLB's vertex i is mesh vertex i), and
-/// each face triangulated, without the output rounding that keeps a written GLB clean (docs/kernel.md,
-/// "Clean output"): a picture does not need it, and for a million faces it takes seconds.
-/// \throw InvalidInput as encode_mesh.
+/// A mesh as a screen draws it (the live view), not as a file holds it: each vertex converted to
+/// float32 as it is, in the mesh's order, and each face triangulated in order, without the output
+/// rounding that keeps a written GLB clean (docs/kernel.md, "Clean output"): a picture does not
+/// need it, and for a million faces it takes seconds.
+struct DisplayArrays {
+  std::vector<float> positions;        ///< x, y, z of vertex i at 3i
+  std::vector<std::uint32_t> indices;  ///< three a triangle
+};
+
+/// \throw InvalidInput as encode_mesh for a GLB.
+DisplayArrays display_arrays(const PolygonMesh& mesh);
+
+/// The bytes of a GLB of `arrays` for a screen: the GLB's vertex i is the mesh's vertex i (one
+/// bufferView of every position), its triangles in their order, as primitives of 16-bit indices
+/// over windows of 65,536 vertices where the mesh's numbering allows (6 bytes a triangle instead
+/// of 12; docs/viewing.md), else of 32-bit ones.
+std::string encode_glb_for_display(const DisplayArrays& arrays);
+/// encode_glb_for_display(display_arrays(mesh)). \throw InvalidInput as encode_mesh.
 std::string encode_glb_for_display(const PolygonMesh& mesh);
 
 /// Parses bytes as read_mesh would; `name` stands for the path in error messages.

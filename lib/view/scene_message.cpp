@@ -48,35 +48,6 @@ void append_vector(std::string& out, const Eigen::Vector3d& v) {
   out += ']';
 }
 
-/// The bytes of the float32 positions and of the uint32 indices in the BIN chunk of a GLB made by
-/// encode_mesh (mesh/formats/glb_writer.cpp: positions first, then indices, their counts in the
-/// first two accessors); empty for a GLB without triangles.
-struct GlbArrays {
-  std::string_view positions;  ///< 12 bytes a vertex
-  std::string_view indices;    ///< 12 bytes a triangle
-};
-
-GlbArrays glb_arrays(const std::string& glb) {
-  if (glb.size() < 20) return {};
-  std::uint32_t json_size;
-  std::memcpy(&json_size, glb.data() + 12, 4);
-  if (glb.size() < 28 + std::size_t(json_size)) return {};
-  const std::string_view json(glb.data() + 20, json_size);
-  const std::size_t accessors = json.find("\"accessors\":[{");
-  if (accessors == std::string_view::npos) return {};
-  std::size_t counts[2] = {0, 0};
-  std::size_t at = accessors;
-  for (std::size_t& count : counts) {
-    at = json.find("\"count\":", at);
-    if (at == std::string_view::npos) return {};
-    at += 8;
-    if (std::from_chars(json.data() + at, json.data() + json.size(), count).ec != std::errc()) return {};
-  }
-  const std::size_t bin = 28 + std::size_t(json_size);
-  if (counts[0] > (glb.size() - bin) / 12 || counts[1] > (glb.size() - bin - 12 * counts[0]) / 4) return {};
-  return {{glb.data() + bin, 12 * counts[0]}, {glb.data() + bin + 12 * counts[0], 4 * (counts[1] / 3 * 3)}};
-}
-
 /// The feature edges of a part as pairs of uint32 indices into its GLB's positions, which are
 /// the mesh's vertices in order (encode_glb_for_display), 8 bytes an edge, creases first. A part
 /// with more than kDenseFeatureEdges features that are not creases sends its creases only: the
@@ -101,21 +72,14 @@ EdgeData edge_data(const PolygonMesh& mesh) {
   return data;
 }
 
-/// The cell depth behind each triangle of `glb` (detail/cell_depths.hpp) as uint16, padded to a
-/// multiple of 4 bytes; the count of triangles.
-std::pair<std::string, std::size_t> depth_data(const Solid& solid, const std::string& glb) {
-  const GlbArrays arrays = glb_arrays(glb);
-  std::vector<Eigen::Vector3d> points(arrays.positions.size() / 12);
-  for (std::size_t v = 0; v < points.size(); ++v) {
-    float xyz[3];
-    std::memcpy(xyz, arrays.positions.data() + 12 * v, 12);
-    points[v] = {xyz[0], xyz[1], xyz[2]};
-  }
-  std::vector<std::array<std::uint32_t, 3>> triangles(arrays.indices.size() / 12);
-  if (!triangles.empty()) std::memcpy(triangles.data(), arrays.indices.data(), arrays.indices.size());
-  for (const auto& t : triangles)
-    for (const std::uint32_t v : t)
-      if (v >= points.size()) throw InvalidInput("view: a triangle's index is out of range");
+/// The cell depth behind each triangle of `arrays` (what the part's GLB holds, in its order;
+/// detail/cell_depths.hpp) as uint16, padded to a multiple of 4 bytes; the count of triangles.
+std::pair<std::string, std::size_t> depth_data(const Solid& solid, const DisplayArrays& arrays) {
+  std::vector<Eigen::Vector3d> points(arrays.positions.size() / 3);
+  for (std::size_t v = 0; v < points.size(); ++v)
+    points[v] = {arrays.positions[3 * v], arrays.positions[3 * v + 1], arrays.positions[3 * v + 2]};
+  std::vector<std::array<std::uint32_t, 3>> triangles(arrays.indices.size() / 3);
+  if (!triangles.empty()) std::memcpy(triangles.data(), arrays.indices.data(), 4 * arrays.indices.size());
   const std::vector<int> depths = detail::cell_depths_behind(solid, points, triangles);
   std::string out;
   out.reserve(2 * depths.size() + 2);
@@ -179,13 +143,29 @@ std::string json_string(const std::string& text) {
 
 std::string encode_scene(const Scene& scene, const SceneOptions& options) {
   std::string json = "{\"parts\":[";
-  std::string data;
+  // The binary blocks (each a multiple of 4 bytes long, so every offset stays aligned), copied
+  // once into the message after the JSON that gives their offsets.
+  std::vector<std::string> blocks;
+  std::size_t data_size = 0;
+  const auto add_block = [&](std::string block) {
+    block.append((4 - block.size() % 4) % 4, '\0');
+    const std::size_t offset = data_size;
+    data_size += block.size();
+    blocks.push_back(std::move(block));
+    return offset;
+  };
   for (std::size_t p = 0; p < scene.parts.size(); ++p) {
     const ViewPart& part = scene.parts[p];
     check_face_indices(part.mesh, "view");
+    DisplayArrays arrays;
     std::string glb;
     EdgeData edges;
-    parallel_invoke([&] { glb = encode_glb_for_display(part.mesh); }, [&] { edges = edge_data(part.mesh); });
+    parallel_invoke(
+        [&] {
+          arrays = display_arrays(part.mesh);
+          glb = encode_glb_for_display(arrays);
+        },
+        [&] { edges = edge_data(part.mesh); });
     std::size_t triangles = 0;
     for (const auto& face : part.mesh.faces) triangles += face.size() - 2;
     if (p) json += ',';
@@ -215,28 +195,23 @@ std::string encode_scene(const Scene& scene, const SceneOptions& options) {
       json += ']';
     }
     json += ",\"triangles\":" + std::to_string(triangles);
-    // GLB files are whole multiples of 4 bytes (glTF 2.0 sec. 4.4), so every offset stays aligned.
-    json += ",\"glb\":[" + std::to_string(data.size()) + "," + std::to_string(glb.size()) + "]";
-    data += glb;
-    data.append((4 - data.size() % 4) % 4, '\0');
-    json += ",\"edges\":[" + std::to_string(data.size()) + "," + std::to_string(edges.count) + "," +
-            std::to_string(edges.creases) + "],\"features\":" + std::to_string(edges.features);
-    data += edges.indexed;
+    const std::size_t glb_size = glb.size();
+    json += ",\"glb\":[" + std::to_string(add_block(std::move(glb))) + "," + std::to_string(glb_size) + "]";
+    json += ",\"edges\":[" + std::to_string(add_block(std::move(edges.indexed))) + "," + std::to_string(edges.count) +
+            "," + std::to_string(edges.creases) + "],\"features\":" + std::to_string(edges.features);
     json += ",\"depth\":";
     const auto* solid = part.value.object<language::SolidValue>();
     if (options.depth && solid) {
-      auto [depths, count] = depth_data(solid->solid, glb);
+      auto [depths, count] = depth_data(solid->solid, arrays);
       json += '[';  // (not "[" + std::string: GCC 12 warns falsely about its memcpy)
-      json += std::to_string(data.size()) + "," + std::to_string(count) + "]";
-      data += depths;
+      json += std::to_string(add_block(std::move(depths))) + "," + std::to_string(count) + "]";
     } else {
       json += "null";
     }
     json += ",\"curve\":";
     if (!part.curve.empty()) {
       json += '[';
-      json += std::to_string(data.size()) + "," + std::to_string(part.curve.size()) + "]";
-      data += curve_data(part.curve);
+      json += std::to_string(add_block(curve_data(part.curve))) + "," + std::to_string(part.curve.size()) + "]";
     } else {
       json += "null";
     }
@@ -246,12 +221,16 @@ std::string encode_scene(const Scene& scene, const SceneOptions& options) {
   }
   json += "]}";
   json.append((4 - json.size() % 4) % 4, ' ');
-  if (json.size() + data.size() > std::numeric_limits<std::uint32_t>::max() - 8u)
-    throw InvalidInput("view: the scene is too large to send (" + std::to_string(data.size()) + " bytes)");
+  if (json.size() + data_size > std::numeric_limits<std::uint32_t>::max() - 8u)
+    throw InvalidInput("view: the scene is too large to send (" + std::to_string(data_size) + " bytes)");
   std::string message = "SCLV";
+  message.reserve(8 + json.size() + data_size);
   append_u32(message, static_cast<std::uint32_t>(json.size()));
   message += json;
-  message += data;
+  for (std::string& block : blocks) {
+    message += block;
+    std::string().swap(block);  // (freed as it goes: the message is the scene's largest copy)
+  }
   return message;
 }
 

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -155,6 +156,20 @@ TEST(GlbFormat, TheContainerIsLaidOutAsTheSpecSays) {
   EXPECT_EQ(g.substr(bin_at + 8), expected);
 }
 
+/// Every triangle of `decoded` (a GLB read back) has the float32 corners of triangle t of
+/// `triangles` (indices into `vertices`), in order.
+void expect_same_triangles(const PolygonMesh& decoded, const std::vector<Eigen::Vector3d>& vertices,
+                           const std::vector<std::vector<int>>& triangles) {
+  ASSERT_EQ(decoded.faces.size(), triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& v = vertices[std::size_t(triangles[t][std::size_t(k)])];
+      const Eigen::Vector3d as_float(double(float(v.x())), double(float(v.y())), double(float(v.z())));
+      ASSERT_EQ(decoded.vertices[std::size_t(decoded.faces[t][std::size_t(k)])], as_float)
+          << "triangle " << t << " corner " << k;
+    }
+}
+
 TEST(GlbFormat, ForDisplayEveryVertexIsKeptInOrderAsItsFloat32) {
   // Two vertices 1e-12 apart (one float32 point) and a sliver: output rounding for a file merges
   // or moves them; the display GLB keeps every vertex, in order, converted to float32 alone.
@@ -164,21 +179,82 @@ TEST(GlbFormat, ForDisplayEveryVertexIsKeptInOrderAsItsFloat32) {
   const std::string g = encode_glb_for_display(m);
   const std::size_t bin = 20 + u32_at(g, 12);  // the BIN chunk: positions, then indices
   const PolygonMesh triangles = triangulate(m);
-  ASSERT_EQ(u32_at(g, bin), 12 * m.vertices.size() + 12 * triangles.faces.size());
+  // Fewer than 65,536 vertices: the indices are 16-bit (padded to 4 bytes).
+  ASSERT_EQ(u32_at(g, bin), 12 * m.vertices.size() + (6 * triangles.faces.size() + 3) / 4 * 4);
   for (std::size_t i = 0; i < m.vertices.size(); ++i) {
     float xyz[3];
     std::memcpy(xyz, g.data() + bin + 8 + 12 * i, 12);
     for (int k = 0; k < 3; ++k) EXPECT_EQ(xyz[k], static_cast<float>(m.vertices[i][k])) << "vertex " << i;
   }
   for (std::size_t t = 0; t < triangles.faces.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      EXPECT_EQ(u32_at(g, bin + 8 + 12 * m.vertices.size() + 12 * t + 4 * k), std::uint32_t(triangles.faces[t][k]));
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t at = bin + 8 + 12 * m.vertices.size() + 6 * t + 2 * std::size_t(k);
+      EXPECT_EQ(std::uint32_t(static_cast<unsigned char>(g[at])) | std::uint32_t(static_cast<unsigned char>(g[at + 1]))
+                                                                       << 8,
+                std::uint32_t(triangles.faces[t][std::size_t(k)]));
+    }
   // A reader gets the same triangles (equal positions merged, as for every GLB).
   EXPECT_EQ(decode_mesh(g, MeshFormat::Glb, "display").faces.size(), triangles.faces.size());
   EXPECT_THROW((void)encode_glb_for_display(PolygonMesh{{Eigen::Vector3d(1e300, 0, 0)}, {}}), InvalidInput);
   PolygonMesh bad = test_shapes::unit_cube();
   bad.faces[0][0] = 99;
   EXPECT_THROW((void)encode_glb_for_display(bad), InvalidInput);
+}
+
+/// A rows x columns grid of vertices (numbered row by row, z from a hash so no two coincide), two
+/// triangles a cell, in row order.
+PolygonMesh grid_sheet(int rows, int columns) {
+  PolygonMesh m;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c) m.vertices.emplace_back(c, r, double((r * 7919 + c * 104729) % 1000) / 1000);
+  for (int r = 0; r + 1 < rows; ++r)
+    for (int c = 0; c + 1 < columns; ++c) {
+      const int a = r * columns + c, b = a + 1, d = a + columns, e = d + 1;
+      m.faces.push_back({a, b, e});
+      m.faces.push_back({a, e, d});
+    }
+  return m;
+}
+
+TEST(GlbFormat, ForDisplayLargeMeshesTakeSixteenBitIndicesWhereTheNumberingAllows) {
+  // 90,000 vertices: no 16-bit index reaches all of them, but each triangle's corners lie within
+  // one row of each other, so runs of 16-bit indices over windows of vertices cover the mesh.
+  PolygonMesh m = grid_sheet(300, 300);
+  const std::size_t triangles = m.faces.size();
+  {
+    const std::string g = encode_glb_for_display(m);
+    const std::size_t bin = 20 + u32_at(g, 12);
+    const std::size_t index_bytes = u32_at(g, bin) - 12 * m.vertices.size();
+    EXPECT_GE(index_bytes, 6 * triangles);
+    EXPECT_LE(index_bytes, 6 * triangles + 4 * 8) << "a few runs, each padded to 4 bytes";
+    expect_same_triangles(decode_mesh(g, MeshFormat::Glb, "display"), m.vertices, m.faces);
+  }
+  // A triangle spanning the whole mesh in the middle: a run of 32-bit indices between two of
+  // 16-bit ones, the triangles still in order.
+  m.faces.insert(m.faces.begin() + std::ptrdiff_t(triangles / 2), {0, 89999, 1});
+  {
+    const std::string g = encode_glb_for_display(m);
+    const std::size_t bin = 20 + u32_at(g, 12);
+    const std::size_t index_bytes = u32_at(g, bin) - 12 * m.vertices.size();
+    EXPECT_GE(index_bytes, 6 * triangles + 12);
+    EXPECT_LE(index_bytes, 6 * triangles + 12 + 4 * 8);
+    expect_same_triangles(decode_mesh(g, MeshFormat::Glb, "display"), m.vertices, m.faces);
+  }
+  // Numbered at random, the triangles have no locality: one run of 32-bit indices.
+  std::vector<int> order(m.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  PolygonMesh shuffled;
+  shuffled.vertices.resize(m.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) shuffled.vertices[std::size_t(order[i])] = m.vertices[i];
+  for (const auto& f : m.faces)
+    shuffled.faces.push_back({order[std::size_t(f[0])], order[std::size_t(f[1])], order[std::size_t(f[2])]});
+  {
+    const std::string g = encode_glb_for_display(shuffled);
+    const std::size_t bin = 20 + u32_at(g, 12);
+    EXPECT_EQ(u32_at(g, bin), 12 * m.vertices.size() + 12 * shuffled.faces.size());
+    expect_same_triangles(decode_mesh(g, MeshFormat::Glb, "display"), shuffled.vertices, shuffled.faces);
+  }
 }
 
 TEST(GlbFormat, AnEmptyMeshIsAnEmptyScene) {

@@ -274,6 +274,23 @@ def curves(driver, state, wait_for):
     driver.find_element(By.ID, "view-iso").click()
 
 
+def fine_mesh(state, wait_for):
+    """A part of more than 65,536 vertices goes out with its indices in 16-bit runs over windows of
+    vertices (mesh/mesh_io.hpp, encode_glb_for_display): the page's triangles must enclose the
+    part's volume, in the first scene and in the next one (which reuses the first's index array)."""
+    for k in range(2):
+        scenes = state("sculptView.state.scenes")
+        write('show(sphere(1, segments=400), name="fine")  # %d\n' % k)
+        check(wait_for("sculptView.state.scenes > %d && sculptView.state.parts.length == 1 && "
+                       "sculptView.state.parts[0].name == 'fine'" % scenes, 10), "the page gets the fine sphere")
+        got = state("sculptView.meshVolume(0)")
+        want = state("sculptView.state.parts[0].info.volume")
+        triangles = state("sculptView.state.parts[0].info.triangles")
+        print("  fine sphere, scene %d: %d triangles, volume %.9f in the page, %.9f sent" % (k, got["triangles"], got["volume"], want))
+        check(triangles > 2 * 65536 and got["triangles"] == triangles, "the page holds every triangle (%d of %d)" % (got["triangles"], triangles))
+        check(abs(got["volume"] - want) < 1e-5 * want, "the page's triangles enclose the part's volume (%.9f, %.9f)" % (got["volume"], want))
+
+
 write(GOOD)
 process = subprocess.Popen([sculpt, "--view", "--port", "0", script], stdout=subprocess.PIPE,
                            stderr=subprocess.PIPE, text=True)
@@ -389,7 +406,10 @@ try:
     # by their checkboxes.
     curves(driver, state, wait_for)
 
-    # 8. The REPL's :view follows the session: its last solid, then what it shows.
+    # 8. A part too large for 16-bit indices alone arrives whole.
+    fine_mesh(state, wait_for)
+
+    # 9. The REPL's :view follows the session: its last solid, then what it shows.
     repl_view(driver, state, wait_for)
 finally:
     if driver:

@@ -3,9 +3,14 @@
 /// Encoders and decoders of each file format (internal to the mesh layer; mesh_io.hpp is the
 /// public entry). Decoders throw IoError(name, "line N: ...") on malformed data.
 
+#include <cstddef>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "mesh/mesh_io.hpp"
 #include "mesh/polygon_mesh.hpp"
 
 namespace sculpt::mesh::detail {
@@ -27,9 +32,32 @@ double lib3mf_kept(double x);
 /// round_for_output (OutputPrecision::Float32, as binary STL), UNSIGNED_INT indices; one world unit
 /// is one glTF unit (no scale node). \throw InvalidInput beyond float32 or 4 GiB.
 std::string encode_glb(const PolygonMesh& mesh);
-/// The same container for display (encode_glb_for_display in mesh_io.hpp): the vertices converted
-/// to float32 one by one, in their order, without output rounding.
-std::string encode_glb_unrounded(const PolygonMesh& mesh);
+/// The same container for display (encode_glb_for_display in mesh_io.hpp), its triangles in the
+/// runs of index_runs.
+std::string encode_display_glb(const DisplayArrays& arrays);
+/// display_arrays (mesh_io.hpp) without its checks. \throw InvalidInput beyond float32.
+DisplayArrays triangle_arrays(const PolygonMesh& mesh);
+
+/// Consecutive triangles written as one glTF primitive (sec. 3.7.2): their indices as
+/// UNSIGNED_SHORT less `base` (its POSITION accessor starts at vertex `base`: sec. 3.6.2.4's
+/// byteOffset), or as UNSIGNED_INT with base 0 (`wide`).
+struct IndexRun {
+  std::size_t first = 0;          ///< the first triangle
+  std::size_t triangles = 0;      ///< how many
+  std::uint32_t base = 0;         ///< the POSITION accessor's first vertex
+  std::uint32_t vertices = 0;     ///< its count: the run's indices lie in [base, base + vertices)
+  bool wide = false;              ///< UNSIGNED_INT indices
+  std::uint64_t byte_offset = 0;  ///< (set by the writer) where its indices start in their view
+};
+
+/// The triangles of `indices` (three a triangle) as runs, in order: a run of UNSIGNED_SHORT grows
+/// while its indices span at most 65,536 vertices, so a mesh numbered in the order of first use
+/// (as to_mesh numbers its vertices) costs 6 bytes of indices a triangle instead of 12; a triangle
+/// whose own indices span more joins a run of UNSIGNED_INT. A mesh without such locality (more than
+/// one run per 4,096 triangles) is one run of UNSIGNED_INT.
+std::vector<IndexRun> index_runs(std::span<const std::uint32_t> indices);
+/// All of `indices` as one run of UNSIGNED_INT (empty indices: no triangles).
+IndexRun whole_run(std::span<const std::uint32_t> indices);
 
 PolygonMesh decode_off(std::string_view data, const std::string& name);
 PolygonMesh decode_obj(std::string_view data, const std::string& name);

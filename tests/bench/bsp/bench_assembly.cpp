@@ -187,6 +187,8 @@ int run_case(const std::string& name, int n, int runs, const std::string& dump_p
   Solid solid;
   if (name == "sphere_minus_cube") {
     solid = sphere_minus_cube(n);
+  } else if (name == "sphere") {
+    solid = sphere(1.0, {.segments = n});  // a revolution carrying its ring boundary (the view's fine sphere)
   } else if (name == "menger") {
     solid = checks::menger_sponge(n);  // units of 1/27 as in bench_bsp
   } else if (name == "boxes") {
