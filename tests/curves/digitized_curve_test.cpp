@@ -1,4 +1,5 @@
 #include "curves/digitized_curve.hpp"
+#include "support/scratch_path.hpp"
 
 #include <gtest/gtest.h>
 
@@ -75,7 +76,7 @@ TEST(DigitizedCurve, WriteAndReadBackIsExact) {
   DigitizedCurve c;
   c.dimension = 3;
   c.points = {{0.1, 1.0 / 3.0, -2e-300}, {1e300, -0.0, 5.0}, {std::nextafter(1.0, 2.0), 7.25, -1.0 / 7.0}};
-  const std::string path = (std::filesystem::temp_directory_path() / "sculpt_curve_roundtrip.txt").string();
+  const std::string path = test::scratch_path("sculpt_curve_roundtrip.txt").string();
   save_curve(c, path);
   const DigitizedCurve back = load_curve(path);
   std::remove(path.c_str());

@@ -14,6 +14,7 @@
 
 #include "language/builtins.hpp"
 #include "script_runner.hpp"
+#include "support/scratch_path.hpp"
 #include "support/source_paths.hpp"
 
 namespace sculpt::language {
@@ -189,7 +190,7 @@ TEST(Builtins, LinearizationInvariants) {
 }
 
 TEST(Builtins, CurveFileRoundTrip) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  const auto dir = test::scratch_path("sculpt_language_test");
   std::filesystem::create_directories(dir);
   {
     std::ofstream f(dir / "c.txt");
@@ -222,7 +223,7 @@ TEST(Builtins, CurveFromAListOfPoints) {
 }
 
 TEST(Builtins, ExportWritesAClosedMeshThatImportReads) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  const auto dir = test::scratch_path("sculpt_language_test");
   std::filesystem::create_directories(dir);
   for (const char* ext : {"off", "obj", "stl", "ply"}) {
     const std::string path = (dir / (std::string("cube.") + ext)).string();
@@ -241,7 +242,7 @@ TEST(Builtins, ExportWritesAClosedMeshThatImportReads) {
 }
 
 TEST(Builtins, ExportCreatesMissingFolders) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test_folders";
+  const auto dir = test::scratch_path("sculpt_language_test_folders");
   std::filesystem::remove_all(dir);
   const std::string path = (dir / "a" / "b" / "cube.stl").string();
   EXPECT_EQ(run_script("export(box([0, 0, 0], [1, 2, 3]), \"" + path + "\")").error, "");
@@ -257,7 +258,7 @@ TEST(Builtins, ExportCreatesMissingFolders) {
 // binary=true: binary STL is an 80-byte header, a 4-byte count and 50 bytes per triangle (the
 // format's definition); a box's 6 faces are 12 triangles. It reads back as the same solid.
 TEST(Builtins, ExportWritesBinaryStlWhenAsked) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test_binary";
+  const auto dir = test::scratch_path("sculpt_language_test_binary");
   std::filesystem::remove_all(dir);
   const std::string path = (dir / "box.stl").string();
   EXPECT_EQ(run_script("export(box([0, 0, 0], [1, 2, 3]), \"" + path + "\", binary=true)").error, "");
@@ -351,7 +352,7 @@ TEST(Builtins, PrimitivesTakeCenterAndDiameter) {
 // why; a clean one without a word. (A cap of more than 2048 corners is beyond what the
 // self-intersection search triangulates: docs/mesh_io.md.)
 TEST(Builtins, ExportWarnsWhenTheMeshIsNotKnownToBeClean) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  const auto dir = test::scratch_path("sculpt_language_test");
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "fine_cylinder.off").string();
   std::filesystem::remove(path);
@@ -383,7 +384,7 @@ TEST(Builtins, UnionAllOfAListOfSolids) {
 // Two cubes 1e-6 apart form a valid mesh; snapped to the kernel's grid (step 2^-15) they share a
 // face. import must refuse that with the faces and the place, not build a solid from it.
 TEST(Builtins, ImportMovesApartFacesThatMeetOnceSnapped) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  const auto dir = test::scratch_path("sculpt_language_test");
   std::filesystem::create_directories(dir);
   auto write_two_cubes = [&](const std::string& name, double gap) {
     const std::string path = (dir / name).string();
@@ -417,7 +418,7 @@ TEST(Builtins, ImportMovesApartFacesThatMeetOnceSnapped) {
 // oriented mesh whose faces all point inwards passed import's checks, and from_mesh built a
 // "solid" of volume -1/1024 from it. import must refuse it and say what to do.
 TEST(Builtins, ImportRefusesAMeshOrientedInwards) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  const auto dir = test::scratch_path("sculpt_language_test");
   std::filesystem::create_directories(dir);
   auto write_tetrahedron = [&](const std::string& name, bool inwards) {
     const std::string path = (dir / name).string();
@@ -493,7 +494,7 @@ TEST(Builtins, ExportAndImport3mf) {
   // A box with grid-point corners that are also float32 values with at most six decimals (exact
   // in 3MF): it comes back as the same solid. A carved one comes back closed, its volume within
   // what a micrometre on each coordinate can change.
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  const auto dir = test::scratch_path("sculpt_language_test");
   std::filesystem::create_directories(dir);
   const std::string a = (dir / "box.3mf").string(), b = (dir / "carved.3mf").string();
   const auto v = numbers("s = box([-1.5, 0, 0.25], [2, 3.125, 4])\nexport(s, \"" + a + "\")\nt = import(\"" + a +
@@ -508,7 +509,7 @@ TEST(Builtins, ExportAndImport3mf) {
 TEST(Builtins, ExportAndImportGlb) {
   // A box whose corners are grid points and float32 values comes back as the same solid; a CSG
   // result comes back closed (import checks that), its volume within float32 and grid roundings.
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  const auto dir = test::scratch_path("sculpt_language_test");
   std::filesystem::create_directories(dir);
   const std::string a = (dir / "box.glb").string(), b = (dir / "carved.glb").string();
   const auto v = numbers("s = box([-1.5, 0, 0.25], [2, 3.125, 4])\nexport(s, \"" + a + "\")\nt = import(\"" + a +
@@ -523,7 +524,7 @@ TEST(Builtins, ExportAndImportGlb) {
 TEST(Builtins, ExportAndImportOpenMeshFormat) {
   // The same doubles through .om (OpenMesh) and .off (ours, shortest round-trip decimals): the
   // imported solids are the same (import snaps both to the grid the same way).
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test";
+  const auto dir = test::scratch_path("sculpt_language_test");
   std::filesystem::create_directories(dir);
   const std::string om = (dir / "part.om").string(), off = (dir / "part.off").string();
   const auto v = numbers("s = sphere(1, segments=12) - box([0,0,0],[2,2,2])\nexport(s, \"" + om + "\")\nexport(s, \"" + off +
@@ -853,7 +854,7 @@ TEST(Builtins, SampledSplineIsAProfileForRevolve) {
 }
 
 TEST(Builtins, SplineFileRoundTrip) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_language_test" / "splines";
+  const auto dir = test::scratch_path("sculpt_language_test") / "splines";
   std::filesystem::remove_all(dir);
   const std::string path = (dir / "s.spline").string();
   const auto r = run_script(std::string(kCircleData) + "s = fit(data, controls=7, iterations=5)\nsave_spline(s, \"" +

@@ -17,6 +17,7 @@
 #include "mesh/mesh_validation.hpp"
 #include "script_runner.hpp"
 #include "support/cgal_mesh_check.hpp"
+#include "support/scratch_path.hpp"
 
 namespace sculpt::language {
 namespace {
@@ -89,7 +90,7 @@ print(volume(w), volume(w | w))
 }
 
 TEST(ImplicitBuiltin, ExportedMeshIsAClosedManifold) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "sculpt_implicit_blend.off";
+  const std::filesystem::path file = test::scratch_path("sculpt_implicit_blend.off");
   std::string script = R"(
 fn blend(p) { a = norm([p[0] + 0.5, p[1], p[2]]) - 0.6; b = norm([p[0] - 0.5, p[1], p[2]]) - 0.6; k = 0.3
               h = max(k - abs(a - b), 0) / k; min(a, b) - h * h * k / 4 }
@@ -145,7 +146,7 @@ TEST(ImplicitBuiltin, BadInputIsAnErrorAtTheArgument) {
 }
 
 TEST(ImplicitBuiltin, PatchIsAMeshForExport) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "sculpt_patch_octant.off";
+  const std::filesystem::path file = test::scratch_path("sculpt_patch_octant.off");
   const auto r = run_script(std::string(R"(
 fn ball(x, y, z) { x * x + y * y + z * z - 1 }
 octant = patch(ball, corners=[[1, 0, 0], [0, 1, 0], [0, 0, 1]], depth=3)
@@ -248,7 +249,7 @@ TEST(ImplicitBuiltin, GyroidMeshesAtEveryTolAndTolSetsTheMeshSize) {
   EXPECT_LT(reference, 2700.0);
   std::vector<double> volumes;
   for (const double tol : {1.0, 0.5, 0.3}) {
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / "sculpt_gyroid.off";
+    const std::filesystem::path file = test::scratch_path("sculpt_gyroid.off");
     std::string script = kGyroid;
     script +=
         "s = implicit(g, box=[[0, 0, 0], [20, 20, 20]], tol=" + std::to_string(tol) + ", quiet=true)\nexport(s, \"";

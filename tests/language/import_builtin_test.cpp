@@ -17,6 +17,7 @@
 #include "mesh/shapes.hpp"
 #include "script_runner.hpp"
 #include "support/cgal_mesh_check.hpp"
+#include "support/scratch_path.hpp"
 #include "support/source_paths.hpp"
 
 namespace sculpt::language {
@@ -25,7 +26,7 @@ namespace {
 using testing::run_script;
 
 std::string written(const PolygonMesh& mesh, const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_import_test";
+  const auto dir = test::scratch_path("sculpt_import_test");
   std::filesystem::create_directories(dir);
   const std::string path = (dir / name).string();
   write_mesh(mesh, path);
@@ -37,7 +38,7 @@ std::string written(const PolygonMesh& mesh, const std::string& name) {
 // used to warn "features below 4 grid steps were collapsed ... vertices moved by up to 0 grid
 // steps" (and "up to 0.7" where only the snap moved them): nothing was collapsed, so nothing is said.
 TEST(ImportBuiltin, ExportedMeshReadsBackWithoutAWarningWhenNothingWasCollapsed) {
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_import_test";
+  const auto dir = test::scratch_path("sculpt_import_test");
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "case41.off").string();
   const auto r = run_script(

@@ -19,6 +19,7 @@
 #include "render/detail/scene.hpp"
 #include "render/picture.hpp"
 #include "render/png_image.hpp"
+#include "support/scratch_path.hpp"
 
 namespace sculpt::render {
 namespace {
@@ -114,7 +115,7 @@ TEST(Picture, SameCallSameBytes) {
   const std::string fast = encode_png(render_solids({s}), {.fast = true});
   EXPECT_EQ(fast, encode_png(render_solids({s}), {.fast = true}));
   EXPECT_EQ(decode_png(fast).rgb, decode_png(a).rgb);
-  const auto dir = std::filesystem::temp_directory_path() / "sculpt_render_test";
+  const auto dir = test::scratch_path("sculpt_render_test");
   std::filesystem::create_directories(dir);
   write_png(render_solids({s}), dir / "a.png");
   const Image back = read_png(dir / "a.png");
