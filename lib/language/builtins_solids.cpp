@@ -188,10 +188,13 @@ std::string snapped_self_intersection(const PolygonMesh& mesh, const kernel::Gri
 std::string snapped_self_intersection(const PolygonMesh& mesh, const PolygonMesh& snapped, const kernel::Grid& grid) {
   if (snapped.vertices == mesh.vertices) return {};  // nothing moved: the caller's validation holds
   const std::vector<FacePair> pairs = find_self_intersections(snapped, {.max_pairs = 1});
-  if (pairs.empty()) return {};
-  const Eigen::Vector3d& near = mesh.vertices[std::size_t(mesh.faces[std::size_t(pairs[0].face_a)][0])];
+  return pairs.empty() ? std::string() : snapped_crossing_message(mesh, pairs[0], grid);
+}
+
+std::string snapped_crossing_message(const PolygonMesh& mesh, const FacePair& pair, const kernel::Grid& grid) {
+  const Eigen::Vector3d& near = mesh.vertices[std::size_t(mesh.faces[std::size_t(pair.face_a)][0])];
   std::ostringstream out;
-  out << "faces " << pairs[0].face_a << " and " << pairs[0].face_b << " (near " << near.x() << ", " << near.y() << ", "
+  out << "faces " << pair.face_a << " and " << pair.face_b << " (near " << near.x() << ", " << near.y() << ", "
       << near.z() << ") meet when the vertices are snapped to the exact kernel's grid (step " << grid.name()
       << "): the mesh has features smaller than the grid step";
   return out.str();
@@ -617,81 +620,85 @@ void register_solids(BuiltinTable& table) {
            args.err() << "export: warning: " << warning << "\n";
          return {};
        }});
-  table.add({.name = "import",
-             .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om, .3mf, .glb) and builds its BSP solid. A closed, "
-                    "oriented 2-manifold that does not intersect itself bounds the solid; a closed mesh whose faces "
-                    "intersect or meet at non-manifold edges gives the region where its winding number is "
-                    "positive, and the import says what it resolved (strict=true refuses such a mesh instead).",
-             .params = {arg("file").string().shown_as("\"file.off\""), arg("strict").boolean().defaults(false)},
-             .run = [](const Arguments& args) -> Value {
-               const std::string path = args.input_path("file");
-               const bool strict = args.boolean("strict");
-               const PolygonMesh mesh = read_mesh(path);
-               // The topology first. The faces are searched for crossings once, in the mesh
-               // snapped to the grid (what the solid is built from); the mesh as read only when
-               // that finds one, to tell its own crossings from those snapping made. (A crossing
-               // below the grid step that snapping undoes is not reported.)
-               ValidationReport report = check_closed_manifold(mesh, {.check_self_intersections = false});
-               const PolygonMesh snapped = report.ok() ? snapped_to_grid(mesh, args.grid()) : PolygonMesh{};
-               const bool snapped_crosses = report.ok() && !find_self_intersections(snapped, {.max_pairs = 1}).empty();
-               if (!report.ok() || snapped_crosses) report = check_closed_manifold(mesh);
-               if (!report.ok()) {
-                 // A shell turned the wrong way (all faces inwards, or a cavity facing outwards) is
-                 // closed and manifold but bounds the wrong side: say so in those words.
-                 const bool misoriented = report.count(DefectKind::MisorientedShell) == report.defects.size();
-                 const std::string refusal = path +
-                                             (misoriented ? ": the faces of a shell are oriented the wrong way: "
-                                                          : " is not a closed manifold: ") +
-                                             report.summary(3);
-                 // An open mesh (or one beyond reading) bounds nothing: refused with what is open.
-                 const bool closed = report.count(DefectKind::OpenEdge) == 0 &&
-                                     report.count(DefectKind::InvalidIndex) == 0 &&
-                                     report.count(DefectKind::NonFiniteCoordinate) == 0;
-                 if (strict || misoriented || !closed) args.fail(refusal);
-                 return winding_import(args, mesh, path, resolved_defects(report), refusal);
-               }
-               // Snapping to the grid can make faces meet or fold where the mesh has features
-               // below the grid step; such features are collapsed as transforms do (every vertex
-               // within 4 grid steps of its place, docs/kernel.md, "What transforms do"), and the
-               // import fails only if that does not suffice.
-               std::string snap_error = snapped_crosses ? snapped_self_intersection(mesh, snapped, args.grid()) : "";
-               if (snap_error.empty()) {
-                 try {  // checked before and after snapping: the faces are the boundary (from_mesh.hpp)
-                   return solid_value(from_mesh(mesh, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
-                 } catch (const GeometryError& e) {
-                   snap_error = e.what();
-                 } catch (const InvalidInput& e) {
-                   // A face whose corners snap onto one line (two corners closer than a grid step,
-                   // as an exact solid's export can have): the collapse below removes it.
-                   snap_error = e.what();
-                 }
-               }
-               OutputRoundingReport rounding;
-               const PolygonMesh collapsed = round_for_output(mesh,
-                                                              {.precision = OutputPrecision::Grid,
-                                                               .max_feature = 4 * args.grid().step(),
-                                                               .triangles = true,
-                                                               .grid_step = args.grid().step(),
-                                                               .keep_copies = true},
-                                                              &rounding);
-               if (!rounding.clean) {
-                 // The snapped mesh still encloses a well-defined region: where its winding number is positive.
-                 if (strict) args.fail(path + ": " + snap_error);
-                 return winding_import(args, mesh, path,
-                                       "features below the grid step (" + args.grid().name() +
-                                           ") meet when its vertices are snapped to the grid",
-                                       "");
-               }
-               // Only warn when a feature was removed: every import snaps each vertex to its grid
-               // point (up to 0.87 steps), and the faces may only have been split into triangles
-               // that fit the grid; that changes nothing the user made.
-               if (const std::string removed = removed_features(rounding); !removed.empty())
-                 args.err() << "import: warning: " << path
-                            << ": features below 4 grid steps were collapsed to fit the grid (step "
-                            << args.grid().name() << "): " << removed << "; vertices moved by up to "
-                            << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";
-               return solid_value(from_mesh(collapsed, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
-             }});
+  table.add(
+      {.name = "import",
+       .doc = "Reads a mesh (.off, .obj, .stl, .ply, .om, .3mf, .glb) and builds its BSP solid. A closed, "
+              "oriented 2-manifold that does not intersect itself bounds the solid; a closed mesh whose faces "
+              "intersect or meet at non-manifold edges gives the region where its winding number is "
+              "positive, and the import says what it resolved (strict=true refuses such a mesh instead).",
+       .params = {arg("file").string().shown_as("\"file.off\""), arg("strict").boolean().defaults(false)},
+       .run = [](const Arguments& args) -> Value {
+         const std::string path = args.input_path("file");
+         const bool strict = args.boolean("strict");
+         const PolygonMesh mesh = read_mesh(path);
+         // The topology first. The faces are searched for crossings once, in the mesh
+         // snapped to the grid (what the solid is built from); the mesh as read only when
+         // that finds one, to tell its own crossings from those snapping made. (A crossing
+         // below the grid step that snapping undoes is not reported.)
+         ValidationReport report = check_closed_manifold(mesh, {.check_self_intersections = false});
+         const PolygonMesh snapped = report.ok() ? snapped_to_grid(mesh, args.grid()) : PolygonMesh{};
+         const std::vector<FacePair> snapped_pairs =
+             report.ok() ? find_self_intersections(snapped, {.max_pairs = 1}) : std::vector<FacePair>{};
+         const bool snapped_crosses = !snapped_pairs.empty();
+         if (!report.ok() || snapped_crosses) report = check_closed_manifold(mesh);
+         if (!report.ok()) {
+           // A shell turned the wrong way (all faces inwards, or a cavity facing outwards) is
+           // closed and manifold but bounds the wrong side: say so in those words.
+           const bool misoriented = report.count(DefectKind::MisorientedShell) == report.defects.size();
+           const std::string refusal =
+               path +
+               (misoriented ? ": the faces of a shell are oriented the wrong way: " : " is not a closed manifold: ") +
+               report.summary(3);
+           // An open mesh (or one beyond reading) bounds nothing: refused with what is open.
+           const bool closed = report.count(DefectKind::OpenEdge) == 0 && report.count(DefectKind::InvalidIndex) == 0 &&
+                               report.count(DefectKind::NonFiniteCoordinate) == 0;
+           if (strict || misoriented || !closed) args.fail(refusal);
+           return winding_import(args, mesh, path, resolved_defects(report), refusal);
+         }
+         // Snapping to the grid can make faces meet or fold where the mesh has features
+         // below the grid step; such features are collapsed as transforms do (every vertex
+         // within 4 grid steps of its place, docs/kernel.md, "What transforms do"), and the
+         // import fails only if that does not suffice.
+         // (A crossing of the snapped mesh, the mesh as read being free of them: the first
+         // search's pair names it.)
+         std::string snap_error = snapped_crosses ? snapped_crossing_message(mesh, snapped_pairs[0], args.grid()) : "";
+         if (snap_error.empty()) {
+           try {  // checked before and after snapping: the faces are the boundary (from_mesh.hpp)
+             return solid_value(from_mesh(mesh, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
+           } catch (const GeometryError& e) {
+             snap_error = e.what();
+           } catch (const InvalidInput& e) {
+             // A face whose corners snap onto one line (two corners closer than a grid step,
+             // as an exact solid's export can have): the collapse below removes it.
+             snap_error = e.what();
+           }
+         }
+         OutputRoundingReport rounding;
+         const PolygonMesh collapsed = round_for_output(mesh,
+                                                        {.precision = OutputPrecision::Grid,
+                                                         .max_feature = 4 * args.grid().step(),
+                                                         .triangles = true,
+                                                         .grid_step = args.grid().step(),
+                                                         .keep_copies = true},
+                                                        &rounding);
+         if (!rounding.clean) {
+           // The snapped mesh still encloses a well-defined region: where its winding number is positive.
+           if (strict) args.fail(path + ": " + snap_error);
+           return winding_import(args, mesh, path,
+                                 "features below the grid step (" + args.grid().name() +
+                                     ") meet when its vertices are snapped to the grid",
+                                 "");
+         }
+         // Only warn when a feature was removed: every import snaps each vertex to its grid
+         // point (up to 0.87 steps), and the faces may only have been split into triangles
+         // that fit the grid; that changes nothing the user made.
+         if (const std::string removed = removed_features(rounding); !removed.empty())
+           args.err() << "import: warning: " << path
+                      << ": features below 4 grid steps were collapsed to fit the grid (step " << args.grid().name()
+                      << "): " << removed << "; vertices moved by up to "
+                      << format_number(rounding.max_move / args.grid().step()) << " grid steps\n";
+         return solid_value(from_mesh(collapsed, {.snapped_mesh_is_clean = true, .grid = args.grid()}));
+       }});
 }
 
 }  // namespace sculpt::language

@@ -14,6 +14,7 @@
 #include "bsp/solid.hpp"
 #include "language/interpreter.hpp"
 #include "language/value.hpp"
+#include "mesh/self_intersection.hpp"
 
 namespace sculpt::language {
 
@@ -107,6 +108,9 @@ std::string latest_solid_global(const Interpreter& interpreter);
 std::string snapped_self_intersection(const PolygonMesh& mesh, const kernel::Grid& grid);
 /// The same with the snapped copy made by the caller (snapped_to_grid(mesh, grid)).
 std::string snapped_self_intersection(const PolygonMesh& mesh, const PolygonMesh& snapped, const kernel::Grid& grid);
+/// The message for faces `pair` of the snapped copy of `mesh` meeting (what
+/// snapped_self_intersection says), for a caller that searched the snapped copy itself.
+std::string snapped_crossing_message(const PolygonMesh& mesh, const FacePair& pair, const kernel::Grid& grid);
 
 /// `mesh` with every vertex moved to its point of `grid`, the points from_mesh builds the solid on.
 PolygonMesh snapped_to_grid(const PolygonMesh& mesh, const kernel::Grid& grid);
