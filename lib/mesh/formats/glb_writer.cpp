@@ -8,11 +8,13 @@
 // rounding and the triangles go out in runs of 16-bit indices where the numbering allows
 // (index_runs: one primitive a run, all of them on one bufferView of positions).
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -52,6 +54,18 @@ void append_accessor(std::string& out, int view, std::uint64_t byte_offset, int 
   out += '"';
 }
 
+/// The smallest and largest coordinates of vertices [first, first + count) (count > 0).
+std::array<float, 6> bounds(const DisplayArrays& arrays, std::size_t first, std::size_t count) {
+  std::array<float, 6> b;
+  for (std::size_t k = 0; k < 3; ++k) b[k] = b[k + 3] = arrays.positions[3 * first + k];
+  for (std::size_t v = first; v < first + count; ++v)
+    for (std::size_t k = 0; k < 3; ++k) {
+      b[k] = std::min(b[k], arrays.positions[3 * v + k]);
+      b[k + 3] = std::max(b[k + 3], arrays.positions[3 * v + k]);
+    }
+  return b;
+}
+
 /// The JSON chunk (sec. 3: the glTF asset): positions first in the buffer, then each run's indices
 /// (4-byte aligned); one primitive a run, whose POSITION accessor starts at the run's base vertex.
 std::string gltf_json(const DisplayArrays& arrays, const std::vector<IndexRun>& runs, std::uint64_t index_bytes) {
@@ -73,18 +87,25 @@ std::string gltf_json(const DisplayArrays& arrays, const std::vector<IndexRun>& 
   out += R"(,"byteLength":)";
   append_int(out, index_bytes);
   out += R"(,"target":)" + std::to_string(glb::kElementArrayBuffer) + R"(}],"accessors":[)";
+  const auto vertex_count = std::uint32_t(arrays.positions.size() / 3);
+  std::optional<std::array<float, 6>> all_bounds;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const IndexRun& run = runs[r];
     if (r) out += ',';
-    // POSITION accessors carry the bounds of their elements (sec. 3.7.2.1).
+    // POSITION accessors carry the bounds of their elements (sec. 3.7.2.1): a run of 16-bit
+    // indices spans at most 65,536 vertices; a wide run spans them all, whose bounds are found once.
     float lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = arrays.positions[3 * std::size_t(run.base) + std::size_t(k)];
-    for (std::size_t v = run.base; v < run.base + run.vertices; ++v)
-      for (std::size_t k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], arrays.positions[3 * v + k]);
-        hi[k] = std::max(hi[k], arrays.positions[3 * v + k]);
-      }
-    append_accessor(out, 0, 12 * std::uint64_t(run.base), glb::kFloat, run.vertices, "VEC3");
+    if (run.wide) {
+      if (!all_bounds) all_bounds = bounds(arrays, 0, vertex_count);
+      std::copy_n(all_bounds->data(), 3, lo);
+      std::copy_n(all_bounds->data() + 3, 3, hi);
+    } else {
+      const std::array<float, 6> b = bounds(arrays, run.base, run.vertices);
+      std::copy_n(b.data(), 3, lo);
+      std::copy_n(b.data() + 3, 3, hi);
+    }
+    append_accessor(out, 0, 12 * std::uint64_t(run.wide ? 0 : run.base), glb::kFloat,
+                    run.wide ? vertex_count : run.vertices, "VEC3");
     out += R"(,"min":[)";
     for (int k = 0; k < 3; ++k) {
       append_float(out, lo[k]);

@@ -40,7 +40,8 @@ DisplayArrays triangle_arrays(const PolygonMesh& mesh);
 
 /// Consecutive triangles written as one glTF primitive (sec. 3.7.2): their indices as
 /// UNSIGNED_SHORT less `base` (its POSITION accessor starts at vertex `base`: sec. 3.6.2.4's
-/// byteOffset), or as UNSIGNED_INT with base 0 (`wide`).
+/// byteOffset), or as UNSIGNED_INT with base 0 (`wide`: its POSITION accessor covers every vertex,
+/// so that the bounds glTF asks of it are found once however many wide runs there are).
 struct IndexRun {
   std::size_t first = 0;          ///< the first triangle
   std::size_t triangles = 0;      ///< how many
