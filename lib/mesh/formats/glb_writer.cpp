@@ -54,7 +54,7 @@ void append_accessor(std::string& out, int view, std::uint64_t byte_offset, int 
   out += '"';
 }
 
-/// The smallest and largest coordinates of vertices [first, first + count) (count > 0).
+/// The smallest coordinates of vertices [first, first + count) (count > 0), then the largest.
 std::array<float, 6> bounds(const DisplayArrays& arrays, std::size_t first, std::size_t count) {
   std::array<float, 6> b;
   for (std::size_t k = 0; k < 3; ++k) b[k] = b[k + 3] = arrays.positions[3 * first + k];
@@ -94,26 +94,14 @@ std::string gltf_json(const DisplayArrays& arrays, const std::vector<IndexRun>& 
     if (r) out += ',';
     // POSITION accessors carry the bounds of their elements (sec. 3.7.2.1): a run of 16-bit
     // indices spans at most 65,536 vertices; a wide run spans them all, whose bounds are found once.
-    float lo[3], hi[3];
-    if (run.wide) {
-      if (!all_bounds) all_bounds = bounds(arrays, 0, vertex_count);
-      std::copy_n(all_bounds->data(), 3, lo);
-      std::copy_n(all_bounds->data() + 3, 3, hi);
-    } else {
-      const std::array<float, 6> b = bounds(arrays, run.base, run.vertices);
-      std::copy_n(b.data(), 3, lo);
-      std::copy_n(b.data() + 3, 3, hi);
-    }
+    if (run.wide && !all_bounds) all_bounds = bounds(arrays, 0, vertex_count);
+    const std::array<float, 6> b = run.wide ? *all_bounds : bounds(arrays, run.base, run.vertices);
     append_accessor(out, 0, 12 * std::uint64_t(run.wide ? 0 : run.base), glb::kFloat,
                     run.wide ? vertex_count : run.vertices, "VEC3");
     out += R"(,"min":[)";
-    for (int k = 0; k < 3; ++k) {
-      append_float(out, lo[k]);
-      out += k < 2 ? "," : R"(],"max":[)";
-    }
-    for (int k = 0; k < 3; ++k) {
-      append_float(out, hi[k]);
-      out += k < 2 ? "," : "]},";
+    for (std::size_t k = 0; k < 6; ++k) {
+      append_float(out, b[k]);
+      out += k == 2 ? R"(],"max":[)" : k == 5 ? "]}," : ",";
     }
     append_accessor(out, 1, run.byte_offset, run.wide ? glb::kUnsignedInt : glb::kUnsignedShort,
                     3 * std::uint64_t(run.triangles), "SCALAR");
