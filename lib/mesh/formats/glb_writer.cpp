@@ -191,12 +191,7 @@ DisplayArrays triangle_arrays(const PolygonMesh& mesh) {
 }
 
 IndexRun whole_run(std::span<const std::uint32_t> indices) {
-  if (indices.empty()) return {};
-  return {.first = 0,
-          .triangles = indices.size() / 3,
-          .base = 0,
-          .vertices = *std::max_element(indices.begin(), indices.end()) + 1,
-          .wide = true};
+  return {.first = 0, .triangles = indices.size() / 3, .wide = true};
 }
 
 std::vector<IndexRun> index_runs(std::span<const std::uint32_t> indices) {
@@ -209,12 +204,11 @@ std::vector<IndexRun> index_runs(std::span<const std::uint32_t> indices) {
     const bool wide = hi - lo > kSpan;
     if (!runs.empty()) {
       IndexRun& run = runs.back();
-      const std::uint32_t top = run.base + run.vertices - 1;
       if (run.wide && wide) {
-        run.vertices = std::max(top, hi) + 1;  // (base 0)
         ++run.triangles;
         continue;
       }
+      const std::uint32_t top = run.base + run.vertices - 1;
       if (!run.wide && !wide && std::max(top, hi) - std::min(run.base, lo) <= kSpan) {
         const std::uint32_t base = std::min(run.base, lo);
         run.vertices = std::max(top, hi) - base + 1;
@@ -223,8 +217,8 @@ std::vector<IndexRun> index_runs(std::span<const std::uint32_t> indices) {
         continue;
       }
     }
-    runs.push_back(wide ? IndexRun{.first = t, .triangles = 1, .base = 0, .vertices = hi + 1, .wide = true}
-                        : IndexRun{.first = t, .triangles = 1, .base = lo, .vertices = hi - lo + 1, .wide = false});
+    runs.push_back(wide ? IndexRun{.first = t, .triangles = 1, .wide = true}
+                        : IndexRun{.first = t, .triangles = 1, .base = lo, .vertices = hi - lo + 1});
   }
   // Without locality the runs would be many and short: one run of UNSIGNED_INT instead.
   if (runs.size() > 1 + triangles / 4096) runs = {whole_run(indices)};
@@ -238,9 +232,7 @@ std::string encode_glb(const PolygonMesh& mesh) {
   const DisplayArrays arrays =
       triangle_arrays(round_for_output(mesh, {.precision = OutputPrecision::Float32, .triangles = true}));
   if (arrays.indices.empty()) return pack_glb(arrays, {});
-  IndexRun run = whole_run(arrays.indices);
-  run.vertices = std::uint32_t(arrays.positions.size() / 3);
-  return pack_glb(arrays, {run});
+  return pack_glb(arrays, {whole_run(arrays.indices)});
 }
 
 std::string encode_display_glb(const DisplayArrays& arrays) { return pack_glb(arrays, index_runs(arrays.indices)); }

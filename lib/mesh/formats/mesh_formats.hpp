@@ -45,8 +45,8 @@ DisplayArrays triangle_arrays(const PolygonMesh& mesh);
 struct IndexRun {
   std::size_t first = 0;          ///< the first triangle
   std::size_t triangles = 0;      ///< how many
-  std::uint32_t base = 0;         ///< the POSITION accessor's first vertex
-  std::uint32_t vertices = 0;     ///< its count: the run's indices lie in [base, base + vertices)
+  std::uint32_t base = 0;         ///< a 16-bit run: its POSITION accessor's first vertex
+  std::uint32_t vertices = 0;     ///< and count (its indices lie in [base, base + vertices))
   bool wide = false;              ///< UNSIGNED_INT indices
   std::uint64_t byte_offset = 0;  ///< (set by the writer) where its indices start in their view
 };
