@@ -274,13 +274,15 @@ def curves(driver, state, wait_for):
     driver.find_element(By.ID, "view-iso").click()
 
 
-def fine_mesh(state, wait_for):
+def fine_mesh(driver, state, wait_for):
     """A part of more than 65,536 vertices goes out with its indices in 16-bit runs over windows of
     vertices (mesh/mesh_io.hpp, encode_glb_for_display): the page's triangles must enclose the
-    part's volume, in the first scene and in the next one (which reuses the first's index array)."""
+    part's volume, in the first scene and in the next one (which reuses the first's index array).
+    More than 250,000 triangles make a large scene, whose flat mode lights diffusely only (a shader
+    of the page's own): it must draw the part in its colour and clip it at the section plane."""
     for k in range(2):
         scenes = state("sculptView.state.scenes")
-        write('show(sphere(1, segments=400), name="fine")  # %d\n' % k)
+        write('show(sphere(1, segments=512), name="fine", color="blue")  # %d\n' % k)
         check(wait_for("sculptView.state.scenes > %d && sculptView.state.parts.length == 1 && "
                        "sculptView.state.parts[0].name == 'fine'" % scenes, 10), "the page gets the fine sphere")
         got = state("sculptView.meshVolume(0)")
@@ -289,6 +291,26 @@ def fine_mesh(state, wait_for):
         print("  fine sphere, scene %d: %d triangles, volume %.9f in the page, %.9f sent" % (k, got["triangles"], got["volume"], want))
         check(triangles > 2 * 65536 and got["triangles"] == triangles, "the page holds every triangle (%d of %d)" % (got["triangles"], triangles))
         check(abs(got["volume"] - want) < 1e-5 * want, "the page's triangles enclose the part's volume (%.9f, %.9f)" % (got["volume"], want))
+    check(state("sculptView.state.large && sculptView.state.parts[0].mesh.material.type") == "ShaderMaterial",
+          "a scene of %d triangles is large: its flat mode uses the diffuse-only material" % triangles)
+    driver.find_element(By.ID, "fit").click()
+    drawn = state("sculptView.pixels(%s)" % BLUE)
+    print("  large scene: %d model pixels, %d of them blue" % (drawn["model"], drawn["near"]))
+    # (The most brightly lit pixels saturate a channel and change hue, as with the standard material.)
+    check(drawn["model"] > 50000 and drawn["near"] > 0.6 * drawn["model"],
+          "the diffuse-only material draws the part lit in its colour (%d of %d pixels)" % (drawn["near"], drawn["model"]))
+    # The section (as the earlier steps left it): the cap on the plane is drawn where nothing
+    # nearer hides it, so it shows only if the material discards the sphere's cut-away part.
+    driver.find_element(By.ID, "section").click()
+    axis = state("document.getElementById('section-axis').value")
+    centre = [0.0, 0.0, 0.0]
+    centre["xyz".index(axis)] = state("sculptView.state.sectionValue")
+    cap = [state("sculptView.capShade") * c for c in BLUE]
+    at = state("sculptView.colorAt(%s, %s)" % (centre, cap))
+    print("  large scene cut at %s = %.3f: %s at the cut's centre, %d cap pixels" % (axis, max(centre, key=abs), at["rgb"], at["exact"]))
+    driver.save_screenshot(os.path.join(outdir, "view_large_section.png"))
+    check(at["exact"] > 5000, "the diffuse-only material is clipped by the section plane (%d cap pixels)" % at["exact"])
+    driver.find_element(By.ID, "section").click()
 
 
 write(GOOD)
@@ -407,7 +429,7 @@ try:
     curves(driver, state, wait_for)
 
     # 8. A part too large for 16-bit indices alone arrives whole.
-    fine_mesh(state, wait_for)
+    fine_mesh(driver, state, wait_for)
 
     # 9. The REPL's :view follows the session: its last solid, then what it shows.
     repl_view(driver, state, wait_for)
