@@ -97,4 +97,22 @@ bool edges_paired(const PolygonMesh& mesh) {
   return true;
 }
 
+std::vector<std::array<int, 3>> triangle_neighbours(const PolygonMesh& mesh) {
+  std::vector<std::array<int, 3>> across(mesh.faces.size(), {-1, -1, -1});
+  const std::vector<HalfEdgeRecord> records = sorted_edge_records(mesh);
+  for (size_t i = 0; i < records.size();) {
+    size_t end = i + 1;  // [i, end): the uses of one edge
+    while (end < records.size() && records[end].lo == records[i].lo && records[end].hi == records[i].hi) ++end;
+    const HalfEdgeRecord& a = records[i];
+    const HalfEdgeRecord& b = records[end - 1];
+    if (end - i == 2 && a.forward != b.forward && mesh.faces[size_t(a.face)].size() == 3 &&
+        mesh.faces[size_t(b.face)].size() == 3) {
+      across[size_t(a.face)][size_t(a.corner)] = b.face;
+      across[size_t(b.face)][size_t(b.corner)] = a.face;
+    }
+    i = end;
+  }
+  return across;
+}
+
 }  // namespace sculpt

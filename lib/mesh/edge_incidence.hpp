@@ -3,6 +3,7 @@
 /// Edge-face incidence of a polygon mesh as a sorted list of half-edge records, shared by
 /// measures and validation (no half-edge structure is built, so non-manifold input is fine).
 
+#include <array>
 #include <string_view>
 #include <vector>
 
@@ -28,6 +29,12 @@ std::vector<HalfEdgeRecord> sorted_edge_records(const PolygonMesh& mesh);
 /// aside): a closed, consistently oriented surface whose sheets meet only at copies of a vertex,
 /// what mesh assembly promises (bsp/assembly). \pre face indices are valid.
 bool edges_paired(const PolygonMesh& mesh);
+
+/// The face across each side of each triangle: entry k of face f is the face that uses the edge
+/// from corner k to corner k + 1 of f in the other direction, when it is a triangle and these are
+/// the edge's only two uses; else -1 (and all three for a face that is not a triangle).
+/// \pre face indices are valid.
+std::vector<std::array<int, 3>> triangle_neighbours(const PolygonMesh& mesh);
 
 /// \throw InvalidInput naming `who` if a face has fewer than 3 corners or an index is out of range.
 void check_face_indices(const PolygonMesh& mesh, std::string_view who);

@@ -16,6 +16,7 @@
 #include "bsp/primitives.hpp"
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
+#include "bsp/tree/tree_arena.hpp"
 #include "kernel/grid.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_measures.hpp"
@@ -177,6 +178,72 @@ TEST(FromMesh, ACleanImportKeepsItsTrianglesForItsBoundaryAndTurns) {
   EXPECT_NEAR(volume(turned), mesh_volume(turned_mesh), 1e-5 * mesh_volume(turned_mesh));
   EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(turned)));
   expect_same_point_set(turned, turned_mesh, 500, 4);
+}
+
+// Bernstein & Fussell 2009, sec. 3: a polygon's edge may lie on any plane through it. An import's
+// triangles take the support of the triangle across each side (or its opposite) where the two are
+// not nearly parallel, their own transverse plane elsewhere. By the definition, checked exactly on
+// the grid points: every corner's edge plane contains the side's two ends and leaves the third
+// corner strictly on its negative side, and the corner is the support ∩ p ∩ q it names (p and q
+// contain it). Meshes: a faceted sphere (no coplanar neighbours: one plane per triangle, and an
+// opposite for some), a box split into triangles (each face's two triangles coplanar: transverse planes
+// there; supports across the convex edges), an L-shaped prism (concave edges: opposites), and the bunny.
+TEST(FromMesh, TriangleSidesLieOnPlanesThroughThem) {
+  PolygonMesh l_shape;  // an L-shaped prism: the extrusion of an L, two concave edges
+  const double xy[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  for (double z : {0.0, 1.0})
+    for (const auto& p : xy) l_shape.vertices.emplace_back(p[0], p[1], z);
+  l_shape.faces.push_back({5, 4, 3, 2, 1, 0});
+  l_shape.faces.push_back({6, 7, 8, 9, 10, 11});
+  for (int i = 0; i < 6; ++i) l_shape.faces.push_back({i, (i + 1) % 6, (i + 1) % 6 + 6, i + 6});
+  const struct {
+    std::string name;
+    PolygonMesh mesh;
+  } cases[] = {{"sphere", triangulate(to_mesh(sphere(1.0, {.segments = 24})))},
+               {"box", triangulate(to_mesh(box({0, 0, 0}, {1, 2, 3})))},
+               {"L", triangulate(l_shape)},
+               {"bunny", bunny()}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const PolygonMesh grid_mesh = snapped(c.mesh);
+    const Solid s = from_mesh(c.mesh, {.snapped_mesh_is_clean = true});
+    bsp::detail::Arena arena;
+    arena.append(s);
+    const FragmentList fragments = arena.boundary_of(s);
+    ASSERT_EQ(fragments.size(), grid_mesh.faces.size());
+    std::set<std::int32_t> planes_used;
+    for (std::size_t k = 0; k < fragments.size(); ++k) {
+      const kernel::ConvexPolygon& poly = fragments[k].polygon;
+      ASSERT_EQ(poly.corners.size(), 3u);
+      kernel::GridPoint v[3];
+      for (std::size_t i = 0; i < 3; ++i) {
+        const kernel::ApproxPoint at = poly.corners[i].at();
+        ASSERT_EQ(at.err, 0);  // an import's corners are its grid points
+        v[i] = {std::int64_t(at.x), std::int64_t(at.y), std::int64_t(at.z)};
+      }
+      planes_used.insert(poly.support);
+      for (std::size_t i = 0; i < 3; ++i) {
+        const kernel::Corner& corner = poly.corners[i];
+        const kernel::Plane& edge = arena.planes[corner.edge];
+        planes_used.insert(corner.edge);
+        EXPECT_EQ(arena.planes[poly.support].eval(v[i]), 0);
+        EXPECT_EQ(edge.eval(v[i]), 0) << k << " " << i;
+        EXPECT_EQ(edge.eval(v[(i + 1) % 3]), 0) << k << " " << i;
+        EXPECT_LT(edge.eval(v[(i + 2) % 3]), 0) << k << " " << i;
+        EXPECT_EQ(arena.planes[corner.p].eval(v[i]), 0) << k << " " << i;
+        EXPECT_EQ(arena.planes[corner.q].eval(v[i]), 0) << k << " " << i;
+        EXPECT_NE(corner.p, corner.q);
+      }
+    }
+    // Four planes a triangle before; now the supports, some opposites and the few transverse planes.
+    const std::size_t triangles = fragments.size();
+    EXPECT_LE(planes_used.size(), 3 * triangles) << "planes " << planes_used.size() << ", triangles " << triangles;
+    if (c.name == "sphere" || c.name == "bunny") {
+      EXPECT_LE(planes_used.size(), 2 * triangles) << "planes " << planes_used.size() << ", triangles " << triangles;
+    }
+    EXPECT_EQ(volume(s), mesh_volume(grid_mesh));
+    EXPECT_TRUE(checks::EdgesManifoldAndOriented(to_mesh(s)));
+  }
 }
 
 }  // namespace
