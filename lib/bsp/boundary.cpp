@@ -16,7 +16,8 @@ PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
   // (solid.hpp): a solid with boundary fragments is not a leaf. Otherwise it is extracted.
   // An import whose tree waits keeps the triangles it was made from: they are its exact boundary.
   if (!options.clean)
-    if (const PolygonMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid)) return *source;
+    if (const TriangleMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid))
+      return to_polygon_mesh(*source);
   const Solid::BoundaryView view = solid.boundary_view();
   const bool carried = view.fragments != nullptr && !view.fragments->empty();
   if (!carried && is_leaf(solid.root())) return {};
@@ -80,11 +81,11 @@ PolygonSoup boundary_soup(const Solid& solid) {
 // Measures from the boundary fragments (one implementation, compensated sums, for meshes and
 // solids: mesh/mesh_measures.hpp), without assembling the output mesh.
 double volume(const Solid& solid) {
-  if (const PolygonMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid)) return mesh_volume(*source);
+  if (const TriangleMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid)) return mesh_volume(*source);
   return soup_volume(boundary_soup(solid));
 }
 double surface_area(const Solid& solid) {
-  if (const PolygonMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid))
+  if (const TriangleMesh* source = bsp::detail::SolidAccess::deferred_source_mesh(solid))
     return mesh_surface_area(*source);
   return soup_surface_area(boundary_soup(solid));
 }

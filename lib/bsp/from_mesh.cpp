@@ -45,15 +45,15 @@ std::string folded_message(std::size_t face, const Eigen::Vector3d& near, const 
 
 /// The mesh at its snapped vertices (used ones only), when every face is a triangle that became
 /// one fragment (`fragments` of them): the fragments' boundary as a mesh (DeferredTree::source_mesh).
-std::shared_ptr<const PolygonMesh> source_triangles(const PolygonMesh& mesh, const std::vector<GridPoint>& g,
-                                                    std::size_t fragments, const kernel::Grid& grid) {
+std::shared_ptr<const TriangleMesh> source_triangles(const PolygonMesh& mesh, const std::vector<GridPoint>& g,
+                                                     std::size_t fragments, const kernel::Grid& grid) {
   if (fragments != mesh.faces.size()) return nullptr;  // a face was split or left out
-  auto source = std::make_shared<PolygonMesh>();
+  auto source = std::make_shared<TriangleMesh>();
   std::vector<int> index(g.size(), -1);
-  source->faces.reserve(mesh.faces.size());
+  source->triangles.reserve(mesh.faces.size());
   for (const auto& f : mesh.faces) {
     if (f.size() != 3) return nullptr;
-    std::vector<int>& out = source->faces.emplace_back(f);
+    std::array<int, 3>& out = source->triangles.emplace_back(std::array<int, 3>{f[0], f[1], f[2]});
     for (int& v : out) {
       int& at = index[std::size_t(v)];
       if (at < 0) {
@@ -356,7 +356,7 @@ Solid from_mesh(const PolygonMesh& mesh, const FromMeshOptions& options) {
     // the surface's orientation is outward (positive volume), in when it is turned inside out.
     std::optional<bool> far_in;
     if (volume6 != 0) far_in = volume6 < 0;
-    std::shared_ptr<const PolygonMesh> source = source_triangles(mesh, g, fragments.size(), grid);
+    std::shared_ptr<const TriangleMesh> source = source_triangles(mesh, g, fragments.size(), grid);
     return bsp::detail::SolidAccess::at_grid(
         bsp::detail::solid_from_boundary(std::move(table), std::move(fragments), far_in, build, std::move(source)),
         grid);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <string_view>
 
 #include "base/errors.hpp"
 #include "mesh/edge_incidence.hpp"
@@ -45,6 +46,24 @@ struct MeshFaces {
   [[nodiscard]] std::size_t size(std::size_t i) const { return mesh.faces[i].size(); }
   [[nodiscard]] const Eigen::Vector3d& point(std::size_t i, std::size_t k) const {
     return mesh.vertices[std::size_t(mesh.faces[i][k])];
+  }
+};
+/// \throw InvalidInput naming `who` if a triangle refers to a vertex the mesh does not have.
+void check_triangle_indices(const TriangleMesh& mesh, std::string_view who) {
+  const auto n = static_cast<long long>(mesh.vertices.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int id : mesh.triangles[t])
+      if (id < 0 || id >= n)
+        throw InvalidInput(std::string(who) + ": triangle " + std::to_string(t) + " refers to vertex " +
+                           std::to_string(id) + " but the mesh has " + std::to_string(n) + " vertices");
+}
+
+struct TriangleFaces {
+  const TriangleMesh& mesh;
+  [[nodiscard]] std::size_t count() const { return mesh.triangles.size(); }
+  [[nodiscard]] static std::size_t size(std::size_t) { return 3; }
+  [[nodiscard]] const Eigen::Vector3d& point(std::size_t i, std::size_t k) const {
+    return mesh.vertices[std::size_t(mesh.triangles[i][k])];
   }
 };
 struct SoupFaces {
@@ -100,6 +119,16 @@ double mesh_volume(const PolygonMesh& mesh) {
 double mesh_surface_area(const PolygonMesh& mesh) {
   check_face_indices(mesh, "mesh_surface_area");
   return area_of(MeshFaces{mesh});
+}
+
+double mesh_volume(const TriangleMesh& mesh) {
+  check_triangle_indices(mesh, "mesh_volume");
+  return volume_of(TriangleFaces{mesh});
+}
+
+double mesh_surface_area(const TriangleMesh& mesh) {
+  check_triangle_indices(mesh, "mesh_surface_area");
+  return area_of(TriangleFaces{mesh});
 }
 
 double soup_volume(const PolygonSoup& soup) { return volume_of(SoupFaces{soup}); }

@@ -14,9 +14,12 @@ namespace sculpt {
 /// fan tetrahedra (v0, vi, vi+1) against a reference point, / 6 (divergence theorem).
 /// Positive for outward (counter-clockwise from outside) faces. Meaningless for open meshes.
 double mesh_volume(const PolygonMesh& mesh);
+/// The same for a triangle mesh (the same sums in the same order: equal to the PolygonMesh's).
+double mesh_volume(const TriangleMesh& mesh);
 
 /// Sum of face areas (half the norm of each face's Newell normal; exact for planar faces).
 double mesh_surface_area(const PolygonMesh& mesh);
+double mesh_surface_area(const TriangleMesh& mesh);
 
 /// Polygons given by their points, each its own (no vertex shared): polygon i is points
 /// [offsets[i], offsets[i + 1]). For measures of a surface that is tiled but not assembled (a

@@ -76,5 +76,51 @@ TEST(EdgesPaired, AgreesWithCountingOnRandomFaceSets) {
   EXPECT_LT(paired, 2900);
 }
 
+// triangle_neighbours against its definition by brute force: for side k of triangle f (from
+// corner k to k + 1), the one other face that runs the same edge backwards, when the edge has just
+// these two uses (counted over every face's sides, degenerate sides aside) and both faces are
+// triangles. Random small meshes of triangles and quadrilaterals on a few vertices, with repeated
+// corners, flipped, repeated and extra faces.
+TEST(TriangleNeighbours, AgreeWithTheDefinitionOnRandomFaceSets) {
+  std::mt19937 rng(11);
+  int found = 0, missing = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    PolygonMesh m = trial % 2 ? test_shapes::octahedron() : test_shapes::tetrahedron();
+    const int nv = int(m.vertices.size());
+    std::uniform_int_distribution<int> vertex(0, nv - 1), coin(0, 3);
+    if (coin(rng) == 0) m.faces.push_back({vertex(rng), vertex(rng), vertex(rng)});
+    if (coin(rng) == 0) m.faces.push_back({vertex(rng), vertex(rng), vertex(rng), vertex(rng)});
+    if (coin(rng) == 0)
+      m.faces.erase(m.faces.begin() + std::uniform_int_distribution<long>(0, long(m.faces.size()) - 1)(rng));
+    if (coin(rng) == 0) std::reverse(m.faces[0].begin(), m.faces[0].end());
+    if (coin(rng) == 0) m.faces.push_back(m.faces[std::uniform_int_distribution<size_t>(0, m.faces.size() - 1)(rng)]);
+    std::map<std::pair<int, int>, int> uses;  // undirected edge -> its sides' count
+    for (const auto& f : m.faces)
+      for (size_t k = 0; k < f.size(); ++k) {
+        const int a = f[k], b = f[(k + 1) % f.size()];
+        if (a != b) ++uses[{std::min(a, b), std::max(a, b)}];
+      }
+    const std::vector<std::array<int, 3>> got = triangle_neighbours(m);
+    ASSERT_EQ(got.size(), m.faces.size());
+    for (size_t fi = 0; fi < m.faces.size(); ++fi)
+      for (size_t k = 0; k < 3; ++k) {
+        int expected = -1;
+        const auto& f = m.faces[fi];
+        const int a = f[k], b = f[(k + 1) % f.size()];
+        if (f.size() == 3 && a != b && uses[{std::min(a, b), std::max(a, b)}] == 2)
+          for (size_t g = 0; g < m.faces.size(); ++g) {
+            const auto& h = m.faces[g];
+            if (h.size() != 3) continue;
+            for (size_t j = 0; j < 3; ++j)
+              if (h[j] == b && h[(j + 1) % 3] == a && !(g == fi && j == k)) expected = int(g);
+          }
+        ASSERT_EQ(got[fi][k], expected) << "trial " << trial << " face " << fi << " side " << k;
+        (expected >= 0 ? found : missing) += 1;
+      }
+  }
+  EXPECT_GT(found, 1000);
+  EXPECT_GT(missing, 1000);
+}
+
 }  // namespace
 }  // namespace sculpt

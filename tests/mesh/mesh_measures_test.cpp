@@ -83,6 +83,23 @@ TEST(Measures, SphereApproachesAnalyticValues) {
   EXPECT_EQ(genus(s), 0);
 }
 
+// A TriangleMesh's measures are the PolygonMesh's with the same faces: the same sums in the same
+// order, so equal to the last bit (a solid made from a mesh measures itself from one).
+TEST(Measures, ATriangleMeshMeasuresAsThePolygonMeshOfItsFaces) {
+  const PolygonMesh t = test_shapes::torus(24, 12);
+  TriangleMesh tm{.vertices = t.vertices, .triangles = {}};
+  for (const auto& f : t.faces)
+    for (size_t k = 1; k + 1 < f.size(); ++k) tm.triangles.push_back({f[0], f[k], f[k + 1]});
+  const PolygonMesh back = to_polygon_mesh(tm);
+  ASSERT_EQ(back.faces.size(), tm.triangles.size());
+  EXPECT_EQ(mesh_volume(tm), mesh_volume(back));
+  EXPECT_EQ(mesh_surface_area(tm), mesh_surface_area(back));
+  EXPECT_NEAR(mesh_volume(tm), mesh_volume(t), 1e-12 * mesh_volume(t));
+  tm.triangles[5][1] = int(tm.vertices.size());
+  EXPECT_THROW(mesh_volume(tm), InvalidInput);
+  EXPECT_THROW(mesh_surface_area(tm), InvalidInput);
+}
+
 TEST(Measures, OpenMeshHasNoGenusAndBadIndicesThrow) {
   PolygonMesh c = test_shapes::unit_cube();
   c.faces.pop_back();

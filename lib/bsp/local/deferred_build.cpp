@@ -9,7 +9,7 @@
 namespace sculpt::bsp::detail {
 
 DeferredBuild::DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
-                             const AutopartitionOptions& options, std::shared_ptr<const PolygonMesh> source)
+                             const AutopartitionOptions& options, std::shared_ptr<const TriangleMesh> source)
     : planes_(std::move(planes)),
       fragments_(std::move(fragments)),
       far_in_(far_in),
@@ -32,7 +32,7 @@ Solid DeferredBuild::build() {
 }
 
 Solid solid_from_boundary(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
-                          const AutopartitionOptions& options, std::shared_ptr<const PolygonMesh> source) {
+                          const AutopartitionOptions& options, std::shared_ptr<const TriangleMesh> source) {
   if (fragments.empty()) {
     if (!far_in) throw std::logic_error("solid_from_boundary: no fragments and no status");
     return Solid::leaf(*far_in);

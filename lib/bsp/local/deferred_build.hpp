@@ -20,14 +20,14 @@ class DeferredBuild final : public DeferredTree {
   /// `fragments` (on `planes`) tile a closed, consistently oriented surface; `far_in` is the
   /// status far from it, when known.
   DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
-                const AutopartitionOptions& options, std::shared_ptr<const PolygonMesh> source = {});
+                const AutopartitionOptions& options, std::shared_ptr<const TriangleMesh> source = {});
   /// The tree made by `build` instead (a solid with the same boundary: a primitive's own tree).
   DeferredBuild(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
                 std::function<Solid()> build);
   [[nodiscard]] const kernel::PlaneTable& planes() const override { return planes_; }
   [[nodiscard]] const FragmentList& boundary() const override { return fragments_; }
   [[nodiscard]] std::optional<bool> far_in() const override { return far_in_; }
-  [[nodiscard]] const PolygonMesh* source_mesh() const override { return source_.get(); }
+  [[nodiscard]] const TriangleMesh* source_mesh() const override { return source_.get(); }
   Solid build() override;
 
  private:
@@ -36,14 +36,14 @@ class DeferredBuild final : public DeferredTree {
   std::optional<bool> far_in_;
   AutopartitionOptions options_;
   std::function<Solid()> build_;
-  std::shared_ptr<const PolygonMesh> source_;
+  std::shared_ptr<const TriangleMesh> source_;
 };
 
 /// The solid bounded by `fragments`, its tree deferred (see above); a leaf for no fragments
 /// (then `far_in` must be known: it is the leaf's status). At the default grid. `source`: the
 /// triangle mesh the fragments were made from, one per triangle (DeferredTree::source_mesh).
 Solid solid_from_boundary(kernel::PlaneTable planes, FragmentList fragments, std::optional<bool> far_in,
-                          const AutopartitionOptions& options = {}, std::shared_ptr<const PolygonMesh> source = {});
+                          const AutopartitionOptions& options = {}, std::shared_ptr<const TriangleMesh> source = {});
 
 /// The solid bounded by `fragments` whose tree, when first used, is `build()` (which must return
 /// a solid with exactly that boundary, at the default grid), e.g. a ring primitive's section-6

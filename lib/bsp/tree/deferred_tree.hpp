@@ -25,7 +25,7 @@ class DeferredTree {
   /// The boundary as the closed triangle mesh it was made from (every vertex a grid point, in
   /// world units; used vertices only), when known: what to_mesh without cleaning returns, so a
   /// general transform of an import does not assemble its fragments again. nullptr otherwise.
-  [[nodiscard]] virtual const PolygonMesh* source_mesh() const { return nullptr; }
+  [[nodiscard]] virtual const TriangleMesh* source_mesh() const { return nullptr; }
   /// The complete result (tree, boundary, at the default grid): exactly what the operation would
   /// have returned without deferring. The object is discarded after it returns. If it throws
   /// (Cancelled by Ctrl-C, out of memory), the object is unchanged and may be called again.

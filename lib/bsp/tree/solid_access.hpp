@@ -32,7 +32,7 @@ struct SolidAccess {
     return solid.deferred_ ? solid.deferred_->far_in() : std::nullopt;
   }
   /// A deferred solid's source mesh (DeferredTree::source_mesh), or nullptr.
-  static const PolygonMesh* deferred_source_mesh(const Solid& solid) {
+  static const TriangleMesh* deferred_source_mesh(const Solid& solid) {
     return solid.deferred_ ? solid.deferred_->source_mesh() : nullptr;
   }
   /// The free node and plane slots in-place operations keep in a solid's storage (tree_arena.hpp).
