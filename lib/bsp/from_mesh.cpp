@@ -70,7 +70,7 @@ std::shared_ptr<const TriangleMesh> source_triangles(const PolygonMesh& mesh, co
 /// signed volume of its triangles, and the first face that cannot be made, with its error.
 struct FaceRun {
   std::vector<Plane> planes;
-  std::vector<ConvexPolygon> polys;      ///< plane ids within the run, or neighbour_ref() (join_runs)
+  std::vector<ConvexPolygon> polys;      ///< plane ids within the run, or neighbour_ref() (join_planes)
   std::vector<std::int32_t> support_of;  ///< each face's one support plane in `planes`, or -1
   Int128 volume6 = 0;
   std::size_t bad_face = SIZE_MAX;
@@ -141,7 +141,7 @@ constexpr double kSharedEdgeSine = 1.0 / 256;
 /// across it, which contains the side's two grid points: that support (or its opposite, so that
 /// v is on its negative side) is the side's edge plane unless the two are nearly parallel
 /// (Bernstein & Fussell 2009, sec. 3: a polygon's edges are any planes through them). One plane
-/// per face instead of one per side: an import's planes are a quarter of what they were.
+/// per face instead of one per side: an import has fewer than half the planes it had.
 std::optional<std::int32_t> shared_edge(const Plane& s, const GridPoint* v, int i, int across,
                                         const std::vector<FacePlane>& planes) {
   if (across < 0) return std::nullopt;
