@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "base/assert.hpp"
+#include "base/index_iterator.hpp"
 
 namespace sculpt {
 
@@ -104,50 +105,8 @@ class ChunkedVector {
     }
   }
 
-  template <bool Const>
-  class Iterator {
-   public:
-    using iterator_category = std::random_access_iterator_tag;
-    using value_type = T;
-    using difference_type = std::ptrdiff_t;
-    using pointer = std::conditional_t<Const, const T*, T*>;
-    using reference = std::conditional_t<Const, const T&, T&>;
-    using Owner = std::conditional_t<Const, const ChunkedVector, ChunkedVector>;
-    Iterator() = default;
-    Iterator(Owner* owner, std::size_t i) : owner_(owner), i_(std::ptrdiff_t(i)) {}
-    reference operator*() const { return (*owner_)[std::size_t(i_)]; }
-    pointer operator->() const { return &**this; }
-    reference operator[](difference_type d) const { return (*owner_)[std::size_t(i_ + d)]; }
-    Iterator& operator++() { return *this += 1; }
-    Iterator& operator--() { return *this -= 1; }
-    Iterator operator++(int) {
-      Iterator old = *this;
-      ++i_;
-      return old;
-    }
-    Iterator operator--(int) {
-      Iterator old = *this;
-      --i_;
-      return old;
-    }
-    Iterator& operator+=(difference_type d) {
-      i_ += d;
-      return *this;
-    }
-    Iterator& operator-=(difference_type d) { return *this += -d; }
-    friend Iterator operator+(Iterator a, difference_type d) { return a += d; }
-    friend Iterator operator+(difference_type d, Iterator a) { return a += d; }
-    friend Iterator operator-(Iterator a, difference_type d) { return a -= d; }
-    friend difference_type operator-(const Iterator& a, const Iterator& b) { return a.i_ - b.i_; }
-    friend bool operator==(const Iterator& a, const Iterator& b) { return a.i_ == b.i_; }
-    friend auto operator<=>(const Iterator& a, const Iterator& b) { return a.i_ <=> b.i_; }
-
-   private:
-    Owner* owner_ = nullptr;
-    difference_type i_ = 0;
-  };
-  using iterator = Iterator<false>;
-  using const_iterator = Iterator<true>;
+  using iterator = IndexIterator<ChunkedVector, T&>;
+  using const_iterator = IndexIterator<const ChunkedVector, const T&>;
   iterator begin() { return {this, 0}; }
   iterator end() { return {this, size_}; }
   const_iterator begin() const { return {this, 0}; }

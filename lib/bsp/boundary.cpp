@@ -56,7 +56,7 @@ PolygonSoup boundary_soup(const Solid& solid) {
   const FragmentList& fragments = carried ? *view.fragments : extracted->fragments;
   const kernel::PlaneTable& planes = carried ? *view.planes : extracted->planes;
   soup.offsets.reserve(fragments.size() + 1);
-  for (const BoundaryFragment& f : fragments) soup.offsets.push_back(soup.offsets.back() + f.polygon.corners.size());
+  for (const FragmentRef f : fragments) soup.offsets.push_back(soup.offsets.back() + f.polygon.corners.size());
   soup.points.resize(soup.offsets.back());
   const kernel::Grid& grid = solid.grid();
   // Each fragment writes its own points (rounding is most of the work): the same soup for any
@@ -64,7 +64,7 @@ PolygonSoup boundary_soup(const Solid& solid) {
   constexpr std::size_t kChunk = 2048;
   parallel_chunks(fragments.size(), kChunk, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      const BoundaryFragment& f = fragments[i];
+      const FragmentRef f = fragments[i];
       const auto& corners = f.polygon.corners;
       Eigen::Vector3d* out = soup.points.data() + soup.offsets[i];
       for (std::size_t k = 0; k < corners.size(); ++k) {

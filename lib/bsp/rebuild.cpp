@@ -159,7 +159,7 @@ Solid rebuild_region(Solid&& solid, const Eigen::AlignedBox3d& region, const Reg
 Solid rebuild_region(Solid&& solid, const Solid& near, const RegionRebuildOptions& options, RegionRebuildStats* stats) {
   Eigen::AlignedBox3d box;  // grid units of near
   if (near.has_boundary()) {
-    for (const BoundaryFragment& f : near.boundary()) {
+    for (const FragmentRef f : near.boundary()) {
       const kernel::CornerBox b = kernel::corner_box(f.polygon);
       if (!b.valid) {
         box.setEmpty();

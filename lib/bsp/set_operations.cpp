@@ -443,10 +443,7 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
       return extra[k];
     };
     fa = std::move(extracted->fragments);
-    for (BoundaryFragment& f : fa) {
-      f.polygon.support = map(f.polygon.support);
-      for (auto& c : f.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
-    }
+    fa.renumber_planes(map);
   } else {
     fa = std::move(*arena.boundary);
   }
@@ -519,7 +516,8 @@ Solid complement(const Solid& a) {
   TreeRef r = arena.append(a);
   if (a.has_boundary()) {
     arena.boundary = arena.boundary_of(a);
-    for (BoundaryFragment& f : *arena.boundary) f.flip = !f.flip;
+    FragmentList& fragments = *arena.boundary;
+    for (std::size_t i = 0; i < fragments.size(); ++i) fragments.set_flip(i, !fragments[i].flip);
   }
   bsp::detail::complement_in_place(arena, r);
   return SolidAccess::at_grid(bsp::detail::compact(arena, r), a.grid());

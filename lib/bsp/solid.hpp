@@ -37,6 +37,7 @@
 
 #include "base/chunked_vector.hpp"
 #include "base/errors.hpp"
+#include "bsp/fragment_list.hpp"
 #include "bsp/tree/fragment_boxes.hpp"
 #include "bsp/tree/free_slots.hpp"
 #include "kernel/convex_polygon.hpp"
@@ -60,16 +61,6 @@ struct BspNode {
   TreeRef negative;     ///< subtree on the side f < 0
   TreeRef positive;     ///< subtree on the side f > 0
 };
-
-/// A convex piece of a solid's boundary on one of its planes (corners counter-clockwise about the
-/// plane's normal) and the side its outward normal points to.
-struct BoundaryFragment {
-  kernel::ConvexPolygon polygon;
-  bool flip = false;  ///< true: the outward normal is the plane's negative normal
-};
-/// Boundary fragments: indexed like a vector, never relocated as the list grows (in-place set
-/// operations append to a workpiece's boundary; base/chunked_vector.hpp).
-using FragmentList = ChunkedVector<BoundaryFragment>;
 
 /// The node polygons of a tree: indexed like a vector, never relocated as it grows (see
 /// base/chunked_vector.hpp; in-place set operations append to a workpiece's polygons).

@@ -47,7 +47,7 @@ FragmentList map_fragments(const FragmentList& fragments, auto&& mapped, const s
                            bool mirror) {
   FragmentList boundary;
   boundary.reserve(fragments.size());
-  for (const BoundaryFragment& f : fragments) {
+  for (const FragmentRef f : fragments) {
     kernel::ConvexPolygon poly;
     poly.support = mapped(f.polygon.support);
     const auto& c = f.polygon.corners;

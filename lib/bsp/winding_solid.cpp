@@ -119,8 +119,8 @@ std::vector<std::vector<UsedPiece>> used_pieces(Arena& arena, TreeRef root, cons
   std::vector<std::pair<ConvexPolygon, TreeRef>> stack;
   ConvexPolygon neg, pos;
   CancelPoll poll;
-  for (const BoundaryFragment& f : fragments) {
-    stack.emplace_back(f.polygon, root);
+  for (const FragmentRef f : fragments) {
+    stack.emplace_back(ConvexPolygon::copy_of(f.polygon), root);
     while (!stack.empty()) {
       poll.tick();
       auto [poly, at] = std::move(stack.back());

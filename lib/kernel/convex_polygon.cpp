@@ -57,7 +57,7 @@ void refresh_world_corners(const PlaneTable& planes, ConvexPolygon& poly) {
       c.set_at(approximate_vertex(planes[poly.support], planes[c.p], planes[c.q]));
 }
 
-CornerBox corner_box(const ConvexPolygon& poly) {
+CornerBox corner_box(PolygonView poly) {
   CornerBox b;
   if (poly.corners.empty()) return b;
   for (int i = 0; i < 3; ++i) b.lo[i] = 1e300, b.hi[i] = -1e300;
@@ -75,10 +75,10 @@ CornerBox corner_box(const ConvexPolygon& poly) {
 
 namespace {
 
-Side box_side(const ConvexPolygon& poly, const Plane& s) { return box_side(corner_box(poly), s); }
+Side box_side(PolygonView poly, const Plane& s) { return box_side(corner_box(poly), s); }
 
 template <typename F>
-void signs_of(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane, F&& f) {
+void signs_of(const PlaneTable& planes, PolygonView poly, std::int32_t plane, F&& f) {
   const Plane& s = planes[poly.support];
   const Plane cut = planes[plane];  // a copy: f's stores may alias a reference
   std::uint64_t decided = 0;  // filter decisions inline (orient's own filter, counted at the end)
@@ -96,7 +96,7 @@ void signs_of(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t 
 
 }  // namespace
 
-Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane) {
+Side classify(const PlaneTable& planes, PolygonView poly, std::int32_t plane) {
   const Side quick = box_side(poly, planes[plane]);
   if (quick != Side::Both) return quick;
   bool neg = false, pos = false;
@@ -107,7 +107,7 @@ Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t 
   return neg ? (pos ? Side::Both : Side::Negative) : (pos ? Side::Positive : Side::On);
 }
 
-Side split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut, std::int32_t cut_opposite,
+Side split(const PlaneTable& planes, PolygonView poly, std::int32_t cut, std::int32_t cut_opposite,
            ConvexPolygon& negative, ConvexPolygon& positive) {
   // No corner-box test first (classify() has one): the box costs a pass over the corners like the
   // filtered signs it would spare, and when it is undecided the signs are needed as well (5 % fewer
@@ -149,8 +149,7 @@ Side split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut
   return Side::Both;
 }
 
-PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
-                   std::int32_t cut_opposite) {
+PolygonSplit split(const PlaneTable& planes, PolygonView poly, std::int32_t cut, std::int32_t cut_opposite) {
   PolygonSplit out;
   out.side = split(planes, poly, cut, cut_opposite, out.negative, out.positive);
   return out;
@@ -168,7 +167,7 @@ void extend(CornerBox& b, const ApproxPoint& at) {
 
 }  // namespace
 
-Side clip_to_negative_exact(const PlaneTable& planes, const ConvexPolygon& in, ConvexPolygon& out, CornerBox& box,
+Side clip_to_negative_exact(const PlaneTable& planes, PolygonView in, ConvexPolygon& out, CornerBox& box,
                             std::int32_t cut) {
   const Plane c = planes[cut];  // a copy: the sign stores below may alias a reference
   const std::size_t k = in.corners.size();
@@ -218,7 +217,7 @@ Side clip_to_negative_exact(const PlaneTable& planes, const ConvexPolygon& in, C
   return Side::Both;
 }
 
-std::vector<Eigen::Vector3d> approximate_corners(const ConvexPolygon& poly) {
+std::vector<Eigen::Vector3d> approximate_corners(PolygonView poly) {
   std::vector<Eigen::Vector3d> out;
   out.reserve(poly.corners.size());
   for (const Corner& c : poly.corners) out.emplace_back(c.at().x, c.at().y, c.at().z);

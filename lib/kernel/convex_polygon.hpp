@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "base/assert.hpp"
@@ -52,6 +53,14 @@ struct Corner {
 };
 static_assert(sizeof(Corner) == 40);
 
+/// A convex polygon read where it is stored (a ConvexPolygon, or a fragment of a solid's compact
+/// boundary list, bsp/fragment_list.hpp): what the functions below that only read take.
+struct PolygonView {
+  std::int32_t support = -1;
+  std::span<const Corner> corners;
+  [[nodiscard]] bool empty() const { return corners.empty(); }
+};
+
 /// A convex polygon on plane `support`, corners counter-clockwise seen from the support's
 /// positive side. An empty corner list is the empty polygon. Four corners are stored inline:
 /// triangles and quadrilaterals (97 % of a set operation's fragments on meshes and spheres) take
@@ -60,6 +69,18 @@ struct ConvexPolygon {
   std::int32_t support = -1;
   boost::container::small_vector<Corner, 4> corners;
   [[nodiscard]] bool empty() const { return corners.empty(); }
+  operator PolygonView() const { return {support, {corners.data(), corners.size()}}; }  // NOLINT: implicit
+  /// This polygon becomes a copy of `view` (which must not be this polygon's own corners).
+  void assign(PolygonView view) {
+    support = view.support;
+    corners.assign(view.corners.begin(), view.corners.end());
+  }
+  /// A polygon of its own with the corners of `view`.
+  static ConvexPolygon copy_of(PolygonView view) {
+    ConvexPolygon poly;
+    poly.assign(view);
+    return poly;
+  }
 };
 
 /// Number of world-box planes: indices 0..5 of every PlaneTable (+x, -x, +y, -y, +z, -z faces).
@@ -87,7 +108,7 @@ struct CornerBox {
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   bool valid = false;
 };
-CornerBox corner_box(const ConvexPolygon& poly);
+CornerBox corner_box(PolygonView poly);
 /// Negative or Positive if the whole box lies strictly on that side of the plane (beyond the
 /// rounding error of the evaluation), else Both (undecided: use classify or split).
 /// The plane's largest and smallest values over the box are compared with the bound of the
@@ -109,7 +130,7 @@ inline Side box_side(const CornerBox& box, const Plane& plane) {
   return Side::Both;
 }
 /// Classification only (no new polygons).
-Side classify(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t plane);
+Side classify(const PlaneTable& planes, PolygonView poly, std::int32_t plane);
 
 /// The two parts of a polygon cut by a plane, filled only when `side` is Both (otherwise the
 /// whole polygon lies on that side, or on the plane for On, and both parts are left empty).
@@ -119,11 +140,10 @@ struct PolygonSplit {
 };
 /// Splits `poly` by plane `cut`; `cut_opposite` is the index of the opposite plane (used as
 /// the new edge of the positive part).
-PolygonSplit split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut,
-                   std::int32_t cut_opposite);
+PolygonSplit split(const PlaneTable& planes, PolygonView poly, std::int32_t cut, std::int32_t cut_opposite);
 /// split() into polygons the caller owns (loops that reuse their storage): `negative` and
 /// `positive` are written only when the result is Both. Neither may be `poly`.
-Side split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut, std::int32_t cut_opposite,
+Side split(const PlaneTable& planes, PolygonView poly, std::int32_t cut, std::int32_t cut_opposite,
            ConvexPolygon& negative, ConvexPolygon& positive);
 
 /// The negative part of split() for loops that clip one polygon by many planes (TreeBuilder):
@@ -132,15 +152,15 @@ Side split(const PlaneTable& planes, const ConvexPolygon& poly, std::int32_t cut
 /// for corner) and `box` set to corner_box(out). Negative, Positive and On leave both alone:
 /// `in` is the result (the caller decides what Positive and On mean). `out` must not be `in`.
 /// clip_to_negative_exact skips the box test (for callers that made it).
-Side clip_to_negative_exact(const PlaneTable& planes, const ConvexPolygon& in, ConvexPolygon& out, CornerBox& box,
+Side clip_to_negative_exact(const PlaneTable& planes, PolygonView in, ConvexPolygon& out, CornerBox& box,
                             std::int32_t cut);
-inline Side clip_to_negative(const PlaneTable& planes, const ConvexPolygon& in, ConvexPolygon& out, CornerBox& box,
+inline Side clip_to_negative(const PlaneTable& planes, PolygonView in, ConvexPolygon& out, CornerBox& box,
                              std::int32_t cut) {
   const Side quick = box_side(box, planes[cut]);  // most far planes end here
   return quick != Side::Both ? quick : clip_to_negative_exact(planes, in, out, box, cut);
 }
 
 /// Approximate vertex positions (grid units) of a polygon, for output and measures.
-std::vector<Eigen::Vector3d> approximate_corners(const ConvexPolygon& poly);
+std::vector<Eigen::Vector3d> approximate_corners(PolygonView poly);
 
 }  // namespace sculpt::kernel

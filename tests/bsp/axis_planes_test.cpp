@@ -44,7 +44,7 @@ TEST(AxisPlanes, CirclesSplitAtTheirVerticesOnTheAxes) {
     // The poles lie on x = 0 as well: for even n it splits each pole's fan there too.
     EXPECT_EQ(nodes_on(s, kX0), n % 4 == 0 ? 2 * bands : (n % 2 == 0 ? 2 : 0));
     // The boundary's corners near those planes lie exactly on them (the splits are at vertices).
-    for (const BoundaryFragment& f : s.boundary())
+    for (const FragmentRef f : s.boundary())
       for (const kernel::Corner& c : f.polygon.corners) {
         const kernel::Plane& sp = s.planes()[f.polygon.support];
         for (const kernel::Plane* axis : {&kY0, &kX0}) {

@@ -219,7 +219,7 @@ TEST(ExtentPruning, SidesOfManyPlanesMatchEveryCornerExactly) {
       for (const std::int32_t p : planes) {
         const kernel::Plane& h = s.arena.planes[p];
         bool neg = false, pos = false;
-        for (const BoundaryFragment& f : fa)
+        for (const FragmentRef f : fa)
           for (const kernel::Corner& c : f.polygon.corners) {
             const kernel::Sign g =
                 kernel::orient(s.arena.planes[f.polygon.support], s.arena.planes[c.p], s.arena.planes[c.q], c.at(), h);

@@ -213,7 +213,7 @@ TEST(FromMesh, TriangleSidesLieOnPlanesThroughThem) {
     ASSERT_EQ(fragments.size(), grid_mesh.faces.size());
     std::set<std::int32_t> planes_used;
     for (std::size_t k = 0; k < fragments.size(); ++k) {
-      const kernel::ConvexPolygon& poly = fragments[k].polygon;
+      const kernel::PolygonView poly = fragments[k].polygon;
       ASSERT_EQ(poly.corners.size(), 3u);
       kernel::GridPoint v[3];
       for (std::size_t i = 0; i < 3; ++i) {

@@ -47,7 +47,7 @@ References references(const Solid& s) {
     else
       r.plane_used[std::size_t(p)] = true;
   };
-  auto use_polygon = [&](const kernel::ConvexPolygon& poly) {
+  auto use_polygon = [&](kernel::PolygonView poly) {
     use(poly.support);
     for (const auto& c : poly.corners) use(c.edge), use(c.p), use(c.q);
   };
@@ -69,7 +69,7 @@ References references(const Solid& s) {
     stack.push_back(n.negative);
     stack.push_back(n.positive);
   }
-  for (const BoundaryFragment& f : s.boundary()) use_polygon(f.polygon);
+  for (const FragmentRef f : s.boundary()) use_polygon(f.polygon);
   return r;
 }
 

@@ -83,7 +83,7 @@ TEST(RingBoundary, CarriedCornersAreTheKernelsApproximations) {
   for (std::size_t s = 0; s < solids.size(); ++s) {
     const Solid& solid = solids[s];
     ASSERT_TRUE(solid.has_boundary()) << s;
-    for (const BoundaryFragment& f : solid.boundary()) {
+    for (const FragmentRef f : solid.boundary()) {
       const auto& c = f.polygon.corners;
       ASSERT_GE(c.size(), 3u);
       for (std::size_t i = 0; i < c.size(); ++i) {

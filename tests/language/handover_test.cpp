@@ -53,7 +53,7 @@ struct Session {
 bool worked_in_place(const Solid& s) {
   if (is_leaf(s.root())) return false;
   std::vector<bool> used(std::size_t(s.planes().size()), false);
-  auto use_polygon = [&](const kernel::ConvexPolygon& p) {
+  auto use_polygon = [&](kernel::PolygonView p) {
     if (p.support >= 0) used[std::size_t(p.support)] = true;
     for (const auto& c : p.corners) used[std::size_t(c.edge)] = used[std::size_t(c.p)] = used[std::size_t(c.q)] = true;
   };
@@ -71,7 +71,7 @@ bool worked_in_place(const Solid& s) {
     stack.push_back(n.negative);
     stack.push_back(n.positive);
   }
-  for (const BoundaryFragment& f : s.boundary()) use_polygon(f.polygon);
+  for (const FragmentRef f : s.boundary()) use_polygon(f.polygon);
   const bool all_used = std::count(used.begin() + std::min<std::ptrdiff_t>(6, std::ptrdiff_t(used.size())), used.end(), false) == 0;
   return !depth_first || std::size_t(expected) != s.nodes().size() || !all_used;
 }

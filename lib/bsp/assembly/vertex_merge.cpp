@@ -370,7 +370,7 @@ MergedFragments merge_vertices(FragmentsView fragments) {
         out.resize(std::size_t(faces.start[end] - faces.start[begin]));
         std::size_t k = 0;
         for (std::size_t f = begin; f < end; ++f) {
-          const Fragment& fr = list[f];
+          const FragmentRef fr = list[f];
           const auto& cs = fr.polygon.corners;
           const std::size_t m = cs.size(), base = std::size_t(faces.start[f]);
           const std::uint32_t s = r.ids.id[std::size_t(fr.polygon.support)];

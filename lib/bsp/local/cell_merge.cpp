@@ -36,14 +36,14 @@ struct Operand {
   [[nodiscard]] const FragmentList& faces() const { return *list; }
   // Fragment i on the arena's planes: the solid's own when its planes were not moved, else a copy
   // renumbered in `buf`.
-  const BoundaryFragment& fragment(std::size_t i, BoundaryFragment& buf) const {
-    const BoundaryFragment& f = (*list)[i];
+  FragmentRef fragment(std::size_t i, BoundaryFragment& buf) const {
+    const FragmentRef f = (*list)[i];
     if (shift == 0) return f;
-    buf = f;
+    buf = f.copy();
     auto map = [this](std::int32_t p) { return p < kernel::kWorldPlanes ? p : p + shift; };
     buf.polygon.support = map(buf.polygon.support);
     for (auto& c : buf.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
-    return buf;
+    return {buf.polygon, buf.flip};
   }
   // Fragment i's support plane on the arena's planes (without copying the fragment).
   [[nodiscard]] std::int32_t support(std::size_t i) const {
@@ -65,13 +65,13 @@ enum class CellClip { Outside, Inside, Cut };
 // `poly` clipped to the closed cell whose walls are `walls` (the cell on their negative sides):
 // Outside when nothing of positive area is left, Inside when all of it is in the cell (`out` is
 // then not written), Cut with the part in the cell in `out`.
-CellClip clip_to_cell(const kernel::PlaneTable& planes, const ConvexPolygon& poly,
+CellClip clip_to_cell(const kernel::PlaneTable& planes, kernel::PolygonView poly,
                       const std::array<std::int32_t, 6>& walls, ConvexPolygon& out, ConvexPolygon& scratch) {
   CornerBox box = kernel::corner_box(poly);
   bool inside = true;
   for (const std::int32_t w : walls) inside = inside && kernel::box_side(box, planes[w]) == Side::Negative;
   if (inside) return CellClip::Inside;
-  out = poly;
+  out.assign(poly);
   for (const std::int32_t w : walls) {
     const Side s = kernel::clip_to_negative(planes, out, scratch, box, w);
     SCULPT_ASSERT(s != Side::On, "cell_merge: a fragment lies on a cell wall");
@@ -173,7 +173,7 @@ class CellMerge {
         for (int x = 0; x < 2; ++x) {
           Pieces& p = pieces_[l][x];
           for (const std::uint32_t i : n.items[x]) {
-            const BoundaryFragment& f = ops_[x].fragment(i, renumbered);
+            const FragmentRef f = ops_[x].fragment(i, renumbered);
             if (clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch) !=
                 CellClip::Outside)
               p.origin.push_back(i);
@@ -190,9 +190,9 @@ class CellMerge {
     ConvexPolygon piece, scratch;
     BoundaryFragment renumbered;
     for (const std::uint32_t i : pieces_[l][x].origin) {
-      const BoundaryFragment& f = ops_[x].fragment(i, renumbered);
+      const FragmentRef f = ops_[x].fragment(i, renumbered);
       const CellClip c = clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch);
-      out.push_back({c == CellClip::Inside ? f.polygon : piece, f.flip});
+      out.push_back(c == CellClip::Inside ? f.polygon : kernel::PolygonView(piece), f.flip);
     }
   }
   // Operand x's pieces in leaf l, kept for the status trees (step 4).
@@ -286,7 +286,7 @@ class CellMerge {
       for (std::size_t k = begin; k < end; ++k) pieces_of(todo[k].first, todo[k].second);
     });
     for (const auto& [l, x] : todo)
-      for (const BoundaryFragment& f : pieces_[l][x].faces) arena_.opposite(f.polygon.support);
+      for (const FragmentRef f : pieces_[l][x].faces) arena_.opposite(f.polygon.support);
     std::vector<PartitionTree> built(todo.size());
     auto build = [&](std::size_t k) {
       const auto [l, x] = todo[k];
@@ -410,7 +410,7 @@ class CellMerge {
     Clipper clip(arena_);
     int behind = -1;
     clip.push(
-        t, BoundaryFragment{face, false},
+        t, FragmentRef{face, false},
         [&](bool, bool back_in, bool) {
           if (behind < 0) behind = back_in ? 1 : 0;
           return kDrop;
@@ -479,7 +479,7 @@ class CellMerge {
           const FragmentList& faces = *leaf.faces[x];
           clip.read_nodes(*leaf.nodes[1 - x]);
           for (std::size_t j = 0; j < faces.size(); ++j) {
-            const BoundaryFragment& f = faces[j];
+            const FragmentRef f = faces[j];
             const std::size_t before = parts.size();
             const int w = clip.push(
                 leaf.tree[1 - x], f,
@@ -491,7 +491,7 @@ class CellMerge {
                   parts.push_back({std::move(piece), v == kKeep ? f.flip : !f.flip});
                 });
             whole[j] = std::int8_t(w);
-            if (w != kMixed) parts.resize(before);  // whole: emitted (or not) with its fragment below
+            if (w != kMixed) parts.truncate(before);  // whole: emitted (or not) with its fragment below
             if (w == kMixed)
               mixed_parts_[l][x].push_back({std::uint32_t(j), std::uint32_t(before), std::uint32_t(parts.size())});
           }
@@ -534,10 +534,7 @@ class CellMerge {
           for (std::size_t i = begin; i < end; ++i)
             rejoin(i < na ? 0 : 1, i < na ? i : i - na, mine, piece, scratch, renumbered, stack);
         },
-        [&](FragmentList& mine) {
-          for (BoundaryFragment& f : mine) result.emplace_back(std::move(f));
-          mine.clear();
-        });
+        [&](FragmentList& mine) { result.append(std::move(mine)); });
     for (const int fb : first_behind)
       if (fb >= 0) {
         uniform = fb == 1;
@@ -586,7 +583,7 @@ class CellMerge {
     const std::span<const std::array<std::uint32_t, 2>> mine(by_fragment_[x].data() + by_fragment_first_[x][i],
                                                              by_fragment_first_[x][i + 1] - by_fragment_first_[x][i]);
     if (mine.empty()) return;
-    const BoundaryFragment& f = ops_[x].fragment(i, renumbered);
+    const FragmentRef f = ops_[x].fragment(i, renumbered);
     stack.assign(1, {0, {0, mine.size()}});
     while (!stack.empty()) {
       const auto [id, range] = stack.back();
@@ -601,14 +598,17 @@ class CellMerge {
         const bool flip = first == kKeep ? f.flip : !f.flip;
         const CellClip c = id == 0 ? CellClip::Inside
                                    : clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(id)], piece, scratch);
-        if (c != CellClip::Outside) out.push_back({c == CellClip::Inside ? f.polygon : piece, flip});
+        if (c != CellClip::Outside) out.push_back(c == CellClip::Inside ? f.polygon : kernel::PolygonView(piece), flip);
         continue;
       }
       if (n.axis < 0) {  // a leaf: its one piece, split by the other operand's local tree
         const std::size_t l = mine[range[0]][0], j = mine[range[0]][1];
         for (const auto& [index, begin, end] : mixed_parts_[l][x])
           if (index == j)
-            for (std::size_t k = begin; k < end; ++k) out.push_back(parts_[l][x][k]);
+            for (std::size_t k = begin; k < end; ++k) {
+              const FragmentRef g = parts_[l][x][k];
+              out.push_back(g.polygon, g.flip);
+            }
         continue;
       }
       // Split the pieces between the children by their leaves' ranges (children pushed upper first).
@@ -664,7 +664,7 @@ Operand load(const Solid& s, std::int32_t shift) {
     box.valid = true;
     for (int k = 0; k < 3; ++k) box.lo[k] = 1e300, box.hi[k] = -1e300;
     for (std::size_t i = begin; i < end; ++i) {
-      const BoundaryFragment& f = o.faces()[i];
+      const FragmentRef f = o.faces()[i];
       const FragmentBox& b = o.boxes[i] = fragment_box(f.polygon);
       bool world = f.polygon.support < kernel::kWorldPlanes;
       for (const auto& c : f.polygon.corners)
@@ -687,9 +687,9 @@ Operand load(const Solid& s, std::int32_t shift) {
 
 // Calls f on every plane reference of fragment g (support, then each corner's edge, p and q).
 template <typename F>
-void for_each_plane(BoundaryFragment& g, F&& f) {
+void for_each_plane(const FragmentRef& g, F&& f) {
   f(g.polygon.support);
-  for (auto& c : g.polygon.corners) f(c.edge), f(c.p), f(c.q);
+  for (const kernel::Corner& c : g.polygon.corners) f(c.edge), f(c.p), f(c.q);
 }
 
 // The result's plane table. When `fragments` use at least half of the arena's planes, the arena's
@@ -748,9 +748,7 @@ kernel::PlaneTable result_planes(kernel::PlaneTable&& planes, FragmentList& frag
   for (const std::int32_t p : order) table.add(planes[p], planes.auxiliary(p));
   parallel_chunks(n, kChunk, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
-      for_each_plane(fragments[i], [&](std::int32_t& p) {
-        if (p >= world) p = local[std::size_t(p)];
-      });
+      fragments.renumber_planes(i, [&](std::int32_t p) { return p >= world ? local[std::size_t(p)] : p; });
   });
   return table;
 }

@@ -78,9 +78,9 @@ Solid unite_by_boundaries(std::vector<Solid> solids) {
       const UnionOperand& o = ops[j];
       const bool first = i < j;  // on a shared plane region with the same orientation: i keeps it
       kept.clear();
-      for (BoundaryFragment& f : faces) {
+      for (const FragmentRef f : faces) {
         if (o.box.valid && !may_overlap(kernel::corner_box(f.polygon), o.box)) {  // in o's far region
-          if (!o.far_in) kept.push_back(std::move(f));
+          if (!o.far_in) kept.push_back(f.polygon, f.flip);
           continue;
         }
         clip.push(
@@ -95,7 +95,7 @@ Solid unite_by_boundaries(std::vector<Solid> solids) {
       std::swap(faces, kept);
       if (faces.empty()) break;
     }
-    for (BoundaryFragment& f : faces) result.push_back(std::move(f));
+    result.append(std::move(faces));
   }
   if (result.empty()) return Solid::leaf(true);  // operands with boundaries whose union has none
   return autopartition(arena, std::move(result));

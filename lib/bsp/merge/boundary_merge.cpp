@@ -70,7 +70,7 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
   const bool b_matters_inside_a_only = op[0][0] == op[0][1];  // out of A, op does not read B
   auto push_b = [&](Clipper& c, std::size_t begin, std::size_t end, FragmentList& out) {
     for (std::size_t i = begin; i < end; ++i) {
-      const BoundaryFragment& f = b_faces[i];
+      const FragmentRef f = b_faces[i];
       // On a plane with A on one closed side: no interior point of A, so out of A or on A's
       // boundary everywhere (extent_pruning.hpp): dropped like every such piece.
       if (a_sides && b_matters_inside_a_only && a_sides->of(f.polygon.support) != Side::Both) continue;
@@ -138,7 +138,7 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
     for (std::size_t k = begin; k < end; ++k) {
       const std::size_t i = todo[k];
       if (verdict_of(i) == kUndecided) {
-        const BoundaryFragment& f = a_faces[i];
+        const FragmentRef f = a_faces[i];
         c.push(
             b, f, [&](bool front_in, bool back_in, bool) { return fragment_verdict(op[1][back_in], op[0][front_in]); },
             [&](ConvexPolygon piece, int w) {
@@ -162,8 +162,7 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
     run_a();
   }
   FragmentList from_b = std::move(b_chunk_pieces[0]);
-  for (std::size_t j = 1; j < b_chunk_pieces.size(); ++j)
-    for (BoundaryFragment& p : b_chunk_pieces[j]) from_b.push_back(std::move(p));
+  for (std::size_t j = 1; j < b_chunk_pieces.size(); ++j) from_b.append(std::move(b_chunk_pieces[j]));
 
   FragmentList pieces;
   std::vector<std::size_t> changed;  // fragments rewritten in place (below the shortened end)
@@ -173,25 +172,29 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
     const std::size_t i = todo[k];
     const int v = verdict_of(i);
     if (v == 0) continue;
-    BoundaryFragment& f = a_faces[i];
     if (v == 1) {
-      f.flip = !f.flip;
+      a_faces.set_flip(i, !a_faces[i].flip);
       continue;
     }
     if (v == kUndecided) {
-      FragmentList& made = chunk_pieces[k / chunk];
+      const FragmentList& made = chunk_pieces[k / chunk];
       const std::size_t first = k % chunk == 0 ? 0 : pieces_end[k - 1], last = pieces_end[k];
       if (last > first) {  // the last piece takes the fragment's slot, the others are appended
-        for (std::size_t j = first; j + 1 < last; ++j) pieces.push_back(std::move(made[j]));
-        f = std::move(made[last - 1]);
-        a_boxes[i] = fragment_box(f.polygon);
+        for (std::size_t j = first; j + 1 < last; ++j) {
+          const FragmentRef g = made[j];
+          pieces.push_back(g.polygon, g.flip);
+        }
+        const FragmentRef g = made[last - 1];
+        a_faces.replace(i, g.polygon, g.flip);
+        a_boxes[i] = fragment_box(g.polygon);
         changed.push_back(i);
         continue;
       }
     }
     // Dropped: the last fragment takes its slot.
     if (i + 1 != a_faces.size()) {
-      f = std::move(a_faces.back());
+      const FragmentRef g = a_faces.back();
+      a_faces.replace(i, g.polygon, g.flip);
       a_boxes[i] = a_boxes.back();
       changed.push_back(i);
     }
@@ -199,11 +202,12 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
     a_boxes.pop_back();
     shortest = std::min(shortest, a_faces.size());
   }
-  for (FragmentList* more : {&pieces, &from_b})
-    for (BoundaryFragment& p : *more) {
-      a_boxes.push_back(fragment_box(p.polygon));
-      a_faces.push_back(std::move(p));
-    }
+  for (FragmentList* more : {&pieces, &from_b}) {
+    for (const FragmentRef p : *more) a_boxes.push_back(fragment_box(p.polygon));
+    a_faces.append(std::move(*more));
+  }
+  // Room left by dropped and replaced fragments is given back when it is a quarter of the list.
+  a_faces.pack_if_sparse();
   // Block boxes: those with a changed fragment, and all from the block where the end moved.
   blocks.resize(FragmentBoxes::block_count(a_boxes.size()));
   for (const std::size_t i : changed)

@@ -37,7 +37,7 @@ bool plane_less(const Plane& x, const Plane& y) { return std::tuple(x.a, x.b, x.
 /// `radius` > 0: a quick test that drops a piece without a test against each plane.
 struct Polytope {
   std::vector<std::int32_t> planes;
-  FragmentList faces;
+  std::vector<BoundaryFragment> faces;
   std::vector<GridPoint> vertices;                  ///< the hull's vertices
   std::vector<std::int32_t> sorted_vertices;        ///< their indices, sorted by grid_less
   /// The faces around each vertex (those of the triangles at it): vertex_faces[vertex_start[v] ..

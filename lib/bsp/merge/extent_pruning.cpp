@@ -104,8 +104,9 @@ FragmentHierarchy fragment_hierarchy(const FragmentBoxes& boxes) {
 }
 
 // The signs of the corners of a fragment, added to `seen` (exact; stops once both are seen).
-void add_corner_signs(const kernel::PlaneTable& planes, const BoundaryFragment& fragment, const kernel::Plane& h, Seen& seen) {
-  const kernel::ConvexPolygon& poly = fragment.polygon;
+void add_corner_signs(const kernel::PlaneTable& planes, const FragmentRef& fragment, const kernel::Plane& h,
+                      Seen& seen) {
+  const kernel::PolygonView poly = fragment.polygon;
   const kernel::Plane& support = planes[poly.support];
   for (const kernel::Corner& c : poly.corners) {
     Sign g = kernel::filtered_orient(c.at(), h);
@@ -217,7 +218,7 @@ void complete_boxes(const FragmentList& faces, FragmentBoxes& boxes) {
   if (boxes.each.size() != faces.size()) {
     boxes.each.clear();
     boxes.each.reserve(faces.size());
-    for (const BoundaryFragment& f : faces) boxes.each.push_back(fragment_box(f.polygon));
+    for (const FragmentRef f : faces) boxes.each.push_back(fragment_box(f.polygon));
     boxes.blocks.clear();
   }
   if (boxes.blocks.size() != FragmentBoxes::block_count(boxes.each.size())) {
@@ -254,7 +255,7 @@ ExtentSides extent_sides(Arena& arena, TreeRef a, const FragmentList& a_faces,
     if (!is_leaf(n.negative)) stack.push_back(n.negative);
     if (!is_leaf(n.positive)) stack.push_back(n.positive);
   }
-  for (const BoundaryFragment& f : b_faces) planes.push_back(f.polygon.support);
+  for (const FragmentRef f : b_faces) planes.push_back(f.polygon.support);
   std::sort(planes.begin(), planes.end());
   planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
   const std::vector<kernel::ApproxPoint> extreme = witnesses(a_faces, a_boxes);

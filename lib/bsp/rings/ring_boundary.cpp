@@ -101,18 +101,16 @@ FragmentList ring_boundary(TreeBuilder& b, const std::vector<std::int32_t>& ring
   std::vector<ApproxPoint> at;
   FragmentList faces;
   faces.reserve((r - 1) * std::size_t(n) + 2);
+  kernel::ConvexPolygon poly;  // scratch: each fragment is copied into the list's compact storage
   auto fragments = [&](std::int32_t support, bool flip, std::size_t corners) {  // `corners` triples each
     at.resize(triples.size());
     approximate(triples, at);
     for (std::size_t c = 0; c < triples.size();) {
-      // Built in place (a polygon is 272 bytes): aggregate initialization leaves the corners'
-      // inline storage untouched, where value initialization would zero it.
-      faces.push_back(BoundaryFragment{.polygon = {.support = support < 0 ? triples[c].p : support, .corners = {}},
-                                       .flip = flip});
-      auto& poly = faces.back().polygon.corners;
-      poly.reserve(corners);
+      poly.support = support < 0 ? triples[c].p : support;
+      poly.corners.clear();
       for (const std::size_t end = c + corners; c < end; ++c)
-        poly.push_back({triples[c].r, triples[c].q, triples[c].r, at[c]});  // edge, p, q, approximation
+        poly.corners.push_back({triples[c].r, triples[c].q, triples[c].r, at[c]});  // edge, p, q, approximation
+      faces.push_back(poly, flip);
     }
   };
   CancelPoll poll;  // Ctrl-C and the memory limit (base/cancel.hpp): a fine revolution's bands are many

@@ -105,9 +105,9 @@ PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments,
   std::vector<CornerBox> boxes;
   pool.reserve(2 * fragments.size());
   boxes.reserve(2 * fragments.size());
-  for (const BoundaryFragment& f : fragments) {
+  for (const FragmentRef f : fragments) {
     const std::int32_t s = f.polygon.support;
-    pool.push_back({f.polygon, f.flip ? arena.opposite(s) : s});
+    pool.push_back({kernel::ConvexPolygon::copy_of(f.polygon), f.flip ? arena.opposite(s) : s});
     boxes.push_back(kernel::corner_box(f.polygon));
   }
 
@@ -459,10 +459,7 @@ Solid autopartition(Arena& arena, FragmentList fragments, const AutopartitionOpt
     made[i] = b.add_node(use(nd.plane, nd.auxiliary), child(nd.negative), child(nd.positive));
   }
   if (!options.carry_boundary) return std::move(b).build(made[std::size_t(root)], BuildOptions{.nodes_cut_cells = true});
-  for (BoundaryFragment& f : fragments) {
-    f.polygon.support = use(f.polygon.support);
-    for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
-  }
+  fragments.renumber_planes([&](std::int32_t p) { return use(p); });
   return std::move(b).build(made[std::size_t(root)], std::move(fragments), {.nodes_cut_cells = true});
 }
 

@@ -39,11 +39,12 @@ class Clipper {
   // Returns the fate of `f` as a whole: kKeep, kReverse or kDrop when every piece had that fate
   // (then `f` itself was emitted, or nothing), kMixed when its parts differ.
   template <typename Fate, typename Emit>
-  int push(TreeRef t, const BoundaryFragment& f, Fate&& fate, Emit&& emit) {
+  int push(TreeRef t, const FragmentRef& f, Fate&& fate, Emit&& emit) {
     whole_ = kPending;
     stack_.clear();
     splits_.clear();
-    stack_.emplace_back(t, kernel::ConvexPolygon(f.polygon), kernel::corner_box(f.polygon), ClipMode::Both, false, kOut, -1, 0);
+    stack_.emplace_back(t, kernel::ConvexPolygon::copy_of(f.polygon), kernel::corner_box(f.polygon), ClipMode::Both,
+                        false, kOut, -1, 0);
     while (!stack_.empty()) {
       poll_.tick();
       Item& top = stack_.back();
@@ -191,7 +192,7 @@ inline kernel::CornerBox bounds(const FragmentList& faces) {
   kernel::CornerBox box;
   box.valid = !faces.empty();
   for (int k = 0; k < 3; ++k) box.lo[k] = 1e300, box.hi[k] = -1e300;
-  for (const BoundaryFragment& f : faces) {
+  for (const FragmentRef f : faces) {
     const kernel::CornerBox b = kernel::corner_box(f.polygon);
     constexpr std::int32_t w = kernel::kWorldPlanes;  // the world box planes come first
     bool world = f.polygon.support < w;

@@ -178,10 +178,7 @@ void collect_in_parallel(std::span<const BspNode> nodes, Arena& arena, const Bre
   std::size_t total = out.size();
   for (const FragmentList& c : chunks) total += c.size();
   out.reserve(total);
-  for (FragmentList& c : chunks) {
-    std::move(c.begin(), c.end(), std::back_inserter(out));
-    FragmentList().swap(c);
-  }
+  for (FragmentList& c : chunks) out.append(std::move(c));
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 
 namespace sculpt::bsp::detail {
 
-FragmentBox fragment_box(const kernel::ConvexPolygon& polygon) {
+FragmentBox fragment_box(kernel::PolygonView polygon) {
   const kernel::CornerBox b = kernel::corner_box(polygon);
   FragmentBox f{};
   f.valid = b.valid;

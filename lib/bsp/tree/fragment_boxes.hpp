@@ -15,7 +15,7 @@ struct FragmentBox {
   float lo[3], hi[3];
   bool valid;  ///< false: unknown (a corner without a usable approximation)
 };
-FragmentBox fragment_box(const kernel::ConvexPolygon& polygon);
+FragmentBox fragment_box(kernel::PolygonView polygon);
 
 /// Boxes of a solid's boundary fragments: one per fragment (same order), and one per run of
 /// kBlock consecutive fragments (the union of theirs; invalid if one of them is), so a set

@@ -86,10 +86,7 @@ FragmentList Arena::boundary_of(const Solid& solid) {
       if (extra[k] < 0) extra[k] = planes.add(from[p], from.auxiliary(p));
       return extra[k];
     };
-    for (BoundaryFragment& f : fragments) {
-      f.polygon.support = map(f.polygon.support);
-      for (auto& c : f.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);
-    }
+    fragments.renumber_planes(map);
   };
   if (solid.has_boundary()) {
     FragmentList out = solid.boundary();
@@ -121,7 +118,7 @@ namespace {
 
 // Calls at(p) for the support plane and every corner plane of a polygon.
 template <class Polygon, class At>
-void each_plane(Polygon& poly, At&& at) {
+void each_plane(Polygon&& poly, At&& at) {
   at(poly.support);
   for (auto& c : poly.corners) at(c.edge), at(c.p), at(c.q);
 }
@@ -223,7 +220,11 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
     }
     for (const TreeRef t : arena.merged)
       if (std::size_t(t) < n0) each_plane(polygons[std::size_t(t)], at);
-    for (const std::size_t i : written) each_plane((*fragments)[i].polygon, at);
+    for (const std::size_t i : written)
+      fragments->renumber_planes(i, [&](std::int32_t p) {
+        at(p);
+        return p;
+      });
   };
   // While a scan for free planes is in progress, what is written is marked (the scan may have
   // passed its place already).
@@ -453,10 +454,7 @@ Solid compact(Arena& arena, TreeRef root, const CompactOptions& options) {
   if (arena.boundary) {
     boundary = std::move(*arena.boundary);
     arena.boundary.reset();
-    for (BoundaryFragment& f : *boundary) {
-      f.polygon.support = use(f.polygon.support);
-      for (auto& c : f.polygon.corners) c.edge = use(c.edge), c.p = use(c.p), c.q = use(c.q);
-    }
+    boundary->renumber_planes(use);
   }
   return SolidAccess::make(std::move(table), std::move(arena.nodes), std::move(arena.polygons), flip(new_root), FreeSlots{},
                std::move(boundary), std::move(boxes));

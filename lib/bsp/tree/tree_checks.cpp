@@ -5,7 +5,7 @@
 namespace sculpt::bsp::detail {
 namespace {
 
-bool polygon_planes_in_table(const kernel::ConvexPolygon& polygon, std::int32_t plane_count) {
+bool polygon_planes_in_table(kernel::PolygonView polygon, std::int32_t plane_count) {
   const auto in_table = [&](std::int32_t i) { return i >= 0 && i < plane_count; };
   if (polygon.empty()) return true;
   if (!in_table(polygon.support)) return false;
@@ -40,7 +40,7 @@ const char* tree_storage_problem(const kernel::PlaneTable& planes, const std::ve
     }
   }
   if (boundary != nullptr)
-    for (const BoundaryFragment& f : *boundary)
+    for (const FragmentRef f : *boundary)
       if (!polygon_planes_in_table(f.polygon, planes.size()))
         return "a boundary fragment uses a plane not in the table";
   return nullptr;

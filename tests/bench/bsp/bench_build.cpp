@@ -71,7 +71,7 @@ std::uint64_t planes_hash(const Solid& s) {
 // Hash of the carried boundary bit for bit (plane indices, approximation bits, flip).
 std::uint64_t boundary_hash(const Solid& s) {
   std::uint64_t h = mix(0, s.has_boundary() ? 1 : 0);
-  for (const BoundaryFragment& f : s.boundary()) {
+  for (const FragmentRef f : s.boundary()) {
     h = mix(mix(mix(h, std::uint64_t(f.polygon.support)), f.flip ? 1 : 0), f.polygon.corners.size());
     for (const kernel::Corner& c : f.polygon.corners) {
       h = mix(mix(mix(h, std::uint64_t(c.edge)), std::uint64_t(c.p)), std::uint64_t(c.q));
