@@ -39,7 +39,8 @@ struct Operand {
   FragmentRef fragment(std::size_t i, BoundaryFragment& buf) const {
     const FragmentRef f = (*list)[i];
     if (shift == 0) return f;
-    buf = f.copy();
+    buf.polygon.assign(f.polygon);  // reuses buf's room
+    buf.flip = f.flip;
     auto map = [this](std::int32_t p) { return p < kernel::kWorldPlanes ? p : p + shift; };
     buf.polygon.support = map(buf.polygon.support);
     for (auto& c : buf.polygon.corners) c.edge = map(c.edge), c.p = map(c.p), c.q = map(c.q);

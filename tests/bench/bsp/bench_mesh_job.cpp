@@ -8,11 +8,15 @@
 // --classic: set operations by merging whole trees, never by cells (bsp/local/cell_merge.hpp).
 // Prints: bench case=NAME n=TRIANGLES threads=T import=S turn=S union=S difference=S total=S
 //         volume=V triangles_out=N to_mesh=S (seconds, wall clock; difference includes to_mesh and the
-//         volume of its mesh; the process's peak memory is measured outside).
+//         volume of its mesh), then the process's peak resident memory so far (MB, Linux's VmHWM)
+//         at the end of each phase: peak_import= peak_turn= peak_union= peak_difference= (before
+//         to_mesh) peak_to_mesh=, which says which phase sets the peak (measured outside as well); 0 for
+//         the phases the sphere case has not.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -36,6 +40,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The process's peak resident memory so far in MB (VmHWM of /proc/self/status; 0 where there is none).
+double peak_rss_mb() {
+  FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0;
+  char line[256];
+  double kb = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::strncmp(line, "VmHWM:", 6) == 0) kb = std::atof(line + 6);
+  std::fclose(f);
+  return kb / 1024;
+}
 
 int usage() {
   std::fprintf(stderr, "usage: bench_mesh_job [--threads T] [--classic] (--mesh FILE | --sphere N)\n");
@@ -73,6 +89,7 @@ int main(int argc, char** argv) {
   const int used = thread_count();
   const auto start = Clock::now();
   double t_import = 0, t_turn = 0, t_union = 0, t_difference = 0;
+  double peak[5] = {0, 0, 0, 0, 0};  // peak_rss_mb() after import, turn, union, difference, to_mesh
   Solid result;
   std::size_t in_triangles = 0;
   std::string name;
@@ -87,15 +104,18 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "bench_mesh_job: %s: %s\n", file.c_str(), report.summary(3).c_str());
       return 1;
     }
-    PolygonMesh snapped = mesh;
-    const kernel::Grid grid;
-    for (auto& v : snapped.vertices) v = grid.to_world(grid.snap(v));
-    if (!find_self_intersections(snapped, {.max_pairs = 1}).empty()) {
-      std::fprintf(stderr, "bench_mesh_job: %s: faces meet once snapped to the grid\n", file.c_str());
-      return 1;
+    {  // the snapped copy is the check's alone (the language's import does not keep it either)
+      PolygonMesh snapped = mesh;
+      const kernel::Grid grid;
+      for (auto& v : snapped.vertices) v = grid.to_world(grid.snap(v));
+      if (!find_self_intersections(snapped, {.max_pairs = 1}).empty()) {
+        std::fprintf(stderr, "bench_mesh_job: %s: faces meet once snapped to the grid\n", file.c_str());
+        return 1;
+      }
     }
     const Solid m = from_mesh(mesh, {.snapped_mesh_is_clean = true});
     t_import = since(t);
+    peak[0] = peak_rss_mb();
     in_triangles = mesh.faces.size();
     Eigen::Vector3d lo = mesh.vertices[0], hi = lo;
     for (const auto& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
@@ -106,38 +126,45 @@ int main(int argc, char** argv) {
                                  Eigen::Translation3d(-c);
     const Solid r = transform(m, turn);
     t_turn = since(t);
+    peak[1] = peak_rss_mb();
     t = Clock::now();
     // The union's boundary is computed here (its tree is deferred until something reads it;
     // nothing in this job does). No volume of it: Manifold's side computes none either.
     const Solid u = m | r;
     t_union = since(t);
+    peak[2] = peak_rss_mb();
     t = Clock::now();
     const double radius = (hi - lo).maxCoeff() / 4;
     const Solid ball = translate(sphere(radius, {.segments = 48}), c + 0.75 * (hi - c));
     result = u - ball;
     t_difference = since(t);
+    peak[3] = peak_rss_mb();
   } else {
     name = "sphere_minus_moved";
     const auto t = Clock::now();
     const Solid a = sphere(1.0, {.segments = n});
     const Solid b = translate(sphere(1.0, {.segments = n}), {0.3, 0.2, 0.1});
     t_import = since(t);
+    peak[0] = peak_rss_mb();
     in_triangles = 0;
     const auto d = Clock::now();
     result = a - b;
     t_difference = since(d);
+    peak[3] = peak_rss_mb();
   }
   const auto t = Clock::now();
   const PolygonMesh out = to_mesh(result);
   const double v = mesh_volume(out);
   const double t_to_mesh = since(t);
+  peak[4] = peak_rss_mb();
   t_difference += t_to_mesh;
   std::size_t triangles = 0;
   for (const auto& f : out.faces) triangles += f.size() - 2;
   std::printf(
       "bench case=%s n=%zu threads=%d import=%.4f turn=%.4f union=%.4f difference=%.4f total=%.4f volume=%.10g "
-      "triangles_out=%zu to_mesh=%.4f\n",
+      "triangles_out=%zu to_mesh=%.4f peak_import=%.1f peak_turn=%.1f peak_union=%.1f peak_difference=%.1f "
+      "peak_to_mesh=%.1f\n",
       name.c_str(), file.empty() ? std::size_t(n) : in_triangles, used, t_import, t_turn, t_union, t_difference,
-      since(start), v, triangles, t_to_mesh);
+      since(start), v, triangles, t_to_mesh, peak[0], peak[1], peak[2], peak[3], peak[4]);
   return 0;
 }
