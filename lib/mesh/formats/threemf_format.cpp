@@ -7,7 +7,7 @@
 // the millimetre: one world unit is written as 1 mm, and a file in another unit is scaled to
 // millimetres when read. Faces are triangulated (3MF holds triangles only). The package's UUIDs
 // come from the mesh's data, so the same mesh gives the same bytes.
-#include <Model/COM/NMR_DLLInterfaces.h>
+#include "mesh/formats/lib3mf_loader.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -31,7 +31,7 @@ class Handle {
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
   ~Handle() {
-    if (p_) NMR::lib3mf_release(p_);
+    if (p_) lib3mf().release(p_);
   }
   /// Where lib3mf writes the object it creates (a PLib3MF...** argument; its instances are
   /// PLib3MF...* = void**).
@@ -46,7 +46,7 @@ class Handle {
 std::string last_error(void** instance) {
   DWORD code = 0;
   LPCSTR message = nullptr;
-  if (instance && NMR::lib3mf_getlasterror(instance, &code, &message) == LIB3MF_OK && message)
+  if (instance && lib3mf().getlasterror(instance, &code, &message) == LIB3MF_OK && message)
     return std::string(message) + " (lib3mf error " + std::to_string(code) + ")";
   return "lib3mf reported an error";
 }
@@ -124,23 +124,23 @@ std::string encode_3mf(const PolygonMesh& given) {
     for (const IndexTriangle& t : triangulate_polygon(mesh.vertices, face))
       triangles.push_back({{DWORD(t[0]), DWORD(t[1]), DWORD(t[2])}});
   Handle model, object, item, writer;
-  if (NMR::lib3mf_createmodel(model.out()) != LIB3MF_OK) throw InvalidInput("write_mesh: lib3mf could not create a model");
-  if (NMR::lib3mf_model_setunit(model.get(), NMR::MODELUNIT_MILLIMETER) != LIB3MF_OK) fail(model.get(), "set the unit");
-  if (NMR::lib3mf_model_addmeshobject(model.get(), object.out()) != LIB3MF_OK) fail(model.get(), "add a mesh object");
-  if (NMR::lib3mf_meshobject_setgeometry(object.get(), vertices.data(), DWORD(vertices.size()), triangles.data(),
-                                         DWORD(triangles.size())) != LIB3MF_OK)
+  if (lib3mf().createmodel(model.out()) != LIB3MF_OK) throw InvalidInput("write_mesh: lib3mf could not create a model");
+  if (lib3mf().model_setunit(model.get(), NMR::MODELUNIT_MILLIMETER) != LIB3MF_OK) fail(model.get(), "set the unit");
+  if (lib3mf().model_addmeshobject(model.get(), object.out()) != LIB3MF_OK) fail(model.get(), "add a mesh object");
+  if (lib3mf().meshobject_setgeometry(object.get(), vertices.data(), DWORD(vertices.size()), triangles.data(),
+                                      DWORD(triangles.size())) != LIB3MF_OK)
     fail(object.get(), "set the mesh");
-  if (NMR::lib3mf_model_addbuilditem(model.get(), object.get(), nullptr, item.out()) != LIB3MF_OK)
+  if (lib3mf().model_addbuilditem(model.get(), object.get(), nullptr, item.out()) != LIB3MF_OK)
     fail(model.get(), "add a build item");
-  if (NMR::lib3mf_object_setuuidutf8(object.get(), content_uuid(vertices, triangles, 1).c_str()) != LIB3MF_OK ||
-      NMR::lib3mf_model_setbuilduuidutf8(model.get(), content_uuid(vertices, triangles, 2).c_str()) != LIB3MF_OK ||
-      NMR::lib3mf_builditem_setuuidutf8(item.get(), content_uuid(vertices, triangles, 3).c_str()) != LIB3MF_OK)
+  if (lib3mf().object_setuuidutf8(object.get(), content_uuid(vertices, triangles, 1).c_str()) != LIB3MF_OK ||
+      lib3mf().model_setbuilduuidutf8(model.get(), content_uuid(vertices, triangles, 2).c_str()) != LIB3MF_OK ||
+      lib3mf().builditem_setuuidutf8(item.get(), content_uuid(vertices, triangles, 3).c_str()) != LIB3MF_OK)
     fail(model.get(), "set the UUIDs");
-  if (NMR::lib3mf_model_querywriter(model.get(), "3mf", writer.out()) != LIB3MF_OK) fail(model.get(), "make a writer");
+  if (lib3mf().model_querywriter(model.get(), "3mf", writer.out()) != LIB3MF_OK) fail(model.get(), "make a writer");
   ULONG64 size = 0;
-  if (NMR::lib3mf_writer_getstreamsize(writer.get(), &size) != LIB3MF_OK) fail(writer.get(), "size the package");
+  if (lib3mf().writer_getstreamsize(writer.get(), &size) != LIB3MF_OK) fail(writer.get(), "size the package");
   std::string data(std::size_t(size), '\0');
-  if (NMR::lib3mf_writer_writetobuffer(writer.get(), reinterpret_cast<BYTE*>(data.data()), size) != LIB3MF_OK)
+  if (lib3mf().writer_writetobuffer(writer.get(), reinterpret_cast<BYTE*>(data.data()), size) != LIB3MF_OK)
     fail(writer.get(), "write the package");
   return data;
 }
@@ -149,44 +149,44 @@ PolygonMesh decode_3mf(std::string_view data, const std::string& name) {
   // A 3MF package is a zip archive ("PK"); lib3mf is given nothing else.
   if (data.size() < 4 || data[0] != 'P' || data[1] != 'K') throw IoError(name, "not a 3MF file (not a zip package)");
   Handle model, reader, items;
-  if (NMR::lib3mf_createmodel(model.out()) != LIB3MF_OK) throw IoError(name, "lib3mf could not create a model");
-  if (NMR::lib3mf_model_queryreader(model.get(), "3mf", reader.out()) != LIB3MF_OK)
+  if (lib3mf().createmodel(model.out()) != LIB3MF_OK) throw IoError(name, "lib3mf could not create a model");
+  if (lib3mf().model_queryreader(model.get(), "3mf", reader.out()) != LIB3MF_OK)
     throw IoError(name, "lib3mf could not make a reader: " + last_error(model.get()));
   std::string copy(data);  // lib3mf takes a non-const buffer
-  if (NMR::lib3mf_reader_readfrombuffer(reader.get(), reinterpret_cast<BYTE*>(copy.data()), copy.size()) != LIB3MF_OK)
+  if (lib3mf().reader_readfrombuffer(reader.get(), reinterpret_cast<BYTE*>(copy.data()), copy.size()) != LIB3MF_OK)
     throw IoError(name, "lib3mf could not read it as 3MF: " + last_error(reader.get()));
   DWORD unit = NMR::MODELUNIT_MILLIMETER;
-  if (NMR::lib3mf_model_getunit(model.get(), &unit) != LIB3MF_OK || millimetres(unit) == 0)
+  if (lib3mf().model_getunit(model.get(), &unit) != LIB3MF_OK || millimetres(unit) == 0)
     throw IoError(name, "unknown 3MF unit");
   const double scale = millimetres(unit);
   // Every build item's mesh, with the item's transform (x' = F[r][0..2] . x + F[r][3]) applied.
   PolygonMesh mesh;
-  if (NMR::lib3mf_model_getbuilditems(model.get(), items.out()) != LIB3MF_OK)
+  if (lib3mf().model_getbuilditems(model.get(), items.out()) != LIB3MF_OK)
     throw IoError(name, "lib3mf could not list the build items: " + last_error(model.get()));
   for (;;) {
     BOOL more = false;
-    if (NMR::lib3mf_builditemiterator_movenext(items.get(), &more) != LIB3MF_OK || !more) break;
+    if (lib3mf().builditemiterator_movenext(items.get(), &more) != LIB3MF_OK || !more) break;
     Handle item, object;
-    if (NMR::lib3mf_builditemiterator_getcurrent(items.get(), item.out()) != LIB3MF_OK ||
-        NMR::lib3mf_builditem_getobjectresource(item.get(), object.out()) != LIB3MF_OK)
+    if (lib3mf().builditemiterator_getcurrent(items.get(), item.out()) != LIB3MF_OK ||
+        lib3mf().builditem_getobjectresource(item.get(), object.out()) != LIB3MF_OK)
       throw IoError(name, "lib3mf could not read a build item: " + last_error(items.get()));
     BOOL is_mesh = false;
-    if (NMR::lib3mf_object_ismeshobject(object.get(), &is_mesh) != LIB3MF_OK || !is_mesh)
+    if (lib3mf().object_ismeshobject(object.get(), &is_mesh) != LIB3MF_OK || !is_mesh)
       throw IoError(name, "a build item is not a mesh object (3MF components are not read)");
     NMR::MODELTRANSFORM f{};
     BOOL has_transform = false;
-    if (NMR::lib3mf_builditem_hasobjecttransform(item.get(), &has_transform) == LIB3MF_OK && has_transform &&
-        NMR::lib3mf_builditem_getobjecttransform(item.get(), &f) != LIB3MF_OK)
+    if (lib3mf().builditem_hasobjecttransform(item.get(), &has_transform) == LIB3MF_OK && has_transform &&
+        lib3mf().builditem_getobjecttransform(item.get(), &f) != LIB3MF_OK)
       throw IoError(name, "lib3mf could not read a build item's transform");
     DWORD nv = 0, nt = 0;
-    if (NMR::lib3mf_meshobject_getvertexcount(object.get(), &nv) != LIB3MF_OK ||
-        NMR::lib3mf_meshobject_gettrianglecount(object.get(), &nt) != LIB3MF_OK)
+    if (lib3mf().meshobject_getvertexcount(object.get(), &nv) != LIB3MF_OK ||
+        lib3mf().meshobject_gettrianglecount(object.get(), &nt) != LIB3MF_OK)
       throw IoError(name, "lib3mf could not read a mesh: " + last_error(object.get()));
     std::vector<NMR::MODELMESHVERTEX> vertices(nv);
     std::vector<NMR::MODELMESHTRIANGLE> triangles(nt);
     DWORD got = 0;
-    if ((nv && NMR::lib3mf_meshobject_getvertices(object.get(), vertices.data(), nv, &got) != LIB3MF_OK) ||
-        (nt && NMR::lib3mf_meshobject_gettriangleindices(object.get(), triangles.data(), nt, &got) != LIB3MF_OK))
+    if ((nv && lib3mf().meshobject_getvertices(object.get(), vertices.data(), nv, &got) != LIB3MF_OK) ||
+        (nt && lib3mf().meshobject_gettriangleindices(object.get(), triangles.data(), nt, &got) != LIB3MF_OK))
       throw IoError(name, "lib3mf could not read a mesh: " + last_error(object.get()));
     const auto first = int(mesh.vertices.size());
     for (const NMR::MODELMESHVERTEX& v : vertices) {
