@@ -9,17 +9,18 @@
 
 namespace sculpt::mesh::detail {
 
-// The functions the codec calls, without their lib3mf_ prefix.
-#define SCULPT_LIB3MF_FUNCTIONS(X)                                                                           \
-  X(builditem_getobjectresource)                                                                             \
-  X(builditem_getobjecttransform)                                                                            \
-  X(builditem_hasobjecttransform) X(builditem_setuuidutf8) X(builditemiterator_getcurrent)                   \
-      X(builditemiterator_movenext) X(createmodel) X(getlasterror) X(meshobject_gettrianglecount)            \
-          X(meshobject_gettriangleindices) X(meshobject_getvertexcount) X(meshobject_getvertices)            \
-              X(meshobject_setgeometry) X(model_addbuilditem) X(model_addmeshobject) X(model_getbuilditems)  \
-                  X(model_getunit) X(model_queryreader) X(model_querywriter) X(model_setbuilduuidutf8)       \
-                      X(model_setunit) X(object_ismeshobject) X(object_setuuidutf8) X(reader_readfrombuffer) \
-                          X(release) X(writer_getstreamsize) X(writer_writetobuffer)
+// The functions the codec calls, without their lib3mf_ prefix (a list clang-format would reflow).
+// clang-format off
+#define SCULPT_LIB3MF_FUNCTIONS(X)                                                                \
+  X(builditem_getobjectresource) X(builditem_getobjecttransform) X(builditem_hasobjecttransform)  \
+  X(builditem_setuuidutf8) X(builditemiterator_getcurrent) X(builditemiterator_movenext)          \
+  X(createmodel) X(getlasterror) X(meshobject_gettrianglecount) X(meshobject_gettriangleindices)  \
+  X(meshobject_getvertexcount) X(meshobject_getvertices) X(meshobject_setgeometry)                \
+  X(model_addbuilditem) X(model_addmeshobject) X(model_getbuilditems) X(model_getunit)            \
+  X(model_queryreader) X(model_querywriter) X(model_setbuilduuidutf8) X(model_setunit)            \
+  X(object_ismeshobject) X(object_setuuidutf8) X(reader_readfrombuffer) X(release)                \
+  X(writer_getstreamsize) X(writer_writetobuffer)
+// clang-format on
 
 /// Pointers to lib3mf's functions: `lib3mf().createmodel(...)` calls NMR::lib3mf_createmodel.
 struct Lib3mf {

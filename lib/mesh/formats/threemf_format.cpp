@@ -56,13 +56,20 @@ constexpr double kLargest = 1e12;  ///< |coordinate| lib3mf 1.8 can write (x * 1
 /// Millimetres per unit of the 3MF unit enumeration (eModelUnit).
 double millimetres(DWORD unit) {
   switch (unit) {
-    case NMR::MODELUNIT_MICROMETER: return 0.001;
-    case NMR::MODELUNIT_MILLIMETER: return 1.0;
-    case NMR::MODELUNIT_CENTIMETER: return 10.0;
-    case NMR::MODELUNIT_INCH: return 25.4;
-    case NMR::MODELUNIT_FOOT: return 304.8;
-    case NMR::MODELUNIT_METER: return 1000.0;
-    default: return 0;
+    case NMR::MODELUNIT_MICROMETER:
+      return 0.001;
+    case NMR::MODELUNIT_MILLIMETER:
+      return 1.0;
+    case NMR::MODELUNIT_CENTIMETER:
+      return 10.0;
+    case NMR::MODELUNIT_INCH:
+      return 25.4;
+    case NMR::MODELUNIT_FOOT:
+      return 304.8;
+    case NMR::MODELUNIT_METER:
+      return 1000.0;
+    default:
+      return 0;
   }
 }
 
@@ -80,8 +87,8 @@ std::string content_uuid(const std::vector<NMR::MODELMESHVERTEX>& vertices,
   };
   mix(vertices.data(), vertices.size() * sizeof(NMR::MODELMESHVERTEX));
   mix(triangles.data(), triangles.size() * sizeof(NMR::MODELMESHTRIANGLE));
-  h[0] = (h[0] & ~0xf000ull) | 0x4000ull;                  // version 4
-  h[1] = (h[1] & ~(3ull << 62)) | (2ull << 62);            // variant 10
+  h[0] = (h[0] & ~0xf000ull) | 0x4000ull;        // version 4
+  h[1] = (h[1] & ~(3ull << 62)) | (2ull << 62);  // variant 10
   char text[40];
   std::snprintf(text, sizeof text, "%08llx-%04llx-%04llx-%04llx-%012llx", (unsigned long long)(h[0] >> 32),
                 (unsigned long long)((h[0] >> 16) & 0xffff), (unsigned long long)(h[0] & 0xffff),
@@ -109,7 +116,8 @@ std::string encode_3mf(const PolygonMesh& given) {
     for (int k = 0; k < 3; ++k)
       // lib3mf writes x * 10^6 through a 64-bit integer (six decimals): keep well inside that.
       if (!(std::fabs(given.vertices[v][k]) <= kLargest))
-        throw InvalidInput("write_mesh: vertex " + std::to_string(v) + " is beyond the range lib3mf writes in 3MF (|x| <= 1e12)");
+        throw InvalidInput("write_mesh: vertex " + std::to_string(v) +
+                           " is beyond the range lib3mf writes in 3MF (|x| <= 1e12)");
   const PolygonMesh mesh = round_for_output(given, {.precision = OutputPrecision::ThreeMf, .triangles = true});
   auto fail = [](void** instance, const std::string& what) {
     throw InvalidInput("write_mesh: lib3mf could not " + what + ": " + last_error(instance));
@@ -194,15 +202,16 @@ PolygonMesh decode_3mf(std::string_view data, const std::string& name) {
       if (has_transform) {
         Eigen::Vector3d q;
         for (int r = 0; r < 3; ++r)
-          q[r] = double(f.m_fFields[r][0]) * p.x() + double(f.m_fFields[r][1]) * p.y() + double(f.m_fFields[r][2]) * p.z() +
-                 double(f.m_fFields[r][3]);
+          q[r] = double(f.m_fFields[r][0]) * p.x() + double(f.m_fFields[r][1]) * p.y() +
+                 double(f.m_fFields[r][2]) * p.z() + double(f.m_fFields[r][3]);
         p = q;
       }
       mesh.vertices.push_back(p * scale);
     }
     for (const NMR::MODELMESHTRIANGLE& t : triangles) {
       for (const DWORD i : t.m_nIndices)
-        if (i >= nv) throw IoError(name, "a triangle refers to vertex " + std::to_string(i) + " of " + std::to_string(nv));
+        if (i >= nv)
+          throw IoError(name, "a triangle refers to vertex " + std::to_string(i) + " of " + std::to_string(nv));
       mesh.faces.push_back({first + int(t.m_nIndices[0]), first + int(t.m_nIndices[1]), first + int(t.m_nIndices[2])});
     }
   }
