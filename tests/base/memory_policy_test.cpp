@@ -5,6 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <thread>
 #include <vector>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -36,6 +42,38 @@ TEST(MemoryPolicy, FreedMemoryStaysWithTheProcess) {
   }
   // glibc's default trim threshold (128 KiB) would have returned the freed top of the heap.
   EXPECT_GE(mallinfo2().arena, before + (8 << 20));
+}
+
+// Threads share malloc arenas, one for every two cores, so that memory freed by one thread serves
+// the others (without the limit, each of these threads would get an arena of its own).
+TEST(MemoryPolicy, ThreadsShareArenasOneForEveryTwoCores) {
+  if (kOwnAllocator) GTEST_SKIP() << "a sanitizer's allocator replaces glibc's here";
+  keep_freed_memory();
+  const int limit = std::max(1, static_cast<int>(std::thread::hardware_concurrency() / 2));
+  constexpr int kThreads = 6;
+  std::atomic<int> holding = 0;
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&] {
+      std::vector<char> block(1 << 16, 1);  // held until every thread holds one: they overlap
+      holding += 1;
+      while (holding.load() < kThreads) std::this_thread::yield();
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  // malloc_info's XML has one <heap nr="..."> per arena.
+  char* text = nullptr;
+  std::size_t size = 0;
+  FILE* out = open_memstream(&text, &size);
+  ASSERT_NE(out, nullptr);
+  ASSERT_EQ(malloc_info(0, out), 0);
+  std::fclose(out);
+  const std::string xml(text, size);
+  std::free(text);
+  int heaps = 0;
+  for (std::size_t at = xml.find("<heap nr="); at != std::string::npos; at = xml.find("<heap nr=", at + 1)) ++heaps;
+  EXPECT_GE(heaps, 1);
+  EXPECT_LE(heaps, limit) << xml.substr(0, 400);
 }
 #endif
 
