@@ -4,8 +4,8 @@
 #   (none)      what the sculpt executable needs; builds build/release (Release)
 #   --tests     also what the tests need (GoogleTest, CGAL, clang-format, lld) and the test programs
 #   --sanitize  the AddressSanitizer + UndefinedBehaviorSanitizer build, build/sanitize: -O2, line
-#               tables, assertions on (no NDEBUG), no use-after-scope checks (CMakeLists.txt says
-#               why); implies --tests
+#               tables, assertions on (no NDEBUG), no use-after-scope, null or alignment checks
+#               (CMakeLists.txt says why); implies --tests
 #   --bench     the benchmark programs of tests/bench (build/release), not built otherwise
 #   --werror    warnings are errors (CI)
 #   --target    builds only that target (may be given more than once)
