@@ -26,7 +26,8 @@ PolygonMesh to_mesh(const Solid& solid, const MeshOptions& options) {
   const bsp::detail::FragmentsView f = carried ? bsp::detail::FragmentsView(*view.planes, *view.fragments)
                                                : bsp::detail::FragmentsView(*extracted);
   if (!options.clean)
-    return bsp::detail::assemble_mesh(f, {.triangulate = options.triangulate, .grid = solid.grid()});
+    return bsp::detail::assemble_mesh(
+        f, {.triangulate = options.triangulate, .grid = solid.grid(), .approximate = options.approximate});
   // Vertices written exactly (a grid point, say) are marked for the clean check: the assembled
   // faces are the exact boundary of the solid, which is clean (docs/kernel.md, "Clean output"),
   // so only pairs of faces with a rounded corner need a test.

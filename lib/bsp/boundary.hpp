@@ -22,6 +22,11 @@ struct MeshOptions {
   /// (docs/kernel.md, "Clean output"). false: the exact boundary, each vertex correctly rounded,
   /// copies of a vertex where the solid touches itself included.
   bool clean = true;
+  /// With clean = false, for a screen (the live view): a vertex is written at its double
+  /// approximation when that is within 2^-20 grid steps of it, instead of correctly rounded by
+  /// exact arithmetic (about a third of a faceted sphere's extraction). Not for files: such a
+  /// coordinate depends on the planes the vertex was found on, not only on the point.
+  bool approximate = false;
   /// With clean: what the rounding did, and the first problem left when it could not make the
   /// mesh clean (the mesh is then written as it came out; callers should say so).
   OutputRoundingReport* report = nullptr;

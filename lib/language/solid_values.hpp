@@ -32,9 +32,10 @@ struct SolidValue final : Object {
     return *boundary_cache_;
   }
   /// The boundary for a screen: boundary() when it is made already, else the exact boundary
-  /// without output rounding (to_mesh with clean = false; not kept).
+  /// without output rounding, its vertices at their approximations where those are within 2^-20
+  /// grid steps (to_mesh with clean = false and approximate; not kept).
   [[nodiscard]] PolygonMesh display_boundary() const {
-    return boundary_cache_ ? *boundary_cache_ : to_mesh(solid, {.clean = false});
+    return boundary_cache_ ? *boundary_cache_ : to_mesh(solid, {.clean = false, .approximate = true});
   }
   /// Why boundary() is not clean for other tools (output rounding could not make it so), or empty.
   [[nodiscard]] const std::string& boundary_problem() const {

@@ -196,5 +196,34 @@ TEST(Boundary, MeasuresOfABox) {
   EXPECT_TRUE(bounding_box(Solid()).isEmpty());
 }
 
+// The screen's boundary (MeshOptions::approximate) against the exact boundary with every vertex
+// correctly rounded: the same faces on the same vertices, each vertex within 2^-20 grid steps of
+// the rounded one (plus the rounding's half unit in the last place). The fine sphere has corners
+// near its poles whose approximations are looser than that: they must be rounded.
+TEST(Boundary, ApproximateCoordinatesForAScreenStayWithinTheirBound) {
+  const Solid ball = sphere(1.0, {.segments = 256});
+  const Solid turned = transform(box({0, 0, 0}, {1, 2, 3}),
+                                 Eigen::Affine3d(Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 2, 3).normalized())));
+  const Solid cases[] = {ball, ball - translate(sphere(1.0, {.segments = 96}), {0.3, 0.2, 0.1}),
+                         turned | box({0.5, 0.5, 0.5}, {2, 2, 2})};
+  for (std::size_t k = 0; k < std::size(cases); ++k) {
+    const PolygonMesh exact = to_mesh(cases[k], {.clean = false});
+    const PolygonMesh screen = to_mesh(cases[k], {.clean = false, .approximate = true});
+    ASSERT_EQ(screen.faces, exact.faces) << k;
+    ASSERT_EQ(screen.vertices.size(), exact.vertices.size()) << k;
+    const double step = cases[k].grid().step();
+    double worst = 0;
+    std::size_t moved = 0;
+    for (std::size_t v = 0; v < exact.vertices.size(); ++v) {
+      const Eigen::Vector3d d = (screen.vertices[v] - exact.vertices[v]).cwiseAbs();
+      const double allowed = std::ldexp(step, -20) + std::ldexp(exact.vertices[v].cwiseAbs().maxCoeff(), -52);
+      worst = std::max(worst, d.maxCoeff() / allowed);
+      if (d.maxCoeff() > 0) ++moved;
+    }
+    EXPECT_LE(worst, 1.0) << k;
+    if (k < 2) EXPECT_GT(moved, exact.vertices.size() / 2) << k;  // the approximations are used
+  }
+}
+
 }  // namespace
 }  // namespace sculpt

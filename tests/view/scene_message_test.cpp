@@ -373,14 +373,21 @@ TEST(SceneMessage, SurfacesAreShownAsOpenTriangleMeshes) {
 
 TEST(SceneMessage, ASolidIsSentAsItsExactBoundaryVertexForVertex) {
   // A set operation's result (vertices that are rounded, not grid points): the part is to_mesh
-  // without output rounding, the GLB's positions are its vertices in order as float32, and the
-  // edges index them; the measures are the exact boundary's.
+  // without output rounding, its vertices at their approximations (MeshOptions::approximate:
+  // within 2^-20 grid steps of the correctly rounded ones, the same faces), the GLB's positions
+  // are its vertices in order as float32, and the edges index them; the measures are the exact
+  // boundary's.
   const Solid ball = sphere(1, {.segments = 24}) - translate(box({0, 0, 0}, {1, 1, 1}), {0.3, 0.2, 0.1});
   const Scene scene = scene_of({{"ball", std::nullopt, language::solid_value(ball)}}, std::nullopt);
-  const PolygonMesh exact = to_mesh(ball, {.clean = false});
+  const PolygonMesh exact = to_mesh(ball, {.clean = false, .approximate = true});
   ASSERT_EQ(scene.parts.size(), 1u);
   EXPECT_EQ(scene.parts[0].mesh.vertices, exact.vertices);
   EXPECT_EQ(scene.parts[0].mesh.faces, exact.faces);
+  const PolygonMesh rounded = to_mesh(ball, {.clean = false});
+  ASSERT_EQ(rounded.faces, exact.faces);
+  for (std::size_t i = 0; i < exact.vertices.size(); ++i)
+    EXPECT_LE((exact.vertices[i] - rounded.vertices[i]).cwiseAbs().maxCoeff(), std::ldexp(ball.grid().step(), -19))
+        << i;
   EXPECT_NEAR(*scene.parts[0].volume, volume(ball), 1e-12);
   EXPECT_NEAR(scene.parts[0].area, surface_area(ball), 1e-12);
   const std::string message = encode_scene(scene);

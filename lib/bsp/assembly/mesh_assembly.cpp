@@ -32,7 +32,9 @@ PolygonMesh merged_faces(FragmentsView fragments, const AssemblyOptions& options
   faces = remove_straight_vertices(std::move(faces), merged.vertices.size(), geometry);
   const Sheets sheets = split_non_manifold(std::move(faces), merged.vertices, fragments.planes);
   check_cancel();
-  return output_mesh(sheets, merged.vertices, fragments.planes, options.triangulate, options.grid, &exact);
+  return output_mesh(
+      sheets, merged.vertices, fragments.planes,
+      {.triangulate = options.triangulate, .grid = options.grid, .approximate = options.approximate, .exact = &exact});
 }
 
 }  // namespace

@@ -12,6 +12,9 @@ namespace sculpt::bsp::detail {
 struct AssemblyOptions {
   bool triangulate = false;
   kernel::Grid grid{};  ///< the solid's grid: output vertices in its world units
+  /// For a screen: vertices at their approximations where those are within kDisplayError
+  /// (assembly/sheets.hpp's OutputMeshOptions::approximate).
+  bool approximate = false;
   /// If given, receives one flag per output vertex: 1 when its coordinates are exactly the exact
   /// vertex (nothing rounded; output_mesh's exactly_represented), else 0.
   std::vector<char>* exact_vertices = nullptr;

@@ -197,8 +197,11 @@ bool exactly_represented(const kernel::Plane& p, const kernel::Plane& q, const k
 }
 
 PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate, const kernel::Grid& grid, std::vector<char>* exact) {
+                        const OutputMeshOptions& options) {
   const FaceList& faces = sheets.faces;
+  const bool triangulate = options.triangulate;
+  const kernel::Grid& grid = options.grid;
+  std::vector<char>* const exact = options.exact;
   PolygonMesh mesh;
   if (exact != nullptr) exact->clear();
   // Only referenced vertices are written, numbered in the order of their first corner.
@@ -218,11 +221,15 @@ PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, 
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t o = std::size_t(sheets.original[std::size_t(written[i])]);
       const PlaneTriple& t = vertices.triple[o];
-      const Eigen::Vector3d at = kernel::rounded_vertex(planes[t.s], planes[t.p], planes[t.q], vertices.at[o]);
+      const kernel::ApproxPoint& a = vertices.at[o];
+      const bool approximated = options.approximate && a.err >= 0 && a.err <= kDisplayError;
+      const Eigen::Vector3d at = approximated ? Eigen::Vector3d(a.x, a.y, a.z)
+                                              : kernel::rounded_vertex(planes[t.s], planes[t.p], planes[t.q], a);
       // World units = grid units times a power of two: exact (the grid's range is far from
       // overflow and underflow), so a vertex exact in grid units is exact in world units.
       mesh.vertices[i] = grid.to_world(at);
-      if (exact != nullptr) (*exact)[i] = exactly_represented(planes[t.s], planes[t.p], planes[t.q], at) ? 1 : 0;
+      if (exact != nullptr)
+        (*exact)[i] = (!approximated || a.err == 0) && exactly_represented(planes[t.s], planes[t.p], planes[t.q], at);
     }
   });
   mesh.faces.reserve(std::size_t(faces.size()));

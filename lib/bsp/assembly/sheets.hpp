@@ -5,6 +5,7 @@
 /// does; docs/kernel.md); then the output mesh.
 
 #include "bsp/assembly/faces.hpp"
+#include "kernel/grid.hpp"
 #include "mesh/polygon_mesh.hpp"
 
 namespace sculpt::bsp::detail {
@@ -19,12 +20,29 @@ struct Sheets {
 /// connected through paired edges share a vertex; other corners get a copy.
 Sheets split_non_manifold(FaceList faces, const AssemblyVertices& vertices, const kernel::PlaneTable& planes);
 
-/// The mesh in world units of `grid` (only vertices used by faces are written; coordinates by
-/// kernel::rounded_vertex), optionally with each face triangulated by mesh/triangulate.hpp's
-/// exact ear clipping. `exact`, if given, receives one flag per output vertex: 1 when its
-/// coordinates are exactly the vertex (nothing was rounded; see exactly_represented), else 0.
+struct OutputMeshOptions {
+  bool triangulate = false;  ///< each face triangulated by mesh/triangulate.hpp's exact ear clipping
+  kernel::Grid grid{};       ///< the solid's grid: output vertices in its world units
+  /// For a screen: a vertex whose approximation's error bound is at most kDisplayError grid units
+  /// is written at its approximation instead of correctly rounded (kernel::rounded_vertex, whose
+  /// exact arithmetic is a third of a faceted sphere's assembly). Not for files: the coordinates
+  /// then depend on which corner the vertex was first seen at.
+  bool approximate = false;
+  /// If given, receives one flag per output vertex: 1 when its coordinates are exactly the vertex
+  /// (nothing was rounded; see exactly_represented), else 0. With `approximate`, only vertices
+  /// whose approximation is exact (error bound 0) can be flagged.
+  std::vector<char>* exact = nullptr;
+};
+
+/// The error bound, in grid units, up to which `approximate` output takes a vertex's
+/// approximation: 2^-20 of a grid step (3e-11 world units at the default grid), far below what a
+/// screen or a picked coordinate shows; a looser vertex (nearly dependent planes) is rounded.
+inline constexpr double kDisplayError = 0x1p-20;
+
+/// The mesh in world units of options.grid (only vertices used by faces are written; coordinates
+/// by kernel::rounded_vertex, or as options.approximate says).
 PolygonMesh output_mesh(const Sheets& sheets, const AssemblyVertices& vertices, const kernel::PlaneTable& planes,
-                        bool triangulate, const kernel::Grid& grid = {}, std::vector<char>* exact = nullptr);
+                        const OutputMeshOptions& options = {});
 
 /// The double coordinates `at` (grid units) are exactly the vertex p ∩ q ∩ r: decided exactly
 /// but only for grid points (integer coordinates below 2^53, which lie on all three planes:

@@ -117,7 +117,7 @@ void time_stages(const bsp::detail::Fragments& f, int runs, const char* source) 
     lap(&faces);
     const bsp::detail::Sheets sheets = bsp::detail::split_non_manifold(std::move(faces), merged.vertices, f.planes);
     lap(&sheets.faces);
-    const PolygonMesh mesh = bsp::detail::output_mesh(sheets, merged.vertices, f.planes, false);
+    const PolygonMesh mesh = bsp::detail::output_mesh(sheets, merged.vertices, f.planes);
     lap();
   }
   std::printf("stages source=%s", source);
