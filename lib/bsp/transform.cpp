@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <utility>
 
 #include "base/errors.hpp"
 #include "bsp/boundary.hpp"
@@ -175,7 +176,7 @@ std::optional<Solid> map_boundary(const Solid& solid, const PolygonMesh& exact, 
   // asking for triangles would rebuild it through the repairing cleaner even where it is clean.
   const bool triangles = std::all_of(mesh.faces.begin(), mesh.faces.end(), [](const auto& f) { return f.size() == 3; });
   OutputRoundingReport rounding;
-  mesh = round_for_output(mesh,
+  mesh = round_for_output(std::move(mesh),
                           {.precision = OutputPrecision::Grid,
                            .max_feature = kSnapFeatureSteps * grid.step(),
                            .triangles = !triangles,

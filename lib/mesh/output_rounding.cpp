@@ -64,8 +64,11 @@ std::string inverted_shell(const PolygonMesh& mesh) {
 
 /// What a caller of judge already knows of the mesh.
 struct Known {
-  /// The caller found no defect at all in the mesh with the same topology check, and the
-  /// precision is doubles (rounding changes nothing), so it is not repeated.
+  /// Every vertex rounds to itself (doubles; or a mesh already in the precision, as a transform's
+  /// boundary snapped to the grid): the rounded mesh is the mesh, not copied.
+  bool rounding_moves_nothing = false;
+  /// The caller found no defect at all in the mesh with the same topology check, and rounding
+  /// moves no vertex, so it is not repeated.
   bool topology_clean = false;
   /// The mesh is the cleaner's mesh, all triangles, with coordinates already in the precision,
   /// and the cleaner's own exact search (mesh::detail::crossings, every pair of live,
@@ -81,11 +84,12 @@ struct Known {
 OutputVerdict judge(const PolygonMesh& mesh, const OutputRoundingOptions& options, Known known = {}) {
   const Rounder round(options);
   PolygonMesh copy;
-  if (options.precision != OutputPrecision::Double) {  // doubles: rounding is the identity
+  const bool moves = options.precision != OutputPrecision::Double && !known.rounding_moves_nothing;
+  if (moves) {
     copy = mesh;
     for (Vector3d& v : copy.vertices) v = round(v);
   }
-  const PolygonMesh& rounded = options.precision == OutputPrecision::Double ? mesh : copy;
+  const PolygonMesh& rounded = moves ? copy : mesh;
   std::vector<char> used(rounded.vertices.size(), 0);
   for (const auto& f : rounded.faces)
     for (int v : f)
@@ -208,16 +212,23 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
     return std::move(mesh);
   }
   const Rounder round(options);
-  const bool topology_clean = topology.defects.empty() && options.precision == OutputPrecision::Double;
-  const OutputVerdict first = options.triangles ? OutputVerdict::problem_found("triangles asked for")
-                                                : judge(mesh, given, {.topology_clean = topology_clean});
+  // Where rounding moves no vertex (doubles, or a transform's boundary already snapped to the
+  // grid), the check above is the rounded mesh's: judge neither copies the mesh nor checks again.
+  const bool moves_nothing =
+      options.precision == OutputPrecision::Double ||
+      std::all_of(mesh.vertices.begin(), mesh.vertices.end(), [&](const Vector3d& v) { return round(v) == v; });
+  const bool topology_clean = topology.defects.empty() && moves_nothing;
+  const OutputVerdict first =
+      options.triangles
+          ? OutputVerdict::problem_found("triangles asked for")
+          : judge(mesh, given, {.rounding_moves_nothing = moves_nothing, .topology_clean = topology_clean});
   if (first.check == OutputCheck::Unchecked) {  // too costly to judge: written as it is, and said so
     r.clean = false;
     r.problem = first.problem;
     return std::move(mesh);
   }
   if (first.check == OutputCheck::Clean) {
-    if (options.precision == OutputPrecision::Double) return std::move(mesh);
+    if (moves_nothing) return std::move(mesh);
     PolygonMesh rounded = std::move(mesh);
     for (Vector3d& v : rounded.vertices) v = round(v);
     return rounded;
