@@ -1,11 +1,13 @@
 // Built-ins of the solids area: primitives, transforms, classification, measures, mesh export
 // and import (lib/bsp, lib/mesh; Ihm & Naylor 1990 sec. 6, Naylor et al. 1990).
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <optional>
 #include <span>
 #include <sstream>
 
+#include "base/parallel.hpp"
 #include "bsp/boundary.hpp"
 #include "bsp/classify.hpp"
 #include "bsp/extrude.hpp"
@@ -631,14 +633,28 @@ void register_solids(BuiltinTable& table) {
          const std::string path = args.input_path("file");
          const bool strict = args.boolean("strict");
          const PolygonMesh mesh = read_mesh(path);
-         // The topology first. The faces are searched for crossings once, in the mesh
-         // snapped to the grid (what the solid is built from); the mesh as read only when
-         // that finds one, to tell its own crossings from those snapping made. (A crossing
-         // below the grid step that snapping undoes is not reported.)
-         ValidationReport report = check_closed_manifold(mesh, {.check_self_intersections = false});
-         const PolygonMesh snapped = report.ok() ? snapped_to_grid(mesh, args.grid()) : PolygonMesh{};
-         const std::vector<FacePair> snapped_pairs =
-             report.ok() ? find_self_intersections(snapped, {.max_pairs = 1}) : std::vector<FacePair>{};
+         // The topology, and the faces searched for crossings once, in the mesh snapped to
+         // the grid (what the solid is built from); the mesh as read only when that finds one,
+         // to tell its own crossings from those snapping made. (A crossing below the grid step
+         // that snapping undoes is not reported.) The two run side by side where the search
+         // can read the mesh; its answer (or error) counts only when the topology is clean.
+         ValidationReport report;
+         std::vector<FacePair> snapped_pairs;
+         std::exception_ptr search_error;
+         const auto topology = [&] { report = check_closed_manifold(mesh, {.check_self_intersections = false}); };
+         const auto crossings = [&] {
+           try {
+             snapped_pairs = find_self_intersections(snapped_to_grid(mesh, args.grid()), {.max_pairs = 1});
+           } catch (...) {
+             search_error = std::current_exception();
+           }
+         };
+         if (indices_and_coordinates_valid(mesh))
+           parallel_invoke(topology, crossings);
+         else
+           topology();
+         if (report.ok() && search_error) std::rethrow_exception(search_error);
+         if (!report.ok()) snapped_pairs.clear();
          const bool snapped_crosses = !snapped_pairs.empty();
          if (!report.ok() || snapped_crosses) report = check_closed_manifold(mesh);
          if (!report.ok()) {

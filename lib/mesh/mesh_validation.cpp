@@ -293,6 +293,17 @@ std::string ValidationReport::summary(size_t max_lines) const {
   return s;
 }
 
+bool indices_and_coordinates_valid(const PolygonMesh& mesh) {
+  const auto n = static_cast<long long>(mesh.vertices.size());
+  for (const auto& f : mesh.faces) {
+    if (f.size() < 3) return false;
+    for (const int v : f)
+      if (v < 0 || v >= n) return false;
+  }
+  return std::all_of(mesh.vertices.begin(), mesh.vertices.end(),
+                     [](const Eigen::Vector3d& v) { return v.allFinite(); });
+}
+
 ValidationReport check_closed_manifold(const PolygonMesh& mesh, ValidationOptions options) {
   return Validator(mesh, options).run();
 }

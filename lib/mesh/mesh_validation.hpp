@@ -59,6 +59,11 @@ struct ValidationOptions {
   std::string source = {};  ///< where the mesh came from (a file): put in the message and GeometryError::where()
 };
 
+/// Whether every face has at least 3 corners, every index names a vertex and every coordinate is
+/// finite: what check_closed_manifold's other checks, and a self-intersection search, need to read
+/// the mesh at all (its first checks, without their messages).
+bool indices_and_coordinates_valid(const PolygonMesh& mesh);
+
 /// All defects that keep `mesh` from bounding a solid. Index and coordinate errors stop the
 /// other checks (they could not be trusted).
 ValidationReport check_closed_manifold(const PolygonMesh& mesh, ValidationOptions options = {});

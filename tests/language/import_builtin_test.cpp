@@ -90,6 +90,21 @@ TEST(ImportBuiltin, OpenMeshIsRefusedWithItsOpenEdges) {
   EXPECT_NE(r.error.find("open edge (1, 0, 0) - (1, 1, 0)"), std::string::npos) << r.error;  // where
 }
 
+// The topology check and the search of the snapped faces run side by side: the search's error
+// (a vertex beyond the kernel's range cannot be snapped) is the answer only for a mesh whose
+// topology is clean; an open mesh is refused for what is open, as when they ran one after the other.
+TEST(ImportBuiltin, TopologyIsReportedBeforeASnappingError) {
+  PolygonMesh far = test_shapes::box({0, 0, 0}, {1, 1, 1});
+  for (Eigen::Vector3d& v : far.vertices)
+    if (v.x() > 0.5) v.x() = 5000;  // beyond the default grid's [-1024, 1024]
+  const auto closed = run_script("s = import(\"" + written(far, "far_box.off") + "\")");
+  EXPECT_NE(closed.error.find("outside the exact kernel's range"), std::string::npos) << closed.error;
+  far.faces.pop_back();
+  const auto open = run_script("s = import(\"" + written(far, "far_open_box.off") + "\")");
+  EXPECT_NE(open.error.find("is not a closed manifold: open edge: 4"), std::string::npos) << open.error;
+  EXPECT_EQ(open.error.find("outside the exact kernel's range"), std::string::npos) << open.error;
+}
+
 // The bunny and a turned copy that overlaps it, written as one mesh (many crossing face pairs, as a
 // scan that touches itself): imported as their union, whose export CGAL finds clean in every format.
 TEST(ImportBuiltin, BunnyAndTurnedCopyInOneFileImportAsOneCleanSolid) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <limits>
 
 #include "base/errors.hpp"
@@ -31,6 +32,34 @@ TEST(Validation, ClosedSolidsPass) {
   PolygonMesh cavity = box({0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
   for (auto& f : cavity.faces) std::reverse(f.begin(), f.end());
   EXPECT_TRUE(check_closed_manifold(merged(box({0, 0, 0}, {1, 1, 1}), cavity)).ok());
+}
+
+// What the validator's first checks find, without messages: short faces, indices out of range and
+// non-finite coordinates make it false, anything else (an open or non-manifold mesh) does not.
+TEST(Validation, IndicesAndCoordinatesValidAgreesWithTheFirstChecks) {
+  const PolygonMesh box = test_shapes::box({0, 0, 0}, {1, 1, 1});
+  EXPECT_TRUE(indices_and_coordinates_valid(box));
+  PolygonMesh open = box;
+  open.faces.pop_back();
+  EXPECT_TRUE(indices_and_coordinates_valid(open));
+  PolygonMesh bad = box;
+  bad.faces[3][1] = int(bad.vertices.size());
+  EXPECT_FALSE(indices_and_coordinates_valid(bad));
+  bad = box;
+  bad.faces[2][0] = -1;
+  EXPECT_FALSE(indices_and_coordinates_valid(bad));
+  bad = box;
+  bad.faces[1].resize(2);
+  EXPECT_FALSE(indices_and_coordinates_valid(bad));
+  bad = box;
+  bad.vertices[5].y() = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(indices_and_coordinates_valid(bad));
+  bad.vertices[5].y() = std::nan("");
+  EXPECT_FALSE(indices_and_coordinates_valid(bad));
+  for (const PolygonMesh& m : {box, open}) {
+    const ValidationReport r = check_closed_manifold(m);
+    EXPECT_EQ(r.count(DefectKind::InvalidIndex) + r.count(DefectKind::NonFiniteCoordinate), 0u);
+  }
 }
 
 TEST(Validation, OpenEdgeGivesItsCoordinates) {

@@ -96,22 +96,26 @@ int main(int argc, char** argv) {
   if (!file.empty()) {
     name = std::filesystem::path(file).stem().string();
     auto t = Clock::now();
-    // As the language's import: read, validate the topology (closed, manifold, oriented), check
-    // that the faces snapped to the grid do not cross, build with the faces as the boundary.
+    // As the language's import: read, validate the topology (closed, manifold, oriented) and,
+    // side by side with it, check that the faces snapped to the grid do not cross; build with the
+    // faces as the boundary.
     const PolygonMesh mesh = read_mesh(file);
-    if (const ValidationReport report = check_closed_manifold(mesh, {.check_self_intersections = false});
-        !report.ok()) {
+    ValidationReport report;
+    bool crosses = false;
+    parallel_invoke([&] { report = check_closed_manifold(mesh, {.check_self_intersections = false}); },
+                    [&] {  // the snapped copy is the check's alone (the language's import does not keep it either)
+                      PolygonMesh snapped = mesh;
+                      const kernel::Grid grid;
+                      for (auto& v : snapped.vertices) v = grid.to_world(grid.snap(v));
+                      crosses = !find_self_intersections(snapped, {.max_pairs = 1}).empty();
+                    });
+    if (!report.ok()) {
       std::fprintf(stderr, "bench_mesh_job: %s: %s\n", file.c_str(), report.summary(3).c_str());
       return 1;
     }
-    {  // the snapped copy is the check's alone (the language's import does not keep it either)
-      PolygonMesh snapped = mesh;
-      const kernel::Grid grid;
-      for (auto& v : snapped.vertices) v = grid.to_world(grid.snap(v));
-      if (!find_self_intersections(snapped, {.max_pairs = 1}).empty()) {
-        std::fprintf(stderr, "bench_mesh_job: %s: faces meet once snapped to the grid\n", file.c_str());
-        return 1;
-      }
+    if (crosses) {
+      std::fprintf(stderr, "bench_mesh_job: %s: faces meet once snapped to the grid\n", file.c_str());
+      return 1;
     }
     const Solid m = from_mesh(mesh, {.snapped_mesh_is_clean = true});
     t_import = since(t);
