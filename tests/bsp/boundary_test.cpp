@@ -221,7 +221,9 @@ TEST(Boundary, ApproximateCoordinatesForAScreenStayWithinTheirBound) {
       if (d.maxCoeff() > 0) ++moved;
     }
     EXPECT_LE(worst, 1.0) << k;
-    if (k < 2) EXPECT_GT(moved, exact.vertices.size() / 2) << k;  // the approximations are used
+    if (k < 2) {  // the approximations are used
+      EXPECT_GT(moved, exact.vertices.size() / 2) << k;
+    }
   }
 }
 
