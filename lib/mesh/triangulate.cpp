@@ -140,6 +140,13 @@ class EarClipper {
   int start_ = 0;
 };
 
+/// Every corner of the projected quadrilateral turns strictly left (exact orientation tests): then
+/// no corner lies in the triangle of the other three, and any corner is an ear.
+bool quad_is_strictly_convex(const std::vector<Eigen::Vector2d>& p) {
+  return orient2d(p[3], p[0], p[1]) > 0 && orient2d(p[0], p[1], p[2]) > 0 && orient2d(p[1], p[2], p[3]) > 0 &&
+         orient2d(p[2], p[3], p[0]) > 0;
+}
+
 }  // namespace
 
 void PolygonTriangulator::append(const std::vector<Eigen::Vector3d>& vertices, std::span<const int> face,
@@ -177,6 +184,17 @@ void PolygonTriangulator::append(const std::vector<Eigen::Vector3d>& vertices, s
   const double mirror = normal[axis] > 0 ? 1.0 : -1.0;
   points_.clear();
   for (int id : face) points_.emplace_back(mirror * vertices[id][u], vertices[id][v]);
+  if (face.size() == 4 && quad_is_strictly_convex(points_)) {
+    // What the ear clipper gives a strictly convex quadrilateral (its first corner is an ear,
+    // then the rest, begun where the order says), without its rings: a faceted sphere's faces
+    // are nearly all such.
+    out.push_back({face[3], face[0], face[1]});
+    if (order == EarOrder::Spread)
+      out.push_back({face[1], face[2], face[3]});
+    else
+      out.push_back({face[2], face[3], face[1]});
+    return;
+  }
   EarClipper(points_, face, next_, prev_, order).run(out);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "base/parallel.hpp"
 #include "language/picture_items.hpp"
 #include "language/solid_values.hpp"
 #include "mesh/mesh_measures.hpp"
@@ -49,8 +50,13 @@ std::optional<ViewPart> part_of(const language::Value& value) {
     // The exact boundary, once: for a screen the output rounding that makes files clean is not
     // needed, and the measures come from the same faces (a million faces: seconds saved).
     part.mesh = s->display_boundary();
-    part.volume = s->exact_boundary ? s->volume() : mesh_volume(part.mesh);
-    part.area = s->exact_boundary ? s->area() : mesh_surface_area(part.mesh);
+    // The measures side by side (each a pass over a million faces takes tens of ms).
+    parallel_invoke([&] { part.volume = s->exact_boundary ? s->volume() : mesh_volume(part.mesh); },
+                    [&] {
+                      part.area = s->exact_boundary ? s->area() : mesh_surface_area(part.mesh);
+                      part.box = mesh_bounding_box(part.mesh);
+                    });
+    return part;
   } else if (const auto* m = value.object<language::MeshValue>()) {
     part.mesh = m->mesh;
     part.area = mesh_surface_area(part.mesh);

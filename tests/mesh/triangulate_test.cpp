@@ -162,6 +162,38 @@ TEST(Triangulate, ConvexPolygonsFanAndSpread) {
   EXPECT_NE(triangulate_polygon(star, iota_face(5)), convex_fan);
 }
 
+// Quadrilaterals (a faceted sphere's faces), convex or with one reflex corner, in random planes
+// and both orientations: two triangles that cover the face and run its way; a convex one is the
+// fan around corner 1 (as every convex polygon's fan above), a dart is cut at its reflex corner.
+TEST(Triangulate, QuadrilateralsConvexAndNot) {
+  std::mt19937 rng(40);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 400; ++trial) {
+    const bool dart = trial % 2 == 1;
+    // In the plane: corners at four increasing angles, or a dart (corner 2 moved to the centroid
+    // of the other three: a reflex corner).
+    std::vector<Eigen::Vector3d> flat;
+    for (int i = 0; i < 4; ++i) {
+      const double a = std::numbers::pi / 2 * (i + 0.4 * u(rng)), r = 1 + 0.3 * u(rng);
+      flat.emplace_back(r * std::cos(a), r * std::sin(a), 0);
+    }
+    if (dart) flat[2] = (flat[0] + flat[1] + flat[3]) / 3;
+    const std::vector<int> face = trial % 4 < 2 ? std::vector<int>{0, 1, 2, 3} : std::vector<int>{3, 2, 1, 0};
+    const std::vector<int> corners = iota_face(4);
+    const double area = std::abs(shoelace(flat, corners));
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(3 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    const Eigen::Vector3d offset(u(rng), u(rng), u(rng));
+    std::vector<Eigen::Vector3d> v;
+    for (const Eigen::Vector3d& p : flat) v.push_back(turn * p + offset);
+    const Eigen::Vector3d normal = turn * Eigen::Vector3d::UnitZ() * (trial % 4 < 2 ? 1.0 : -1.0);
+    check(v, face, area, normal);
+    const std::vector<IndexTriangle> fan = triangulate_polygon(v, face);
+    const int hub = dart ? 2 : face[1];  // the dart's reflex corner is vertex 2 in either order
+    for (const auto& t : fan) EXPECT_TRUE(t[0] == hub || t[1] == hub || t[2] == hub) << trial;
+  }
+}
+
 TEST(Triangulate, DegenerateAndInvalidFaces) {
   const auto line = xy({{0, 0}, {1, 0}, {2, 0}, {3, 0}});
   EXPECT_TRUE(triangulate_polygon(line, iota_face(4)).empty());
