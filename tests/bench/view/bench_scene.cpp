@@ -67,7 +67,12 @@ int main(int argc, char** argv) {
     language::Interpreter interpreter(options);
     running = &interpreter;
     auto t = Clock::now();
-    interpreter.run(source);
+    try {
+      interpreter.run(source);
+    } catch (const language::ScriptError& e) {  // as the executable reports it: file:line:col: error: ...
+      std::fprintf(stderr, "%s", language::format_error(e).c_str());
+      return 1;
+    }
     script.push_back(since(t));
     std::optional<language::Value> last = statement;
     if (const std::string name = language::latest_solid_global(interpreter);
