@@ -522,7 +522,9 @@ class CellMerge {
     }
     // Both operands' fragments in chunks, in waves (parallel_waves): the result is written once,
     // in fragment order, and the scratch lists hold one wave, not a second copy of the whole result.
-    constexpr std::size_t kFragmentChunk = 1024;
+    // Chunks of 256 fragments rather than 1024: a wave's lists are scratch beside the result (about
+    // 1 MB less at small jobs' peaks, the same time).
+    constexpr std::size_t kFragmentChunk = 256;
     const std::size_t na = ops_[0].faces().size(), n = na + ops_[1].faces().size();
     FragmentList result;
     parallel_waves<FragmentList>(
