@@ -106,4 +106,21 @@ void parallel_invoke(F&& f, G&& g) {
   tbb::parallel_invoke(std::forward<F>(f), std::forward<G>(g));
 }
 
+/// parallel_invoke(f, g) for a g whose outcome counts only when f's does (a search beside the
+/// check that decides whether its answer is wanted): an exception from g is returned, not thrown,
+/// for the caller to rethrow or drop; one from f is thrown. Cancellation is not lost when g's is
+/// dropped: the request stays pending (base/cancel.hpp).
+template <typename F, typename G>
+[[nodiscard]] std::exception_ptr parallel_invoke_holding_second(F&& f, G&& g) {
+  std::exception_ptr held;
+  parallel_invoke(std::forward<F>(f), [&] {
+    try {
+      g();
+    } catch (...) {
+      held = std::current_exception();
+    }
+  });
+  return held;
+}
+
 }  // namespace sculpt

@@ -640,17 +640,13 @@ void register_solids(BuiltinTable& table) {
          // can read the mesh; its answer (or error) counts only when the topology is clean.
          ValidationReport report;
          std::vector<FacePair> snapped_pairs;
-         std::exception_ptr search_error;
          const auto topology = [&] { report = check_closed_manifold(mesh, {.check_self_intersections = false}); };
          const auto crossings = [&] {
-           try {
-             snapped_pairs = find_self_intersections(snapped_to_grid(mesh, args.grid()), {.max_pairs = 1});
-           } catch (...) {
-             search_error = std::current_exception();
-           }
+           snapped_pairs = find_self_intersections(snapped_to_grid(mesh, args.grid()), {.max_pairs = 1});
          };
+         std::exception_ptr search_error;
          if (indices_and_coordinates_valid(mesh))
-           parallel_invoke(topology, crossings);
+           search_error = parallel_invoke_holding_second(topology, crossings);
          else
            topology();
          if (report.ok() && search_error) std::rethrow_exception(search_error);

@@ -221,17 +221,11 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
   };
   std::optional<OutputVerdict> beside;
   std::exception_ptr beside_error;
-  if (moves_nothing && !options.triangles && given.exact_vertices.empty() && indices_and_coordinates_valid(mesh)) {
-    parallel_invoke(check_topology, [&] {
-      try {
-        beside = judge(mesh, given, {.rounding_moves_nothing = true, .topology_clean = true});
-      } catch (...) {
-        beside_error = std::current_exception();
-      }
-    });
-  } else {
+  if (moves_nothing && !options.triangles && given.exact_vertices.empty() && indices_and_coordinates_valid(mesh))
+    beside_error = parallel_invoke_holding_second(
+        check_topology, [&] { beside = judge(mesh, given, {.rounding_moves_nothing = true, .topology_clean = true}); });
+  else
     check_topology();
-  }
   // Only closed, oriented 2-manifolds are rounded: anything else (an open patch) is left as it is.
   for (const Defect& d : topology.defects) {
     if (d.kind == DefectKind::DegenerateFace || d.kind == DefectKind::NonPlanarFace ||

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <exception>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -73,6 +74,24 @@ TEST(ParallelWaves, JoinInIndexOrderAndRethrowTheFirstFailureInOrder) {
       EXPECT_STREQ(e.what(), "piece 3");
     }
     EXPECT_EQ(joined.size(), 30u);
+  }
+}
+
+// The second task's exception is handed back, the first's thrown; both tasks run to their end.
+TEST(ParallelInvokeHoldingSecond, ReturnsTheSecondsErrorAndThrowsTheFirsts) {
+  for (const int threads : {1, 2}) {
+    const ThreadLimit limit(threads);
+    bool first = false, second = false;
+    std::exception_ptr held = parallel_invoke_holding_second([&] { first = true; }, [&] { second = true; });
+    EXPECT_TRUE(first && second);
+    EXPECT_FALSE(held);
+    first = false;
+    held = parallel_invoke_holding_second([&] { first = true; }, [] { throw std::runtime_error("second"); });
+    EXPECT_TRUE(first);
+    ASSERT_TRUE(held);
+    EXPECT_THROW(std::rethrow_exception(held), std::runtime_error);
+    EXPECT_THROW((void)parallel_invoke_holding_second([] { throw std::logic_error("first"); }, [] {}),
+                 std::logic_error);
   }
 }
 
