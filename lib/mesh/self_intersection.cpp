@@ -17,6 +17,7 @@
 #include "mesh/detail/box_grid.hpp"
 #include "mesh/detail/certified_patches.hpp"
 #include "mesh/detail/certified_stars.hpp"
+#include "mesh/detail/moved_neighbourhood.hpp"
 #include "mesh/detail/point_copies.hpp"
 #include "mesh/detail/triangle_pairs.hpp"
 #include "mesh/predicates.hpp"
@@ -113,16 +114,18 @@ Eigen::AlignedBox3d box_of(const PreparedTriangle& t) {
   return box;
 }
 
-/// Faces [begin, end) of `mesh` triangulated and prepared into `out` (appended, in face order).
+/// Faces [begin, end) of `mesh` triangulated and prepared into `out` (appended, in face order),
+/// those that `wanted` (one flag per face, or empty: all) marks.
 /// \throw InvalidInput as triangulate_polygon.
 template <typename ExactFace>
-void prepare_faces(const PolygonMesh& mesh, const std::vector<int>& canon, const ExactFace& exact_face, size_t begin,
-                   size_t end, PreparedFaces& out) {
+void prepare_faces(const PolygonMesh& mesh, const std::vector<int>& canon, const ExactFace& exact_face,
+                   const std::vector<char>& wanted, size_t begin, size_t end, PreparedFaces& out) {
   PolygonTriangulator triangulator;
   std::vector<IndexTriangle> face_tris;
   CancelPoll poll;
   for (size_t fi = begin; fi < end; ++fi) {
     poll.tick();
+    if (!wanted.empty() && wanted[fi] == 0) continue;
     const bool exact = exact_face(mesh.faces[fi]);
     face_tris.clear();
     triangulator.append(mesh.vertices, mesh.faces[fi], face_tris, EarOrder::Spread);
@@ -304,6 +307,10 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
     return marked && std::all_of(f.begin(), f.end(), [&](int v) { return options.exact_vertices[size_t(v)] != 0; });
   };
   if (marked && std::all_of(mesh.faces.begin(), mesh.faces.end(), exact_face)) return result;
+  // With marks, a face whose box meets no box of a face with an unmarked corner is in no pair
+  // that is examined: only the others are prepared (mesh/detail/moved_neighbourhood.hpp).
+  const std::vector<char> wanted =
+      marked ? mesh::detail::faces_near_moved(mesh, options.exact_vertices) : std::vector<char>{};
   // Per triangle: what the exact tests read, its box, what the stars' certification reads, its
   // class and what the scan reads (Slot).
   PreparedFaces all;
@@ -320,7 +327,7 @@ SelfIntersectionSearch search_self_intersections(const PolygonMesh& mesh, SelfIn
       mesh.faces.size(), kFaceChunk,
       [&](size_t begin, size_t end, PreparedFaces& part) {
         check_cancel();  // Ctrl-C (base/cancel.hpp): a second or more on millions of triangles
-        prepare_faces(mesh, canon, exact_face, begin, end, part);
+        prepare_faces(mesh, canon, exact_face, wanted, begin, end, part);
       },
       [&](PreparedFaces& part) {
         all.append(part);

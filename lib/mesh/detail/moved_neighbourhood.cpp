@@ -1,0 +1,150 @@
+#include "mesh/detail/moved_neighbourhood.hpp"
+
+#include <cmath>
+#include <cstdint>
+
+#include <Eigen/Geometry>
+
+#include "base/cancel.hpp"
+#include "base/parallel.hpp"
+
+namespace sculpt::mesh::detail {
+namespace {
+
+constexpr std::int64_t kMaxCells = 64;  ///< cells a box may meet and still be marked or looked up by cells
+constexpr std::size_t kMaxBig = 256;    ///< moved boxes kept as boxes (each checked against every face)
+constexpr std::size_t kChunk = 4096;    ///< faces a piece
+
+enum : char { kFar = 0, kMoved = 1, kNear = 2, kInvalid = 3 };
+
+/// The box of a face with valid indices.
+Eigen::AlignedBox3d face_box(const PolygonMesh& mesh, const std::vector<int>& face) {
+  Eigen::AlignedBox3d box;
+  for (const int v : face) box.extend(mesh.vertices[std::size_t(v)]);
+  return box;
+}
+
+/// The cells a box meets, per axis [lo, hi] (cells of side `cell` from the origin).
+struct CellRange {
+  std::int64_t lo[3], hi[3];
+  bool ok = false;  ///< finite and within the indices' range
+  [[nodiscard]] std::int64_t count() const { return (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1); }
+};
+
+CellRange cell_range(const Eigen::AlignedBox3d& box, double cell) {
+  CellRange r;
+  for (int k = 0; k < 3; ++k) {
+    // Division by a positive number and floor are monotone: closed boxes that meet share a cell.
+    const double lo = std::floor(box.min()[k] / cell), hi = std::floor(box.max()[k] / cell);
+    if (!(std::fabs(lo) < 0x1p40 && std::fabs(hi) < 0x1p40)) return r;
+    r.lo[k] = std::int64_t(lo), r.hi[k] = std::int64_t(hi);
+  }
+  r.ok = true;
+  return r;
+}
+
+/// A set of cells by a 64-bit hash of their indices (open addressing; a collision only keeps a
+/// face that was not needed).
+class CellSet {
+ public:
+  explicit CellSet(std::size_t cells) {
+    std::size_t n = 64;
+    while (n < 2 * cells) n *= 2;
+    slots_.assign(n, 0);
+  }
+  void insert(std::uint64_t key) {
+    std::size_t h = slot(key);
+    while (slots_[h] != 0 && slots_[h] != key) h = (h + 1) & (slots_.size() - 1);
+    slots_[h] = key;
+  }
+  [[nodiscard]] bool contains(std::uint64_t key) const {
+    for (std::size_t h = slot(key); slots_[h] != 0; h = (h + 1) & (slots_.size() - 1))
+      if (slots_[h] == key) return true;
+    return false;
+  }
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    std::uint64_t k = std::uint64_t(x) * 0x9E3779B97F4A7C15ull ^ std::uint64_t(y) * 0xC2B2AE3D27D4EB4Full ^
+                      std::uint64_t(z) * 0x165667B19E3779F9ull;
+    k ^= k >> 31;
+    return k == 0 ? 1 : k;  // 0 marks a free slot
+  }
+
+ private:
+  [[nodiscard]] std::size_t slot(std::uint64_t key) const {
+    return std::size_t(key * 0xD6E8FEB86659FD93ull >> 17) & (slots_.size() - 1);
+  }
+  std::vector<std::uint64_t> slots_;
+};
+
+template <typename Visit>
+void for_each_cell(const CellRange& r, Visit&& visit) {
+  for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
+    for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
+      for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) visit(CellSet::key(x, y, z));
+}
+
+}  // namespace
+
+std::vector<char> faces_near_moved(const PolygonMesh& mesh, std::span<const char> exact) {
+  const std::size_t nf = mesh.faces.size(), nv = mesh.vertices.size();
+  if (exact.size() != nv || nf == 0) return {};
+  std::vector<char> state(nf, kFar);
+  std::vector<std::size_t> moved_in(nf / kChunk + 1, 0);
+  parallel_chunks(nf, kChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f < end; ++f) {
+      const std::vector<int>& face = mesh.faces[f];
+      bool valid = face.size() >= 3, moved = false;
+      for (const int v : face) {
+        valid = valid && v >= 0 && std::size_t(v) < nv;
+        moved = moved || (valid && exact[std::size_t(v)] == 0);
+      }
+      state[f] = !valid ? kInvalid : moved ? kMoved : kFar;
+      moved_in[begin / kChunk] += moved && valid ? 1 : 0;
+    }
+  });
+  std::size_t moved = 0;
+  for (const std::size_t m : moved_in) moved += m;
+  if (2 * moved >= nf) return {};
+  // Cells about the moved boxes' mean size, so that each meets a few.
+  double extent = 0;
+  for (std::size_t f = 0; f < nf; ++f)
+    if (state[f] == kMoved) extent += face_box(mesh, mesh.faces[f]).sizes().maxCoeff();
+  const double cell = moved > 0 && std::isfinite(extent) && extent > 0 ? extent / double(moved) : 1.0;
+  // The moved boxes' cells, or the boxes themselves where they meet many cells.
+  std::vector<CellRange> ranges;
+  ranges.reserve(moved);
+  std::vector<Eigen::AlignedBox3d> big;
+  std::size_t cells = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (state[f] != kMoved) continue;
+    const Eigen::AlignedBox3d box = face_box(mesh, mesh.faces[f]);
+    const CellRange r = cell_range(box, cell);
+    if (!r.ok) return {};
+    if (r.count() > kMaxCells) {
+      big.push_back(box);
+      if (big.size() > kMaxBig) return {};
+      continue;
+    }
+    ranges.push_back(r);
+    cells += std::size_t(r.count());
+  }
+  check_cancel();  // Ctrl-C (base/cancel.hpp)
+  CellSet marked(cells);
+  for (const CellRange& r : ranges) for_each_cell(r, [&](std::uint64_t key) { marked.insert(key); });
+  ranges = {};
+  // The other faces: kept where their box meets a marked cell or a big box.
+  parallel_chunks(nf, kChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f < end; ++f) {
+      if (state[f] != kFar) continue;
+      const Eigen::AlignedBox3d box = face_box(mesh, mesh.faces[f]);
+      const CellRange r = cell_range(box, cell);
+      bool near = !r.ok || r.count() > kMaxCells;
+      for (std::size_t b = 0; b < big.size() && !near; ++b) near = big[b].intersects(box);
+      if (!near) for_each_cell(r, [&](std::uint64_t key) { near = near || marked.contains(key); });
+      if (near) state[f] = kNear;
+    }
+  });
+  return state;
+}
+
+}  // namespace sculpt::mesh::detail
