@@ -101,18 +101,21 @@ FacePlane face_plane(const PolygonMesh& m, const std::vector<int>& face) {
   return fp;
 }
 
-/// Where vertex v touches face f, if it does. The plane test first (constant time; almost every
-/// pair ends there), then the corners, then the position in the face.
+/// Where vertex v touches face f, if it does. Its own corners first (a face's box holds them, and
+/// on the face's plane the filter cannot decide: each took an exact orient3d), then the plane
+/// test (constant time; almost every other pair ends there), then copies of the corners, then the
+/// position in the face.
 std::optional<Contact> contact(const PolygonMesh& m, int f, const FacePlane& fp, int v, int& left) {
   if (fp.third == 0) return std::nullopt;
   const std::vector<int>& face = m.faces[size_t(f)];
+  if (std::find(face.begin(), face.end(), v) != face.end()) return std::nullopt;  // a corner
   const V3& x = m.vertices[size_t(v)];
   const V3 &pa = m.vertices[size_t(face[0])], &pb = m.vertices[size_t(face[1])],
            &pc = m.vertices[size_t(face[fp.third])];
   const int side = orient3d_filtered(pa, pb, pc, x);
   if (side != kUndecided || orient3d(pa, pb, pc, x) != 0) return std::nullopt;  // off the plane
   for (const int c : face)
-    if (c == v || m.vertices[size_t(c)] == x) return std::nullopt;  // a corner, or a copy of one
+    if (m.vertices[size_t(c)] == x) return std::nullopt;  // a copy of a corner
   const Projection& pr = fp.projection;
   int edge = -1;
   switch (locate(m, face, pr, pr.of(x), edge)) {
