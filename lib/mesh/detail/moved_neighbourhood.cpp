@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include <Eigen/Geometry>
 
@@ -11,8 +12,8 @@
 namespace sculpt::mesh::detail {
 namespace {
 
-constexpr std::int64_t kMaxCells = 64;  ///< cells a box may meet and still be marked or looked up by cells
-constexpr std::size_t kMaxBig = 256;    ///< moved boxes kept as boxes (each checked against every face)
+constexpr std::int64_t kMaxCells = 64;  ///< cells a box may meet at its level (else the next, coarser one)
+constexpr int kLevels = 16;             ///< levels of cells: cell * 4^k
 constexpr std::size_t kChunk = 4096;    ///< faces a piece
 
 enum : char { kFar = 0, kMoved = 1, kNear = 2, kInvalid = 3 };
@@ -29,13 +30,21 @@ struct CellRange {
   std::int64_t lo[3], hi[3];
   bool ok = false;  ///< finite and within the indices' range
   [[nodiscard]] std::int64_t count() const { return (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1); }
+  /// The same box's cells at `level` levels coarser (cells 4^level times as large): the indices
+  /// divided by 4^level, rounded down. x / (c 4^k) rounds as (x / c) / 4^k (a power of two), and
+  /// floor(floor(a) / n) = floor(a / n) for an integer n.
+  [[nodiscard]] CellRange coarser(int level) const {
+    CellRange r = *this;
+    for (int k = 0; k < 3; ++k) r.lo[k] >>= 2 * level, r.hi[k] >>= 2 * level;  // (arithmetic: rounds down)
+    return r;
+  }
 };
 
-CellRange cell_range(const Eigen::AlignedBox3d& box, double cell) {
+/// Multiplication by a positive number and floor are monotone: closed boxes that meet share a cell.
+CellRange cell_range(const Eigen::AlignedBox3d& box, double inverse_cell) {
   CellRange r;
   for (int k = 0; k < 3; ++k) {
-    // Division by a positive number and floor are monotone: closed boxes that meet share a cell.
-    const double lo = std::floor(box.min()[k] / cell), hi = std::floor(box.max()[k] / cell);
+    const double lo = std::floor(box.min()[k] * inverse_cell), hi = std::floor(box.max()[k] * inverse_cell);
     if (!(std::fabs(lo) < 0x1p40 && std::fabs(hi) < 0x1p40)) return r;
     r.lo[k] = std::int64_t(lo), r.hi[k] = std::int64_t(hi);
   }
@@ -62,9 +71,9 @@ class CellSet {
       if (slots_[h] == key) return true;
     return false;
   }
-  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z, int level) {
     std::uint64_t k = std::uint64_t(x) * 0x9E3779B97F4A7C15ull ^ std::uint64_t(y) * 0xC2B2AE3D27D4EB4Full ^
-                      std::uint64_t(z) * 0x165667B19E3779F9ull;
+                      std::uint64_t(z) * 0x165667B19E3779F9ull ^ std::uint64_t(level) * 0x27D4EB2F165667C5ull;
     k ^= k >> 31;
     return k == 0 ? 1 : k;  // 0 marks a free slot
   }
@@ -76,11 +85,20 @@ class CellSet {
   std::vector<std::uint64_t> slots_;
 };
 
+/// Calls visit(key) for each cell of the range at `level` while it returns true (or returns
+/// nothing); false if a visit stopped it.
 template <typename Visit>
-void for_each_cell(const CellRange& r, Visit&& visit) {
+bool for_each_cell(const CellRange& r, int level, Visit&& visit) {
   for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
     for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
-      for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) visit(CellSet::key(x, y, z));
+      for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) {
+        if constexpr (std::is_void_v<decltype(visit(std::uint64_t()))>) {
+          visit(CellSet::key(x, y, z, level));
+        } else if (!visit(CellSet::key(x, y, z, level))) {
+          return false;
+        }
+      }
+  return true;
 }
 
 }  // namespace
@@ -110,37 +128,46 @@ std::vector<char> faces_near_moved(const PolygonMesh& mesh, std::span<const char
   for (std::size_t f = 0; f < nf; ++f)
     if (state[f] == kMoved) extent += face_box(mesh, mesh.faces[f]).sizes().maxCoeff();
   const double cell = moved > 0 && std::isfinite(extent) && extent > 0 ? extent / double(moved) : 1.0;
-  // The moved boxes' cells, or the boxes themselves where they meet many cells.
-  std::vector<CellRange> ranges;
-  ranges.reserve(moved);
-  std::vector<Eigen::AlignedBox3d> big;
+  // A power of two near it, so that x / cell is x times its inverse, exactly as rounded.
+  const double inverse_cell = std::ldexp(1.0, -std::ilogb(cell));
+  // The moved boxes' cells, each box at the finest level where it meets at most kMaxCells (long
+  // faces beside small ones: a sphere's cut through a fine mesh).
+  struct Marked {
+    CellRange range;
+    int level;
+  };
+  std::vector<Marked> marks;
+  marks.reserve(moved);
+  unsigned levels = 0;  // the levels that have marks
   std::size_t cells = 0;
   for (std::size_t f = 0; f < nf; ++f) {
     if (state[f] != kMoved) continue;
-    const Eigen::AlignedBox3d box = face_box(mesh, mesh.faces[f]);
-    const CellRange r = cell_range(box, cell);
-    if (!r.ok) return {};
-    if (r.count() > kMaxCells) {
-      big.push_back(box);
-      if (big.size() > kMaxBig) return {};
-      continue;
-    }
-    ranges.push_back(r);
+    const CellRange finest = cell_range(face_box(mesh, mesh.faces[f]), inverse_cell);
+    if (!finest.ok) return {};
+    int level = 0;
+    CellRange r = finest;
+    while (r.count() > kMaxCells && level + 1 < kLevels) r = finest.coarser(++level);
+    if (r.count() > kMaxCells) return {};
+    marks.push_back({r, level});
+    levels |= 1u << level;
     cells += std::size_t(r.count());
   }
   check_cancel();  // Ctrl-C (base/cancel.hpp)
   CellSet marked(cells);
-  for (const CellRange& r : ranges) for_each_cell(r, [&](std::uint64_t key) { marked.insert(key); });
-  ranges = {};
-  // The other faces: kept where their box meets a marked cell or a big box.
+  for (const Marked& m : marks) for_each_cell(m.range, m.level, [&](std::uint64_t key) { marked.insert(key); });
+  marks = {};
+  // The other faces: kept where their box meets a marked cell of any level.
   parallel_chunks(nf, kChunk, [&](std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) {
       if (state[f] != kFar) continue;
-      const Eigen::AlignedBox3d box = face_box(mesh, mesh.faces[f]);
-      const CellRange r = cell_range(box, cell);
-      bool near = !r.ok || r.count() > kMaxCells;
-      for (std::size_t b = 0; b < big.size() && !near; ++b) near = big[b].intersects(box);
-      if (!near) for_each_cell(r, [&](std::uint64_t key) { near = near || marked.contains(key); });
+      const CellRange finest = cell_range(face_box(mesh, mesh.faces[f]), inverse_cell);
+      bool near = !finest.ok;
+      for (int level = 0; level < kLevels && !near; ++level) {
+        if ((levels >> level & 1u) == 0) continue;
+        const CellRange r = finest.coarser(level);
+        near =
+            r.count() > kMaxCells || !for_each_cell(r, level, [&](std::uint64_t key) { return !marked.contains(key); });
+      }
       if (near) state[f] = kNear;
     }
   });

@@ -8,9 +8,10 @@
 /// triangles, bunny00's 7,852 of 113,390.
 ///
 /// The moved faces' boxes mark the cells of a uniform grid (about their mean size) that they
-/// meet; a face is kept when its box meets a marked cell. Cells are told apart by a hash, and a
-/// box that meets more than kMaxCells cells is kept or marked as a box of its own: both only
-/// keep more faces than needed, never fewer.
+/// meet, each box at the finest of levels of cells 4^k times as large where it meets at most 64
+/// (Teschner et al. 2003's hierarchical spatial hashing); a face is kept when its box meets a
+/// marked cell of some level. Cells are told apart by a hash, and a face whose box meets more
+/// than 64 cells of a marked level is kept: both only keep more faces than needed, never fewer.
 
 #include <span>
 #include <vector>
