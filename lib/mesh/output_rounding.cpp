@@ -206,9 +206,10 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
   // Where rounding moves no vertex (doubles, or a transform's boundary already snapped to the
   // grid), the topology check below is the rounded mesh's: judge neither copies the mesh nor
   // checks again, and it runs beside the check (it needs only readable indices and coordinates);
-  // its verdict counts only if the check finds nothing. Not with exact-vertex marks (to_mesh's
-  // output): there the two side by side saved 10-17 % of to_mesh but raised the real-mesh jobs'
-  // peak, which is set at that step, by 4-10 MB (docs/benchmarks.md, "Session 40").
+  // its verdict counts only if the check finds nothing. With exact-vertex marks (to_mesh's
+  // output) too, since the marked search prepares only the faces near moved ones: side by side
+  // they once raised the real-mesh jobs' peak by 4-10 MB, now by at most 1.4 MB
+  // (docs/benchmarks.md, "Session 41").
   const bool moves_nothing =
       options.precision == OutputPrecision::Double ||
       std::all_of(mesh.vertices.begin(), mesh.vertices.end(), [&](const Vector3d& v) { return round(v) == v; });
@@ -221,7 +222,7 @@ PolygonMesh round_for_output(PolygonMesh&& mesh, const OutputRoundingOptions& gi
   };
   std::optional<OutputVerdict> beside;
   std::exception_ptr beside_error;
-  if (moves_nothing && !options.triangles && given.exact_vertices.empty() && indices_and_coordinates_valid(mesh))
+  if (moves_nothing && !options.triangles && indices_and_coordinates_valid(mesh))
     beside_error = parallel_invoke_holding_second(
         check_topology, [&] { beside = judge(mesh, given, {.rounding_moves_nothing = true, .topology_clean = true}); });
   else
