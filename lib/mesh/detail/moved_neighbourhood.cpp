@@ -128,8 +128,10 @@ std::vector<char> faces_near_moved(const PolygonMesh& mesh, std::span<const char
   for (std::size_t f = 0; f < nf; ++f)
     if (state[f] == kMoved) extent += face_box(mesh, mesh.faces[f]).sizes().maxCoeff();
   const double cell = moved > 0 && std::isfinite(extent) && extent > 0 ? extent / double(moved) : 1.0;
-  // A power of two near it, so that x / cell is x times its inverse, exactly as rounded.
-  const double inverse_cell = std::ldexp(1.0, -std::ilogb(cell));
+  // The power of two above it (1-2 times the mean: a face meets fewer cells, which costs fewer
+  // lookups than the faces it keeps in vain; armadillo's to_mesh: the search 158 M -> 136 M
+  // instructions), so that x / cell is x times its inverse, exactly as rounded.
+  const double inverse_cell = std::ldexp(1.0, -std::ilogb(cell) - 1);
   // The moved boxes' cells, each box at the finest level where it meets at most kMaxCells (long
   // faces beside small ones: a sphere's cut through a fine mesh).
   struct Marked {

@@ -7,7 +7,7 @@
 /// meshes, most of the output is marked: the armadillo job's difference moves 10,176 of 81,326
 /// triangles, bunny00's 7,852 of 113,390.
 ///
-/// The moved faces' boxes mark the cells of a uniform grid (about their mean size) that they
+/// The moved faces' boxes mark the cells of a uniform grid (1-2 times their mean size) that they
 /// meet, each box at the finest of levels of cells 4^k times as large where it meets at most 64
 /// (Teschner et al. 2003's hierarchical spatial hashing); a face is kept when its box meets a
 /// marked cell of some level. Cells are told apart by a hash, and a face whose box meets more
