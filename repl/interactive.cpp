@@ -12,8 +12,11 @@
 #include "base/cancel.hpp"
 #include "language/session.hpp"
 
+#include <fcntl.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #ifdef SCULPT_HAVE_LIBEDIT
 #include <editline/readline.h>
@@ -44,21 +47,38 @@ constexpr const char* kContinuation = "   ...> ";
 std::atomic<bool> interrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the flag is set from a signal handler");
 
+// The kernel hands a process's SIGINT to any thread that does not block it: a worker of the
+// parallel library or the memory watch may take it while the main thread waits for keys, which
+// the signal then does not interrupt. So the handler also writes a byte here, and the wait for
+// keys watches the other end (the self-pipe trick; both ends non-blocking).
+int interrupt_pipe[2] = {-1, -1};
+
 extern "C" void on_interrupt(int) {
+  const int saved = errno;
   interrupted.store(true, std::memory_order_relaxed);
   sculpt::request_cancel();  // long library work stops too (base/cancel.hpp)
+  if (interrupt_pipe[1] >= 0) {
+    const char byte = 1;
+    [[maybe_unused]] const ssize_t written = ::write(interrupt_pipe[1], &byte, 1);  // full: one is there
+  }
+  errno = saved;
 }
 
 struct InterruptHandler {
   struct sigaction previous {};
   InterruptHandler() {
+    if (::pipe2(interrupt_pipe, O_NONBLOCK | O_CLOEXEC) != 0) interrupt_pipe[0] = interrupt_pipe[1] = -1;
     struct sigaction action {};
     action.sa_handler = on_interrupt;
     sigemptyset(&action.sa_mask);
     action.sa_flags = 0;  // no SA_RESTART: a blocking read returns EINTR
     sigaction(SIGINT, &action, &previous);
   }
-  ~InterruptHandler() { sigaction(SIGINT, &previous, nullptr); }
+  ~InterruptHandler() {
+    sigaction(SIGINT, &previous, nullptr);
+    for (int& end : interrupt_pipe)
+      if (end >= 0) ::close(end), end = -1;
+  }
   InterruptHandler(const InterruptHandler&) = delete;
   InterruptHandler& operator=(const InterruptHandler&) = delete;
 };
@@ -98,7 +118,8 @@ char** complete(const char* text, int start, int /*end*/) {
 
 /// libedit's character source. A Ctrl-C that arrives before libedit blocks in read() would be
 /// lost (the read would not be interrupted), so SIGINT stays blocked except inside ppoll(),
-/// which unblocks it atomically while waiting; a raised flag ends the line as end of input.
+/// which unblocks it atomically while waiting, and which also wakes when another thread took the
+/// signal (interrupt_pipe); a raised flag ends the line as end of input.
 int read_key(FILE* in) {
   sigset_t interrupt_only, previous;
   sigemptyset(&interrupt_only);
@@ -109,10 +130,15 @@ int read_key(FILE* in) {
   const int fd = fileno(in);
   int key = EOF;
   while (!interrupted.load()) {
-    pollfd p{fd, POLLIN, 0};
-    const int ready = ppoll(&p, 1, nullptr, &waiting);
+    pollfd p[2] = {{fd, POLLIN, 0}, {interrupt_pipe[0], POLLIN, 0}};
+    const int ready = ppoll(p, interrupt_pipe[0] >= 0 ? 2 : 1, nullptr, &waiting);
     if (ready < 0 && errno == EINTR) continue;
     if (ready < 0) break;
+    if ((p[1].revents & POLLIN) != 0) {  // a SIGINT (maybe taken by another thread, maybe an old one)
+      char bytes[64];
+      while (::read(interrupt_pipe[0], bytes, sizeof bytes) > 0) {}
+      continue;  // the loop's condition decides
+    }
     unsigned char c = 0;
     const ssize_t n = read(fd, &c, 1);
     if (n == 1) key = c;

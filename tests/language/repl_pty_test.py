@@ -175,6 +175,7 @@ def main():
     assert status == 0, "exit status %d" % status
     memory_budget(home)
     huge_pages(home)
+    interrupt_taken_by_another_thread(home)
     print("REPL pseudo-terminal checks passed")
 
 
@@ -197,6 +198,35 @@ def huge_pages(home):
         t.type(":quit\r")
         assert t.close() == 0
         os.environ.pop("SCULPT_HUGE_PAGES", None)
+
+
+def interrupt_taken_by_another_thread(home):
+    """Ctrl-C at a prompt is a SIGINT for the process, which the kernel may hand to any thread that
+    does not block it: a worker of the parallel library or the memory watch, not the one waiting
+    for keys. Sent here to another thread on purpose (tgkill), at a quiet continuation prompt
+    after work on every core, it must still cancel the entry at once (once a CI run's failure:
+    the key was taken and the prompt went on waiting)."""
+    import ctypes
+    import signal
+    libc = ctypes.CDLL(None, use_errno=True)
+    if not hasattr(libc, "tgkill"):
+        print("interrupt on another thread: no tgkill in this C library, skipped")
+        return
+    t = Terminal(home)
+    t.wait_prompt()
+    t.mark(); t.type("a = sphere(1, 64) - translate(sphere(1, 64), [0.3, 0.2, 0.1])\r"); t.wait_prompt()
+    t.mark(); t.type("y = [1,\r"); t.wait_prompt("...> ")
+    others = sorted(int(task) for task in os.listdir("/proc/%d/task" % t.pid) if int(task) != t.pid)
+    assert others, "sculpt runs no thread besides its main one: nothing to test"
+    for tid in others:  # each other thread in turn takes one
+        assert libc.tgkill(t.pid, tid, signal.SIGINT) == 0, ctypes.get_errno()
+        t.read_until("entry cancelled", timeout=10)
+        t.wait_prompt()
+        t.mark(); t.type("y = [1,\r"); t.wait_prompt("...> ")
+    t.mark(); t.type("\x03"); t.read_until("entry cancelled"); t.wait_prompt()
+    t.mark(); t.type("print(6 * 7)\r"); t.read_until("42"); t.wait_prompt()
+    t.type(":quit\r")
+    assert t.close() == 0
 
 
 def memory_budget(home):
