@@ -97,9 +97,9 @@ TEST(FacesNearMoved, AMovedFaceOverManyCellsKeepsTheFacesItMeets) {
   // Moved: a small sphere (its faces set the cells' size) and a long thin box whose long faces
   // meet hundreds of those cells (marked at a coarser level); marked: a ball pierced by the box
   // at its far end, which only the long faces' boxes meet, and a ball beside it that none meets.
-  PolygonMesh small = test_shapes::uv_sphere(24, 0.5);
+  PolygonMesh small = test_shapes::uv_sphere(64, 0.2);
   PolygonMesh rod = test_shapes::box({-1, -1, -1}, {150, -0.9, -0.9});
-  PolygonMesh ball = test_shapes::uv_sphere(48, 1), aside = test_shapes::uv_sphere(48, 1);
+  PolygonMesh ball = test_shapes::uv_sphere(96, 1), aside = test_shapes::uv_sphere(96, 1);
   for (auto& p : ball.vertices) p += Vector3d(140, -1, -1);
   for (auto& p : aside.vertices) p += Vector3d(140, 30, -1);
   const PolygonMesh moved_part = test_shapes::merged(small, rod);

@@ -2,7 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <type_traits>
+#include <optional>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -85,34 +86,27 @@ class CellSet {
   std::vector<std::uint64_t> slots_;
 };
 
-/// Calls visit(key) for each cell of the range at `level` while it returns true (or returns
-/// nothing); false if a visit stopped it.
+/// Calls visit(key) for each cell of the range at `level` while it returns true; false if a visit
+/// stopped it.
 template <typename Visit>
 bool for_each_cell(const CellRange& r, int level, Visit&& visit) {
   for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
     for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
-      for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) {
-        if constexpr (std::is_void_v<decltype(visit(std::uint64_t()))>) {
-          visit(CellSet::key(x, y, z, level));
-        } else if (!visit(CellSet::key(x, y, z, level))) {
-          return false;
-        }
-      }
+      for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z)
+        if (!visit(CellSet::key(x, y, z, level))) return false;
   return true;
 }
 
-}  // namespace
-
-std::vector<char> faces_near_moved(const PolygonMesh& mesh, std::span<const char> exact) {
+/// Per face: moved (a corner unmarked), invalid (fewer than three corners, an index out of
+/// range), or neither (kFar); and how many are moved.
+std::size_t classify_faces(const PolygonMesh& mesh, std::span<const char> exact, std::vector<char>& state) {
   const std::size_t nf = mesh.faces.size(), nv = mesh.vertices.size();
-  if (exact.size() != nv || nf == 0) return {};
-  std::vector<char> state(nf, kFar);
+  state.assign(nf, kFar);
   std::vector<std::size_t> moved_in(nf / kChunk + 1, 0);
   parallel_chunks(nf, kChunk, [&](std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) {
-      const std::vector<int>& face = mesh.faces[f];
-      bool valid = face.size() >= 3, moved = false;
-      for (const int v : face) {
+      bool valid = mesh.faces[f].size() >= 3, moved = false;
+      for (const int v : mesh.faces[f]) {
         valid = valid && v >= 0 && std::size_t(v) < nv;
         moved = moved || (valid && exact[std::size_t(v)] == 0);
       }
@@ -122,56 +116,80 @@ std::vector<char> faces_near_moved(const PolygonMesh& mesh, std::span<const char
   });
   std::size_t moved = 0;
   for (const std::size_t m : moved_in) moved += m;
-  if (2 * moved >= nf) return {};
-  // Cells about the moved boxes' mean size, so that each meets a few.
+  return moved;
+}
+
+/// The cells that the moved faces' boxes meet, each box at the finest level where it meets at
+/// most kMaxCells (long faces beside small ones: a sphere's cut through a fine mesh).
+struct MarkedCells {
+  double inverse_cell = 1;  ///< of the finest level's cells
+  unsigned levels = 0;      ///< the levels that have marks
+  CellSet cells{0};
+};
+
+/// Null when a moved box is not finite, or too large for every level (then every face is kept).
+std::optional<MarkedCells> mark_moved(const PolygonMesh& mesh, const std::vector<char>& state, std::size_t moved) {
+  // Cells of the power of two above the moved boxes' mean size (1-2 times it: a face meets fewer
+  // cells, which costs fewer lookups than the faces it keeps in vain; armadillo's to_mesh: the
+  // search 158 M -> 136 M instructions), so that x / cell is x times its inverse, exactly as
+  // rounded.
   double extent = 0;
-  for (std::size_t f = 0; f < nf; ++f)
+  for (std::size_t f = 0; f < state.size(); ++f)
     if (state[f] == kMoved) extent += face_box(mesh, mesh.faces[f]).sizes().maxCoeff();
   const double cell = moved > 0 && std::isfinite(extent) && extent > 0 ? extent / double(moved) : 1.0;
-  // The power of two above it (1-2 times the mean: a face meets fewer cells, which costs fewer
-  // lookups than the faces it keeps in vain; armadillo's to_mesh: the search 158 M -> 136 M
-  // instructions), so that x / cell is x times its inverse, exactly as rounded.
-  const double inverse_cell = std::ldexp(1.0, -std::ilogb(cell) - 1);
-  // The moved boxes' cells, each box at the finest level where it meets at most kMaxCells (long
-  // faces beside small ones: a sphere's cut through a fine mesh).
-  struct Marked {
-    CellRange range;
-    int level;
-  };
-  std::vector<Marked> marks;
+  MarkedCells out;
+  out.inverse_cell = std::ldexp(1.0, -std::ilogb(cell) - 1);
+  std::vector<std::pair<CellRange, int>> marks;  // (range, level)
   marks.reserve(moved);
-  unsigned levels = 0;  // the levels that have marks
-  std::size_t cells = 0;
-  for (std::size_t f = 0; f < nf; ++f) {
+  std::size_t count = 0;
+  for (std::size_t f = 0; f < state.size(); ++f) {
     if (state[f] != kMoved) continue;
-    const CellRange finest = cell_range(face_box(mesh, mesh.faces[f]), inverse_cell);
-    if (!finest.ok) return {};
+    const CellRange finest = cell_range(face_box(mesh, mesh.faces[f]), out.inverse_cell);
+    if (!finest.ok) return std::nullopt;
     int level = 0;
     CellRange r = finest;
     while (r.count() > kMaxCells && level + 1 < kLevels) r = finest.coarser(++level);
-    if (r.count() > kMaxCells) return {};
-    marks.push_back({r, level});
-    levels |= 1u << level;
-    cells += std::size_t(r.count());
+    if (r.count() > kMaxCells) return std::nullopt;
+    marks.emplace_back(r, level);
+    out.levels |= 1u << level;
+    count += std::size_t(r.count());
   }
+  out.cells = CellSet(count);
+  for (const auto& [range, level] : marks)
+    for_each_cell(range, level, [&](std::uint64_t key) {
+      out.cells.insert(key);
+      return true;
+    });
+  return out;
+}
+
+/// Whether a face's box meets a marked cell of some level (or meets too many cells to tell).
+bool meets_marked(const Eigen::AlignedBox3d& box, const MarkedCells& marked) {
+  const CellRange finest = cell_range(box, marked.inverse_cell);
+  if (!finest.ok) return true;
+  for (int level = 0; level < kLevels; ++level) {
+    if ((marked.levels >> level & 1u) == 0) continue;
+    const CellRange r = finest.coarser(level);
+    if (r.count() > kMaxCells) return true;
+    if (!for_each_cell(r, level, [&](std::uint64_t key) { return !marked.cells.contains(key); })) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<char> faces_near_moved(const PolygonMesh& mesh, std::span<const char> exact) {
+  const std::size_t nf = mesh.faces.size();
+  if (exact.size() != mesh.vertices.size() || nf == 0) return {};
+  std::vector<char> state;
+  const std::size_t moved = classify_faces(mesh, exact, state);
+  if (2 * moved >= nf) return {};
+  const std::optional<MarkedCells> marked = mark_moved(mesh, state, moved);
+  if (!marked) return {};
   check_cancel();  // Ctrl-C (base/cancel.hpp)
-  CellSet marked(cells);
-  for (const Marked& m : marks) for_each_cell(m.range, m.level, [&](std::uint64_t key) { marked.insert(key); });
-  marks = {};
-  // The other faces: kept where their box meets a marked cell of any level.
   parallel_chunks(nf, kChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t f = begin; f < end; ++f) {
-      if (state[f] != kFar) continue;
-      const CellRange finest = cell_range(face_box(mesh, mesh.faces[f]), inverse_cell);
-      bool near = !finest.ok;
-      for (int level = 0; level < kLevels && !near; ++level) {
-        if ((levels >> level & 1u) == 0) continue;
-        const CellRange r = finest.coarser(level);
-        near =
-            r.count() > kMaxCells || !for_each_cell(r, level, [&](std::uint64_t key) { return !marked.contains(key); });
-      }
-      if (near) state[f] = kNear;
-    }
+    for (std::size_t f = begin; f < end; ++f)
+      if (state[f] == kFar && meets_marked(face_box(mesh, mesh.faces[f]), *marked)) state[f] = kNear;
   });
   return state;
 }
