@@ -21,9 +21,6 @@
 #ifdef SCULPT_HAVE_LIBEDIT
 #include <editline/readline.h>
 #include <poll.h>
-#include <unistd.h>
-
-#include <cerrno>
 #endif
 
 namespace sculpt::repl {
