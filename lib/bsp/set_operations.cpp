@@ -1,5 +1,6 @@
 #include "bsp/set_operations.hpp"
 #include "base/cancel.hpp"
+#include "base/parallel.hpp"
 #include "bsp/tree/solid_access.hpp"
 
 #include <memory>
@@ -498,6 +499,14 @@ Solid subtract(const Solid& a, const Solid& b) { return operate(a, b, kDifferenc
 
 Solid unite_all(std::vector<Solid> solids) {
   if (solids.empty()) return Solid();
+  if (solids.size() > 2) {
+    // The batch union pushes pieces down every operand's tree: deferred trees (transformed
+    // meshes, results of set operations) are built first, side by side. Each solid builds its
+    // own, as it would on first use.
+    parallel_chunks(solids.size(), 8, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) (void)solids[i].root();
+    });
+  }
   // The common grid of the operands with planes (leaves take any: see Solid).
   const Solid* first = nullptr;
   for (const Solid& s : solids)

@@ -3,6 +3,8 @@
 // the same mesh, vertex for vertex and face for face, on one thread and on every core.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -75,6 +77,31 @@ TEST(ThreadCount, BoundaryExtractionGivesTheSameMeshOnOneThreadAndOnEvery) {
   const PolygonMesh parallel = to_mesh(p, {.clean = false});
   EXPECT_TRUE(checks::EdgesManifoldAndOriented(parallel));
   EXPECT_EQ(parallel.faces.size(), 2002u);
+  EXPECT_EQ(serial.vertices, parallel.vertices);
+  EXPECT_EQ(serial.faces, parallel.faces);
+}
+
+TEST(ThreadCount, UnionOfManySolidsGivesTheSameMeshOnOneThreadAndOnEvery) {
+  // unite_all of more than two solids (bsp/merge/batch_union.cpp): the operands' deferred trees are
+  // built side by side, then each operand's boundary is clipped by the others on its own core.
+  auto run = [] {
+    std::vector<Solid> parts;
+    for (int k = 0; k < 40; ++k) {
+      const Eigen::Vector3d axis = Eigen::Vector3d(1 + k % 3, 2 - k % 5, 1 + k % 7).normalized();
+      const Eigen::Affine3d turn = Eigen::Translation3d(0.4 * (k % 5), 0.3 * (k % 4), 0.25 * (k % 6)) *
+                                   Eigen::AngleAxisd(0.37 * k, axis) * Eigen::Translation3d(-0.5, -0.5, -0.5);
+      parts.push_back(transform(box({0, 0, 0}, {1, 1, 1}), turn));
+    }
+    parts.push_back(translate(sphere(0.8, {.segments = 24}), {1, 1, 1}));
+    return to_mesh(unite_all(std::move(parts)));
+  };
+  PolygonMesh serial;
+  {
+    ThreadLimit one(1);
+    serial = run();
+  }
+  const PolygonMesh parallel = run();
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(parallel));
   EXPECT_EQ(serial.vertices, parallel.vertices);
   EXPECT_EQ(serial.faces, parallel.faces);
 }
