@@ -148,8 +148,11 @@ Solid TreeBuilder::build_as_given(TreeRef root, std::optional<FragmentList> boun
   // Pending sub-hyperplanes: aggregate initialization writes the support and the corners' header
   // only (value initialization would zero each 272-byte polygon first).
   // Straight into the solid's store (a std::vector here was moved element by element into one).
+  // Exactly one slot per node: the store grows by blocks that never move, so an in-place
+  // operation appending to it copies nothing, and spare slots would cost a small solid most of its
+  // memory (16 + 32 + 64 polygons of ~200 bytes for a box's tree of a dozen nodes).
   PolygonStore polygons;
-  polygons.reserve(room);
+  polygons.reserve(nodes.size());
   CancelPoll poll;  // Ctrl-C (base/cancel.hpp): a large tree's polygons take a while to write
   for (const BspNode& n : nodes) {
     poll.tick();

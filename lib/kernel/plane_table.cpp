@@ -8,10 +8,11 @@ namespace sculpt::kernel {
 namespace {
 
 /// Room a block is given when made or copied: the first block grows from a few planes (most
-/// tables are small: a primitive, a curve's solid), the others are made to hold kBlock.
+/// tables are small: a primitive, a curve's solid, a turned box of 18 planes, of which a union
+/// may hold 10^4: room for 64 was 3 KB each), the others are made to hold kBlock.
 std::size_t block_room(std::size_t k, std::size_t used) {
   const auto full = std::size_t(PlaneTable::kBlock);
-  return k == 0 ? std::min(full, std::max<std::size_t>(64, used + used / 2)) : full;
+  return k == 0 ? std::min(full, std::max<std::size_t>(16, used + used / 2)) : full;
 }
 
 }  // namespace
