@@ -3,8 +3,10 @@
 //   m = import(FILE); r = m turned 33 degrees about (1, 1, 0) around its box centre;
 //   u = m | r; d = u - sphere(radius = a quarter of the box's largest side, 48 segments, centred
 //   three quarters of the way from the box centre to its upper corner); volume(d)
+// or, with --moved-copy, m = import(FILE); d = m - m moved by a tenth of its box's size
+// (issue 33's 10^6-triangle case; `turn` times the move, `union` is 0),
 // or, with --sphere N, sphere(1, N) - sphere(1, N) moved by (0.3, 0.2, 0.1).
-//   bench_mesh_job [--threads T] [--classic] (--mesh FILE.off | --sphere N)
+//   bench_mesh_job [--threads T] [--classic] [--moved-copy] (--mesh FILE.off | --sphere N)
 // --classic: set operations by merging whole trees, never by cells (bsp/local/cell_merge.hpp).
 // Prints: bench case=NAME n=TRIANGLES threads=T import=S turn=S union=S difference=S total=S
 //         volume=V triangles_out=N to_mesh=S (seconds, wall clock; difference includes to_mesh and the
@@ -53,6 +55,27 @@ double peak_rss_mb() {
   return kb / 1024;
 }
 
+// The result's mesh and volume (part of `difference`), then the line (see the top).
+int finish(const std::string& name, std::size_t n, int used, Clock::time_point start, const sculpt::Solid& result,
+           double t_import, double t_turn, double t_union, double t_difference, double (&peak)[5]) {
+  using namespace sculpt;
+  const auto t = Clock::now();
+  const PolygonMesh out = to_mesh(result);
+  const double v = mesh_volume(out);
+  const double t_to_mesh = since(t);
+  peak[4] = peak_rss_mb();
+  t_difference += t_to_mesh;
+  std::size_t triangles = 0;
+  for (const auto& f : out.faces) triangles += f.size() - 2;
+  std::printf(
+      "bench case=%s n=%zu threads=%d import=%.4f turn=%.4f union=%.4f difference=%.4f total=%.4f volume=%.10g "
+      "triangles_out=%zu to_mesh=%.4f peak_import=%.1f peak_turn=%.1f peak_union=%.1f peak_difference=%.1f "
+      "peak_to_mesh=%.1f\n",
+      name.c_str(), n, used, t_import, t_turn, t_union, t_difference, since(start), v, triangles, t_to_mesh, peak[0],
+      peak[1], peak[2], peak[3], peak[4]);
+  return 0;
+}
+
 int usage() {
   std::fprintf(stderr, "usage: bench_mesh_job [--threads T] [--classic] (--mesh FILE | --sphere N)\n");
   return 2;
@@ -63,11 +86,17 @@ int usage() {
 int main(int argc, char** argv) {
   using namespace sculpt;
   int threads = 0, n = 0;
+  bool moved_copy = false;
   std::string file;
   for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--classic") {
       bsp::detail::set_cell_merge_threshold(bsp::detail::kClassicMergeOnly);
+      --i;
+      continue;
+    }
+    if (a == "--moved-copy") {
+      moved_copy = true;
       --i;
       continue;
     }
@@ -124,6 +153,18 @@ int main(int argc, char** argv) {
     Eigen::Vector3d lo = mesh.vertices[0], hi = lo;
     for (const auto& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     const Eigen::Vector3d c = (lo + hi) / 2;
+    if (moved_copy) {
+      name += "_minus_moved";
+      t = Clock::now();
+      const Solid moved = translate(m, (hi - lo) / 10);
+      t_turn = since(t);
+      peak[1] = peak[2] = peak_rss_mb();
+      t = Clock::now();
+      result = m - moved;
+      t_difference = since(t);
+      peak[3] = peak_rss_mb();
+      return finish(name, in_triangles, used, start, result, t_import, t_turn, t_union, t_difference, peak);
+    }
     t = Clock::now();
     const Eigen::Affine3d turn = Eigen::Translation3d(c) *
                                  Eigen::AngleAxisd(33 * M_PI / 180, Eigen::Vector3d(1, 1, 0).normalized()) *
@@ -156,19 +197,6 @@ int main(int argc, char** argv) {
     t_difference = since(d);
     peak[3] = peak_rss_mb();
   }
-  const auto t = Clock::now();
-  const PolygonMesh out = to_mesh(result);
-  const double v = mesh_volume(out);
-  const double t_to_mesh = since(t);
-  peak[4] = peak_rss_mb();
-  t_difference += t_to_mesh;
-  std::size_t triangles = 0;
-  for (const auto& f : out.faces) triangles += f.size() - 2;
-  std::printf(
-      "bench case=%s n=%zu threads=%d import=%.4f turn=%.4f union=%.4f difference=%.4f total=%.4f volume=%.10g "
-      "triangles_out=%zu to_mesh=%.4f peak_import=%.1f peak_turn=%.1f peak_union=%.1f peak_difference=%.1f "
-      "peak_to_mesh=%.1f\n",
-      name.c_str(), file.empty() ? std::size_t(n) : in_triangles, used, t_import, t_turn, t_union, t_difference,
-      since(start), v, triangles, t_to_mesh, peak[0], peak[1], peak[2], peak[3], peak[4]);
-  return 0;
+  return finish(name, file.empty() ? std::size_t(n) : in_triangles, used, start, result, t_import, t_turn, t_union,
+                t_difference, peak);
 }

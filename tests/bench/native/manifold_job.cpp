@@ -3,7 +3,7 @@
 // evaluates its CSG lazily: `difference` holds the evaluation of the whole tree, forced by
 // GetMeshGL64() (the result as a mesh, as ours ends with to_mesh) and Volume(); only `total`
 // compares with ours phase for phase.
-//   manifold_job [--threads T] (--mesh FILE.off | --sphere N)
+//   manifold_job [--threads T] [--moved-copy] (--mesh FILE.off | --sphere N)
 // Built by tests/bench/native_compare.sh against ../shared/peers' library.
 #include <chrono>
 #include <cmath>
@@ -47,9 +47,16 @@ bool read_off(const std::string& path, manifold::MeshGL64& mesh) {
 int main(int argc, char** argv) {
   using namespace manifold;
   int threads = 0, n = 0;
+  bool moved_copy = false;
   std::string file;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
+    if (a == "--moved-copy") {
+      moved_copy = true;
+      --i;
+      continue;
+    }
+    if (i + 1 >= argc) return 2;
     if (a == "--threads")
       threads = std::atoi(argv[i + 1]);
     else if (a == "--mesh")
@@ -87,20 +94,28 @@ int main(int argc, char** argv) {
     in_triangles = mesh.NumTri();
     const Box box = m.BoundingBox();
     const vec3 c = (box.min + box.max) / 2.0;
-    t = Clock::now();
-    // Rotation by 33 degrees about (1, 1, 0) / sqrt(2) (Rodrigues), around c.
-    const double a = 33 * M_PI / 180, s = std::sin(a), k = 1 - std::cos(a), u = 1 / std::sqrt(2.0);
-    const mat3x4 r({1 - k * u * u, k * u * u, -s * u}, {k * u * u, 1 - k * u * u, s * u},
-                   {s * u, -s * u, 1 - 2 * k * u * u}, {0.0, 0.0, 0.0});  // columns
-    const Manifold turned = m.Translate(-c).Transform(r).Translate(c);
-    t_turn = since(t);
-    t = Clock::now();
-    const Manifold un = m + turned;
-    t_union = since(t);
-    t = Clock::now();
-    const vec3 size = box.max - box.min;
-    const double radius = std::max(size.x, std::max(size.y, size.z)) / 4;
-    result = un - Manifold::Sphere(radius, 48).Translate(c + 0.75 * (box.max - c));
+    if (moved_copy) {
+      name += "_minus_moved";
+      t = Clock::now();
+      const Manifold moved = m.Translate((box.max - box.min) / 10.0);
+      t_turn = since(t);
+      result = m - moved;
+    } else {
+      t = Clock::now();
+      // Rotation by 33 degrees about (1, 1, 0) / sqrt(2) (Rodrigues), around c.
+      const double a = 33 * M_PI / 180, s = std::sin(a), k = 1 - std::cos(a), u = 1 / std::sqrt(2.0);
+      const mat3x4 r({1 - k * u * u, k * u * u, -s * u}, {k * u * u, 1 - k * u * u, s * u},
+                     {s * u, -s * u, 1 - 2 * k * u * u}, {0.0, 0.0, 0.0});  // columns
+      const Manifold turned = m.Translate(-c).Transform(r).Translate(c);
+      t_turn = since(t);
+      t = Clock::now();
+      const Manifold un = m + turned;
+      t_union = since(t);
+      t = Clock::now();
+      const vec3 size = box.max - box.min;
+      const double radius = std::max(size.x, std::max(size.y, size.z)) / 4;
+      result = un - Manifold::Sphere(radius, 48).Translate(c + 0.75 * (box.max - c));
+    }
   } else {
     name = "sphere_minus_moved";
     auto t = Clock::now();
