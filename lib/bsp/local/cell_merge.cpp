@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
@@ -288,24 +289,37 @@ class CellMerge {
     });
     for (const auto& [l, x] : todo)
       for (const FragmentRef f : pieces_[l][x].faces) arena_.opposite(f.polygon.support);
+    // A tree of kAuxiliarySplitFrom pieces or more may add auxiliary planes: it is built on a
+    // branch of the arena, whose planes are then added in order, as a build on the arena itself
+    // would have added them (the same planes, the same indices, for any thread count).
     std::vector<PartitionTree> built(todo.size());
-    auto build = [&](std::size_t k) {
-      const auto [l, x] = todo[k];
-      built[k] = partition_fragments(arena_, pieces_[l][x].faces, mixed(l) ? kLocal : kStatusOnly,
-                                     walls_[std::size_t(node_of(l))]);
-    };
+    std::vector<std::optional<Arena::BranchPlanes>> added(todo.size());
+    arena_.opposite_of.resize(std::size_t(arena_.planes.size()), -1);  // read from every core below
     auto large = [&](std::size_t k) {
       const auto [l, x] = todo[k];
       return !mixed(l) && pieces_[l][x].faces.size() >= kAuxiliarySplitFrom;
     };
-    parallel_chunks(todo.size(), 4, [&](std::size_t begin, std::size_t end) {
+    parallel_chunks(todo.size(), 1, [&](std::size_t k, std::size_t) {
       check_cancel();
-      for (std::size_t k = begin; k < end; ++k)
-        if (!large(k)) build(k);
+      const auto [l, x] = todo[k];
+      const AutopartitionOptions& options = mixed(l) ? kLocal : kStatusOnly;
+      const std::span<const std::int32_t> cell = walls_[std::size_t(node_of(l))];
+      if (!large(k)) {
+        built[k] = partition_fragments(arena_, pieces_[l][x].faces, options, cell);
+        return;
+      }
+      Arena branch = arena_.branch();
+      built[k] = partition_fragments(branch, pieces_[l][x].faces, options, cell);
+      added[k] = branch.added_planes();
     });
-    for (std::size_t k = 0; k < todo.size(); ++k)
-      if (large(k)) check_cancel(), build(k);
-    for (std::size_t k = 0; k < todo.size(); ++k) trees_[todo[k].first][todo[k].second] = append_tree(built[k]);
+    for (std::size_t k = 0; k < todo.size(); ++k) {
+      if (added[k]) {
+        const std::vector<std::int32_t> map = arena_.take_planes(*added[k]);
+        added[k].reset();
+        for (PartitionNode& n : built[k].nodes) n.plane = map[std::size_t(n.plane)];
+      }
+      trees_[todo[k].first][todo[k].second] = append_tree(built[k]);
+    }
   }
 
   // Where status(id, x) reads operand x's status, on the kd-tree alone: the largest node `top`

@@ -15,18 +15,65 @@ namespace sculpt::bsp::detail {
 using kernel::ConvexPolygon;
 
 std::int32_t Arena::opposite(std::int32_t i) {
-  if (opposite_of.size() < std::size_t(planes.size())) {
-    if (opposite_of.capacity() < std::size_t(planes.size())) opposite_of.reserve(2 * std::size_t(planes.size()));
-    opposite_of.resize(planes.size(), -1);
+  if (i < branched_at_) return parent_opposite(i);  // never for an arena that is no branch
+  // opposite_of[k] is plane k + branched_at_'s.
+  const auto own = std::size_t(planes.size() - branched_at_), at = std::size_t(i - branched_at_);
+  if (opposite_of.size() < own) {
+    if (opposite_of.capacity() < own) opposite_of.reserve(2 * own);
+    opposite_of.resize(own, -1);
   }
-  if (opposite_of[i] < 0) {
+  if (opposite_of[at] < 0) {
     const kernel::Plane o = planes[i].opposite();
     const std::int32_t j = planes.add(o, planes.auxiliary(i));
-    opposite_of.resize(planes.size(), -1);
-    opposite_of[i] = j;
-    opposite_of[j] = i;
+    opposite_of.resize(own + 1, -1);
+    opposite_of[at] = j;
+    opposite_of[std::size_t(j - branched_at_)] = i;
   }
-  return opposite_of[i];
+  return opposite_of[at];
+}
+
+std::int32_t Arena::parent_opposite(std::int32_t i) {
+  if (std::size_t(i) < parent_opposites_->size() && (*parent_opposites_)[std::size_t(i)] >= 0)
+    return (*parent_opposites_)[std::size_t(i)];
+  for (const auto& [p, q] : parent_opposites_made_)
+    if (p == i) return q;
+  const std::int32_t j = planes.add(planes[i].opposite(), planes.auxiliary(i));
+  parent_opposites_made_.emplace_back(i, j);
+  opposite_of.resize(std::size_t(planes.size() - branched_at_), -1);
+  opposite_of[std::size_t(j - branched_at_)] = i;
+  return j;
+}
+
+Arena Arena::branch() const {
+  Arena b;
+  b.copy_planes(planes);
+  b.parent_opposites_ = &opposite_of;
+  b.branched_at_ = planes.size();
+  return b;
+}
+
+Arena::BranchPlanes Arena::added_planes() const {
+  BranchPlanes added{.from = branched_at_, .parent_opposites = parent_opposites_made_};
+  for (std::int32_t p = branched_at_; p < planes.size(); ++p) {
+    added.planes.push_back(planes[p]);
+    added.auxiliary.push_back(planes.auxiliary(p) ? 1 : 0);
+    const auto k = std::size_t(p - branched_at_);
+    added.opposites.push_back(k < opposite_of.size() ? opposite_of[k] : -1);
+  }
+  return added;
+}
+
+std::vector<std::int32_t> Arena::take_planes(const BranchPlanes& added) {
+  std::vector<std::int32_t> map(std::size_t(added.from) + added.planes.size());
+  for (std::int32_t p = 0; p < added.from; ++p) map[std::size_t(p)] = p;
+  for (std::size_t k = 0; k < added.planes.size(); ++k)
+    map[std::size_t(added.from) + k] = planes.add(added.planes[k], added.auxiliary[k] != 0);
+  opposite_of.resize(std::size_t(planes.size()), -1);
+  for (std::size_t k = 0; k < added.planes.size(); ++k)
+    if (added.opposites[k] >= 0)
+      opposite_of[std::size_t(map[std::size_t(added.from) + k])] = map[std::size_t(added.opposites[k])];
+  for (const auto& [p, q] : added.parent_opposites) opposite_of[std::size_t(p)] = map[std::size_t(q)];
+  return map;
 }
 
 void Arena::copy_planes(const kernel::PlaneTable& from) {

@@ -3,6 +3,7 @@
 /// Internal: a mutable working copy of one or more trees (planes, nodes, sub-hyperplanes)
 /// used by the tree algorithms, and compaction of a result back into a Solid.
 
+#include <utility>
 #include <vector>
 
 #include "bsp/solid.hpp"
@@ -17,6 +18,26 @@ struct Arena {
 
   /// Index of the plane opposite to plane i (added on first use).
   std::int32_t opposite(std::int32_t i);
+  /// An arena for a task that builds a tree on this arena's planes while this one does not
+  /// change: it shares the planes (copy_planes) and reads this arena's opposites, which must
+  /// outlive it. The planes it adds (from branched_at() on) and the opposites it makes are its
+  /// own, for take_planes() to add to this arena afterwards, in the order a build on this arena
+  /// would have added them.
+  [[nodiscard]] Arena branch() const;
+  [[nodiscard]] std::int32_t branched_at() const { return branched_at_; }
+  /// What a branch added: its planes from branched_at() on, with their auxiliary marks and
+  /// opposites (branch indices), and the opposites it made for its parent's planes.
+  struct BranchPlanes {
+    std::int32_t from = 0;
+    std::vector<kernel::Plane> planes;
+    std::vector<char> auxiliary;
+    std::vector<std::int32_t> opposites;  ///< of planes[k], or -1
+    std::vector<std::pair<std::int32_t, std::int32_t>> parent_opposites;
+  };
+  [[nodiscard]] BranchPlanes added_planes() const;
+  /// Adds what a branch added to this arena, which has not changed since it branched except by
+  /// earlier take_planes(); returns each plane's index here by its index in the branch.
+  [[nodiscard]] std::vector<std::int32_t> take_planes(const BranchPlanes& added);
   /// Sets `planes` to a copy of `from`: its blocks are shared, none is copied until the arena
   /// writes into it (kernel/plane_table.hpp), and the table never grows by copying itself whole
   /// (growing millions of planes once copied hundreds of MB between two Ctrl-C checks, issue 35).
@@ -50,7 +71,15 @@ struct Arena {
   std::size_t nodes_kept_and_freed = 0;
 
  private:
+  /// A branch's opposite of plane i < branched_at_.
+  std::int32_t parent_opposite(std::int32_t i);
+
   std::int32_t last_shift_ = 0;  ///< plane index shift of the last append (0 after adopt)
+  // A branch: the parent's opposites, read for planes below branched_at_ (opposite_of holds the
+  // branch's own from branched_at_ on), and the opposites it made for parent planes that had none.
+  const std::vector<std::int32_t>* parent_opposites_ = nullptr;
+  std::int32_t branched_at_ = 0;
+  std::vector<std::pair<std::int32_t, std::int32_t>> parent_opposites_made_;
 };
 
 struct CompactOptions {
