@@ -55,12 +55,12 @@ TEST(ArenaBranch, ABuildOnABranchTakenOverIsTheBuildOnTheArena) {
     added = branch.added_planes();
   }
   EXPECT_EQ(branched.arena.planes.size(), before) << "the branch wrote into its parent";
-  const std::vector<std::int32_t> map = branched.arena.take_planes(added);
+  const Arena::PlaneMap map = branched.arena.take_planes(added);
   expect_same_arena(direct.arena, branched.arena);
   ASSERT_EQ(want.nodes.size(), got.nodes.size());
   EXPECT_EQ(want.root, got.root);
   for (std::size_t k = 0; k < want.nodes.size(); ++k) {
-    EXPECT_EQ(want.nodes[k].plane, map[std::size_t(got.nodes[k].plane)]) << k;
+    EXPECT_EQ(want.nodes[k].plane, map(got.nodes[k].plane)) << k;
     EXPECT_EQ(want.nodes[k].negative, got.nodes[k].negative) << k;
     EXPECT_EQ(want.nodes[k].positive, got.nodes[k].positive) << k;
     EXPECT_EQ(want.nodes[k].auxiliary, got.nodes[k].auxiliary) << k;

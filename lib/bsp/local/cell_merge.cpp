@@ -228,7 +228,7 @@ class CellMerge {
   // face planes alone is a chain, one node per piece, quadratic to build: at 2048 segments a
   // sphere's leaves held enough pieces for 85 s. Auxiliary planes are added to the arena, only
   // where a node holds at least kAuxiliarySplitFrom pieces (autopartition.hpp): those trees are built
-  // on one thread.
+  // on branches of the arena (build_status_trees).
   static constexpr AutopartitionOptions kStatusOnly{};
   TreeRef append_tree(const PartitionTree& tree) {
     if (is_leaf(tree.root)) return tree.root;
@@ -314,9 +314,9 @@ class CellMerge {
     });
     for (std::size_t k = 0; k < todo.size(); ++k) {
       if (added[k]) {
-        const std::vector<std::int32_t> map = arena_.take_planes(*added[k]);
+        const Arena::PlaneMap map = arena_.take_planes(*added[k]);
         added[k].reset();
-        for (PartitionNode& n : built[k].nodes) n.plane = map[std::size_t(n.plane)];
+        for (PartitionNode& n : built[k].nodes) n.plane = map(n.plane);
       }
       trees_[todo[k].first][todo[k].second] = append_tree(built[k]);
     }

@@ -63,16 +63,15 @@ Arena::BranchPlanes Arena::added_planes() const {
   return added;
 }
 
-std::vector<std::int32_t> Arena::take_planes(const BranchPlanes& added) {
-  std::vector<std::int32_t> map(std::size_t(added.from) + added.planes.size());
-  for (std::int32_t p = 0; p < added.from; ++p) map[std::size_t(p)] = p;
+Arena::PlaneMap Arena::take_planes(const BranchPlanes& added) {
+  PlaneMap map{.from = added.from};
+  map.added.reserve(added.planes.size());
   for (std::size_t k = 0; k < added.planes.size(); ++k)
-    map[std::size_t(added.from) + k] = planes.add(added.planes[k], added.auxiliary[k] != 0);
+    map.added.push_back(planes.add(added.planes[k], added.auxiliary[k] != 0));
   opposite_of.resize(std::size_t(planes.size()), -1);
   for (std::size_t k = 0; k < added.planes.size(); ++k)
-    if (added.opposites[k] >= 0)
-      opposite_of[std::size_t(map[std::size_t(added.from) + k])] = map[std::size_t(added.opposites[k])];
-  for (const auto& [p, q] : added.parent_opposites) opposite_of[std::size_t(p)] = map[std::size_t(q)];
+    if (added.opposites[k] >= 0) opposite_of[std::size_t(map.added[k])] = map(added.opposites[k]);
+  for (const auto& [p, q] : added.parent_opposites) opposite_of[std::size_t(p)] = map(q);
   return map;
 }
 

@@ -35,9 +35,15 @@ struct Arena {
     std::vector<std::pair<std::int32_t, std::int32_t>> parent_opposites;
   };
   [[nodiscard]] BranchPlanes added_planes() const;
+  /// A branch's plane indices mapped to this arena's: the parent's own stay, the added ones moved.
+  struct PlaneMap {
+    std::int32_t from = 0;
+    std::vector<std::int32_t> added;
+    std::int32_t operator()(std::int32_t p) const { return p < from ? p : added[std::size_t(p - from)]; }
+  };
   /// Adds what a branch added to this arena, which has not changed since it branched except by
-  /// earlier take_planes(); returns each plane's index here by its index in the branch.
-  [[nodiscard]] std::vector<std::int32_t> take_planes(const BranchPlanes& added);
+  /// earlier take_planes(); returns where each of the branch's planes is here.
+  [[nodiscard]] PlaneMap take_planes(const BranchPlanes& added);
   /// Sets `planes` to a copy of `from`: its blocks are shared, none is copied until the arena
   /// writes into it (kernel/plane_table.hpp), and the table never grows by copying itself whole
   /// (growing millions of planes once copied hundreds of MB between two Ctrl-C checks, issue 35).
