@@ -3,6 +3,9 @@
 # real-mesh job of issue 33 (import, a general turn, the union with the turned copy, the difference
 # with a sphere; tests/bench/bsp/bench_mesh_job.cpp) and sphere(1, N) - moved copy.
 #   tests/bench/native_compare.sh [--runs R] [--threads "1 2"] [--mesh FILE.off]... [--real-meshes] [--sphere N]...
+#                                 [--moved-copy FILE.off]...
+# --moved-copy: the mesh minus a copy moved by a tenth of its box's size (bench_mesh_job --moved-copy;
+# issue 33's 10^6-triangle case: tests/bench/meshes/loop_subdivide.py models/bunny.off 4 OUT.off).
 # --real-meshes adds eight real closed meshes of 5k-89k triangles (CGAL's data set, downloaded once
 # into build/meshes/cgal by tests/bench/meshes/cgal_meshes.sh).
 # Defaults: 5 runs, threads 1 and 2, models/bunny.off, spheres 128 256 512. Each run is its own
@@ -15,6 +18,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 runs=5
 threads="1 2"
 meshes=()
+moved=()
 spheres=()
 while (($#)); do
   case "$1" in
@@ -22,6 +26,7 @@ while (($#)); do
     --threads) threads="$2"; shift 2 ;;
     --mesh) meshes+=("$2"); shift 2 ;;
     --sphere) spheres+=("$2"); shift 2 ;;
+    --moved-copy) moved+=("$2"); shift 2 ;;
     --real-meshes)
       mapfile -t found < <(bash "$root/tests/bench/meshes/cgal_meshes.sh" "$root/build/meshes/cgal")
       meshes+=("${found[@]}")
@@ -29,7 +34,7 @@ while (($#)); do
     *) echo "native_compare: unknown option $1" >&2; exit 2 ;;
   esac
 done
-((${#meshes[@]} + ${#spheres[@]})) || { meshes=("$root/models/bunny.off"); spheres=(128 256 512); }
+((${#meshes[@]} + ${#spheres[@]} + ${#moved[@]})) || { meshes=("$root/models/bunny.off"); spheres=(128 256 512); }
 
 ours="$root/build/release/tests/bench/bsp/bench_mesh_job"
 [ -x "$ours" ] || { echo "native_compare: build the benchmarks first (bash scripts/bench.sh)" >&2; exit 1; }
@@ -45,6 +50,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 jobs=()
 for m in "${meshes[@]}"; do jobs+=("--mesh $m"); done
+for m in "${moved[@]}"; do jobs+=("--moved-copy --mesh $m"); done
 for n in "${spheres[@]}"; do jobs+=("--sphere $n"); done
 for ((round = 0; round < runs; ++round)); do
   for job in "${jobs[@]}"; do
