@@ -53,7 +53,9 @@ Arena Arena::branch() const {
 }
 
 Arena::BranchPlanes Arena::added_planes() const {
-  BranchPlanes added{.from = branched_at_, .parent_opposites = parent_opposites_made_};
+  BranchPlanes added;
+  added.from = branched_at_;
+  added.parent_opposites = parent_opposites_made_;
   for (std::int32_t p = branched_at_; p < planes.size(); ++p) {
     added.planes.push_back(planes[p]);
     added.auxiliary.push_back(planes.auxiliary(p) ? 1 : 0);
@@ -64,7 +66,8 @@ Arena::BranchPlanes Arena::added_planes() const {
 }
 
 Arena::PlaneMap Arena::take_planes(const BranchPlanes& added) {
-  PlaneMap map{.from = added.from};
+  PlaneMap map;
+  map.from = added.from;
   map.added.reserve(added.planes.size());
   for (std::size_t k = 0; k < added.planes.size(); ++k)
     map.added.push_back(planes.add(added.planes[k], added.auxiliary[k] != 0));
