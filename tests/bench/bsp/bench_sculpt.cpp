@@ -2,17 +2,25 @@
 // carved into the goblet in at most 50 ms, and still at most 50 ms per stroke after 100 strokes):
 // 100 carving strokes, each along a different 20-segment arc around the goblet's bowl, with the
 // time per stroke (thread CPU and wall) and the tree's growth every 10 strokes.
-//   bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--tidy-above R] [--repeat-stroke K] [--system-malloc] [--rebuild-every K] [--compare-old] [--script]
+//   bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--tidy-above R] [--repeat-stroke K] [--system-malloc]
+//   [--rebuild-every K] [--compare-old] [--script]
+//                [--sphere-workpiece N]
+//   (--sphere-workpiece N: carve sphere(1, N) instead of the goblet, N = 1000 for issue 33's workpiece of 10^6
+//   triangles; the same arcs, which cut into its upper half; case=workpiece_ready times its tree's first build)
 //   (--no-tidy: without the stroke's last step, the rebuild of the subtrees it touched
-//   (rebuild_region), which carve and add do; --tidy-nodes N: its max_nodes and max_subtree_nodes; --tidy-above R: its above_nodes_per_fragment;
+//   (rebuild_region), which carve and add do; --tidy-nodes N: its max_nodes and max_subtree_nodes; --tidy-above R: its
+//   above_nodes_per_fragment;
 //   --system-malloc: glibc's allocation defaults instead of the executable's keep_freed_memory();
-//   --repeat-stroke K: stroke K's sweep and its subtraction (on copies of the workpiece) 20 more times each, for a profiler; K: rebuild the tree from the boundary every K strokes; --script: the same strokes also through
-//   the interpreter, `work = carve(work, ball, path)` (handed over, in place) and, with another
-//   variable holding the workpiece during the stroke, the copying path, side by side per stroke)
-// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> tidy_cpu_ms=<m> wall_ms=<m> nodes=<tree nodes> height=<h>
+//   --repeat-stroke K: stroke K's sweep and its subtraction (on copies of the workpiece) 20 more times each, for a
+//   profiler; K: rebuild the tree from the boundary every K strokes; --script: the same strokes also through the
+//   interpreter, `work = carve(work, ball, path)` (handed over, in place) and, with another variable holding the
+//   workpiece during the stroke, the copying path, side by side per stroke)
+// Prints:  bench impl=sculpt case=stroke_<k> cpu_ms=<m> sweep_cpu_ms=<m> subtract_cpu_ms=<m> tidy_cpu_ms=<m>
+// wall_ms=<m> nodes=<tree nodes> height=<h>
 //            storage_nodes=<node slots> planes=<plane table size> fragments=<boundary fragments> volume=<v>
 //          bench impl=sculpt|subtract case=distribution ... (whole strokes; the subtraction alone)
-//          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m> ... strokes_over_50ms=<n>
+//          bench impl=sculpt case=strokes median_cpu_ms=<m> max_cpu_ms=<m> first10_cpu_ms=<m> last10_cpu_ms=<m> ...
+//          strokes_over_50ms=<n>
 //          (--rebuild-every: case=rebuild_after_<k> per rebuild; --compare-old: impl=old lines and the median ratio;
 //           --script: impl=script / impl=script_copy distributions and ratios to the library's in-place carve)
 #include <algorithm>
@@ -128,6 +136,7 @@ int main(int argc, char** argv) {
   bool tidy = true;
   RegionRebuildOptions tidy_options;
   int repeat_stroke = 0;  // --repeat-stroke K: stroke K's subtraction again 20 times on copies (for profilers)
+  int sphere_workpiece = 0;  // --sphere-workpiece N: sphere(1, N) instead of the goblet
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--strokes" && i + 1 < argc) strokes = std::stoi(argv[++i]);
@@ -137,15 +146,28 @@ int main(int argc, char** argv) {
     else if (a == "--no-tidy") tidy = false;
     else if (a == "--system-malloc") continue;
     else if (a == "--repeat-stroke" && i + 1 < argc) repeat_stroke = std::stoi(argv[++i]);
+    else if (a == "--sphere-workpiece" && i + 1 < argc)
+      sphere_workpiece = std::stoi(argv[++i]);
     else if (a == "--tidy-nodes" && i + 1 < argc) tidy_options.max_nodes = tidy_options.max_subtree_nodes = std::stoi(argv[++i]);
     else if (a == "--tidy-above" && i + 1 < argc) tidy_options.above_nodes_per_fragment = std::stod(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--tidy-above R] [--repeat-stroke K] [--system-malloc] [--rebuild-every K] [--compare-old] [--script]\n");
+      std::fprintf(stderr,
+                   "usage: bench_sculpt [--strokes N] [--no-tidy] [--tidy-nodes N] [--tidy-above R] [--repeat-stroke "
+                   "K] [--system-malloc] [--rebuild-every K] [--compare-old] [--script] [--sphere-workpiece N]\n");
       return 2;
     }
   }
   // The goblet of scripts/goblet.bsp: the outer profile (20 segments) minus the cavity (12).
-  Solid work = revolved("goblet_profile_20.txt") - revolved("goblet_cavity_profile_12.txt");
+  Solid work = sphere_workpiece > 0 ? sphere(1.0, {.segments = sphere_workpiece})
+                                    : revolved("goblet_profile_20.txt") - revolved("goblet_cavity_profile_12.txt");
+  if (sphere_workpiece > 0) {  // its tree, built on first use: before the strokes, timed on its own
+    const auto w0 = Clock::now();
+    const double c0 = cpu_ms();
+    (void)work.root();
+    std::printf("bench impl=sculpt case=workpiece_ready segments=%d cpu_ms=%.1f wall_ms=%.1f nodes=%zu fragments=%zu\n",
+                sphere_workpiece, cpu_ms() - c0, std::chrono::duration<double, std::milli>(Clock::now() - w0).count(),
+                work.nodes().size(), work.has_boundary() ? work.boundary().size() : std::size_t(0));
+  }
   Solid work_old = work;  // carved the old way with --compare-old
   const Eigen::AlignedBox3d box = bounding_box(work);
   const Solid ball = sphere(0.15, {.segments = 16});
