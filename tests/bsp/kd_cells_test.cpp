@@ -4,6 +4,7 @@
 // (its large subtrees are grown side by side and appended).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -95,6 +96,32 @@ TEST(KdCells, LeavesHoldExactlyTheBoxesThatMeetThemAndTileTheRoot) {
       ASSERT_EQ(leaf.items[std::size_t(op)], expected) << "leaf " << id << " operand " << op;
     }
   }
+}
+
+TEST(KdCells, CellsOfOneOperandAreSplitOnlyAboveTheirOwnSize) {
+  // Operand 0 on a sphere of radius 1000 around the origin, operand 1 on one around (3000, ...):
+  // the boxes apart, so most cells hold one operand only. The invalid box meets every cell.
+  std::mt19937 rng(5);
+  std::vector<FragmentBox> b[2] = {boxes(rng, 6000, 0), boxes(rng, 300, 3000)};
+  b[0][5].valid = b[1][5].valid = true;  // else every cell holds both operands
+  auto one_operand_leaves = [&](std::size_t limit) {
+    const KdCells cells =
+        bsp::detail::subdivide({std::span<const FragmentBox>(b[0]), std::span<const FragmentBox>(b[1])},
+                               {.leaf_size = 32, .one_operand_leaf_size = limit});
+    std::size_t largest = 0, count = 0;
+    for (const std::int32_t id : cells.leaves) {
+      const auto& leaf = cells.nodes[std::size_t(id)];
+      if (!leaf.items[0].empty() && !leaf.items[1].empty()) continue;
+      largest = std::max(largest, leaf.items[0].size() + leaf.items[1].size());
+      ++count;
+    }
+    return std::pair(largest, count);
+  };
+  const auto [whole, few] = one_operand_leaves(100000);
+  EXPECT_GT(whole, 1000u) << "cells of one operand are not split down to leaf_size";
+  const auto [limited, many] = one_operand_leaves(256);
+  EXPECT_LE(limited, 256u);
+  EXPECT_GT(many, few);
 }
 
 TEST(KdCells, OneThreadAndEveryCoreGiveTheSameSubdivision) {

@@ -92,8 +92,9 @@ Choice choose_split(const KdNode& n, const std::array<std::span<const FragmentBo
 Choice split_items(const KdNode& n, int depth, const std::array<std::span<const FragmentBox>, 2>& boxes,
                    const KdOptions& options, std::array<std::array<std::vector<std::uint32_t>, 2>, 2>& parts) {
   const std::size_t total = n.items[0].size() + n.items[1].size();
+  const bool both = !n.items[0].empty() && !n.items[1].empty();
   const bool split_worthwhile =
-      !n.items[0].empty() && !n.items[1].empty() && total > options.leaf_size && depth < options.max_depth;
+      total > (both ? options.leaf_size : options.one_operand_leaf_size) && depth < options.max_depth;
   Choice c;
   for (int attempt = 0; split_worthwhile && attempt < 2; ++attempt) {
     c = choose_split(n, boxes, attempt);
