@@ -14,19 +14,20 @@ struct Arena {
   kernel::PlaneTable planes;
   std::vector<BspNode> nodes;
   PolygonStore polygons;
-  std::vector<std::int32_t> opposite_of;  ///< cache: index of the opposite plane, or -1
+  /// Cache: index of the opposite plane, or -1 (in a branch, opposite_of[k] is plane
+  /// branched_at_ + k's: see branch()).
+  std::vector<std::int32_t> opposite_of;
 
   /// Index of the plane opposite to plane i (added on first use).
   std::int32_t opposite(std::int32_t i);
   /// An arena for a task that builds a tree on this arena's planes while this one does not
   /// change: it shares the planes (copy_planes) and reads this arena's opposites, which must
-  /// outlive it. The planes it adds (from branched_at() on) and the opposites it makes are its
-  /// own, for take_planes() to add to this arena afterwards, in the order a build on this arena
-  /// would have added them.
+  /// outlive it. The planes it adds (from this arena's plane count on) and the opposites it makes
+  /// are its own, for take_planes() to add to this arena afterwards, in the order a build on this
+  /// arena would have added them.
   [[nodiscard]] Arena branch() const;
-  [[nodiscard]] std::int32_t branched_at() const { return branched_at_; }
-  /// What a branch added: its planes from branched_at() on, with their auxiliary marks and
-  /// opposites (branch indices), and the opposites it made for its parent's planes.
+  /// What a branch added: its planes from the parent's plane count on, with their auxiliary marks
+  /// and opposites (branch indices), and the opposites it made for its parent's planes.
   struct BranchPlanes {
     std::int32_t from = 0;
     std::vector<kernel::Plane> planes;
