@@ -5,9 +5,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <optional>
 
 namespace sculpt::bsp::detail {
 
@@ -24,21 +27,29 @@ IdTriple sorted(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   return {a, b, c};
 }
 
-// Corners are visited in order and each is resolved at once. A class is the set of corners with
-// one triple (as a set of planes up to orientation): the same point without arithmetic. Classes
-// are entered in the cells of a grid of one grid unit that their approximation's error box
-// touches (far above the approximation errors: nearly always one cell). A corner looks for its
-// class in its cells; a new class is compared exactly with the vertices of the classes in its
-// cells and joins the one it equals, else it starts a new vertex. Equal points have overlapping
-// error boxes, so they share the cell of the exact point: no equal pair is missed, and a new
-// class equals at most one vertex (two equal vertices would have been merged).
+// Corners are visited in order. A class is the set of corners with one triple (as a set of
+// planes up to orientation): the same point without arithmetic. Classes are entered in the cells
+// of a grid of one grid unit that their approximation's error box touches (far above the
+// approximation errors: nearly always one cell). Equal points have overlapping error boxes, so
+// they share the cell of the exact point: a class equal to an earlier one finds it among the
+// classes entered before it in its cells (or among the wide classes, which have no cells).
+//
+// Three passes, so that the exact tests run on every core and the result does not depend on the
+// thread count:
+// 1. In order (one thread): each corner finds its class by key in its cells, or starts one and
+//    enters it there (resolve_all).
+// 2. Each class, side by side: the first class it meets in its cells' chains (newest first, then
+//    the wide classes made before it) that is the same point, exactly (link_classes). Equality of
+//    points is an equivalence, so the class that is found does not change the vertex.
+// 3. In order: a class that found none starts a vertex (numbered in the order of their first
+//    corner); the others take the vertex of the class they found (number_vertices).
 //
 // Grid points: where two points would be compared exactly, each whose approximation is within a
 // quarter unit is first found to be a grid point or not (the nearest integers on its three
-// planes: Int128 arithmetic, once per corner and vertex). A grid point equals another point
-// exactly when that is the same grid point: most vertices of imported and transformed meshes are
-// grid points (they are snapped), and they are merged by comparing integers instead of by the
-// exact tests. Two points that are not grid points are tested exactly.
+// planes: Int128 arithmetic, once per class). A grid point equals another point exactly when that
+// is the same grid point: most vertices of imported and transformed meshes are grid points (they
+// are snapped), and they are merged by comparing integers instead of by the exact tests. Two
+// points that are not grid points are tested exactly.
 class CornerMerger {
  public:
   CornerMerger(const kernel::PlaneTable& planes, const PlaneIds& ids, AssemblyVertices& vertices,
@@ -50,39 +61,33 @@ class CornerMerger {
     shift_ = 32 - std::countr_zero(slots);
     entries_.reserve(corners / 2 + 16);
     v_.class_planes.reserve(corners / 2 + 16);
-    v_.class_next.reserve(corners / 2 + 16);
-    class_vertex_.reserve(corners / 2 + 16);
-    v_.at.reserve(corners / 3 + 16);
-    v_.triple.reserve(corners / 3 + 16);
-    v_.first_class.reserve(corners / 3 + 16);
-    vertex_ids_.reserve(corners / 3 + 16);
-    vertex_grid_.reserve(corners / 3 + 16);
+    class_corner_.reserve(corners / 2 + 16);
+    class_support_.reserve(corners / 2 + 16);
+    class_entries_.reserve(corners / 2 + 16);
+    class_entries_.push_back(0);
   }
 
   // Whether a point is a grid point: not yet looked at, no, yes, or not known (no usable
   // approximation).
   enum class GridStatus : std::uint8_t { Unchecked, No, Yes, Unknown };
 
-  // What resolving a corner needs that depends on the corner alone: its class key, its
-  // approximation and its cells (prepare(), safe to call from several threads at once).
+  // What resolving a corner needs that depends on the corner alone: its class key and its
+  // cells (prepare(), safe to call from several threads at once).
   struct Pending {
     const kernel::Corner* corner;
-    ApproxPoint at;   // the corner's approximation, tightened when it was loose (tight_approximation)
     std::size_t out;  // position in the output
     std::int32_t support;
     IdTriple key;
     int cells;  // -1: wide (no cells)
     std::uint32_t cell[8];
-    GridStatus grid;  // whether the point is a grid point, found when first needed
-    bool tightened;   // `at` is not the corner's own approximation (tight_approximation)
   };
 
-  // Corner `c` of a fragment on plane `support` (canonical id s), whose vertex goes to out[position].
+  // Corner `c` of a fragment on plane `support` (canonical id s), whose class goes to out[position].
   void prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out, Pending& p) const;
 
-  // Resolves prepared corners in order (one thread): each joins its class, or a vertex it equals,
-  // or makes a new one. The cells of a corner a few ahead are prefetched: the table is larger
-  // than the caches and the probes are random.
+  // Pass 1 over prepared corners in order (one thread): out[corner] is its class. The cells of a
+  // corner a few ahead are prefetched: the table is larger than the caches and the probes are
+  // random.
   void resolve_all(std::vector<Pending>& corners) {
     constexpr std::size_t kAhead = 8;
     for (std::size_t i = 0; i < corners.size(); ++i) {
@@ -90,6 +95,15 @@ class CornerMerger {
         __builtin_prefetch(&slots_[corners[i + kAhead].cell[0] >> shift_]);
       resolve(corners[i]);
     }
+  }
+
+  // Passes 2 and 3, after every corner was resolved: out[corner] becomes its vertex.
+  void finish() {
+    std::vector<int> link = link_classes();
+    number_vertices(link);
+    parallel_chunks(out_.size(), std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) out_[i] = link[std::size_t(out_[i])];
+    });
   }
 
  private:
@@ -103,33 +117,24 @@ class CornerMerger {
   };
   struct Entry {  // a class entered in one cell
     IdTriple key;
-    int vertex, next;
+    int cls, next;  // next: the entry made before it in the cell's chain
   };
   static std::int64_t floor_of(double x) {  // |x| < 2^61
     const auto t = std::int64_t(x);
     return double(t) > x ? t - 1 : t;
   }
 
-  // The corner's approximation, or, when its error bound is a quarter grid unit or more (nearly
-  // dependent planes: where a fine sphere's cap meets its almost flat fan, up to 3.9 grid units at
-  // 512 segments), the exact vertex correctly rounded (kernel::rounded_vertex) with a bound of one
-  // unit in the last place. A loose corner has no cells and takes the wide path, which compares
-  // every later class with it: 1024 of them took a third of `sphere(1, 512) - moved copy`.
-  ApproxPoint tight_approximation(std::int32_t support, const kernel::Corner& c) const {
-    const ApproxPoint a = c.at();
-    if (!(a.err >= 0.25) || !std::isfinite(a.err)) return a;
-    const double largest = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
-    if (a.err <= std::ldexp(largest, -50)) return a;  // rounded_vertex would return it as it is
-    const Eigen::Vector3d r = kernel::rounded_vertex(planes_[support], planes_[c.p], planes_[c.q], a);
-    const double rounded_largest = r.cwiseAbs().maxCoeff();
-    return {r.x(), r.y(), r.z(), std::ldexp(rounded_largest, -52)};
-  }
-
-  void resolve(Pending& p) {
+  void resolve(const Pending& p) {
     const IdTriple& key = p.key;
-    const kernel::Corner& c = *p.corner;
-    if (p.cells < 0) {
-      out_[p.out] = wide_vertex(key, p.support, c, p.at);
+    if (p.cells < 0) {  // wide: its class by key among all classes, else a new one
+      for (std::size_t i = 0; i < v_.class_planes.size(); ++i)
+        if (same_key(v_.class_planes[i], key)) {
+          out_[p.out] = int(i);
+          return;
+        }
+      const int k = new_class(p);
+      wide_classes_.push_back(k);
+      out_[p.out] = k;
       return;
     }
     if (2 * (cells_used_ + 8) > slots_.size()) grow();
@@ -139,35 +144,33 @@ class CornerMerger {
     for (int i = 0; i < n; ++i)
       for (int e = slots_[cells[i]].head; e >= 0; e = entries_[std::size_t(e)].next)
         if (same_key(entries_[std::size_t(e)].key, key)) {
-          out_[p.out] = entries_[std::size_t(e)].vertex;
+          out_[p.out] = entries_[std::size_t(e)].cls;
           return;
         }
     for (const int w : wide_classes_)
       if (same_key(v_.class_planes[std::size_t(w)], key)) {
-        out_[p.out] = class_vertex_[std::size_t(w)];
+        out_[p.out] = w;
         return;
       }
-    int v = -1;
-    int last = -1;  // a vertex's classes tend to be adjacent in a chain: test it once
-    for (int i = 0; i < n && v < 0; ++i)
-      for (int e = slots_[cells[i]].head; e >= 0 && v < 0; e = entries_[std::size_t(e)].next) {
-        const int u = entries_[std::size_t(e)].vertex;
-        if (u != last && same_point(key, p.support, c, p.at, p.grid, u)) v = u;
-        last = u;
-      }
-    for (std::size_t i = 0; i < wide_classes_.size() && v < 0; ++i) {
-      const int u = class_vertex_[std::size_t(wide_classes_[i])];
-      if (same_point(key, p.support, c, p.at, p.grid, u)) v = u;
-    }
-    // The vertex keeps its first corner's approximation, so it inherits what was found from
-    // that one only.
-    if (v < 0) v = new_vertex(p.support, c, p.tightened ? GridStatus::Unchecked : p.grid);
-    new_class(key, v);
+    const int k = new_class(p);
     for (int i = 0; i < n; ++i) {
-      entries_.push_back({key, v, slots_[cells[i]].head});
+      entries_.push_back({key, k, slots_[cells[i]].head});
       slots_[cells[i]].head = int(entries_.size()) - 1;
     }
-    out_[p.out] = v;
+    class_entries_.back() = int(entries_.size());
+    out_[p.out] = k;
+  }
+
+  // A class: its key, first corner and where its entries end (they start where the previous
+  // class's end).
+  int new_class(const Pending& p) {
+    const int k = int(v_.class_planes.size());
+    v_.class_planes.push_back(p.key);
+    class_corner_.push_back(p.corner);
+    class_support_.push_back(p.support);
+    class_entries_.push_back(class_entries_.back());
+    wide_before_.push_back(int(wide_classes_.size()));
+    return k;
   }
 
   std::size_t slot_of(std::uint32_t cell) {
@@ -192,7 +195,76 @@ class CornerMerger {
     }
   }
 
+  // Pass 2: link[k] = an earlier class that is the same point as class k, or -1 (each class on
+  // its own: the same links for any thread count). A class's candidates are the classes entered
+  // before it in its cells, newest first (the same vertex's classes are usually adjacent in a
+  // chain), then the wide classes made before it; a wide class's are all earlier classes.
+  std::vector<int> link_classes() {
+    const std::size_t count = v_.class_planes.size();
+    std::vector<int> link(count, -1);
+    grid_.reset(new std::atomic<GridStatus>[count]);
+    for (std::size_t k = 0; k < count; ++k) grid_[k].store(GridStatus::Unchecked, std::memory_order_relaxed);
+    parallel_chunks(count, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const auto cls = int(k);
+        if (wide_before_[k] < int(wide_classes_.size()) && wide_classes_[std::size_t(wide_before_[k])] == cls) {
+          for (int j = cls - 1; j >= 0 && link[k] < 0; --j)
+            if (same_point(cls, j)) link[k] = j;
+          continue;
+        }
+        Probe probe(*this, cls);
+        for (int e = class_entries_[k]; e < class_entries_[k + 1] && link[k] < 0; ++e)
+          for (int c = entries_[std::size_t(e)].next; c >= 0 && link[k] < 0; c = entries_[std::size_t(c)].next)
+            if (probe.equals(entries_[std::size_t(c)].cls)) link[k] = entries_[std::size_t(c)].cls;
+        for (int w = 0; w < wide_before_[k] && link[k] < 0; ++w)
+          if (probe.equals(wide_classes_[std::size_t(w)])) link[k] = wide_classes_[std::size_t(w)];
+      }
+    });
+    return link;
+  }
+
+  // Pass 3, in class order: link[k] becomes class k's vertex. A class that found no earlier one
+  // starts a vertex with its first corner's triple and approximation; the others take the vertex
+  // of the earlier class they found (already numbered). Each class joins its vertex's list.
+  void number_vertices(std::vector<int>& link) {
+    const std::size_t count = link.size();
+    v_.class_next.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      int v = link[k];
+      if (v < 0) {
+        const kernel::Corner& c = *class_corner_[k];
+        v = v_.size();
+        v_.at.push_back(c.at());
+        v_.triple.push_back({class_support_[k], c.p, c.q});
+        v_.first_class.push_back(-1);
+      } else {
+        v = link[std::size_t(v)];
+      }
+      link[k] = v;
+      v_.class_next[k] = v_.first_class[std::size_t(v)];
+      v_.first_class[std::size_t(v)] = int(k);
+    }
+  }
+
   std::uint32_t key_of(std::int32_t plane) const { return ids_.id[std::size_t(plane)]; }
+
+  // The corner's approximation, or, when its error bound is a quarter grid unit or more (nearly
+  // dependent planes: where a fine sphere's cap meets its almost flat fan, up to 3.9 grid units at
+  // 512 segments), the exact vertex correctly rounded (kernel::rounded_vertex) with a bound of one
+  // unit in the last place. A loose corner has no cells and takes the wide path, which compares
+  // every later class with it: 1024 of them took a third of `sphere(1, 512) - moved copy`.
+  ApproxPoint tight_approximation(std::int32_t support, const kernel::Corner& c) const {
+    const ApproxPoint a = c.at();
+    if (!(a.err >= 0.25) || !std::isfinite(a.err)) return a;
+    const double largest = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
+    if (a.err <= std::ldexp(largest, -50)) return a;  // rounded_vertex would return it as it is
+    const Eigen::Vector3d r = kernel::rounded_vertex(planes_[support], planes_[c.p], planes_[c.q], a);
+    const double rounded_largest = r.cwiseAbs().maxCoeff();
+    return {r.x(), r.y(), r.z(), std::ldexp(rounded_largest, -52)};
+  }
+  ApproxPoint class_at(int k) const {
+    return tight_approximation(class_support_[std::size_t(k)], *class_corner_[std::size_t(k)]);
+  }
 
   // Whether the point s ∩ p ∩ q with approximation `a` is a grid point: the nearest integers are
   // the only candidates when the error bound is under a quarter unit, and one is when it lies on
@@ -211,6 +283,17 @@ class CornerMerger {
     const bool yes = planes_[s].eval(g) == 0 && planes_[p].eval(g) == 0 && planes_[q].eval(g) == 0;
     return yes ? GridStatus::Yes : GridStatus::No;
   }
+  // Class k's grid status, found once (by whichever thread first needs it: the same value).
+  GridStatus class_grid(int k, const ApproxPoint& a) const {
+    std::atomic<GridStatus>& g = grid_[std::size_t(k)];
+    GridStatus s = g.load(std::memory_order_relaxed);
+    if (s == GridStatus::Unchecked) {
+      const kernel::Corner& c = *class_corner_[std::size_t(k)];
+      s = grid_point(class_support_[std::size_t(k)], c.p, c.q, a);
+      g.store(s, std::memory_order_relaxed);
+    }
+    return s;
+  }
   // The integer nearest to x, |x| < 2^51 (adding and subtracting 1.5 * 2^52 rounds to an integer
   // in double arithmetic, ties to even).
   static double nearest_integer(double x) {
@@ -222,84 +305,74 @@ class CornerMerger {
     return {std::int64_t(nearest_integer(a.x)), std::int64_t(nearest_integer(a.y)), std::int64_t(nearest_integer(a.z))};
   }
 
-  // A class joins its vertex's list (the vertex's known planes) and the class table (the wide path).
-  int new_class(const IdTriple& key, int vertex) {
-    const int k = int(v_.class_planes.size());
-    v_.class_planes.push_back(key);
-    v_.class_next.push_back(v_.first_class[std::size_t(vertex)]);
-    v_.first_class[std::size_t(vertex)] = k;
-    class_vertex_.push_back(vertex);
-    return k;
-  }
+  // Class k's point tested against other classes' points: its approximation, and its 2x2 minors
+  // (shared by its tests) made when first needed.
+  class Probe {
+   public:
+    Probe(const CornerMerger& m, int k)
+        : m_(m),
+          k_(k),
+          corner_(*m.class_corner_[std::size_t(k)]),
+          support_(m.class_support_[std::size_t(k)]),
+          key_(m.v_.class_planes[std::size_t(k)]),
+          at_(m.class_at(k)) {}
 
-  int new_vertex(std::int32_t support, const kernel::Corner& c, GridStatus grid) {
-    vertex_grid_.push_back(grid);
-    v_.at.push_back(c.at());
-    v_.triple.push_back({support, c.p, c.q});
-    vertex_ids_.push_back({key_of(support), key_of(c.p), key_of(c.q)});
-    v_.first_class.push_back(-1);
-    return v_.size() - 1;
-  }
-
-  // A corner without cells (large or no error bound: nearly dependent planes): its class by
-  // key, else exact comparison with every vertex.
-  int wide_vertex(const IdTriple& key, std::int32_t support, const kernel::Corner& c, const ApproxPoint& at) {
-    for (std::size_t i = 0; i < v_.class_planes.size(); ++i)
-      if (same_key(v_.class_planes[i], key)) return class_vertex_[i];
-    int v = -1;
-    GridStatus grid = GridStatus::Unchecked;
-    for (int u = 0; u < v_.size() && v < 0; ++u)
-      if (same_point(key, support, c, at, grid, u)) v = u;
-    if (v < 0) v = new_vertex(support, c, grid);
-    wide_classes_.push_back(new_class(key, v));
-    return v;
-  }
-
-  // Exact: the corner's point (support ∩ p ∩ q, canonical ids `key`) lies on the three planes
-  // of vertex u's triple (planes shared with the corner need no test; the others by the exact
-  // zero test of vertex_equality.hpp). Disjoint error boxes are different points (a filter only).
-  bool same_point(const IdTriple& key, std::int32_t support, const kernel::Corner& c, const ApproxPoint& pa,
-                  GridStatus& grid, int u) {
-    const ApproxPoint& pb = v_.at[std::size_t(u)];
-    if (pa.err >= 0 && pb.err >= 0) {
-      const double tol = pa.err + pb.err;
-      if (std::fabs(pb.x - pa.x) > tol || std::fabs(pb.y - pa.y) > tol || std::fabs(pb.z - pa.z) > tol) return false;
+    // Exact: class k's point (support ∩ p ∩ q) lies on the three planes of class j's triple
+    // (planes shared with k's key need no test; the others by the exact zero test of
+    // vertex_equality.hpp). Disjoint error boxes are different points (a filter only).
+    bool equals(int j) {
+      const ApproxPoint pb = m_.class_at(j);
+      const ApproxPoint& pa = at_;
+      if (pa.err >= 0 && pb.err >= 0) {
+        const double tol = pa.err + pb.err;
+        if (std::fabs(pb.x - pa.x) > tol || std::fabs(pb.y - pa.y) > tol || std::fabs(pb.z - pa.z) > tol) return false;
+      }
+      const GridStatus grid = m_.class_grid(k_, pa), other = m_.class_grid(j, pb);
+      const bool known = grid != GridStatus::Unknown && other != GridStatus::Unknown;
+      if (known && (grid == GridStatus::Yes || other == GridStatus::Yes))
+        return grid == other && nearest_grid_point(pa) == nearest_grid_point(pb);
+      const kernel::Corner& cj = *m_.class_corner_[std::size_t(j)];
+      const std::int32_t planes[3] = {m_.class_support_[std::size_t(j)], cj.p, cj.q};
+      std::int32_t tested[3];
+      int n = 0;
+      for (const std::int32_t plane : planes) {
+        const std::uint32_t id = m_.key_of(plane);
+        if (id != key_[0] && id != key_[1] && id != key_[2]) tested[n++] = plane;
+      }
+      if (n == 0) return true;
+      if (!minors_) minors_ = vertex_minors(m_.planes_[support_], m_.planes_[corner_.p], m_.planes_[corner_.q], at_);
+      for (int i = 0; i < n; ++i)
+        if (!vertex_on_plane(*minors_, m_.planes_[tested[i]])) return false;
+      return true;
     }
-    const PlaneTriple& t = v_.triple[std::size_t(u)];
-    if (grid == GridStatus::Unchecked) grid = grid_point(support, c.p, c.q, pa);
-    GridStatus& vertex_grid = vertex_grid_[std::size_t(u)];
-    if (vertex_grid == GridStatus::Unchecked) vertex_grid = grid_point(t.s, t.p, t.q, pb);
-    const bool known = grid != GridStatus::Unknown && vertex_grid != GridStatus::Unknown;
-    if (known && (grid == GridStatus::Yes || vertex_grid == GridStatus::Yes))
-      return grid == vertex_grid && nearest_grid_point(pa) == nearest_grid_point(pb);
-    const IdTriple& ids = vertex_ids_[std::size_t(u)];
-    const std::int32_t planes[3] = {t.s, t.p, t.q};
-    std::int32_t tested[3];
-    int n = 0;
-    for (int i = 0; i < 3; ++i) {
-      const std::uint32_t id = ids[std::size_t(i)];
-      if (id != key[0] && id != key[1] && id != key[2]) tested[n++] = planes[i];
-    }
-    if (n == 0) return true;
-    // The corner's 2x2 minors, shared by its (usually two) tests (built in place: no copy).
-    const VertexMinors corner = vertex_minors(planes_[support], planes_[c.p], planes_[c.q], pa);
-    for (int i = 0; i < n; ++i)
-      if (!vertex_on_plane(corner, planes_[tested[i]])) return false;
-    return true;
-  }
+
+   private:
+    const CornerMerger& m_;
+    int k_;
+    const kernel::Corner& corner_;
+    std::int32_t support_;
+    IdTriple key_;
+    ApproxPoint at_;
+    std::optional<VertexMinors> minors_;
+  };
+  bool same_point(int k, int j) const { return Probe(*this, k).equals(j); }
 
   const kernel::PlaneTable& planes_;
   const PlaneIds& ids_;
   AssemblyVertices& v_;
-  std::vector<int>& out_;
+  std::vector<int>& out_;  // the corners' classes, then their vertices
   std::vector<Slot> slots_;
   int shift_ = 26;
   std::size_t cells_used_ = 0;  // occupied slots
   std::vector<Entry> entries_;
-  std::vector<int> class_vertex_;  // class -> vertex (keys in v_.class_planes)
+  // Per class (keys in v_.class_planes): its first corner and that corner's support, where its
+  // entries end (class_entries_[k] .. class_entries_[k + 1]), and how many wide classes precede it.
+  std::vector<const kernel::Corner*> class_corner_;
+  std::vector<std::int32_t> class_support_;
+  std::vector<int> class_entries_;
+  std::vector<int> wide_before_;
   std::vector<int> wide_classes_;
-  std::vector<IdTriple> vertex_ids_;  // vertex -> canonical ids of its triple, in triple order
-  std::vector<GridStatus> vertex_grid_;  // vertex -> whether it is a grid point
+  std::unique_ptr<std::atomic<GridStatus>[]> grid_;  // per class, pass 2
 };
 
 void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::Corner& c, std::size_t out,
@@ -309,8 +382,6 @@ void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::
   p.support = support;
   p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
   const ApproxPoint a = tight_approximation(support, c);
-  p.at = a;
-  p.tightened = a.err != c.at().err;
   constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
   constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
   std::int64_t lo[3], hi[3];
@@ -322,7 +393,6 @@ void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::
     hi[k] = floor_of(coord[k] + a.err + kShift);
   }
   p.cells = -1;
-  p.grid = GridStatus::Unchecked;
   if (wide) return;
   // The cells of the error box (at most two per axis).
   constexpr std::uint64_t kMask = (std::uint64_t(1) << 21) - 1;
@@ -342,8 +412,8 @@ void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::
 MergedFragments merge_vertices(FragmentsView fragments) {
   const FragmentList& list = fragments.fragments;
   const std::size_t nf = list.size();
-  // Fragments a piece. A wave's prepared corners (about 110 bytes each) are scratch held beside
-  // the result: pieces of 1024 held 2.7 MB with two threads, which set small jobs' peaks (fandisk
+  // Fragments a piece. A wave's prepared corners (72 bytes each; 110 before the exact tests left the ordered pass) are
+  // scratch held beside the result: pieces of 1024 held 2.7 MB with two threads, which set small jobs' peaks (fandisk
   // 33.3 -> 29.7 MB with 256; larger jobs and times unchanged, docs/benchmarks.md "Session 40").
   constexpr std::size_t kGrain = 256;
   MergedFragments r;
@@ -386,6 +456,7 @@ MergedFragments merge_vertices(FragmentsView fragments) {
         }
       },
       [&](std::vector<Pending>& out) { merger.resolve_all(out); });
+  merger.finish();
   return r;
 }
 

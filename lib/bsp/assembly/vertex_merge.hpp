@@ -18,10 +18,12 @@ struct MergedFragments {
   FaceList faces;             ///< the fragments in final orientation (a flipped one reversed)
 };
 
-/// Plane ids, then one pass over the fragments: vertices of their corners merged by exact equality (each keeps
-/// the triple and approximation of its first corner and the canonical ids of every plane of
-/// its corners), and the fragments as faces on those vertices, with the plane of the edge
-/// leaving each corner.
+/// Plane ids, then the fragments' corners merged into vertices by exact equality (each keeps the
+/// triple and approximation of its first corner and the canonical ids of every plane of its
+/// corners), and the fragments as faces on those vertices, with the plane of the edge leaving each
+/// corner. Corners find their classes in order; the exact tests between classes run on every
+/// core; vertices are numbered in the order of their first corner: the same result for any thread
+/// count.
 MergedFragments merge_vertices(FragmentsView fragments);
 
 }  // namespace sculpt::bsp::detail
