@@ -42,6 +42,11 @@ Stamp stamp_of(const std::string& path) {
   return s;
 }
 
+// Now, in milliseconds since the Unix epoch (the system clock, which the page's Date.now() reads).
+double system_milliseconds() {
+  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
 double milliseconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -115,10 +120,10 @@ int run_script_view(const ScriptViewOptions& options) {
         if (options.setup) options.setup(interpreter);
         interpreter.run(language::load_source(options.script));
         status.script_milliseconds = milliseconds_since(start);
-        status.script_end =
-            std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+        status.script_end = system_milliseconds();
         const view::Scene scene = view::scene_of(interpreter.shown(), last.get());
         server->publish_scene(view::encode_scene(scene, {.depth = server->depth_wanted()}));
+        status.scene_sent = system_milliseconds();
         status.parts = scene.parts.size();
       } catch (const language::ScriptError& e) {
         status.ok = false;

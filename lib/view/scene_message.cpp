@@ -243,6 +243,8 @@ std::string encode_status(const Status& status) {
   append_number(out, status.script_milliseconds);
   out += ",\"script_end\":";
   append_number(out, status.script_end);
+  out += ",\"scene_sent\":";
+  append_number(out, status.scene_sent);
   out += ",\"parts\":" + std::to_string(status.parts);
   out += ",\"error\":" + json_string(status.ok ? std::string() : status.error) + "}";
   return out;

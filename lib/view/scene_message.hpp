@@ -25,8 +25,8 @@
 /// colour (a closed curve's last point is its first); such a part has an empty GLB and its "length" is the polyline's.
 ///
 /// A status is one text message: {"type": "status", "ok": true|false, "run": n, "ms": t,
-/// "script_ms": s, "script_end": e, "parts": p, "error": "file:line:col: error: ...\n<the line>\n<caret>"}; an error
-/// leaves the scene on the page as it was.
+/// "script_ms": s, "script_end": e, "scene_sent": t, "parts": p, "error": "file:line:col: error: ...\n<the
+/// line>\n<caret>"}; an error leaves the scene on the page as it was.
 ///
 /// The page sends one kind of text message: "depth:1" when it enters the depth mode, "depth:0"
 /// when it leaves it (view_server.hpp: ViewServer::depth_wanted).
@@ -60,6 +60,8 @@ struct Status {
   /// When the script ended, in milliseconds since the Unix epoch (the system clock), so that a
   /// page or a test on the same machine can tell how long after it the scene arrived; 0 unknown.
   double script_end = 0;
+  /// When the scene message was made and handed to the server to send (the same clock); 0 unknown.
+  double scene_sent = 0;
   std::size_t parts = 0;  ///< parts in the scene sent with it
 };
 

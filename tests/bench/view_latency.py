@@ -102,16 +102,17 @@ def main():
             status = state("sculptView.state.status")
             lag = state("sculptView.state.drawnAt") - status["script_end"]
             arrived = state("sculptView.state.receivedAt") - status["script_end"]
+            sent = status.get("scene_sent", 0) - status["script_end"]
             handled = state("sculptView.state.timings.scene")
             raster = state("sculptView.state.timings.raster")
             render = state("sculptView.state.timings.render")
             lags.append(lag)
             scripts.append(status["script_ms"])
             totals.append(status["ms"])
-            print("run %d: script %.0f ms, run %.0f ms; after the script's end: the scene message arrived "
-                  "at %.0f ms, was handled in %.0f ms, on screen at %.0f ms (its first frame: render() %.0f ms, "
+            print("run %d: script %.0f ms, run %.0f ms; after the script's end: the scene message was sent "
+                  "at %.0f ms and arrived at %.0f ms, was handled in %.0f ms, on screen at %.0f ms (its first frame: render() %.0f ms, "
                   "then rasterized in %.0f ms)"
-                  % (status["run"], status["script_ms"], status["ms"], arrived, handled, lag, render, raster))
+                  % (status["run"], status["script_ms"], status["ms"], sent, arrived, handled, lag, render, raster))
         print("median: script %.0f ms, on screen %.0f ms after the script's end (min %.0f, max %.0f)"
               % (statistics.median(scripts), statistics.median(lags), min(lags), max(lags)))
         return 0

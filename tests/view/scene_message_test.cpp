@@ -404,10 +404,15 @@ TEST(SceneMessage, ASolidIsSentAsItsExactBoundaryVertexForVertex) {
     EXPECT_LT(u32_at(message, edges.offset + 4 * e), exact.vertices.size());
 }
 
-TEST(StatusMessage, TellsTheScriptsShareAndItsEnd) {
-  const std::string text =
-      encode_status({.run = 2, .milliseconds = 30, .script_milliseconds = 20.5, .script_end = 1795000000123.5});
-  EXPECT_NE(text.find("\"ms\":30,\"script_ms\":20.5,\"script_end\":1795000000123.5,"), std::string::npos) << text;
+TEST(StatusMessage, TellsTheScriptsShareItsEndAndWhenTheSceneWentOut) {
+  const std::string text = encode_status({.run = 2,
+                                          .milliseconds = 30,
+                                          .script_milliseconds = 20.5,
+                                          .script_end = 1795000000123.5,
+                                          .scene_sent = 1795000000140.25});
+  EXPECT_NE(text.find("\"ms\":30,\"script_ms\":20.5,\"script_end\":1795000000123.5,\"scene_sent\":1795000000140.25,"),
+            std::string::npos)
+      << text;
 }
 
 TEST(StatusMessage, CarriesTheErrorTextEscaped) {
