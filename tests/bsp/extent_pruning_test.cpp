@@ -185,18 +185,30 @@ TEST(ExtentPruning, SpherePartsBoundedByTouchingPlanes) {
 // The side of every plane of B against a brute-force reference: every corner of A's boundary
 // by the exact predicate, no boxes. A has many fragments (a sphere of 48 and 72 segments: 1,100
 // and 2,600 fragments, so the block boxes form hierarchies of 7 and 8 levels), B a sphere or a box
-// placed to cross A, to touch it from outside or inside, or to miss it.
+// placed to cross A, to touch it from outside or inside, or to miss it. With 128 segments (8,000
+// fragments, 250 blocks) B is small beside A, as a carving tool is: balls cutting into A's
+// surface, one just off it, and a thin slab grazing the pole; their planes are decided through
+// witnesses near B and the hierarchy over A's blocks.
 TEST(ExtentPruning, SidesOfManyPlanesMatchEveryCornerExactly) {
-  for (const int n : {48, 72}) {
+  for (const int n : {48, 72, 128}) {
     const Solid a = sphere(1.0, {.segments = n});
-    const std::vector<Solid> others = {
-        translate(sphere(1.0, {.segments = n}), {0.5, 0.375, 0.25}),     // crossing
-        translate(sphere(0.5, {.segments = n / 2}), {0, 0, 0.25}),        // inside
-        translate(sphere(1.0, {.segments = n}), {2.0, 0, 0}),             // touching at the equator vertex
-        translate(sphere(0.75, {.segments = n}), {3.0, 1.0, 0.5}),        // apart
-        box({-0.25, -0.25, 0.5}, {0.25, 0.25, 1.0}),                      // top face near the pole
-        box({-2, -2, -2}, {2, 2, -1}),                                     // touching the bottom
-    };
+    const Eigen::Vector3d on_surface = Eigen::Vector3d(0.3, 0.5, 0.8).normalized();
+    const std::vector<Solid> others =
+        n < 128 ? std::vector<Solid>{
+                      translate(sphere(1.0, {.segments = n}), {0.5, 0.375, 0.25}),  // crossing
+                      translate(sphere(0.5, {.segments = n / 2}), {0, 0, 0.25}),     // inside
+                      translate(sphere(1.0, {.segments = n}), {2.0, 0, 0}),          // touching at the equator vertex
+                      translate(sphere(0.75, {.segments = n}), {3.0, 1.0, 0.5}),     // apart
+                      box({-0.25, -0.25, 0.5}, {0.25, 0.25, 1.0}),                   // top face near the pole
+                      box({-2, -2, -2}, {2, 2, -1}),                                 // touching the bottom
+                  }
+                : std::vector<Solid>{
+                      translate(sphere(0.1, {.segments = 12}), on_surface),                 // cutting in
+                      translate(sphere(0.1, {.segments = 12}), 0.95 * on_surface) |         // a short stroke
+                          translate(sphere(0.1, {.segments = 12}), Eigen::Vector3d(0.35, 0.45, 0.8).normalized()),
+                      translate(sphere(0.05, {.segments = 12}), 1.1 * on_surface),          // just off A
+                      box({-0.1, -0.1, 0.999}, {0.1, 0.1, 1.2}),                            // grazing the pole
+                  };
     for (std::size_t k = 0; k < others.size(); ++k) {
       SCOPED_TRACE(testing::Message() << "segments " << n << ", other solid " << k);
       Sides s = sides_of(a, others[k]);
@@ -230,7 +242,9 @@ TEST(ExtentPruning, SidesOfManyPlanesMatchEveryCornerExactly) {
         EXPECT_EQ(s.sides.of(p), expected) << "plane " << p;
         one_sided += expected != Side::Both;
       }
-      if (k == 0) {
+      if (n == 128) {
+        EXPECT_GT(one_sided, 0u);  // faces of the tool outside A
+      } else if (k == 0) {
         EXPECT_GT(one_sided, 0u);  // faces of B far from A
       } else if (k == 2 || k == 3) {
         EXPECT_GT(one_sided, planes.size() / 4);
