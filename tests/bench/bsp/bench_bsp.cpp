@@ -22,6 +22,8 @@
 //                             keep_freed_memory() (base/memory_policy.hpp), which the cases use
 //                             by default, as a session of the executable would; the line says
 //                             malloc=kept or malloc=system.
+//   --profile (anywhere):     the case's timed runs only (no tree build after each run, no
+//                             reference volumes or extra timings), for a profiler; prints the times.
 #include <sys/resource.h>
 #include <time.h>
 
@@ -49,6 +51,7 @@ using namespace sculpt;
 namespace {
 
 bool system_malloc = false;  // --system-malloc: glibc's defaults (see main)
+bool profile_only = false;   // --profile: the timed runs alone (see main)
 
 long rss_kb() {
   std::ifstream f("/proc/self/status");
@@ -203,7 +206,7 @@ int run_case(const std::string& name, int n, int runs) {
     // The case's output (a mesh) does not need the result's tree, which a set operation builds on
     // first use (bsp/solid.hpp, "Deferred trees"); with_tree_*: the case plus that tree.
     deferred = r.solid.tree_deferred();
-    (void)r.solid.nodes();
+    if (!profile_only) (void)r.solid.nodes();
     const double c2 = thread_cpu_ms();
     if (i >= warmup) {
       times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
@@ -214,6 +217,11 @@ int run_case(const std::string& name, int n, int runs) {
   std::sort(times.begin(), times.end());
   std::sort(cpu_times.begin(), cpu_times.end());
   std::sort(tree_cpu_times.begin(), tree_cpu_times.end());
+  if (profile_only) {
+    std::printf("bench impl=sculpt case=%s n=%d runs=%d time_ms=%.3f min_ms=%.3f cpu_ms=%.3f profile=yes\n",
+                name.c_str(), n, runs, times[times.size() / 2], times.front(), cpu_times[cpu_times.size() / 2]);
+    return 0;
+  }
   const kernel::PredicateCounters pc = kernel::predicate_counters();
   double volume = mesh_volume(r.mesh);
   if (name == "menger") volume *= scale;
@@ -285,6 +293,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--system-malloc")
       system_malloc = true;
+    else if (std::string(argv[i]) == "--profile")
+      profile_only = true;
     else
       args.emplace_back(argv[i]);
   }
