@@ -4,9 +4,9 @@
 #include <vector>
 
 #include "bsp/boundary.hpp"
-#include "bsp/tree/autopartition.hpp"
+#include "bsp/partition/autopartition.hpp"
+#include "bsp/partition/mesh_build_options.hpp"
 #include "bsp/tree/boundary_fragments.hpp"
-#include "bsp/tree/mesh_build_options.hpp"
 #include "bsp/tree/solid_access.hpp"
 
 namespace sculpt {

@@ -15,7 +15,7 @@
 
 #include "base/cancel.hpp"
 #include "base/errors.hpp"
-#include "bsp/tree/autopartition.hpp"
+#include "bsp/partition/autopartition.hpp"
 #include "bsp/tree/node_polygons.hpp"
 #include "bsp/tree/solid_access.hpp"
 #include "bsp/tree/triangle_fragment.hpp"

@@ -6,9 +6,9 @@
 
 #include <vector>
 
+#include "bsp/partition/autopartition.hpp"
 #include "bsp/primitives.hpp"
 #include "bsp/transform.hpp"
-#include "bsp/tree/autopartition.hpp"
 #include "bsp/tree/tree_arena.hpp"
 
 namespace sculpt {

@@ -14,7 +14,7 @@
 #include "base/dispose.hpp"
 #include "base/parallel.hpp"
 #include "bsp/local/deferred_build.hpp"
-#include "bsp/tree/autopartition.hpp"
+#include "bsp/partition/autopartition.hpp"
 #include "bsp/tree/boundary_clipper.hpp"
 
 namespace sculpt::bsp::detail {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file deferred_build.hpp
 /// Internal: a solid known by its boundary alone, whose tree is built from that boundary the
-/// first time something reads it (Thibault & Naylor 1987 autopartition; tree/autopartition.hpp).
+/// first time something reads it (Thibault & Naylor 1987 autopartition; partition/autopartition.hpp).
 /// Imports of checked meshes and the local set operations (local/cell_merge.hpp) return such
 /// solids: output, volume and the next set operation read the boundary only, so a chain of
 /// operations on real meshes never builds a whole tree unless a query asks for one.
@@ -10,7 +10,7 @@
 #include <memory>
 #include <optional>
 
-#include "bsp/tree/autopartition.hpp"
+#include "bsp/partition/autopartition.hpp"
 #include "bsp/tree/deferred_tree.hpp"
 
 namespace sculpt::bsp::detail {

@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "base/parallel.hpp"
-#include "bsp/tree/autopartition.hpp"
+#include "bsp/partition/autopartition.hpp"
 #include "bsp/tree/boundary_clipper.hpp"
 
 namespace sculpt::bsp::detail {

@@ -9,7 +9,7 @@
 #include <tuple>
 #include <utility>
 
-#include "bsp/tree/autopartition.hpp"
+#include "bsp/partition/autopartition.hpp"
 #include "bsp/tree/solid_access.hpp"
 #include "kernel/convex_hull.hpp"
 #include "kernel/convex_polygon.hpp"

@@ -4,7 +4,7 @@
 /// from_mesh's options stand for; from_mesh and rebuild_from_boundary build with them.
 
 #include "bsp/from_mesh.hpp"
-#include "bsp/tree/autopartition.hpp"
+#include "bsp/partition/autopartition.hpp"
 
 namespace sculpt::bsp::detail {
 

@@ -30,6 +30,10 @@
 ///   just across it have that status). Only the choice is estimated (in doubles, fixed seed);
 ///   the splits and the cut test are exact. Optionally (`separating_planes`), the scored face planes
 ///   moved past all of the cell's fragments compete as well.
+///
+/// Files: autopartition.cpp (the driver: cells on an explicit stack), piece_pool (the pieces and
+/// their exact splits), plane_choice, balance_choice and depth_choice (the two scores),
+/// pending_sides (the statuses of auxiliary planes' empty sides).
 
 #include <cstddef>
 #include <span>
@@ -46,8 +50,8 @@ enum class PartitionScore { SplitsAndBalance, ExpectedDepth };
 inline constexpr int kVolumeSamplesPerFragment = 32;
 
 struct AutopartitionOptions {
-  int candidates = 5;         ///< fragments whose planes are scored per node (evenly spaced; random for ExpectedDepth)
-  int sample = 48;            ///< fragments each candidate is scored against (evenly spaced)
+  int candidates = 5;  ///< fragments whose planes are scored per node (evenly spaced; random for ExpectedDepth)
+  int sample = 48;     ///< fragments each candidate is scored against (evenly spaced)
   /// SplitsAndBalance: score = split_weight * splits + |negative - positive|. ExpectedDepth: the
   /// charge for splitting every sampled fragment (added to the expected depth, in nodes).
   double split_weight = 8.0;
@@ -75,11 +79,11 @@ struct AutopartitionOptions {
   bool approximate_scores = true;
 };
 
-/// A node of the tree partition_fragments() grows (children: indices into its node list, or leaves).
 /// The fewest fragments a node holds where partition_fragments() considers an auxiliary plane
 /// (AutopartitionOptions::auxiliary_splits): so a tree of fewer fragments adds no plane.
 inline constexpr std::size_t kAuxiliarySplitFrom = 64;
 
+/// A node of the tree partition_fragments() grows (children: indices into its node list, or leaves).
 struct PartitionNode {
   std::int32_t plane;
   TreeRef negative = kOut, positive = kOut;
@@ -96,8 +100,8 @@ struct PartitionTree {
 /// bounds the region the fragments lie in: empty for the whole space; otherwise the fragments
 /// must be the solid's whole boundary inside that cell (its walls excepted), and the tree gives
 /// the solid there.
-PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments,
-                                  const AutopartitionOptions& options, std::span<const std::int32_t> cell);
+PartitionTree partition_fragments(Arena& arena, const FragmentList& fragments, const AutopartitionOptions& options,
+                                  std::span<const std::int32_t> cell);
 
 /// partition_fragments() appended to arena.nodes (pending polygons: each node cuts its cell);
 /// returns its root, or a leaf for no fragments. The caller links it in.
