@@ -82,10 +82,8 @@ Solid rebuild_region(Solid&& solid, const Eigen::AlignedBox3d& region, const Reg
   Arena arena;
   TreeRef root = arena.adopt(std::move(solid));
   const bsp::detail::AddedStorage added{.first_plane = arena.planes.size(), .first_node = arena.nodes.size()};
-  arena.merged.clear();
-  arena.dropped.clear();
-  arena.boundary_changed.clear();
-  arena.boundary_changed_from = arena.boundary ? arena.boundary->size() : 0;  // the boundary is not written
+  bsp::detail::WrittenStorage written;  // the rebuilt subtrees' parents and roots
+  written.boundary_changed_from = arena.boundary ? arena.boundary->size() : 0;  // the boundary is not written
 
   // Candidates: the highest subtrees meeting the region with at most max_subtree_nodes nodes.
   std::vector<Candidate> candidates;
@@ -145,15 +143,16 @@ Solid rebuild_region(Solid&& solid, const Eigen::AlignedBox3d& region, const Reg
       (c.side == 0 ? p.negative : p.positive) = made;
       // Written nodes are listed once (reclaim_added forwards their children's indices): two
       // rebuilt siblings share their parent.
-      if (std::find(arena.merged.begin(), arena.merged.end(), c.parent) == arena.merged.end()) arena.merged.push_back(c.parent);
+      if (std::find(written.merged.begin(), written.merged.end(), c.parent) == written.merged.end())
+        written.merged.push_back(c.parent);
     }
-    arena.dropped.push_back(c.node);
+    written.dropped.push_back(c.node);
     ++st.rebuilt;
     st.nodes_before += c.size;
     st.nodes_after += made_nodes;
   }
-  root = bsp::detail::reclaim_added(arena, root, added);
-  return bsp::detail::SolidAccess::at_grid(bsp::detail::finish_in_place(arena, root), grid);
+  return bsp::detail::SolidAccess::at_grid(
+      bsp::detail::finish_in_place(arena, bsp::detail::reclaim_added(arena, root, added, written)), grid);
 }
 
 Solid rebuild_region(Solid&& solid, const Solid& near, const RegionRebuildOptions& options, RegionRebuildStats* stats) {

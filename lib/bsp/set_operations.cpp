@@ -22,6 +22,7 @@ namespace sculpt {
 
 using bsp::detail::Arena;
 using bsp::detail::SolidAccess;
+using bsp::detail::WrittenStorage;
 using kernel::ConvexPolygon;
 using kernel::Side;
 
@@ -35,7 +36,9 @@ struct Slot {
 
 class Merger {
  public:
-  explicit Merger(Arena& arena) : a_(arena) {}
+  /// With `written` (in-place operations), the nodes of a the merge reuses and the subtrees it
+  /// drops are recorded there, for reclaim_added.
+  explicit Merger(Arena& arena, WrittenStorage* written = nullptr) : a_(arena), written_(written) {}
 
   void set(Slot s, TreeRef v) {
     if (s.node < 0)
@@ -179,8 +182,6 @@ class Merger {
     std::vector<std::int32_t> path;  // a's half-spaces down to the current node
     std::vector<Frame> stack{{a, b, {-1, 0}, 0, -1}};
     std::vector<std::pair<TreeRef, Slot>> visited;  // result nodes taken from a, pre-order
-    a_.merged.clear();
-    a_.dropped.clear();
     TreeRef result = kOut;
     auto put = [&](Slot s, TreeRef v) {
       if (s.node < 0)
@@ -194,7 +195,7 @@ class Merger {
       stack.pop_back();
       if (is_leaf(f.a) || is_leaf(f.b)) {
         const TreeRef v = combine(f.a, f.b, op);
-        if (!is_leaf(f.a) && is_leaf(v)) a_.dropped.push_back(f.a);  // for reclaim_added: a's nodes freed
+        if (written_ && !is_leaf(f.a) && is_leaf(v)) written_->dropped.push_back(f.a);  // a's nodes freed
         put(f.slot, v);
         continue;
       }
@@ -209,7 +210,7 @@ class Merger {
       if (wanted[0] || wanted[1]) std::tie(bneg, bpos) = partition(f.b, a_.polygons[std::size_t(f.a)], n.plane, wanted);
       put(f.slot, f.a);  // a's node is reused: its region and sub-hyperplane are unchanged
       visited.push_back({f.a, f.slot});
-      a_.merged.push_back(f.a);  // for reclaim_added (in-place operations)
+      if (written_) written_->merged.push_back(f.a);
       stack.push_back({n.negative, bneg, {f.a, 0}, path.size(), n.plane});
       stack.push_back({n.positive, bpos, {f.a, 1}, path.size(), a_.opposite(n.plane)});
     }
@@ -253,6 +254,7 @@ class Merger {
   };
 
   Arena& a_;
+  WrittenStorage* written_;
   CancelPoll poll_;  // Ctrl-C (base/cancel.hpp)
   TreeRef out_[2] = {kOut, kOut};
   // Working storage of partition(), kept between calls (one partition per node of the merge).
@@ -272,13 +274,15 @@ class MergeSteps {
       for (int j = 0; j < 2; ++j) op_[i][j] = op[i][j];
   }
   // The result's boundary, from a's fragments `fa` (boxes `boxes`) and b's `fb`; the extent
-  // sides first, for both steps.
-  void boundary(Arena& arena, FragmentList fa, bsp::detail::FragmentBoxes boxes, const FragmentList& fb) {
+  // sides first, for both steps. In place, what it rewrites goes to `written`.
+  void boundary(Arena& arena, FragmentList fa, bsp::detail::FragmentBoxes boxes, const FragmentList& fb,
+                WrittenStorage* written) {
     if (prunes()) {
       bsp::detail::complete_boxes(fa, boxes);
       sides_ = bsp::detail::extent_sides(arena, ra_, fa, boxes, rb_, fb);
     }
-    bsp::detail::merge_boundaries(arena, ra_, std::move(fa), std::move(boxes), rb_, fb, op_, sides_ ? &*sides_ : nullptr);
+    bsp::detail::merge_boundaries(arena, ra_, std::move(fa), std::move(boxes), rb_, fb, op_,
+                                  sides_ ? &*sides_ : nullptr, written);
   }
   // The same boundary without the extent sides, which wait for tree() (a deferred tree may never
   // be built): b's fragments that they would drop are pushed down a's tree and dropped there,
@@ -293,8 +297,9 @@ class MergeSteps {
       bsp::detail::merge_boundaries(arena, ra_, std::move(fa), std::move(boxes), rb_, fb, op_, nullptr);
     }
   }
-  // The merged tree (after boundary()); returns its root.
-  TreeRef tree(Arena& arena) {
+  // The merged tree (after boundary()); returns its root. In place, what the merge rewrites
+  // goes to `written`.
+  TreeRef tree(Arena& arena, WrittenStorage* written = nullptr) {
     TreeRef rb = rb_;
     if (later_) {  // the trees are as they were: merge_boundaries does not change them
       sides_ = bsp::detail::extent_sides(arena, ra_, later_->a_faces, later_->a_boxes, rb_, later_->b_faces);
@@ -306,7 +311,7 @@ class MergeSteps {
     // allocation instead of regrowth copies (the polygons never move: PolygonStore).
     const std::size_t need = arena.nodes.size() + 4 * b_nodes_;
     if (need > arena.nodes.capacity()) arena.nodes.reserve(std::max(need, 2 * arena.nodes.capacity()));
-    Merger m(arena);
+    Merger m(arena, written);
     return m.merge(ra_, rb, op_);
   }
 
@@ -451,9 +456,10 @@ Solid apply_in_place(Solid&& x, const Solid& y, const bool table[2][2]) {
   const TreeRef rb = arena.append(y);
   const FragmentList fb = arena.boundary_of(y);
   MergeSteps steps(ra, rb, y.nodes().size(), table);
-  steps.boundary(arena, std::move(fa), std::move(arena.boundary_boxes), fb);
-  const TreeRef r = steps.tree(arena);
-  return bsp::detail::finish_in_place(arena, bsp::detail::reclaim_added(arena, r, added));
+  WrittenStorage written;
+  steps.boundary(arena, std::move(fa), std::move(arena.boundary_boxes), fb, &written);
+  const TreeRef r = steps.tree(arena, &written);
+  return bsp::detail::finish_in_place(arena, bsp::detail::reclaim_added(arena, r, added, written));
 }
 
 constexpr bool kUnion[2][2] = {{false, true}, {true, true}};

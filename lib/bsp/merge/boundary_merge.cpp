@@ -61,9 +61,9 @@ void push_in_chunks(Arena& arena, std::size_t n, bool parallel, PushOne&& push_o
 
 }  // namespace
 
-void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBoxes a_boxes_in,
-                      TreeRef b, const FragmentList& b_faces, const bool op[2][2],
-                      const ExtentSides* a_sides) {
+void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBoxes a_boxes_in, TreeRef b,
+                      const FragmentList& b_faces, const bool op[2][2], const ExtentSides* a_sides,
+                      WrittenStorage* written) {
   Clipper clip(arena);
   // B's fragments against A's tree, in chunks (see push_in_chunks). Where A has a face on the
   // same plane region (A's status differs across it), A's fragment stands for both.
@@ -213,8 +213,10 @@ void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBox
   for (const std::size_t i : changed)
     if (const std::size_t j = i / FragmentBoxes::kBlock; j < blocks.size()) a_boxes_in.update_block(j);
   for (std::size_t j = shortest / FragmentBoxes::kBlock; j < blocks.size(); ++j) a_boxes_in.update_block(j);
-  arena.boundary_changed_from = shortest;  // what changed, for reclaim_added (in-place operations)
-  arena.boundary_changed = std::move(changed);
+  if (written) {  // what changed, for reclaim_added
+    written->boundary_changed_from = shortest;
+    written->boundary_changed = std::move(changed);
+  }
   arena.boundary = std::move(a_faces);
   arena.boundary_boxes = std::move(a_boxes_in);
 }

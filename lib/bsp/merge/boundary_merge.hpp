@@ -21,11 +21,13 @@ class ExtentSides;
 /// in the arena (roots `a`, `b`) and the fragments are on arena planes; `a_boxes` are the boxes
 /// of `a_faces` (computed here where missing). The result goes to arena.boundary and
 /// arena.boundary_boxes. A's fragments are reused in place: those apart from B's boundary are
-/// decided by one box test (one per block of fragments apart from it) without being moved. Call it before merging the trees: the merge reuses their nodes.
-/// With `a_sides` (extent_sides() of A) and an op whose result out of A does not depend on B,
-/// B's fragments on planes with A on one closed side are dropped without being pushed down A.
-void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBoxes a_boxes,
-                      TreeRef b, const FragmentList& b_faces, const bool op[2][2],
-                      const ExtentSides* a_sides = nullptr);
+/// decided by one box test (one per block of fragments apart from it) without being moved. Call
+/// it before merging the trees: the merge reuses their nodes. With `a_sides` (extent_sides() of
+/// A) and an op whose result out of A does not depend on B, B's fragments on planes with A on one
+/// closed side are dropped without being pushed down A. With `written` (in-place operations),
+/// the fragments rewritten in place are recorded there.
+void merge_boundaries(Arena& arena, TreeRef a, FragmentList a_faces, FragmentBoxes a_boxes, TreeRef b,
+                      const FragmentList& b_faces, const bool op[2][2], const ExtentSides* a_sides = nullptr,
+                      WrittenStorage* written = nullptr);
 
 }  // namespace sculpt::bsp::detail

@@ -181,7 +181,7 @@ void clear_node(Arena& arena, TreeRef t) {
 
 }  // namespace
 
-TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
+Reclaimed reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added, const WrittenStorage& written) {
   const std::size_t n0 = added.first_node;
   const std::int32_t p0 = added.first_plane;
   std::vector<BspNode>& nodes = arena.nodes;
@@ -215,7 +215,7 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
   };
   if (nodes_added) {
     reach(root);
-    for (const TreeRef t : arena.merged) {
+    for (const TreeRef t : written.merged) {
       if (std::size_t(t) >= n0) continue;  // not a reused node (reached from the root, if at all)
       reach(nodes[std::size_t(t)].negative);
       reach(nodes[std::size_t(t)].positive);
@@ -227,14 +227,14 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
   // computed by the merge on planes that go) and become free slots once this operation's nodes
   // are placed. The cost is the number of nodes freed.
   std::vector<TreeRef> freed;
-  for (const TreeRef t : arena.merged) {
+  for (const TreeRef t : written.merged) {
     const BspNode& n = nodes[std::size_t(t)];
     if (std::size_t(t) < n0 && is_leaf(n.negative) && n.negative == n.positive) {
       clear_node(arena, t);
       freed.push_back(t);
     }
   }
-  for (const TreeRef d : arena.dropped) {
+  for (const TreeRef d : written.dropped) {
     stack.push_back(d);
     while (!stack.empty()) {
       const TreeRef t = stack.back();
@@ -249,15 +249,15 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
   }
   // The fragments the operation may have written: changed blocks, and all from a point on.
   FragmentList* fragments = arena.boundary ? &*arena.boundary : nullptr;
-  std::vector<std::size_t> written;  // fragment indices, each once
+  std::vector<std::size_t> fragments_written;  // fragment indices, each once
   if (fragments) {
     const std::size_t count = fragments->size();
-    const std::size_t from = added.all_fragments ? 0 : std::min(arena.boundary_changed_from, count);
-    for (const std::size_t i : arena.boundary_changed)
-      if (i < from) written.push_back(i);
-    std::sort(written.begin(), written.end());
-    written.erase(std::unique(written.begin(), written.end()), written.end());
-    for (std::size_t i = from; i < count; ++i) written.push_back(i);
+    const std::size_t from = added.all_fragments ? 0 : std::min(written.boundary_changed_from, count);
+    for (const std::size_t i : written.boundary_changed)
+      if (i < from) fragments_written.push_back(i);
+    std::sort(fragments_written.begin(), fragments_written.end());
+    fragments_written.erase(std::unique(fragments_written.begin(), fragments_written.end()), fragments_written.end());
+    for (std::size_t i = from; i < count; ++i) fragments_written.push_back(i);
   }
   // Every reference to a plane the operation may have written: kept added nodes (plane,
   // polygon), the reused nodes' polygons (a pending one the merge computed refers to new
@@ -267,9 +267,9 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
       at(nodes[std::size_t(t)].plane);
       each_plane(polygons[std::size_t(t)], at);
     }
-    for (const TreeRef t : arena.merged)
+    for (const TreeRef t : written.merged)
       if (std::size_t(t) < n0) each_plane(polygons[std::size_t(t)], at);
-    for (const std::size_t i : written)
+    for (const std::size_t i : fragments_written)
       fragments->renumber_planes(i, [&](std::int32_t p) {
         at(p);
         return p;
@@ -350,7 +350,7 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
       kept_nodes.push_back(n);
       kept_polygons.push_back(std::move(polygons[std::size_t(t)]));
     }
-    for (const TreeRef t : arena.merged)
+    for (const TreeRef t : written.merged)
       if (std::size_t(t) < n0) forward(nodes[std::size_t(t)].negative), forward(nodes[std::size_t(t)].positive);
     forward(root);
     nodes.resize(n0);
@@ -367,10 +367,7 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added) {
     }
   }
   free.nodes.insert(free.nodes.end(), freed.begin(), freed.end());
-  arena.nodes_kept_and_freed = order.size() + freed.size();
-  arena.merged.clear();
-  arena.dropped.clear();
-  return root;
+  return {root, order.size() + freed.size()};
 }
 
 void scan_for_free_planes(Arena& arena, std::size_t budget) {
@@ -403,14 +400,15 @@ void scan_for_free_planes(Arena& arena, std::size_t budget) {
   marks.clear();
 }
 
-Solid finish_in_place(Arena& arena, TreeRef root) {
+Solid finish_in_place(Arena& arena, const Reclaimed& reclaimed) {
+  const TreeRef root = reclaimed.root;
   constexpr std::size_t kScanPerNode = 2;
   constexpr std::size_t kMinScanSlice = 512;
   constexpr std::size_t kMinCompactNodes = 4096;
   if (is_leaf(root)) return Solid::leaf(root == kIn);
   if (arena.free.nodes.size() > arena.nodes.size() / 2 && arena.nodes.size() > kMinCompactNodes)
     return compact(arena, root, {.keep_capacity = true});
-  scan_for_free_planes(arena, std::max(kMinScanSlice, kScanPerNode * arena.nodes_kept_and_freed));
+  scan_for_free_planes(arena, std::max(kMinScanSlice, kScanPerNode * reclaimed.nodes_touched));
   return SolidAccess::make(std::move(arena.planes), std::move(arena.nodes), std::move(arena.polygons), root,
                            std::move(arena.free), std::move(arena.boundary), std::move(arena.boundary_boxes));
 }

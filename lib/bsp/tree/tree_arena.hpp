@@ -64,18 +64,6 @@ struct Arena {
   /// Boundary of the tree being built, when known; compact() keeps it (and its planes).
   std::optional<FragmentList> boundary;
   FragmentBoxes boundary_boxes;  ///< of `boundary`, or empty
-  /// What the last set operation wrote, for in-place operations (reclaim_added): the nodes of
-  /// tree a the merge reused (their children and pending polygons may be written), in pre-order;
-  /// the fragments of `boundary` merge_boundaries rewrote in place (indices, maybe repeated), and
-  /// the first fragment from which all may have changed; the roots of tree a's subtrees the
-  /// merge replaced by a leaf (their nodes are no longer reached).
-  std::vector<TreeRef> merged;
-  std::vector<std::size_t> boundary_changed;
-  std::size_t boundary_changed_from = 0;
-  std::vector<TreeRef> dropped;
-  /// Set by reclaim_added: the nodes the operation kept (added) and freed (older), a measure of
-  /// what it touched (the slice of the scan for free planes follows it).
-  std::size_t nodes_kept_and_freed = 0;
 
  private:
   /// A branch's opposite of plane i < branched_at_.
@@ -100,27 +88,48 @@ struct CompactOptions {
 Solid compact(Arena& arena, TreeRef root, const CompactOptions& options = {});
 
 /// What an in-place operation added to an adopted solid's storage: planes at indices >=
-/// first_plane, nodes at indices >= first_node; the nodes below first_node whose children or
-/// polygons it may have written are arena.merged, the fragments arena.boundary_changed and
-/// those from arena.boundary_changed_from (all of them with all_fragments).
+/// first_plane, nodes at indices >= first_node; all of the boundary's fragments may have been
+/// written with all_fragments.
 struct AddedStorage {
   std::int32_t first_plane = 0;
   std::size_t first_node = 0;
   bool all_fragments = false;
 };
-/// Drops what an in-place operation added and left unused, and frees what it cut away, in time
+
+/// What an in-place operation wrote in the older part of an adopted solid's storage, recorded by
+/// the steps that write it (the tree merge, merge_boundaries, rebuild_region) and read by
+/// reclaim_added, so that it never reads the whole solid.
+struct WrittenStorage {
+  /// The nodes of tree a that the merge reused (their children and pending polygons may be
+  /// written), in pre-order, each once.
+  std::vector<TreeRef> merged;
+  /// The roots of tree a's subtrees that the merge replaced by a leaf (no longer reached).
+  std::vector<TreeRef> dropped;
+  /// The fragments of the boundary that were rewritten in place (indices, maybe repeated), and
+  /// the first fragment from which all may have changed.
+  std::vector<std::size_t> boundary_changed;
+  std::size_t boundary_changed_from = 0;
+};
+
+/// What reclaim_added leaves: the root (moved if it was an added node) and the nodes the
+/// operation kept (added) and freed (older), a measure of what it touched.
+struct Reclaimed {
+  TreeRef root = kOut;
+  std::size_t nodes_touched = 0;
+};
+/// Drops what an in-place operation added (`added`) and left unused, and frees what it cut away
+/// (`written`), in time
 /// proportional to what it added and freed (the solid's older storage is not read): the added
 /// nodes the result does not reach (a partitioned tree's dropped side, pruned nodes) and the
 /// added planes nothing references (most of the other operand's planes, opposites made for one
 /// operation) are dropped; the kept added nodes take free node slots (arena.free.nodes), then
 /// go to first_node on (pre-order), the kept added planes take free plane slots
 /// (arena.free.planes), then go to first_plane on (in order); the references to them are
-/// rewritten. The older nodes the result no longer reaches (arena.dropped's subtrees, reused
+/// rewritten. The older nodes the result no longer reaches (written.dropped's subtrees, reused
 /// nodes the merge collapsed) are cleared and become free node slots for later operations.
 /// While a scan for free planes is in progress, the planes that everything written refers to
-/// are marked. Older nodes and planes are neither moved nor renumbered. Returns the root
-/// (moved if it was an added node).
-TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added);
+/// are marked. Older nodes and planes are neither moved nor renumbered.
+Reclaimed reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added, const WrittenStorage& written);
 
 /// Advances the scan for plane slots nothing refers to by about `budget` node slots and
 /// boundary fragments (starting a scan if none is in progress); when the scan has reached the
@@ -131,15 +140,15 @@ TreeRef reclaim_added(Arena& arena, TreeRef root, const AddedStorage& added);
 /// spanned. Requires every node slot the tree does not reach to be free (cleared).
 void scan_for_free_planes(Arena& arena, std::size_t budget);
 
-/// The solid an in-place operation leaves in `arena` (adopted, then reclaim_added; `root` is
-/// what reclaim_added returned), taking over the arena's storage. Free plane slots are found by
-/// a scan that advances by a slice per operation (scan_for_free_planes): 2 node slots or
-/// fragments per node the operation kept or freed, at least 512, so no operation reads the whole
+/// The solid an in-place operation leaves in `arena` (adopted, then reclaim_added, which gave
+/// `reclaimed`), taking over the arena's storage. Free plane slots are found by a scan that
+/// advances by a slice per operation (scan_for_free_planes): 2 node slots or fragments per node
+/// the operation kept or freed (Reclaimed::nodes_touched), at least 512, so no operation reads the whole
 /// tree and its cost follows what it touched; the planes an operation leaves unreferenced are
 /// found after about tree size / (2 * nodes touched) operations (docs/sculpting.md, "Strokes").
 /// When more than half of the node slots are free (the operation cut away most of the tree), the
 /// solid is compacted instead: that costs about what freeing them did.
-Solid finish_in_place(Arena& arena, TreeRef root);
+Solid finish_in_place(Arena& arena, const Reclaimed& reclaimed);
 
 /// Flips in and out leaves of the subtree at `root` in place (explicit stack).
 void complement_in_place(Arena& arena, TreeRef& root);
