@@ -124,6 +124,64 @@ TEST(KdCells, CellsOfOneOperandAreSplitOnlyAboveTheirOwnSize) {
   EXPECT_GT(many, few);
 }
 
+// A wall at a half-integer strictly inside the cell with every box of one operand strictly
+// below it and every box of the other strictly above: the walls are tried upwards from just
+// below the lower operand's top (beyond the first that clears it, later ones only come closer
+// to the upper operand).
+bool apart(const bsp::detail::KdNode& leaf, const std::vector<FragmentBox> (&b)[2]) {
+  for (int k = 0; k < 3; ++k)
+    for (int below = 0; below < 2; ++below) {
+      double top = -1e300, bottom = 1e300;
+      bool valid = true;
+      for (const std::uint32_t i : leaf.items[std::size_t(below)])
+        valid = valid && b[below][i].valid, top = std::max(top, double(b[below][i].hi[k]));
+      for (const std::uint32_t i : leaf.items[std::size_t(1 - below)])
+        valid = valid && b[1 - below][i].valid, bottom = std::min(bottom, double(b[1 - below][i].lo[k]));
+      if (!valid) continue;
+      const auto first = std::max(leaf.bounds.lo[k] + 2, 2 * std::int64_t(std::floor(top)) - 3);
+      for (std::int64_t s = first | 1; s < leaf.bounds.hi[k] && s <= first + 8; s += 2)
+        if (top < 0.5 * double(s) && 0.5 * double(s) < bottom) return true;
+    }
+  return false;
+}
+
+TEST(KdCells, NoLeafHoldsBothOperandsWhereAWallSeparatesThem) {
+  // Three small boxes of each operand, apart along x only: one cell of 6 fragments would stay a
+  // leaf, but the operands are apart in it, so it is split between them.
+  std::vector<FragmentBox> b[2];
+  for (int op = 0; op < 2; ++op)
+    for (int i = 0; i < 3; ++i) {
+      FragmentBox box{};
+      box.lo[0] = float(op == 0 ? 0 : 10), box.hi[0] = box.lo[0] + 2;
+      box.lo[1] = box.lo[2] = float(i), box.hi[1] = box.hi[2] = float(i + 5);
+      box.valid = true;
+      b[op].push_back(box);
+    }
+  KdCells cells = subdivided(b, 32);
+  ASSERT_EQ(cells.leaves.size(), 2u);
+  for (const std::int32_t id : cells.leaves) {
+    const auto& leaf = cells.nodes[std::size_t(id)];
+    EXPECT_TRUE(leaf.items[0].empty() != leaf.items[1].empty()) << "leaf " << id;
+  }
+  // Overlapping on every axis: one leaf with both.
+  b[1][0].lo[0] = 1;
+  cells = subdivided(b, 32);
+  EXPECT_EQ(cells.leaves.size(), 1u);
+  // The random surfaces: no leaf that holds both operands has them apart (brute force).
+  std::mt19937 rng(17);
+  std::vector<FragmentBox> r[2] = {boxes(rng, 3000, 0), boxes(rng, 2000, 300)};
+  r[0][5].valid = r[1][5].valid = true;  // else every cell holds both operands' unknown box
+  cells = subdivided(r, 32);
+  std::size_t both = 0;
+  for (const std::int32_t id : cells.leaves) {
+    const auto& leaf = cells.nodes[std::size_t(id)];
+    if (leaf.items[0].empty() || leaf.items[1].empty()) continue;
+    ++both;
+    EXPECT_FALSE(apart(leaf, r)) << "leaf " << id;
+  }
+  EXPECT_GT(both, 10u);
+}
+
 TEST(KdCells, OneThreadAndEveryCoreGiveTheSameSubdivision) {
   std::mt19937 rng(3);
   // Large enough that the first splits leave subtrees of over 8192 fragments (grown side by side).

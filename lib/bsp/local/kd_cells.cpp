@@ -86,28 +86,67 @@ Choice choose_split(const KdNode& n, const std::array<std::span<const FragmentBo
   return {axis, s};
 }
 
+// A wall with all of one operand's fragments strictly below it and all of the other's strictly
+// above (by their boxes), inside the cell: there the operands' boundaries are apart, so each
+// side of the wall holds one operand's pieces only and needs only the other's status (step 4 of
+// the cell merge) instead of two local trees that every piece is pushed down. None if the boxes
+// overlap on every axis (or one is unknown).
+Choice separating_split(const KdNode& n, const std::array<std::span<const FragmentBox>, 2>& boxes) {
+  for (int axis = 0; axis < 3; ++axis) {
+    double top[2] = {-1e300, -1e300}, bottom[2] = {1e300, 1e300};  // per operand
+    for (int op = 0; op < 2; ++op)
+      for (const std::uint32_t i : n.items[op]) {
+        const FragmentBox& b = boxes[op][i];
+        if (!b.valid) return {};
+        top[op] = std::max(top[op], double(b.hi[axis]));
+        bottom[op] = std::min(bottom[op], double(b.lo[axis]));
+      }
+    for (int below = 0; below < 2; ++below) {
+      const std::int64_t s = 2 * std::int64_t(std::floor(top[below] + 0.5)) + 1;  // the first wall above top
+      if (0.5 * double(s) < bottom[1 - below] && s > n.bounds.lo[axis] && s < n.bounds.hi[axis]) return {axis, s};
+    }
+  }
+  return {};
+}
+
+// The fragments of node n on each side of the wall c (parts[side][operand]): those whose boxes
+// reach it go to both.
+void distribute(const KdNode& n, const Choice& c, const std::array<std::span<const FragmentBox>, 2>& boxes,
+                std::array<std::array<std::vector<std::uint32_t>, 2>, 2>& parts) {
+  const double wall = 0.5 * double(c.split);
+  for (int side = 0; side < 2; ++side)
+    for (int op = 0; op < 2; ++op) parts[side][op].clear();
+  for (int op = 0; op < 2; ++op)
+    for (const std::uint32_t i : n.items[op]) {
+      const FragmentBox& b = boxes[op][i];
+      if (lo_of(b, c.axis) <= wall) parts[0][op].push_back(i);
+      if (hi_of(b, c.axis) >= wall) parts[1][op].push_back(i);
+    }
+}
+
 // Where node n's fragments go if it is split (parts[side][operand]), or axis -1 when it stays a
-// leaf: the split of choose_split, at its middle if the gap makes no progress (neither side may
-// keep every fragment).
+// leaf: a wall between the two operands' fragments if there is one, else the split of
+// choose_split, at its middle if the gap makes no progress (neither side may keep every
+// fragment).
 Choice split_items(const KdNode& n, int depth, const std::array<std::span<const FragmentBox>, 2>& boxes,
                    const KdOptions& options, std::array<std::array<std::vector<std::uint32_t>, 2>, 2>& parts) {
   const std::size_t total = n.items[0].size() + n.items[1].size();
   const bool both = !n.items[0].empty() && !n.items[1].empty();
   const bool split_worthwhile =
       total > (both ? options.leaf_size : options.one_operand_leaf_size) && depth < options.max_depth;
+  // Only where the cell would stay a leaf: in a larger cell such a wall leaves two large cells of
+  // one operand, whose statuses may need local trees over all of their pieces.
+  if (both && !split_worthwhile && depth < options.max_depth) {
+    if (const Choice c = separating_split(n, boxes); c.axis >= 0) {
+      distribute(n, c, boxes, parts);
+      return c;
+    }
+  }
   Choice c;
   for (int attempt = 0; split_worthwhile && attempt < 2; ++attempt) {
     c = choose_split(n, boxes, attempt);
     if (c.axis < 0) break;
-    const double wall = 0.5 * double(c.split);
-    for (int side = 0; side < 2; ++side)
-      for (int op = 0; op < 2; ++op) parts[side][op].clear();
-    for (int op = 0; op < 2; ++op)
-      for (const std::uint32_t i : n.items[op]) {
-        const FragmentBox& b = boxes[op][i];
-        if (lo_of(b, c.axis) <= wall) parts[0][op].push_back(i);
-        if (hi_of(b, c.axis) >= wall) parts[1][op].push_back(i);
-      }
+    distribute(n, c, boxes, parts);
     const bool progress =
         parts[0][0].size() + parts[0][1].size() < total && parts[1][0].size() + parts[1][1].size() < total;
     if (progress) return c;
