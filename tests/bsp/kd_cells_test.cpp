@@ -182,6 +182,34 @@ TEST(KdCells, NoLeafHoldsBothOperandsWhereAWallSeparatesThem) {
   EXPECT_GT(both, 10u);
 }
 
+TEST(KdCells, CellsOfOneOperandNextToTheOtherAreSplitAboveTheNearLimit) {
+  // Two overlapping surfaces: every leaf of one operand whose parent held both has at most
+  // near_leaf_size fragments; with a near limit as large as the general one, some have more.
+  std::mt19937 rng(23);
+  std::vector<FragmentBox> b[2] = {boxes(rng, 20000, 0), boxes(rng, 20000, 300)};
+  b[0][5].valid = b[1][5].valid = true;
+  auto largest_near = [&](std::size_t near) {
+    const KdCells cells =
+        bsp::detail::subdivide({std::span<const FragmentBox>(b[0]), std::span<const FragmentBox>(b[1])},
+                               {.leaf_size = 32, .one_operand_leaf_size = 4096, .near_leaf_size = near});
+    std::size_t largest = 0;
+    for (const std::int32_t id : cells.leaves) {
+      const auto& leaf = cells.nodes[std::size_t(id)];
+      if (!leaf.items[0].empty() && !leaf.items[1].empty()) continue;
+      const auto& parent = cells.nodes[std::size_t(leaf.parent)];
+      // Brute force: the parent held both operands if boxes of both meet its closed cell.
+      bool held[2] = {false, false};
+      for (int op = 0; op < 2; ++op)
+        for (const FragmentBox& box : b[op]) held[op] = held[op] || meets(parent.bounds, box);
+      EXPECT_EQ(leaf.parent_mixed, held[0] && held[1]) << "leaf " << id;
+      if (leaf.parent_mixed) largest = std::max(largest, leaf.items[0].size() + leaf.items[1].size());
+    }
+    return largest;
+  };
+  EXPECT_LE(largest_near(128), 128u);
+  EXPECT_GT(largest_near(4096), 128u);
+}
+
 TEST(KdCells, OneThreadAndEveryCoreGiveTheSameSubdivision) {
   std::mt19937 rng(3);
   // Large enough that the first splits leave subtrees of over 8192 fragments (grown side by side).

@@ -132,8 +132,9 @@ Choice split_items(const KdNode& n, int depth, const std::array<std::span<const 
                    const KdOptions& options, std::array<std::array<std::vector<std::uint32_t>, 2>, 2>& parts) {
   const std::size_t total = n.items[0].size() + n.items[1].size();
   const bool both = !n.items[0].empty() && !n.items[1].empty();
-  const bool split_worthwhile =
-      total > (both ? options.leaf_size : options.one_operand_leaf_size) && depth < options.max_depth;
+  const std::size_t limit =
+      both ? options.leaf_size : (n.parent_mixed ? options.near_leaf_size : options.one_operand_leaf_size);
+  const bool split_worthwhile = total > limit && depth < options.max_depth;
   // Only where the cell would stay a leaf: in a larger cell such a wall leaves two large cells of
   // one operand, whose statuses may need local trees over all of their pieces.
   if (both && !split_worthwhile && depth < options.max_depth) {
@@ -186,12 +187,15 @@ struct Grow {
       n.items[0] = {};
       n.items[1] = {};
       const CellBounds bounds = n.bounds;
+      const bool mixed =
+          (!parts[0][0].empty() || !parts[1][0].empty()) && (!parts[0][1].empty() || !parts[1][1].empty());
       std::size_t sizes[2];
       for (int side = 0; side < 2; ++side) {
         KdNode child;
         child.bounds = bounds;
         (side == 0 ? child.bounds.hi : child.bounds.lo)[c.axis] = c.split;
         child.parent = id;
+        child.parent_mixed = mixed;
         child.items[0] = std::move(parts[side][0]);
         child.items[1] = std::move(parts[side][1]);
         sizes[side] = child.items[0].size() + child.items[1].size();

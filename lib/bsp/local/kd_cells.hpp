@@ -6,7 +6,9 @@
 /// is split while both operands have fragments in it and there are more than a few, so cells
 /// stay large where only one operand has boundary and small along the intersection; a cell of
 /// one operand only is split when it holds more than a few thousand (its local tree may be read
-/// for statuses, and one tree of 33,000 pieces took a quarter of a second on one core).
+/// for statuses, and one tree of 33,000 pieces took a quarter of a second on one core), or more
+/// than 128 when its parent held both operands (next to the other's boundary, where statuses
+/// are read). A cell of at most 32 that holds both is still split where a wall separates them.
 ///
 /// Walls lie at half-integer grid coordinates (2x = odd): a fragment's support plane, whose
 /// coefficients are coprime integers, is never one of them (an axis-aligned support is x = d
@@ -32,6 +34,7 @@ struct KdNode {
   std::int64_t split = 0;            ///< half grid units (odd): the wall between the children
   std::int32_t child[2] = {-1, -1};  ///< below and above the split
   std::int32_t parent = -1;
+  bool parent_mixed = false;  ///< the parent held fragments of both operands
   /// Leaves: the fragments of each operand whose boxes meet the closed cell (indices).
   std::array<std::vector<std::uint32_t>, 2> items;
 };
@@ -41,6 +44,11 @@ struct KdOptions {
   /// A cell where one operand has no fragment is not split unless it holds more than this many:
   /// the set operation decides it by a status, but a status may read its local tree.
   std::size_t one_operand_leaf_size = 4096;
+  /// The same for such a cell whose parent held both operands: it lies next to the other
+  /// operand's boundary, where statuses read its local tree, whose cost grows with its pieces
+  /// (sphere minus moved copy: 11-13 % fewer instructions than with one_operand_leaf_size alone;
+  /// real meshes and the sphere minus a cube 0.5-0.8 % more; docs/benchmarks.md, "Session 46").
+  std::size_t near_leaf_size = 128;
   int max_depth = 40;
 };
 
