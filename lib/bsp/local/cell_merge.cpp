@@ -13,6 +13,7 @@
 #include "base/cancel.hpp"
 #include "base/dispose.hpp"
 #include "base/parallel.hpp"
+#include "bsp/local/cell_reach.hpp"
 #include "bsp/local/deferred_build.hpp"
 #include "bsp/partition/autopartition.hpp"
 #include "bsp/tree/boundary_clipper.hpp"
@@ -175,9 +176,12 @@ class CellMerge {
         for (int x = 0; x < 2; ++x) {
           Pieces& p = pieces_[l][x];
           for (const std::uint32_t i : n.items[x]) {
+            // Reading the approximations first decides most fragments: the exact clip is for
+            // the rest (those that miss the leaf, and slivers along its walls).
             const FragmentRef f = ops_[x].fragment(i, renumbered);
-            if (clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch) !=
-                CellClip::Outside)
+            if (certainly_reaches(f.polygon, n.bounds) ||
+                clip_to_cell(arena_.planes, f.polygon, walls_[std::size_t(node_of(l))], piece, scratch) !=
+                    CellClip::Outside)
               p.origin.push_back(i);
           }
         }
