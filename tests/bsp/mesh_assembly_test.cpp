@@ -24,6 +24,8 @@
 #include "bsp/set_operations.hpp"
 #include "bsp/transform.hpp"
 #include "bsp/tree/boundary_fragments.hpp"
+#include "mesh/mesh_measures.hpp"
+#include "mesh/mesh_validation.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace sculpt {
@@ -586,6 +588,42 @@ TEST(MeshAssembly, ExactlyRepresentedVerticesAreExact) {
   }
   EXPECT_GT(found, 2900);
   EXPECT_GT(near, 2000);
+}
+
+// The top face of a plate drilled nine times is one union of fragments with nine holes: not one
+// simple polygon, but a few (disks grown through it). Before, it stayed in its convex fragments,
+// which the drilling's extended face planes had cut (some 30 per hole), with corners where those
+// planes cross inside the face; those are not grid points, and the output check then searched
+// the face's long fan triangles against each other (most of drilled_plate's time).
+TEST(MeshAssembly, AFaceWithHolesJoinsIntoFewSimpleFacesWithoutInteriorCuts) {
+  const int holes = 9;
+  Solid plate = box({0, 0, 0}, {10, 10, 1});
+  const Solid hole = cylinder(0.3, 2.0, {.segments = 32});
+  for (int i = 0; i < holes; ++i) plate = std::move(plate) - translate(hole, {i % 3 + 0.5, i / 3 + 0.5, -0.5});
+  const PolygonMesh mesh = to_mesh(plate);
+  EXPECT_TRUE(checks::EdgesManifoldAndOriented(mesh));
+  EXPECT_TRUE(checks::VerticesManifold(mesh));
+  EXPECT_TRUE(checks::GenusIs(mesh, holes));
+  EXPECT_TRUE(check_closed_manifold(mesh).ok());  // faces simple and planar too
+  EXPECT_TRUE(checks::VolumeNear(mesh, 100 - holes * mesh_volume(to_mesh(hole)) / 2, 1e-12));
+  int top = 0, largest = 0;
+  std::set<int> off_grid;  // corners on the top that are not grid points
+  const double step = plate.grid().step();
+  for (const auto& f : mesh.faces) {
+    if (!std::all_of(f.begin(), f.end(), [&](int v) { return mesh.vertices[std::size_t(v)].z() == 1; })) continue;
+    ++top;
+    largest = std::max(largest, int(f.size()));
+    for (const int v : f)
+      for (int k = 0; k < 2; ++k)
+        if (std::round(mesh.vertices[std::size_t(v)][k] / step) * step != mesh.vertices[std::size_t(v)][k])
+          off_grid.insert(v);
+  }
+  // Nine holes of 32 corners: at least three faces of at most 128 corners; the cuts left
+  // between them (slits) end at a few corners off the grid.
+  EXPECT_GE(top, 3);
+  EXPECT_LE(top, holes + 1);
+  EXPECT_LE(largest, 128);
+  EXPECT_LE(int(off_grid.size()), 4 * holes);
 }
 
 }  // namespace

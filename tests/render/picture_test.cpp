@@ -319,7 +319,8 @@ TEST(Picture, SmoothShadingFollowsTheTrueSphere) {
 // ---- the z-buffer against independent references ----
 
 /// The nearest face hit by the ray through pixel (x, y)'s centre, by brute force over the
-/// mesh's faces (point in convex polygon on the face's plane); -1 if none. Also returns its depth.
+/// mesh's faces (point in polygon on the face's plane: faces are simple polygons, not always
+/// convex, as where coplanar fragments around a hole join); -1 if none. Also returns its depth.
 std::pair<int, double> brute_force_hit(const PolygonMesh& mesh, const Camera& camera, int x, int y) {
   const Eigen::Vector3d origin = camera.center + camera.right * ((x + 0.5 - 0.5 * camera.width) / camera.scale) -
                                  camera.up * ((y + 0.5 - 0.5 * camera.height) / camera.scale);
@@ -334,11 +335,17 @@ std::pair<int, double> brute_force_hit(const PolygonMesh& mesh, const Camera& ca
     if (n.dot(dir) <= 1e-12 * n.norm()) continue;
     const double t = n.dot(mesh.vertices[face[0]] - origin) / n.dot(dir);
     const Eigen::Vector3d p = origin + t * dir;
-    bool inside = true;
-    for (std::size_t k = 0; k < face.size() && inside; ++k) {
+    // Crossing number in the projection along the normal's largest coordinate.
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(n[k]) > std::abs(n[axis])) axis = k;
+    const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    bool inside = false;
+    for (std::size_t k = 0; k < face.size(); ++k) {
       const Eigen::Vector3d& a = mesh.vertices[face[k]];
       const Eigen::Vector3d& b = mesh.vertices[face[(k + 1) % face.size()]];
-      inside = (b - a).cross(p - a).dot(n) >= 0;
+      if ((a[j] > p[j]) != (b[j] > p[j]) && p[i] < a[i] + (p[j] - a[j]) / (b[j] - a[j]) * (b[i] - a[i]))
+        inside = !inside;
     }
     if (inside && t > best_t) best = static_cast<int>(f), best_t = t;
   }

@@ -2,8 +2,129 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
+#include <span>
+
+#include "base/assert.hpp"
 
 namespace sculpt::bsp::detail {
+
+namespace {
+
+/// A union of fragments with holes (a plate's face around its drilled holes) is not one simple
+/// polygon, but it can be a few: this grows disks through it, one after the other, each from its
+/// first free fragment in face order, adding a neighbour across a shared edge while the union
+/// stays a disk (Whitney's condition for gluing a convex cell to a disk: it meets the disk's
+/// boundary in one path of its own edges and nowhere else), up to kMaxCorners corners. Every
+/// vertex cut into the interior of a disk leaves the output; before, all the fragments stayed,
+/// with the vertices where extended face planes crossed inside the face (not grid points: the
+/// output check then searched a plate's long fan triangles against each other).
+class DiskGrower {
+ public:
+  static constexpr int kMaxCorners = 128;  // faces stay cheap to triangulate and to check
+
+  DiskGrower(const FaceList& faces, int vertex_count)
+      : faces_(faces), leave_to_(std::size_t(vertex_count), -1), leave_line_(std::size_t(vertex_count), 0) {}
+
+  /// Disks through the fragments `members` (one connected union on one oriented plane), whose
+  /// neighbours across interior edges `neighbours(f, visit)` lists. Each disk of two or more is
+  /// appended to `added` and its fragments marked in `removed`; `disk` (one entry per face,
+  /// -1 for free ones) is left marked for the members.
+  template <typename Neighbours>
+  void run(std::span<const int> members, Neighbours&& neighbours, std::vector<int>& disk, FaceList& added,
+           std::vector<std::uint8_t>& removed) {
+    for (const int seed : members) {
+      if (disk[std::size_t(seed)] >= 0) continue;
+      const int id = seed;
+      grown_.assign(1, seed);
+      disk[std::size_t(seed)] = id;
+      corners_ = 0;
+      for (int c = faces_.begin(seed); c < faces_.end(seed); ++c) {
+        const int u = faces_.vertex[std::size_t(c)];
+        leave_to_[std::size_t(u)] = faces_.vertex[std::size_t(faces_.next(seed, c))];
+        leave_line_[std::size_t(u)] = faces_.line[std::size_t(c)];
+        touched_.push_back(u);
+        ++corners_;
+      }
+      queue_.clear();
+      neighbours(seed, [&](int g) { queue_.push_back(g); });
+      for (std::size_t k = 0; k < queue_.size(); ++k) {
+        const int f = queue_[k];
+        if (disk[std::size_t(f)] >= 0 || !glue(f)) continue;
+        disk[std::size_t(f)] = id;
+        grown_.push_back(f);
+        neighbours(f, [&](int g) {
+          if (disk[std::size_t(g)] < 0) queue_.push_back(g);
+        });
+      }
+      if (grown_.size() >= 2) emit(seed, added, removed);
+      for (const int v : touched_) leave_to_[std::size_t(v)] = -1;
+      touched_.clear();
+    }
+  }
+
+ private:
+  // Fragment f glued to the disk if that keeps it a disk of at most kMaxCorners corners. Edge i
+  // (v_i -> v_i+1) is shared when the disk's boundary runs v_i+1 -> v_i.
+  bool glue(int f) {
+    const int b = faces_.begin(f), n = faces_.count(f);
+    auto vertex = [&](int i) { return faces_.vertex[std::size_t(b + (i % n))]; };
+    shared_.assign(std::size_t(n), 0);
+    int count = 0;
+    for (int i = 0; i < n; ++i) count += shared_[std::size_t(i)] = leave_to_[std::size_t(vertex(i + 1))] == vertex(i);
+    if (count == 0 || count == n) return false;
+    // One run of shared edges: exactly one edge i shared after an unshared one; it starts the run.
+    int first = -1, runs = 0;
+    for (int i = 0; i < n; ++i)
+      if (shared_[std::size_t(i)] && !shared_[std::size_t((i + n - 1) % n)]) first = i, ++runs;
+    if (runs != 1) return false;
+    const int last = first + count;  // v_first .. v_last lie on the run
+    // The other vertices must not be on the disk's boundary (no pinch).
+    for (int i = last + 1; i < first + n; ++i)
+      if (leave_to_[std::size_t(vertex(i))] >= 0) return false;
+    const int after = corners_ - (count - 1) + (n - count - 1);
+    if (after > kMaxCorners) return false;
+    // The run's edges leave the boundary (the disk's edge v_i+1 -> v_i leaves v_i+1), then f's
+    // other edges join it.
+    for (int i = first; i < last; ++i) leave_to_[std::size_t(vertex(i + 1))] = -1;
+    for (int i = last; i < first + n; ++i) {
+      const int u = vertex(i);
+      leave_to_[std::size_t(u)] = vertex(i + 1);
+      leave_line_[std::size_t(u)] = faces_.line[std::size_t(b + (i % n))];
+      touched_.push_back(u);
+    }
+    corners_ = after;
+    return true;
+  }
+
+  // The disk's boundary loop as one face, from the first vertex that joined the boundary and
+  // is still on it (the seed's corners may all have become interior).
+  void emit(int seed, FaceList& added, std::vector<std::uint8_t>& removed) {
+    int first = -1;
+    for (std::size_t k = 0; k < touched_.size() && first < 0; ++k)
+      if (leave_to_[std::size_t(touched_[k])] >= 0) first = touched_[k];
+    SCULPT_ASSERT(first >= 0, "merge_coplanar_faces: a disk without a boundary");
+    const std::size_t mark = added.vertex.size();
+    added.open_face(faces_.support[std::size_t(seed)], faces_.flip[std::size_t(seed)] != 0);
+    int u = first;
+    do {
+      added.add_corner(u, leave_line_[std::size_t(u)]);
+      u = leave_to_[std::size_t(u)];
+    } while (u >= 0 && u != first && int(added.vertex.size() - mark) <= corners_);
+    SCULPT_ASSERT(u == first && int(added.vertex.size() - mark) == corners_,
+                  "merge_coplanar_faces: a disk's boundary is not one loop");
+    for (const int f : grown_) removed[std::size_t(f)] = 1;
+  }
+
+  const FaceList& faces_;
+  std::vector<int> leave_to_;  // per vertex: the next vertex along the disk's boundary, or -1
+  std::vector<std::int32_t> leave_line_;
+  std::vector<int> touched_, grown_, queue_;
+  std::vector<std::uint8_t> shared_;
+  int corners_ = 0;
+};
+
+}  // namespace
 
 FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& ids) {
   const int nf = faces.size();
@@ -84,6 +205,20 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
   std::vector<Boundary> boundary;                           // the union's boundary edges
   boundary.reserve(64);
   std::vector<std::uint8_t> removed(std::size_t(nf), 0);
+  // The fragments across f's interior edges (on its oriented plane), for the disks.
+  auto neighbours = [&](int f, auto&& visit) {
+    const std::uint64_t mine = plane[std::size_t(f)];
+    for (int c = faces.begin(f); c < faces.end(f); ++c) {
+      if (interior[std::size_t(c)] == 0) continue;
+      const int u = faces.vertex[std::size_t(c)], w = faces.vertex[std::size_t(faces.next(f, c))];
+      for (int i = start[std::size_t(w)]; i < start[std::size_t(w) + 1]; ++i) {
+        const Out& o = by_start[std::size_t(i)];
+        if (o.to == u && o.plane == mine && o.face != f) visit(o.face);
+      }
+    }
+  };
+  std::optional<DiskGrower> grower;
+  std::vector<int> disk;  // per face: the disk it joined (its seed), -1 while free
   FaceList added;
   added.reserve(std::size_t(nf) / 8 + 16, corners / 8 + 64);  // (growing from empty allocates often)
   for (int r = 0; r < nf; ++r) {
@@ -105,6 +240,7 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
       }
     }
     simple = simple && boundary.size() >= 3;
+    bool merged = false;
     if (simple) {
       // One loop through every boundary edge: a simple polygon.
       const std::size_t mark = added.vertex.size();
@@ -118,7 +254,8 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
       } while (u != first && added.vertex.size() - mark <= boundary.size());
       if (added.vertex.size() - mark == boundary.size()) {
         for (int m = b; m < e; ++m) removed[std::size_t(members[std::size_t(m)])] = 1;
-      } else {  // several loops or a broken one: keep the fragments
+        merged = true;
+      } else {  // several loops or a broken one: disks below
         added.vertex.resize(mark);
         added.line.resize(mark);
         added.start.pop_back();
@@ -127,6 +264,10 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
       }
     }
     for (const Boundary& x : boundary) leaving[std::size_t(x.u)] = -1;
+    if (merged) continue;
+    // With holes (or pinched): as few disks as the greedy growth finds.
+    if (!grower) grower.emplace(faces, vertex_count), disk.assign(std::size_t(nf), -1);
+    grower->run(std::span<const int>(members.data() + b, std::size_t(e - b)), neighbours, disk, added, removed);
   }
   // The kept faces compacted in place (corners and faces only move towards the front), then
   // the merged ones appended.
