@@ -5,7 +5,8 @@
 /// boundary is clipped by the trees of the operands whose boxes meet it (Naylor et al. 1990
 /// sec. 5: a piece is kept where it is outside the others; where two operands bound the same
 /// plane region with the same orientation, the one listed first keeps it, with opposite
-/// orientations neither), and a fresh tree is built from the union's boundary (autopartition.hpp).
+/// orientations neither). The union carries that boundary; its tree is built from it
+/// (autopartition.hpp) when something first reads the tree.
 
 #include <vector>
 
