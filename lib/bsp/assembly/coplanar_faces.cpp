@@ -104,6 +104,7 @@ class DiskGrower {
     for (std::size_t k = 0; k < touched_.size() && first < 0; ++k)
       if (leave_to_[std::size_t(touched_[k])] >= 0) first = touched_[k];
     SCULPT_ASSERT(first >= 0, "merge_coplanar_faces: a disk without a boundary");
+    if (first < 0) return;
     const std::size_t mark = added.vertex.size();
     added.open_face(faces_.support[std::size_t(seed)], faces_.flip[std::size_t(seed)] != 0);
     int u = first;
@@ -111,8 +112,15 @@ class DiskGrower {
       added.add_corner(u, leave_line_[std::size_t(u)]);
       u = leave_to_[std::size_t(u)];
     } while (u >= 0 && u != first && int(added.vertex.size() - mark) <= corners_);
-    SCULPT_ASSERT(u == first && int(added.vertex.size() - mark) == corners_,
-                  "merge_coplanar_faces: a disk's boundary is not one loop");
+    if (u != first || int(added.vertex.size() - mark) != corners_) {  // not one loop: keep the fragments
+      SCULPT_ASSERT(false, "merge_coplanar_faces: a disk's boundary is not one loop");
+      added.vertex.resize(mark);
+      added.line.resize(mark);
+      added.start.pop_back();
+      added.support.pop_back();
+      added.flip.pop_back();
+      return;
+    }
     for (const int f : grown_) removed[std::size_t(f)] = 1;
   }
 
