@@ -75,7 +75,9 @@ TEST(CellReach, SaysReachOnlyWhereTheExactClipLeavesAPartAndDecidesMostOfThem) {
     const Case c = random_case(rng, planes, i % 2 == 0);
     const bool exact = exact_reach(planes, c.poly, c.cell);
     const bool quick = certainly_reaches(c.poly, c.cell);
-    if (quick) ASSERT_TRUE(exact) << "case " << i;
+    if (quick) {
+      ASSERT_TRUE(exact) << "case " << i;
+    }
     reach += exact;
     decided += quick;
     bool all_in = true;
