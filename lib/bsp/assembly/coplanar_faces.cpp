@@ -114,11 +114,7 @@ class DiskGrower {
     } while (u >= 0 && u != first && int(added.vertex.size() - mark) <= corners_);
     if (u != first || int(added.vertex.size() - mark) != corners_) {  // not one loop: keep the fragments
       SCULPT_ASSERT(false, "merge_coplanar_faces: a disk's boundary is not one loop");
-      added.vertex.resize(mark);
-      added.line.resize(mark);
-      added.start.pop_back();
-      added.support.pop_back();
-      added.flip.pop_back();
+      added.drop_last_face();
       return;
     }
     for (const int f : grown_) removed[std::size_t(f)] = 1;
@@ -264,11 +260,7 @@ FaceList merge_coplanar_faces(FaceList faces, int vertex_count, const PlaneIds& 
         for (int m = b; m < e; ++m) removed[std::size_t(members[std::size_t(m)])] = 1;
         merged = true;
       } else {  // several loops or a broken one: disks below
-        added.vertex.resize(mark);
-        added.line.resize(mark);
-        added.start.pop_back();
-        added.support.pop_back();
-        added.flip.pop_back();
+        added.drop_last_face();
       }
     }
     for (const Boundary& x : boundary) leaving[std::size_t(x.u)] = -1;

@@ -86,6 +86,15 @@ void FaceList::add_corner(int v, std::int32_t edge_line) {
   ++start.back();
 }
 
+void FaceList::drop_last_face() {
+  const auto begin = std::size_t(start[start.size() - 2]);
+  vertex.resize(begin);
+  line.resize(begin);
+  start.pop_back();
+  support.pop_back();
+  flip.pop_back();
+}
+
 void FaceList::copy_face(const FaceList& other, int f) {
   open_face(other.support[std::size_t(f)], other.flip[std::size_t(f)] != 0);
   const auto b = std::ptrdiff_t(other.begin(f)), e = std::ptrdiff_t(other.end(f));

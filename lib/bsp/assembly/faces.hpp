@@ -67,6 +67,8 @@ struct FaceList {
   /// Appends an empty face; add corners with add_corner.
   void open_face(std::int32_t support_plane, bool flipped);
   void add_corner(int v, std::int32_t edge_line);
+  /// Removes the last face and its corners (one being built that turned out not to be wanted).
+  void drop_last_face();
   /// Appends face f of `other` unchanged.
   void copy_face(const FaceList& other, int f);
 };
