@@ -390,9 +390,11 @@ TEST(MeshAssembly, LooseCornersAtAFineSpheresCapsMergeByExactEquality) {
 TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
   // Each merged vertex lists the canonical ids of its corner classes' planes (first_class /
   // class_next, linked as the merge makes classes): every corner's three planes are listed for
-  // its vertex, every listed plane passes through the vertex (Cramer's rule in unbounded
-  // integers), and VertexGeometry::on_plane (the list first, else exact) agrees with the exact
-  // side for every vertex and every plane of the table.
+  // its vertex unless the vertex is a grid point (on_grid: its corners take the class of the
+  // first one there, and `at` is the point exactly), every listed plane passes through the
+  // vertex (Cramer's rule in unbounded integers), and VertexGeometry::on_plane (the list or the
+  // grid point first, else exact) agrees with the exact side for every vertex and every plane of
+  // the table. The second solid's vertices are all grid points, the first's partly.
   std::vector<Solid> solids;
   solids.push_back(sphere(1.0, {.segments = 10}) - box({0, 0, 0}, {1, 1, 1}));
   solids.push_back(box({0, 0, 0}, {2, 2, 2}) | box({1, 1, 1}, {3, 3, 3}));
@@ -423,6 +425,20 @@ TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
         const bsp::detail::PlaneTriple& t = v.triple[std::size_t(u)];
         at.push_back(cramer(f.planes[t.s], f.planes[t.p], f.planes[t.q]));
       }
+      ASSERT_EQ(v.on_grid.size(), std::size_t(v.size()));
+      int grid_vertices = 0;
+      for (int u = 0; u < v.size(); ++u) {
+        if (v.on_grid[std::size_t(u)] == 0) continue;
+        ++grid_vertices;
+        const kernel::ApproxPoint& a = v.at[std::size_t(u)];
+        EXPECT_EQ(a.err, 0.0);
+        const Homogeneous g{Big(std::int64_t(a.x)), Big(std::int64_t(a.y)), Big(std::int64_t(a.z)), Big(1)};
+        EXPECT_TRUE(a.x == std::floor(a.x) && a.y == std::floor(a.y) && a.z == std::floor(a.z)) << u;
+        EXPECT_TRUE(at[std::size_t(u)] == g) << "vertex " << u << " is not the grid point it is said to be";
+      }
+      if (i == 1 && variant != 2) {
+        EXPECT_EQ(grid_vertices, v.size());
+      }
       std::vector<std::set<std::uint32_t>> known(static_cast<std::size_t>(v.size()));
       for (int u = 0; u < v.size(); ++u) known[std::size_t(u)] = listed(u);
       for (std::size_t k = 0; k < f.fragments.size(); ++k) {
@@ -431,6 +447,7 @@ TEST(MeshAssembly, KnownPlanesOfVerticesAndOnPlaneMatchExactIncidence) {
         for (int j = 0; j < m; ++j) {
           const auto& c = fr.polygon.corners[std::size_t(j)];
           const int u = merged.faces.vertex[std::size_t(merged.faces.begin(int(k)) + (fr.flip ? m - 1 - j : j))];
+          if (v.on_grid[std::size_t(u)] != 0) continue;
           for (const std::int32_t plane : {fr.polygon.support, c.p, c.q})
             EXPECT_TRUE(known[std::size_t(u)].count(merged.ids.id[std::size_t(plane)]) == 1) << "corner plane not listed";
         }

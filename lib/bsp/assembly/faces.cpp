@@ -169,6 +169,10 @@ std::pair<Big, Big> homogeneous(const Plane& p, const Plane& q, const Plane& r, 
 }  // namespace
 
 bool VertexGeometry::on_plane(int v, std::int32_t plane) const {
+  if (std::size_t(v) < v_.on_grid.size() && v_.on_grid[std::size_t(v)] != 0) {  // exact in Int128 (kernel/plane.hpp)
+    const kernel::ApproxPoint& a = v_.at[std::size_t(v)];
+    return planes_[plane].eval({std::int64_t(a.x), std::int64_t(a.y), std::int64_t(a.z)}) == 0;
+  }
   const std::uint32_t id = ids_.id[std::size_t(plane)];
   if (std::size_t(v) < v_.first_class.size()) {
     for (int k = v_.first_class[std::size_t(v)]; k >= 0; k = v_.class_next[std::size_t(k)]) {

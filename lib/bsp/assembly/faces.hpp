@@ -34,7 +34,10 @@ using IdTriple = std::array<std::uint32_t, 3>;
 
 /// Vertices of the mesh being assembled (grid units).
 struct AssemblyVertices {
-  std::vector<kernel::ApproxPoint> at;  ///< approximation of each vertex
+  std::vector<kernel::ApproxPoint> at;  ///< approximation of each vertex (exact, err 0, for a grid point)
+  /// 1: vertex v is a grid point (then `at` is it, exactly), found so when it was merged.
+  /// Only vertices made by vertex merging have entries.
+  std::vector<std::uint8_t> on_grid;
   std::vector<PlaneTriple> triple;      ///< one defining triple per vertex
   /// The planes known to contain vertex v: those of its classes (corners merged into v with
   /// one IdTriple each), a list through class_next from first_class[v] (-1 ends it; repeats

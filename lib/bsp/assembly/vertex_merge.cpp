@@ -50,6 +50,14 @@ IdTriple sorted(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
 // is the same grid point: most vertices of imported and transformed meshes are grid points (they
 // are snapped), and they are merged by comparing integers instead of by the exact tests. Two
 // points that are not grid points are tested exactly.
+//
+// Grid corners: a corner found to be a grid point when it is prepared (on every core) is looked
+// up by that point in pass 1, and takes the class of the first corner there: one class per grid
+// vertex instead of one per triple. Round a vertex of a triangle mesh each of its six or so
+// corners has its own triple, so a million imported triangles made three million classes (200 MB
+// of the 10^6-triangle job's peak); now about half a million. A corner at that point that is not
+// known to be a grid point (a loose approximation) still finds the class through its cells in
+// pass 2, as before.
 class CornerMerger {
  public:
   CornerMerger(const kernel::PlaneTable& planes, const PlaneIds& ids, AssemblyVertices& vertices,
@@ -65,6 +73,9 @@ class CornerMerger {
     class_support_.reserve(corners / 2 + 16);
     class_entries_.reserve(corners / 2 + 16);
     class_entries_.push_back(0);
+    std::size_t grid_slots = 64;
+    while (grid_slots < corners / 4) grid_slots *= 2;
+    grid_slots_.assign(grid_slots, GridSlot{});
   }
 
   // Whether a point is a grid point: not yet looked at, no, yes, or not known (no usable
@@ -80,6 +91,8 @@ class CornerMerger {
     IdTriple key;
     int cells;  // -1: wide (no cells)
     std::uint32_t cell[8];
+    bool on_grid;         // the corner is exactly the grid point `g`
+    kernel::GridPoint g;  // (only when on_grid)
   };
 
   // Corner `c` of a fragment on plane `support` (canonical id s), whose class goes to out[position].
@@ -124,18 +137,30 @@ class CornerMerger {
     return double(t) > x ? t - 1 : t;
   }
 
+  // The corner's class: a grid corner's is that of its grid point, if there is one yet.
   void resolve(const Pending& p) {
+    GridSlot* slot = p.on_grid ? &grid_slot(p.g) : nullptr;
+    if (slot != nullptr && slot->cls >= 0) {
+      out_[p.out] = slot->cls;
+      return;
+    }
+    const int k = class_of(p);
+    out_[p.out] = k;
+    if (slot != nullptr) {  // (class_of never touches the grid table: the slot is still valid)
+      *slot = {p.g, k};
+      if (2 * ++grid_used_ > grid_slots_.size()) grow_grid();
+    }
+  }
+
+  // The corner's class by its key (in its cells, or among all classes for a wide corner), else a new one.
+  int class_of(const Pending& p) {
     const IdTriple& key = p.key;
     if (p.cells < 0) {  // wide: its class by key among all classes, else a new one
       for (std::size_t i = 0; i < v_.class_planes.size(); ++i)
-        if (same_key(v_.class_planes[i], key)) {
-          out_[p.out] = int(i);
-          return;
-        }
+        if (same_key(v_.class_planes[i], key)) return int(i);
       const int k = new_class(p);
       wide_classes_.push_back(k);
-      out_[p.out] = k;
-      return;
+      return k;
     }
     if (2 * (cells_used_ + 8) > slots_.size()) grow();
     const int n = p.cells;
@@ -143,22 +168,39 @@ class CornerMerger {
     for (int i = 0; i < n; ++i) cells[i] = slot_of(p.cell[i]);
     for (int i = 0; i < n; ++i)
       for (int e = slots_[cells[i]].head; e >= 0; e = entries_[std::size_t(e)].next)
-        if (same_key(entries_[std::size_t(e)].key, key)) {
-          out_[p.out] = entries_[std::size_t(e)].cls;
-          return;
-        }
+        if (same_key(entries_[std::size_t(e)].key, key)) return entries_[std::size_t(e)].cls;
     for (const int w : wide_classes_)
-      if (same_key(v_.class_planes[std::size_t(w)], key)) {
-        out_[p.out] = w;
-        return;
-      }
+      if (same_key(v_.class_planes[std::size_t(w)], key)) return w;
     const int k = new_class(p);
     for (int i = 0; i < n; ++i) {
       entries_.push_back({key, k, slots_[cells[i]].head});
       slots_[cells[i]].head = int(entries_.size()) - 1;
     }
     class_entries_.back() = int(entries_.size());
-    out_[p.out] = k;
+    return k;
+  }
+
+  // The grid table: open addressing on a hash of the point (grows at half full).
+  struct GridSlot {
+    kernel::GridPoint g{};
+    int cls = -1;  // -1: free
+  };
+  std::size_t grid_hash(const kernel::GridPoint& g) const {
+    const std::uint64_t h = (std::uint64_t(g.x) * 0x9E3779B97F4A7C15ull) ^
+                            (std::uint64_t(g.y) * 0xC2B2AE3D27D4EB4Full) ^ (std::uint64_t(g.z) * 0x165667B19E3779F9ull);
+    return std::size_t(h ^ (h >> 29)) & (grid_slots_.size() - 1);
+  }
+  GridSlot& grid_slot(const kernel::GridPoint& g) {
+    const std::size_t mask = grid_slots_.size() - 1;
+    std::size_t h = grid_hash(g);
+    while (grid_slots_[h].cls >= 0 && !(grid_slots_[h].g == g)) h = (h + 1) & mask;
+    return grid_slots_[h];
+  }
+  void grow_grid() {
+    std::vector<GridSlot> old = std::move(grid_slots_);
+    grid_slots_.assign(2 * old.size(), GridSlot{});
+    for (const GridSlot& o : old)
+      if (o.cls >= 0) grid_slot(o.g) = o;
   }
 
   // A class: its key, first corner and where its entries end (they start where the previous
@@ -170,6 +212,7 @@ class CornerMerger {
     class_support_.push_back(p.support);
     class_entries_.push_back(class_entries_.back());
     wide_before_.push_back(int(wide_classes_.size()));
+    class_on_grid_.push_back(p.on_grid ? 1 : 0);
     return k;
   }
 
@@ -203,7 +246,8 @@ class CornerMerger {
     const std::size_t count = v_.class_planes.size();
     std::vector<int> link(count, -1);
     grid_.reset(new std::atomic<GridStatus>[count]);
-    for (std::size_t k = 0; k < count; ++k) grid_[k].store(GridStatus::Unchecked, std::memory_order_relaxed);
+    for (std::size_t k = 0; k < count; ++k)
+      grid_[k].store(class_on_grid_[k] != 0 ? GridStatus::Yes : GridStatus::Unchecked, std::memory_order_relaxed);
     parallel_chunks(count, 4096, [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const auto cls = int(k);
@@ -234,7 +278,14 @@ class CornerMerger {
       if (v < 0) {
         const kernel::Corner& c = *class_corner_[k];
         v = v_.size();
-        v_.at.push_back(c.at());
+        // A grid point's approximation is the point itself (exact: within 2^40, grid_point).
+        if (class_on_grid_[k] != 0) {
+          const kernel::GridPoint g = nearest_grid_point(class_at(int(k)));
+          v_.at.push_back({double(g.x), double(g.y), double(g.z), 0.0});
+        } else {
+          v_.at.push_back(c.at());
+        }
+        v_.on_grid.push_back(class_on_grid_[k]);
         v_.triple.push_back({class_support_[k], c.p, c.q});
         v_.first_class.push_back(-1);
       } else {
@@ -372,6 +423,9 @@ class CornerMerger {
   std::vector<int> class_entries_;
   std::vector<int> wide_before_;
   std::vector<int> wide_classes_;
+  std::vector<std::uint8_t> class_on_grid_;  // per class: made by a grid corner (its status is Yes)
+  std::vector<GridSlot> grid_slots_;         // grid corners' classes by their point
+  std::size_t grid_used_ = 0;
   std::unique_ptr<std::atomic<GridStatus>[]> grid_;  // per class, pass 2
 };
 
@@ -382,6 +436,8 @@ void CornerMerger::prepare(std::int32_t support, std::uint32_t s, const kernel::
   p.support = support;
   p.key = sorted(s, ids_.id[std::size_t(c.p)], ids_.id[std::size_t(c.q)]);
   const ApproxPoint a = tight_approximation(support, c);
+  p.on_grid = grid_point(support, c.p, c.q, a) == GridStatus::Yes;
+  if (p.on_grid) p.g = nearest_grid_point(a);
   constexpr double kShift = 0.3711;  // grid points never sit on a cell boundary
   constexpr double kFar = 0x1p60;    // beyond: no cells (the brute-force path)
   std::int64_t lo[3], hi[3];
