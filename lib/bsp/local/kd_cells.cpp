@@ -110,18 +110,32 @@ Choice separating_split(const KdNode& n, const std::array<std::span<const Fragme
 }
 
 // The fragments of node n on each side of the wall c (parts[side][operand]): those whose boxes
-// reach it go to both.
+// reach it go to both. Without branches: the items come in index order, not along the axis, so
+// which side an item goes to is a coin toss for the branch predictor.
 void distribute(const KdNode& n, const Choice& c, const std::array<std::span<const FragmentBox>, 2>& boxes,
                 std::array<std::array<std::vector<std::uint32_t>, 2>, 2>& parts) {
   const double wall = 0.5 * double(c.split);
-  for (int side = 0; side < 2; ++side)
-    for (int op = 0; op < 2; ++op) parts[side][op].clear();
-  for (int op = 0; op < 2; ++op)
-    for (const std::uint32_t i : n.items[op]) {
-      const FragmentBox& b = boxes[op][i];
-      if (lo_of(b, c.axis) <= wall) parts[0][op].push_back(i);
-      if (hi_of(b, c.axis) >= wall) parts[1][op].push_back(i);
+  const int axis = c.axis;
+  for (int op = 0; op < 2; ++op) {
+    const std::vector<std::uint32_t>& items = n.items[op];
+    std::vector<std::uint32_t>&below = parts[0][op], &above = parts[1][op];
+    below.resize(items.size());
+    above.resize(items.size());
+    const FragmentBox* box = boxes[op].data();
+    std::size_t nb = 0, na = 0;
+    for (const std::uint32_t i : items) {
+      const FragmentBox& b = box[i];
+      below[nb] = i;
+      above[na] = i;
+      nb += std::size_t(!b.valid | (double(b.lo[axis]) <= wall));  // lo_of(b, axis) <= wall
+      na += std::size_t(!b.valid | (double(b.hi[axis]) >= wall));  // hi_of(b, axis) >= wall
     }
+    below.resize(nb);
+    above.resize(na);
+    // Leaves keep their lists: not twice the memory they need.
+    for (std::vector<std::uint32_t>* v : {&below, &above})
+      if (v->capacity() > v->size() + v->size() / 4 + 16) v->shrink_to_fit();
+  }
 }
 
 // Where node n's fragments go if it is split (parts[side][operand]), or axis -1 when it stays a
