@@ -172,6 +172,8 @@ FaceRun make_faces(const PolygonMesh& mesh, const std::vector<GridPoint>& g, con
   };
   std::vector<Eigen::Vector3d> pts;
   std::vector<int> local;
+  std::vector<IndexTriangle> tris;
+  PolygonTriangulator triangulator;
   CancelPoll poll;
   for (std::size_t fi = begin; fi < end; ++fi) {
     poll.tick();  // Ctrl-C (base/cancel.hpp)
@@ -218,14 +220,21 @@ FaceRun make_faces(const PolygonMesh& mesh, const std::vector<GridPoint>& g, con
     const auto support = std::int32_t(run.planes.size());
     run.planes.push_back(best);
     if (planar) run.support_of[fi - begin] = support;
-    // Triangulate (faces may be non-convex); every triangle is a convex plane-based polygon.
-    pts.clear();
-    local.clear();
-    for (std::size_t i = 0; i < m; ++i) {
-      pts.push_back(grid.to_world(g[std::size_t(f[i])]));
-      local.push_back(int(i));
+    // Triangulate (faces may be non-convex); every triangle is a convex plane-based polygon. A
+    // triangle is its own (as triangulate_polygon gives it), without the points or an allocation.
+    tris.clear();
+    if (m == 3) {
+      tris.push_back({0, 1, 2});
+    } else {
+      pts.clear();
+      local.clear();
+      for (std::size_t i = 0; i < m; ++i) {
+        pts.push_back(grid.to_world(g[std::size_t(f[i])]));
+        local.push_back(int(i));
+      }
+      triangulator.append(pts, local, tris);
     }
-    for (const IndexTriangle& tri : triangulate_polygon(pts, local)) {
+    for (const IndexTriangle& tri : tris) {
       const GridPoint v[3] = {g[std::size_t(f[std::size_t(tri[0])])], g[std::size_t(f[std::size_t(tri[1])])],
                               g[std::size_t(f[std::size_t(tri[2])])]};
       const GridPoint u = sub(v[1], v[0]), w = sub(v[2], v[0]);
