@@ -7,10 +7,13 @@
 
 #include "support/rational_orientation.hpp"
 
+#include <algorithm>
 #include <boost/multiprecision/cpp_int.hpp>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numbers>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -505,6 +508,63 @@ TEST(BoxGrid, EveryOverlappingPairIsOwnedByExactlyOneCell) {
     size_t found = 0;
     for (const auto& [pair, count] : owned) found += count > 0 ? 1 : 0;
     EXPECT_EQ(found, expected);
+  }
+}
+
+// The same on tens of thousands of boxes: in a solid cube (cells numbered densely, a counting sort)
+// and on a sphere's shell (cells sorted by key), the owned pairs against a sweep along x, each
+// cell's boxes in ascending order, and the cells, their members and masks the same with one thread
+// as with all.
+TEST(BoxGrid, LargeGridsOwnEveryPairOnceForAnyThreadCount) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(-1, 1), size(0, 0.6);
+  for (const bool shell : {false, true}) {
+    SCOPED_TRACE(shell);
+    std::vector<Eigen::AlignedBox3d> boxes;
+    while (boxes.size() < 40000) {
+      Vector3d lo(unit(rng), unit(rng), unit(rng));
+      if (shell) {
+        if (lo.norm() < 0.1) continue;
+        lo = lo.normalized() * 40;
+      } else {
+        lo *= 12;
+      }
+      boxes.emplace_back(lo, lo + Vector3d(size(rng), size(rng), size(rng)));
+    }
+    const mesh::detail::BoxGrid grid(boxes);
+    std::vector<std::pair<int, int>> owned;
+    for (size_t k = 0; k < grid.cells(); ++k) {
+      const auto cell = grid.cell(k);
+      ASSERT_TRUE(std::adjacent_find(cell.begin(), cell.end(), std::greater_equal<int>()) == cell.end())
+          << "cell " << k << "'s boxes are not in ascending order";
+      for (size_t i = 0; i < cell.size(); ++i)
+        for (size_t j = i + 1; j < cell.size(); ++j)
+          if (boxes[size_t(cell[i])].intersects(boxes[size_t(cell[j])]) && grid.owns(k, cell[i], cell[j]))
+            owned.push_back(std::minmax(cell[i], cell[j]));
+    }
+    std::sort(owned.begin(), owned.end());
+    std::vector<int> order(boxes.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return boxes[size_t(a)].min().x() < boxes[size_t(b)].min().x(); });
+    std::vector<std::pair<int, int>> expected;
+    for (size_t a = 0; a < order.size(); ++a)
+      for (size_t b = a + 1; b < order.size() && boxes[size_t(order[b])].min().x() <= boxes[size_t(order[a])].max().x();
+           ++b)
+        if (boxes[size_t(order[a])].intersects(boxes[size_t(order[b])]))
+          expected.push_back(std::minmax(order[a], order[b]));
+    std::sort(expected.begin(), expected.end());
+    ASSERT_GT(expected.size(), 1000u);
+    EXPECT_EQ(owned, expected);
+    const ThreadLimit one(1);
+    const mesh::detail::BoxGrid serial(boxes);
+    ASSERT_EQ(serial.cells(), grid.cells());
+    for (size_t k = 0; k < grid.cells(); ++k) {
+      const auto a = grid.cell(k), b = serial.cell(k);
+      ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "cell " << k;
+      const auto ma = grid.first_cell_masks(k), mb = serial.first_cell_masks(k);
+      ASSERT_TRUE(std::equal(ma.begin(), ma.end(), mb.begin(), mb.end())) << "cell " << k;
+    }
   }
 }
 
