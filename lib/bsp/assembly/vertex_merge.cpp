@@ -73,9 +73,7 @@ class CornerMerger {
     class_support_.reserve(corners / 2 + 16);
     class_entries_.reserve(corners / 2 + 16);
     class_entries_.push_back(0);
-    std::size_t grid_slots = 64;
-    while (grid_slots < corners / 4) grid_slots *= 2;
-    grid_slots_.assign(grid_slots, GridSlot{});
+    grid_slots_.assign(64, GridSlot{});  // grows with the grid vertices: nothing for a sphere's
   }
 
   // Whether a point is a grid point: not yet looked at, no, yes, or not known (no usable
