@@ -153,8 +153,9 @@ class VertexGeometry {
  public:
   VertexGeometry(const kernel::PlaneTable& planes, const PlaneIds& ids, const AssemblyVertices& vertices)
       : planes_(planes), ids_(ids), v_(vertices) {}
-  /// Vertex v lies on plane i: known without arithmetic when one of the planes merged into v
-  /// is plane i or its opposite, else decided exactly.
+  /// Vertex v lies on plane i: for a grid vertex (on_grid) the plane evaluated there in Int128;
+  /// otherwise known without arithmetic when one of the planes merged into v is plane i or its
+  /// opposite, else decided exactly.
   [[nodiscard]] bool on_plane(int v, std::int32_t plane) const;
   /// The axis along which the line support ∩ edge changes most (exact direction): two distinct
   /// points of the line always differ in this coordinate.
